@@ -1,0 +1,1 @@
+//! Pure functions on states and trajectories: action-angle variables, symmetric-top analysis.

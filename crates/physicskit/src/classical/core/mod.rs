@@ -1,0 +1,24 @@
+//! Traits, state layout, results, options and errors: what every other module builds on.
+
+pub mod error;
+pub mod linalg;
+mod memory;
+pub mod method;
+pub mod options;
+pub mod phase;
+pub mod result;
+pub mod system;
+pub mod time_grid;
+
+pub use error::{Error, Result};
+pub use method::Method;
+pub use options::{IntegrateOptions, Observer, Sampling};
+pub use phase::Phase;
+pub(crate) use result::Recorder;
+pub use result::{ExtraValue, SimulationResult};
+pub use system::{
+    hamiltonian_energy, lagrangian_derivatives, quadratic_kinetic_energy, separable_derivatives,
+    separable_jacobian, split, DynamicalSystem, HamiltonianSystem, LagrangianSystem, MassInv,
+    OdeSystem,
+};
+pub use time_grid::TimeGrid;

@@ -1,0 +1,307 @@
+//! The drivers behind every `integrate`: validate, allocate once, loop, record.
+//!
+//! One generic loop ([`run`]) serves every method and family. It is monomorphized for each
+//! system and stepper, so nothing in a step is dynamically dispatched; the observer (progress
+//! bar, Ctrl-C) is consulted every few thousand steps only.
+
+use std::collections::BTreeMap;
+use std::ops::ControlFlow;
+
+use super::field::{Canonical, FirstOrder, VectorField};
+use super::implicit_midpoint::ImplicitMidpoint;
+use super::rk4::Rk4;
+use super::splitting::SplittingStepper;
+use crate::classical::core::{
+    error::check_finite, DynamicalSystem, Error, ExtraValue, HamiltonianSystem, IntegrateOptions,
+    LagrangianSystem, Method, OdeSystem, Recorder, Result, SimulationResult, TimeGrid,
+};
+
+/// Integrates a Hamiltonian system (see [`HamiltonianSystem::integrate`]).
+///
+/// # Errors
+/// See [`HamiltonianSystem::integrate`].
+pub fn integrate_hamiltonian<S: HamiltonianSystem>(
+    system: &mut S,
+    t_span: (f64, f64),
+    dt: f64,
+    method: Method,
+    options: IntegrateOptions<'_>,
+) -> Result<SimulationResult> {
+    let ndof = system.ndof();
+    let setup = Setup::new(&*system, t_span, dt, Some(ndof), &options)?;
+    match method {
+        Method::Verlet | Method::Yoshida4 => {
+            SplittingStepper::check_system(method, &*system)?;
+            let mut stepper = SplittingStepper::new(method, ndof)?;
+            let sys = &*system;
+            let (result, y) = setup.run(
+                method,
+                options,
+                |t, y| {
+                    let (q, p) = y.split_at_mut(ndof);
+                    stepper.step(sys, t, q, p, dt)
+                },
+                |_, y, out| copy_sample(sys, y, out),
+            )?;
+            finish(system, result, &y, |extra| {
+                extra.insert(
+                    "force_evaluations".into(),
+                    ExtraValue::Scalar(stepper.force_evaluations() as f64),
+                );
+            })
+        }
+        Method::Rk4 | Method::ImplicitMidpoint => {
+            integrate_first_order(system, setup, method, options)
+        }
+    }
+}
+
+/// Integrates a Lagrangian system (see [`LagrangianSystem::integrate`]).
+///
+/// `implicit_midpoint` runs on the canonical state `[q, p]` and converts each stored sample back
+/// to `[q, qdot]`; `rk4` runs on `[q, qdot]`.
+///
+/// # Errors
+/// See [`LagrangianSystem::integrate`].
+pub fn integrate_lagrangian<S: LagrangianSystem>(
+    system: &mut S,
+    t_span: (f64, f64),
+    dt: f64,
+    method: Method,
+    options: IntegrateOptions<'_>,
+) -> Result<SimulationResult> {
+    let ndof = system.ndof();
+    let setup = Setup::new(&*system, t_span, dt, Some(ndof), &options)?;
+    match method {
+        Method::Rk4 => integrate_first_order(system, setup, method, options),
+        Method::ImplicitMidpoint => {
+            let sys = &*system;
+            // Canonical start: p = dL/dqdot at (q0, qdot0).
+            let mut work = sys.state().to_vec();
+            {
+                let (q, rest) = work.split_at_mut(ndof);
+                let qdot = sys.state()[ndof..].to_vec();
+                sys.momentum(q, &qdot, setup.grid.t0(), rest)?;
+            }
+            let field = Canonical(sys);
+            let mut stepper = ImplicitMidpoint::new(2 * ndof);
+            let (result, y) = setup.run_from(
+                work,
+                method,
+                options,
+                |t, y| stepper.step(&field, t, y, dt),
+                |t, y, out| {
+                    let (q, p) = y.split_at(ndof);
+                    out[..ndof].copy_from_slice(q);
+                    sys.velocity(q, p, t, &mut out[ndof..])?;
+                    Ok(sys.energy(out))
+                },
+            )?;
+            let stats = stepper.stats();
+            finish(system, result, &y, |extra| solver_extras(extra, &stats))
+        }
+        Method::Verlet | Method::Yoshida4 => Err(Error::UnsupportedMethod {
+            method: method.name().into(),
+            reason: "Lagrangian systems are integrated in canonical form, which is not \
+                     separable in general; use implicit_midpoint (symplectic) or rk4"
+                .into(),
+        }),
+    }
+}
+
+/// Integrates a general ODE system (see [`OdeSystem::integrate`]).
+///
+/// # Errors
+/// See [`OdeSystem::integrate`].
+pub fn integrate_ode<S: OdeSystem>(
+    system: &mut S,
+    t_span: (f64, f64),
+    dt: f64,
+    method: Method,
+    options: IntegrateOptions<'_>,
+) -> Result<SimulationResult> {
+    let setup = Setup::new(&*system, t_span, dt, None, &options)?;
+    match method {
+        Method::Rk4 | Method::ImplicitMidpoint => {
+            integrate_first_order(system, setup, method, options)
+        }
+        Method::Verlet | Method::Yoshida4 => Err(Error::UnsupportedMethod {
+            method: method.name().into(),
+            reason: "a general ODE system has no separable Hamiltonian structure; use \
+                     implicit_midpoint or rk4"
+                .into(),
+        }),
+    }
+}
+
+/// `rk4` or `implicit_midpoint` on the system's own first-order form.
+fn integrate_first_order<S: DynamicalSystem>(
+    system: &mut S,
+    setup: Setup,
+    method: Method,
+    options: IntegrateOptions<'_>,
+) -> Result<SimulationResult> {
+    let sys = &*system;
+    let field = FirstOrder(sys);
+    let dt = setup.grid.dt();
+    let record = |_: f64, y: &[f64], out: &mut [f64]| copy_sample(sys, y, out);
+    if method == Method::Rk4 {
+        let mut stepper = Rk4::new(field.dim());
+        let (result, y) = setup.run(
+            method,
+            options,
+            |t, y| stepper.step(&field, t, y, dt),
+            record,
+        )?;
+        let evaluations = stepper.evaluations();
+        finish(system, result, &y, |extra| {
+            extra.insert(
+                "rhs_evaluations".into(),
+                ExtraValue::Scalar(evaluations as f64),
+            );
+        })
+    } else {
+        let mut stepper = ImplicitMidpoint::new(field.dim());
+        let (result, y) = setup.run(
+            method,
+            options,
+            |t, y| stepper.step(&field, t, y, dt),
+            record,
+        )?;
+        let stats = stepper.stats();
+        finish(system, result, &y, |extra| solver_extras(extra, &stats))
+    }
+}
+
+/// Stores the working state as it is and returns its energy.
+fn copy_sample<S: DynamicalSystem + ?Sized>(system: &S, y: &[f64], out: &mut [f64]) -> Result<f64> {
+    out.copy_from_slice(y);
+    Ok(system.energy(y))
+}
+
+fn solver_extras(
+    extra: &mut BTreeMap<String, ExtraValue>,
+    stats: &super::implicit_midpoint::SolverStats,
+) {
+    let steps = stats.steps.max(1) as f64;
+    for (name, value) in [
+        ("rhs_evaluations", stats.evaluations as f64),
+        ("jacobian_evaluations", stats.jacobians as f64),
+        ("newton_steps", stats.newton_steps as f64),
+        ("solver_iterations_max", stats.max_iterations as f64),
+        ("solver_evaluations_mean", stats.evaluations as f64 / steps),
+        ("solver_residual_max", stats.max_residual),
+    ] {
+        extra.insert(name.into(), ExtraValue::Scalar(value));
+    }
+}
+
+/// Writes the final sample back into the system and adds the extras.
+fn finish<S: DynamicalSystem>(
+    system: &mut S,
+    (mut result, t_end): (SimulationResult, f64),
+    final_state: &[f64],
+    add: impl FnOnce(&mut BTreeMap<String, ExtraValue>),
+) -> Result<SimulationResult> {
+    system.phase_mut().assign_unchecked(final_state, t_end);
+    add(&mut result.extra);
+    Ok(result)
+}
+
+/// Validated inputs and preallocated storage of one call.
+struct Setup {
+    grid: TimeGrid,
+    recorder: Recorder,
+    start: Vec<f64>,
+}
+
+impl Setup {
+    fn new<S: DynamicalSystem + ?Sized>(
+        system: &S,
+        t_span: (f64, f64),
+        dt: f64,
+        ndof: Option<usize>,
+        options: &IntegrateOptions<'_>,
+    ) -> Result<Self> {
+        let grid = TimeGrid::new(t_span, dt)?;
+        options.sampling.validate()?;
+        let start = system.state().to_vec();
+        check_finite("state", &start, grid.t0())?;
+        let samples = options.sampling.count(grid.n_steps());
+        let recorder = Recorder::new(samples, start.len(), ndof, !options.skip_energy)?;
+        Ok(Self {
+            grid,
+            recorder,
+            start,
+        })
+    }
+
+    fn run(
+        self,
+        method: Method,
+        options: IntegrateOptions<'_>,
+        step: impl FnMut(f64, &mut [f64]) -> Result<()>,
+        sample: impl FnMut(f64, &[f64], &mut [f64]) -> Result<f64>,
+    ) -> Result<((SimulationResult, f64), Vec<f64>)> {
+        let work = self.start.clone();
+        self.run_from(work, method, options, step, sample)
+    }
+
+    /// The loop: `step(t, y)` advances the working state `y` by one step from `t`;
+    /// `sample(t, y, out)` writes the stored form of `y` into `out` and returns its energy.
+    /// Returns the result, its final time and the final stored state.
+    fn run_from(
+        self,
+        mut work: Vec<f64>,
+        method: Method,
+        mut options: IntegrateOptions<'_>,
+        mut step: impl FnMut(f64, &mut [f64]) -> Result<()>,
+        mut sample: impl FnMut(f64, &[f64], &mut [f64]) -> Result<f64>,
+    ) -> Result<((SimulationResult, f64), Vec<f64>)> {
+        let Setup {
+            grid,
+            mut recorder,
+            start,
+        } = self;
+        let n = grid.n_steps();
+        let sampling = options.sampling;
+        let interval = options.observe_interval();
+        let mut out = start;
+        let mut store = |recorder: &mut Recorder, t: f64, work: &[f64], out: &mut [f64]| {
+            let energy = sample(t, work, out)?;
+            if (recorder.wants_energy() && !energy.is_finite())
+                || !out.iter().all(|v| v.is_finite())
+            {
+                return Err(Error::NonFinite {
+                    name: "state".into(),
+                    t,
+                });
+            }
+            recorder.push(t, out, energy);
+            Ok(())
+        };
+        store(&mut recorder, grid.t0(), &work, &mut out)?;
+        for i in 0..n {
+            step(grid.time(i), &mut work)?;
+            let done = i + 1;
+            let t = grid.time(done);
+            if sampling.is_stored(done, n) {
+                store(&mut recorder, t, &work, &mut out)?;
+            } else if done % interval == 0 {
+                // Between stored samples, still catch a blow-up early.
+                check_finite("state", &work, t)?;
+            }
+            if done % interval == 0 {
+                if let Some(observer) = options.observer.as_deref_mut() {
+                    if let ControlFlow::Break(()) = observer.observe(done, n, t) {
+                        return Err(Error::Interrupted { t });
+                    }
+                }
+            }
+        }
+        let mut extra = BTreeMap::new();
+        extra.insert("n_steps".into(), ExtraValue::Scalar(n as f64));
+        extra.insert("dt".into(), ExtraValue::Scalar(grid.dt()));
+        Ok(((recorder.finish(method.name(), extra), grid.t_end()), out))
+    }
+}

@@ -1,0 +1,295 @@
+//! `implicit_midpoint`: the implicit midpoint rule.
+//!
+//! ```text
+//! y1 = y0 + h f(t + h/2, (y0 + y1)/2)
+//! ```
+//!
+//! written as an equation for the midpoint slope `k`, `k = f(t + h/2, y0 + (h/2) k)`,
+//! `y1 = y0 + h k`. Order 2, symmetric (time-reversible), symplectic for every Hamiltonian
+//! (separable or not), and it conserves every quadratic invariant of any ODE exactly, up to the
+//! accuracy of the solve (G. J. Cooper, IMA J. Numer. Anal. 7 (1987) 1–13; Hairer, Lubich,
+//! Wanner, *Geometric Numerical Integration* (2006), §IV.2).
+//!
+//! # The solve
+//!
+//! Each step starts from the previous step's slope (an `O(h)`-accurate predictor) and runs
+//! fixed-point iteration, which contracts by about `h L / 2` per sweep (`L` the Lipschitz
+//! constant) and costs one evaluation per sweep: at the small steps symplectic demonstrations
+//! use, it converges in 2–4 sweeps. When it contracts slowly (rate above 1/2) or diverges, and
+//! the field supplies a Jacobian (analytic or automatic differentiation), the solver switches to
+//! Newton's method on `k - f(t + h/2, y0 + h k/2) = 0`, refactoring `I - (h/2) J` only when
+//! Newton itself slows down. Iteration stops when the correction, measured relative to the
+//! state's max norm, falls below [`SolverSettings::tolerance`] (a few ulps), or stalls at the
+//! rounding floor. A step that converges neither way is an
+//! [`Error::SolverDidNotConverge`] naming `t`, the iterations and the residual; an unconverged
+//! state is never returned.
+
+use super::field::VectorField;
+use crate::classical::core::linalg::{lu_factor, lu_solve};
+use crate::classical::core::{Error, Result};
+
+/// Tolerances and iteration limits of the implicit solve.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct SolverSettings {
+    /// Converged when `max_i |h dk_i| <= tolerance * max(|y0|_inf, |h k|_inf)`. The default,
+    /// 2 ulps, makes the solve error smaller than the rounding of the update itself.
+    pub tolerance: f64,
+    /// A correction this small that no longer shrinks is at the rounding floor of `f` and is
+    /// accepted (default 1e-13: ~500 ulps, reached only by badly conditioned fields).
+    pub stall_tolerance: f64,
+    /// Fixed-point sweeps before giving up on that iteration.
+    pub max_fixed_point: usize,
+    /// Newton iterations before reporting non-convergence.
+    pub max_newton: usize,
+}
+
+impl Default for SolverSettings {
+    fn default() -> Self {
+        Self {
+            tolerance: 2.0 * f64::EPSILON,
+            stall_tolerance: 1e-13,
+            max_fixed_point: 50,
+            max_newton: 30,
+        }
+    }
+}
+
+/// What the solver did, over all steps so far.
+#[derive(Debug, Clone, Copy, PartialEq, Default)]
+pub struct SolverStats {
+    /// Steps taken.
+    pub steps: u64,
+    /// Right-hand-side evaluations.
+    pub evaluations: u64,
+    /// Jacobian evaluations (each followed by one LU factorization).
+    pub jacobians: u64,
+    /// Steps that needed Newton's method.
+    pub newton_steps: u64,
+    /// Most iterations (fixed-point plus Newton) in one step.
+    pub max_iterations: usize,
+    /// Largest final relative correction of any step.
+    pub max_residual: f64,
+}
+
+/// The implicit midpoint stepper and its work buffers, allocated once.
+#[derive(Debug, Clone)]
+pub struct ImplicitMidpoint {
+    dim: usize,
+    k: Vec<f64>,
+    k_new: Vec<f64>,
+    mid: Vec<f64>,
+    lu: Vec<f64>,
+    piv: Vec<usize>,
+    has_slope: bool,
+    /// Tolerances and limits.
+    pub settings: SolverSettings,
+    stats: SolverStats,
+}
+
+enum Outcome {
+    Converged(usize, f64),
+    Stalled(usize, f64),
+}
+
+impl ImplicitMidpoint {
+    /// Buffers for a `dim`-dimensional state.
+    pub fn new(dim: usize) -> Self {
+        Self {
+            dim,
+            k: vec![0.0; dim],
+            k_new: vec![0.0; dim],
+            mid: vec![0.0; dim],
+            lu: vec![0.0; dim * dim],
+            piv: vec![0; dim],
+            has_slope: false,
+            settings: SolverSettings::default(),
+            stats: SolverStats::default(),
+        }
+    }
+
+    /// What the solver did so far.
+    pub fn stats(&self) -> SolverStats {
+        self.stats
+    }
+
+    /// Forgets the previous slope (call after changing `y` outside the stepper).
+    pub fn invalidate(&mut self) {
+        self.has_slope = false;
+    }
+
+    /// Advances `y` from `t` to `t + h` (`h` may be negative).
+    ///
+    /// # Errors
+    /// [`Error::SolverDidNotConverge`], or whatever the field reports.
+    pub fn step<F: VectorField + ?Sized>(
+        &mut self,
+        f: &F,
+        t: f64,
+        y: &mut [f64],
+        h: f64,
+    ) -> Result<()> {
+        debug_assert_eq!(y.len(), self.dim);
+        if !self.has_slope {
+            f.eval(t, y, &mut self.k)?;
+            self.stats.evaluations += 1;
+        }
+        let scale_y = y.iter().fold(0.0_f64, |m, v| m.max(v.abs()));
+        let outcome = match self.fixed_point(f, t, y, h, scale_y)? {
+            Ok(done) => done,
+            Err((iterations, residual)) => {
+                self.newton(f, t, y, h, scale_y, iterations, residual)?
+            }
+        };
+        let (iterations, residual) = match outcome {
+            Outcome::Converged(i, r) | Outcome::Stalled(i, r) => (i, r),
+        };
+        for (yi, ki) in y.iter_mut().zip(&self.k) {
+            *yi += h * ki;
+        }
+        self.has_slope = true;
+        self.stats.steps += 1;
+        self.stats.max_iterations = self.stats.max_iterations.max(iterations);
+        self.stats.max_residual = self.stats.max_residual.max(residual);
+        Ok(())
+    }
+
+    /// Relative size of the correction `h (new - old)`.
+    fn correction(h: f64, new: &[f64], old: &[f64], scale_y: f64) -> f64 {
+        let mut num = 0.0_f64;
+        let mut hk = 0.0_f64;
+        for (a, b) in new.iter().zip(old) {
+            num = num.max((h * (a - b)).abs());
+            hk = hk.max((h * a).abs());
+        }
+        let scale = scale_y.max(hk);
+        if num == 0.0 {
+            0.0
+        } else if scale > 0.0 {
+            num / scale
+        } else {
+            f64::INFINITY
+        }
+    }
+
+    /// Fixed-point sweeps. `Ok(Err((iterations, residual)))` hands over to Newton.
+    fn fixed_point<F: VectorField + ?Sized>(
+        &mut self,
+        f: &F,
+        t: f64,
+        y: &[f64],
+        h: f64,
+        scale_y: f64,
+    ) -> Result<std::result::Result<Outcome, (usize, f64)>> {
+        let s = self.settings;
+        let tm = t + 0.5 * h;
+        let mut previous = f64::INFINITY;
+        for it in 1..=s.max_fixed_point {
+            for ((m, yi), ki) in self.mid.iter_mut().zip(y).zip(&self.k) {
+                *m = yi + 0.5 * h * ki;
+            }
+            f.eval(tm, &self.mid, &mut self.k_new)?;
+            self.stats.evaluations += 1;
+            let delta = Self::correction(h, &self.k_new, &self.k, scale_y);
+            let rate = delta / previous;
+            if !delta.is_finite() {
+                // Diverged to overflow: restart Newton from the explicit predictor.
+                f.eval(t, y, &mut self.k)?;
+                self.stats.evaluations += 1;
+                return Ok(Err((it, delta)));
+            }
+            std::mem::swap(&mut self.k, &mut self.k_new);
+            if delta <= s.tolerance {
+                return Ok(Ok(Outcome::Converged(it, delta)));
+            }
+            if it >= 2 && rate >= 0.5 {
+                if delta <= s.stall_tolerance {
+                    return Ok(Ok(Outcome::Stalled(it, delta)));
+                }
+                return Ok(Err((it, delta)));
+            }
+            previous = delta;
+        }
+        Ok(Err((s.max_fixed_point, previous)))
+    }
+
+    /// Newton's method with a Jacobian refreshed only when convergence slows.
+    #[allow(clippy::too_many_arguments)]
+    fn newton<F: VectorField + ?Sized>(
+        &mut self,
+        f: &F,
+        t: f64,
+        y: &[f64],
+        h: f64,
+        scale_y: f64,
+        spent: usize,
+        last_residual: f64,
+    ) -> Result<Outcome> {
+        let s = self.settings;
+        let n = self.dim;
+        let tm = t + 0.5 * h;
+        let fail = |iterations: usize, residual: f64| Error::SolverDidNotConverge {
+            t,
+            iterations,
+            residual,
+        };
+        self.stats.newton_steps += 1;
+        let mut fresh_jacobian = false;
+        let mut previous = f64::INFINITY;
+        let mut residual = last_residual;
+        for it in 1..=s.max_newton {
+            for ((m, yi), ki) in self.mid.iter_mut().zip(y).zip(&self.k) {
+                *m = yi + 0.5 * h * ki;
+            }
+            if it == 1 || !fresh_jacobian {
+                match f.jacobian(tm, &self.mid, &mut self.lu) {
+                    None => return Err(fail(spent, residual)),
+                    Some(r) => r?,
+                }
+                self.stats.jacobians += 1;
+                // A = I - (h/2) J
+                for (idx, a) in self.lu.iter_mut().enumerate() {
+                    *a *= -0.5 * h;
+                    if idx / n == idx % n {
+                        *a += 1.0;
+                    }
+                }
+                if lu_factor(&mut self.lu, n, &mut self.piv).is_err() {
+                    return Err(fail(spent + it, residual));
+                }
+                fresh_jacobian = true;
+            }
+            // G(k) = k - f(tm, y0 + h k / 2); k <- k - A^-1 G
+            f.eval(tm, &self.mid, &mut self.k_new)?;
+            self.stats.evaluations += 1;
+            for (g, ki) in self.k_new.iter_mut().zip(&self.k) {
+                *g = ki - *g;
+            }
+            lu_solve(&self.lu, n, &self.piv, &mut self.k_new);
+            let mut num = 0.0_f64;
+            let mut hk = 0.0_f64;
+            for (ki, d) in self.k.iter_mut().zip(&self.k_new) {
+                *ki -= d;
+                num = num.max((h * d).abs());
+                hk = hk.max((h * *ki).abs());
+            }
+            let scale = scale_y.max(hk);
+            residual = if num == 0.0 { 0.0 } else { num / scale };
+            if !residual.is_finite() {
+                return Err(fail(spent + it, residual));
+            }
+            if residual <= s.tolerance {
+                return Ok(Outcome::Converged(spent + it, residual));
+            }
+            let rate = residual / previous;
+            if it >= 2 && rate >= 0.5 {
+                if residual <= s.stall_tolerance {
+                    return Ok(Outcome::Stalled(spent + it, residual));
+                }
+                // Simplified Newton slowed down: refresh the Jacobian next iteration.
+                fresh_jacobian = false;
+            }
+            previous = residual;
+        }
+        Err(fail(spent + s.max_newton, residual))
+    }
+}

@@ -1,0 +1,15 @@
+//! `verlet`: the Störmer–Verlet (leapfrog) method in kick–drift–kick form.
+//!
+//! ```text
+//! p_{1/2} = p_0 + (h/2) F(q_0)
+//! q_1     = q_0 + h M^-1 p_{1/2}
+//! p_1     = p_{1/2} + (h/2) F(q_1)
+//! ```
+//!
+//! L. Verlet, Phys. Rev. 159 (1967) 98; E. Hairer, C. Lubich, G. Wanner, *Geometric Numerical
+//! Integration*, 2nd ed. (2006), §I.3. Order 2, symplectic, time-reversible. `F(q_1)` is reused
+//! as the next step's first kick, so a step costs one force evaluation. Needs a separable
+//! `H = T(p) + V(q)` with conservative forces.
+
+/// Drift weights: a single full drift.
+pub const DRIFTS: [f64; 1] = [1.0];

@@ -1,0 +1,38 @@
+//! `yoshida4`: Yoshida's fourth-order triple-jump composition of Störmer–Verlet.
+//!
+//! H. Yoshida, "Construction of higher order symplectic integrators", Phys. Lett. A 150
+//! (1990) 262–268, eq. (4.4)–(4.5): three Verlet substeps of lengths `w1 h`, `w0 h`, `w1 h`
+//! with
+//!
+//! ```text
+//! w1 = 1 / (2 - 2^(1/3)),    w0 = -2^(1/3) / (2 - 2^(1/3)) = 1 - 2 w1
+//! ```
+//!
+//! Order 4, symplectic and time-reversible (the composition is symmetric). Adjacent kicks of
+//! consecutive substeps merge, so a step costs three force evaluations, and the last force is
+//! reused by the next step. Needs a separable `H = T(p) + V(q)` with conservative forces.
+
+/// `w1 = 1 / (2 - 2^(1/3))`, the outer substep weight.
+pub const W1: f64 = 1.351_207_191_959_657_6;
+
+/// `w0 = -2^(1/3) / (2 - 2^(1/3))`, the (negative) middle substep weight.
+pub const W0: f64 = -1.702_414_383_919_315_3;
+
+/// Drift weights of the three substeps.
+pub const DRIFTS: [f64; 3] = [W1, W0, W1];
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn coefficients_match_their_closed_form() {
+        let c = 2.0_f64.cbrt();
+        // Both sides are one or two roundings away from the exact real number: 2 ulps.
+        assert!((W1 - 1.0 / (2.0 - c)).abs() <= 2.0 * f64::EPSILON * W1);
+        assert!((W0 + c / (2.0 - c)).abs() <= 2.0 * f64::EPSILON * W0.abs());
+        // Consistency (weights sum to one step) and the order-3 condition 2 w1^3 + w0^3 = 0.
+        assert!((2.0 * W1 + W0 - 1.0).abs() <= 4.0 * f64::EPSILON);
+        assert!((2.0 * W1.powi(3) + W0.powi(3)).abs() <= 32.0 * f64::EPSILON);
+    }
+}
