@@ -1,0 +1,147 @@
+//! The gallery: twelve demonstrations, each a set of figures and a one-paragraph explanation
+//! of the physics, and [`render_gallery`], which renders them all and writes `index.html`.
+//!
+//! Every demonstration module has a `render(&Ctx) -> Result<Demo>` function. `quick` mode
+//! (used by tests and `physicskit gallery --quick`) runs fewer orbits, shorter times and fewer
+//! animation frames so the whole gallery renders in well under a minute on two cores.
+
+use std::path::{Path, PathBuf};
+use std::time::Instant;
+
+use crate::error::{Result, VizError};
+
+mod integrators;
+
+/// One file written by the gallery.
+#[derive(Debug, Clone, PartialEq, Eq)]
+pub struct GalleryFile {
+    /// Where it was written.
+    pub path: PathBuf,
+    /// One line saying what it shows.
+    pub description: String,
+}
+
+/// One demonstration: its title, the physics it shows and its files.
+#[derive(Debug, Clone, PartialEq, Eq)]
+pub struct Demo {
+    /// Anchor name in `index.html`, e.g. `"double-pendulum"`.
+    pub slug: String,
+    /// Section title.
+    pub title: String,
+    /// One paragraph of physics.
+    pub explanation: String,
+    /// Figures and animations, in display order.
+    pub files: Vec<GalleryFile>,
+}
+
+/// What [`render_gallery`] wrote.
+#[derive(Debug, Clone, PartialEq)]
+pub struct GalleryReport {
+    /// The demonstrations, in order.
+    pub demos: Vec<Demo>,
+    /// Every file written (all demo files, then `index.html`), each with a one-line
+    /// description.
+    pub files: Vec<GalleryFile>,
+    /// The `index.html` page.
+    pub index: PathBuf,
+    /// Wall-clock rendering time in seconds.
+    pub seconds: f64,
+}
+
+/// Rendering settings shared by the demonstrations.
+pub(crate) struct Ctx<'a> {
+    out_dir: &'a Path,
+    /// Fewer orbits and frames.
+    pub quick: bool,
+}
+
+impl Ctx<'_> {
+    /// Path of a gallery file.
+    pub fn path(&self, name: &str) -> PathBuf {
+        self.out_dir.join(name)
+    }
+
+    /// `quick` value in quick mode, `full` otherwise.
+    pub fn pick<T>(&self, quick: T, full: T) -> T {
+        if self.quick {
+            quick
+        } else {
+            full
+        }
+    }
+}
+
+/// Starts a [`Demo`].
+pub(crate) fn demo(slug: &str, title: &str, explanation: &str) -> Demo {
+    Demo {
+        slug: slug.into(),
+        title: title.into(),
+        explanation: explanation.into(),
+        files: Vec::new(),
+    }
+}
+
+impl Demo {
+    /// Records a written file.
+    pub(crate) fn add(&mut self, path: PathBuf, description: &str) {
+        self.files.push(GalleryFile {
+            path,
+            description: description.into(),
+        });
+    }
+}
+
+type Render = fn(&Ctx) -> Result<Demo>;
+
+/// The demonstrations in gallery order, with their titles for progress messages.
+fn demos() -> Vec<(&'static str, Render)> {
+    vec![("integrators compared", integrators::render as Render)]
+}
+
+/// Renders every demonstration into `out_dir` (created if missing) and writes `index.html`
+/// there. `quick` renders smaller versions (fewer orbits, shorter runs, fewer frames).
+/// `progress` is told the name of each demonstration as it starts.
+///
+/// # Errors
+/// [`VizError::Io`] if `out_dir` or a file cannot be written, [`VizError::Draw`] if plotters
+/// fails, [`VizError::Physics`] if a simulation fails.
+pub fn render_gallery(
+    out_dir: &Path,
+    quick: bool,
+    progress: &mut dyn FnMut(&str),
+) -> Result<GalleryReport> {
+    let start = Instant::now();
+    std::fs::create_dir_all(out_dir).map_err(|source| VizError::Io {
+        path: out_dir.to_path_buf(),
+        source,
+    })?;
+    let ctx = Ctx { out_dir, quick };
+    let list = demos();
+    let mut rendered = Vec::with_capacity(list.len());
+    for (i, (name, render)) in list.iter().enumerate() {
+        progress(&format!("[{}/{}] {name}", i + 1, list.len()));
+        rendered.push(render(&ctx)?);
+    }
+    let index = out_dir.join("index.html");
+    std::fs::write(&index, crate::html::index_html(&rendered, quick)).map_err(|source| {
+        VizError::Io {
+            path: index.clone(),
+            source,
+        }
+    })?;
+    let mut files: Vec<GalleryFile> = rendered
+        .iter()
+        .flat_map(|d| d.files.iter().cloned())
+        .collect();
+    files.push(GalleryFile {
+        path: index.clone(),
+        description: "the gallery page: every figure with its physics explanation (opens offline)"
+            .into(),
+    });
+    Ok(GalleryReport {
+        demos: rendered,
+        files,
+        index,
+        seconds: start.elapsed().as_secs_f64(),
+    })
+}
