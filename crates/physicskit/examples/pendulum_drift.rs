@@ -8,7 +8,10 @@ use physicskit::classical::{HamiltonianSystem, Method};
 fn main() -> Result<(), physicskit::classical::Error> {
     let (t1, dt) = (1000.0, 0.05);
     println!("pendulum H = p^2/2 - cos q from q = 2.5 rad, t = 0..{t1}, dt = {dt}");
-    println!("{:<18} {:>16} {:>16}", "method", "max |dE/E0|", "final dE/E0");
+    println!(
+        "{:<18} {:>16} {:>16}",
+        "method", "max |dE/E0|", "final dE/E0"
+    );
     for method in Method::ALL {
         let mut pendulum = Pendulum::new(2.5, 0.0, 1.0)?;
         let result = pendulum.integrate((0.0, t1), dt, method)?;

@@ -266,3 +266,54 @@ impl LagrangianSystem for LagrangianPendulum {
         Ok(())
     }
 }
+
+/// Independent pendulums `H = sum_i p_i^2/2 - cos q_i`, written for the ensemble tests.
+#[derive(Clone)]
+pub struct PendulumBank {
+    pub phase: Phase,
+    pub n: usize,
+}
+
+impl PendulumBank {
+    pub fn new(n: usize) -> Self {
+        // Spread of amplitudes so that members follow different trajectories.
+        let q: Vec<f64> = (0..n).map(|i| 0.1 + 2.9 * i as f64 / n as f64).collect();
+        let p: Vec<f64> = (0..n)
+            .map(|i| ((i * 7919) % 101) as f64 / 100.0 - 0.5)
+            .collect();
+        Self {
+            phase: Phase::from_halves("q0", &q, "p0", &p).unwrap(),
+            n,
+        }
+    }
+}
+
+impl HamiltonianSystem for PendulumBank {
+    fn ndof(&self) -> usize {
+        self.n
+    }
+    fn kinetic_energy(&self, p: &[f64]) -> f64 {
+        p.iter().map(|v| 0.5 * v * v).sum()
+    }
+    fn potential_energy(&self, q: &[f64]) -> f64 {
+        q.iter().map(|v| -v.cos()).sum()
+    }
+    fn force(&self, q: &[f64], _t: f64, out: &mut [f64]) -> Result<()> {
+        out.iter_mut().zip(q).for_each(|(f, v)| *f = -v.sin());
+        Ok(())
+    }
+}
+
+physicskit::impl_separable_dynamics!(PendulumBank);
+
+impl physicskit::classical::integrators::Ensemble for PendulumBank {
+    fn members(&self, start: usize, len: usize) -> Result<Self> {
+        let (q, p) = self.phase.state().split_at(self.n);
+        let mut sub = Self {
+            phase: Phase::from_halves("q0", &q[start..start + len], "p0", &p[start..start + len])?,
+            n: len,
+        };
+        sub.phase.set_t(self.phase.t())?;
+        Ok(sub)
+    }
+}

@@ -7,6 +7,7 @@
 mod continuation;
 mod convergence;
 mod energy_behaviour;
+mod ensemble;
 mod fixtures;
 mod invariants;
 mod lagrangian_path;
