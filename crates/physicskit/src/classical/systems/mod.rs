@@ -3,3 +3,14 @@
 //! Hamiltonian (issue 3): `kepler`, `henon_heiles`, `swarm`, `projectile`, `chains`.
 //! Lagrangian and rigid bodies (issue 4): `double_pendulum`, `hoop`, `coupled_oscillators`,
 //! `symmetric_top`, `rigid_body`.
+
+mod kepler;
+pub use kepler::*;
+mod henon_heiles;
+pub use henon_heiles::*;
+mod swarm;
+pub use swarm::*;
+mod projectile;
+pub use projectile::*;
+mod chains;
+pub use chains::*;
