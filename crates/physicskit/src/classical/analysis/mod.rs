@@ -4,3 +4,7 @@ mod action_angle;
 pub use action_angle::*;
 pub mod elliptic;
 pub use elliptic::*;
+mod brent;
+pub use brent::*;
+mod symmetric_top;
+pub use symmetric_top::*;
