@@ -331,7 +331,8 @@ impl Panel {
 
 /// A tick label with at most four significant digits and no trailing zeros.
 pub fn tick(v: f64) -> String {
-    if v == 0.0 {
+    // Ticks at zero come out of the axis arithmetic as +-1e-17 or so.
+    if v.abs() < 1e-12 {
         return "0".into();
     }
     let a = v.abs();

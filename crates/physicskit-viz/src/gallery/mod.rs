@@ -10,7 +10,19 @@ use std::time::Instant;
 
 use crate::error::{Result, VizError};
 
+mod chains;
+mod common;
+mod double_pendulum;
+mod euler_top;
+mod fput;
+mod heavy_top;
+mod henon_heiles;
+mod hoop;
 mod integrators;
+mod kepler;
+mod projectile;
+mod sine_gordon;
+mod swarm;
 
 /// One file written by the gallery.
 #[derive(Debug, Clone, PartialEq, Eq)]
@@ -95,7 +107,20 @@ type Render = fn(&Ctx) -> Result<Demo>;
 
 /// The demonstrations in gallery order, with their titles for progress messages.
 fn demos() -> Vec<(&'static str, Render)> {
-    vec![("integrators compared", integrators::render as Render)]
+    vec![
+        ("double pendulum", double_pendulum::render as Render),
+        ("Hénon–Heiles", henon_heiles::render),
+        ("pendulum swarm", swarm::render),
+        ("FPUT recurrence", fput::render),
+        ("sine-Gordon kinks", sine_gordon::render),
+        ("harmonic chain and coupled oscillators", chains::render),
+        ("Kepler orbits", kepler::render),
+        ("Euler top", euler_top::render),
+        ("heavy symmetric top", heavy_top::render),
+        ("bead on a rotating hoop", hoop::render),
+        ("projectile", projectile::render),
+        ("integrators compared", integrators::render),
+    ]
 }
 
 /// Renders every demonstration into `out_dir` (created if missing) and writes `index.html`

@@ -1,0 +1,84 @@
+//! Small helpers shared by the demonstrations: columns of result arrays, angle wrapping and
+//! an orthographic 3-D projection for spheres and boxes.
+
+use ndarray::Array2;
+use physicskit::classical::{IntegrateOptions, Sampling};
+
+use crate::error::{Result, VizError};
+
+/// Column `j` of an optional `(samples, n)` array (empty if absent).
+pub(crate) fn column(a: Option<&Array2<f64>>, j: usize) -> Vec<f64> {
+    match a {
+        Some(a) if j < a.ncols() => a.column(j).to_vec(),
+        _ => Vec::new(),
+    }
+}
+
+/// Column `j` of the raw state array.
+pub(crate) fn ycol(y: &Array2<f64>, j: usize) -> Vec<f64> {
+    column(Some(y), j)
+}
+
+/// The angle wrapped into `(-pi, pi]`.
+pub(crate) fn wrap(a: f64) -> f64 {
+    let two_pi = std::f64::consts::TAU;
+    let w = a - two_pi * (a / two_pi).round();
+    if w <= -std::f64::consts::PI {
+        w + two_pi
+    } else {
+        w
+    }
+}
+
+/// A continuous version of a sequence of angles given modulo `2 pi`.
+pub(crate) fn unwrap(angles: &[f64]) -> Vec<f64> {
+    let mut out = Vec::with_capacity(angles.len());
+    let mut offset = 0.0;
+    let mut prev: Option<f64> = None;
+    for &a in angles {
+        if let Some(p) = prev {
+            offset -= std::f64::consts::TAU * ((a - p) / std::f64::consts::TAU).round();
+        }
+        out.push(a + offset);
+        prev = Some(a);
+    }
+    out
+}
+
+/// Options storing every `stride`-th sample (at least 1).
+pub(crate) fn stride(k: usize) -> IntegrateOptions<'static> {
+    IntegrateOptions {
+        sampling: Sampling::Stride(k.max(1)),
+        ..IntegrateOptions::default()
+    }
+}
+
+/// Orthographic view: azimuth `az` about z, then elevation `el`; returns screen `(u, v)` and
+/// depth (positive towards the viewer).
+pub(crate) fn project(p: [f64; 3], az: f64, el: f64) -> (f64, f64, f64) {
+    let (sa, ca) = az.sin_cos();
+    let (se, ce) = el.sin_cos();
+    let x1 = ca * p[0] + sa * p[1];
+    let y1 = -sa * p[0] + ca * p[1];
+    let u = y1;
+    let v = ce * p[2] - se * x1;
+    let depth = ce * x1 + se * p[2];
+    (u, v, depth)
+}
+
+/// An error for a result that lacks an array a figure needs.
+pub(crate) fn missing(what: &str) -> VizError {
+    VizError::Physics(physicskit::classical::Error::Unsupported {
+        operation: what.into(),
+        reason: "the simulation result does not contain it".into(),
+    })
+}
+
+/// `Ok(v)` unless `v` is empty.
+pub(crate) fn nonempty(v: Vec<f64>, what: &str) -> Result<Vec<f64>> {
+    if v.is_empty() {
+        Err(missing(what))
+    } else {
+        Ok(v)
+    }
+}

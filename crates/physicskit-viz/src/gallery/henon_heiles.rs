@@ -1,0 +1,84 @@
+//! 2. Hénon–Heiles: Poincaré sections `(x, px)` at `y = 0`, `py > 0` for three energies.
+
+use physicskit::classical::analysis::poincare::{
+    poincare_section_separable, Direction, Section, SectionRun,
+};
+use physicskit::classical::systems::HenonHeilesSystem;
+use physicskit::classical::{Error, Method};
+
+use super::{demo, Ctx, Demo};
+use crate::error::Result;
+use crate::figure::{color, save_png, Legend, Mark, Panel, Series};
+
+/// Crossings of one orbit started on the section at `(x, px)` with energy `e`; `None` if the
+/// energy is not reachable there or the orbit escapes over a saddle.
+fn orbit(
+    e: f64,
+    x: f64,
+    px: f64,
+    run: &SectionRun,
+    section: &Section,
+) -> Result<Option<Vec<(f64, f64)>>> {
+    let py2 = 2.0 * e - px * px - x * x; // V(x, 0) = x^2 / 2
+    if py2 <= 0.0 {
+        return Ok(None);
+    }
+    let y0 = [x, 0.0, px, py2.sqrt()];
+    let sys = HenonHeilesSystem::new(&y0[..2], &y0[2..])?;
+    match poincare_section_separable(&sys, 0.0, &y0, section, run, Method::Yoshida4) {
+        Ok(cut) => Ok(Some(
+            cut.component(0).into_iter().zip(cut.component(2)).collect(),
+        )),
+        // An orbit leaving over a saddle of the potential diverges: leave it out.
+        Err(Error::NonFinite { .. }) => Ok(None),
+        Err(e) => Err(e.into()),
+    }
+}
+
+pub(crate) fn render(ctx: &Ctx) -> Result<Demo> {
+    let mut d = demo(
+        "henon-heiles",
+        "2. Hénon–Heiles: KAM tori breaking up",
+        "A star in an axisymmetric galaxy (Hénon & Heiles 1964), H = (px² + py²)/2 + (x² + y²)/2 \
+         + x²y − y³/3. Each dot is a crossing of the plane y = 0 with py > 0 (located exactly \
+         with Hénon's trick, not taken from the nearest time step); each colour is one orbit. At \
+         E = 1/12 almost every orbit lies on a smooth closed curve, the section of an invariant \
+         (KAM) torus: the motion is regular. At E = 1/8 the tori between the islands have \
+         dissolved into a chaotic sea of scattered dots, and at E = 1/6, the energy of the \
+         saddle points of the potential, almost all tori are gone.",
+    );
+    let section = Section::new(1, 0.0, Direction::Increasing)?;
+    let crossings = ctx.pick(250, 900);
+    let n_orbits = ctx.pick(12, 30);
+    // One crossing per ~6-7 time units; the time limit only guards against stuck orbits.
+    let run = SectionRun::new(0.02, 10.0 * crossings as f64, crossings);
+    let energies: [(f64, &str); 3] = [(1.0 / 12.0, "1/12"), (1.0 / 8.0, "1/8"), (1.0 / 6.0, "1/6")];
+    let path = ctx.path("02_henon_heiles_sections.png");
+    let mut panels = Vec::new();
+    for (e, label) in energies {
+        let xmax = (2.0 * e).sqrt();
+        let mut panel = Panel::new(format!("E = {label}"), "x", "pₓ").legend(Legend::None);
+        for k in 0..n_orbits {
+            // Starting points spread along px = 0 and along x = 0 of the section.
+            let f = (k / 2) as f64 / (n_orbits / 2) as f64;
+            let (x, px) = if k % 2 == 0 {
+                (xmax * (-0.95 + 1.9 * f), 0.0)
+            } else {
+                (0.0, xmax * (0.05 + 0.9 * f))
+            };
+            if let Some(pts) = orbit(e, x, px, &run, &section)? {
+                panel = panel.with(Series::dots("", pts, color(k)).with_mark(Mark::Dots(1)));
+            }
+        }
+        panels.push(panel.equal_aspect());
+    }
+    save_png(
+        &path,
+        (1500, 560),
+        Some("Hénon–Heiles Poincaré sections at y = 0, py > 0 (dimensionless units)"),
+        (1, 3),
+        |i, area| panels[i].draw(area, &path).map(|_| ()),
+    )?;
+    d.add(path, "Poincaré sections (x, pₓ) at y = 0, py > 0 for E = 1/12, 1/8 and 1/6, one colour per orbit: regular tori giving way to chaos");
+    Ok(d)
+}
