@@ -103,9 +103,9 @@ impl HeatMap {
         let mut bar = ChartBuilder::on(&bar_area)
             .margin_top(44)
             .margin_bottom(58)
-            .margin_right(50)
-            .y_label_area_size(0)
-            .right_y_label_area_size(50)
+            .margin_left(4)
+            .margin_right(40)
+            .y_label_area_size(56)
             .build_cartesian_2d(0.0..1.0, lo..hi)
             .at(path)?;
         bar.configure_mesh()

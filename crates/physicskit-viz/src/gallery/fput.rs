@@ -11,7 +11,7 @@ use crate::figure::{color, save_panel, Legend, Panel, Series};
 /// Chain size, nonlinearity and initial amplitude of mode 1.
 const N: usize = 32;
 const BETA: f64 = 1.0;
-const AMPLITUDE: f64 = 1.0;
+const AMPLITUDE: f64 = 3.0;
 
 pub(crate) fn render(ctx: &Ctx) -> Result<Demo> {
     let mut d = demo(
@@ -22,10 +22,11 @@ pub(crate) fn render(ctx: &Ctx) -> Result<Demo> {
          and Tsingou expected the non-linearity to share the energy out evenly among all modes \
          (equipartition). Instead the energy flows into a few neighbouring modes and then comes \
          back almost entirely to mode 1: the FPUT recurrence, an early hint of solitons and of \
-         KAM stability.",
+         KAM stability. (The quartic force keeps the chain's left–right symmetry, so the even \
+         modes 2 and 4 are never excited.)",
     );
     let dt = 0.05;
-    let t1 = ctx.pick(8000.0, 20000.0);
+    let t1 = ctx.pick(10000.0, 20000.0);
     let mut chain = FPUTChain::new(N, 1.0, 1.0, BETA, 1, AMPLITUDE)?;
     let every = ctx.pick(200, 100);
     let r = chain.integrate_with((0.0, t1), dt, Method::Yoshida4, stride(every))?;
@@ -49,7 +50,7 @@ pub(crate) fn render(ctx: &Ctx) -> Result<Demo> {
         "t (units of sqrt(m/k))",
         "modal energy Eⱼ / E(0)",
     )
-    .y_range(0.0, 1.05)
+    .y_range(0.0, 1.3)
     .legend(Legend::UpperRight);
     for (j, m) in modes.into_iter().enumerate() {
         panel = panel.with(Series::line(format!("mode {}", j + 1), m, color(j)));

@@ -47,7 +47,7 @@ pub(crate) fn render(ctx: &Ctx) -> Result<Demo> {
     let map = HeatMap {
         title: "Kink–antikink collision on a sine-Gordon chain".into(),
         x_label: "site i".into(),
-        y_label: "t (units of sqrt(m/k₀))".into(),
+        y_label: "t (dimensionless: 1/ω₀ of one pendulum)".into(),
         value_label: "twist qᵢ / 2π".into(),
         x_range: (0.0, (n - 1) as f64),
         y_range: (r.t[0], r.t[ny - 1]),

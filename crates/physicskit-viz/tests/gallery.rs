@@ -1,0 +1,142 @@
+//! Renders the whole gallery in quick mode into a temporary directory and checks every promised
+//! file: it exists, has a sensible size, is not blank, and every GIF is animated.
+
+use std::fs::File;
+use std::path::{Path, PathBuf};
+
+/// A fresh directory under the system temp dir, removed at the end of the test.
+struct TempDir(PathBuf);
+
+impl TempDir {
+    fn new(name: &str) -> Self {
+        let dir = std::env::temp_dir().join(format!("{name}-{}", std::process::id()));
+        let _ = std::fs::remove_dir_all(&dir);
+        Self(dir)
+    }
+}
+
+impl Drop for TempDir {
+    fn drop(&mut self) {
+        let _ = std::fs::remove_dir_all(&self.0);
+    }
+}
+
+/// Grey levels of a PNG (RGB or RGBA, 8 bit) as 0..255 luminance per pixel.
+fn png_luma(path: &Path) -> (u32, u32, Vec<f64>) {
+    let decoder = png::Decoder::new(File::open(path).unwrap());
+    let mut reader = decoder.read_info().unwrap();
+    let mut buf = vec![0; reader.output_buffer_size()];
+    let info = reader.next_frame(&mut buf).unwrap();
+    let channels = info.color_type.samples();
+    assert!(channels >= 3, "{}: expected colour PNG", path.display());
+    assert_eq!(info.bit_depth, png::BitDepth::Eight);
+    let luma = buf[..info.buffer_size()]
+        .chunks_exact(channels)
+        .map(|p| 0.299 * f64::from(p[0]) + 0.587 * f64::from(p[1]) + 0.114 * f64::from(p[2]))
+        .collect();
+    (info.width, info.height, luma)
+}
+
+fn variance(v: &[f64]) -> f64 {
+    let n = v.len() as f64;
+    let mean = v.iter().sum::<f64>() / n;
+    v.iter().map(|x| (x - mean).powi(2)).sum::<f64>() / n
+}
+
+/// Fraction of pixels that are not (near) white.
+fn ink(v: &[f64]) -> f64 {
+    v.iter().filter(|&&l| l < 240.0).count() as f64 / v.len() as f64
+}
+
+/// Frames of a GIF and the luminance variance of its last frame.
+fn gif_frames(path: &Path) -> (usize, f64) {
+    let mut opts = gif::DecodeOptions::new();
+    opts.set_color_output(gif::ColorOutput::RGBA);
+    let mut decoder = opts.read_info(File::open(path).unwrap()).unwrap();
+    let mut frames = 0;
+    let mut last_var = 0.0;
+    while let Some(frame) = decoder.read_next_frame().unwrap() {
+        frames += 1;
+        let luma: Vec<f64> = frame
+            .buffer
+            .chunks_exact(4)
+            .map(|p| 0.299 * f64::from(p[0]) + 0.587 * f64::from(p[1]) + 0.114 * f64::from(p[2]))
+            .collect();
+        last_var = variance(&luma);
+    }
+    (frames, last_var)
+}
+
+#[test]
+fn quick_gallery_renders_every_promised_file() {
+    let dir = TempDir::new("physicskit-gallery");
+    let mut messages = Vec::new();
+    let report =
+        physicskit_viz::render_gallery(&dir.0, true, &mut |m: &str| messages.push(m.to_string()))
+            .expect("gallery renders");
+
+    // Twelve demonstrations, each announced to the progress callback, each with a paragraph of
+    // physics and at least one file.
+    assert_eq!(report.demos.len(), 12);
+    assert_eq!(messages.len(), 12);
+    for d in &report.demos {
+        assert!(!d.files.is_empty(), "{} has no file", d.title);
+        assert!(
+            d.explanation.len() > 200,
+            "{} explanation too short",
+            d.title
+        );
+    }
+    let html = std::fs::read_to_string(&report.index).unwrap();
+    let mut gifs = 0;
+    for f in &report.files {
+        assert!(f.path.starts_with(&dir.0));
+        assert!(!f.description.is_empty());
+        let size = std::fs::metadata(&f.path).map(|m| m.len()).unwrap_or(0);
+        let name = f.path.file_name().unwrap().to_string_lossy().to_string();
+        match f.path.extension().and_then(|e| e.to_str()) {
+            Some("png") => {
+                // A plotted figure with axes, text and data is tens of kB; a blank 800x500
+                // PNG compresses to ~2 kB. Keep figures below 2 MB so the gallery stays light.
+                assert!((10_000..2_000_000).contains(&size), "{name}: {size} bytes");
+                let (w, h, luma) = png_luma(&f.path);
+                assert!(w >= 400 && h >= 300, "{name}: {w}x{h}");
+                // A blank or single-colour image has luminance variance 0. Ink (luminance ~50)
+                // on a fraction f of white (255) pixels gives f (1 - f) 205^2, about 1200 at
+                // f = 3 %, so 100 fails only an (almost) empty picture.
+                let var = variance(&luma);
+                assert!(var > 100.0, "{name}: luminance variance {var}");
+                assert!(ink(&luma) > 0.01, "{name}: almost no ink");
+                assert!(html.contains(&name), "index.html does not show {name}");
+            }
+            Some("gif") => {
+                gifs += 1;
+                assert!((10_000..5_000_000).contains(&size), "{name}: {size} bytes");
+                let (frames, var) = gif_frames(&f.path);
+                assert!(frames > 1, "{name}: {frames} frame(s)");
+                assert!(var > 100.0, "{name}: last frame variance {var}");
+                assert!(html.contains(&name), "index.html does not show {name}");
+            }
+            Some("html") => assert!(size > 1000),
+            other => panic!("unexpected file type {other:?} for {name}"),
+        }
+    }
+    // The issue promises animations for the double pendulum, the swarm, the sine-Gordon chain
+    // and the Euler top.
+    assert!(gifs >= 4, "{gifs} GIFs");
+    // Every file on disk is reported, and nothing else was written.
+    let on_disk = std::fs::read_dir(&dir.0).unwrap().count();
+    assert_eq!(on_disk, report.files.len());
+}
+
+#[test]
+fn unwritable_output_directory_is_an_error() {
+    let dir = TempDir::new("physicskit-gallery-file");
+    std::fs::write(&dir.0, b"not a directory").unwrap();
+    let err = physicskit_viz::render_gallery(&dir.0.join("sub"), true, &mut |_: &str| {});
+    assert!(
+        matches!(err, Err(physicskit_viz::VizError::Io { .. })),
+        "{err:?}"
+    );
+    let _ = std::fs::remove_file(&dir.0);
+}
