@@ -1,4 +1,4 @@
-//! 6. Harmonic chain and coupled oscillators: normal-mode shapes, and beats between two modes.
+//! Demonstration 6, Harmonic chain and coupled oscillators: normal-mode shapes, and beats between two modes.
 
 use physicskit::classical::systems::{
     CoupledOscillators, CoupledOscillatorsParams, HarmonicChain, NormalModes,

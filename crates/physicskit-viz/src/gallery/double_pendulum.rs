@@ -1,4 +1,4 @@
-//! 1. Double pendulum: animation with fading trail and `(theta2, p2)` phase panel; sensitivity
+//! Demonstration 1, Double pendulum: animation with fading trail and `(theta2, p2)` phase panel; sensitivity
 //! to initial conditions; energy error of implicit_midpoint against rk4.
 
 use physicskit::classical::analysis::convergence::log_separation;

@@ -1,4 +1,4 @@
-//! 8. Euler top: the `omega` components with the Dzhanibekov flips, polhodes on the
+//! Demonstration 8, Euler top: the `omega` components with the Dzhanibekov flips, polhodes on the
 //! angular-momentum sphere, and an animated tumbling plate.
 
 use physicskit::classical::systems::{EulerTop, EulerTopParams};

@@ -1,4 +1,4 @@
-//! 4. FPUT: energies of the first five normal modes against time, showing the recurrence.
+//! Demonstration 4, FPUT: energies of the first five normal modes against time, showing the recurrence.
 
 use physicskit::classical::systems::{FPUTChain, NormalModes};
 use physicskit::classical::{HamiltonianSystem, Method};
@@ -34,7 +34,7 @@ pub(crate) fn render(ctx: &Ctx) -> Result<Demo> {
         (Some(q), Some(p)) => (q, p),
         _ => return Err(super::common::missing("q and p")),
     };
-    let mut modes: Vec<Vec<(f64, f64)>> = vec![Vec::with_capacity(r.t.len()); 5];
+    let mut modes: Vec<Vec<(f64, f64)>> = (0..5).map(|_| Vec::with_capacity(r.t.len())).collect();
     let mut total = 0.0;
     for (i, &t) in r.t.iter().enumerate() {
         let e = chain.modal_energies(&q.row(i).to_vec(), &p.row(i).to_vec())?;

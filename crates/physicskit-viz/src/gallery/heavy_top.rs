@@ -1,4 +1,4 @@
-//! 9. Heavy symmetric top: the path of the symmetry axis on the unit sphere (nutation loops),
+//! Demonstration 9, Heavy symmetric top: the path of the symmetry axis on the unit sphere (nutation loops),
 //! and `theta(t)` next to `V_eff(theta)`.
 
 use physicskit::classical::analysis::effective_potential_symmetric_top;
@@ -105,6 +105,9 @@ pub(crate) fn render(ctx: &Ctx) -> Result<Demo> {
         ));
     }
     let v_at_turn = veff.iter().map(|p| p.1).fold(f64::INFINITY, f64::min);
+    // Keep the curve inside the plotted window (plotters would clamp it onto the frame).
+    let v_top = e0 + 1.5 * (e0 - v_at_turn).abs().max(0.5);
+    veff.retain(|p| p.1 <= v_top);
     let veff_panel = Panel::new("Effective potential of the tilt", "θ (rad)", "energy (J)")
         .legend(Legend::UpperRight)
         .y_range(

@@ -1,4 +1,4 @@
-//! 2. Hénon–Heiles: Poincaré sections `(x, px)` at `y = 0`, `py > 0` for three energies.
+//! Demonstration 2, Hénon–Heiles: Poincaré sections `(x, px)` at `y = 0`, `py > 0` for three energies.
 
 use physicskit::classical::analysis::poincare::{
     poincare_section_separable, Direction, Section, SectionRun,

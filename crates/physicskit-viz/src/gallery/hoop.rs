@@ -1,4 +1,4 @@
-//! 10. Bead on a rotating hoop: the pitchfork bifurcation and phase portraits below and above
+//! Demonstration 10, Bead on a rotating hoop: the pitchfork bifurcation and phase portraits below and above
 //! the critical speed.
 
 use physicskit::classical::systems::{BeadOnRotatingHoop, HoopParams};
@@ -52,7 +52,7 @@ pub(crate) fn render(ctx: &Ctx) -> Result<Demo> {
     };
     let top: Vec<(f64, f64)> = ws.iter().map(|&w| (w / wc, 180.0)).collect();
     let diagram = Panel::new(
-        format!("Equilibria against rotation rate (ω_c = √(g/R) = {wc:.2} rad/s)"),
+        format!("Equilibria (ω_c = √(g/R) = {wc:.2} rad/s)"),
         "ω / ω_c",
         "equilibrium angle θ* (degrees)",
     )

@@ -1,4 +1,4 @@
-//! 12. Integrators compared: energy error against time for the four methods on one system (a
+//! Demonstration 12, Integrators compared: energy error against time for the four methods on one system (a
 //! large-amplitude pendulum) and a log–log convergence plot with the measured orders.
 
 use physicskit::classical::analysis::convergence::fit_order;

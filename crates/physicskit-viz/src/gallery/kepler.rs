@@ -1,4 +1,4 @@
-//! 7. Kepler: the closed ellipse against the precessing rosette of a post-Newtonian correction,
+//! Demonstration 7, Kepler: the closed ellipse against the precessing rosette of a post-Newtonian correction,
 //! and the angle of the Laplace–Runge–Lenz vector against time.
 
 use physicskit::classical::systems::{KeplerPerturbations, KeplerSystem};

@@ -1,4 +1,4 @@
-//! 11. Projectile: trajectories at several angles with and without drag, and range against
+//! Demonstration 11, Projectile: trajectories at several angles with and without drag, and range against
 //! angle.
 
 use physicskit::classical::systems::ProjectileMotion;
@@ -52,7 +52,7 @@ pub(crate) fn render(ctx: &Ctx) -> Result<Demo> {
         "y (m)",
     )
     .legend(Legend::UpperRight)
-    .y_range(0.0, 75.0);
+    .y_range(0.0, 85.0);
     for (i, angle) in [15.0, 30.0, 45.0, 60.0, 75.0].into_iter().enumerate() {
         traj = traj.with(Series::line(
             format!("{angle}°"),

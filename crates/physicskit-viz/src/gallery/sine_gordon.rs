@@ -1,4 +1,4 @@
-//! 5. Sine-Gordon chain: a kink–antikink collision as a space–time plot and an animation.
+//! Demonstration 5, Sine-Gordon chain: a kink–antikink collision as a space–time plot and an animation.
 
 use physicskit::classical::systems::SineGordonChain;
 use physicskit::classical::{HamiltonianSystem, Method};

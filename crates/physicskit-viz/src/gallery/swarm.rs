@@ -1,4 +1,4 @@
-//! 3. Pendulum swarm: Liouville's theorem. A patch of phase points shears into a filament
+//! Demonstration 3, Pendulum swarm: Liouville's theorem. A patch of phase points shears into a filament
 //! along the separatrix while its area stays constant.
 
 use physicskit::classical::systems::PendulumSwarm;
