@@ -132,7 +132,7 @@ mod tests {
     /// Distance in units in the last place between two finite doubles of the same sign
     /// (or both near zero).
     fn ulps(a: f64, b: f64) -> u64 {
-        if a == b {
+        if a.to_bits() == b.to_bits() {
             return 0;
         }
         let key = |v: f64| {
