@@ -239,8 +239,8 @@ fn fixed_end_potential(q: &[f64], phi: impl Fn(f64) -> f64) -> f64 {
 
 // ---------------------------------------------------------------------------------------------
 
-/// Harmonic chain with fixed ends, `H = sum p_i^2/(2m) + sum_{i=0}^{N} (k/2)(q_{i+1} - q_i)^2`
-///. Each modal energy is conserved.
+/// Harmonic chain with fixed ends,
+/// `H = sum p_i^2/(2m) + sum_{i=0}^{N} (k/2)(q_{i+1} - q_i)^2`. Each modal energy is conserved.
 #[derive(Debug, Clone)]
 pub struct HarmonicChain {
     phase: Phase,
