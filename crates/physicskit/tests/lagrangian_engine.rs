@@ -271,7 +271,10 @@ fn euler_lagrange_residual_along_a_trajectory_is_at_truncation_level() {
     let fine = euler_lagrange_residual(&params, &res.y, dt, 10);
     let ratio = coarse / fine;
     println!("EL residual: coarse {coarse:e} fine {fine:e} ratio {ratio}");
-    assert!((3.5..4.5).contains(&ratio), "ratio {ratio} ({coarse} / {fine})");
+    assert!(
+        (3.5..4.5).contains(&ratio),
+        "ratio {ratio} ({coarse} / {fine})"
+    );
     // At Delta = 1e-3 the truncation term Delta^2/6 |p'''| is ~6e-4 for this whipping
     // pendulum (|p'''| up to ~4e3); the finite-difference noise, eps |L| / (h Delta) ~ 1e-7,
     // is far below it.
@@ -346,7 +349,10 @@ fn non_quadratic_lagrangian_inverts_the_legendre_map_by_newton() {
         let exact = p / (m * m + p * p / (c * c)).sqrt();
         // Newton stops at a residual of 1e-13 relative (the default tolerance); the mass
         // m gamma^3 >= m maps that to a velocity error below ~1e-13 |v| + 1e-15.
-        assert!((v[0] - exact).abs() < 1e-12 * exact.abs().max(1e-3), "{p}: {v:?}");
+        assert!(
+            (v[0] - exact).abs() < 1e-12 * exact.abs().max(1e-3),
+            "{p}: {v:?}"
+        );
     }
     // Acceleration: d/dt (m gamma v) = -k x  =>  a = -k x / (m gamma^3).
     let (x, v) = (0.4, 1.5);
@@ -377,7 +383,10 @@ fn singular_mass_matrix_is_an_error() {
     let err = engine
         .acceleration(&[0.1, 0.2], &[0.3, 0.4], 1.5, &mut out)
         .unwrap_err();
-    assert!(matches!(err, Error::SingularMatrix { t, .. } if t.to_bits() == 1.5_f64.to_bits()), "{err}");
+    assert!(
+        matches!(err, Error::SingularMatrix { t, .. } if t.to_bits() == 1.5_f64.to_bits()),
+        "{err}"
+    );
     assert!(matches!(
         engine.velocity(&[0.1, 0.2], &[1.0, 1.0], 0.0, &mut out),
         Err(Error::SingularMatrix { .. })
@@ -555,7 +564,10 @@ fn malformed_expressions_are_rejected_with_a_position() {
         "(/ q0)",
     ] {
         let err = Expr::parse(bad).unwrap_err();
-        assert!(matches!(err, Error::InvalidParameter { .. }), "{bad}: {err}");
+        assert!(
+            matches!(err, Error::InvalidParameter { .. }),
+            "{bad}: {err}"
+        );
     }
 }
 
@@ -576,8 +588,8 @@ fn engine_cost_per_evaluation() {
     use std::hint::black_box;
     use std::time::Instant;
     let dp = DoublePendulum::new(&[2.0, 1.0], &[0.5, -0.3], Default::default()).unwrap();
-    let top = HeavySymmetricTop::new(&[0.0, 0.5, 0.0], &[0.0, 0.0, 20.0], Default::default())
-        .unwrap();
+    let top =
+        HeavySymmetricTop::new(&[0.0, 0.5, 0.0], &[0.0, 0.0, 20.0], Default::default()).unwrap();
     let n = 1_000_000;
     let mut out4 = [0.0; 4];
     let start = Instant::now();
@@ -589,7 +601,8 @@ fn engine_cost_per_evaluation() {
     let start = Instant::now();
     for i in 0..n {
         let q = black_box([2.0 + 1e-9 * i as f64, 1.0]);
-        dp.acceleration(&q, &[0.5, -0.3], 0.0, &mut out4[..2]).unwrap();
+        dp.acceleration(&q, &[0.5, -0.3], 0.0, &mut out4[..2])
+            .unwrap();
     }
     let accel = start.elapsed().as_nanos() as f64 / n as f64;
     let mut out6 = [0.0; 6];

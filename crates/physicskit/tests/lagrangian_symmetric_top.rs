@@ -28,7 +28,8 @@ fn energy_is_radial_kinetic_plus_effective_potential() {
         let top = HeavySymmetricTop::new(&[0.1, theta, -0.4], &rates, p).unwrap();
         let state = top.state().to_vec();
         let (p_phi, p_psi) = p.conserved_momenta(&state).unwrap();
-        let v = effective_potential_symmetric_top(theta, p_phi, p_psi, p.i1, p.i3, p.mgl()).unwrap();
+        let v =
+            effective_potential_symmetric_top(theta, p_phi, p_psi, p.i1, p.i3, p.mgl()).unwrap();
         let e = 0.5 * p.i1 * rates[1] * rates[1] + v;
         let got = top.energy(&state);
         assert!((got - e).abs() < 1e-12 * e.abs(), "{got} vs {e}");
@@ -93,9 +94,12 @@ fn crossings(t: &[f64], x: &[f64]) -> (f64, usize, usize) {
 /// Measured (nutation frequency, mean precession rate) of a top started at `theta0` with
 /// `theta' = 0` and the given momenta.
 fn measure(p_phi: f64, p_psi: f64, theta0: f64) -> (f64, f64) {
-    let mut top =
-        HeavySymmetricTop::new(&[0.0, theta0, 0.0], &rates_for(p_phi, p_psi, theta0), params())
-            .unwrap();
+    let mut top = HeavySymmetricTop::new(
+        &[0.0, theta0, 0.0],
+        &rates_for(p_phi, p_psi, theta0),
+        params(),
+    )
+    .unwrap();
     let result = top
         .integrate((0.0, 12.0), 2e-4, Method::ImplicitMidpoint)
         .unwrap();
@@ -164,8 +168,8 @@ fn nutation_and_precession_frequencies_match_the_fast_top_released_at_rest() {
 #[test]
 fn bracket_without_an_interior_minimum_is_an_error() {
     // theta_eq ~ 0.55 for these momenta; on (0.1, 0.3) V_eff only decreases.
-    let e = find_theta_equilibrium(8.775_825_618_903_728, 10.0, I1, I3, 9.81, (0.1, 0.3))
-        .unwrap_err();
+    let e =
+        find_theta_equilibrium(8.775_825_618_903_728, 10.0, I1, I3, 9.81, (0.1, 0.3)).unwrap_err();
     assert!(e.to_string().contains("no interior minimum"), "{e}");
 }
 

@@ -52,10 +52,18 @@ fn spin_near_the_intermediate_axis_flips() {
     let result = top
         .integrate((0.0, 100.0), 1e-3, Method::ImplicitMidpoint)
         .unwrap();
-    let max_w1 = result.y.column(0).iter().fold(0.0_f64, |m, v| m.max(v.abs()));
+    let max_w1 = result
+        .y
+        .column(0)
+        .iter()
+        .fold(0.0_f64, |m, v| m.max(v.abs()));
     assert!(max_w1 > 0.5, "{max_w1}");
     // w2 reverses: the body turns over.
-    let min_w2 = result.y.column(1).iter().fold(f64::INFINITY, |m, v| m.min(*v));
+    let min_w2 = result
+        .y
+        .column(1)
+        .iter()
+        .fold(f64::INFINITY, |m, v| m.min(*v));
     assert!(min_w2 < -0.9, "{min_w2}");
 }
 
@@ -68,7 +76,11 @@ fn spins_about_the_smallest_and_largest_axes_do_not_flip() {
         let result = top
             .integrate((0.0, 100.0), 1e-3, Method::ImplicitMidpoint)
             .unwrap();
-        let min = result.y.column(axis).iter().fold(f64::INFINITY, |m, v| m.min(*v));
+        let min = result
+            .y
+            .column(axis)
+            .iter()
+            .fold(f64::INFINITY, |m, v| m.min(*v));
         assert!(min > 0.99, "axis {axis}: {min}");
     }
 }
@@ -252,8 +264,15 @@ fn jacobian_matches_finite_differences() {
 #[test]
 fn accessors_and_methods() {
     let mut top = tumbling();
-    assert_eq!(top.omega(), [0.01, 1.0, 0.01]);
-    assert_eq!(top.quaternion(), [1.0, 0.0, 0.0, 0.0]);
+    // Exact copies of the inputs: compare bit patterns.
+    assert_eq!(
+        top.omega().map(f64::to_bits),
+        [0.01, 1.0, 0.01].map(f64::to_bits)
+    );
+    assert_eq!(
+        top.quaternion().map(f64::to_bits),
+        [1.0, 0.0, 0.0, 0.0].map(f64::to_bits)
+    );
     assert!(top.integrate((0.0, 0.1), 1e-3, Method::Rk4).is_ok());
     assert!(matches!(
         top.integrate((0.0, 0.1), 1e-3, Method::Yoshida4),
@@ -269,24 +288,24 @@ fn quaternion_is_normalized() {
         Some(&[2.0, 0.0, 0.0, 0.0]),
     )
     .unwrap();
-    assert_eq!(top.quaternion(), [1.0, 0.0, 0.0, 0.0]);
+    // (2, 0, 0, 0) / 2 is exact.
+    assert_eq!(
+        top.quaternion().map(f64::to_bits),
+        [1.0, 0.0, 0.0, 0.0].map(f64::to_bits)
+    );
 }
 
 #[test]
 fn zero_quaternion_is_an_error() {
-    let e = EulerTop::new(
-        &[0.0, 1.0, 0.0],
-        EulerTopParams::default(),
-        Some(&[0.0; 4]),
-    )
-    .unwrap_err();
+    let e =
+        EulerTop::new(&[0.0, 1.0, 0.0], EulerTopParams::default(), Some(&[0.0; 4])).unwrap_err();
     assert!(e.to_string().contains("quat0"), "{e}");
 }
 
 #[test]
 fn quaternion_of_wrong_length_is_an_error() {
-    let e = EulerTop::new(&[0.0, 1.0, 0.0], EulerTopParams::default(), Some(&[1.0; 3]))
-        .unwrap_err();
+    let e =
+        EulerTop::new(&[0.0, 1.0, 0.0], EulerTopParams::default(), Some(&[1.0; 3])).unwrap_err();
     assert!(matches!(e, Error::DimensionMismatch { .. }), "{e}");
 }
 
@@ -314,4 +333,21 @@ fn non_positive_moment_is_an_error() {
     };
     let e = EulerTop::new(&[0.0, 1.0, 0.0], params, None).unwrap_err();
     assert!(e.to_string().contains("I2"), "{e}");
+}
+
+#[test]
+#[ignore = "dt survey of long runs; run with --ignored --nocapture"]
+fn energy_drift_versus_dt() {
+    // Energy is a quadratic invariant, so implicit midpoint keeps it at any dt for which the
+    // implicit solve converges; this survey records how far that goes over t = 100.
+    for dt in [1e-3, 1e-2, 0.1, 0.25, 0.5, 1.0] {
+        let mut top = tumbling();
+        match top.integrate((0.0, 100.0), dt, Method::ImplicitMidpoint) {
+            Ok(r) => println!(
+                "dt {dt}: drift {:e}",
+                r.max_relative_energy_error().unwrap()
+            ),
+            Err(e) => println!("dt {dt}: {e}"),
+        }
+    }
 }

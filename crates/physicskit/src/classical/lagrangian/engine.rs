@@ -585,7 +585,13 @@ impl<L: Lagrangian> LagrangianEngine<L> {
         // `base` is the last accepted iterate, `step` the Newton step from it.
         let mut base = VecBuf::new(n, 0.0);
         let mut step = VecBuf::new(n, 0.0);
-        self.hessian_vv(q, base.as_slice(), t, m.as_mut_slice(), Some(pv.as_mut_slice()));
+        self.hessian_vv(
+            q,
+            base.as_slice(),
+            t,
+            m.as_mut_slice(),
+            Some(pv.as_mut_slice()),
+        );
         let mut m_norm = inf_norm(m.as_slice());
         let mut accepted_r = 0.0_f64;
         for ((si, &pi), &p0) in step.as_mut_slice().iter_mut().zip(p).zip(pv.as_slice()) {
@@ -606,7 +612,11 @@ impl<L: Lagrangian> LagrangianEngine<L> {
             for ((ri, &pi), &pvi) in r.as_mut_slice().iter_mut().zip(p).zip(pv.as_slice()) {
                 *ri = pi - pvi;
                 // `max` would skip a NaN; a non-finite residual must count as infinite.
-                r_norm = if ri.is_finite() { r_norm.max(ri.abs()) } else { f64::INFINITY };
+                r_norm = if ri.is_finite() {
+                    r_norm.max(ri.abs())
+                } else {
+                    f64::INFINITY
+                };
             }
             let scale = p_norm
                 .max(inf_norm(pv.as_slice()))
@@ -615,7 +625,7 @@ impl<L: Lagrangian> LagrangianEngine<L> {
             if residual <= s.tolerance {
                 return Ok(it);
             }
-            if !(r_norm < accepted_r) {
+            if r_norm >= accepted_r {
                 if residual <= s.stall_tolerance {
                     // At the rounding floor of an ill-conditioned mass matrix.
                     return Ok(it);
