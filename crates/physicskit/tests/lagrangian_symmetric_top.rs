@@ -234,3 +234,16 @@ fn top_through_the_trait_reports_ndof_three() {
     let top = HeavySymmetricTop::new(&[0.0, 0.5, 0.0], &[0.0, 0.0, 20.0], params()).unwrap();
     assert_eq!(top.ndof(), 3);
 }
+
+#[test]
+fn analysis_agrees_with_the_peer_reference_values() {
+    // Cross-check (not the physics reference) against values the Numba peer reports for
+    // p_phi = 3, p_psi = 4, I1 = 1, I3 = 0.5, Mgl = 9.81 (/tmp/peer/FINDINGS.md): the angle
+    // agrees to the minimizers' tolerances (~1e-8), the frequencies to ~1e-6 relative.
+    let th = find_theta_equilibrium(3.0, 4.0, 1.0, 0.5, 9.81, DEFAULT_THETA_BRACKET).unwrap();
+    assert!((th - 1.470_348_307_985_218_4).abs() < 1e-6, "{th}");
+    let nut = nutation_frequency(3.0, 4.0, 1.0, 0.5, 9.81, None, DEFAULT_NUTATION_DTHETA).unwrap();
+    assert!((nut - 4.346_016_585_885_943).abs() < 1e-5 * nut, "{nut}");
+    let prec = precession_frequency(3.0, 4.0, 1.0, th).unwrap();
+    assert!((prec - 2.625_282_873_660_156).abs() < 1e-5 * prec, "{prec}");
+}
