@@ -1,0 +1,28 @@
+"""physicskit.classical: classical mechanics on structure-preserving integrators.
+
+Newtonian, Lagrangian, Hamiltonian, lattice-chain and rigid-body systems, integrated by the
+Rust core (``yoshida4``, ``verlet``, ``rk4``, ``implicit_midpoint``). Every built-in system's
+numerics run natively with the GIL released; systems written in Python by subclassing
+:class:`HamiltonianSystem`, :class:`LagrangianSystem` or :class:`ODESystem` run on the same
+integrators.
+"""
+
+from .. import __version__
+from .._core import ConvergenceError
+from .core import (
+    DynamicalSystem,
+    HamiltonianSystem,
+    LagrangianSystem,
+    ODESystem,
+    SimulationResult,
+)
+
+__all__ = [
+    "__version__",
+    "DynamicalSystem",
+    "ODESystem",
+    "HamiltonianSystem",
+    "LagrangianSystem",
+    "SimulationResult",
+    "ConvergenceError",
+]
