@@ -16,6 +16,27 @@ from .core import (
     ODESystem,
     SimulationResult,
 )
+from .systems import (
+    BeadOnRotatingHoop,
+    CoupledOscillators,
+    DoublePendulum,
+    EulerTop,
+    FPUTChain,
+    HarmonicChain,
+    HeavySymmetricTop,
+    HenonHeilesSystem,
+    KeplerSystem,
+    PendulumSwarm,
+    ProjectileMotion,
+    SineGordonChain,
+    effective_potential_symmetric_top,
+    find_theta_equilibrium,
+    nutation_frequency,
+    pendulum_action_angle,
+    precession_frequency,
+)
+from .systems import __all__ as _systems_all
+from . import core, systems, utils  # noqa: E402  (sub-packages importable as attributes)
 
 __all__ = [
     "__version__",
@@ -24,5 +45,6 @@ __all__ = [
     "HamiltonianSystem",
     "LagrangianSystem",
     "SimulationResult",
+    *_systems_all,
     "ConvergenceError",
 ]
