@@ -179,6 +179,11 @@ class HamiltonianSystem(DynamicalSystem):
             f"{type(self).__name__} does not define force(q, t); separable systems must"
         )
 
+    def _qp(self, q, p):
+        q = self.q if q is None else q
+        p = self.p if p is None else p
+        return as_vector("q", q, self.ndof), as_vector("p", p, self.ndof)
+
     def _mass_inv_vector(self) -> np.ndarray:
         try:
             m = np.broadcast_to(np.asarray(self.mass_inv, dtype=np.float64), (self.ndof,))

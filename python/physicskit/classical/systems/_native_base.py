@@ -8,7 +8,6 @@ from typing import Optional
 import numpy as np
 
 from .._native import as_vector
-from ..core.base_system import HamiltonianSystem, LagrangianSystem
 
 
 def as_int(name: str, value, minimum: int = 0) -> int:
@@ -34,26 +33,16 @@ def adopt(system, nat) -> None:
         system.ndof = nat.ndof
 
 
-class NativeHamiltonian(HamiltonianSystem):
-    """A HamiltonianSystem whose numerics live in a native Rust object (``self._native``)."""
-
-    def kinetic_energy(self, p: np.ndarray) -> float:
-        """Return T(p)."""
-        return self._native.kinetic_energy(as_vector("p", p, self.ndof))
-
-    def potential_energy(self, q: np.ndarray) -> float:
-        """Return V(q)."""
-        return self._native.potential_energy(as_vector("q", q, self.ndof))
-
-    def _qp(self, q, p):
-        q = self.q if q is None else q
-        p = self.p if p is None else p
-        return as_vector("q", q, self.ndof), as_vector("p", p, self.ndof)
+def kinetic_energy(self, p: np.ndarray) -> float:
+    """Return the kinetic energy T(p)."""
+    return self._native.kinetic_energy(as_vector("p", p, self.ndof))
 
 
-class NativeLagrangian(LagrangianSystem):
-    """A LagrangianSystem whose numerics live in a native Rust object (``self._native``)."""
+def potential_energy(self, q: np.ndarray) -> float:
+    """Return the potential energy V(q)."""
+    return self._native.potential_energy(as_vector("q", q, self.ndof))
 
-    def energy(self, state: Optional[np.ndarray] = None) -> float:
-        """Return the total mechanical energy of ``state`` (default: ``self.state``)."""
-        return self._native.energy(self._state_arg(state))
+
+def energy(self, state: Optional[np.ndarray] = None) -> float:
+    """Return the total mechanical energy of ``state`` (default: ``self.state``)."""
+    return self._native.energy(self._state_arg(state))

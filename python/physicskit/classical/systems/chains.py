@@ -6,12 +6,13 @@ from __future__ import annotations
 import numpy as np
 
 from .._native import as_scalar, as_vector, native
-from ._native_base import NativeHamiltonian, adopt, as_int
+from ..core.base_system import HamiltonianSystem
+from ._native_base import adopt, as_int
 
 __all__ = ["HarmonicChain", "FPUTChain", "SineGordonChain"]
 
 
-class _ChainBase(NativeHamiltonian):
+class _ChainBase(HamiltonianSystem):
     """Common base of the chains: ``N`` equal masses ``m`` coupled by springs ``k``, with the
     normal modes of the fixed-end harmonic chain, ``omega_j = 2 sqrt(k/m) sin(j pi / (2(N+1)))``.
 

@@ -5,12 +5,13 @@ from __future__ import annotations
 import numpy as np
 
 from .._native import as_scalar, as_vector, native
-from ._native_base import NativeHamiltonian, adopt, as_int
+from ..core.base_system import HamiltonianSystem
+from ._native_base import adopt, kinetic_energy as _kinetic_energy, potential_energy as _potential_energy, as_int
 
 __all__ = ["HenonHeilesSystem", "PendulumSwarm", "pendulum_action_angle"]
 
 
-class HenonHeilesSystem(NativeHamiltonian):
+class HenonHeilesSystem(HamiltonianSystem):
     """``H = (px^2 + py^2)/2 + (x^2 + y^2)/2 + x^2 y - y^3/3``: a non-integrable 2-DOF
     oscillator; KAM tori dominate below ``E ~ 1/6`` and break into chaos above.
 
@@ -20,6 +21,9 @@ class HenonHeilesSystem(NativeHamiltonian):
         Initial position ``(x, y)`` and momentum ``(px, py)``.
     """
 
+    kinetic_energy = _kinetic_energy
+    potential_energy = _potential_energy
+
     separable = True
     mass_inv = 1.0
 
@@ -27,7 +31,7 @@ class HenonHeilesSystem(NativeHamiltonian):
         adopt(self, native("henon_heiles")(as_vector("q0", q0, 2), as_vector("p0", p0, 2)))
 
 
-class PendulumSwarm(NativeHamiltonian):
+class PendulumSwarm(HamiltonianSystem):
     """``N`` independent identical pendulums ``H_i = p_i^2/2 - (g/l) cos q_i`` integrated as
     one separable N-DOF system (Liouville's theorem: the occupied phase-space area is kept).
 
@@ -38,6 +42,9 @@ class PendulumSwarm(NativeHamiltonian):
     g_over_l : float
         Ratio ``g/l`` shared by every pendulum.
     """
+
+    kinetic_energy = _kinetic_energy
+    potential_energy = _potential_energy
 
     separable = True
 

@@ -11,12 +11,13 @@ from typing import Optional
 import numpy as np
 
 from .._native import as_scalar, as_vector, native
-from ._native_base import NativeLagrangian, adopt, as_int
+from ..core.base_system import LagrangianSystem
+from ._native_base import adopt, as_int, energy as _energy
 
 __all__ = ["DoublePendulum", "BeadOnRotatingHoop", "CoupledOscillators"]
 
 
-class DoublePendulum(NativeLagrangian):
+class DoublePendulum(LagrangianSystem):
     """Planar double pendulum (point masses on massless rods); ``q = (theta1, theta2)`` from
     the downward vertical. Chaotic, and non-separable in canonical form.
 
@@ -42,7 +43,7 @@ class DoublePendulum(NativeLagrangian):
 
     def energy(self, state: Optional[np.ndarray] = None) -> float:
         """Return ``T + V`` of ``state`` (default: ``self.state``)."""
-        return super().energy(state)
+        return _energy(self, state)
 
     def positions(self, q=None) -> np.ndarray:
         """Bob positions ``(x1, y1, x2, y2)`` for angles ``q`` (default: current angles)."""
@@ -50,7 +51,7 @@ class DoublePendulum(NativeLagrangian):
         return native("double_pendulum_positions")(self._native, as_vector("q", q, 2))
 
 
-class BeadOnRotatingHoop(NativeLagrangian):
+class BeadOnRotatingHoop(LagrangianSystem):
     """Bead on a frictionless hoop of radius ``R`` spinning at fixed ``omega`` about its
     vertical diameter; ``q = (theta,)``. Above ``omega_c = sqrt(g/R)`` the bottom equilibrium
     splits (pitchfork bifurcation). ``energy`` is the conserved Jacobi integral.
@@ -77,10 +78,10 @@ class BeadOnRotatingHoop(NativeLagrangian):
 
     def energy(self, state: Optional[np.ndarray] = None) -> float:
         """Return the conserved energy (Jacobi integral) of ``state``."""
-        return super().energy(state)
+        return _energy(self, state)
 
 
-class CoupledOscillators(NativeLagrangian):
+class CoupledOscillators(LagrangianSystem):
     """``N`` equal masses joined by equal linear springs between two fixed walls.
 
     Parameters
@@ -104,4 +105,4 @@ class CoupledOscillators(NativeLagrangian):
 
     def energy(self, state: Optional[np.ndarray] = None) -> float:
         """Return ``T + V`` of ``state`` (default: ``self.state``)."""
-        return super().energy(state)
+        return _energy(self, state)

@@ -5,13 +5,13 @@ from __future__ import annotations
 import numpy as np
 
 from .._native import as_scalar, as_vector, native
-from ..core.base_system import SimulationResult
-from ._native_base import NativeHamiltonian, adopt
+from ..core.base_system import HamiltonianSystem, SimulationResult
+from ._native_base import adopt, kinetic_energy as _kinetic_energy, potential_energy as _potential_energy
 
 __all__ = ["ProjectileMotion", "KeplerSystem"]
 
 
-class KeplerSystem(NativeHamiltonian):
+class KeplerSystem(HamiltonianSystem):
     """Planar two-body (Kepler) problem in relative coordinates, with optional perturbations.
 
     ``H = |p|^2/(2 mu) - k/r + c_eps / r^(1+eps) + c_pn / r^3`` with the Plummer-softened
@@ -32,6 +32,9 @@ class KeplerSystem(NativeHamiltonian):
     softening : float
         Plummer softening length (0: exact point masses).
     """
+
+    kinetic_energy = _kinetic_energy
+    potential_energy = _potential_energy
 
     separable = True
 
@@ -75,7 +78,7 @@ class KeplerSystem(NativeHamiltonian):
         return native("kepler_lrl_vector")(self._native, *self._qp(q, p))
 
 
-class ProjectileMotion(NativeHamiltonian):
+class ProjectileMotion(HamiltonianSystem):
     """Projectile under constant gravity, ``H = |p|^2/(2m) + m g y``, optionally with quadratic
     air drag ``F = -drag_coeff |v| v``.
 
@@ -91,6 +94,9 @@ class ProjectileMotion(NativeHamiltonian):
     drag_coeff : float
         Quadratic drag coefficient (0: vacuum, exact parabola).
     """
+
+    kinetic_energy = _kinetic_energy
+    potential_energy = _potential_energy
 
     separable = True
 

@@ -8,8 +8,8 @@ from typing import Optional
 import numpy as np
 
 from .._native import as_scalar, as_vector, native
-from ..core.base_system import ODESystem
-from ._native_base import NativeLagrangian, adopt
+from ..core.base_system import LagrangianSystem, ODESystem
+from ._native_base import adopt, energy as _energy
 
 __all__ = [
     "EulerTop",
@@ -69,7 +69,7 @@ class EulerTop(ODESystem):
         return native("euler_top_rotation_matrix")(self._native, self._state_arg(state))
 
 
-class HeavySymmetricTop(NativeLagrangian):
+class HeavySymmetricTop(LagrangianSystem):
     """Symmetric top with a fixed point, under gravity; ``q = (phi, theta, psi)`` z-x-z Euler
     angles, ``L = (I1/2)(thetadot^2 + phidot^2 sin^2 theta) + (I3/2)(psidot + phidot cos
     theta)^2 - M g l cos theta``. Non-separable: integrated by ``implicit_midpoint``.
@@ -98,7 +98,7 @@ class HeavySymmetricTop(NativeLagrangian):
 
     def energy(self, state: Optional[np.ndarray] = None) -> float:
         """Return ``T + V`` of ``state`` (default: ``self.state``)."""
-        return super().energy(state)
+        return _energy(self, state)
 
     def precession_nutation_rate(self, state: Optional[np.ndarray] = None):
         """Instantaneous ``(phidot, thetadot)``: precession and nutation rates."""
