@@ -17,7 +17,9 @@ use physicskit::classical::systems::{
     DoublePendulum, DoublePendulumParams, EulerTop, EulerTopParams, FPUTChain, KeplerPerturbations,
     KeplerSystem,
 };
-use physicskit::classical::{HamiltonianSystem, LagrangianSystem, Method, OdeSystem, SimulationResult};
+use physicskit::classical::{
+    HamiltonianSystem, LagrangianSystem, Method, OdeSystem, SimulationResult,
+};
 
 fn write(dir: &Path, name: &str, r: &SimulationResult) -> std::io::Result<()> {
     let mut f = fs::File::create(dir.join(format!("{name}.f64")))?;
@@ -29,20 +31,39 @@ fn write(dir: &Path, name: &str, r: &SimulationResult) -> std::io::Result<()> {
 }
 
 fn main() -> Result<(), Box<dyn std::error::Error>> {
-    let dir = std::env::args().nth(1).ok_or("usage: reference_run <out_dir>")?;
+    let dir = std::env::args()
+        .nth(1)
+        .ok_or("usage: reference_run <out_dir>")?;
     let dir = Path::new(&dir);
     fs::create_dir_all(dir)?;
 
-    let mut kepler = KeplerSystem::from_orbital_elements(1.0, 0.5, 1.0, 1.0, KeplerPerturbations::none())?;
-    write(dir, "kepler_yoshida4", &kepler.integrate((0.0, 20.0), 1e-3, Method::Yoshida4)?)?;
+    let mut kepler =
+        KeplerSystem::from_orbital_elements(1.0, 0.5, 1.0, 1.0, KeplerPerturbations::none())?;
+    write(
+        dir,
+        "kepler_yoshida4",
+        &kepler.integrate((0.0, 20.0), 1e-3, Method::Yoshida4)?,
+    )?;
 
     let mut dp = DoublePendulum::new(&[2.0, 1.0], &[0.5, -0.3], DoublePendulumParams::default())?;
-    write(dir, "double_pendulum_implicit_midpoint", &dp.integrate((0.0, 3.0), 3e-4, Method::ImplicitMidpoint)?)?;
+    write(
+        dir,
+        "double_pendulum_implicit_midpoint",
+        &dp.integrate((0.0, 3.0), 3e-4, Method::ImplicitMidpoint)?,
+    )?;
 
     let mut top = EulerTop::new(&[0.01, 1.0, 0.01], EulerTopParams::default(), None)?;
-    write(dir, "euler_top_rk4", &top.integrate((0.0, 10.0), 1e-3, Method::Rk4)?)?;
+    write(
+        dir,
+        "euler_top_rk4",
+        &top.integrate((0.0, 10.0), 1e-3, Method::Rk4)?,
+    )?;
 
     let mut fput = FPUTChain::new(16, 1.0, 1.0, 1.0, 1, 1.0)?;
-    write(dir, "fput_verlet", &fput.integrate((0.0, 50.0), 5e-3, Method::Verlet)?)?;
+    write(
+        dir,
+        "fput_verlet",
+        &fput.integrate((0.0, 50.0), 5e-3, Method::Verlet)?,
+    )?;
     Ok(())
 }

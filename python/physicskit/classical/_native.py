@@ -12,7 +12,7 @@ from .. import _core
 __all__ = ["_core", "as_vector", "as_scalar", "as_t_span", "native", "make_result"]
 
 
-def as_vector(name: str, value: Any, length: int | None = None) -> np.ndarray:
+def as_vector(name: str, value: Any, length: int | None = None, finite: bool = True) -> np.ndarray:
     """Return ``value`` as a fresh, finite, C-contiguous float64 vector.
 
     Raises ValueError (never a numpy broadcasting error deep inside an integrator) when the
@@ -28,7 +28,7 @@ def as_vector(name: str, value: Any, length: int | None = None) -> np.ndarray:
         raise ValueError(f"{name} must be one-dimensional, got shape {arr.shape}")
     if length is not None and arr.shape[0] != length:
         raise ValueError(f"{name} has length {arr.shape[0]}, expected {length}")
-    if not np.all(np.isfinite(arr)):
+    if finite and not np.all(np.isfinite(arr)):
         raise ValueError(f"{name} contains NaN or infinity; pass finite numbers")
     return np.ascontiguousarray(arr)
 

@@ -97,7 +97,8 @@ class DynamicalSystem(ABC):
     def _state_arg(self, state) -> np.ndarray:
         if state is None:
             return np.ascontiguousarray(self.state, dtype=np.float64)
-        return as_vector("state", state, len(self.state))
+        # Evaluating a non-finite state is allowed (it yields NaN); only the length is checked.
+        return as_vector("state", state, len(self.state), finite=False)
 
     def _finish(self, parts) -> SimulationResult:
         result = make_result(SimulationResult, parts)
