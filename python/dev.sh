@@ -33,6 +33,9 @@ env)
     # (the pure-Python part is linked, so edits under python/physicskit need no rebuild).
     (cd "$here" && VIRTUAL_ENV="$venv" PATH="$venv/bin:$PATH" \
         "$venv/bin/maturin" develop --release --quiet 2>&1 | grep -v -E '^(📦|🔗|🐍|⚠️  Warning: You.re building a library without activating)' || true)
+    # The pure-Rust reference program of tests/test_bit_identity.py, built now so that
+    # `test` does not compile.
+    (cd "$repo" && cargo build --quiet --release -p physicskit-python --example reference_run)
     "$py" -c "import physicskit.classical as pc; print('physicskit', pc.__version__, 'installed in', '$venv')"
     ;;
 test)

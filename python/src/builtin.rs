@@ -39,6 +39,8 @@ crate::native_lagrangian!(LagrangianModel<ExprLagrangian>);
 crate::native_ode!(EulerTop);
 
 type Arr<'a> = PyReadonlyArray1<'a, f64>;
+/// Two numpy vectors returned together (`(x, y)`, `(q0, p0)`, `(Q, P)`).
+type Pair<'py> = (Bound<'py, PyArray1<f64>>, Bound<'py, PyArray1<f64>>);
 
 fn scalar(name: &str, v: &Arr<'_>) -> PyResult<f64> {
     let v = to_vec(v);
@@ -239,7 +241,7 @@ pub fn projectile_analytic_trajectory<'py>(
     g: f64,
     t: Arr<'_>,
     height: f64,
-) -> PyResult<(Bound<'py, PyArray1<f64>>, Bound<'py, PyArray1<f64>>)> {
+) -> PyResult<Pair<'py>> {
     let (x, y) =
         ProjectileMotion::analytic_trajectory(speed, angle_deg, g, &to_vec(&t), height).py()?;
     Ok((PyArray1::from_vec(py, x), PyArray1::from_vec(py, y)))
@@ -301,7 +303,7 @@ pub fn sine_gordon_kink<'py>(
     width: f64,
     velocity: f64,
     polarity: i32,
-) -> PyResult<(Bound<'py, PyArray1<f64>>, Bound<'py, PyArray1<f64>>)> {
+) -> PyResult<Pair<'py>> {
     let (q, p) = SineGordonChain::kink(n, center, width, velocity, polarity).py()?;
     Ok((PyArray1::from_vec(py, q), PyArray1::from_vec(py, p)))
 }
@@ -338,7 +340,7 @@ pub fn chain_normal_mode_coords<'py>(
     sys: &NativeSystem,
     q: Arr<'_>,
     p: Arr<'_>,
-) -> PyResult<(Bound<'py, PyArray1<f64>>, Bound<'py, PyArray1<f64>>)> {
+) -> PyResult<Pair<'py>> {
     let (bq, bp) = modes(sys)?
         .normal_mode_coords(&to_vec(&q), &to_vec(&p))
         .py()?;
