@@ -31,8 +31,12 @@ env)
         "maturin>=1.7,<2" "numpy>=1.24" "pytest>=7" "sympy>=1.12"
     # maturin develop builds the cdylib in release mode and installs the package in the venv
     # (the pure-Python part is linked, so edits under python/physicskit need no rebuild).
+    # The grep only trims maturin's chatter; maturin's own exit status decides (a failed build
+    # must not leave an older installed build looking current).
     (cd "$here" && VIRTUAL_ENV="$venv" PATH="$venv/bin:$PATH" \
-        "$venv/bin/maturin" develop --release --quiet 2>&1 | grep -v -E '^(📦|🔗|🐍|⚠️  Warning: You.re building a library without activating)' || true)
+        "$venv/bin/maturin" develop --release --quiet 2>&1 \
+        | { grep -v -E '^(📦|🔗|🐍|⚠️  Warning: You.re building a library without activating)' || true; }
+        exit "${PIPESTATUS[0]}")
     # The pure-Rust reference program of tests/test_bit_identity.py, built now so that
     # `test` does not compile.
     (cd "$repo" && cargo build --quiet --release -p physicskit-python --example reference_run)
