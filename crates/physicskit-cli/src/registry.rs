@@ -341,7 +341,6 @@ pub fn find(name: &str) -> Result<&'static SystemSpec> {
 mod tests {
     use super::*;
     use crate::systems::REGISTRY;
-    use physicskit::classical::DynamicalSystem;
 
     #[test]
     fn names_are_unique_and_do_not_shadow_run_options() {

@@ -26,6 +26,7 @@ pub fn push_f64(out: &mut String, x: f64) {
 }
 
 /// [`push_f64`] into a new string.
+#[cfg(test)]
 pub fn f64_text(x: f64) -> String {
     let mut s = String::new();
     push_f64(&mut s, x);
