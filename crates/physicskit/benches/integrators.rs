@@ -1,1 +1,72 @@
-fn main() {}
+//! ns per step of each integrator on small systems (criterion).
+//!
+//! `cargo bench -p physicskit --bench integrators`. Each benchmark integrates 10^4 steps and
+//! reports the time per call; divide by 10^4 for ns/step. `final_only` measures the stepping
+//! alone; `stored` adds writing every sample and its energy, as `integrate` does by default.
+
+use criterion::{criterion_group, criterion_main, BenchmarkId, Criterion, Throughput};
+use physicskit::classical::examples::{HarmonicOscillator, Pendulum};
+use physicskit::classical::{HamiltonianSystem, IntegrateOptions, Method};
+use std::hint::black_box;
+
+const STEPS: u64 = 10_000;
+const DT: f64 = 1e-3;
+
+fn integrators(c: &mut Criterion) {
+    let mut group = c.benchmark_group("pendulum");
+    group.throughput(Throughput::Elements(STEPS));
+    for method in Method::ALL {
+        group.bench_with_input(
+            BenchmarkId::new("stored", method.name()),
+            &method,
+            |b, &m| {
+                b.iter(|| {
+                    let mut p = Pendulum::new(1.0, 0.0, 1.0).unwrap();
+                    black_box(p.integrate((0.0, STEPS as f64 * DT), DT, m).unwrap())
+                })
+            },
+        );
+        group.bench_with_input(
+            BenchmarkId::new("final_only", method.name()),
+            &method,
+            |b, &m| {
+                b.iter(|| {
+                    let mut p = Pendulum::new(1.0, 0.0, 1.0).unwrap();
+                    black_box(
+                        p.integrate_with(
+                            (0.0, STEPS as f64 * DT),
+                            DT,
+                            m,
+                            IntegrateOptions::final_only(),
+                        )
+                        .unwrap(),
+                    )
+                })
+            },
+        );
+    }
+    group.finish();
+
+    let mut group = c.benchmark_group("oscillator_implicit_midpoint");
+    group.throughput(Throughput::Elements(STEPS));
+    for dt in [1e-3, 1e-1] {
+        group.bench_with_input(BenchmarkId::from_parameter(dt), &dt, |b, &dt| {
+            b.iter(|| {
+                let mut o = HarmonicOscillator::new(1.0, 0.0, 1.0, 1.0).unwrap();
+                black_box(
+                    o.integrate_with(
+                        (0.0, STEPS as f64 * dt),
+                        dt,
+                        Method::ImplicitMidpoint,
+                        IntegrateOptions::final_only(),
+                    )
+                    .unwrap(),
+                )
+            })
+        });
+    }
+    group.finish();
+}
+
+criterion_group!(benches, integrators);
+criterion_main!(benches);

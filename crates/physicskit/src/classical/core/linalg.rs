@@ -21,8 +21,12 @@ pub struct Singular;
 /// non-finite number.
 pub fn lu_factor(a: &mut [f64], n: usize, piv: &mut [usize]) -> Result<(), Singular> {
     debug_assert!(a.len() >= n * n && piv.len() >= n);
+    // `f64::max` skips NaN, so finiteness is checked on its own.
+    if !a[..n * n].iter().all(|v| v.is_finite()) {
+        return Err(Singular);
+    }
     let scale = a[..n * n].iter().fold(0.0_f64, |m, v| m.max(v.abs()));
-    if !scale.is_finite() || scale == 0.0 {
+    if scale == 0.0 {
         return Err(Singular);
     }
     let tiny = SINGULAR_RELATIVE_PIVOT * scale;
@@ -58,8 +62,8 @@ pub fn lu_factor(a: &mut [f64], n: usize, piv: &mut [usize]) -> Result<(), Singu
 
 /// Solves `A x = b` in place (`b` becomes `x`) from the factors of [`lu_factor`].
 pub fn lu_solve(lu: &[f64], n: usize, piv: &[usize], b: &mut [f64]) {
-    for k in 0..n {
-        b.swap(k, piv[k]);
+    for (k, &swap) in piv.iter().enumerate().take(n) {
+        b.swap(k, swap);
     }
     for r in 1..n {
         let s: f64 = (0..r).map(|c| lu[r * n + c] * b[c]).sum();

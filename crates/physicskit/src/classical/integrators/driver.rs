@@ -1,6 +1,6 @@
 //! The drivers behind every `integrate`: validate, allocate once, loop, record.
 //!
-//! One generic loop ([`run`]) serves every method and family. It is monomorphized for each
+//! One generic loop (`Setup::run_from`) serves every method and family. It is monomorphized for each
 //! system and stepper, so nothing in a step is dynamically dispatched; the observer (progress
 //! bar, Ctrl-C) is consulted every few thousand steps only.
 

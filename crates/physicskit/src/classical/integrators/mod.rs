@@ -13,6 +13,7 @@
 //! once and records samples.
 
 pub mod driver;
+pub mod ensemble;
 pub mod field;
 pub mod implicit_midpoint;
 pub mod rk4;
@@ -20,6 +21,7 @@ pub mod splitting;
 pub mod verlet;
 pub mod yoshida4;
 
+pub use ensemble::{integrate_ensemble, Ensemble, ENSEMBLE_CHUNK};
 pub use field::{Canonical, FirstOrder, VectorField};
 pub use implicit_midpoint::{ImplicitMidpoint, SolverSettings, SolverStats};
 pub use rk4::Rk4;

@@ -63,8 +63,8 @@ impl Rk4 {
         f.eval(t + h, &self.tmp, &mut self.k4)?;
         self.evaluations += 4;
         let sixth = h / 6.0;
-        for i in 0..y.len() {
-            y[i] += sixth * (self.k1[i] + 2.0 * (self.k2[i] + self.k3[i]) + self.k4[i]);
+        for (i, yi) in y.iter_mut().enumerate() {
+            *yi += sixth * (self.k1[i] + 2.0 * (self.k2[i] + self.k3[i]) + self.k4[i]);
         }
         Ok(())
     }

@@ -19,7 +19,8 @@ use crate::classical::core::{Error, HamiltonianSystem, MassInv, Method, Result};
 pub struct SplittingStepper {
     drifts: &'static [f64],
     force: Vec<f64>,
-    force_at: Option<f64>,
+    /// The cached force belongs to the current `q` (first same as last).
+    force_valid: bool,
     force_evaluations: u64,
 }
 
@@ -42,7 +43,7 @@ impl SplittingStepper {
         Ok(Self {
             drifts,
             force: vec![0.0; ndof],
-            force_at: None,
+            force_valid: false,
             force_evaluations: 0,
         })
     }
@@ -73,10 +74,14 @@ impl SplittingStepper {
 
     /// Forgets the cached force (call after changing `q` outside the stepper).
     pub fn invalidate(&mut self) {
-        self.force_at = None;
+        self.force_valid = false;
     }
 
     /// Advances `(q, p)` from `t` to `t + h` (`h` may be negative).
+    ///
+    /// The force left by the previous step is reused as this step's first kick, so `q` must be
+    /// the one the previous step returned; call [`invalidate`](Self::invalidate) after
+    /// changing it in between.
     ///
     /// # Errors
     /// Whatever [`HamiltonianSystem::force`] returns.
@@ -89,10 +94,13 @@ impl SplittingStepper {
         p: &mut [f64],
         h: f64,
     ) -> Result<()> {
-        if self.force_at != Some(t) {
+        if !self.force_valid {
             system.force(q, t, &mut self.force)?;
             self.force_evaluations += 1;
         }
+        // Until the step completes, the cache does not match q (an error mid-step leaves it
+        // invalid).
+        self.force_valid = false;
         let s = self.drifts.len();
         let mut elapsed = 0.0;
         kick(p, &self.force, 0.5 * self.drifts[0] * h);
@@ -107,7 +115,7 @@ impl SplittingStepper {
             let next = if i + 1 < s { self.drifts[i + 1] } else { 0.0 };
             kick(p, &self.force, 0.5 * (w + next) * h);
         }
-        self.force_at = Some(t + h);
+        self.force_valid = true;
         Ok(())
     }
 }

@@ -1,1 +1,11 @@
 //! The Lagrangian engine: equations of motion from `L(q, qdot, t)` by automatic differentiation.
+
+mod buffer;
+mod engine;
+mod expr;
+mod model;
+pub use buffer::MAX_STACK_NDOF;
+pub use engine::*;
+pub use expr::*;
+pub use model::*;
+pub use num_dual::DualNum;

@@ -1,0 +1,612 @@
+//! [`LagrangianEngine`]: every equation of motion of a Lagrangian system, derived from
+//! `L(q, qdot, t)` alone by forward-mode automatic differentiation (num-dual).
+//!
+//! A system writes its Lagrangian once, generic over the number type ([`Lagrangian`]). With
+//! `v = qdot`, the engine evaluates it on dual and hyper-dual numbers to obtain
+//!
+//! ```text
+//! mass matrix    M      = d2L/dv2
+//! momentum       p      = dL/dv
+//! acceleration   qddot  = M^-1 (dL/dq - (d2L/dv dq) v - d2L/dv dt)      (Euler–Lagrange)
+//! energy         H      = p . v - L                                     (Jacobi integral)
+//! velocity       v(q, p): the root of dL/dv(q, v) - p = 0                (inverse Legendre map)
+//! canonical      dq/dt  = v(q, p),   dp/dt = dL/dq(q, v(q, p), t)
+//! ```
+//!
+//! (Goldstein, Poole & Safko, *Classical Mechanics*, 3rd ed. (2002), §1.4 and §8.1.) Every
+//! derivative is exact to rounding: a hyper-dual number `x + e1 a + e2 b + e1 e2 c` carries one
+//! second derivative through the evaluation of `L` (Fike & Alonso, AIAA 2011-886).
+//!
+//! # Cost per call, in evaluations of `L` (`n` = ndof)
+//!
+//! | operation                         | hyper-dual evaluations | dual evaluations |
+//! |-----------------------------------|------------------------|------------------|
+//! | [`acceleration`](LagrangianEngine::acceleration) | `n(n+1)/2 + n`  | `n`              |
+//! | [`canonical_derivatives`](LagrangianEngine::canonical_derivatives), [`velocity`](LagrangianEngine::velocity) | `n(n+1)/2 + n` per Newton iteration | 0 |
+//! | [`canonical_jacobian`](LagrangianEngine::canonical_jacobian) | `n(2n+1)` plus one velocity solve | 0 |
+//! | [`momentum`](LagrangianEngine::momentum) | 0                         | `n`              |
+//! | [`energy`](LagrangianEngine::energy)     | 0                         | 1                |
+//!
+//! plus one `n x n` LU factorization per acceleration or Newton iteration. The inverse Legendre
+//! map starts with the step that is exact when `L` is quadratic in `v` (every mechanical
+//! Lagrangian `T(q, v) - V(q)`): `v = M(q, 0)^-1 (p - dL/dv(q, 0))`; one residual check
+//! (which also yields `dL/dq`) confirms it, so a canonical evaluation of a double pendulum costs
+//! 5 hyper-dual evaluations of `L`. Non-quadratic Lagrangians continue with Newton's method.
+//!
+//! Up to [`MAX_STACK_NDOF`](super::MAX_STACK_NDOF) degrees of freedom all work buffers are on
+//! the stack: no evaluation allocates. Larger systems use heap buffers per call.
+
+use num_dual::{Dual64, DualNum, HyperDual64};
+
+use super::buffer::{MatBuf, VecBuf};
+use crate::classical::core::error::check_vector;
+use crate::classical::core::linalg::{lu_factor, lu_solve};
+use crate::classical::core::{Error, Phase, Result};
+
+/// The number types a [`Lagrangian`] is evaluated on: `f64` and num-dual's (hyper-)dual
+/// numbers over `f64`. Bring [`DualNum`](num_dual::DualNum) into scope for `sin`, `cos`,
+/// `powi`, ... on them.
+pub trait Scalar: DualNum<Primitive = f64> + Copy {}
+
+impl<D: DualNum<Primitive = f64> + Copy> Scalar for D {}
+
+/// A Lagrangian `L(q, qdot, t)`, written once, generic over the number type.
+///
+/// # Example
+/// ```
+/// use physicskit::classical::lagrangian::{DualNum, Lagrangian, LagrangianEngine, Scalar};
+///
+/// /// A pendulum of unit mass and length: L = v^2/2 + g cos q.
+/// struct Pendulum { g: f64 }
+///
+/// impl Lagrangian for Pendulum {
+///     fn ndof(&self) -> usize { 1 }
+///     fn lagrangian<D: Scalar>(&self, q: &[D], qdot: &[D], _t: D) -> D {
+///         qdot[0] * qdot[0] * 0.5 + q[0].cos() * self.g
+///     }
+/// }
+///
+/// let engine = LagrangianEngine::new(Pendulum { g: 9.81 }).unwrap();
+/// let mut qddot = [0.0];
+/// engine.acceleration(&[0.3], &[0.0], 0.0, &mut qddot).unwrap();
+/// assert!((qddot[0] + 9.81 * 0.3_f64.sin()).abs() < 1e-14);
+/// ```
+pub trait Lagrangian {
+    /// Number of degrees of freedom (length of `q` and `qdot`).
+    fn ndof(&self) -> usize;
+
+    /// `L(q, qdot, t)`. `q` and `qdot` have length [`ndof`](Self::ndof).
+    fn lagrangian<D: Scalar>(&self, q: &[D], qdot: &[D], t: D) -> D;
+}
+
+/// Tolerances of the iterative inverse Legendre map `v(q, p)`.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct LegendreSettings {
+    /// Converged when `|p - dL/dv(q, v)|_inf <= tolerance * scale`, `scale` the largest of
+    /// `|p|`, `|dL/dv|` and `|M| |v|`. The default, 1e-13 (about 450 ulps), sits above the
+    /// rounding floor of the residual of an `n <= 16` system and far below any physical scale.
+    pub tolerance: f64,
+    /// A residual this small (default 1e-9) that a Newton step no longer halves is the
+    /// rounding floor of an ill-conditioned mass matrix and is accepted.
+    pub stall_tolerance: f64,
+    /// Newton iterations before [`Error::SolverDidNotConverge`] (default 30).
+    pub max_iterations: usize,
+}
+
+impl Default for LegendreSettings {
+    fn default() -> Self {
+        Self {
+            tolerance: 1e-13,
+            stall_tolerance: 1e-9,
+            max_iterations: 30,
+        }
+    }
+}
+
+/// Equations of motion of a [`Lagrangian`] by automatic differentiation (see the module
+/// documentation for the equations and the cost of each call).
+#[derive(Debug, Clone, PartialEq)]
+pub struct LagrangianEngine<L> {
+    lagrangian: L,
+    settings: LegendreSettings,
+}
+
+fn lift<D: Scalar>(x: &[f64]) -> VecBuf<D> {
+    let mut buf = VecBuf::new(x.len(), D::zero());
+    for (b, &xi) in buf.as_mut_slice().iter_mut().zip(x) {
+        *b = D::from(xi);
+    }
+    buf
+}
+
+fn hd(re: f64) -> HyperDual64 {
+    HyperDual64::new(re, 0.0, 0.0, 0.0)
+}
+
+fn singular(t: f64) -> Error {
+    Error::SingularMatrix {
+        what: "mass matrix d2L/dqdot2".into(),
+        t,
+    }
+}
+
+fn inf_norm(x: &[f64]) -> f64 {
+    x.iter().fold(0.0_f64, |m, v| m.max(v.abs()))
+}
+
+fn check_len(name: &str, x: &[f64], n: usize) -> Result<()> {
+    if x.len() == n {
+        Ok(())
+    } else {
+        Err(Error::DimensionMismatch {
+            name: name.into(),
+            expected: n,
+            found: x.len(),
+        })
+    }
+}
+
+impl<L: Lagrangian> LagrangianEngine<L> {
+    /// An engine for `lagrangian`.
+    ///
+    /// # Errors
+    /// [`Error::InvalidParameter`] if `lagrangian.ndof()` is 0.
+    pub fn new(lagrangian: L) -> Result<Self> {
+        if lagrangian.ndof() == 0 {
+            return Err(Error::invalid("ndof", 0.0, "must be at least 1"));
+        }
+        Ok(Self {
+            lagrangian,
+            settings: LegendreSettings::default(),
+        })
+    }
+
+    /// The same engine with other inverse-Legendre tolerances.
+    ///
+    /// # Errors
+    /// [`Error::InvalidParameter`] for a tolerance that is not finite and positive or zero
+    /// iterations.
+    pub fn with_settings(mut self, settings: LegendreSettings) -> Result<Self> {
+        for (name, value) in [
+            ("tolerance", settings.tolerance),
+            ("stall_tolerance", settings.stall_tolerance),
+        ] {
+            if !(value.is_finite() && value > 0.0) {
+                return Err(Error::invalid(name, value, "must be finite and > 0"));
+            }
+        }
+        if settings.max_iterations == 0 {
+            return Err(Error::invalid("max_iterations", 0.0, "must be at least 1"));
+        }
+        self.settings = settings;
+        Ok(self)
+    }
+
+    /// The Lagrangian.
+    pub fn lagrangian(&self) -> &L {
+        &self.lagrangian
+    }
+
+    /// Number of degrees of freedom.
+    pub fn ndof(&self) -> usize {
+        self.lagrangian.ndof()
+    }
+
+    /// A [`Phase`] at `t = 0` holding `[q0, qdot0]`, checked for a regular mass matrix.
+    ///
+    /// # Errors
+    /// [`Error::DimensionMismatch`], [`Error::NonFinite`], or [`Error::SingularMatrix`] if
+    /// `d2L/dqdot2` is singular at the initial state.
+    pub fn initial_phase(&self, q0: &[f64], qdot0: &[f64]) -> Result<Phase> {
+        let n = self.ndof();
+        check_vector("q0", q0, n)?;
+        check_vector("qdot0", qdot0, n)?;
+        self.check_regular(q0, qdot0, 0.0)?;
+        Phase::from_halves("q0", q0, "qdot0", qdot0)
+    }
+
+    /// `L(q, qdot, t)` in plain `f64`.
+    ///
+    /// # Errors
+    /// [`Error::DimensionMismatch`] for wrong lengths.
+    pub fn value(&self, q: &[f64], qdot: &[f64], t: f64) -> Result<f64> {
+        let n = self.ndof();
+        check_len("q", q, n)?;
+        check_len("qdot", qdot, n)?;
+        Ok(self.lagrangian.lagrangian(q, qdot, t))
+    }
+
+    /// Checks that the mass matrix is regular at `(q, qdot, t)`.
+    ///
+    /// # Errors
+    /// [`Error::SingularMatrix`], or [`Error::DimensionMismatch`] for wrong lengths.
+    pub fn check_regular(&self, q: &[f64], qdot: &[f64], t: f64) -> Result<()> {
+        let n = self.ndof();
+        let mut m = MatBuf::new(n * n, 0.0);
+        self.mass_matrix(q, qdot, t, m.as_mut_slice())?;
+        let mut piv = VecBuf::new(n, 0_usize);
+        lu_factor(m.as_mut_slice(), n, piv.as_mut_slice()).map_err(|_| singular(t))
+    }
+
+    /// Writes the mass matrix `M = d2L/dqdot2` (row-major `n x n`) into `out`.
+    /// Costs `n(n+1)/2` hyper-dual evaluations.
+    ///
+    /// # Errors
+    /// [`Error::DimensionMismatch`] for wrong lengths.
+    pub fn mass_matrix(&self, q: &[f64], qdot: &[f64], t: f64, out: &mut [f64]) -> Result<()> {
+        let n = self.ndof();
+        check_len("q", q, n)?;
+        check_len("qdot", qdot, n)?;
+        check_len("mass matrix", out, n * n)?;
+        self.hessian_vv(q, qdot, t, out, None);
+        Ok(())
+    }
+
+    /// Writes the generalized force `dL/dq` at `(q, qdot, t)` into `out` (`n` dual
+    /// evaluations).
+    ///
+    /// # Errors
+    /// [`Error::DimensionMismatch`] for wrong lengths.
+    pub fn generalized_force(&self, q: &[f64], qdot: &[f64], t: f64, out: &mut [f64]) -> Result<()> {
+        let n = self.ndof();
+        check_len("q", q, n)?;
+        check_len("qdot", qdot, n)?;
+        check_len("out", out, n)?;
+        let mut qd = lift::<Dual64>(q);
+        let vd = lift::<Dual64>(qdot);
+        let td = Dual64::from(t);
+        for (i, o) in out.iter_mut().enumerate() {
+            qd.as_mut_slice()[i].eps = 1.0;
+            *o = self
+                .lagrangian
+                .lagrangian(qd.as_slice(), vd.as_slice(), td)
+                .eps;
+            qd.as_mut_slice()[i].eps = 0.0;
+        }
+        Ok(())
+    }
+
+    /// Writes the canonical momentum `p = dL/dqdot` into `out` (`n` dual evaluations).
+    ///
+    /// # Errors
+    /// [`Error::DimensionMismatch`] for wrong lengths.
+    pub fn momentum(&self, q: &[f64], qdot: &[f64], t: f64, out: &mut [f64]) -> Result<()> {
+        let n = self.ndof();
+        check_len("q", q, n)?;
+        check_len("qdot", qdot, n)?;
+        check_len("out", out, n)?;
+        let qd = lift::<Dual64>(q);
+        let mut vd = lift::<Dual64>(qdot);
+        let td = Dual64::from(t);
+        for (i, o) in out.iter_mut().enumerate() {
+            vd.as_mut_slice()[i].eps = 1.0;
+            *o = self
+                .lagrangian
+                .lagrangian(qd.as_slice(), vd.as_slice(), td)
+                .eps;
+            vd.as_mut_slice()[i].eps = 0.0;
+        }
+        Ok(())
+    }
+
+    /// The energy function `H = p . qdot - L` (one dual evaluation: `p . qdot` is the
+    /// derivative of `L` along `qdot` in velocity space). Equals `T + V` for `L = T - V` with
+    /// `T` quadratic in `qdot`; in a rotating frame it is the Jacobi integral. `NaN` for wrong
+    /// lengths.
+    pub fn energy(&self, q: &[f64], qdot: &[f64], t: f64) -> f64 {
+        let n = self.ndof();
+        if q.len() != n || qdot.len() != n {
+            return f64::NAN;
+        }
+        let qd = lift::<Dual64>(q);
+        let mut vd = lift::<Dual64>(qdot);
+        for (d, &v) in vd.as_mut_slice().iter_mut().zip(qdot) {
+            d.eps = v;
+        }
+        let l = self
+            .lagrangian
+            .lagrangian(qd.as_slice(), vd.as_slice(), Dual64::from(t));
+        l.eps - l.re
+    }
+
+    /// [`energy`](Self::energy) of a stacked state `[q, qdot]`; `NaN` for a wrong length.
+    pub fn energy_of_state(&self, state: &[f64], t: f64) -> f64 {
+        let n = self.ndof();
+        if state.len() != 2 * n {
+            return f64::NAN;
+        }
+        let (q, qdot) = state.split_at(n);
+        self.energy(q, qdot, t)
+    }
+
+    /// Writes the acceleration `qddot` from the Euler–Lagrange equations into `out`.
+    ///
+    /// # Errors
+    /// [`Error::SingularMatrix`] if `d2L/dqdot2` is singular; [`Error::DimensionMismatch`] for
+    /// wrong lengths.
+    pub fn acceleration(&self, q: &[f64], qdot: &[f64], t: f64, out: &mut [f64]) -> Result<()> {
+        let n = self.ndof();
+        check_len("q", q, n)?;
+        check_len("qdot", qdot, n)?;
+        check_len("out", out, n)?;
+        let mut m = MatBuf::new(n * n, 0.0);
+        self.hessian_vv(q, qdot, t, m.as_mut_slice(), None);
+        let mut mixed = VecBuf::new(n, 0.0);
+        self.mixed_time_derivative(q, qdot, t, mixed.as_mut_slice());
+        self.generalized_force(q, qdot, t, out)?;
+        for (o, c) in out.iter_mut().zip(mixed.as_slice()) {
+            *o -= c;
+        }
+        let mut piv = VecBuf::new(n, 0_usize);
+        lu_factor(m.as_mut_slice(), n, piv.as_mut_slice()).map_err(|_| singular(t))?;
+        lu_solve(m.as_slice(), n, piv.as_slice(), out);
+        Ok(())
+    }
+
+    /// Writes the velocity `qdot(q, p, t)` that inverts `p = dL/dqdot` into `out`.
+    ///
+    /// # Errors
+    /// [`Error::SingularMatrix`]; [`Error::SolverDidNotConverge`] if Newton's method fails
+    /// (only possible for a Lagrangian that is not quadratic in `qdot`);
+    /// [`Error::DimensionMismatch`] for wrong lengths.
+    pub fn velocity(&self, q: &[f64], p: &[f64], t: f64, out: &mut [f64]) -> Result<()> {
+        let n = self.ndof();
+        check_len("q", q, n)?;
+        check_len("p", p, n)?;
+        check_len("out", out, n)?;
+        let mut force = VecBuf::new(n, 0.0);
+        self.solve_velocity(q, p, t, out, force.as_mut_slice())
+            .map(|_| ())
+    }
+
+    /// Writes `[dq/dt, dp/dt] = [qdot(q, p), dL/dq(q, qdot(q, p), t)]` at the canonical state
+    /// `[q, p]` into `out`.
+    ///
+    /// # Errors
+    /// As [`velocity`](Self::velocity).
+    pub fn canonical_derivatives(&self, t: f64, state: &[f64], out: &mut [f64]) -> Result<()> {
+        let n = self.ndof();
+        check_len("state", state, 2 * n)?;
+        check_len("out", out, 2 * n)?;
+        let (q, p) = state.split_at(n);
+        let (v, force) = out.split_at_mut(n);
+        self.solve_velocity(q, p, t, v, force).map(|_| ())
+    }
+
+    /// Writes the Jacobian of [`canonical_derivatives`](Self::canonical_derivatives)
+    /// (row-major `2n x 2n`) into `out`. With `v = qdot(q, p)` and the second derivatives of
+    /// `L` at `(q, v)`, implicit differentiation of `p = dL/dv(q, v)` gives
+    ///
+    /// ```text
+    /// d(dq/dt)/dq = -M^-1 L_vq        d(dq/dt)/dp = M^-1
+    /// d(dp/dt)/dq = L_qq - L_qv M^-1 L_vq   d(dp/dt)/dp = L_qv M^-1
+    /// ```
+    ///
+    /// # Errors
+    /// As [`velocity`](Self::velocity).
+    pub fn canonical_jacobian(&self, t: f64, state: &[f64], out: &mut [f64]) -> Result<()> {
+        let n = self.ndof();
+        let dim = 2 * n;
+        check_len("state", state, dim)?;
+        check_len("out", out, dim * dim)?;
+        let (q, p) = state.split_at(n);
+        let mut v = VecBuf::new(n, 0.0);
+        let mut force = VecBuf::new(n, 0.0);
+        self.solve_velocity(q, p, t, v.as_mut_slice(), force.as_mut_slice())?;
+        self.hessian_full(q, v.as_slice(), t, out);
+        let mut lvq = MatBuf::new(n * n, 0.0);
+        let mut lu = MatBuf::new(n * n, 0.0);
+        {
+            let (lvq, lu) = (lvq.as_mut_slice(), lu.as_mut_slice());
+            for i in 0..n {
+                for j in 0..n {
+                    lvq[i * n + j] = out[(n + i) * dim + j];
+                    lu[i * n + j] = out[(n + i) * dim + n + j];
+                }
+            }
+        }
+        let mut piv = VecBuf::new(n, 0_usize);
+        lu_factor(lu.as_mut_slice(), n, piv.as_mut_slice()).map_err(|_| singular(t))?;
+        let (lu, piv) = (lu.as_slice(), piv.as_slice());
+        // X = M^-1 L_vq, column by column.
+        let mut x = MatBuf::new(n * n, 0.0);
+        let mut col = VecBuf::new(n, 0.0);
+        for j in 0..n {
+            let c = col.as_mut_slice();
+            for (i, ci) in c.iter_mut().enumerate() {
+                *ci = lvq.as_slice()[i * n + j];
+            }
+            lu_solve(lu, n, piv, c);
+            for (i, &ci) in c.iter().enumerate() {
+                x.as_mut_slice()[i * n + j] = ci;
+            }
+        }
+        let (x, lvq) = (x.as_slice(), lvq.as_slice());
+        // Lower left first: it reads L_qq from the upper-left block before that is overwritten.
+        for i in 0..n {
+            for j in 0..n {
+                let s: f64 = (0..n).map(|k| lvq[k * n + i] * x[k * n + j]).sum();
+                out[(n + i) * dim + j] = out[i * dim + j] - s;
+                out[(n + i) * dim + n + j] = x[j * n + i];
+                out[i * dim + j] = -x[i * n + j];
+            }
+        }
+        // Upper right: M^-1, column by column.
+        for j in 0..n {
+            let c = col.as_mut_slice();
+            c.iter_mut().enumerate().for_each(|(i, ci)| *ci = f64::from(u8::from(i == j)));
+            lu_solve(lu, n, piv, c);
+            for (i, &ci) in c.iter().enumerate() {
+                out[i * dim + n + j] = ci;
+            }
+        }
+        Ok(())
+    }
+
+    /// `M = d2L/dv2` into `m`, and `dL/dv` into `grad` if given.
+    fn hessian_vv(&self, q: &[f64], v: &[f64], t: f64, m: &mut [f64], mut grad: Option<&mut [f64]>) {
+        let n = q.len();
+        let qd = lift::<HyperDual64>(q);
+        let mut vd = lift::<HyperDual64>(v);
+        let td = hd(t);
+        for i in 0..n {
+            for j in i..n {
+                vd.as_mut_slice()[i].eps1 = 1.0;
+                vd.as_mut_slice()[j].eps2 = 1.0;
+                let l = self.lagrangian.lagrangian(qd.as_slice(), vd.as_slice(), td);
+                vd.as_mut_slice()[i].eps1 = 0.0;
+                vd.as_mut_slice()[j].eps2 = 0.0;
+                m[i * n + j] = l.eps1eps2;
+                m[j * n + i] = l.eps1eps2;
+                if i == j {
+                    if let Some(g) = grad.as_deref_mut() {
+                        g[i] = l.eps1;
+                    }
+                }
+            }
+        }
+    }
+
+    /// The full Hessian of `L` in `z = (q, v)`, row-major `2n x 2n`, into `out`.
+    fn hessian_full(&self, q: &[f64], v: &[f64], t: f64, out: &mut [f64]) {
+        let n = q.len();
+        let dim = 2 * n;
+        let mut qd = lift::<HyperDual64>(q);
+        let mut vd = lift::<HyperDual64>(v);
+        let td = hd(t);
+        for a in 0..dim {
+            for b in a..dim {
+                let mut seed = |k: usize, first: bool, on: f64| {
+                    let d = if k < n {
+                        &mut qd.as_mut_slice()[k]
+                    } else {
+                        &mut vd.as_mut_slice()[k - n]
+                    };
+                    if first {
+                        d.eps1 = on;
+                    } else {
+                        d.eps2 = on;
+                    }
+                };
+                seed(a, true, 1.0);
+                seed(b, false, 1.0);
+                let l = self.lagrangian.lagrangian(qd.as_slice(), vd.as_slice(), td);
+                let mut reset = |k: usize, first: bool| {
+                    let d = if k < n {
+                        &mut qd.as_mut_slice()[k]
+                    } else {
+                        &mut vd.as_mut_slice()[k - n]
+                    };
+                    if first {
+                        d.eps1 = 0.0;
+                    } else {
+                        d.eps2 = 0.0;
+                    }
+                };
+                reset(a, true);
+                reset(b, false);
+                out[a * dim + b] = l.eps1eps2;
+                out[b * dim + a] = l.eps1eps2;
+            }
+        }
+    }
+
+    /// `(d2L/dv dq) v + d2L/dv dt` into `out`: the part of `d/dt (dL/dv)` not involving the
+    /// acceleration. One hyper-dual evaluation per component: `e1` seeds `v_i`, `e2` the
+    /// direction `(dq, dt) = (v, 1)`.
+    fn mixed_time_derivative(&self, q: &[f64], v: &[f64], t: f64, out: &mut [f64]) {
+        let mut qd = lift::<HyperDual64>(q);
+        for (d, &vi) in qd.as_mut_slice().iter_mut().zip(v) {
+            d.eps2 = vi;
+        }
+        let mut vd = lift::<HyperDual64>(v);
+        let td = HyperDual64::new(t, 0.0, 1.0, 0.0);
+        for (i, o) in out.iter_mut().enumerate() {
+            vd.as_mut_slice()[i].eps1 = 1.0;
+            *o = self
+                .lagrangian
+                .lagrangian(qd.as_slice(), vd.as_slice(), td)
+                .eps1eps2;
+            vd.as_mut_slice()[i].eps1 = 0.0;
+        }
+    }
+
+    /// `dL/dv` into `p` and `dL/dq` into `force`, both at `(q, v)`: one hyper-dual evaluation
+    /// per component (`e1` seeds `v_i`, `e2` seeds `q_i`).
+    fn momentum_and_force(&self, q: &[f64], v: &[f64], t: f64, p: &mut [f64], force: &mut [f64]) {
+        let n = q.len();
+        let mut qd = lift::<HyperDual64>(q);
+        let mut vd = lift::<HyperDual64>(v);
+        let td = hd(t);
+        for i in 0..n {
+            vd.as_mut_slice()[i].eps1 = 1.0;
+            qd.as_mut_slice()[i].eps2 = 1.0;
+            let l = self.lagrangian.lagrangian(qd.as_slice(), vd.as_slice(), td);
+            vd.as_mut_slice()[i].eps1 = 0.0;
+            qd.as_mut_slice()[i].eps2 = 0.0;
+            p[i] = l.eps1;
+            force[i] = l.eps2;
+        }
+    }
+
+    /// Newton's method on `dL/dv(q, v) = p`, starting with the step from `v = 0` that is exact
+    /// for a Lagrangian quadratic in `v`. Writes `v` and `dL/dq(q, v)`; returns the iterations.
+    fn solve_velocity(
+        &self,
+        q: &[f64],
+        p: &[f64],
+        t: f64,
+        v: &mut [f64],
+        force: &mut [f64],
+    ) -> Result<usize> {
+        let n = q.len();
+        let s = self.settings;
+        let mut m = MatBuf::new(n * n, 0.0);
+        let mut piv = VecBuf::new(n, 0_usize);
+        let mut r = VecBuf::new(n, 0.0);
+        let mut pv = VecBuf::new(n, 0.0);
+        v.iter_mut().for_each(|x| *x = 0.0);
+        self.hessian_vv(q, v, t, m.as_mut_slice(), Some(pv.as_mut_slice()));
+        let mut m_norm = inf_norm(m.as_slice());
+        for ((ri, &pi), &p0) in r.as_mut_slice().iter_mut().zip(p).zip(pv.as_slice()) {
+            *ri = pi - p0;
+        }
+        lu_factor(m.as_mut_slice(), n, piv.as_mut_slice()).map_err(|_| singular(t))?;
+        lu_solve(m.as_slice(), n, piv.as_slice(), r.as_mut_slice());
+        v.copy_from_slice(r.as_slice());
+        let p_norm = inf_norm(p).max(inf_norm(pv.as_slice()));
+        let mut previous = f64::INFINITY;
+        let mut residual = f64::INFINITY;
+        for it in 1..=s.max_iterations {
+            self.momentum_and_force(q, v, t, pv.as_mut_slice(), force);
+            let mut r_norm = 0.0_f64;
+            for ((ri, &pi), &pvi) in r.as_mut_slice().iter_mut().zip(p).zip(pv.as_slice()) {
+                *ri = pi - pvi;
+                r_norm = r_norm.max(ri.abs());
+            }
+            let scale = p_norm.max(inf_norm(pv.as_slice())).max(m_norm * inf_norm(v));
+            residual = if r_norm == 0.0 { 0.0 } else { r_norm / scale };
+            if !residual.is_finite() {
+                break;
+            }
+            if residual <= s.tolerance
+                || (it >= 2 && residual > 0.5 * previous && residual <= s.stall_tolerance)
+            {
+                return Ok(it);
+            }
+            previous = residual;
+            self.hessian_vv(q, v, t, m.as_mut_slice(), None);
+            m_norm = m_norm.max(inf_norm(m.as_slice()));
+            lu_factor(m.as_mut_slice(), n, piv.as_mut_slice()).map_err(|_| singular(t))?;
+            lu_solve(m.as_slice(), n, piv.as_slice(), r.as_mut_slice());
+            for (vi, di) in v.iter_mut().zip(r.as_slice()) {
+                *vi += di;
+            }
+        }
+        Err(Error::SolverDidNotConverge {
+            t,
+            iterations: s.max_iterations,
+            residual,
+        })
+    }
+}

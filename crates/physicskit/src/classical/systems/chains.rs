@@ -1,0 +1,585 @@
+//! Lattice chains: the harmonic chain, the Fermi–Pasta–Ulam–Tsingou β-chain and the discrete
+//! sine-Gordon (Frenkel–Kontorova) chain, with their shared normal-mode analysis.
+//!
+//! All chains have `N` equal masses `m`, momenta `p_i = m dq_i/dt` and `T = sum p_i^2/(2m)`.
+//!
+//! ```text
+//! HarmonicChain:   V = sum_{i=0}^{N} (k/2) (q_{i+1} - q_i)^2,                 q_0 = q_{N+1} = 0
+//! FPUTChain:       V = sum_{i=0}^{N} [(k/2) r_i^2 + (beta/4) r_i^4], r_i = q_{i+1} - q_i,
+//!                                                                              q_0 = q_{N+1} = 0
+//! SineGordonChain: V = sum_{i=1}^{N-1} (k/2) (q_{i+1} - q_i)^2 + sum_{i=1}^{N} (1 - cos q_i)
+//!                  (free ends)
+//! ```
+//!
+//! # Normal modes
+//!
+//! The fixed-end harmonic chain has the sine modes
+//!
+//! ```text
+//! Q_j = sqrt(2/(N+1)) sum_i q_i sin(i j pi/(N+1)),   P_j likewise from p,   i, j = 1..N
+//! omega_j = 2 sqrt(k/m) sin(j pi / (2(N+1))),   E_j = P_j^2/(2m) + m omega_j^2 Q_j^2/2
+//! ```
+//!
+//! The transform is orthonormal and its own inverse, so `sum_j E_j` is the harmonic part of the
+//! energy exactly. For the harmonic chain each `E_j` is conserved; for the FPUT chain their
+//! exchange is the famous near-recurrence; for the free-ended sine-Gordon chain the same sine
+//! modes are offered as a common spectral diagnostic (they are not its normal modes: its
+//! linearised spectrum has the on-site gap `omega >= 1/sqrt(m)`).
+//!
+//! References: E. Fermi, J. Pasta, S. Ulam, Los Alamos report LA-1940 (1955); G. P. Berman and
+//! F. M. Izrailev, Chaos 15 (2005) 015104 (FPU review and normal modes); O. M. Braun and
+//! Y. S. Kivshar, *The Frenkel–Kontorova Model* (2004), ch. 2–3 (kinks and their boosts);
+//! N. W. Ashcroft and N. D. Mermin, *Solid State Physics* (1976), ch. 22 (chain modes).
+
+use std::f64::consts::PI;
+
+use crate::classical::core::error::{check_finite_scalar, check_positive, check_vector};
+use crate::classical::core::{Error, HamiltonianSystem, MassInv, Phase, Result};
+
+/// The fixed-end sine modes of an `N`-site chain with mass `m` and spring constant `k`.
+#[derive(Debug, Clone)]
+pub struct ChainModes {
+    n: usize,
+    m: f64,
+    omega: Vec<f64>,
+    /// `sqrt(2/(N+1)) sin(l pi/(N+1))` for `l = 0..2(N+1)`: every entry of the transform,
+    /// indexed by `(i j) mod 2(N+1)`, so no matrix is stored.
+    sines: Vec<f64>,
+}
+
+impl ChainModes {
+    /// The modes of a chain of `n >= 1` masses `m > 0` and springs `k > 0`.
+    ///
+    /// # Errors
+    /// [`Error::InvalidParameter`] for `n < 1`, `m <= 0` or `k <= 0`.
+    pub fn new(n: usize, m: f64, k: f64) -> Result<Self> {
+        check_chain_size(n)?;
+        let m = check_positive("m", m)?;
+        let k = check_positive("k", k)?;
+        let np1 = (n + 1) as f64;
+        let w0 = 2.0 * (k / m).sqrt();
+        let omega = (1..=n)
+            .map(|j| w0 * (j as f64 * PI / (2.0 * np1)).sin())
+            .collect();
+        let norm = (2.0 / np1).sqrt();
+        let sines = (0..2 * (n + 1))
+            .map(|l| norm * (l as f64 * PI / np1).sin())
+            .collect();
+        Ok(Self { n, m, omega, sines })
+    }
+
+    /// Number of sites `N`.
+    pub fn n(&self) -> usize {
+        self.n
+    }
+
+    /// `omega_j = 2 sqrt(k/m) sin(j pi/(2(N+1)))`, `j = 1..N` (index `j - 1`).
+    pub fn frequencies(&self) -> &[f64] {
+        &self.omega
+    }
+
+    /// The sine transform of `x` into `out` (no allocation); it is its own inverse.
+    fn transform(&self, x: &[f64], out: &mut [f64]) {
+        let period = 2 * (self.n + 1);
+        for (j, o) in (1..=self.n).zip(out.iter_mut()) {
+            let mut acc = 0.0;
+            let mut l = j % period;
+            for &xi in x {
+                acc += xi * self.sines[l];
+                l += j;
+                if l >= period {
+                    l -= period;
+                }
+            }
+            *o = acc;
+        }
+    }
+
+    fn check(&self, q: &[f64], p: &[f64]) -> Result<()> {
+        check_vector("q", q, self.n)?;
+        check_vector("p", p, self.n)
+    }
+
+    /// Modal amplitudes `(Q, P)` of the displacements `q` and momenta `p`, written into
+    /// `big_q` and `big_p` (no allocation).
+    ///
+    /// # Errors
+    /// [`Error::DimensionMismatch`] unless all four slices have length `N`;
+    /// [`Error::NonFinite`] for NaN or infinity in `q` or `p`.
+    pub fn coords_into(
+        &self,
+        q: &[f64],
+        p: &[f64],
+        big_q: &mut [f64],
+        big_p: &mut [f64],
+    ) -> Result<()> {
+        self.check(q, p)?;
+        check_len("Q", big_q.len(), self.n)?;
+        check_len("P", big_p.len(), self.n)?;
+        self.transform(q, big_q);
+        self.transform(p, big_p);
+        Ok(())
+    }
+
+    /// Modal energies `E_j = P_j^2/(2m) + m omega_j^2 Q_j^2/2` written into `out`, using
+    /// `scratch` (length `N`) as work space (no allocation).
+    ///
+    /// # Errors
+    /// [`Error::DimensionMismatch`] unless all slices have length `N`; [`Error::NonFinite`].
+    pub fn energies_into(
+        &self,
+        q: &[f64],
+        p: &[f64],
+        scratch: &mut [f64],
+        out: &mut [f64],
+    ) -> Result<()> {
+        self.coords_into(q, p, scratch, out)?;
+        let inv_2m = 0.5 / self.m;
+        for ((e, &qj), &w) in out.iter_mut().zip(scratch.iter()).zip(&self.omega) {
+            *e = inv_2m * *e * *e + 0.5 * self.m * w * w * qj * qj;
+        }
+        Ok(())
+    }
+}
+
+fn check_len(name: &str, found: usize, expected: usize) -> Result<()> {
+    if found == expected {
+        Ok(())
+    } else {
+        Err(Error::DimensionMismatch {
+            name: name.into(),
+            expected,
+            found,
+        })
+    }
+}
+
+fn check_chain_size(n: usize) -> Result<()> {
+    if n < 1 {
+        Err(Error::invalid("n", n as f64, "a chain needs at least one site"))
+    } else {
+        Ok(())
+    }
+}
+
+/// The normal-mode analysis every chain shares (the spec's `_ChainBase`).
+pub trait NormalModes {
+    /// The chain's fixed-end sine modes.
+    fn modes(&self) -> &ChainModes;
+
+    /// `omega_j = 2 sqrt(k/m) sin(j pi/(2(N+1)))`, `j = 1..N`.
+    fn normal_mode_frequencies(&self) -> &[f64] {
+        self.modes().frequencies()
+    }
+
+    /// Modal amplitudes `(Q, P)`, `Q_j = sqrt(2/(N+1)) sum_i q_i sin(i j pi/(N+1))`.
+    ///
+    /// # Errors
+    /// [`Error::DimensionMismatch`] unless `q` and `p` have length `N`; [`Error::NonFinite`].
+    fn normal_mode_coords(&self, q: &[f64], p: &[f64]) -> Result<(Vec<f64>, Vec<f64>)> {
+        let n = self.modes().n();
+        let (mut big_q, mut big_p) = (vec![0.0; n], vec![0.0; n]);
+        self.modes().coords_into(q, p, &mut big_q, &mut big_p)?;
+        Ok((big_q, big_p))
+    }
+
+    /// Modal energies `E_j = P_j^2/(2m) + m omega_j^2 Q_j^2/2`.
+    ///
+    /// # Errors
+    /// [`Error::DimensionMismatch`] unless `q` and `p` have length `N`; [`Error::NonFinite`].
+    fn modal_energies(&self, q: &[f64], p: &[f64]) -> Result<Vec<f64>> {
+        let n = self.modes().n();
+        let (mut scratch, mut out) = (vec![0.0; n], vec![0.0; n]);
+        self.modes().energies_into(q, p, &mut scratch, &mut out)?;
+        Ok(out)
+    }
+}
+
+/// Fixed-end nearest-neighbour force `F_i = phi'(q_{i+1} - q_i) - phi'(q_i - q_{i-1})` with
+/// walls `q_0 = q_{N+1} = 0`.
+#[inline]
+fn fixed_end_force(q: &[f64], out: &mut [f64], dphi: impl Fn(f64) -> f64) {
+    let n = q.len();
+    let mut left = dphi(q[0]);
+    for i in 0..n {
+        let next = if i + 1 < n { q[i + 1] } else { 0.0 };
+        let right = dphi(next - q[i]);
+        out[i] = right - left;
+        left = right;
+    }
+}
+
+/// Tridiagonal force Jacobian of [`fixed_end_force`] written densely (`N x N`).
+fn fixed_end_jacobian(q: &[f64], out: &mut [f64], d2phi: impl Fn(f64) -> f64) {
+    let n = q.len();
+    out.iter_mut().for_each(|v| *v = 0.0);
+    let mut left = d2phi(q[0]);
+    for i in 0..n {
+        let next = if i + 1 < n { q[i + 1] } else { 0.0 };
+        let right = d2phi(next - q[i]);
+        out[i * n + i] = -left - right;
+        if i + 1 < n {
+            out[i * n + i + 1] = right;
+            out[(i + 1) * n + i] = right;
+        }
+        left = right;
+    }
+}
+
+/// Sum of `phi` over the `N + 1` bonds of a fixed-end chain.
+fn fixed_end_potential(q: &[f64], phi: impl Fn(f64) -> f64) -> f64 {
+    let n = q.len();
+    let interior: f64 = q.windows(2).map(|w| phi(w[1] - w[0])).sum();
+    interior + phi(q[0]) + phi(-q[n - 1])
+}
+
+// ---------------------------------------------------------------------------------------------
+
+/// Harmonic chain with fixed ends, `H = sum p_i^2/(2m) + sum_{i=0}^{N} (k/2)(q_{i+1} - q_i)^2`
+/// (see the [module docs](self)). Each modal energy is conserved.
+#[derive(Debug, Clone)]
+pub struct HarmonicChain {
+    phase: Phase,
+    modes: ChainModes,
+    m: f64,
+    k: f64,
+}
+
+impl HarmonicChain {
+    /// A chain of `N = q0.len()` masses with displacements `q0` and momenta `p0`.
+    ///
+    /// # Errors
+    /// [`Error::InvalidParameter`] for an empty chain, `m <= 0` or `k <= 0`;
+    /// [`Error::DimensionMismatch`] if `p0` differs in length; [`Error::NonFinite`].
+    pub fn new(q0: &[f64], p0: &[f64], m: f64, k: f64) -> Result<Self> {
+        check_chain_size(q0.len())?;
+        let modes = ChainModes::new(q0.len(), m, k)?;
+        Ok(Self {
+            phase: Phase::from_halves("q0", q0, "p0", p0)?,
+            modes,
+            m,
+            k,
+        })
+    }
+
+    /// Mass `m`.
+    pub fn m(&self) -> f64 {
+        self.m
+    }
+
+    /// Spring constant `k`.
+    pub fn k(&self) -> f64 {
+        self.k
+    }
+}
+
+impl NormalModes for HarmonicChain {
+    fn modes(&self) -> &ChainModes {
+        &self.modes
+    }
+}
+
+impl HamiltonianSystem for HarmonicChain {
+    fn ndof(&self) -> usize {
+        self.modes.n
+    }
+    fn kinetic_energy(&self, p: &[f64]) -> f64 {
+        0.5 / self.m * p.iter().map(|x| x * x).sum::<f64>()
+    }
+    fn potential_energy(&self, q: &[f64]) -> f64 {
+        let k = self.k;
+        fixed_end_potential(q, |r| 0.5 * k * r * r)
+    }
+    fn mass_inv(&self) -> MassInv<'_> {
+        MassInv::Uniform(1.0 / self.m)
+    }
+    #[inline]
+    fn force(&self, q: &[f64], _t: f64, out: &mut [f64]) -> Result<()> {
+        let k = self.k;
+        fixed_end_force(q, out, |r| k * r);
+        Ok(())
+    }
+    fn force_jacobian(&self, q: &[f64], _t: f64, out: &mut [f64]) -> Option<Result<()>> {
+        let k = self.k;
+        fixed_end_jacobian(q, out, |_| k);
+        Some(Ok(()))
+    }
+}
+
+crate::impl_separable_dynamics!(HarmonicChain);
+
+// ---------------------------------------------------------------------------------------------
+
+/// The Fermi–Pasta–Ulam–Tsingou β-chain with fixed ends,
+/// `H = sum p_i^2/(2m) + sum_{i=0}^{N} [(k/2) r_i^2 + (beta/4) r_i^4]` (see the
+/// [module docs](self)).
+///
+/// # Example
+/// ```
+/// use physicskit::classical::systems::{FPUTChain, NormalModes};
+/// use physicskit::classical::HamiltonianSystem;
+///
+/// let chain = FPUTChain::new(32, 1.0, 1.0, 0.7, 1, 0.5).unwrap();
+/// let e = chain.modal_energies(chain.q(), chain.p()).unwrap();
+/// assert!(e[1..].iter().all(|&ej| ej < 1e-25 * e[0].max(1.0))); // only mode 1 is excited
+/// ```
+#[derive(Debug, Clone)]
+pub struct FPUTChain {
+    phase: Phase,
+    modes: ChainModes,
+    m: f64,
+    k: f64,
+    beta: f64,
+}
+
+impl FPUTChain {
+    /// A chain of `n` masses at rest in the shape of mode `mode`:
+    /// `q_i = amplitude sin(mode i pi/(n+1))`, `i = 1..n`, `p = 0` (the modal amplitude is then
+    /// `Q_mode = amplitude sqrt((n+1)/2)`).
+    ///
+    /// # Errors
+    /// [`Error::InvalidParameter`] for `n < 1`, `m <= 0`, `k <= 0`, a non-finite `beta` or
+    /// `amplitude`, or `mode` outside `1..=n`.
+    pub fn new(n: usize, m: f64, k: f64, beta: f64, mode: usize, amplitude: f64) -> Result<Self> {
+        let modes = ChainModes::new(n, m, k)?;
+        let beta = check_finite_scalar("beta", beta)?;
+        let amplitude = check_finite_scalar("amplitude", amplitude)?;
+        if !(1..=n).contains(&mode) {
+            return Err(Error::invalid(
+                "mode",
+                mode as f64,
+                format!("must be in 1..={n} (one of the chain's normal modes)"),
+            ));
+        }
+        let wave = PI * mode as f64 / (n + 1) as f64;
+        let q0: Vec<f64> = (1..=n)
+            .map(|i| amplitude * (wave * i as f64).sin())
+            .collect();
+        let p0 = vec![0.0; n];
+        Ok(Self {
+            phase: Phase::from_halves("q0", &q0, "p0", &p0)?,
+            modes,
+            m,
+            k,
+            beta,
+        })
+    }
+
+    /// Mass `m`.
+    pub fn m(&self) -> f64 {
+        self.m
+    }
+
+    /// Linear spring constant `k`.
+    pub fn k(&self) -> f64 {
+        self.k
+    }
+
+    /// Quartic coefficient `beta`.
+    pub fn beta(&self) -> f64 {
+        self.beta
+    }
+}
+
+impl NormalModes for FPUTChain {
+    fn modes(&self) -> &ChainModes {
+        &self.modes
+    }
+}
+
+impl HamiltonianSystem for FPUTChain {
+    fn ndof(&self) -> usize {
+        self.modes.n
+    }
+    fn kinetic_energy(&self, p: &[f64]) -> f64 {
+        0.5 / self.m * p.iter().map(|x| x * x).sum::<f64>()
+    }
+    fn potential_energy(&self, q: &[f64]) -> f64 {
+        let (k, b) = (self.k, self.beta);
+        fixed_end_potential(q, |r| {
+            let r2 = r * r;
+            0.5 * k * r2 + 0.25 * b * r2 * r2
+        })
+    }
+    fn mass_inv(&self) -> MassInv<'_> {
+        MassInv::Uniform(1.0 / self.m)
+    }
+    #[inline]
+    fn force(&self, q: &[f64], _t: f64, out: &mut [f64]) -> Result<()> {
+        let (k, b) = (self.k, self.beta);
+        fixed_end_force(q, out, |r| r * (k + b * r * r));
+        Ok(())
+    }
+    fn force_jacobian(&self, q: &[f64], _t: f64, out: &mut [f64]) -> Option<Result<()>> {
+        let (k, b) = (self.k, self.beta);
+        fixed_end_jacobian(q, out, |r| k + 3.0 * b * r * r);
+        Some(Ok(()))
+    }
+}
+
+crate::impl_separable_dynamics!(FPUTChain);
+
+// ---------------------------------------------------------------------------------------------
+
+/// The discrete sine-Gordon (Frenkel–Kontorova) chain with free ends,
+/// `H = sum p_i^2/(2m) + sum_{i=1}^{N-1} (k/2)(q_{i+1} - q_i)^2 + sum_i (1 - cos q_i)` (see the
+/// [module docs](self)).
+///
+/// # Example
+/// ```
+/// use physicskit::classical::systems::SineGordonChain;
+/// use physicskit::classical::DynamicalSystem;
+///
+/// let (q0, p0) = SineGordonChain::kink(200, 100.0, 1.0, 0.5, 1).unwrap();
+/// let chain = SineGordonChain::new(200, 1.0, 1.0, Some(&q0), Some(&p0)).unwrap();
+/// let gamma = 1.0 / (1.0 - 0.25_f64).sqrt();
+/// assert!((chain.current_energy() / (8.0 * gamma) - 1.0).abs() < 0.01);
+/// ```
+#[derive(Debug, Clone)]
+pub struct SineGordonChain {
+    phase: Phase,
+    modes: ChainModes,
+    m: f64,
+    k: f64,
+}
+
+impl SineGordonChain {
+    /// A chain of `n` pendulums with displacements `q0` and momenta `p0` (each defaults to
+    /// zeros; use [`SineGordonChain::kink`] for soliton initial data).
+    ///
+    /// # Errors
+    /// [`Error::InvalidParameter`] for `n < 1`, `m <= 0` or `k <= 0`;
+    /// [`Error::DimensionMismatch`] if `q0` or `p0` does not have length `n`;
+    /// [`Error::NonFinite`].
+    pub fn new(n: usize, m: f64, k: f64, q0: Option<&[f64]>, p0: Option<&[f64]>) -> Result<Self> {
+        let modes = ChainModes::new(n, m, k)?;
+        let zeros = vec![0.0; n];
+        let q0 = q0.unwrap_or(&zeros);
+        let p0 = p0.unwrap_or(&zeros);
+        check_vector("q0", q0, n)?;
+        check_vector("p0", p0, n)?;
+        Ok(Self {
+            phase: Phase::from_halves("q0", q0, "p0", p0)?,
+            modes,
+            m,
+            k,
+        })
+    }
+
+    /// Continuum single-kink (`polarity = 1`) or antikink (`polarity = -1`) initial data,
+    /// Lorentz-boosted to `velocity` (sites per unit time; the wave speed is 1 for
+    /// `m = k = 1`):
+    ///
+    /// ```text
+    /// u_i = gamma (i - center) / width,  gamma = 1/sqrt(1 - v^2),   i = 0..n-1
+    /// q_i = polarity 4 atan(exp(u_i))
+    /// p_i = dq_i/dt = -polarity 2 gamma v / (width cosh(u_i))
+    /// ```
+    ///
+    /// the exact travelling solution `q = 4 atan(exp(gamma (x - center - v t) / width))` of
+    /// `q_tt = q_xx - sin q` and its time derivative at `t = 0`. `p` is the momentum for
+    /// `m = 1`; multiply by `m` otherwise. `width` must equal `sqrt(k)` for a genuine soliton
+    /// (otherwise the profile relaxes and radiates).
+    ///
+    /// # Errors
+    /// [`Error::InvalidParameter`] for `n < 1`, a non-finite `center`, `width <= 0`,
+    /// `|velocity| >= 1` (no Lorentz boost reaches the wave speed) or a polarity other than
+    /// `1` or `-1`.
+    pub fn kink(
+        n: usize,
+        center: f64,
+        width: f64,
+        velocity: f64,
+        polarity: i32,
+    ) -> Result<(Vec<f64>, Vec<f64>)> {
+        check_chain_size(n)?;
+        let center = check_finite_scalar("center", center)?;
+        let width = check_positive("width", width)?;
+        if !(velocity.is_finite() && velocity.abs() < 1.0) {
+            return Err(Error::invalid(
+                "velocity",
+                velocity,
+                "|velocity| must be < 1, the wave speed sqrt(k/m) of the default chain",
+            ));
+        }
+        if polarity != 1 && polarity != -1 {
+            return Err(Error::invalid(
+                "polarity",
+                f64::from(polarity),
+                "must be +1 (kink) or -1 (antikink)",
+            ));
+        }
+        let sign = f64::from(polarity);
+        let gamma = 1.0 / (1.0 - velocity * velocity).sqrt();
+        let (mut q, mut p) = (Vec::with_capacity(n), Vec::with_capacity(n));
+        for i in 0..n {
+            let u = gamma * (i as f64 - center) / width;
+            q.push(sign * 4.0 * u.exp().atan());
+            p.push(-sign * 2.0 * gamma * velocity / (width * u.cosh()));
+        }
+        Ok((q, p))
+    }
+
+    /// Mass `m`.
+    pub fn m(&self) -> f64 {
+        self.m
+    }
+
+    /// Coupling constant `k`.
+    pub fn k(&self) -> f64 {
+        self.k
+    }
+}
+
+impl NormalModes for SineGordonChain {
+    fn modes(&self) -> &ChainModes {
+        &self.modes
+    }
+}
+
+impl HamiltonianSystem for SineGordonChain {
+    fn ndof(&self) -> usize {
+        self.modes.n
+    }
+    fn kinetic_energy(&self, p: &[f64]) -> f64 {
+        0.5 / self.m * p.iter().map(|x| x * x).sum::<f64>()
+    }
+    fn potential_energy(&self, q: &[f64]) -> f64 {
+        let springs: f64 = q.windows(2).map(|w| (w[1] - w[0]) * (w[1] - w[0])).sum();
+        let onsite: f64 = q.iter().map(|x| 1.0 - x.cos()).sum();
+        0.5 * self.k * springs + onsite
+    }
+    fn mass_inv(&self) -> MassInv<'_> {
+        MassInv::Uniform(1.0 / self.m)
+    }
+    /// `F_i = k (q_{i+1} - q_i) - k (q_i - q_{i-1}) - sin q_i`, the missing bond at each free
+    /// end contributing nothing.
+    #[inline]
+    fn force(&self, q: &[f64], _t: f64, out: &mut [f64]) -> Result<()> {
+        let n = q.len();
+        let k = self.k;
+        let mut left = 0.0;
+        for i in 0..n {
+            let right = if i + 1 < n { k * (q[i + 1] - q[i]) } else { 0.0 };
+            out[i] = right - left - q[i].sin();
+            left = right;
+        }
+        Ok(())
+    }
+    fn force_jacobian(&self, q: &[f64], _t: f64, out: &mut [f64]) -> Option<Result<()>> {
+        let n = q.len();
+        let k = self.k;
+        out.iter_mut().for_each(|v| *v = 0.0);
+        for i in 0..n {
+            let bonds = usize::from(i > 0) + usize::from(i + 1 < n);
+            out[i * n + i] = -k * bonds as f64 - q[i].cos();
+            if i + 1 < n {
+                out[i * n + i + 1] = k;
+                out[(i + 1) * n + i] = k;
+            }
+        }
+        Some(Ok(()))
+    }
+}
+
+crate::impl_separable_dynamics!(SineGordonChain);

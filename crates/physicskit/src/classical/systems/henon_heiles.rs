@@ -1,0 +1,66 @@
+//! The Hénon–Heiles system.
+//!
+//! ```text
+//! H = (p_x^2 + p_y^2)/2 + (x^2 + y^2)/2 + x^2 y - y^3/3
+//! ```
+//!
+//! A non-integrable two-degree-of-freedom oscillator, introduced as a model of a star moving in
+//! an axisymmetric galactic potential. Below `E ~ 1/6` (the saddle energy) the Poincaré section
+//! `(x, p_x)` at `y = 0` is dominated by KAM tori; near and above it they break into a chaotic
+//! sea. Reference: M. Hénon and C. Heiles, Astron. J. 69 (1964) 73–79.
+
+use crate::classical::core::error::check_vector;
+use crate::classical::core::{HamiltonianSystem, Phase, Result};
+
+/// The Hénon–Heiles Hamiltonian `H = |p|^2/2 + (x^2 + y^2)/2 + x^2 y - y^3/3` (unit masses).
+#[derive(Debug, Clone)]
+pub struct HenonHeilesSystem {
+    phase: Phase,
+}
+
+impl HenonHeilesSystem {
+    /// The system at position `q0 = (x, y)` with momentum `p0 = (p_x, p_y)`.
+    ///
+    /// # Errors
+    /// [`Error::DimensionMismatch`](crate::classical::Error::DimensionMismatch) unless both
+    /// have length 2, [`Error::NonFinite`](crate::classical::Error::NonFinite) for NaN or
+    /// infinity.
+    pub fn new(q0: &[f64], p0: &[f64]) -> Result<Self> {
+        check_vector("q0", q0, 2)?;
+        check_vector("p0", p0, 2)?;
+        Ok(Self {
+            phase: Phase::from_halves("q0", q0, "p0", p0)?,
+        })
+    }
+}
+
+impl HamiltonianSystem for HenonHeilesSystem {
+    fn ndof(&self) -> usize {
+        2
+    }
+    fn kinetic_energy(&self, p: &[f64]) -> f64 {
+        0.5 * (p[0] * p[0] + p[1] * p[1])
+    }
+    fn potential_energy(&self, q: &[f64]) -> f64 {
+        let (x, y) = (q[0], q[1]);
+        0.5 * (x * x + y * y) + x * x * y - y * y * y / 3.0
+    }
+    /// `F = -(x + 2 x y, y + x^2 - y^2)`.
+    #[inline]
+    fn force(&self, q: &[f64], _t: f64, out: &mut [f64]) -> Result<()> {
+        let (x, y) = (q[0], q[1]);
+        out[0] = -x - 2.0 * x * y;
+        out[1] = -y - x * x + y * y;
+        Ok(())
+    }
+    fn force_jacobian(&self, q: &[f64], _t: f64, out: &mut [f64]) -> Option<Result<()>> {
+        let (x, y) = (q[0], q[1]);
+        out[0] = -1.0 - 2.0 * y;
+        out[1] = -2.0 * x;
+        out[2] = -2.0 * x;
+        out[3] = -1.0 + 2.0 * y;
+        Some(Ok(()))
+    }
+}
+
+crate::impl_separable_dynamics!(HenonHeilesSystem);

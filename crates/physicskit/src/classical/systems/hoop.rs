@@ -1,0 +1,102 @@
+//! [`BeadOnRotatingHoop`]: a bead sliding without friction on a hoop of radius `R` that
+//! rotates at a fixed rate `omega` about its vertical diameter.
+//!
+//! Coordinate `q = (theta,)`, the bead's polar angle measured from the bottom of the hoop. In
+//! the co-rotating frame the effective Lagrangian of a unit mass is autonomous (Goldstein,
+//! *Classical Mechanics*, 3rd ed., §2.6, exercise; Taylor, *Classical Mechanics*, §7.6):
+//!
+//! ```text
+//! L = R^2 (theta'^2 + omega^2 sin^2 theta) / 2 - g R (1 - cos theta)
+//! ```
+//!
+//! The constant `-g R` puts the zero of energy at the bead resting at the bottom (the Numba
+//! peer's convention). The energy `p theta' - L` is the Jacobi integral
+//! `R^2 theta'^2 / 2 - R^2 omega^2 sin^2(theta) / 2 + g R (1 - cos theta)`, conserved although
+//! the lab-frame energy is not. Above the critical speed `omega_c = sqrt(g / R)` the bottom
+//! becomes unstable and two stable equilibria appear at `cos theta = g / (R omega^2)`
+//! (a supercritical pitchfork bifurcation).
+
+use crate::classical::core::error::{check_finite_scalar, check_positive};
+use crate::classical::core::{Phase, Result};
+use crate::classical::lagrangian::{Lagrangian, LagrangianEngine, Scalar};
+
+/// Radius, rotation rate and gravity of a [`BeadOnRotatingHoop`]; its [`Lagrangian`].
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct HoopParams {
+    /// Hoop radius `R`.
+    pub r: f64,
+    /// Rotation rate `omega` about the vertical diameter.
+    pub omega: f64,
+    /// Gravitational acceleration.
+    pub g: f64,
+}
+
+impl Default for HoopParams {
+    /// The spec's defaults: `R = 1`, `omega = 2`, `g = 9.81`.
+    fn default() -> Self {
+        Self {
+            r: 1.0,
+            omega: 2.0,
+            g: 9.81,
+        }
+    }
+}
+
+impl HoopParams {
+    fn validate(self) -> Result<Self> {
+        check_positive("R", self.r)?;
+        check_finite_scalar("omega", self.omega)?;
+        check_finite_scalar("g", self.g)?;
+        Ok(self)
+    }
+
+    /// The critical rotation rate `sqrt(g / R)` above which the bottom is unstable (`NaN` for
+    /// `g < 0`).
+    pub fn critical_omega(&self) -> f64 {
+        (self.g / self.r).sqrt()
+    }
+}
+
+impl Lagrangian for HoopParams {
+    fn ndof(&self) -> usize {
+        1
+    }
+
+    #[inline]
+    fn lagrangian<D: Scalar>(&self, q: &[D], qdot: &[D], _t: D) -> D {
+        let Self { r, omega, g } = *self;
+        let s = q[0].sin();
+        (qdot[0] * qdot[0] + s * s * (omega * omega)) * (0.5 * r * r) + (q[0].cos() - 1.0) * (g * r)
+    }
+}
+
+/// The bead on a rotating hoop (the spec's `BeadOnRotatingHoop`). State `[theta, thetadot]`.
+#[derive(Debug, Clone)]
+pub struct BeadOnRotatingHoop {
+    phase: Phase,
+    engine: LagrangianEngine<HoopParams>,
+}
+
+impl BeadOnRotatingHoop {
+    /// A bead at angle `theta0` (from the bottom) with angular velocity `thetadot0`.
+    ///
+    /// # Errors
+    /// Non-finite initial values, `R <= 0`, non-finite `omega` or `g`.
+    pub fn new(theta0: f64, thetadot0: f64, params: HoopParams) -> Result<Self> {
+        let engine = LagrangianEngine::new(params.validate()?)?;
+        let phase = engine.initial_phase(&[theta0], &[thetadot0])?;
+        Ok(Self { phase, engine })
+    }
+
+    /// The parameters.
+    pub fn params(&self) -> &HoopParams {
+        self.engine.lagrangian()
+    }
+
+    /// The engine deriving the equations of motion.
+    pub fn engine(&self) -> &LagrangianEngine<HoopParams> {
+        &self.engine
+    }
+}
+
+crate::impl_lagrangian_dynamics!(BeadOnRotatingHoop);

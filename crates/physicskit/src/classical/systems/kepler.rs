@@ -1,0 +1,270 @@
+//! The planar two-body (Kepler) problem with optional non-Newtonian perturbations.
+//!
+//! ```text
+//! H(q, p) = |p|^2 / (2 mu) + V(r_s),   r_s = sqrt(|q|^2 + softening^2)
+//! V(r)    = -k / r + c_eps / r^(1 + eps) + c_pn / r^3
+//! ```
+//!
+//! `q` is the relative position, `p` the reduced-mass momentum, `k = G M mu` the coupling.
+//! Plummer softening replaces `r` by `r_s` in every term (H. C. Plummer, MNRAS 71 (1911) 460),
+//! so `softening > 0` removes the singular force at the origin; `softening = 0` is the exact
+//! point-mass problem. The `c_eps` term with `eps = 0` is an extra inverse-square potential;
+//! the `c_pn / r^3` term is the effective post-Newtonian correction whose orbit average makes
+//! the perihelion precess (`c_pn < 0`, attractive, gives prograde precession as in general
+//! relativity).
+//!
+//! Without perturbations (`c_eps = c_pn = softening = 0`) the energy, the angular momentum
+//! `L = x p_y - y p_x` and the Laplace–Runge–Lenz vector `A = p x L - mu k r_hat` (pointing to
+//! perihelion, `|A| = mu k e`) are conserved, and the orbit of semi-major axis `a` has period
+//! `T = 2 pi sqrt(mu a^3 / k)`. Reference: H. Goldstein, C. Poole and J. Safko, *Classical
+//! Mechanics* (3rd ed., 2002), §3.7–3.9.
+
+use crate::classical::core::error::{check_finite_scalar, check_non_negative, check_positive};
+use crate::classical::core::{Error, HamiltonianSystem, MassInv, Phase, Result};
+
+/// The optional perturbations of [`KeplerSystem`]; `Default` is the pure two-body problem.
+#[derive(Debug, Clone, Copy, PartialEq, Default)]
+pub struct KeplerPerturbations {
+    /// Exponent of the `c_eps / r^(1 + eps)` term.
+    pub eps: f64,
+    /// Coefficient of the `c_eps / r^(1 + eps)` term.
+    pub c_eps: f64,
+    /// Coefficient of the post-Newtonian `c_pn / r^3` term.
+    pub c_pn: f64,
+    /// Plummer softening length (`>= 0`).
+    pub softening: f64,
+}
+
+impl KeplerPerturbations {
+    /// No perturbation: the exact point-mass Kepler problem.
+    pub fn none() -> Self {
+        Self::default()
+    }
+
+    /// With the `c_eps / r^(1 + eps)` term.
+    pub fn with_power_law(self, eps: f64, c_eps: f64) -> Self {
+        Self { eps, c_eps, ..self }
+    }
+
+    /// With the `c_pn / r^3` term.
+    pub fn with_post_newtonian(self, c_pn: f64) -> Self {
+        Self { c_pn, ..self }
+    }
+
+    /// With Plummer softening.
+    pub fn with_softening(self, softening: f64) -> Self {
+        Self { softening, ..self }
+    }
+
+    fn validate(self) -> Result<Self> {
+        check_finite_scalar("eps", self.eps)?;
+        check_finite_scalar("c_eps", self.c_eps)?;
+        check_finite_scalar("c_pn", self.c_pn)?;
+        check_non_negative("softening", self.softening)?;
+        Ok(self)
+    }
+}
+
+/// Planar Kepler problem `H = |p|^2/(2 mu) - k/r_s + c_eps/r_s^(1+eps) + c_pn/r_s^3` (see the
+/// [module docs](self)).
+///
+/// # Example
+/// ```
+/// use physicskit::classical::systems::{KeplerPerturbations, KeplerSystem};
+/// use physicskit::classical::{HamiltonianSystem, Method};
+///
+/// let mut orbit =
+///     KeplerSystem::from_orbital_elements(1.0, 0.5, 1.0, 1.0, KeplerPerturbations::none())
+///         .unwrap();
+/// let a0 = orbit.lrl_vector(orbit.q(), orbit.p());
+/// orbit.integrate((0.0, 2.0 * std::f64::consts::PI), 1e-3, Method::Yoshida4).unwrap();
+/// let a1 = orbit.lrl_vector(orbit.q(), orbit.p());
+/// assert!((a1[0] - a0[0]).abs() < 1e-9 && (a1[1] - a0[1]).abs() < 1e-9);
+/// ```
+#[derive(Debug, Clone)]
+pub struct KeplerSystem {
+    phase: Phase,
+    k: f64,
+    mu: f64,
+    mu_inv: f64,
+    pert: KeplerPerturbations,
+}
+
+impl KeplerSystem {
+    /// A Kepler system at relative position `q0 = (x, y)` with momentum `p0`.
+    ///
+    /// # Errors
+    /// [`Error::DimensionMismatch`] unless `q0` and `p0` have length 2; [`Error::NonFinite`]
+    /// for NaN or infinity; [`Error::InvalidParameter`] for `k <= 0`, `mu <= 0`, a non-finite
+    /// `eps`, `c_eps` or `c_pn`, `softening < 0`, or `q0` at the origin without softening
+    /// (where the potential is singular).
+    pub fn new(
+        q0: &[f64],
+        p0: &[f64],
+        k: f64,
+        mu: f64,
+        perturbations: KeplerPerturbations,
+    ) -> Result<Self> {
+        crate::classical::core::error::check_vector("q0", q0, 2)?;
+        crate::classical::core::error::check_vector("p0", p0, 2)?;
+        let k = check_positive("k", k)?;
+        let mu = check_positive("mu", mu)?;
+        let pert = perturbations.validate()?;
+        let r2 = q0[0] * q0[0] + q0[1] * q0[1];
+        if r2 + pert.softening * pert.softening <= 0.0 {
+            return Err(Error::invalid(
+                "q0",
+                r2.sqrt(),
+                "the potential is singular at r = 0 without softening",
+            ));
+        }
+        Ok(Self {
+            phase: Phase::from_halves("q0", q0, "p0", p0)?,
+            k,
+            mu,
+            mu_inv: 1.0 / mu,
+            pert,
+        })
+    }
+
+    /// A system starting at perihelion of the two-body orbit with semi-major axis `a` and
+    /// eccentricity `e`: `q0 = (a (1 - e), 0)`, `p0 = (0, sqrt(mu k (1 + e) / (a (1 - e))))`
+    /// (vis-viva). The perturbations are added on top, so with them the orbit is only
+    /// approximately the one described by `(a, e)`.
+    ///
+    /// # Errors
+    /// [`Error::InvalidParameter`] unless `a > 0` and `0 <= e < 1` (bound orbits only), and
+    /// the errors of [`KeplerSystem::new`].
+    pub fn from_orbital_elements(
+        a: f64,
+        e: f64,
+        k: f64,
+        mu: f64,
+        perturbations: KeplerPerturbations,
+    ) -> Result<Self> {
+        let a = check_positive("a", a)?;
+        if !(e.is_finite() && (0.0..1.0).contains(&e)) {
+            return Err(Error::invalid(
+                "e",
+                e,
+                "eccentricity must satisfy 0 <= e < 1 (bound orbit)",
+            ));
+        }
+        let k = check_positive("k", k)?;
+        let mu = check_positive("mu", mu)?;
+        let r_peri = a * (1.0 - e);
+        let p_peri = (mu * k * (1.0 + e) / r_peri).sqrt();
+        Self::new(&[r_peri, 0.0], &[0.0, p_peri], k, mu, perturbations)
+    }
+
+    /// Coupling `k = G M mu`.
+    pub fn k(&self) -> f64 {
+        self.k
+    }
+
+    /// Reduced mass `mu`.
+    pub fn mu(&self) -> f64 {
+        self.mu
+    }
+
+    /// The perturbation parameters.
+    pub fn perturbations(&self) -> KeplerPerturbations {
+        self.pert
+    }
+
+    /// Out-of-plane angular momentum `L = x p_y - y p_x`. `q` and `p` must have length 2
+    /// (use `sys.q()`, `sys.p()` for the current state); extra entries are ignored.
+    pub fn angular_momentum(&self, q: &[f64], p: &[f64]) -> f64 {
+        q[0] * p[1] - q[1] * p[0]
+    }
+
+    /// Laplace–Runge–Lenz vector `A = p x L - mu k r_hat` (planar form,
+    /// `A = (p_y L - mu k x/r, -p_x L - mu k y/r)`, with the unsoftened `r = |q|`). Conserved
+    /// and pointing at perihelion for the unperturbed problem; it rotates at the precession
+    /// rate when `c_eps` or `c_pn` is nonzero. At `q = 0` the radial unit vector is undefined
+    /// and `r_hat` is taken as zero.
+    pub fn lrl_vector(&self, q: &[f64], p: &[f64]) -> [f64; 2] {
+        let l = self.angular_momentum(q, p);
+        let r = q[0].hypot(q[1]);
+        let (rx, ry) = if r > 0.0 {
+            (q[0] / r, q[1] / r)
+        } else {
+            (0.0, 0.0)
+        };
+        let mk = self.mu * self.k;
+        [p[1] * l - mk * rx, -p[0] * l - mk * ry]
+    }
+
+    /// `V(r_s)` and its first two derivatives with respect to `r_s`.
+    #[inline]
+    fn radial(&self, s: f64) -> (f64, f64, f64) {
+        let KeplerPerturbations {
+            eps, c_eps, c_pn, ..
+        } = self.pert;
+        let inv = 1.0 / s;
+        let inv2 = inv * inv;
+        let mut v = -self.k * inv;
+        let mut dv = self.k * inv2;
+        let mut d2v = -2.0 * self.k * inv2 * inv;
+        if c_eps != 0.0 {
+            let t = c_eps * s.powf(-(1.0 + eps));
+            v += t;
+            dv -= (1.0 + eps) * t * inv;
+            d2v += (1.0 + eps) * (2.0 + eps) * t * inv2;
+        }
+        if c_pn != 0.0 {
+            let t = c_pn * inv2 * inv;
+            v += t;
+            dv -= 3.0 * t * inv;
+            d2v += 12.0 * t * inv2;
+        }
+        (v, dv, d2v)
+    }
+
+    #[inline]
+    fn softened_radius(&self, q: &[f64]) -> f64 {
+        let s = self.pert.softening;
+        (q[0] * q[0] + q[1] * q[1] + s * s).sqrt()
+    }
+}
+
+impl HamiltonianSystem for KeplerSystem {
+    fn ndof(&self) -> usize {
+        2
+    }
+    fn kinetic_energy(&self, p: &[f64]) -> f64 {
+        0.5 * self.mu_inv * (p[0] * p[0] + p[1] * p[1])
+    }
+    fn potential_energy(&self, q: &[f64]) -> f64 {
+        self.radial(self.softened_radius(q)).0
+    }
+    fn mass_inv(&self) -> MassInv<'_> {
+        MassInv::Uniform(self.mu_inv)
+    }
+    /// `F = -V'(r_s) q / r_s`.
+    #[inline]
+    fn force(&self, q: &[f64], _t: f64, out: &mut [f64]) -> Result<()> {
+        let s = self.softened_radius(q);
+        let (_, dv, _) = self.radial(s);
+        let f = -dv / s;
+        out[0] = f * q[0];
+        out[1] = f * q[1];
+        Ok(())
+    }
+    /// `dF_i/dq_j = f delta_ij + f'(r_s) q_i q_j / r_s` with `f = -V'/r_s`.
+    fn force_jacobian(&self, q: &[f64], _t: f64, out: &mut [f64]) -> Option<Result<()>> {
+        let s = self.softened_radius(q);
+        let (_, dv, d2v) = self.radial(s);
+        let f = -dv / s;
+        let df = (-d2v + dv / s) / s;
+        for i in 0..2 {
+            for j in 0..2 {
+                let diag = if i == j { f } else { 0.0 };
+                out[2 * i + j] = diag + df * q[i] * q[j] / s;
+            }
+        }
+        Some(Ok(()))
+    }
+}
+
+crate::impl_separable_dynamics!(KeplerSystem);

@@ -1,0 +1,231 @@
+//! Projectile motion under uniform gravity, with optional quadratic air drag.
+//!
+//! ```text
+//! H(q, p) = |p|^2 / (2 m) + m g y,            q = (x, y)
+//! dq/dt = p / m,   dp/dt = (0, -m g) - c |v| v,   v = p / m
+//! ```
+//!
+//! Without drag (`c = drag_coeff = 0`) the solution is Galileo's parabola
+//! `x = v0 cos(theta) t`, `y = h + v0 sin(theta) t - g t^2 / 2`; because the force is constant,
+//! `verlet` and `yoshida4` reproduce it to rounding at any step. With `c > 0` the quadratic
+//! drag makes the system dissipative (`dE/dt = -c |v|^3 <= 0`): the splitting methods, whose
+//! force callback sees only gravity, are refused, and `rk4` (the default) or
+//! `implicit_midpoint` integrate the full right-hand side. Reference: J. R. Taylor,
+//! *Classical Mechanics* (2005), ch. 2.
+
+use crate::classical::core::error::{
+    check_finite_scalar, check_non_negative, check_positive, check_vector,
+};
+use crate::classical::core::{
+    hamiltonian_energy, DynamicalSystem, HamiltonianSystem, MassInv, Method, Phase, Result,
+};
+
+/// A point projectile `H = |p|^2/(2m) + m g y` with optional drag force `-c |v| v` (see the
+/// [module docs](self)).
+///
+/// # Example
+/// ```
+/// use physicskit::classical::systems::ProjectileMotion;
+/// use physicskit::classical::{HamiltonianSystem, Method};
+///
+/// let mut ball = ProjectileMotion::from_launch(20.0, 45.0, 1.0, 9.81, 0.0, 0.0).unwrap();
+/// ball.integrate((0.0, 1.0), 1e-2, Method::Verlet).unwrap();
+/// let (x, y) = ProjectileMotion::analytic_trajectory(20.0, 45.0, 9.81, &[1.0], 0.0).unwrap();
+/// assert!((ball.q()[0] - x[0]).abs() < 1e-12 && (ball.q()[1] - y[0]).abs() < 1e-12);
+/// ```
+#[derive(Debug, Clone)]
+pub struct ProjectileMotion {
+    phase: Phase,
+    m: f64,
+    g: f64,
+    drag_coeff: f64,
+}
+
+fn launch_velocity(speed: f64, angle_deg: f64) -> Result<(f64, f64)> {
+    let speed = check_non_negative("speed", speed)?;
+    let angle = check_finite_scalar("angle_deg", angle_deg)?.to_radians();
+    Ok((speed * angle.cos(), speed * angle.sin()))
+}
+
+impl ProjectileMotion {
+    /// A projectile at `q0 = (x, y)` with momentum `p0 = m v0`.
+    ///
+    /// # Errors
+    /// [`Error::DimensionMismatch`](crate::classical::Error::DimensionMismatch) unless `q0`, `p0` have length 2; [`Error::NonFinite`](crate::classical::Error::NonFinite) for
+    /// NaN or infinity; [`Error::InvalidParameter`](crate::classical::Error::InvalidParameter) for `m <= 0`, `g <= 0` or
+    /// `drag_coeff < 0`.
+    pub fn new(q0: &[f64], p0: &[f64], m: f64, g: f64, drag_coeff: f64) -> Result<Self> {
+        check_vector("q0", q0, 2)?;
+        check_vector("p0", p0, 2)?;
+        Ok(Self {
+            phase: Phase::from_halves("q0", q0, "p0", p0)?,
+            m: check_positive("m", m)?,
+            g: check_positive("g", g)?,
+            drag_coeff: check_non_negative("drag_coeff", drag_coeff)?,
+        })
+    }
+
+    /// A projectile launched from `(0, height)` at `speed` and `angle_deg` degrees above the
+    /// horizontal.
+    ///
+    /// # Errors
+    /// [`Error::InvalidParameter`](crate::classical::Error::InvalidParameter) for `speed < 0`, a non-finite angle or height, and the
+    /// errors of [`ProjectileMotion::new`].
+    pub fn from_launch(
+        speed: f64,
+        angle_deg: f64,
+        m: f64,
+        g: f64,
+        drag_coeff: f64,
+        height: f64,
+    ) -> Result<Self> {
+        let (vx, vy) = launch_velocity(speed, angle_deg)?;
+        let height = check_finite_scalar("height", height)?;
+        let m = check_positive("m", m)?;
+        Self::new(&[0.0, height], &[m * vx, m * vy], m, g, drag_coeff)
+    }
+
+    /// Mass `m`.
+    pub fn m(&self) -> f64 {
+        self.m
+    }
+
+    /// Gravitational acceleration `g`.
+    pub fn g(&self) -> f64 {
+        self.g
+    }
+
+    /// Quadratic drag coefficient `c`.
+    pub fn drag_coeff(&self) -> f64 {
+        self.drag_coeff
+    }
+
+    /// Galileo's vacuum parabola `x(t) = v0 cos(theta) t`, `y(t) = h + v0 sin(theta) t - g t^2/2`
+    /// at the times `t` (launch at `t = 0` from `(0, height)`).
+    ///
+    /// # Errors
+    /// [`Error::InvalidParameter`](crate::classical::Error::InvalidParameter) for `speed < 0`, `g <= 0`, a non-finite angle or height;
+    /// [`Error::NonFinite`](crate::classical::Error::NonFinite) for a non-finite time.
+    pub fn analytic_trajectory(
+        speed: f64,
+        angle_deg: f64,
+        g: f64,
+        t: &[f64],
+        height: f64,
+    ) -> Result<(Vec<f64>, Vec<f64>)> {
+        let (vx, vy) = launch_velocity(speed, angle_deg)?;
+        let g = check_positive("g", g)?;
+        let height = check_finite_scalar("height", height)?;
+        check_vector("t", t, t.len())?;
+        let x = t.iter().map(|&ti| vx * ti).collect();
+        let y = t
+            .iter()
+            .map(|&ti| height + vy * ti - 0.5 * g * ti * ti)
+            .collect();
+        Ok((x, y))
+    }
+
+    /// Vacuum range and maximum height of a launch from `(0, height)`.
+    ///
+    /// The range is `x` at the positive root of `y(t) = 0`,
+    /// `t = (v0 sin(theta) + sqrt(v0^2 sin^2(theta) + 2 g h)) / g`; the maximum height is
+    /// `h + v0^2 sin^2(theta) / (2 g)` for an upward launch and `h` otherwise.
+    ///
+    /// # Errors
+    /// [`Error::InvalidParameter`](crate::classical::Error::InvalidParameter) for `speed < 0`, `g <= 0`, a non-finite angle, or
+    /// `height < 0` (a launch below the ground never lands on it).
+    pub fn range_and_max_height(
+        speed: f64,
+        angle_deg: f64,
+        g: f64,
+        height: f64,
+    ) -> Result<(f64, f64)> {
+        let (vx, vy) = launch_velocity(speed, angle_deg)?;
+        let g = check_positive("g", g)?;
+        let h = check_non_negative("height", height)?;
+        let t_land = (vy + (vy * vy + 2.0 * g * h).sqrt()) / g;
+        let max_height = if vy > 0.0 { h + vy * vy / (2.0 * g) } else { h };
+        Ok((vx * t_land, max_height))
+    }
+}
+
+impl HamiltonianSystem for ProjectileMotion {
+    fn ndof(&self) -> usize {
+        2
+    }
+    fn kinetic_energy(&self, p: &[f64]) -> f64 {
+        0.5 * (p[0] * p[0] + p[1] * p[1]) / self.m
+    }
+    fn potential_energy(&self, q: &[f64]) -> f64 {
+        self.m * self.g * q[1]
+    }
+    fn conservative(&self) -> bool {
+        self.drag_coeff <= 0.0
+    }
+    fn mass_inv(&self) -> MassInv<'_> {
+        MassInv::Uniform(1.0 / self.m)
+    }
+    /// The conservative force only, gravity `(0, -m g)`; drag enters through
+    /// [`DynamicalSystem::derivatives`].
+    #[inline]
+    fn force(&self, _q: &[f64], _t: f64, out: &mut [f64]) -> Result<()> {
+        out[0] = 0.0;
+        out[1] = -self.m * self.g;
+        Ok(())
+    }
+    fn force_jacobian(&self, _q: &[f64], _t: f64, out: &mut [f64]) -> Option<Result<()>> {
+        out.iter_mut().for_each(|v| *v = 0.0);
+        Some(Ok(()))
+    }
+}
+
+impl DynamicalSystem for ProjectileMotion {
+    fn phase(&self) -> &Phase {
+        &self.phase
+    }
+    fn phase_mut(&mut self) -> &mut Phase {
+        &mut self.phase
+    }
+    /// `[p/m, (0, -m g) - c |v| v]` with `v = p/m`.
+    fn derivatives(&self, _t: f64, state: &[f64], out: &mut [f64]) -> Result<()> {
+        let inv_m = 1.0 / self.m;
+        let (vx, vy) = (state[2] * inv_m, state[3] * inv_m);
+        let drag = self.drag_coeff * vx.hypot(vy);
+        out[0] = vx;
+        out[1] = vy;
+        out[2] = -drag * vx;
+        out[3] = -self.m * self.g - drag * vy;
+        Ok(())
+    }
+    fn energy(&self, state: &[f64]) -> f64 {
+        hamiltonian_energy(self, state)
+    }
+    /// Rows `dq/dt`: `I/m` in the `p` block; rows `dp/dt`: the drag Jacobian
+    /// `-(c/m)(|v| I + v v^T / |v|)` (zero at rest).
+    fn jacobian(&self, _t: f64, state: &[f64], out: &mut [f64]) -> Option<Result<()>> {
+        let inv_m = 1.0 / self.m;
+        let v = [state[2] * inv_m, state[3] * inv_m];
+        let speed = v[0].hypot(v[1]);
+        out.iter_mut().for_each(|x| *x = 0.0);
+        out[2] = inv_m;
+        out[4 + 3] = inv_m;
+        for i in 0..2 {
+            for j in 0..2 {
+                let mut d = if i == j { speed } else { 0.0 };
+                if speed > 0.0 {
+                    d += v[i] * v[j] / speed;
+                }
+                out[(2 + i) * 4 + 2 + j] = -self.drag_coeff * inv_m * d;
+            }
+        }
+        Some(Ok(()))
+    }
+    /// `yoshida4` in vacuum, `rk4` with drag (the splitting methods are refused then).
+    fn default_method(&self) -> Method {
+        if self.conservative() {
+            Method::Yoshida4
+        } else {
+            Method::Rk4
+        }
+    }
+}

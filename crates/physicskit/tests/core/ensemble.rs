@@ -1,0 +1,58 @@
+//! Parallel ensembles give the serial result, bit for bit, on any number of threads.
+
+use super::fixtures::PendulumBank;
+use physicskit::classical::integrators::{integrate_ensemble, ENSEMBLE_CHUNK};
+use physicskit::classical::{DynamicalSystem, HamiltonianSystem, IntegrateOptions, Method};
+
+fn parallel(threads: usize, n: usize) -> physicskit::classical::SimulationResult {
+    let pool = rayon::ThreadPoolBuilder::new()
+        .num_threads(threads)
+        .build()
+        .unwrap();
+    pool.install(|| {
+        let mut bank = PendulumBank::new(n);
+        integrate_ensemble(
+            &mut bank,
+            (0.0, 0.5),
+            1e-3,
+            Method::Yoshida4,
+            IntegrateOptions::stride(100),
+        )
+        .unwrap()
+    })
+}
+
+#[test]
+fn ensemble_equals_serial_bit_for_bit_on_any_thread_count() {
+    // More than two chunks, the last one partial.
+    let n = 2 * ENSEMBLE_CHUNK + 123;
+    let mut serial_bank = PendulumBank::new(n);
+    let serial = serial_bank
+        .integrate_with(
+            (0.0, 0.5),
+            1e-3,
+            Method::Yoshida4,
+            IntegrateOptions::stride(100),
+        )
+        .unwrap();
+    for threads in [1, 2, 3] {
+        let par = parallel(threads, n);
+        assert_eq!(par.t, serial.t, "{threads} threads");
+        assert_eq!(par.y, serial.y, "{threads} threads");
+        assert_eq!(par.q, serial.q, "{threads} threads");
+        assert_eq!(par.p, serial.p, "{threads} threads");
+        assert_eq!(par.energy, serial.energy, "{threads} threads");
+    }
+    // The system is left at the final state, as after a serial run.
+    let mut bank = PendulumBank::new(n);
+    integrate_ensemble(
+        &mut bank,
+        (0.0, 0.5),
+        1e-3,
+        Method::Yoshida4,
+        IntegrateOptions::final_only(),
+    )
+    .unwrap();
+    assert_eq!(bank.state(), serial_bank.state());
+    assert_eq!(bank.t(), serial_bank.t());
+}

@@ -1,0 +1,319 @@
+//! Test systems that the library does not ship: a non-separable Hamiltonian, a damped
+//! oscillator, a free rigid body, a hand-written Lagrangian pendulum and ODEs that blow up.
+
+use physicskit::classical::core::{
+    hamiltonian_energy, lagrangian_derivatives, separable_derivatives,
+};
+use physicskit::classical::{
+    DynamicalSystem, Error, HamiltonianSystem, LagrangianSystem, Method, OdeSystem, Phase, Result,
+};
+
+/// Slope of the least-squares line through `(ln x, ln y)`.
+pub fn loglog_slope(x: &[f64], y: &[f64]) -> f64 {
+    let lx: Vec<f64> = x.iter().map(|v| v.ln()).collect();
+    let ly: Vec<f64> = y.iter().map(|v| v.ln()).collect();
+    let n = lx.len() as f64;
+    let mx = lx.iter().sum::<f64>() / n;
+    let my = ly.iter().sum::<f64>() / n;
+    let sxy: f64 = lx.iter().zip(&ly).map(|(a, b)| (a - mx) * (b - my)).sum();
+    let sxx: f64 = lx.iter().map(|a| (a - mx) * (a - mx)).sum();
+    sxy / sxx
+}
+
+/// `H = (p^2 / 2) (1 + q^2) + q^2 / 2`: non-separable (the kinetic term depends on `q`).
+pub struct NonSeparable {
+    pub phase: Phase,
+}
+
+impl NonSeparable {
+    pub fn new(q0: f64, p0: f64) -> Self {
+        Self {
+            phase: Phase::new(vec![q0, p0], 0.0).unwrap(),
+        }
+    }
+}
+
+impl DynamicalSystem for NonSeparable {
+    fn phase(&self) -> &Phase {
+        &self.phase
+    }
+    fn phase_mut(&mut self) -> &mut Phase {
+        &mut self.phase
+    }
+    fn derivatives(&self, _t: f64, y: &[f64], out: &mut [f64]) -> Result<()> {
+        let (q, p) = (y[0], y[1]);
+        out[0] = p * (1.0 + q * q);
+        out[1] = -(p * p * q + q);
+        Ok(())
+    }
+    fn energy(&self, y: &[f64]) -> f64 {
+        0.5 * y[1] * y[1] * (1.0 + y[0] * y[0]) + 0.5 * y[0] * y[0]
+    }
+    fn default_method(&self) -> Method {
+        Method::ImplicitMidpoint
+    }
+}
+
+impl HamiltonianSystem for NonSeparable {
+    fn ndof(&self) -> usize {
+        1
+    }
+    fn kinetic_energy(&self, p: &[f64]) -> f64 {
+        0.5 * p[0] * p[0]
+    }
+    fn potential_energy(&self, q: &[f64]) -> f64 {
+        0.5 * q[0] * q[0]
+    }
+    fn separable(&self) -> bool {
+        false
+    }
+}
+
+/// A harmonic oscillator with linear damping `dp/dt = -q - gamma p`; `force` holds only the
+/// conservative part, so `conservative()` is false.
+pub struct Damped {
+    pub phase: Phase,
+    pub gamma: f64,
+}
+
+impl DynamicalSystem for Damped {
+    fn phase(&self) -> &Phase {
+        &self.phase
+    }
+    fn phase_mut(&mut self) -> &mut Phase {
+        &mut self.phase
+    }
+    fn derivatives(&self, t: f64, y: &[f64], out: &mut [f64]) -> Result<()> {
+        separable_derivatives(self, t, y, out)?;
+        out[1] -= self.gamma * y[1];
+        Ok(())
+    }
+    fn energy(&self, y: &[f64]) -> f64 {
+        hamiltonian_energy(self, y)
+    }
+    fn default_method(&self) -> Method {
+        Method::Rk4
+    }
+}
+
+impl HamiltonianSystem for Damped {
+    fn ndof(&self) -> usize {
+        1
+    }
+    fn kinetic_energy(&self, p: &[f64]) -> f64 {
+        0.5 * p[0] * p[0]
+    }
+    fn potential_energy(&self, q: &[f64]) -> f64 {
+        0.5 * q[0] * q[0]
+    }
+    fn conservative(&self) -> bool {
+        false
+    }
+    fn force(&self, q: &[f64], _t: f64, out: &mut [f64]) -> Result<()> {
+        out[0] = -q[0];
+        Ok(())
+    }
+}
+
+/// Euler's equations of a torque-free rigid body, `I dw/dt = (I w) x w`, written here from
+/// Landau & Lifshitz, *Mechanics*, §36, independently of the library's EulerTop.
+pub struct FreeRigidBody {
+    pub phase: Phase,
+    pub inertia: [f64; 3],
+}
+
+impl FreeRigidBody {
+    pub fn angular_momentum_squared(&self, w: &[f64]) -> f64 {
+        (0..3).map(|i| (self.inertia[i] * w[i]).powi(2)).sum()
+    }
+}
+
+impl DynamicalSystem for FreeRigidBody {
+    fn phase(&self) -> &Phase {
+        &self.phase
+    }
+    fn phase_mut(&mut self) -> &mut Phase {
+        &mut self.phase
+    }
+    fn derivatives(&self, _t: f64, w: &[f64], out: &mut [f64]) -> Result<()> {
+        let [i1, i2, i3] = self.inertia;
+        out[0] = (i2 - i3) / i1 * w[1] * w[2];
+        out[1] = (i3 - i1) / i2 * w[2] * w[0];
+        out[2] = (i1 - i2) / i3 * w[0] * w[1];
+        Ok(())
+    }
+    fn energy(&self, w: &[f64]) -> f64 {
+        0.5 * (0..3).map(|i| self.inertia[i] * w[i] * w[i]).sum::<f64>()
+    }
+    fn jacobian(&self, _t: f64, w: &[f64], j: &mut [f64]) -> Option<Result<()>> {
+        let [i1, i2, i3] = self.inertia;
+        let (a, b, c) = ((i2 - i3) / i1, (i3 - i1) / i2, (i1 - i2) / i3);
+        j.copy_from_slice(&[
+            0.0,
+            a * w[2],
+            a * w[1],
+            b * w[2],
+            0.0,
+            b * w[0],
+            c * w[1],
+            c * w[0],
+            0.0,
+        ]);
+        Some(Ok(()))
+    }
+    fn default_method(&self) -> Method {
+        Method::ImplicitMidpoint
+    }
+}
+
+impl OdeSystem for FreeRigidBody {}
+
+/// A first-order ODE from a plain function, with no Jacobian.
+pub struct Scalar {
+    pub phase: Phase,
+    pub f: fn(f64) -> f64,
+}
+
+impl DynamicalSystem for Scalar {
+    fn phase(&self) -> &Phase {
+        &self.phase
+    }
+    fn phase_mut(&mut self) -> &mut Phase {
+        &mut self.phase
+    }
+    fn derivatives(&self, _t: f64, y: &[f64], out: &mut [f64]) -> Result<()> {
+        out[0] = (self.f)(y[0]);
+        Ok(())
+    }
+    fn energy(&self, y: &[f64]) -> f64 {
+        y[0]
+    }
+    fn default_method(&self) -> Method {
+        Method::Rk4
+    }
+}
+
+impl OdeSystem for Scalar {}
+
+/// The pendulum as a Lagrangian, `L = qdot^2 / 2 + (g/l) cos q`, with its Euler–Lagrange
+/// equation `qddot = -(g/l) sin q` and Legendre map `p = qdot` written by hand.
+pub struct LagrangianPendulum {
+    pub phase: Phase,
+    pub g_over_l: f64,
+    /// Mass-matrix value; 0 makes the Lagrangian degenerate.
+    pub mass: f64,
+}
+
+impl LagrangianPendulum {
+    pub fn new(q0: f64, qdot0: f64) -> Self {
+        Self {
+            phase: Phase::new(vec![q0, qdot0], 0.0).unwrap(),
+            g_over_l: 1.0,
+            mass: 1.0,
+        }
+    }
+}
+
+impl DynamicalSystem for LagrangianPendulum {
+    fn phase(&self) -> &Phase {
+        &self.phase
+    }
+    fn phase_mut(&mut self) -> &mut Phase {
+        &mut self.phase
+    }
+    fn derivatives(&self, t: f64, y: &[f64], out: &mut [f64]) -> Result<()> {
+        lagrangian_derivatives(self, t, y, out)
+    }
+    fn energy(&self, y: &[f64]) -> f64 {
+        0.5 * self.mass * y[1] * y[1] - self.g_over_l * y[0].cos()
+    }
+    fn default_method(&self) -> Method {
+        Method::ImplicitMidpoint
+    }
+}
+
+impl LagrangianSystem for LagrangianPendulum {
+    fn ndof(&self) -> usize {
+        1
+    }
+    fn acceleration(&self, q: &[f64], _qdot: &[f64], t: f64, out: &mut [f64]) -> Result<()> {
+        if self.mass == 0.0 {
+            return Err(Error::SingularMatrix {
+                what: "mass matrix".into(),
+                t,
+            });
+        }
+        out[0] = -self.g_over_l * q[0].sin() / self.mass;
+        Ok(())
+    }
+    fn momentum(&self, _q: &[f64], qdot: &[f64], _t: f64, out: &mut [f64]) -> Result<()> {
+        out[0] = self.mass * qdot[0];
+        Ok(())
+    }
+    fn velocity(&self, _q: &[f64], p: &[f64], t: f64, out: &mut [f64]) -> Result<()> {
+        if self.mass == 0.0 {
+            return Err(Error::SingularMatrix {
+                what: "mass matrix".into(),
+                t,
+            });
+        }
+        out[0] = p[0] / self.mass;
+        Ok(())
+    }
+    fn canonical_derivatives(&self, t: f64, y: &[f64], out: &mut [f64]) -> Result<()> {
+        self.velocity(&y[..1], &y[1..], t, &mut out[..1])?;
+        out[1] = -self.g_over_l * y[0].sin();
+        Ok(())
+    }
+}
+
+/// Independent pendulums `H = sum_i p_i^2/2 - cos q_i`, written for the ensemble tests.
+#[derive(Clone)]
+pub struct PendulumBank {
+    pub phase: Phase,
+    pub n: usize,
+}
+
+impl PendulumBank {
+    pub fn new(n: usize) -> Self {
+        // Spread of amplitudes so that members follow different trajectories.
+        let q: Vec<f64> = (0..n).map(|i| 0.1 + 2.9 * i as f64 / n as f64).collect();
+        let p: Vec<f64> = (0..n)
+            .map(|i| ((i * 7919) % 101) as f64 / 100.0 - 0.5)
+            .collect();
+        Self {
+            phase: Phase::from_halves("q0", &q, "p0", &p).unwrap(),
+            n,
+        }
+    }
+}
+
+impl HamiltonianSystem for PendulumBank {
+    fn ndof(&self) -> usize {
+        self.n
+    }
+    fn kinetic_energy(&self, p: &[f64]) -> f64 {
+        p.iter().map(|v| 0.5 * v * v).sum()
+    }
+    fn potential_energy(&self, q: &[f64]) -> f64 {
+        q.iter().map(|v| -v.cos()).sum()
+    }
+    fn force(&self, q: &[f64], _t: f64, out: &mut [f64]) -> Result<()> {
+        out.iter_mut().zip(q).for_each(|(f, v)| *f = -v.sin());
+        Ok(())
+    }
+}
+
+physicskit::impl_separable_dynamics!(PendulumBank);
+
+impl physicskit::classical::integrators::Ensemble for PendulumBank {
+    fn members(&self, start: usize, len: usize) -> Result<Self> {
+        let (q, p) = self.phase.state().split_at(self.n);
+        let mut sub = Self {
+            phase: Phase::from_halves("q0", &q[start..start + len], "p0", &p[start..start + len])?,
+            n: len,
+        };
+        sub.phase.set_t(self.phase.t())?;
+        Ok(sub)
+    }
+}

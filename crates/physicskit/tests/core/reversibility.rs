@@ -1,0 +1,91 @@
+//! Time reversibility: N steps forward, then N steps with -dt, returns to the start.
+
+use super::fixtures::NonSeparable;
+use physicskit::classical::examples::Pendulum;
+use physicskit::classical::integrators::{FirstOrder, ImplicitMidpoint, SplittingStepper};
+use physicskit::classical::{DynamicalSystem, Method};
+
+const N: usize = 1000;
+const DT: f64 = 0.1;
+/// Forward and backward runs each accumulate rounding of ~sqrt(N) ulps; 1e-12 relative is what
+/// the issue asks and sits two orders above that, while any non-symmetric method (rk4 here
+/// returns with an O(h^4 N) error of ~1e-9) fails it.
+const TOLERANCE: f64 = 1e-12;
+
+fn relative_distance(a: &[f64], b: &[f64]) -> f64 {
+    let norm = b.iter().fold(0.0_f64, |m, v| m.max(v.abs()));
+    a.iter()
+        .zip(b)
+        .fold(0.0_f64, |m, (x, y)| m.max((x - y).abs()))
+        / norm
+}
+
+#[test]
+fn splitting_methods_are_reversible() {
+    let pendulum = Pendulum::new(2.0, 0.3, 1.0).unwrap();
+    let start = pendulum.state().to_vec();
+    for method in [Method::Verlet, Method::Yoshida4] {
+        let mut stepper = SplittingStepper::new(method, 1).unwrap();
+        let (mut q, mut p) = ([start[0]], [start[1]]);
+        for i in 0..N {
+            stepper
+                .step(&pendulum, i as f64 * DT, &mut q, &mut p, DT)
+                .unwrap();
+        }
+        for i in (1..=N).rev() {
+            stepper
+                .step(&pendulum, i as f64 * DT, &mut q, &mut p, -DT)
+                .unwrap();
+        }
+        let d = relative_distance(&[q[0], p[0]], &start);
+        assert!(d <= TOLERANCE, "{method}: returned {d:e} away");
+    }
+}
+
+#[test]
+fn implicit_midpoint_is_reversible_also_for_a_non_separable_hamiltonian() {
+    let pendulum = Pendulum::new(2.0, 0.3, 1.0).unwrap();
+    let nonsep = NonSeparable::new(0.8, 0.4);
+    for (name, start, field) in [
+        (
+            "pendulum",
+            pendulum.state().to_vec(),
+            &pendulum as &dyn DynamicalSystem,
+        ),
+        (
+            "non-separable",
+            nonsep.state().to_vec(),
+            &nonsep as &dyn DynamicalSystem,
+        ),
+    ] {
+        let field = FirstOrder(field);
+        let mut stepper = ImplicitMidpoint::new(2);
+        let mut y = start.clone();
+        for i in 0..N {
+            stepper.step(&field, i as f64 * DT, &mut y, DT).unwrap();
+        }
+        for i in (1..=N).rev() {
+            stepper.step(&field, i as f64 * DT, &mut y, -DT).unwrap();
+        }
+        let d = relative_distance(&y, &start);
+        assert!(d <= TOLERANCE, "{name}: returned {d:e} away");
+    }
+}
+
+#[test]
+fn rk4_is_not_reversible() {
+    // The control: the same round trip with rk4 misses the start by far more than the
+    // tolerance, so the tests above can tell a reversible method from one that is not.
+    let pendulum = Pendulum::new(2.0, 0.3, 1.0).unwrap();
+    let start = pendulum.state().to_vec();
+    let field = FirstOrder(&pendulum);
+    let mut rk4 = physicskit::classical::integrators::Rk4::new(2);
+    let mut y = start.clone();
+    for i in 0..N {
+        rk4.step(&field, i as f64 * DT, &mut y, DT).unwrap();
+    }
+    for i in (1..=N).rev() {
+        rk4.step(&field, i as f64 * DT, &mut y, -DT).unwrap();
+    }
+    assert!(relative_distance(&y, &start) > 100.0 * TOLERANCE);
+}

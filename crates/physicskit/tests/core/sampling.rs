@@ -1,0 +1,95 @@
+//! Sampling options, result layout and reproducibility.
+
+use physicskit::classical::examples::Pendulum;
+use physicskit::classical::{HamiltonianSystem, IntegrateOptions, Method, Sampling};
+use proptest::prelude::*;
+
+#[test]
+fn full_sampling_has_n_plus_one_contiguous_samples() {
+    let mut p = Pendulum::new(1.0, 0.2, 1.0).unwrap();
+    let r = p.integrate((0.0, 1.0), 0.01, Method::Yoshida4).unwrap();
+    assert_eq!(r.n_samples(), 101);
+    assert_eq!(r.y.dim(), (101, 2));
+    let (q, pm) = (r.q.as_ref().unwrap(), r.p.as_ref().unwrap());
+    for a in [&r.y, q, pm] {
+        assert!(
+            a.is_standard_layout(),
+            "arrays must be C-contiguous for numpy"
+        );
+    }
+    assert!(r.t.is_standard_layout());
+    // q and p are the halves of y, sample by sample.
+    assert_eq!(q.column(0), r.y.column(0));
+    assert_eq!(pm.column(0), r.y.column(1));
+    assert_eq!(r.method, "yoshida4");
+    // The clock is t0 + i dt, not an accumulated sum.
+    assert_eq!(r.t[100], 1.0);
+    assert_eq!(r.t[37], 37.0 * 0.01);
+}
+
+#[test]
+fn the_system_is_left_at_the_final_sample() {
+    let mut p = Pendulum::new(1.0, 0.2, 1.0).unwrap();
+    let r = p.integrate((0.5, 1.5), 0.01, Method::Verlet).unwrap();
+    assert_eq!(physicskit::classical::DynamicalSystem::t(&p), 1.5);
+    assert_eq!(
+        physicskit::classical::DynamicalSystem::state(&p),
+        r.final_state().as_slice().unwrap()
+    );
+}
+
+fn run(sampling: Sampling, n: usize) -> physicskit::classical::SimulationResult {
+    let mut p = Pendulum::new(1.0, 0.2, 1.0).unwrap();
+    let options = IntegrateOptions {
+        sampling,
+        ..Default::default()
+    };
+    p.integrate_with((0.0, n as f64 * 0.01), 0.01, Method::Yoshida4, options)
+        .unwrap()
+}
+
+proptest! {
+    #![proptest_config(ProptestConfig::with_cases(64))]
+
+    /// A strided run stores exactly the strided rows of the full run (bit for bit), plus the
+    /// final row, and nothing else.
+    #[test]
+    fn stride_stores_the_strided_rows_of_the_full_run(n in 0usize..300, k in 1usize..40) {
+        let full = run(Sampling::All, n);
+        let strided = run(Sampling::Stride(k), n);
+        let mut expected: Vec<usize> = (0..=n).step_by(k).collect();
+        if n % k != 0 {
+            expected.push(n);
+        }
+        prop_assert_eq!(strided.n_samples(), expected.len());
+        for (row, &i) in expected.iter().enumerate() {
+            prop_assert_eq!(strided.y.row(row), full.y.row(i));
+            prop_assert_eq!(strided.t[row], full.t[i]);
+        }
+    }
+
+    /// Final-only sampling keeps the first and last rows of the full run.
+    #[test]
+    fn final_only_keeps_first_and_last(n in 1usize..300) {
+        let full = run(Sampling::All, n);
+        let fin = run(Sampling::FinalOnly, n);
+        prop_assert_eq!(fin.n_samples(), 2);
+        prop_assert_eq!(fin.y.row(0), full.y.row(0));
+        prop_assert_eq!(fin.y.row(1), full.y.row(n));
+    }
+}
+
+#[test]
+fn identical_inputs_give_bit_identical_outputs() {
+    for method in Method::ALL {
+        let a = Pendulum::new(2.0, 0.1, 1.0)
+            .unwrap()
+            .integrate((0.0, 10.0), 0.01, method)
+            .unwrap();
+        let b = Pendulum::new(2.0, 0.1, 1.0)
+            .unwrap()
+            .integrate((0.0, 10.0), 0.01, method)
+            .unwrap();
+        assert_eq!(a, b, "{method}");
+    }
+}
