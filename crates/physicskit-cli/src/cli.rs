@@ -129,7 +129,6 @@ fn system_command(spec: &SystemSpec) -> Command {
                 .help("store every K-th step (and the last)"),
         );
     for p in spec.params {
-        let default = p.default.unwrap_or("none");
         cmd = cmd.arg(
             Arg::new(p.name)
                 .long(p.name)
@@ -137,7 +136,7 @@ fn system_command(spec: &SystemSpec) -> Command {
                 .allow_hyphen_values(true)
                 .action(ArgAction::Set)
                 .help_heading("Parameters")
-                .help(format!("{} [default: {default}]", p.help)),
+                .help(p.help_with_default()),
         );
     }
     if let Some(note) = spec.note {

@@ -38,8 +38,7 @@ pub fn print(w: &mut impl Write) -> io::Result<()> {
             .unwrap_or(0);
         for p in spec.params {
             let flag = format!("--{} {}", p.name, p.kind.placeholder());
-            let default = p.default.unwrap_or("none");
-            writeln!(w, "    {flag:<width$}  {} [default: {default}]", p.help)?;
+            writeln!(w, "    {flag:<width$}  {}", p.help_with_default())?;
         }
     }
     writeln!(

@@ -40,7 +40,11 @@ fn main() -> ExitCode {
         let _ = ctrlc::set_handler(move || flag.store(true, Ordering::Relaxed));
     }
     let outcome = match &cli.command {
-        Action::List => list::print(&mut std::io::stdout().lock()).map_err(anyhow::Error::from),
+        Action::List => match list::print(&mut std::io::stdout().lock()) {
+            // `physicskit list | head` closes the pipe early; that is not an error.
+            Err(e) if e.kind() == std::io::ErrorKind::BrokenPipe => Ok(()),
+            other => other.map_err(anyhow::Error::from),
+        },
         Action::Simulate(args) => simulate::run(&args.system, Arc::clone(&interrupted)),
         Action::Gallery(args) => gallery::render(&args.out, args.quick),
     };

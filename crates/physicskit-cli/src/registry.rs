@@ -37,6 +37,10 @@ impl Kind {
         match self {
             Kind::Real => "X".into(),
             Kind::Count => "N".into(),
+            Kind::List(Some(n)) if n <= 4 => (1..=n)
+                .map(|i| format!("X{i}"))
+                .collect::<Vec<_>>()
+                .join(","),
             Kind::List(Some(n)) => format!("X1,..,X{n}"),
             Kind::List(None) => "X1,X2,..".into(),
             Kind::Choice(words) => words.join("|"),
@@ -96,7 +100,9 @@ pub struct SystemSpec {
     pub params: &'static [ParamSpec],
     /// Methods the system accepts.
     pub methods: &'static [Method],
-    /// Method used without `--method`; the library's `default_method()` (checked by a test).
+    /// Method shown as the default by `list`: the library's `default_method()` for the
+    /// default parameters (checked by a test). `simulate` asks the built system itself, since
+    /// the default can depend on the parameters (a projectile with drag defaults to `rk4`).
     pub default_method: Method,
     /// Extra remark printed by `list` (which methods need which parameters, ...).
     pub note: Option<&'static str>,
@@ -112,6 +118,21 @@ impl fmt::Debug for SystemSpec {
     }
 }
 
+impl ParamSpec {
+    /// The help text with its default, `[default: ...]`, unless the help already says it.
+    pub fn help_with_default(&self) -> String {
+        if self.help.contains("[default:") {
+            self.help.to_string()
+        } else {
+            format!(
+                "{} [default: {}]",
+                self.help,
+                self.default.unwrap_or("none")
+            )
+        }
+    }
+}
+
 impl SystemSpec {
     /// The parameter called `name`.
     pub fn param(&self, name: &str) -> Option<&ParamSpec> {
@@ -122,10 +143,7 @@ impl SystemSpec {
     ///
     /// # Errors
     /// Unknown method names, or methods the system refuses.
-    pub fn method(&self, name: Option<&str>) -> Result<Method> {
-        let Some(name) = name else {
-            return Ok(self.default_method);
-        };
+    pub fn method(&self, name: &str) -> Result<Method> {
         let method: Method = name.parse()?;
         if self.methods.contains(&method) {
             Ok(method)
@@ -222,10 +240,20 @@ impl Values {
     /// A real parameter.
     ///
     /// # Errors
-    /// Undeclared or not a real (a registry bug).
+    /// Undeclared, absent or not a real (a registry bug).
     pub fn real(&self, name: &str) -> Result<f64> {
+        self.opt_real(name)?
+            .ok_or_else(|| anyhow!("parameter `--{name}` is required"))
+    }
+
+    /// An optional real parameter.
+    ///
+    /// # Errors
+    /// Undeclared or not a real (a registry bug).
+    pub fn opt_real(&self, name: &str) -> Result<Option<f64>> {
         match self.get(name)? {
-            Value::Real(v) => Ok(*v),
+            Value::Real(v) => Ok(Some(*v)),
+            Value::Absent => Ok(None),
             other => bail!("internal: `{name}` is {other:?}, not a real"),
         }
     }

@@ -31,7 +31,7 @@ fn number(flag: &str, text: &str) -> Result<f64> {
 /// output file exists afterwards in any of these cases.
 pub fn run(call: &SystemCall, interrupted: Arc<AtomicBool>) -> Result<()> {
     let spec = registry::find(&call.name)?;
-    let method = spec.method(call.method.as_deref())?;
+    let method = call.method.as_deref().map(|m| spec.method(m)).transpose()?;
     let values = spec.parse_values(
         call.params
             .iter()
@@ -54,6 +54,7 @@ pub fn run(call: &SystemCall, interrupted: Arc<AtomicBool>) -> Result<()> {
         })?;
     let grid = TimeGrid::new((t0, t1), dt)?;
     let mut sim = (spec.build)(&values).with_context(|| format!("cannot build `{}`", spec.name))?;
+    let method = method.unwrap_or_else(|| sim.default_method());
     let pending = Pending::create(&call.out)?;
 
     let mut observer = RunObserver {

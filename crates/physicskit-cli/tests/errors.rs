@@ -206,3 +206,111 @@ fn failed_run_leaves_existing_file_untouched() {
     assert_eq!(entries(dir.path()), vec![target.clone()]);
     assert_eq!(std::fs::read(Path::new(&target)).unwrap(), b"previous");
 }
+
+#[test]
+fn wrong_array_length() {
+    // Declared length 2: caught while parsing, naming the flag.
+    let err = fails(&[
+        "simulate",
+        "henon-heiles",
+        "--q0",
+        "0,0.1,0.2",
+        "--dt",
+        "0.1",
+        "--t1",
+        "1",
+        "--out",
+        "a.csv",
+    ]);
+    assert!(
+        err.contains("`--q0`") && err.contains("expected 2"),
+        "{err}"
+    );
+    // Length set by another parameter (n = 3): the library's DimensionMismatch.
+    let err = fails(&[
+        "simulate",
+        "coupled-oscillators",
+        "--q0",
+        "0.1,0.2",
+        "--dt",
+        "0.1",
+        "--t1",
+        "1",
+        "--out",
+        "a.csv",
+    ]);
+    assert!(err.contains("q0") && err.contains("expected 3"), "{err}");
+}
+
+#[test]
+fn library_range_checks_reach_the_user() {
+    // |velocity| >= 1 has no Lorentz boost (SineGordonChain::kink).
+    let err = fails(&[
+        "simulate",
+        "sine-gordon",
+        "--velocity",
+        "1.0",
+        "--dt",
+        "0.1",
+        "--t1",
+        "1",
+        "--out",
+        "a.npz",
+    ]);
+    assert!(err.contains("velocity"), "{err}");
+    // Unbound orbits are refused by KeplerSystem::from_orbital_elements.
+    let err = fails(&[
+        "simulate", "kepler", "--e", "1.2", "--dt", "0.1", "--t1", "1", "--out", "a.npz",
+    ]);
+    assert!(err.contains("eccentricity"), "{err}");
+    // A zero quaternion is no rotation (EulerTop::new).
+    fails(&[
+        "simulate",
+        "euler-top",
+        "--quat0",
+        "0,0,0,0",
+        "--dt",
+        "0.1",
+        "--t1",
+        "1",
+        "--out",
+        "a.npz",
+    ]);
+}
+
+#[test]
+fn method_the_system_cannot_use() {
+    // Refused by the registry: the double pendulum is not separable.
+    let err = fails(&[
+        "simulate",
+        "double-pendulum",
+        "--method",
+        "verlet",
+        "--dt",
+        "0.1",
+        "--t1",
+        "1",
+        "--out",
+        "a.csv",
+    ]);
+    assert!(
+        err.contains("verlet") && err.contains("implicit_midpoint"),
+        "{err}"
+    );
+    // Refused by the library: drag is not conservative, so splitting would drop it.
+    let err = fails(&[
+        "simulate",
+        "projectile",
+        "--drag_coeff",
+        "0.1",
+        "--method",
+        "yoshida4",
+        "--dt",
+        "0.1",
+        "--t1",
+        "1",
+        "--out",
+        "a.csv",
+    ]);
+    assert!(err.contains("yoshida4"), "{err}");
+}

@@ -5,8 +5,28 @@ mod common;
 
 use common::{run_in, scratch, stdout};
 
-/// The systems the command line must offer (the spec's systems plus the two examples).
-const EXPECTED: &[&str] = &["pendulum", "harmonic-oscillator"];
+/// The systems the command line must offer: the spec's twelve (issue 6), their alternate
+/// constructors, and the two reference examples.
+const EXPECTED: &[&str] = &[
+    "pendulum",
+    "harmonic-oscillator",
+    "kepler",
+    "kepler-state",
+    "henon-heiles",
+    "pendulum-swarm",
+    "pendulum-swarm-state",
+    "projectile",
+    "projectile-state",
+    "harmonic-chain",
+    "fput",
+    "sine-gordon",
+    "sine-gordon-state",
+    "double-pendulum",
+    "hoop",
+    "coupled-oscillators",
+    "heavy-top",
+    "euler-top",
+];
 
 #[test]
 fn list_mentions_every_system_with_methods_and_defaults() {

@@ -124,9 +124,13 @@ mod tests {
             assert!(text.starts_with("{'descr': '<f8'"));
         }
         let one = header("<f8", &[3]).unwrap();
-        assert!(std::str::from_utf8(&one[10..]).unwrap().contains("'shape': (3,)"));
+        assert!(std::str::from_utf8(&one[10..])
+            .unwrap()
+            .contains("'shape': (3,)"));
         let zero = header("<f8", &[]).unwrap();
-        assert!(std::str::from_utf8(&zero[10..]).unwrap().contains("'shape': ()"));
+        assert!(std::str::from_utf8(&zero[10..])
+            .unwrap()
+            .contains("'shape': ()"));
     }
 
     #[test]
