@@ -11,7 +11,13 @@ use std::path::Path;
 use ndarray::{Array0, Array1, Array2};
 use ndarray_npy::NpzReader;
 use physicskit::classical::examples::{HarmonicOscillator, Pendulum};
-use physicskit::classical::{HamiltonianSystem, IntegrateOptions, Method, SimulationResult};
+use physicskit::classical::systems::{
+    DoublePendulum, DoublePendulumParams, EulerTop, EulerTopParams, KeplerPerturbations,
+    KeplerSystem,
+};
+use physicskit::classical::{
+    HamiltonianSystem, IntegrateOptions, LagrangianSystem, Method, OdeSystem, SimulationResult,
+};
 
 use common::{run_in, scratch, stderr};
 
@@ -238,4 +244,176 @@ fn empty_span_gives_the_initial_state() {
     let (_, cols, _) = read_csv(&path);
     assert_eq!(cols[0], [0.0]);
     assert_eq!(cols[1], [0.5]);
+}
+
+/// The state arrays the writers promise: `q`, `p` when the result splits, else `y`.
+fn state_arrays(want: &SimulationResult) -> Vec<(&'static str, &Array2<f64>)> {
+    match (&want.q, &want.p) {
+        (Some(q), Some(p)) => vec![("q", q), ("p", p)],
+        _ => vec![("y", &want.y)],
+    }
+}
+
+/// Writes `args` in all three formats and compares each with `want`, bit for bit.
+fn check_all_formats(args: &[&str], want: &SimulationResult) {
+    let dir = scratch();
+    let energy = want.energy.as_ref().unwrap();
+
+    let path = simulate(dir.path(), "run.npz", args);
+    let mut npz = NpzReader::new(File::open(&path).unwrap()).unwrap();
+    let t: Array1<f64> = npz.by_name("t").unwrap();
+    same_bits("npz t", t.iter().copied(), want.t.iter().copied());
+    for (name, array) in state_arrays(want) {
+        let got: Array2<f64> = npz.by_name(name).unwrap();
+        assert_eq!(got.shape(), array.shape(), "npz {name}");
+        same_bits(name, got.iter().copied(), array.iter().copied());
+    }
+    let e: Array1<f64> = npz.by_name("energy").unwrap();
+    same_bits("npz energy", e.iter().copied(), energy.iter().copied());
+
+    let path = simulate(dir.path(), "run.csv", args);
+    let (header, cols, _) = read_csv(&path);
+    let mut expected_header = vec!["t".to_string()];
+    let mut expected_cols: Vec<Vec<f64>> = vec![want.t.to_vec()];
+    for (name, array) in state_arrays(want) {
+        for (j, col) in array.columns().into_iter().enumerate() {
+            expected_header.push(format!("{name}_{j}"));
+            expected_cols.push(col.to_vec());
+        }
+    }
+    expected_header.push("energy".into());
+    expected_cols.push(energy.to_vec());
+    assert_eq!(header, expected_header);
+    for ((name, got), want) in header.iter().zip(&cols).zip(&expected_cols) {
+        same_bits(name, got.iter().copied(), want.iter().copied());
+    }
+
+    let path = simulate(dir.path(), "run.json", args);
+    let v: serde_json::Value = serde_json::from_reader(File::open(&path).unwrap()).unwrap();
+    let flat = |x: &serde_json::Value| -> Vec<f64> {
+        let mut out = Vec::new();
+        let mut stack = vec![x];
+        while let Some(x) = stack.pop() {
+            match x {
+                serde_json::Value::Array(items) => stack.extend(items.iter().rev()),
+                other => out.push(other.as_f64().unwrap()),
+            }
+        }
+        out
+    };
+    same_bits("json t", flat(&v["t"]), want.t.iter().copied());
+    for (name, array) in state_arrays(want) {
+        same_bits(name, flat(&v[name]), array.iter().copied());
+        assert_eq!(v[name].as_array().unwrap().len(), array.nrows());
+    }
+    same_bits("json energy", flat(&v["energy"]), energy.iter().copied());
+    assert_eq!(v["method"], want.method.as_str());
+}
+
+/// A Lagrangian system: `p` holds `thetadot`; rk4 and the default implicit midpoint.
+#[test]
+fn lagrangian_system_round_trips() {
+    let params = DoublePendulumParams {
+        m2: 2.0,
+        ..DoublePendulumParams::default()
+    };
+    for (method, flag) in [(Method::ImplicitMidpoint, None), (Method::Rk4, Some("rk4"))] {
+        let want = DoublePendulum::new(&[1.0, -0.5], &[0.0, 0.25], params)
+            .unwrap()
+            .integrate((0.0, 2.0), 0.01, method)
+            .unwrap();
+        let mut args = vec![
+            "double-pendulum",
+            "--theta0",
+            "1,-0.5",
+            "--thetadot0",
+            "0,0.25",
+            "--m2",
+            "2",
+            "--dt",
+            "0.01",
+            "--t1",
+            "2",
+        ];
+        if let Some(flag) = flag {
+            args.extend_from_slice(&["--method", flag]);
+        }
+        check_all_formats(&args, &want);
+    }
+}
+
+/// A general ODE system writes its raw state `y` (here 7 columns) and no `q`, `p`.
+#[test]
+fn ode_system_writes_y() {
+    let want = EulerTop::new(
+        &[0.01, 1.0, 0.01],
+        EulerTopParams {
+            i1: 1.0,
+            i2: 2.0,
+            i3: 3.5,
+        },
+        Some(&[1.0, 0.0, 0.0, 1.0]),
+    )
+    .unwrap()
+    .integrate((0.0, 3.0), 0.005, Method::ImplicitMidpoint)
+    .unwrap();
+    assert!(want.q.is_none(), "EulerTop should have no q/p split");
+    check_all_formats(
+        &[
+            "euler-top",
+            "--I3",
+            "3.5",
+            "--quat0",
+            "1,0,0,1",
+            "--dt",
+            "0.005",
+            "--t1",
+            "3",
+        ],
+        &want,
+    );
+}
+
+/// List parameters and the alternate constructor: `kepler` is `from_orbital_elements`,
+/// `kepler-state` is `new`.
+#[test]
+fn kepler_constructors_round_trip() {
+    let pert = KeplerPerturbations::none().with_post_newtonian(-0.01);
+    let want = KeplerSystem::from_orbital_elements(1.5, 0.3, 1.0, 1.0, pert)
+        .unwrap()
+        .integrate((0.0, 4.0), 0.002, Method::Verlet)
+        .unwrap();
+    check_all_formats(
+        &[
+            "kepler", "--a", "1.5", "--e", "0.3", "--c_pn", "-0.01", "--method", "verlet", "--dt",
+            "0.002", "--t1", "4",
+        ],
+        &want,
+    );
+    let want = KeplerSystem::new(
+        &[1.0, 0.5],
+        &[-0.2, 0.9],
+        2.0,
+        1.0,
+        KeplerPerturbations::none(),
+    )
+    .unwrap()
+    .integrate((0.0, 1.0), 0.001, Method::Yoshida4)
+    .unwrap();
+    check_all_formats(
+        &[
+            "kepler-state",
+            "--q0",
+            "1,0.5",
+            "--p0",
+            "-0.2,0.9",
+            "--k",
+            "2",
+            "--dt",
+            "0.001",
+            "--t1",
+            "1",
+        ],
+        &want,
+    );
 }
