@@ -104,15 +104,10 @@ fn npz_round_trips_bit_for_bit() {
     }
 }
 
-/// Parses the CSV: `#` lines, then a header, then rows; returns (header, columns).
-fn read_csv(path: &Path) -> (Vec<String>, Vec<Vec<f64>>, Vec<String>) {
+/// Parses the CSV: a header, then rows of numbers; returns (header, columns).
+fn read_csv(path: &Path) -> (Vec<String>, Vec<Vec<f64>>) {
     let text = std::fs::read_to_string(path).unwrap();
-    let comments: Vec<String> = text
-        .lines()
-        .filter(|l| l.starts_with('#'))
-        .map(String::from)
-        .collect();
-    let mut lines = text.lines().filter(|l| !l.starts_with('#'));
+    let mut lines = text.lines();
     let header: Vec<String> = lines.next().unwrap().split(',').map(String::from).collect();
     let mut cols = vec![Vec::new(); header.len()];
     for line in lines {
@@ -122,7 +117,7 @@ fn read_csv(path: &Path) -> (Vec<String>, Vec<Vec<f64>>, Vec<String>) {
             c.push(cell.parse::<f64>().unwrap());
         }
     }
-    (header, cols, comments)
+    (header, cols)
 }
 
 #[test]
@@ -130,8 +125,20 @@ fn csv_round_trips_bit_for_bit() {
     let dir = scratch();
     let path = simulate(dir.path(), "run.csv", &pendulum_args("rk4"));
     let want = pendulum_reference(Method::Rk4);
-    let (header, cols, comments) = read_csv(&path);
-    assert_eq!(header, ["t", "q_0", "p_0", "energy"]);
+    let (header, cols) = read_csv(&path);
+    assert_eq!(
+        header,
+        [
+            "t",
+            "q_0",
+            "p_0",
+            "energy",
+            "dt",
+            "param_q0",
+            "param_p0",
+            "param_g_over_l"
+        ]
+    );
     assert_eq!(cols[0].len(), want.n_samples());
     same_bits("t", cols[0].iter().copied(), want.t.iter().copied());
     same_bits(
@@ -149,9 +156,12 @@ fn csv_round_trips_bit_for_bit() {
         cols[3].iter().copied(),
         want.energy.unwrap().iter().copied(),
     );
-    let all = comments.join("\n");
-    for needle in ["pendulum", "rk4", "g_over_l=3.0", "dt=0.01", "q0=2.5"] {
-        assert!(all.contains(needle), "{needle} not in {all}");
+    for (col, value) in [(4, 0.01), (5, 2.5), (6, 0.1), (7, 3.0)] {
+        assert!(
+            cols[col].iter().all(|v| v.to_bits() == f64::to_bits(value)),
+            "{} should be {value} on every row",
+            header[col]
+        );
     }
 }
 
@@ -241,7 +251,7 @@ fn empty_span_gives_the_initial_state() {
         "run.csv",
         &["pendulum", "--q0", "0.5", "--dt", "0.1", "--t1", "0"],
     );
-    let (_, cols, _) = read_csv(&path);
+    let (_, cols) = read_csv(&path);
     assert_eq!(cols[0], [0.0]);
     assert_eq!(cols[1], [0.5]);
 }
@@ -272,7 +282,7 @@ fn check_all_formats(args: &[&str], want: &SimulationResult) {
     same_bits("npz energy", e.iter().copied(), energy.iter().copied());
 
     let path = simulate(dir.path(), "run.csv", args);
-    let (header, cols, _) = read_csv(&path);
+    let (header, cols) = read_csv(&path);
     let mut expected_header = vec!["t".to_string()];
     let mut expected_cols: Vec<Vec<f64>> = vec![want.t.to_vec()];
     for (name, array) in state_arrays(want) {
@@ -283,7 +293,8 @@ fn check_all_formats(args: &[&str], want: &SimulationResult) {
     }
     expected_header.push("energy".into());
     expected_cols.push(energy.to_vec());
-    assert_eq!(header, expected_header);
+    // The trajectory columns come first; the constant parameter columns follow.
+    assert_eq!(header[..expected_header.len()], expected_header[..]);
     for ((name, got), want) in header.iter().zip(&cols).zip(&expected_cols) {
         same_bits(name, got.iter().copied(), want.iter().copied());
     }

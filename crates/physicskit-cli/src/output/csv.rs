@@ -1,6 +1,11 @@
-//! CSV: `#` comment lines with the settings and parameters (skipped by `numpy.loadtxt`,
-//! `numpy.genfromtxt` and `pandas.read_csv(comment="#")`), then a header row
-//! `t,q_0,..,p_0,..,energy` (or `y_0,..` for ODE systems), then one row per sample.
+//! CSV: a header row, then one row per sample, nothing else, so that `pandas.read_csv`,
+//! `numpy.genfromtxt(names=True)`, `numpy.loadtxt(skiprows=1)` and spreadsheets read it with
+//! their defaults.
+//!
+//! Columns: `t`, `q_0..`, `p_0..` (or `y_0..` for ODE systems), `energy`, then the run's
+//! numbers as constant columns: `dt` and `param_<name>` for every numeric parameter
+//! (`param_<name>_<i>` for list entries). Text (system, method, choice parameters) has no
+//! place in an all-numeric table; `.json` and `.npz` carry it.
 
 use std::io::{self, Write};
 
@@ -8,28 +13,39 @@ use super::number::push_f64;
 use super::Record;
 use crate::registry::Value;
 
+/// The constant trailing columns: names and values.
+fn constants(record: &Record<'_>) -> (Vec<String>, Vec<f64>) {
+    let mut names = vec!["dt".to_string()];
+    let mut values = vec![record.dt];
+    for (name, value) in record.params.iter() {
+        match value {
+            Value::Real(v) => {
+                names.push(format!("param_{name}"));
+                values.push(*v);
+            }
+            Value::Count(n) => {
+                names.push(format!("param_{name}"));
+                // Counts are sizes and seeds, far below 2^53: exact as f64.
+                values.push(*n as f64);
+            }
+            Value::List(items) => {
+                for (i, v) in items.iter().enumerate() {
+                    names.push(format!("param_{name}_{i}"));
+                    values.push(*v);
+                }
+            }
+            Value::Choice(_) | Value::Absent => {}
+        }
+    }
+    (names, values)
+}
+
 pub(super) fn write(w: &mut impl Write, record: &Record<'_>) -> io::Result<()> {
     let result = record.result;
-    let mut line = format!(
-        "# physicskit simulate {} (family {}, method {})\n#",
-        record.system,
-        record.family.name(),
-        result.method
-    );
-    for (name, value) in record.settings() {
-        line.push_str(&format!(" {name}="));
-        push_f64(&mut line, value);
-    }
-    line.push_str("\n# parameters:");
-    for (name, value) in record.params.iter() {
-        line.push_str(&format!(" {name}="));
-        push_value(&mut line, value);
-    }
-    line.push('\n');
-    w.write_all(line.as_bytes())?;
-
     let states = record.state_arrays();
     let energy = record.energy();
+    let (const_names, const_values) = constants(record);
+
     let mut header = String::from("t");
     for (name, array) in &states {
         for j in 0..array.ncols() {
@@ -39,8 +55,19 @@ pub(super) fn write(w: &mut impl Write, record: &Record<'_>) -> io::Result<()> {
     if energy.is_some() {
         header.push_str(",energy");
     }
+    for name in &const_names {
+        header.push(',');
+        header.push_str(name);
+    }
     header.push('\n');
     w.write_all(header.as_bytes())?;
+
+    let mut tail = String::new();
+    for &v in &const_values {
+        tail.push(',');
+        push_f64(&mut tail, v);
+    }
+    tail.push('\n');
 
     let mut row = String::new();
     for (i, &t) in result.t.iter().enumerate() {
@@ -56,27 +83,8 @@ pub(super) fn write(w: &mut impl Write, record: &Record<'_>) -> io::Result<()> {
             row.push(',');
             push_f64(&mut row, e[i]);
         }
-        row.push('\n');
+        row.push_str(&tail);
         w.write_all(row.as_bytes())?;
     }
     Ok(())
-}
-
-/// Parameter text in the form the command line accepts back (`1.5`, `0.1;0.2` for lists,
-/// since commas separate columns), `none` when absent.
-fn push_value(out: &mut String, value: &Value) {
-    match value {
-        Value::Real(v) => push_f64(out, *v),
-        Value::Count(n) => out.push_str(&n.to_string()),
-        Value::List(items) => {
-            for (k, &v) in items.iter().enumerate() {
-                if k > 0 {
-                    out.push(';');
-                }
-                push_f64(out, v);
-            }
-        }
-        Value::Choice(word) => out.push_str(word),
-        Value::Absent => out.push_str("none"),
-    }
 }

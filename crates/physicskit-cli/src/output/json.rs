@@ -1,8 +1,10 @@
 //! JSON: one object `{"system", "family", "method", "t0", "t1", "dt", "parameters": {..},
-//! "t": [..], "q": [[..], ..], "p": [[..], ..] (or "y"), "energy": [..]}`, streamed so a long
+//! "extra": {..} (the library's scalar diagnostics), "t": [..], "q": [[..], ..], "p": [[..], ..] (or "y"), "energy": [..]}`, streamed so a long
 //! trajectory is never held twice in memory. Absent optional parameters are `null`.
 
 use std::io::{self, Write};
+
+use physicskit::classical::ExtraValue;
 
 use super::number::push_f64;
 use super::Record;
@@ -25,6 +27,17 @@ pub(super) fn write(w: &mut impl Write, record: &Record<'_>) -> io::Result<()> {
         s.push_str(&quote(name));
         s.push_str(": ");
         push_value(&mut s, value);
+    }
+    s.push_str("\n  },\n  \"extra\": {");
+    let scalars = result.extra.iter().filter_map(|(name, value)| match value {
+        ExtraValue::Scalar(v) => Some((name, *v)),
+        ExtraValue::Array(_) => None,
+    });
+    for (k, (name, value)) in scalars.enumerate() {
+        s.push_str(if k == 0 { "\n    " } else { ",\n    " });
+        s.push_str(&quote(name));
+        s.push_str(": ");
+        push_f64(&mut s, value);
     }
     s.push_str("\n  },\n  \"t\": ");
     push_list(&mut s, result.t.iter().copied());

@@ -3,8 +3,8 @@
 //! Every format holds the same content: the sample times `t`; `q` and `p` (for Lagrangian
 //! systems `p` holds `qdot`, as in the spec), or the raw state `y` for general ODE systems;
 //! the `energy`; and the run's settings (system, family, method, `t0`, `t1`, `dt`) and every
-//! parameter value used, defaults included. Numbers are written so that they read back to the
-//! same bits.
+//! parameter value used, defaults included (CSV, being one numeric table, keeps only the
+//! numeric ones). Numbers are written so that they read back to the same bits.
 //!
 //! A file is never left half-written: [`Pending::create`] opens a temporary file next to the
 //! destination before the (possibly long) integration starts, so an unwritable path fails
@@ -32,8 +32,8 @@ use crate::registry::{Family, Values};
 pub enum Format {
     /// A numpy `.npz` archive of NPY v1.0 arrays (uncompressed).
     Npz,
-    /// Comma-separated values: `#` comment lines with the settings, a header row, one row per
-    /// sample.
+    /// Comma-separated values: a header row, one row per sample; the numeric settings and
+    /// parameters as constant trailing columns.
     Csv,
     /// One JSON object.
     Json,
