@@ -247,7 +247,13 @@ impl<L: Lagrangian> LagrangianEngine<L> {
     ///
     /// # Errors
     /// [`Error::DimensionMismatch`] for wrong lengths.
-    pub fn generalized_force(&self, q: &[f64], qdot: &[f64], t: f64, out: &mut [f64]) -> Result<()> {
+    pub fn generalized_force(
+        &self,
+        q: &[f64],
+        qdot: &[f64],
+        t: f64,
+        out: &mut [f64],
+    ) -> Result<()> {
         let n = self.ndof();
         check_len("q", q, n)?;
         check_len("qdot", qdot, n)?;
@@ -434,7 +440,9 @@ impl<L: Lagrangian> LagrangianEngine<L> {
         // Upper right: M^-1, column by column.
         for j in 0..n {
             let c = col.as_mut_slice();
-            c.iter_mut().enumerate().for_each(|(i, ci)| *ci = f64::from(u8::from(i == j)));
+            c.iter_mut()
+                .enumerate()
+                .for_each(|(i, ci)| *ci = f64::from(u8::from(i == j)));
             lu_solve(lu, n, piv, c);
             for (i, &ci) in c.iter().enumerate() {
                 out[i * dim + n + j] = ci;
@@ -444,7 +452,14 @@ impl<L: Lagrangian> LagrangianEngine<L> {
     }
 
     /// `M = d2L/dv2` into `m`, and `dL/dv` into `grad` if given.
-    fn hessian_vv(&self, q: &[f64], v: &[f64], t: f64, m: &mut [f64], mut grad: Option<&mut [f64]>) {
+    fn hessian_vv(
+        &self,
+        q: &[f64],
+        v: &[f64],
+        t: f64,
+        m: &mut [f64],
+        mut grad: Option<&mut [f64]>,
+    ) {
         let n = q.len();
         let qd = lift::<HyperDual64>(q);
         let mut vd = lift::<HyperDual64>(v);
@@ -584,7 +599,9 @@ impl<L: Lagrangian> LagrangianEngine<L> {
                 *ri = pi - pvi;
                 r_norm = r_norm.max(ri.abs());
             }
-            let scale = p_norm.max(inf_norm(pv.as_slice())).max(m_norm * inf_norm(v));
+            let scale = p_norm
+                .max(inf_norm(pv.as_slice()))
+                .max(m_norm * inf_norm(v));
             residual = if r_norm == 0.0 { 0.0 } else { r_norm / scale };
             if !residual.is_finite() {
                 break;

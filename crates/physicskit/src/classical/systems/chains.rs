@@ -156,7 +156,11 @@ fn check_len(name: &str, found: usize, expected: usize) -> Result<()> {
 
 fn check_chain_size(n: usize) -> Result<()> {
     if n < 1 {
-        Err(Error::invalid("n", n as f64, "a chain needs at least one site"))
+        Err(Error::invalid(
+            "n",
+            n as f64,
+            "a chain needs at least one site",
+        ))
     } else {
         Ok(())
     }
@@ -560,7 +564,11 @@ impl HamiltonianSystem for SineGordonChain {
         let k = self.k;
         let mut left = 0.0;
         for i in 0..n {
-            let right = if i + 1 < n { k * (q[i + 1] - q[i]) } else { 0.0 };
+            let right = if i + 1 < n {
+                k * (q[i + 1] - q[i])
+            } else {
+                0.0
+            };
             out[i] = right - left - q[i].sin();
             left = right;
         }

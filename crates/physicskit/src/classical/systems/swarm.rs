@@ -64,7 +64,11 @@ impl PendulumSwarm {
     /// for NaN or infinity.
     pub fn new(q0: &[f64], p0: &[f64], g_over_l: f64) -> Result<Self> {
         if q0.is_empty() {
-            return Err(Error::invalid("n", 0.0, "the swarm needs at least one pendulum"));
+            return Err(Error::invalid(
+                "n",
+                0.0,
+                "the swarm needs at least one pendulum",
+            ));
         }
         Ok(Self {
             phase: Phase::from_halves("q0", q0, "p0", p0)?,
@@ -95,7 +99,11 @@ impl PendulumSwarm {
         let dq = check_non_negative("dq", dq)?;
         let dp = check_non_negative("dp", dp)?;
         if n < 1 {
-            return Err(Error::invalid("n", 0.0, "the swarm needs at least one pendulum"));
+            return Err(Error::invalid(
+                "n",
+                0.0,
+                "the swarm needs at least one pendulum",
+            ));
         }
         let mut rng = SplitMix64(seed);
         let q0: Vec<f64> = (0..n)
