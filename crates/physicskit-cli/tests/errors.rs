@@ -44,6 +44,8 @@ fn the_good_run_succeeds() {
     let dir = scratch();
     let out = run_in(dir.path(), &GOOD);
     assert_eq!(out.status.code(), Some(0), "{}", stderr(&out));
+    // No progress bar or chatter when stderr is not a terminal.
+    assert!(out.stderr.is_empty(), "{}", stderr(&out));
     assert_eq!(entries(dir.path()), vec![dir.path().join("a.csv")]);
 }
 
@@ -313,4 +315,53 @@ fn method_the_system_cannot_use() {
         "a.csv",
     ]);
     assert!(err.contains("yoshida4"), "{err}");
+}
+
+/// Ctrl-C (SIGINT) stops a long run at the next progress check: exit status 130, and the
+/// temporary file is removed, so nothing is left behind.
+#[cfg(unix)]
+#[test]
+fn interrupted_run_leaves_nothing() {
+    use std::process::{Command, Stdio};
+    use std::time::{Duration, Instant};
+
+    let dir = scratch();
+    let mut child = Command::new(env!("CARGO_BIN_EXE_physicskit"))
+        .args([
+            "simulate",
+            "pendulum-swarm",
+            "--n",
+            "2000",
+            "--dt",
+            "0.01",
+            "--t1",
+            "1e6",
+            "--stride",
+            "100000",
+            "--out",
+            "a.npz",
+        ])
+        .current_dir(dir.path())
+        .stderr(Stdio::piped())
+        .spawn()
+        .unwrap();
+    // The temporary file appears once input is validated, just before integrating.
+    let start = Instant::now();
+    while entries(dir.path()).is_empty() {
+        assert!(
+            start.elapsed() < Duration::from_secs(30),
+            "run never started"
+        );
+        std::thread::sleep(Duration::from_millis(20));
+    }
+    std::thread::sleep(Duration::from_millis(200));
+    let status = Command::new("kill")
+        .args(["-INT", &child.id().to_string()])
+        .status()
+        .unwrap();
+    assert!(status.success());
+    let out = child.wait_with_output().unwrap();
+    assert_eq!(out.status.code(), Some(130), "{}", stderr(&out));
+    assert!(stderr(&out).contains("interrupted"), "{}", stderr(&out));
+    assert!(entries(dir.path()).is_empty(), "{:?}", entries(dir.path()));
 }
