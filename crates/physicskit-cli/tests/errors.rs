@@ -326,7 +326,7 @@ fn interrupted_run_leaves_nothing() {
     use std::time::{Duration, Instant};
 
     let dir = scratch();
-    let mut child = Command::new(env!("CARGO_BIN_EXE_physicskit"))
+    let child = Command::new(env!("CARGO_BIN_EXE_physicskit"))
         .args([
             "simulate",
             "pendulum-swarm",
