@@ -68,5 +68,27 @@ fn integrators(c: &mut Criterion) {
     group.finish();
 }
 
-criterion_group!(benches, integrators);
+/// Slice sine (vectorized, 1-ulp class) against libm, per element.
+fn trig(c: &mut Criterion) {
+    use physicskit::classical::core::trig::sin_into;
+    let mut group = c.benchmark_group("sin");
+    for n in [100usize, 200, 100_000] {
+        let x: Vec<f64> = (0..n).map(|i| i as f64 * 0.013 - 1.0).collect();
+        let mut out = vec![0.0; n];
+        group.throughput(Throughput::Elements(n as u64));
+        group.bench_with_input(BenchmarkId::new("slice", n), &x, |b, x| {
+            b.iter(|| sin_into(black_box(x), &mut out))
+        });
+        group.bench_with_input(BenchmarkId::new("libm", n), &x, |b, x| {
+            b.iter(|| {
+                for (o, v) in out.iter_mut().zip(black_box(x)) {
+                    *o = v.sin();
+                }
+            })
+        });
+    }
+    group.finish();
+}
+
+criterion_group!(benches, integrators, trig);
 criterion_main!(benches);

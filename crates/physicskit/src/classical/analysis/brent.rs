@@ -138,9 +138,5 @@ pub fn brent_minimize(
             ),
         ));
     }
-    Ok(Minimum {
-        x,
-        fx,
-        evaluations,
-    })
+    Ok(Minimum { x, fx, evaluations })
 }

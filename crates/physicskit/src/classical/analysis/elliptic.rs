@@ -45,7 +45,11 @@ fn check_parameter(m: f64) -> Result<()> {
     if m.is_finite() && (0.0..1.0).contains(&m) {
         Ok(())
     } else {
-        Err(Error::invalid("m", m, "the elliptic parameter must satisfy 0 <= m < 1"))
+        Err(Error::invalid(
+            "m",
+            m,
+            "the elliptic parameter must satisfy 0 <= m < 1",
+        ))
     }
 }
 

@@ -9,6 +9,7 @@ pub mod phase;
 pub mod result;
 pub mod system;
 pub mod time_grid;
+pub mod trig;
 
 pub use error::{Error, Result};
 pub use method::Method;

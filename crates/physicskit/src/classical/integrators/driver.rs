@@ -10,7 +10,7 @@ use std::ops::ControlFlow;
 use super::field::{Canonical, FirstOrder, VectorField};
 use super::implicit_midpoint::ImplicitMidpoint;
 use super::rk4::Rk4;
-use super::splitting::SplittingStepper;
+use super::splitting::{check_system, SplittingStepper};
 use crate::classical::core::{
     error::check_finite, DynamicalSystem, Error, ExtraValue, HamiltonianSystem, IntegrateOptions,
     LagrangianSystem, Method, OdeSystem, Recorder, Result, SimulationResult, TimeGrid,
@@ -30,25 +30,25 @@ pub fn integrate_hamiltonian<S: HamiltonianSystem>(
     let ndof = system.ndof();
     let setup = Setup::new(&*system, t_span, dt, Some(ndof), &options)?;
     match method {
-        Method::Verlet | Method::Yoshida4 => {
-            SplittingStepper::check_system(method, &*system)?;
-            let mut stepper = SplittingStepper::new(method, ndof)?;
-            let sys = &*system;
-            let (result, y) = setup.run(
+        Method::Verlet => {
+            check_system(method, &*system)?;
+            integrate_splitting(
+                system,
+                setup,
                 method,
                 options,
-                |t, y| {
-                    let (q, p) = y.split_at_mut(ndof);
-                    stepper.step(sys, t, q, p, dt)
-                },
-                |_, y, out| copy_sample(sys, y, out),
-            )?;
-            finish(system, result, &y, |extra| {
-                extra.insert(
-                    "force_evaluations".into(),
-                    ExtraValue::Scalar(stepper.force_evaluations() as f64),
-                );
-            })
+                SplittingStepper::verlet(ndof),
+            )
+        }
+        Method::Yoshida4 => {
+            check_system(method, &*system)?;
+            integrate_splitting(
+                system,
+                setup,
+                method,
+                options,
+                SplittingStepper::yoshida4(ndof),
+            )
         }
         Method::Rk4 | Method::ImplicitMidpoint => {
             integrate_first_order(system, setup, method, options)
@@ -134,6 +134,34 @@ pub fn integrate_ode<S: OdeSystem>(
     }
 }
 
+/// A splitting method with `S` substeps on a separable system.
+fn integrate_splitting<S: HamiltonianSystem, const N: usize>(
+    system: &mut S,
+    setup: Setup,
+    method: Method,
+    options: IntegrateOptions<'_>,
+    mut stepper: SplittingStepper<N>,
+) -> Result<SimulationResult> {
+    let ndof = system.ndof();
+    let dt = setup.grid.dt();
+    let sys = &*system;
+    let (result, y) = setup.run(
+        method,
+        options,
+        |t, y| {
+            let (q, p) = y.split_at_mut(ndof);
+            stepper.step(sys, t, q, p, dt)
+        },
+        |_, y, out| copy_sample(sys, y, out),
+    )?;
+    finish(system, result, &y, |extra| {
+        extra.insert(
+            "force_evaluations".into(),
+            ExtraValue::Scalar(stepper.force_evaluations() as f64),
+        );
+    })
+}
+
 /// `rk4` or `implicit_midpoint` on the system's own first-order form.
 fn integrate_first_order<S: DynamicalSystem>(
     system: &mut S,
@@ -175,7 +203,9 @@ fn integrate_first_order<S: DynamicalSystem>(
 
 /// Stores the working state as it is and returns its energy.
 fn copy_sample<S: DynamicalSystem + ?Sized>(system: &S, y: &[f64], out: &mut [f64]) -> Result<f64> {
-    out.copy_from_slice(y);
+    for (o, v) in out.iter_mut().zip(y) {
+        *o = *v;
+    }
     Ok(system.energy(y))
 }
 
@@ -250,48 +280,56 @@ impl Setup {
     /// The loop: `step(t, y)` advances the working state `y` by one step from `t`;
     /// `sample(t, y, out)` writes the stored form of `y` into `out` and returns its energy.
     /// Returns the result, its final time and the final stored state.
-    fn run_from(
+    fn run_from<S2: FnMut(f64, &[f64], &mut [f64]) -> Result<f64>>(
         self,
         mut work: Vec<f64>,
         method: Method,
         mut options: IntegrateOptions<'_>,
         mut step: impl FnMut(f64, &mut [f64]) -> Result<()>,
-        mut sample: impl FnMut(f64, &[f64], &mut [f64]) -> Result<f64>,
+        mut sample: S2,
     ) -> Result<((SimulationResult, f64), Vec<f64>)> {
         let Setup {
-            grid,
-            mut recorder,
-            start,
+            grid, mut recorder, ..
         } = self;
         let n = grid.n_steps();
         let sampling = options.sampling;
         let interval = options.observe_interval();
-        let mut out = start;
-        let mut store = |recorder: &mut Recorder, t: f64, work: &[f64], out: &mut [f64]| {
-            let energy = sample(t, work, out)?;
-            if (recorder.wants_energy() && !energy.is_finite())
-                || !out.iter().all(|v| v.is_finite())
-            {
-                return Err(Error::NonFinite {
+        // Per sample only the energy is checked (a scalar); the whole state is checked every
+        // `interval` steps and at the end, and a blow-up is then reported at the first stored
+        // sample that holds it.
+        let store = |recorder: &mut Recorder, t: f64, work: &[f64], sample: &mut S2| {
+            recorder.push_with(t, |row| sample(t, work, row))?;
+            match recorder.last_energy() {
+                Some(e) if !e.is_finite() => Err(Error::NonFinite {
                     name: "state".into(),
                     t,
-                });
+                }),
+                _ => Ok(()),
             }
-            recorder.push(t, out, energy);
-            Ok(())
         };
-        store(&mut recorder, grid.t0(), &work, &mut out)?;
+        let check = |recorder: &Recorder, work: &[f64], t: f64| {
+            if work.iter().all(|v| v.is_finite()) {
+                Ok(())
+            } else {
+                Err(Error::NonFinite {
+                    name: "state".into(),
+                    t: recorder.first_non_finite().unwrap_or(t),
+                })
+            }
+        };
+        store(&mut recorder, grid.t0(), &work, &mut sample)?;
+        let mut until_observe = interval;
         for i in 0..n {
             step(grid.time(i), &mut work)?;
             let done = i + 1;
             let t = grid.time(done);
             if sampling.is_stored(done, n) {
-                store(&mut recorder, t, &work, &mut out)?;
-            } else if done % interval == 0 {
-                // Between stored samples, still catch a blow-up early.
-                check_finite("state", &work, t)?;
+                store(&mut recorder, t, &work, &mut sample)?;
             }
-            if done % interval == 0 {
+            until_observe -= 1;
+            if until_observe == 0 {
+                until_observe = interval;
+                check(&recorder, &work, t)?;
                 if let Some(observer) = options.observer.as_deref_mut() {
                     if let ControlFlow::Break(()) = observer.observe(done, n, t) {
                         return Err(Error::Interrupted { t });
@@ -299,9 +337,12 @@ impl Setup {
                 }
             }
         }
+        check(&recorder, &work, grid.t_end())?;
+        // Every sampling mode stores the final step.
+        let last = recorder.last_row().to_vec();
         let mut extra = BTreeMap::new();
         extra.insert("n_steps".into(), ExtraValue::Scalar(n as f64));
         extra.insert("dt".into(), ExtraValue::Scalar(grid.dt()));
-        Ok(((recorder.finish(method.name(), extra), grid.t_end()), out))
+        Ok(((recorder.finish(method.name(), extra), grid.t_end()), last))
     }
 }

@@ -31,6 +31,11 @@ use super::field::VectorField;
 use crate::classical::core::linalg::{lu_factor, lu_solve};
 use crate::classical::core::{Error, Result};
 
+/// Largest state dimension for which Newton's dense `dim x dim` matrix is allocated (on first
+/// need): 4096^2 doubles are 128 MiB. Larger systems (big ensembles) rely on fixed-point
+/// iteration, which needs no matrix and converges at the small steps they are run with.
+pub const MAX_NEWTON_DIM: usize = 4096;
+
 /// Tolerances and iteration limits of the implicit solve.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct SolverSettings {
@@ -106,8 +111,8 @@ impl ImplicitMidpoint {
             k_new: vec![0.0; dim],
             k_prev: vec![0.0; dim],
             mid: vec![0.0; dim],
-            lu: vec![0.0; dim * dim],
-            piv: vec![0; dim],
+            lu: Vec::new(),
+            piv: Vec::new(),
             slopes: 0,
             settings: SolverSettings::default(),
             stats: SolverStats::default(),
@@ -255,6 +260,14 @@ impl ImplicitMidpoint {
             iterations,
             residual,
         };
+        if self.lu.is_empty() {
+            if n > MAX_NEWTON_DIM {
+                // A dense Newton matrix would not fit: only fixed-point iteration applies.
+                return Err(fail(spent, last_residual));
+            }
+            self.lu = vec![0.0; n * n];
+            self.piv = vec![0; n];
+        }
         self.stats.newton_steps += 1;
         let mut fresh_jacobian = false;
         let mut previous = f64::INFINITY;

@@ -25,4 +25,4 @@ pub use ensemble::{integrate_ensemble, Ensemble, ENSEMBLE_CHUNK};
 pub use field::{Canonical, FirstOrder, VectorField};
 pub use implicit_midpoint::{ImplicitMidpoint, SolverSettings, SolverStats};
 pub use rk4::Rk4;
-pub use splitting::SplittingStepper;
+pub use splitting::{SplittingStepper, VerletStepper, Yoshida4Stepper};

@@ -14,57 +14,86 @@
 
 use crate::classical::core::{Error, HamiltonianSystem, MassInv, Method, Result};
 
-/// Kick–drift–kick stepper for a separable Hamiltonian system.
+/// Kick–drift–kick stepper for a separable Hamiltonian system, for a composition of `S`
+/// Verlet substeps (`S = 1`: verlet, `S = 3`: yoshida4). `S` is a compile-time constant so the
+/// substep loop unrolls and each kick fuses with the following drift into one pass.
 #[derive(Debug, Clone)]
-pub struct SplittingStepper {
-    drifts: &'static [f64],
+pub struct SplittingStepper<const S: usize> {
+    drifts: [f64; S],
+    /// Kick weight before each drift: `(w_{i-1} + w_i) / 2`, with `w_{-1} = 0`.
+    kicks: [f64; S],
+    /// The closing half-kick, `w_{S-1} / 2`.
+    last_kick: f64,
+    /// Substep end times as fractions of the step; the last is exactly 1.
+    ends: [f64; S],
     force: Vec<f64>,
     /// The cached force belongs to the current `q` (first same as last).
     force_valid: bool,
     force_evaluations: u64,
 }
 
-impl SplittingStepper {
-    /// A stepper for `verlet` or `yoshida4` on `ndof` degrees of freedom.
-    ///
-    /// # Errors
-    /// [`Error::UnsupportedMethod`] for a method that is not a splitting method.
-    pub fn new(method: Method, ndof: usize) -> Result<Self> {
-        let drifts: &'static [f64] = match method {
-            Method::Verlet => &super::verlet::DRIFTS,
-            Method::Yoshida4 => &super::yoshida4::DRIFTS,
-            other => {
-                return Err(Error::UnsupportedMethod {
-                    method: other.name().into(),
-                    reason: "not a splitting method".into(),
-                })
-            }
-        };
-        Ok(Self {
+/// The Störmer–Verlet stepper.
+pub type VerletStepper = SplittingStepper<1>;
+/// The Yoshida-4 stepper.
+pub type Yoshida4Stepper = SplittingStepper<3>;
+
+impl SplittingStepper<1> {
+    /// A Verlet stepper on `ndof` degrees of freedom.
+    pub fn verlet(ndof: usize) -> Self {
+        Self::from_drifts(super::verlet::DRIFTS, ndof)
+    }
+}
+
+impl SplittingStepper<3> {
+    /// A Yoshida-4 stepper on `ndof` degrees of freedom.
+    pub fn yoshida4(ndof: usize) -> Self {
+        Self::from_drifts(super::yoshida4::DRIFTS, ndof)
+    }
+}
+
+/// Checks that `system` can be integrated by a splitting method.
+///
+/// # Errors
+/// [`Error::UnsupportedMethod`] for non-separable or non-conservative systems, or a method
+/// that is not a splitting method.
+pub fn check_system<S: HamiltonianSystem + ?Sized>(method: Method, system: &S) -> Result<()> {
+    let reason = if !method.needs_separable() {
+        "not a splitting method"
+    } else if !system.separable() {
+        "the system is not separable (H != T(p) + V(q)); use implicit_midpoint or rk4"
+    } else if !system.conservative() {
+        "the system has non-conservative forces (e.g. drag) that a splitting method would \
+         silently drop; use rk4 or implicit_midpoint"
+    } else {
+        return Ok(());
+    };
+    Err(Error::UnsupportedMethod {
+        method: method.name().into(),
+        reason: reason.into(),
+    })
+}
+
+impl<const S: usize> SplittingStepper<S> {
+    /// A stepper for the symmetric composition with drift weights `drifts` (summing to 1).
+    pub fn from_drifts(drifts: [f64; S], ndof: usize) -> Self {
+        let mut kicks = [0.0; S];
+        let mut ends = [0.0; S];
+        let mut elapsed = 0.0;
+        for i in 0..S {
+            let before = if i == 0 { 0.0 } else { drifts[i - 1] };
+            kicks[i] = 0.5 * (before + drifts[i]);
+            elapsed += drifts[i];
+            ends[i] = if i + 1 == S { 1.0 } else { elapsed };
+        }
+        Self {
             drifts,
+            kicks,
+            last_kick: 0.5 * drifts[S - 1],
+            ends,
             force: vec![0.0; ndof],
             force_valid: false,
             force_evaluations: 0,
-        })
-    }
-
-    /// Checks that `system` can be integrated by a splitting method.
-    ///
-    /// # Errors
-    /// [`Error::UnsupportedMethod`] for non-separable or non-conservative systems.
-    pub fn check_system<S: HamiltonianSystem + ?Sized>(method: Method, system: &S) -> Result<()> {
-        let reason = if !system.separable() {
-            "the system is not separable (H != T(p) + V(q)); use implicit_midpoint or rk4"
-        } else if !system.conservative() {
-            "the system has non-conservative forces (e.g. drag) that a splitting method would \
-             silently drop; use rk4 or implicit_midpoint"
-        } else {
-            return Ok(());
-        };
-        Err(Error::UnsupportedMethod {
-            method: method.name().into(),
-            reason: reason.into(),
-        })
+        }
     }
 
     /// Force evaluations so far.
@@ -86,9 +115,9 @@ impl SplittingStepper {
     /// # Errors
     /// Whatever [`HamiltonianSystem::force`] returns.
     #[inline]
-    pub fn step<S: HamiltonianSystem + ?Sized>(
+    pub fn step<H: HamiltonianSystem + ?Sized>(
         &mut self,
-        system: &S,
+        system: &H,
         t: f64,
         q: &mut [f64],
         p: &mut [f64],
@@ -101,40 +130,51 @@ impl SplittingStepper {
         // Until the step completes, the cache does not match q (an error mid-step leaves it
         // invalid).
         self.force_valid = false;
-        let s = self.drifts.len();
-        let mut elapsed = 0.0;
-        kick(p, &self.force, 0.5 * self.drifts[0] * h);
-        for i in 0..s {
-            let w = self.drifts[i];
-            drift(system.mass_inv(), q, p, w * h);
-            elapsed += w;
-            // The last substep ends exactly at t + h, whatever the rounding of the weights.
-            let t_sub = if i + 1 == s { t + h } else { t + elapsed * h };
-            system.force(q, t_sub, &mut self.force)?;
-            self.force_evaluations += 1;
-            let next = if i + 1 < s { self.drifts[i + 1] } else { 0.0 };
-            kick(p, &self.force, 0.5 * (w + next) * h);
+        let mass_inv = system.mass_inv();
+        for i in 0..S {
+            kick_drift(
+                mass_inv,
+                q,
+                p,
+                &self.force,
+                self.kicks[i] * h,
+                self.drifts[i] * h,
+            );
+            system.force(q, t + self.ends[i] * h, &mut self.force)?;
         }
+        self.force_evaluations += S as u64;
+        let k = self.last_kick * h;
+        p.iter_mut()
+            .zip(&self.force)
+            .for_each(|(pi, fi)| *pi += k * fi);
         self.force_valid = true;
         Ok(())
     }
 }
 
+/// `p += kick * F; q += drift * mass_inv * p`, fused into one pass.
 #[inline(always)]
-fn kick(p: &mut [f64], force: &[f64], h: f64) {
-    p.iter_mut().zip(force).for_each(|(pi, fi)| *pi += h * fi);
-}
-
-#[inline(always)]
-fn drift(mass_inv: MassInv<'_>, q: &mut [f64], p: &[f64], h: f64) {
+fn kick_drift(
+    mass_inv: MassInv<'_>,
+    q: &mut [f64],
+    p: &mut [f64],
+    force: &[f64],
+    kick: f64,
+    drift: f64,
+) {
     match mass_inv {
         MassInv::Uniform(m) => {
-            let hm = h * m;
-            q.iter_mut().zip(p).for_each(|(qi, pi)| *qi += hm * pi);
+            let dm = drift * m;
+            for ((qi, pi), fi) in q.iter_mut().zip(p.iter_mut()).zip(force) {
+                *pi += kick * fi;
+                *qi += dm * *pi;
+            }
         }
-        MassInv::PerCoordinate(m) => q
-            .iter_mut()
-            .zip(p.iter().zip(m))
-            .for_each(|(qi, (pi, mi))| *qi += h * mi * pi),
+        MassInv::PerCoordinate(m) => {
+            for (((qi, pi), fi), mi) in q.iter_mut().zip(p.iter_mut()).zip(force).zip(m) {
+                *pi += kick * fi;
+                *qi += drift * mi * *pi;
+            }
+        }
     }
 }

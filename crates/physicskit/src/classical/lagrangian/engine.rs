@@ -31,7 +31,8 @@
 //! map starts with the step that is exact when `L` is quadratic in `v` (every mechanical
 //! Lagrangian `T(q, v) - V(q)`): `v = M(q, 0)^-1 (p - dL/dv(q, 0))`; one residual check
 //! (which also yields `dL/dq`) confirms it, so a canonical evaluation of a double pendulum costs
-//! 5 hyper-dual evaluations of `L`. Non-quadratic Lagrangians continue with Newton's method.
+//! 5 hyper-dual evaluations of `L`. Non-quadratic Lagrangians continue with Newton's method,
+//! halving any step that fails to reduce the residual or leaves the domain of `L`.
 //!
 //! Up to [`MAX_STACK_NDOF`](super::MAX_STACK_NDOF) degrees of freedom all work buffers are on
 //! the stack: no evaluation allocates. Larger systems use heap buffers per call.
@@ -89,7 +90,8 @@ pub struct LegendreSettings {
     /// A residual this small (default 1e-9) that a Newton step no longer halves is the
     /// rounding floor of an ill-conditioned mass matrix and is accepted.
     pub stall_tolerance: f64,
-    /// Newton iterations before [`Error::SolverDidNotConverge`] (default 30).
+    /// Newton iterations, counting each halving of a step that failed to reduce the residual
+    /// (or left the domain of `L`), before [`Error::SolverDidNotConverge`] (default 100).
     pub max_iterations: usize,
 }
 
@@ -98,7 +100,7 @@ impl Default for LegendreSettings {
         Self {
             tolerance: 1e-13,
             stall_tolerance: 1e-9,
-            max_iterations: 30,
+            max_iterations: 100,
         }
     }
 }
@@ -247,7 +249,13 @@ impl<L: Lagrangian> LagrangianEngine<L> {
     ///
     /// # Errors
     /// [`Error::DimensionMismatch`] for wrong lengths.
-    pub fn generalized_force(&self, q: &[f64], qdot: &[f64], t: f64, out: &mut [f64]) -> Result<()> {
+    pub fn generalized_force(
+        &self,
+        q: &[f64],
+        qdot: &[f64],
+        t: f64,
+        out: &mut [f64],
+    ) -> Result<()> {
         let n = self.ndof();
         check_len("q", q, n)?;
         check_len("qdot", qdot, n)?;
@@ -434,7 +442,9 @@ impl<L: Lagrangian> LagrangianEngine<L> {
         // Upper right: M^-1, column by column.
         for j in 0..n {
             let c = col.as_mut_slice();
-            c.iter_mut().enumerate().for_each(|(i, ci)| *ci = f64::from(u8::from(i == j)));
+            c.iter_mut()
+                .enumerate()
+                .for_each(|(i, ci)| *ci = f64::from(u8::from(i == j)));
             lu_solve(lu, n, piv, c);
             for (i, &ci) in c.iter().enumerate() {
                 out[i * dim + n + j] = ci;
@@ -444,7 +454,14 @@ impl<L: Lagrangian> LagrangianEngine<L> {
     }
 
     /// `M = d2L/dv2` into `m`, and `dL/dv` into `grad` if given.
-    fn hessian_vv(&self, q: &[f64], v: &[f64], t: f64, m: &mut [f64], mut grad: Option<&mut [f64]>) {
+    fn hessian_vv(
+        &self,
+        q: &[f64],
+        v: &[f64],
+        t: f64,
+        m: &mut [f64],
+        mut grad: Option<&mut [f64]>,
+    ) {
         let n = q.len();
         let qd = lift::<HyperDual64>(q);
         let mut vd = lift::<HyperDual64>(v);
@@ -550,7 +567,7 @@ impl<L: Lagrangian> LagrangianEngine<L> {
     }
 
     /// Newton's method on `dL/dv(q, v) = p`, starting with the step from `v = 0` that is exact
-    /// for a Lagrangian quadratic in `v`. Writes `v` and `dL/dq(q, v)`; returns the iterations.
+    /// for a Lagrangian quadratic in `v`, halving steps that do not reduce the residual. Writes `v` and `dL/dq(q, v)`; returns the iterations.
     fn solve_velocity(
         &self,
         q: &[f64],
@@ -565,43 +582,66 @@ impl<L: Lagrangian> LagrangianEngine<L> {
         let mut piv = VecBuf::new(n, 0_usize);
         let mut r = VecBuf::new(n, 0.0);
         let mut pv = VecBuf::new(n, 0.0);
-        v.iter_mut().for_each(|x| *x = 0.0);
-        self.hessian_vv(q, v, t, m.as_mut_slice(), Some(pv.as_mut_slice()));
+        // `base` is the last accepted iterate, `step` the Newton step from it.
+        let mut base = VecBuf::new(n, 0.0);
+        let mut step = VecBuf::new(n, 0.0);
+        self.hessian_vv(
+            q,
+            base.as_slice(),
+            t,
+            m.as_mut_slice(),
+            Some(pv.as_mut_slice()),
+        );
         let mut m_norm = inf_norm(m.as_slice());
-        for ((ri, &pi), &p0) in r.as_mut_slice().iter_mut().zip(p).zip(pv.as_slice()) {
-            *ri = pi - p0;
+        let mut accepted_r = 0.0_f64;
+        for ((si, &pi), &p0) in step.as_mut_slice().iter_mut().zip(p).zip(pv.as_slice()) {
+            *si = pi - p0;
+            accepted_r = accepted_r.max(si.abs());
         }
         lu_factor(m.as_mut_slice(), n, piv.as_mut_slice()).map_err(|_| singular(t))?;
-        lu_solve(m.as_slice(), n, piv.as_slice(), r.as_mut_slice());
-        v.copy_from_slice(r.as_slice());
+        lu_solve(m.as_slice(), n, piv.as_slice(), step.as_mut_slice());
         let p_norm = inf_norm(p).max(inf_norm(pv.as_slice()));
-        let mut previous = f64::INFINITY;
+        let mut lambda = 1.0_f64;
         let mut residual = f64::INFINITY;
         for it in 1..=s.max_iterations {
+            for ((vi, &bi), &di) in v.iter_mut().zip(base.as_slice()).zip(step.as_slice()) {
+                *vi = bi + lambda * di;
+            }
             self.momentum_and_force(q, v, t, pv.as_mut_slice(), force);
             let mut r_norm = 0.0_f64;
             for ((ri, &pi), &pvi) in r.as_mut_slice().iter_mut().zip(p).zip(pv.as_slice()) {
                 *ri = pi - pvi;
-                r_norm = r_norm.max(ri.abs());
+                // `max` would skip a NaN; a non-finite residual must count as infinite.
+                r_norm = if ri.is_finite() {
+                    r_norm.max(ri.abs())
+                } else {
+                    f64::INFINITY
+                };
             }
-            let scale = p_norm.max(inf_norm(pv.as_slice())).max(m_norm * inf_norm(v));
+            let scale = p_norm
+                .max(inf_norm(pv.as_slice()))
+                .max(m_norm * inf_norm(v));
             residual = if r_norm == 0.0 { 0.0 } else { r_norm / scale };
-            if !residual.is_finite() {
-                break;
-            }
-            if residual <= s.tolerance
-                || (it >= 2 && residual > 0.5 * previous && residual <= s.stall_tolerance)
-            {
+            if residual <= s.tolerance {
                 return Ok(it);
             }
-            previous = residual;
+            if r_norm >= accepted_r {
+                if residual <= s.stall_tolerance {
+                    // At the rounding floor of an ill-conditioned mass matrix.
+                    return Ok(it);
+                }
+                // The full step left the domain of L (NaN) or overshot: backtrack.
+                lambda *= 0.5;
+                continue;
+            }
+            base.as_mut_slice().copy_from_slice(v);
+            accepted_r = r_norm;
+            lambda = 1.0;
             self.hessian_vv(q, v, t, m.as_mut_slice(), None);
             m_norm = m_norm.max(inf_norm(m.as_slice()));
             lu_factor(m.as_mut_slice(), n, piv.as_mut_slice()).map_err(|_| singular(t))?;
-            lu_solve(m.as_slice(), n, piv.as_slice(), r.as_mut_slice());
-            for (vi, di) in v.iter_mut().zip(r.as_slice()) {
-                *vi += di;
-            }
+            step.as_mut_slice().copy_from_slice(r.as_slice());
+            lu_solve(m.as_slice(), n, piv.as_slice(), step.as_mut_slice());
         }
         Err(Error::SolverDidNotConverge {
             t,

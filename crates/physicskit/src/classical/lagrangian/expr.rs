@@ -243,9 +243,7 @@ impl Expr {
             Expr::Neg(a) => -a.eval(q, qdot, t, params),
             Expr::Powi(a, n) => a.eval(q, qdot, t, params).powi(*n),
             Expr::Powf(a, x) => a.eval(q, qdot, t, params).powf(*x),
-            Expr::Pow(a, b) => a
-                .eval(q, qdot, t, params)
-                .powd(b.eval(q, qdot, t, params)),
+            Expr::Pow(a, b) => a.eval(q, qdot, t, params).powd(b.eval(q, qdot, t, params)),
             Expr::Func(f, a) => f.apply(a.eval(q, qdot, t, params)),
         }
     }
@@ -301,9 +299,7 @@ impl Expr {
             };
             match e {
                 Expr::Q(i) if *i >= ndof => return bad_index("q", *i, ndof, "coordinates"),
-                Expr::Qdot(i) if *i >= ndof => {
-                    return bad_index("qdot", *i, ndof, "coordinates")
-                }
+                Expr::Qdot(i) if *i >= ndof => return bad_index("qdot", *i, ndof, "coordinates"),
                 Expr::Param(i) if *i >= nparams => {
                     return bad_index("param", *i, nparams, "parameters")
                 }

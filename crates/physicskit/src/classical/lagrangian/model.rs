@@ -9,9 +9,9 @@
 //! engine's exact canonical Jacobian available to its Newton solve.
 
 use super::engine::{Lagrangian, LagrangianEngine};
-use crate::classical::core::{Phase, Result};
 #[cfg(doc)]
 use crate::classical::core::{DynamicalSystem, LagrangianSystem};
+use crate::classical::core::{Phase, Result};
 
 /// Implements [`DynamicalSystem`](crate::classical::DynamicalSystem) and
 /// [`LagrangianSystem`](crate::classical::LagrangianSystem) for a struct with fields
@@ -159,4 +159,3 @@ impl<L: Lagrangian> LagrangianModel<L> {
 }
 
 crate::impl_lagrangian_dynamics!(impl [L: Lagrangian] LagrangianModel<L>);
-

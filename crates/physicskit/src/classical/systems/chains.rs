@@ -34,6 +34,7 @@
 use std::f64::consts::PI;
 
 use crate::classical::core::error::{check_finite_scalar, check_positive, check_vector};
+use crate::classical::core::trig::{sin_into, sum_cos};
 use crate::classical::core::{Error, HamiltonianSystem, MassInv, Phase, Result};
 
 /// The fixed-end sine modes of an `N`-site chain with mass `m` and spring constant `k`.
@@ -156,7 +157,11 @@ fn check_len(name: &str, found: usize, expected: usize) -> Result<()> {
 
 fn check_chain_size(n: usize) -> Result<()> {
     if n < 1 {
-        Err(Error::invalid("n", n as f64, "a chain needs at least one site"))
+        Err(Error::invalid(
+            "n",
+            n as f64,
+            "a chain needs at least one site",
+        ))
     } else {
         Ok(())
     }
@@ -235,8 +240,8 @@ fn fixed_end_potential(q: &[f64], phi: impl Fn(f64) -> f64) -> f64 {
 
 // ---------------------------------------------------------------------------------------------
 
-/// Harmonic chain with fixed ends, `H = sum p_i^2/(2m) + sum_{i=0}^{N} (k/2)(q_{i+1} - q_i)^2`
-/// (see the [module docs](self)). Each modal energy is conserved.
+/// Harmonic chain with fixed ends,
+/// `H = sum p_i^2/(2m) + sum_{i=0}^{N} (k/2)(q_{i+1} - q_i)^2`. Each modal energy is conserved.
 #[derive(Debug, Clone)]
 pub struct HarmonicChain {
     phase: Phase,
@@ -311,8 +316,7 @@ crate::impl_separable_dynamics!(HarmonicChain);
 // ---------------------------------------------------------------------------------------------
 
 /// The Fermi–Pasta–Ulam–Tsingou β-chain with fixed ends,
-/// `H = sum p_i^2/(2m) + sum_{i=0}^{N} [(k/2) r_i^2 + (beta/4) r_i^4]` (see the
-/// [module docs](self)).
+/// `H = sum p_i^2/(2m) + sum_{i=0}^{N} [(k/2) r_i^2 + (beta/4) r_i^4]`.
 ///
 /// # Example
 /// ```
@@ -422,18 +426,19 @@ crate::impl_separable_dynamics!(FPUTChain);
 // ---------------------------------------------------------------------------------------------
 
 /// The discrete sine-Gordon (Frenkel–Kontorova) chain with free ends,
-/// `H = sum p_i^2/(2m) + sum_{i=1}^{N-1} (k/2)(q_{i+1} - q_i)^2 + sum_i (1 - cos q_i)` (see the
-/// [module docs](self)).
+/// `H = sum p_i^2/(2m) + sum_{i=1}^{N-1} (k/2)(q_{i+1} - q_i)^2 + sum_i (1 - cos q_i)`.
 ///
 /// # Example
 /// ```
 /// use physicskit::classical::systems::SineGordonChain;
 /// use physicskit::classical::DynamicalSystem;
 ///
-/// let (q0, p0) = SineGordonChain::kink(200, 100.0, 1.0, 0.5, 1).unwrap();
-/// let chain = SineGordonChain::new(200, 1.0, 1.0, Some(&q0), Some(&p0)).unwrap();
+/// // m = k = 9: wave speed 1 site per unit time, soliton width sqrt(k) = 3 sites.
+/// let (q0, p0) = SineGordonChain::kink(200, 100.0, 3.0, 0.5, 1).unwrap();
+/// let p0: Vec<f64> = p0.iter().map(|p| 9.0 * p).collect(); // momentum = m dq/dt
+/// let chain = SineGordonChain::new(200, 9.0, 9.0, Some(&q0), Some(&p0)).unwrap();
 /// let gamma = 1.0 / (1.0 - 0.25_f64).sqrt();
-/// assert!((chain.current_energy() / (8.0 * gamma) - 1.0).abs() < 0.01);
+/// assert!((chain.current_energy() / (8.0 * gamma * 3.0) - 1.0).abs() < 0.01);
 /// ```
 #[derive(Debug, Clone)]
 pub struct SineGordonChain {
@@ -480,6 +485,12 @@ impl SineGordonChain {
     /// `q_tt = q_xx - sin q` and its time derivative at `t = 0`. `p` is the momentum for
     /// `m = 1`; multiply by `m` otherwise. `width` must equal `sqrt(k)` for a genuine soliton
     /// (otherwise the profile relaxes and radiates).
+    ///
+    /// The profile is exact for the continuum equation. On the lattice it is accurate when the
+    /// kink spans several sites: with `m = k = 9` (width 3, wave speed 1) a kink keeps its
+    /// speed within 1% and its energy is within 0.2% of `8 gamma width`; on the unit lattice
+    /// (`m = k = 1`, width 1) the energy is ~1.4% low and Peierls–Nabarro pinning slows a
+    /// moving kink markedly.
     ///
     /// # Errors
     /// [`Error::InvalidParameter`] for `n < 1`, a non-finite `center`, `width <= 0`,
@@ -546,7 +557,7 @@ impl HamiltonianSystem for SineGordonChain {
     }
     fn potential_energy(&self, q: &[f64]) -> f64 {
         let springs: f64 = q.windows(2).map(|w| (w[1] - w[0]) * (w[1] - w[0])).sum();
-        let onsite: f64 = q.iter().map(|x| 1.0 - x.cos()).sum();
+        let onsite = q.len() as f64 - sum_cos(q);
         0.5 * self.k * springs + onsite
     }
     fn mass_inv(&self) -> MassInv<'_> {
@@ -556,12 +567,18 @@ impl HamiltonianSystem for SineGordonChain {
     /// end contributing nothing.
     #[inline]
     fn force(&self, q: &[f64], _t: f64, out: &mut [f64]) -> Result<()> {
+        // The on-site term first, with the vectorized slice sine (1-ulp class).
+        sin_into(q, out);
         let n = q.len();
         let k = self.k;
         let mut left = 0.0;
         for i in 0..n {
-            let right = if i + 1 < n { k * (q[i + 1] - q[i]) } else { 0.0 };
-            out[i] = right - left - q[i].sin();
+            let right = if i + 1 < n {
+                k * (q[i + 1] - q[i])
+            } else {
+                0.0
+            };
+            out[i] = right - left - out[i];
             left = right;
         }
         Ok(())

@@ -30,7 +30,11 @@ pub struct CoupledOscillatorsParams {
 impl Default for CoupledOscillatorsParams {
     /// The spec's defaults: `n = 3`, `m = 1`, `k = 1`.
     fn default() -> Self {
-        Self { n: 3, m: 1.0, k: 1.0 }
+        Self {
+            n: 3,
+            m: 1.0,
+            k: 1.0,
+        }
     }
 }
 

@@ -15,8 +15,8 @@
 //! `theta1 - theta2`, so the Hamiltonian is not separable: `implicit_midpoint` (default) is the
 //! symplectic choice, `rk4` integrates `(q, qdot)`.
 
-use crate::classical::core::error::check_positive;
 use crate::classical::core::error::check_finite_scalar;
+use crate::classical::core::error::check_positive;
 use crate::classical::core::{Error, Phase, Result};
 use crate::classical::lagrangian::{Lagrangian, LagrangianEngine, Scalar};
 

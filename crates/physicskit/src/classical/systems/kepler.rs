@@ -65,8 +65,7 @@ impl KeplerPerturbations {
     }
 }
 
-/// Planar Kepler problem `H = |p|^2/(2 mu) - k/r_s + c_eps/r_s^(1+eps) + c_pn/r_s^3` (see the
-/// [module docs](self)).
+/// Planar Kepler problem `H = |p|^2/(2 mu) - k/r_s + c_eps/r_s^(1+eps) + c_pn/r_s^3`.
 ///
 /// # Example
 /// ```
@@ -77,7 +76,7 @@ impl KeplerPerturbations {
 ///     KeplerSystem::from_orbital_elements(1.0, 0.5, 1.0, 1.0, KeplerPerturbations::none())
 ///         .unwrap();
 /// let a0 = orbit.lrl_vector(orbit.q(), orbit.p());
-/// orbit.integrate((0.0, 2.0 * std::f64::consts::PI), 1e-3, Method::Yoshida4).unwrap();
+/// orbit.integrate((0.0, 6.283), 1e-3, Method::Yoshida4).unwrap(); // about one orbit
 /// let a1 = orbit.lrl_vector(orbit.q(), orbit.p());
 /// assert!((a1[0] - a0[0]).abs() < 1e-9 && (a1[1] - a0[1]).abs() < 1e-9);
 /// ```

@@ -20,8 +20,7 @@ use crate::classical::core::{
     hamiltonian_energy, DynamicalSystem, HamiltonianSystem, MassInv, Method, Phase, Result,
 };
 
-/// A point projectile `H = |p|^2/(2m) + m g y` with optional drag force `-c |v| v` (see the
-/// [module docs](self)).
+/// A point projectile `H = |p|^2/(2m) + m g y` with optional drag force `-c |v| v`.
 ///
 /// # Example
 /// ```

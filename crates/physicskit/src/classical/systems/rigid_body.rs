@@ -148,13 +148,29 @@ impl EulerTop {
         let (w, x, y, z) = (s[3], s[4], s[5], s[6]);
         let n2 = w * w + x * x + y * y + z * z;
         if !(n2 > 0.0 && n2.is_finite()) {
-            return Err(Error::invalid("quaternion", n2.sqrt(), "must be non-zero and finite"));
+            return Err(Error::invalid(
+                "quaternion",
+                n2.sqrt(),
+                "must be non-zero and finite",
+            ));
         }
         let k = 2.0 / n2;
         Ok([
-            [1.0 - k * (y * y + z * z), k * (x * y - w * z), k * (x * z + w * y)],
-            [k * (x * y + w * z), 1.0 - k * (x * x + z * z), k * (y * z - w * x)],
-            [k * (x * z - w * y), k * (y * z + w * x), 1.0 - k * (x * x + y * y)],
+            [
+                1.0 - k * (y * y + z * z),
+                k * (x * y - w * z),
+                k * (x * z + w * y),
+            ],
+            [
+                k * (x * y + w * z),
+                1.0 - k * (x * x + z * z),
+                k * (y * z - w * x),
+            ],
+            [
+                k * (x * z - w * y),
+                k * (y * z + w * x),
+                1.0 - k * (x * x + y * y),
+            ],
         ])
     }
 }
@@ -216,7 +232,12 @@ impl DynamicalSystem for EulerTop {
         let [i1, i2, i3] = self.inertia;
         let (a1, a2, a3) = ((i2 - i3) / i1, (i3 - i1) / i2, (i1 - i2) / i3);
         let (w1, w2, w3) = (state[0], state[1], state[2]);
-        let (qw, qx, qy, qz) = (0.5 * state[3], 0.5 * state[4], 0.5 * state[5], 0.5 * state[6]);
+        let (qw, qx, qy, qz) = (
+            0.5 * state[3],
+            0.5 * state[4],
+            0.5 * state[5],
+            0.5 * state[6],
+        );
         let (h1, h2, h3) = (0.5 * w1, 0.5 * w2, 0.5 * w3);
         let rows: [[f64; 7]; 7] = [
             [0.0, a1 * w3, a1 * w2, 0.0, 0.0, 0.0, 0.0],

@@ -1,0 +1,87 @@
+//! Prints ns/step and energy drift of every workload through the Rust API.
+//!
+//! `cargo run --release -p physicskit-benchmarks --bin workloads [steps] [case] [lib|plain]`
+//!
+//! With a case and `lib` or `plain`, runs only that once (for instruction counting under
+//! `valgrind --tool=callgrind`, which is repeatable on a busy machine).
+
+use std::time::Instant;
+
+fn main() {
+    let steps: usize = std::env::args()
+        .nth(1)
+        .and_then(|s| s.parse().ok())
+        .unwrap_or(100_000);
+    println!(
+        "{:<22} {:<18} {:>9} {:>10} {:>12} {:>10} {:>8}",
+        "case", "method", "dt", "ns/step", "max|dE/E0|", "plain ns", "ratio"
+    );
+    let only = std::env::args().nth(2);
+    let side = std::env::args().nth(3);
+    if let (Some(name), Some(side)) = (&only, &side) {
+        let Some(w) = physicskit_benchmarks::workloads::all()
+            .into_iter()
+            .find(|w| w.name == name)
+        else {
+            eprintln!("unknown case {name}");
+            std::process::exit(2);
+        };
+        if side == "plain" {
+            let run = physicskit_benchmarks::plain::case(w.name).expect("a plain version");
+            std::hint::black_box(run(steps, w.dt));
+        } else {
+            std::hint::black_box((w.run)(steps, w.dt, w.method).expect("runs"));
+        }
+        return;
+    }
+    for w in physicskit_benchmarks::workloads::all() {
+        // Best of three: the machine is shared.
+        let mut best = f64::INFINITY;
+        let mut drift = f64::NAN;
+        for _ in 0..3 {
+            let start = Instant::now();
+            match (w.run)(steps, w.dt, w.method) {
+                Ok(r) => {
+                    best = best.min(start.elapsed().as_secs_f64());
+                    drift = r.max_relative_energy_error().unwrap_or(f64::NAN);
+                }
+                Err(e) => {
+                    println!("{:<22} error: {e}", w.name);
+                    break;
+                }
+            }
+        }
+        let ns = best * 1e9 / steps as f64;
+        let plain = physicskit_benchmarks::plain::case(w.name)
+            .filter(|_| w.method == physicskit::classical::Method::Yoshida4)
+            .map(|run| {
+                (0..3)
+                    .map(|_| {
+                        let start = Instant::now();
+                        std::hint::black_box(run(steps, w.dt));
+                        start.elapsed().as_secs_f64() * 1e9 / steps as f64
+                    })
+                    .fold(f64::INFINITY, f64::min)
+            });
+        match plain {
+            Some(p) => println!(
+                "{:<22} {:<18} {:>9.1e} {:>10.1} {:>12.3e} {:>10.1} {:>8.2}",
+                w.name,
+                w.method.name(),
+                w.dt,
+                ns,
+                drift,
+                p,
+                ns / p
+            ),
+            None => println!(
+                "{:<22} {:<18} {:>9.1e} {:>10.1} {:>12.3e}",
+                w.name,
+                w.method.name(),
+                w.dt,
+                ns,
+                drift
+            ),
+        }
+    }
+}

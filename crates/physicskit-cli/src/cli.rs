@@ -1,0 +1,220 @@
+//! The command-line grammar (clap derive), with one `simulate` subcommand per registered
+//! system generated from the registry so that `physicskit simulate SYSTEM --help` lists that
+//! system's parameters and defaults.
+
+use std::path::PathBuf;
+
+use clap::{Arg, ArgAction, ArgMatches, Args, Command, FromArgMatches, Parser, Subcommand};
+
+use crate::registry::SystemSpec;
+use crate::systems::REGISTRY;
+
+/// Classical-mechanics demonstrations: export trajectories and render the gallery.
+#[derive(Debug, Parser)]
+#[command(name = "physicskit", version, about, propagate_version = true)]
+pub struct Cli {
+    /// What to do.
+    #[command(subcommand)]
+    pub command: Action,
+}
+
+/// The subcommands.
+#[derive(Debug, Subcommand)]
+pub enum Action {
+    /// List every system with its parameters, defaults and valid methods.
+    List,
+    /// Integrate one system and write t, q, p (or y), energy and the parameters used.
+    ///
+    /// The output format follows the extension of --out: .npz (numpy.load), .csv or .json.
+    /// Run `physicskit simulate SYSTEM --help` for a system's parameters.
+    #[command(
+        override_usage = "physicskit simulate SYSTEM [--PARAM VALUE ...] [--method M] --dt DT --t1 T1 [--t0 T0] --out FILE"
+    )]
+    Simulate(SimulateArgs),
+    /// Render every demonstration (figures, animations, index.html) into a directory.
+    Gallery(GalleryArgs),
+}
+
+/// Arguments of `simulate`.
+#[derive(Debug, Args)]
+pub struct SimulateArgs {
+    /// The system and its arguments.
+    #[command(subcommand)]
+    pub system: SystemCall,
+}
+
+/// Arguments of `gallery`.
+#[derive(Debug, Args)]
+pub struct GalleryArgs {
+    /// Output directory (created if missing).
+    #[arg(long, default_value = "gallery")]
+    pub out: PathBuf,
+    /// Fewer orbits, shorter runs and fewer frames: the whole gallery in under a minute.
+    #[arg(long)]
+    pub quick: bool,
+}
+
+/// `simulate SYSTEM ...` as parsed: the system's name and its raw argument texts. Values are
+/// parsed by the registry afterwards, so every mistake gets the same one-line message.
+#[derive(Debug, Clone)]
+pub struct SystemCall {
+    /// System name as typed.
+    pub name: String,
+    /// `--PARAM VALUE` pairs for the system's own parameters, in command-line order.
+    pub params: Vec<(String, String)>,
+    /// `--method`.
+    pub method: Option<String>,
+    /// `--dt`.
+    pub dt: String,
+    /// `--t0`.
+    pub t0: String,
+    /// `--t1`.
+    pub t1: String,
+    /// `--out`.
+    pub out: PathBuf,
+    /// `--stride`.
+    pub stride: String,
+}
+
+fn system_command(spec: &SystemSpec) -> Command {
+    let mut cmd = Command::new(spec.name)
+        .about(spec.summary)
+        .arg(
+            Arg::new("method")
+                .long("method")
+                .value_name("M")
+                .help(format!(
+                    "integrator: {} (default {})",
+                    crate::registry::method_names(spec.methods),
+                    spec.default_method
+                )),
+        )
+        .arg(
+            Arg::new("dt")
+                .long("dt")
+                .value_name("DT")
+                .required(true)
+                .allow_negative_numbers(true)
+                .help("time step, > 0; (t1 - t0)/dt must be a whole number"),
+        )
+        .arg(
+            Arg::new("t1")
+                .long("t1")
+                .value_name("T1")
+                .required(true)
+                .allow_negative_numbers(true)
+                .help("end time, >= t0"),
+        )
+        .arg(
+            Arg::new("t0")
+                .long("t0")
+                .value_name("T0")
+                .default_value("0")
+                .allow_negative_numbers(true)
+                .help("start time"),
+        )
+        .arg(
+            Arg::new("out")
+                .long("out")
+                .value_name("FILE")
+                .required(true)
+                .value_parser(clap::value_parser!(PathBuf))
+                .help("output file: .npz, .csv or .json"),
+        )
+        .arg(
+            Arg::new("stride")
+                .long("stride")
+                .value_name("K")
+                .default_value("1")
+                .help("store every K-th step (and the last)"),
+        );
+    for p in spec.params {
+        cmd = cmd.arg(
+            Arg::new(p.name)
+                .long(p.name)
+                .value_name(p.kind.placeholder())
+                .allow_hyphen_values(true)
+                .action(ArgAction::Set)
+                .help_heading("Parameters")
+                .help(p.help_with_default()),
+        );
+    }
+    if let Some(note) = spec.note {
+        cmd = cmd.after_help(note);
+    }
+    cmd
+}
+
+fn text(m: &ArgMatches, id: &str) -> Option<String> {
+    m.get_one::<String>(id).cloned()
+}
+
+impl FromArgMatches for SystemCall {
+    fn from_arg_matches(matches: &ArgMatches) -> Result<Self, clap::Error> {
+        let Some((name, m)) = matches.subcommand() else {
+            return Err(clap::Error::new(clap::error::ErrorKind::MissingSubcommand));
+        };
+        let Ok(spec) = crate::registry::find(name) else {
+            // An unknown name parses as an external subcommand; the registry reports it.
+            return Ok(Self {
+                name: name.to_string(),
+                params: Vec::new(),
+                method: None,
+                dt: String::new(),
+                t0: String::new(),
+                t1: String::new(),
+                out: PathBuf::new(),
+                stride: String::new(),
+            });
+        };
+        let mut params: Vec<(usize, String, String)> = Vec::new();
+        for p in spec.params {
+            if let (Some(v), Some(idx)) = (text(m, p.name), m.index_of(p.name)) {
+                params.push((idx, p.name.to_string(), v));
+            }
+        }
+        params.sort_by_key(|(idx, _, _)| *idx);
+        let required = |id: &str| {
+            text(m, id)
+                .ok_or_else(|| clap::Error::new(clap::error::ErrorKind::MissingRequiredArgument))
+        };
+        Ok(Self {
+            name: name.to_string(),
+            params: params.into_iter().map(|(_, n, v)| (n, v)).collect(),
+            method: text(m, "method"),
+            dt: required("dt")?,
+            t0: required("t0")?,
+            t1: required("t1")?,
+            out: m
+                .get_one::<PathBuf>("out")
+                .cloned()
+                .ok_or_else(|| clap::Error::new(clap::error::ErrorKind::MissingRequiredArgument))?,
+            stride: required("stride")?,
+        })
+    }
+
+    fn update_from_arg_matches(&mut self, matches: &ArgMatches) -> Result<(), clap::Error> {
+        *self = Self::from_arg_matches(matches)?;
+        Ok(())
+    }
+}
+
+impl Subcommand for SystemCall {
+    fn augment_subcommands(mut cmd: Command) -> Command {
+        for spec in REGISTRY {
+            cmd = cmd.subcommand(system_command(spec));
+        }
+        cmd.subcommand_required(true)
+            .subcommand_value_name("SYSTEM")
+            .subcommand_help_heading("Systems")
+            .allow_external_subcommands(true)
+    }
+
+    fn augment_subcommands_for_update(cmd: Command) -> Command {
+        Self::augment_subcommands(cmd)
+    }
+
+    fn has_subcommand(name: &str) -> bool {
+        REGISTRY.iter().any(|s| s.name == name)
+    }
+}

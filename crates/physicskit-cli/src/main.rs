@@ -1,0 +1,120 @@
+//! `physicskit`: list the systems, export a trajectory, render the gallery.
+//!
+//! Exit status: 0 on success; 2 on any error, printed as one line `error: ...` on stderr
+//! (bad input, a run the library refuses, an unwritable output); 130 after Ctrl-C. No
+//! physics lives here: systems come from the library through the registry in [`systems`].
+
+mod cli;
+mod gallery;
+mod list;
+mod output;
+mod progress;
+mod registry;
+mod simulate;
+mod simulation;
+mod systems;
+
+use std::process::ExitCode;
+use std::sync::atomic::{AtomicBool, Ordering};
+use std::sync::Arc;
+
+use clap::error::{ContextKind, ContextValue, ErrorKind};
+use clap::Parser;
+
+use crate::cli::{Action, Cli};
+
+/// Exit status for every error.
+const EXIT_ERROR: u8 = 2;
+/// Exit status after Ctrl-C (128 + SIGINT), as shells report it.
+const EXIT_INTERRUPTED: u8 = 130;
+
+fn main() -> ExitCode {
+    let cli = match Cli::try_parse() {
+        Ok(cli) => cli,
+        Err(err) => return clap_failure(&err),
+    };
+    let interrupted = Arc::new(AtomicBool::new(false));
+    {
+        let flag = Arc::clone(&interrupted);
+        // Without the handler Ctrl-C still stops the program, only less tidily.
+        let _ = ctrlc::set_handler(move || flag.store(true, Ordering::Relaxed));
+    }
+    let outcome = match &cli.command {
+        Action::List => match list::print(&mut std::io::stdout().lock()) {
+            // `physicskit list | head` closes the pipe early; that is not an error.
+            Err(e) if e.kind() == std::io::ErrorKind::BrokenPipe => Ok(()),
+            other => other.map_err(anyhow::Error::from),
+        },
+        Action::Simulate(args) => simulate::run(&args.system, Arc::clone(&interrupted)),
+        Action::Gallery(args) => gallery::render(&args.out, args.quick),
+    };
+    match outcome {
+        Ok(()) => ExitCode::SUCCESS,
+        Err(err) => {
+            eprintln!("error: {}", one_line(&format!("{err:#}")));
+            if interrupted.load(Ordering::Relaxed) {
+                ExitCode::from(EXIT_INTERRUPTED)
+            } else {
+                ExitCode::from(EXIT_ERROR)
+            }
+        }
+    }
+}
+
+/// Help and version are printed as clap prints them; errors are cut to one line.
+fn clap_failure(err: &clap::Error) -> ExitCode {
+    match err.kind() {
+        ErrorKind::DisplayHelp | ErrorKind::DisplayVersion => {
+            let _ = err.print();
+            ExitCode::SUCCESS
+        }
+        ErrorKind::DisplayHelpOnMissingArgumentOrSubcommand => {
+            let _ = err.print();
+            ExitCode::from(EXIT_ERROR)
+        }
+        ErrorKind::UnknownArgument => {
+            if let Some(message) = unknown_parameter(err) {
+                eprintln!("error: {message}");
+                return ExitCode::from(EXIT_ERROR);
+            }
+            short_clap_error(err)
+        }
+        _ => short_clap_error(err),
+    }
+}
+
+/// For `simulate SYSTEM --typo`, names the system's parameters instead of clap's message.
+fn unknown_parameter(err: &clap::Error) -> Option<String> {
+    let ContextValue::String(arg) = err.get(ContextKind::InvalidArg)? else {
+        return None;
+    };
+    let args: Vec<String> = std::env::args().collect();
+    let at = args.iter().position(|a| a == "simulate")?;
+    let spec = registry::find(args.get(at + 1)?).ok()?;
+    let names: Vec<&str> = spec.params.iter().map(|p| p.name).collect();
+    Some(format!(
+        "unknown parameter `{arg}` for `{}`; its parameters are: {} (and --method, --dt, --t0, \
+         --t1, --stride, --out)",
+        spec.name,
+        names.join(", ")
+    ))
+}
+
+fn short_clap_error(err: &clap::Error) -> ExitCode {
+    // clap's first paragraph is the message (with the missing arguments or the possible
+    // values); tips and usage follow after a blank line.
+    let rendered = err.render().to_string();
+    let paragraph = rendered
+        .trim_start()
+        .split("\n\n")
+        .next()
+        .unwrap_or("invalid arguments");
+    let message = one_line(paragraph);
+    let message = message.strip_prefix("error: ").unwrap_or(&message);
+    eprintln!("error: {message} (see --help)");
+    ExitCode::from(EXIT_ERROR)
+}
+
+fn one_line(message: &str) -> String {
+    message.split_whitespace().collect::<Vec<_>>().join(" ")
+}

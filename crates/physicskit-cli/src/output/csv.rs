@@ -1,0 +1,90 @@
+//! CSV: a header row, then one row per sample, nothing else, so that `pandas.read_csv`,
+//! `numpy.genfromtxt(names=True)`, `numpy.loadtxt(skiprows=1)` and spreadsheets read it with
+//! their defaults.
+//!
+//! Columns: `t`, `q_0..`, `p_0..` (or `y_0..` for ODE systems), `energy`, then the run's
+//! numbers as constant columns: `dt` and `param_<name>` for every numeric parameter
+//! (`param_<name>_<i>` for list entries). Text (system, method, choice parameters) has no
+//! place in an all-numeric table; `.json` and `.npz` carry it.
+
+use std::io::{self, Write};
+
+use super::number::push_f64;
+use super::Record;
+use crate::registry::Value;
+
+/// The constant trailing columns: names and values.
+fn constants(record: &Record<'_>) -> (Vec<String>, Vec<f64>) {
+    let mut names = vec!["dt".to_string()];
+    let mut values = vec![record.dt];
+    for (name, value) in record.params.iter() {
+        match value {
+            Value::Real(v) => {
+                names.push(format!("param_{name}"));
+                values.push(*v);
+            }
+            Value::Count(n) => {
+                names.push(format!("param_{name}"));
+                // Counts are sizes and seeds, far below 2^53: exact as f64.
+                values.push(*n as f64);
+            }
+            Value::List(items) => {
+                for (i, v) in items.iter().enumerate() {
+                    names.push(format!("param_{name}_{i}"));
+                    values.push(*v);
+                }
+            }
+            Value::Choice(_) | Value::Absent => {}
+        }
+    }
+    (names, values)
+}
+
+pub(super) fn write(w: &mut impl Write, record: &Record<'_>) -> io::Result<()> {
+    let result = record.result;
+    let states = record.state_arrays();
+    let energy = record.energy();
+    let (const_names, const_values) = constants(record);
+
+    let mut header = String::from("t");
+    for (name, array) in &states {
+        for j in 0..array.ncols() {
+            header.push_str(&format!(",{name}_{j}"));
+        }
+    }
+    if energy.is_some() {
+        header.push_str(",energy");
+    }
+    for name in &const_names {
+        header.push(',');
+        header.push_str(name);
+    }
+    header.push('\n');
+    w.write_all(header.as_bytes())?;
+
+    let mut tail = String::new();
+    for &v in &const_values {
+        tail.push(',');
+        push_f64(&mut tail, v);
+    }
+    tail.push('\n');
+
+    let mut row = String::new();
+    for (i, &t) in result.t.iter().enumerate() {
+        row.clear();
+        push_f64(&mut row, t);
+        for (_, array) in &states {
+            for &x in array.row(i) {
+                row.push(',');
+                push_f64(&mut row, x);
+            }
+        }
+        if let Some(e) = energy {
+            row.push(',');
+            push_f64(&mut row, e[i]);
+        }
+        row.push_str(&tail);
+        w.write_all(row.as_bytes())?;
+    }
+    Ok(())
+}

@@ -1,0 +1,107 @@
+//! `physicskit simulate`: parse, build, integrate, write.
+//!
+//! Everything that can be checked before the integration is checked first (system, method,
+//! parameters, the library's constructor checks, the time grid, the output path), so a bad
+//! invocation fails at once and a long run is never wasted on a typo.
+
+use std::ops::ControlFlow;
+use std::sync::atomic::{AtomicBool, Ordering};
+use std::sync::Arc;
+
+use anyhow::{anyhow, Context, Result};
+use physicskit::classical::{IntegrateOptions, Observer, Sampling, TimeGrid};
+
+use crate::cli::SystemCall;
+use crate::output::{Pending, Record};
+use crate::progress::{Progress, OBSERVE_EVERY};
+use crate::registry;
+
+fn number(flag: &str, text: &str) -> Result<f64> {
+    let v: f64 = text
+        .trim()
+        .parse()
+        .map_err(|_| anyhow!("invalid value `{text}` for `--{flag}`: expected a number"))?;
+    Ok(v)
+}
+
+/// Runs `simulate` for one parsed invocation.
+///
+/// # Errors
+/// Any bad input, a run the library refuses or fails, or a file that cannot be written. No
+/// output file exists afterwards in any of these cases.
+pub fn run(call: &SystemCall, interrupted: Arc<AtomicBool>) -> Result<()> {
+    let spec = registry::find(&call.name)?;
+    let method = call.method.as_deref().map(|m| spec.method(m)).transpose()?;
+    let values = spec.parse_values(
+        call.params
+            .iter()
+            .map(|(name, text)| (name.as_str(), text.as_str())),
+    )?;
+    let dt = number("dt", &call.dt)?;
+    let t0 = number("t0", &call.t0)?;
+    let t1 = number("t1", &call.t1)?;
+    let stride: usize = call
+        .stride
+        .trim()
+        .parse()
+        .ok()
+        .filter(|&k| k >= 1)
+        .ok_or_else(|| {
+            anyhow!(
+                "invalid value `{}` for `--stride`: expected an integer >= 1",
+                call.stride
+            )
+        })?;
+    let grid = TimeGrid::new((t0, t1), dt)?;
+    let mut sim = (spec.build)(&values).with_context(|| format!("cannot build `{}`", spec.name))?;
+    let method = method.unwrap_or_else(|| sim.default_method());
+    let pending = Pending::create(&call.out)?;
+
+    let mut observer = RunObserver {
+        bar: Progress::for_terminal(grid.n_steps()),
+        interrupted,
+    };
+    let options = IntegrateOptions {
+        sampling: if stride == 1 {
+            Sampling::All
+        } else {
+            Sampling::Stride(stride)
+        },
+        observer: Some(&mut observer),
+        observe_every: OBSERVE_EVERY,
+        ..IntegrateOptions::default()
+    };
+    let result = sim.run((t0, t1), dt, method, options);
+    if let Some(bar) = &observer.bar {
+        bar.finish();
+    }
+    let result = result?;
+    pending.commit(&Record {
+        system: spec.name,
+        family: spec.family,
+        t0,
+        t1,
+        dt,
+        params: &values,
+        result: &result,
+    })
+}
+
+/// The progress bar (when stderr is a terminal) and the Ctrl-C flag, checked every
+/// [`OBSERVE_EVERY`] steps.
+struct RunObserver {
+    bar: Option<Progress>,
+    interrupted: Arc<AtomicBool>,
+}
+
+impl Observer for RunObserver {
+    fn observe(&mut self, step: usize, n_steps: usize, t: f64) -> ControlFlow<()> {
+        if self.interrupted.load(Ordering::Relaxed) {
+            return ControlFlow::Break(());
+        }
+        match &mut self.bar {
+            Some(bar) => bar.observe(step, n_steps, t),
+            None => ControlFlow::Continue(()),
+        }
+    }
+}

@@ -1,0 +1,367 @@
+//! Bad input: one line `error: ...` on stderr, exit status 2, no panic, and no file written
+//! (not even a temporary one) — one test per case the issue lists, plus the value checks.
+
+mod common;
+
+use std::path::Path;
+
+use common::{entries, run_in, scratch, stderr};
+
+/// A valid run; each case below breaks one argument of it.
+const GOOD: [&str; 8] = [
+    "simulate", "pendulum", "--dt", "0.1", "--t1", "1", "--out", "a.csv",
+];
+
+/// Runs `args` in a fresh directory and checks the failure contract; returns stderr.
+fn fails(args: &[&str]) -> String {
+    let dir = scratch();
+    let out = run_in(dir.path(), args);
+    let err = stderr(&out);
+    assert_eq!(out.status.code(), Some(2), "args {args:?}, stderr: {err}");
+    assert!(out.stdout.is_empty(), "args {args:?} printed to stdout");
+    assert!(err.starts_with("error: "), "not an error line: {err:?}");
+    assert_eq!(err.trim_end().lines().count(), 1, "not one line: {err:?}");
+    assert!(!err.contains("panicked"), "{err}");
+    assert!(
+        entries(dir.path()).is_empty(),
+        "args {args:?} left files: {:?}",
+        entries(dir.path())
+    );
+    err
+}
+
+/// `simulate pendulum` with the valid run's options, each replaceable: `dt = 0.1`,
+/// `t1 = 1`, `out = a.csv`, followed by `extra`.
+fn pendulum(dt: &str, t1: &str, out: &str, extra: &[&str]) -> String {
+    let mut args = vec!["simulate", "pendulum", "--dt", dt, "--t1", t1, "--out", out];
+    args.extend_from_slice(extra);
+    fails(&args)
+}
+
+#[test]
+fn the_good_run_succeeds() {
+    // Guards the cases below: each must fail because of its one change, not the baseline.
+    let dir = scratch();
+    let out = run_in(dir.path(), &GOOD);
+    assert_eq!(out.status.code(), Some(0), "{}", stderr(&out));
+    // No progress bar or chatter when stderr is not a terminal.
+    assert!(out.stderr.is_empty(), "{}", stderr(&out));
+    assert_eq!(entries(dir.path()), vec![dir.path().join("a.csv")]);
+}
+
+#[test]
+fn unknown_system() {
+    let err = fails(&[
+        "simulate",
+        "warp-drive",
+        "--dt",
+        "0.1",
+        "--t1",
+        "1",
+        "--out",
+        "a.csv",
+    ]);
+    assert!(err.contains("unknown system `warp-drive`"), "{err}");
+    assert!(
+        err.contains("pendulum"),
+        "should list the known systems: {err}"
+    );
+}
+
+#[test]
+fn unknown_parameter() {
+    let err = pendulum("0.1", "1", "a.csv", &["--length", "2"]);
+    assert!(err.contains("unknown parameter `--length`"), "{err}");
+    assert!(
+        err.contains("g_over_l"),
+        "should list the parameters: {err}"
+    );
+}
+
+#[test]
+fn unknown_method() {
+    let err = pendulum("0.1", "1", "a.csv", &["--method", "euler"]);
+    assert!(err.contains("unknown method `euler`"), "{err}");
+}
+
+#[test]
+fn zero_step() {
+    let err = pendulum("0", "1", "a.csv", &[]);
+    assert!(err.contains("dt must be finite and > 0"), "{err}");
+}
+
+#[test]
+fn negative_step() {
+    pendulum("-0.1", "1", "a.csv", &[]);
+}
+
+#[test]
+fn end_before_start() {
+    let err = pendulum("0.1", "1", "a.csv", &["--t0", "2"]);
+    assert!(err.contains("t1 must be >= t0"), "{err}");
+}
+
+#[test]
+fn unwritable_path() {
+    let err = pendulum("0.1", "1", "no/such/dir/a.csv", &[]);
+    assert!(err.contains("does not exist"), "{err}");
+}
+
+#[cfg(unix)]
+#[test]
+fn read_only_directory() {
+    use std::os::unix::fs::PermissionsExt;
+    let dir = scratch();
+    let ro = dir.path().join("ro");
+    std::fs::create_dir(&ro).unwrap();
+    std::fs::set_permissions(&ro, std::fs::Permissions::from_mode(0o555)).unwrap();
+    // root ignores directory permissions; the check is then meaningless, so skip it.
+    if std::fs::write(ro.join("probe"), b"").is_ok() {
+        eprintln!("running as root: permission check skipped");
+        return;
+    }
+    let out = run_in(
+        dir.path(),
+        &GOOD.map(|a| if a == "a.csv" { "ro/a.csv" } else { a }),
+    );
+    assert_eq!(out.status.code(), Some(2));
+    assert!(entries(&ro).is_empty());
+}
+
+#[test]
+fn output_is_a_directory() {
+    // `out.csv` exists as a directory, so the name has a valid extension but cannot be a file.
+    let dir = scratch();
+    std::fs::create_dir(dir.path().join("out.csv")).unwrap();
+    let out = run_in(
+        dir.path(),
+        &GOOD.map(|a| if a == "a.csv" { "out.csv" } else { a }),
+    );
+    assert_eq!(out.status.code(), Some(2));
+    assert!(stderr(&out).contains("is a directory"));
+    assert_eq!(entries(dir.path()), vec![dir.path().join("out.csv")]);
+}
+
+#[test]
+fn unknown_extension() {
+    let err = pendulum("0.1", "1", "a.txt", &[]);
+    assert!(err.contains("unknown output extension `.txt`"), "{err}");
+    pendulum("0.1", "1", "no-extension", &[]);
+}
+
+#[test]
+fn non_numeric_value() {
+    let err = pendulum("0.1", "1", "a.csv", &["--q0", "one"]);
+    assert!(err.contains("`--q0`"), "{err}");
+    pendulum("fast", "1", "a.csv", &[]);
+    pendulum("0.1", "1", "a.csv", &["--q0", "nan"]);
+}
+
+#[test]
+fn out_of_range_physics_parameter() {
+    // The library's constructor rejects g/l <= 0; the CLI reports its error.
+    let err = pendulum("0.1", "1", "a.csv", &["--g_over_l", "-9.81"]);
+    assert!(err.contains("g_over_l"), "{err}");
+}
+
+#[test]
+fn span_not_a_whole_number_of_steps() {
+    pendulum("0.3", "1", "a.csv", &[]);
+}
+
+#[test]
+fn missing_required_option() {
+    let err = fails(&["simulate", "pendulum", "--t1", "1", "--out", "a.csv"]);
+    assert!(err.contains("--dt"), "{err}");
+}
+
+#[test]
+fn bad_stride() {
+    pendulum("0.1", "1", "a.csv", &["--stride", "0"]);
+}
+
+/// A run that fails half-way (rk4 far outside its stability region overflows to infinity)
+/// leaves no temporary file and does not touch an existing file at the destination.
+#[test]
+fn failed_run_leaves_existing_file_untouched() {
+    let dir = scratch();
+    let target = dir.path().join("a.json");
+    std::fs::write(&target, b"previous").unwrap();
+    let out = run_in(
+        dir.path(),
+        &[
+            "simulate",
+            "harmonic-oscillator",
+            "--method",
+            "rk4",
+            // |R(i omega dt)| ~ 400 per step at omega dt = 10: overflow within ~120 steps.
+            "--dt",
+            "10",
+            "--t1",
+            "100000",
+            "--out",
+            "a.json",
+        ],
+    );
+    assert_eq!(out.status.code(), Some(2), "{}", stderr(&out));
+    assert!(stderr(&out).contains("non-finite"), "{}", stderr(&out));
+    assert_eq!(entries(dir.path()), vec![target.clone()]);
+    assert_eq!(std::fs::read(Path::new(&target)).unwrap(), b"previous");
+}
+
+#[test]
+fn wrong_array_length() {
+    // Declared length 2: caught while parsing, naming the flag.
+    let err = fails(&[
+        "simulate",
+        "henon-heiles",
+        "--q0",
+        "0,0.1,0.2",
+        "--dt",
+        "0.1",
+        "--t1",
+        "1",
+        "--out",
+        "a.csv",
+    ]);
+    assert!(
+        err.contains("`--q0`") && err.contains("expected 2"),
+        "{err}"
+    );
+    // Length set by another parameter (n = 3): the library's DimensionMismatch.
+    let err = fails(&[
+        "simulate",
+        "coupled-oscillators",
+        "--q0",
+        "0.1,0.2",
+        "--dt",
+        "0.1",
+        "--t1",
+        "1",
+        "--out",
+        "a.csv",
+    ]);
+    assert!(err.contains("q0") && err.contains("expected 3"), "{err}");
+}
+
+#[test]
+fn library_range_checks_reach_the_user() {
+    // |velocity| >= 1 has no Lorentz boost (SineGordonChain::kink).
+    let err = fails(&[
+        "simulate",
+        "sine-gordon",
+        "--velocity",
+        "1.0",
+        "--dt",
+        "0.1",
+        "--t1",
+        "1",
+        "--out",
+        "a.npz",
+    ]);
+    assert!(err.contains("velocity"), "{err}");
+    // Unbound orbits are refused by KeplerSystem::from_orbital_elements.
+    let err = fails(&[
+        "simulate", "kepler", "--e", "1.2", "--dt", "0.1", "--t1", "1", "--out", "a.npz",
+    ]);
+    assert!(err.contains("eccentricity"), "{err}");
+    // A zero quaternion is no rotation (EulerTop::new).
+    fails(&[
+        "simulate",
+        "euler-top",
+        "--quat0",
+        "0,0,0,0",
+        "--dt",
+        "0.1",
+        "--t1",
+        "1",
+        "--out",
+        "a.npz",
+    ]);
+}
+
+#[test]
+fn method_the_system_cannot_use() {
+    // Refused by the registry: the double pendulum is not separable.
+    let err = fails(&[
+        "simulate",
+        "double-pendulum",
+        "--method",
+        "verlet",
+        "--dt",
+        "0.1",
+        "--t1",
+        "1",
+        "--out",
+        "a.csv",
+    ]);
+    assert!(
+        err.contains("verlet") && err.contains("implicit_midpoint"),
+        "{err}"
+    );
+    // Refused by the library: drag is not conservative, so splitting would drop it.
+    let err = fails(&[
+        "simulate",
+        "projectile",
+        "--drag_coeff",
+        "0.1",
+        "--method",
+        "yoshida4",
+        "--dt",
+        "0.1",
+        "--t1",
+        "1",
+        "--out",
+        "a.csv",
+    ]);
+    assert!(err.contains("yoshida4"), "{err}");
+}
+
+/// Ctrl-C (SIGINT) stops a long run at the next progress check: exit status 130, and the
+/// temporary file is removed, so nothing is left behind.
+#[cfg(unix)]
+#[test]
+fn interrupted_run_leaves_nothing() {
+    use std::process::{Command, Stdio};
+    use std::time::{Duration, Instant};
+
+    let dir = scratch();
+    let child = Command::new(env!("CARGO_BIN_EXE_physicskit"))
+        .args([
+            "simulate",
+            "pendulum-swarm",
+            "--n",
+            "2000",
+            "--dt",
+            "0.01",
+            "--t1",
+            "1e6",
+            "--stride",
+            "100000",
+            "--out",
+            "a.npz",
+        ])
+        .current_dir(dir.path())
+        .stderr(Stdio::piped())
+        .spawn()
+        .unwrap();
+    // The temporary file appears once input is validated, just before integrating.
+    let start = Instant::now();
+    while entries(dir.path()).is_empty() {
+        assert!(
+            start.elapsed() < Duration::from_secs(30),
+            "run never started"
+        );
+        std::thread::sleep(Duration::from_millis(20));
+    }
+    std::thread::sleep(Duration::from_millis(200));
+    let status = Command::new("kill")
+        .args(["-INT", &child.id().to_string()])
+        .status()
+        .unwrap();
+    assert!(status.success());
+    let out = child.wait_with_output().unwrap();
+    assert_eq!(out.status.code(), Some(130), "{}", stderr(&out));
+    assert!(stderr(&out).contains("interrupted"), "{}", stderr(&out));
+    assert!(entries(dir.path()).is_empty(), "{:?}", entries(dir.path()));
+}

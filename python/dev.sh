@@ -1,0 +1,55 @@
+#!/usr/bin/env bash
+# Build and test the Python package `physicskit` (python/).
+#
+#   bash python/dev.sh env    create/refresh <repo>/.venv, install maturin numpy pytest sympy,
+#                             build the extension in release mode and install it (editable)
+#   bash python/dev.sh test   run pytest on python/tests (warnings are errors)
+#
+# Needs only python3 (>= 3.10, with venv and pip) and cargo. Idempotent.
+set -euo pipefail
+
+here="$(cd "$(dirname "${BASH_SOURCE[0]}")" && pwd)"
+repo="$(cd "$here/.." && pwd)"
+venv="${PHYSICSKIT_VENV:-$repo/.venv}"
+py="$venv/bin/python"
+export CARGO_BUILD_JOBS="${CARGO_BUILD_JOBS:-2}"
+
+need_venv() {
+    if [ ! -x "$py" ]; then
+        echo "dev.sh: no virtual environment at $venv; run 'bash python/dev.sh env' first" >&2
+        exit 1
+    fi
+}
+
+case "${1:-}" in
+env)
+    if [ ! -x "$py" ]; then
+        python3 -m venv "$venv"
+    fi
+    "$py" -m pip install --quiet --disable-pip-version-check --upgrade pip
+    "$py" -m pip install --quiet --disable-pip-version-check \
+        "maturin>=1.7,<2" "numpy>=1.24" "pytest>=7" "sympy>=1.12"
+    # maturin develop builds the cdylib in release mode and installs the package in the venv
+    # (the pure-Python part is linked, so edits under python/physicskit need no rebuild).
+    # The grep only trims maturin's chatter; maturin's own exit status decides (a failed build
+    # must not leave an older installed build looking current).
+    (cd "$here" && VIRTUAL_ENV="$venv" PATH="$venv/bin:$PATH" \
+        "$venv/bin/maturin" develop --release --quiet 2>&1 \
+        | { grep -v -E '^(📦|🔗|🐍|⚠️  Warning: You.re building a library without activating)' || true; }
+        exit "${PIPESTATUS[0]}")
+    # The pure-Rust reference program of tests/test_bit_identity.py, built now so that
+    # `test` does not compile.
+    (cd "$repo" && cargo build --quiet --release -p physicskit-python --example reference_run)
+    "$py" -c "import physicskit.classical as pc; print('physicskit', pc.__version__, 'installed in', '$venv')"
+    ;;
+test)
+    need_venv
+    shift
+    cd "$here"
+    "$py" -m pytest -q "$@" tests
+    ;;
+*)
+    echo "usage: bash python/dev.sh {env|test [pytest args]}" >&2
+    exit 2
+    ;;
+esac

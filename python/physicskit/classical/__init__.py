@@ -1,0 +1,50 @@
+"""physicskit.classical: classical mechanics on structure-preserving integrators.
+
+Newtonian, Lagrangian, Hamiltonian, lattice-chain and rigid-body systems, integrated by the
+Rust core (``yoshida4``, ``verlet``, ``rk4``, ``implicit_midpoint``). Every built-in system's
+numerics run natively with the GIL released; systems written in Python by subclassing
+:class:`HamiltonianSystem`, :class:`LagrangianSystem` or :class:`ODESystem` run on the same
+integrators.
+"""
+
+from .. import __version__
+from .._core import ConvergenceError
+from .core import (
+    DynamicalSystem,
+    HamiltonianSystem,
+    LagrangianSystem,
+    ODESystem,
+    SimulationResult,
+)
+from .systems import (
+    BeadOnRotatingHoop,
+    CoupledOscillators,
+    DoublePendulum,
+    EulerTop,
+    FPUTChain,
+    HarmonicChain,
+    HeavySymmetricTop,
+    HenonHeilesSystem,
+    KeplerSystem,
+    PendulumSwarm,
+    ProjectileMotion,
+    SineGordonChain,
+    effective_potential_symmetric_top,
+    find_theta_equilibrium,
+    nutation_frequency,
+    pendulum_action_angle,
+    precession_frequency,
+)
+from .systems import __all__ as _systems_all
+from . import core, systems, utils  # noqa: E402  (sub-packages importable as attributes)
+
+__all__ = [
+    "__version__",
+    "DynamicalSystem",
+    "ODESystem",
+    "HamiltonianSystem",
+    "LagrangianSystem",
+    "SimulationResult",
+    *_systems_all,
+    "ConvergenceError",
+]

@@ -1,0 +1,377 @@
+"""Base classes of every system and the ``SimulationResult`` container.
+
+A built-in system keeps a native Rust object in ``self._native``: every numeric method
+(``derivatives``, ``energy``, ``force``, ``integrate`` ...) runs in Rust. A system written in
+Python (a subclass that implements ``kinetic_energy``/``potential_energy``/``force``, or
+``derivatives``) has ``_native = None`` and is integrated by the same Rust integrators, which
+call its Python methods back at each step.
+
+``state`` and ``t`` are plain instance attributes, as in the spec: ``integrate`` starts from
+them (so editing ``system.state`` in place between calls works) and leaves them at the final
+sample.
+"""
+
+from __future__ import annotations
+
+from abc import ABC, abstractmethod
+from dataclasses import dataclass, field
+from typing import Any, Optional
+
+import numpy as np
+
+from .._native import _core, as_scalar, as_t_span, as_vector, make_result
+
+__all__ = [
+    "SimulationResult",
+    "DynamicalSystem",
+    "ODESystem",
+    "HamiltonianSystem",
+    "LagrangianSystem",
+]
+
+
+@dataclass
+class SimulationResult:
+    """Output of ``integrate``: the sampled trajectory and its diagnostics.
+
+    Every array is a C-contiguous float64 numpy array that owns memory moved from Rust
+    (no copy). With ``n_steps = round((t1 - t0) / dt)`` there are ``n_steps + 1`` samples.
+    """
+
+    t: np.ndarray
+    """Sample times, shape ``(n_steps + 1,)``."""
+    y: np.ndarray
+    """Raw stacked states, shape ``(n_steps + 1, state_dim)``, in the system's layout."""
+    q: Optional[np.ndarray] = None
+    """Generalized positions, shape ``(n_steps + 1, ndof)``; None for general ODE systems."""
+    p: Optional[np.ndarray] = None
+    """Canonical momenta (Hamiltonian) or qdot (Lagrangian), shape ``(n_steps + 1, ndof)``."""
+    energy: Optional[np.ndarray] = None
+    """Total energy at each sample, shape ``(n_steps + 1,)``."""
+    method: str = ""
+    """Name of the integrator used, e.g. ``"yoshida4"``."""
+    extra: dict = field(default_factory=dict)
+    """Additional diagnostics (``n_steps``, ``dt``, force or solver evaluation counts ...)."""
+
+
+class DynamicalSystem(ABC):
+    """Any system whose state vector evolves in time; the root of the hierarchy.
+
+    Parameters
+    ----------
+    state0 : array-like
+        Initial state vector (finite numbers).
+    """
+
+    _native: Any = None
+
+    def __init__(self, state0):
+        self.state = as_vector("state0", state0)
+        self.t = 0.0
+
+    @abstractmethod
+    def derivatives(self, t: float, state: np.ndarray) -> np.ndarray:
+        """Return d(state)/dt at ``(t, state)``."""
+
+    @abstractmethod
+    def energy(self, state: Optional[np.ndarray] = None) -> float:
+        """Return the total mechanical energy of ``state`` (default: ``self.state``)."""
+
+    @abstractmethod
+    def integrate(self, t_span, dt: float, method: str = "rk4") -> SimulationResult:
+        """Integrate from ``self.state`` at ``t_span[0]`` to ``t_span[1]`` with fixed step ``dt``.
+
+        Returns the full trajectory as a :class:`SimulationResult` and leaves ``state`` and
+        ``t`` at its last sample. Valid ``method`` names depend on the family.
+        """
+
+    def reset(self, state0=None, t0: float = 0.0):
+        """Set the clock to ``t0`` and, if given, the state to ``state0``; return the state."""
+        t0 = as_scalar("t0", t0)
+        if state0 is not None:
+            self.state = as_vector("state0", state0, len(self.state))
+        self.t = t0
+        return self.state
+
+    # -- helpers for subclasses ---------------------------------------------------------
+    def _state_arg(self, state) -> np.ndarray:
+        if state is None:
+            return np.ascontiguousarray(self.state, dtype=np.float64)
+        # Evaluating a non-finite state is allowed (it yields NaN); only the length is checked.
+        return as_vector("state", state, len(self.state), finite=False)
+
+    def _finish(self, parts) -> SimulationResult:
+        result = make_result(SimulationResult, parts)
+        self.state = result.y[-1].copy()
+        self.t = float(result.t[-1])
+        return result
+
+    def _run_native(self, t_span, dt, method) -> SimulationResult:
+        t_span = as_t_span(t_span)
+        state = as_vector("state", self.state, len(self.state))
+        parts = self._native.integrate(state, float(self.t), t_span, float(dt), method)
+        return self._finish(parts)
+
+
+class HamiltonianSystem(DynamicalSystem):
+    """Canonical Hamiltonian system ``H(q, p, t)`` with state ``[q_1..q_n, p_1..p_n]``.
+
+    To define one in Python, subclass it and implement ``kinetic_energy(p)`` and
+    ``potential_energy(q)``; for a separable ``H = T(p) + V(q)`` (``separable = True``)
+    also ``force(q, t)`` returning ``-dV/dq`` and set ``mass_inv`` (``dq/dt = mass_inv * p``);
+    for a non-separable one set ``separable = False`` and override ``derivatives``. Every
+    method that applies then works: ``yoshida4``/``verlet`` (separable only), ``rk4`` and
+    ``implicit_midpoint``.
+
+    Parameters
+    ----------
+    q0, p0 : array-like, shape (ndof,)
+        Initial positions and momenta.
+    """
+
+    ndof: int = 0
+    """Number of degrees of freedom, inferred from ``q0``."""
+    separable: bool = True
+    """Whether ``H = T(p) + V(q)``, which enables the ``verlet``/``yoshida4`` integrators."""
+    mass_inv = 1.0
+    """``1/m`` per coordinate (float or array); ``dq/dt = mass_inv * p``."""
+
+    def __init__(self, q0, p0):
+        q0 = as_vector("q0", q0)
+        p0 = as_vector("p0", p0, len(q0))
+        self.ndof = len(q0)
+        super().__init__(np.concatenate([q0, p0]))
+
+    @property
+    def q(self) -> np.ndarray:
+        """Generalized positions: the first ``ndof`` entries of ``state``."""
+        return self.state[: self.ndof]
+
+    @property
+    def p(self) -> np.ndarray:
+        """Canonical momenta: the last ``ndof`` entries of ``state``."""
+        return self.state[self.ndof :]
+
+    @staticmethod
+    def split(state: np.ndarray, ndof: int):
+        """Split a stacked ``[q, p]`` vector into ``(q, p)``, each of length ``ndof``."""
+        state = np.asarray(state)
+        return state[:ndof], state[ndof:]
+
+    @abstractmethod
+    def kinetic_energy(self, p: np.ndarray) -> float:
+        """Return the kinetic energy ``T(p)``."""
+
+    @abstractmethod
+    def potential_energy(self, q: np.ndarray) -> float:
+        """Return the potential energy ``V(q)``."""
+
+    def force(self, q: np.ndarray, t: float = 0.0) -> np.ndarray:
+        """Return ``-dV/dq`` at ``(q, t)``.
+
+        Raises
+        ------
+        NotImplementedError
+            If the system is not separable (or a Python subclass did not define it).
+        """
+        if self._native is not None:
+            return self._native.force(as_vector("q", q, self.ndof), as_scalar("t", t))
+        raise NotImplementedError(
+            f"{type(self).__name__} does not define force(q, t); separable systems must"
+        )
+
+    def _qp(self, q, p):
+        q = self.q if q is None else q
+        p = self.p if p is None else p
+        return as_vector("q", q, self.ndof), as_vector("p", p, self.ndof)
+
+    def _mass_inv_vector(self) -> np.ndarray:
+        try:
+            m = np.broadcast_to(np.asarray(self.mass_inv, dtype=np.float64), (self.ndof,))
+        except ValueError:
+            raise ValueError(
+                f"mass_inv must be a float or an array of length ndof={self.ndof}"
+            ) from None
+        return as_vector("mass_inv", m, self.ndof)
+
+    def derivatives(self, t: float, state: np.ndarray) -> np.ndarray:
+        """Return ``d[q, p]/dt`` at ``(t, state)``: ``[mass_inv * p, force(q, t)]`` when separable."""
+        state = as_vector("state", state, 2 * self.ndof)
+        if self._native is not None:
+            return self._native.derivatives(as_scalar("t", t), state)
+        if not self.separable:
+            raise NotImplementedError(
+                f"{type(self).__name__} is not separable: it must override derivatives(t, state)"
+            )
+        q, p = self.split(state, self.ndof)
+        force = np.asarray(self.force(q, t), dtype=np.float64)
+        return np.concatenate([self._mass_inv_vector() * p, force])
+
+    def energy(self, state: Optional[np.ndarray] = None) -> float:
+        """Return ``H = T(p) + V(q)`` of ``state`` (default: ``self.state``)."""
+        state = self._state_arg(state)
+        if self._native is not None:
+            return self._native.energy(state)
+        q, p = self.split(state, self.ndof)
+        return float(self.kinetic_energy(p)) + float(self.potential_energy(q))
+
+    def integrate(self, t_span, dt: float, method: str = "yoshida4") -> SimulationResult:
+        """Integrate with fixed step ``dt`` over ``t_span = (t0, t1)``.
+
+        ``method`` is one of ``"yoshida4"`` (default), ``"verlet"`` (both need
+        ``separable``), ``"rk4"``, ``"implicit_midpoint"``. Returns the ``(q, p)`` trajectory
+        and the energy at every sample.
+        """
+        if self._native is not None:
+            return self._run_native(t_span, dt, method)
+        t_span = as_t_span(t_span)
+        state = as_vector("state", self.state, 2 * self.ndof)
+        parts = _core.integrate_hamiltonian(
+            self,
+            state,
+            float(self.t),
+            t_span,
+            float(dt),
+            method,
+            self.ndof,
+            bool(self.separable),
+            self._mass_inv_vector(),
+        )
+        return self._finish(parts)
+
+
+class LagrangianSystem(DynamicalSystem):
+    """System defined by a Lagrangian ``L(q, qdot, t)``, state ``[q_1..q_n, qdot_1..qdot_n]``.
+
+    Built-in systems derive their equations of motion natively (from a Rust Lagrangian or a
+    :class:`~physicskit.classical.utils.symbolic.LagrangianEngine`). ``implicit_midpoint``
+    (default) integrates the canonical ``(q, p)`` form and is symplectic even when the mass
+    matrix depends on ``q``; ``rk4`` integrates ``(q, qdot)`` directly.
+
+    A Python subclass may instead set ``self.engine`` to a ``LagrangianEngine`` (then it runs
+    fully natively), or implement ``acceleration(q, qdot, t)`` and ``energy(state)``; it is
+    then integrated in ``(q, qdot)`` form by the Rust integrators calling back into Python.
+
+    Parameters
+    ----------
+    q0, qdot0 : array-like, shape (ndof,)
+        Initial generalized positions and velocities.
+    """
+
+    ndof: int = 0
+    """Number of degrees of freedom, inferred from ``q0``."""
+
+    def __init__(self, q0, qdot0):
+        q0 = as_vector("q0", q0)
+        qdot0 = as_vector("qdot0", qdot0, len(q0))
+        self.ndof = len(q0)
+        super().__init__(np.concatenate([q0, qdot0]))
+
+    @property
+    def q(self) -> np.ndarray:
+        """Generalized positions: the first ``ndof`` entries of ``state``."""
+        return self.state[: self.ndof]
+
+    @property
+    def qdot(self) -> np.ndarray:
+        """Generalized velocities: the last ``ndof`` entries of ``state``."""
+        return self.state[self.ndof :]
+
+    @staticmethod
+    def split(state: np.ndarray, ndof: int):
+        """Split a stacked ``[q, qdot]`` vector into ``(q, qdot)``, each of length ``ndof``."""
+        state = np.asarray(state)
+        return state[:ndof], state[ndof:]
+
+    def _engine_native(self):
+        if self._native is not None:
+            return self._native
+        engine = getattr(self, "engine", None)
+        if engine is not None and hasattr(engine, "_system"):
+            self._native = engine._system(self.state)
+            return self._native
+        return None
+
+    def acceleration(self, q: np.ndarray, qdot: np.ndarray, t: float) -> np.ndarray:
+        """Return ``qddot`` at ``(q, qdot, t)`` from the Euler-Lagrange equations."""
+        nat = self._engine_native()
+        if nat is None:
+            raise NotImplementedError(
+                f"{type(self).__name__} must define acceleration(q, qdot, t) or an engine"
+            )
+        return nat.acceleration(
+            as_vector("q", q, self.ndof), as_vector("qdot", qdot, self.ndof), as_scalar("t", t)
+        )
+
+    def momentum(self, q: np.ndarray, qdot: np.ndarray) -> np.ndarray:
+        """Return the canonical momentum ``p = dL/dqdot`` at ``(q, qdot)``."""
+        nat = self._engine_native()
+        if nat is None:
+            raise NotImplementedError(f"{type(self).__name__} does not define momentum(q, qdot)")
+        return nat.momentum(
+            as_vector("q", q, self.ndof), as_vector("qdot", qdot, self.ndof), float(self.t)
+        )
+
+    def derivatives(self, t: float, state: np.ndarray) -> np.ndarray:
+        """Return ``d[q, qdot]/dt = [qdot, acceleration(q, qdot, t)]``."""
+        state = as_vector("state", state, 2 * self.ndof)
+        nat = self._engine_native()
+        if nat is not None:
+            return nat.derivatives(as_scalar("t", t), state)
+        q, qdot = self.split(state, self.ndof)
+        acc = np.asarray(self.acceleration(q, qdot, t), dtype=np.float64)
+        return np.concatenate([qdot, acc])
+
+    @abstractmethod
+    def energy(self, state: Optional[np.ndarray] = None) -> float:
+        """Return the total mechanical energy of ``state`` (default: ``self.state``)."""
+
+    def integrate(self, t_span, dt: float, method: str = "implicit_midpoint") -> SimulationResult:
+        """Integrate with fixed step ``dt`` over ``t_span = (t0, t1)``.
+
+        ``"implicit_midpoint"`` (default) is symplectic via the Legendre-transformed canonical
+        form; ``"rk4"`` integrates ``(q, qdot)`` and is not symplectic. ``result.p`` holds
+        ``qdot``, not the canonical momentum.
+        """
+        if self._engine_native() is not None:
+            return self._run_native(t_span, dt, method)
+        t_span = as_t_span(t_span)
+        state = as_vector("state", self.state, 2 * self.ndof)
+        t, y, _, _, energy, name, extra = _core.integrate_ode(
+            self, state, float(self.t), t_span, float(dt), method
+        )
+        n = self.ndof
+        q = np.ascontiguousarray(y[:, :n])
+        qdot = np.ascontiguousarray(y[:, n:])
+        return self._finish((t, y, q, qdot, energy, name, extra))
+
+
+class ODESystem(DynamicalSystem):
+    """General first-order system ``dy/dt = f(t, y)``, possibly non-conservative.
+
+    Integrated with ``"implicit_midpoint"`` (default; conserves every quadratic invariant) or
+    ``"rk4"``. A Python subclass implements ``derivatives(t, state)`` and ``energy(state)``.
+
+    Parameters
+    ----------
+    state0 : array-like
+        Initial state vector.
+    """
+
+    def derivatives(self, t: float, state: np.ndarray) -> np.ndarray:
+        """Return d(state)/dt at ``(t, state)``."""
+        if self._native is not None:
+            return self._native.derivatives(
+                as_scalar("t", t), as_vector("state", state, len(self.state))
+            )
+        raise NotImplementedError(f"{type(self).__name__} must define derivatives(t, state)")
+
+    def integrate(self, t_span, dt: float, method: str = "implicit_midpoint") -> SimulationResult:
+        """Integrate with fixed step ``dt`` over ``t_span = (t0, t1)`` (``"implicit_midpoint"``
+        or ``"rk4"``); returns the state trajectory and its energy."""
+        if self._native is not None:
+            return self._run_native(t_span, dt, method)
+        t_span = as_t_span(t_span)
+        state = as_vector("state", self.state, len(self.state))
+        parts = _core.integrate_ode(self, state, float(self.t), t_span, float(dt), method)
+        return self._finish(parts)

@@ -1,0 +1,151 @@
+"""Lattice chains: the harmonic chain, the FPUT-beta chain and the sine-Gordon
+(Frenkel-Kontorova) chain, with their fixed-end normal-mode analysis."""
+
+from __future__ import annotations
+
+import numpy as np
+
+from .._native import as_scalar, as_vector, native
+from ..core.base_system import HamiltonianSystem
+from ._native_base import adopt, as_int
+
+__all__ = ["HarmonicChain", "FPUTChain", "SineGordonChain"]
+
+
+class _ChainBase(HamiltonianSystem):
+    """Common base of the chains: ``N`` equal masses ``m`` coupled by springs ``k``, with the
+    normal modes of the fixed-end harmonic chain, ``omega_j = 2 sqrt(k/m) sin(j pi / (2(N+1)))``.
+
+    Parameters
+    ----------
+    q0, p0 : array-like, shape (n,)
+        Initial displacements and momenta.
+    m, k : float
+        Mass and linear spring constant.
+    """
+
+    separable = True
+
+    def __init__(self, q0, p0, m=1.0, k=1.0):
+        q0 = as_vector("q0", q0)
+        adopt(self, native("harmonic_chain")(q0, as_vector("p0", p0, len(q0)),
+                                             as_scalar("m", m), as_scalar("k", k)))
+        self._set_params(m, k)
+
+    def _set_params(self, m, k) -> None:
+        self.m, self.k = float(m), float(k)
+        self.mass_inv = 1.0 / self.m
+
+    def kinetic_energy(self, p: np.ndarray) -> float:
+        """Return ``T(p) = |p|^2 / (2m)``."""
+        return self._native.kinetic_energy(as_vector("p", p, self.ndof))
+
+    def normal_mode_frequencies(self) -> np.ndarray:
+        """Angular frequencies ``omega_j``, ``j = 1..N``, shape (n,)."""
+        return native("chain_normal_mode_frequencies")(self._native)
+
+    def normal_mode_coords(self, q=None, p=None):
+        """Modal amplitudes ``(Q, P)`` (sine transform) of a state; default: current state."""
+        return native("chain_normal_mode_coords")(self._native, *self._qp(q, p))
+
+    def modal_energies(self, q=None, p=None) -> np.ndarray:
+        """Harmonic energy in each normal mode, ``E_j = P_j^2/(2m) + m omega_j^2 Q_j^2/2``."""
+        return native("chain_modal_energies")(self._native, *self._qp(q, p))
+
+
+class HarmonicChain(_ChainBase):
+    """Linear chain of ``N`` masses and identical springs, both ends fixed to walls: the
+    exactly solvable reference lattice.
+
+    Parameters
+    ----------
+    q0, p0 : array-like, shape (n,)
+        Initial displacements and momenta.
+    m, k : float
+        Mass and spring constant.
+    """
+
+    def __init__(self, q0, p0, m=1.0, k=1.0):
+        super().__init__(q0, p0, m=m, k=k)
+
+    def potential_energy(self, q: np.ndarray) -> float:
+        """Return ``V(q) = (k/2) sum (q_{i+1} - q_i)^2`` with fixed walls."""
+        return self._native.potential_energy(as_vector("q", q, self.ndof))
+
+
+class FPUTChain(_ChainBase):
+    """Fermi-Pasta-Ulam-Tsingou beta chain, ``V(r) = (k/2) r^2 + (beta/4) r^4`` per bond,
+    started in one normal mode (the FPUT recurrence).
+
+    Parameters
+    ----------
+    n : int
+        Number of masses.
+    m, k : float
+        Mass and linear spring constant.
+    beta : float
+        Quartic coupling.
+    mode : int
+        Normal mode excited at t = 0 (1..n).
+    amplitude : float
+        Its initial amplitude.
+    """
+
+    def __init__(self, n=32, m=1.0, k=1.0, beta=0.0, mode=1, amplitude=1.0):
+        nat = native("fput_chain")(
+            as_int("n", n), as_scalar("m", m), as_scalar("k", k), as_scalar("beta", beta),
+            as_int("mode", mode), as_scalar("amplitude", amplitude),
+        )
+        adopt(self, nat)
+        self._set_params(m, k)
+        self.beta, self.mode, self.amplitude = float(beta), int(mode), float(amplitude)
+
+    def potential_energy(self, q: np.ndarray) -> float:
+        """Return ``V(q) = sum_bonds (k/2) r^2 + (beta/4) r^4``."""
+        return self._native.potential_energy(as_vector("q", q, self.ndof))
+
+
+class SineGordonChain(_ChainBase):
+    """Chain of pendulums (Frenkel-Kontorova), ``V = sum (k/2)(q_{i+1} - q_i)^2 + (1 - cos
+    q_i)``, free ends; carries sine-Gordon kinks (see :meth:`kink`).
+
+    Parameters
+    ----------
+    n : int
+        Number of pendulums.
+    m, k : float
+        Mass and coupling constant.
+    q0, p0 : array-like, shape (n,), optional
+        Initial displacements and momenta (default zeros).
+    """
+
+    def __init__(self, n=200, m=1.0, k=1.0, q0=None, p0=None):
+        n = as_int("n", n)
+        q0 = None if q0 is None else as_vector("q0", q0, n)
+        p0 = None if p0 is None else as_vector("p0", p0, n)
+        adopt(self, native("sine_gordon_chain")(n, as_scalar("m", m), as_scalar("k", k), q0, p0))
+        self._set_params(m, k)
+
+    @staticmethod
+    def kink(n: int, center: float, width: float = 1.0, velocity: float = 0.0,
+             polarity: int = 1) -> tuple:
+        """Lorentz-boosted single-kink (``polarity=+1``) or antikink (``-1``) initial data
+        ``(q0, p0)``; ``|velocity| < 1`` (the wave speed for m = k = 1).
+
+        Raises
+        ------
+        ValueError
+            If ``abs(velocity) >= 1``.
+        """
+        try:
+            pol = int(polarity)
+        except (TypeError, ValueError):
+            raise ValueError(f"polarity must be +1 or -1, got {polarity!r}") from None
+        return native("sine_gordon_kink")(
+            as_int("n", n), as_scalar("center", center), as_scalar("width", width),
+            as_scalar("velocity", velocity), pol,
+        )
+
+    def potential_energy(self, q: np.ndarray) -> float:
+        """Return ``V(q) = sum (k/2)(q_{i+1} - q_i)^2 + (1 - cos q_i)``."""
+        return self._native.potential_energy(as_vector("q", q, self.ndof))

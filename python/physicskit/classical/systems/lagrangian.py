@@ -1,0 +1,108 @@
+"""Lagrangian systems: the double pendulum, the bead on a rotating hoop, coupled oscillators.
+
+Their equations of motion are derived natively by the Rust Lagrangian engine (automatic
+differentiation of L), including the canonical form used by ``implicit_midpoint``.
+"""
+
+from __future__ import annotations
+
+from typing import Optional
+
+import numpy as np
+
+from .._native import as_scalar, as_vector, native
+from ..core.base_system import LagrangianSystem
+from ._native_base import adopt, as_int, energy as _energy
+
+__all__ = ["DoublePendulum", "BeadOnRotatingHoop", "CoupledOscillators"]
+
+
+class DoublePendulum(LagrangianSystem):
+    """Planar double pendulum (point masses on massless rods); ``q = (theta1, theta2)`` from
+    the downward vertical. Chaotic, and non-separable in canonical form.
+
+    Parameters
+    ----------
+    theta0, thetadot0 : array-like, shape (2,)
+        Initial angles and angular velocities.
+    m1, m2 : float
+        Bob masses.
+    l1, l2 : float
+        Rod lengths.
+    g : float
+        Gravitational acceleration.
+    """
+
+    def __init__(self, theta0, thetadot0, m1=1.0, m2=1.0, l1=1.0, l2=1.0, g=9.81):
+        nat = native("double_pendulum")(
+            as_vector("theta0", theta0, 2), as_vector("thetadot0", thetadot0, 2),
+            *(as_scalar(n, v) for n, v in [("m1", m1), ("m2", m2), ("l1", l1), ("l2", l2), ("g", g)]),
+        )
+        adopt(self, nat)
+        self.m1, self.m2, self.l1, self.l2, self.g = map(float, (m1, m2, l1, l2, g))
+
+    def energy(self, state: Optional[np.ndarray] = None) -> float:
+        """Return ``T + V`` of ``state`` (default: ``self.state``)."""
+        return _energy(self, state)
+
+    def positions(self, q=None) -> np.ndarray:
+        """Bob positions ``(x1, y1, x2, y2)`` for angles ``q`` (default: current angles)."""
+        q = self.q if q is None else q
+        return native("double_pendulum_positions")(self._native, as_vector("q", q, 2))
+
+
+class BeadOnRotatingHoop(LagrangianSystem):
+    """Bead on a frictionless hoop of radius ``R`` spinning at fixed ``omega`` about its
+    vertical diameter; ``q = (theta,)``. Above ``omega_c = sqrt(g/R)`` the bottom equilibrium
+    splits (pitchfork bifurcation). ``energy`` is the conserved Jacobi integral.
+
+    Parameters
+    ----------
+    theta0, thetadot0 : float
+        Initial angle and angular velocity.
+    R : float
+        Hoop radius.
+    omega : float
+        Rotation rate.
+    g : float
+        Gravitational acceleration.
+    """
+
+    def __init__(self, theta0, thetadot0, R=1.0, omega=2.0, g=9.81):
+        th = as_vector("theta0", theta0, 1)[0]
+        thd = as_vector("thetadot0", thetadot0, 1)[0]
+        nat = native("bead_on_hoop")(th, thd, as_scalar("R", R), as_scalar("omega", omega),
+                                     as_scalar("g", g))
+        adopt(self, nat)
+        self.R, self.omega, self.g = float(R), float(omega), float(g)
+
+    def energy(self, state: Optional[np.ndarray] = None) -> float:
+        """Return the conserved energy (Jacobi integral) of ``state``."""
+        return _energy(self, state)
+
+
+class CoupledOscillators(LagrangianSystem):
+    """``N`` equal masses joined by equal linear springs between two fixed walls.
+
+    Parameters
+    ----------
+    q0, qdot0 : array-like, shape (n,)
+        Initial displacements and velocities.
+    n : int
+        Number of masses.
+    m, k : float
+        Mass and spring constant.
+    """
+
+    def __init__(self, q0, qdot0, n=3, m=1.0, k=1.0):
+        n = as_int("n", n, 1)
+        nat = native("coupled_oscillators")(
+            as_vector("q0", q0, n), as_vector("qdot0", qdot0, n), n, as_scalar("m", m),
+            as_scalar("k", k),
+        )
+        adopt(self, nat)
+        self.n_masses, self.m, self.k = n, float(m), float(k)
+
+    def energy(self, state: Optional[np.ndarray] = None) -> float:
+        """Return ``T + V`` of ``state`` (default: ``self.state``)."""
+        return _energy(self, state)

@@ -1,0 +1,306 @@
+//! Systems written in Python, integrated by the Rust integrators.
+//!
+//! A Python subclass of `HamiltonianSystem` (or `ODESystem`, or a `LagrangianSystem` that has
+//! no `LagrangianEngine`) is wrapped in [`PyHamiltonian`] (or [`PyOde`]), which implements the
+//! core traits by calling the Python methods (`force`, `derivatives`, `energy`) with the GIL
+//! held. The same integrators run as for the built-in systems; only the right-hand side costs
+//! a Python call. The first Python exception raised by a callback stops the run and is
+//! re-raised unchanged.
+
+use std::cell::RefCell;
+
+use numpy::{PyArray1, PyReadonlyArray1};
+use physicskit::classical::core::separable_derivatives;
+use physicskit::classical::{
+    DynamicalSystem, Error, HamiltonianSystem, IntegrateOptions, MassInv, Method, OdeSystem, Phase,
+    Result, SimulationResult,
+};
+use pyo3::intern;
+use pyo3::prelude::*;
+use pyo3::types::PyTuple;
+
+use crate::convert::{result_tuple, to_vec};
+use crate::errors::IntoPyResult;
+use crate::interrupt::{SignalObserver, CHECK_EVERY};
+use crate::native::parse_method;
+
+/// The Python object and the first exception its methods raised.
+struct Callbacks<'py> {
+    obj: Bound<'py, PyAny>,
+    raised: RefCell<Option<PyErr>>,
+}
+
+impl<'py> Callbacks<'py> {
+    fn new(obj: Bound<'py, PyAny>) -> Self {
+        Self {
+            obj,
+            raised: RefCell::new(None),
+        }
+    }
+
+    /// Keeps the first Python exception and turns it into a core error that stops the run.
+    fn stash(&self, e: PyErr, what: &str) -> Error {
+        let mut slot = self.raised.borrow_mut();
+        if slot.is_none() {
+            *slot = Some(e);
+        }
+        Error::Unsupported {
+            operation: what.into(),
+            reason: "the Python method raised".into(),
+        }
+    }
+
+    fn call(
+        &self,
+        name: &Bound<'py, pyo3::types::PyString>,
+        args: impl pyo3::call::PyCallArgs<'py>,
+    ) -> PyResult<Bound<'py, PyAny>> {
+        self.obj.call_method1(name, args)
+    }
+
+    /// Calls `name(*args)` and copies the returned 1-D array into `out`.
+    fn vector(
+        &self,
+        name: &Bound<'py, pyo3::types::PyString>,
+        args: impl pyo3::call::PyCallArgs<'py>,
+        out: &mut [f64],
+    ) -> Result<()> {
+        let what = name.to_string();
+        let r = self.call(name, args).map_err(|e| self.stash(e, &what))?;
+        let copied = match r.extract::<PyReadonlyArray1<'_, f64>>() {
+            Ok(a) => match a.as_slice() {
+                Ok(s) if s.len() == out.len() => {
+                    out.copy_from_slice(s);
+                    Ok(())
+                }
+                _ => {
+                    let v = to_vec(&a);
+                    fill(out, &v, &what)
+                }
+            },
+            Err(_) => match r.extract::<Vec<f64>>() {
+                Ok(v) => fill(out, &v, &what),
+                Err(e) => Err(self.stash(e, &what)),
+            },
+        };
+        copied
+    }
+
+    /// Calls `name(*args)` and converts the result to a float; NaN (and a stashed exception)
+    /// on failure, which stops the run at the next sample.
+    fn scalar(
+        &self,
+        name: &Bound<'py, pyo3::types::PyString>,
+        args: impl pyo3::call::PyCallArgs<'py>,
+    ) -> f64 {
+        let what = name.to_string();
+        match self.call(name, args).and_then(|r| r.extract::<f64>()) {
+            Ok(v) => v,
+            Err(e) => {
+                self.stash(e, &what);
+                f64::NAN
+            }
+        }
+    }
+
+    fn array(&self, v: &[f64]) -> Bound<'py, PyArray1<f64>> {
+        PyArray1::from_slice(self.obj.py(), v)
+    }
+
+    /// The result, or the first exception a callback raised.
+    fn finish(
+        self,
+        outcome: Result<SimulationResult>,
+        signal: Option<PyErr>,
+    ) -> PyResult<SimulationResult> {
+        if let Some(e) = self.raised.into_inner() {
+            return Err(e);
+        }
+        match (outcome, signal) {
+            (Err(Error::Interrupted { .. }), Some(s)) => Err(s),
+            (outcome, _) => outcome.py(),
+        }
+    }
+}
+
+fn fill(out: &mut [f64], v: &[f64], what: &str) -> Result<()> {
+    if v.len() != out.len() {
+        return Err(Error::DimensionMismatch {
+            name: format!("value returned by {what}"),
+            expected: out.len(),
+            found: v.len(),
+        });
+    }
+    out.copy_from_slice(v);
+    Ok(())
+}
+
+/// A Python `HamiltonianSystem` subclass seen as a Rust [`HamiltonianSystem`].
+struct PyHamiltonian<'py> {
+    cb: Callbacks<'py>,
+    phase: Phase,
+    ndof: usize,
+    separable: bool,
+    mass_inv: Vec<f64>,
+}
+
+impl DynamicalSystem for PyHamiltonian<'_> {
+    fn phase(&self) -> &Phase {
+        &self.phase
+    }
+    fn phase_mut(&mut self) -> &mut Phase {
+        &mut self.phase
+    }
+    fn derivatives(&self, t: f64, state: &[f64], out: &mut [f64]) -> Result<()> {
+        if self.separable {
+            separable_derivatives(self, t, state, out)
+        } else {
+            let py = self.cb.obj.py();
+            self.cb
+                .vector(intern!(py, "derivatives"), (t, self.cb.array(state)), out)
+        }
+    }
+    fn energy(&self, state: &[f64]) -> f64 {
+        let py = self.cb.obj.py();
+        self.cb
+            .scalar(intern!(py, "energy"), (self.cb.array(state),))
+    }
+    fn default_method(&self) -> Method {
+        Method::Yoshida4
+    }
+}
+
+impl HamiltonianSystem for PyHamiltonian<'_> {
+    fn ndof(&self) -> usize {
+        self.ndof
+    }
+    fn kinetic_energy(&self, p: &[f64]) -> f64 {
+        let py = self.cb.obj.py();
+        self.cb
+            .scalar(intern!(py, "kinetic_energy"), (self.cb.array(p),))
+    }
+    fn potential_energy(&self, q: &[f64]) -> f64 {
+        let py = self.cb.obj.py();
+        self.cb
+            .scalar(intern!(py, "potential_energy"), (self.cb.array(q),))
+    }
+    fn separable(&self) -> bool {
+        self.separable
+    }
+    fn mass_inv(&self) -> MassInv<'_> {
+        MassInv::PerCoordinate(&self.mass_inv)
+    }
+    fn force(&self, q: &[f64], t: f64, out: &mut [f64]) -> Result<()> {
+        let py = self.cb.obj.py();
+        self.cb
+            .vector(intern!(py, "force"), (self.cb.array(q), t), out)
+    }
+}
+
+/// A Python `ODESystem` (or engine-less `LagrangianSystem`) seen as a Rust [`OdeSystem`].
+struct PyOde<'py> {
+    cb: Callbacks<'py>,
+    phase: Phase,
+}
+
+impl DynamicalSystem for PyOde<'_> {
+    fn phase(&self) -> &Phase {
+        &self.phase
+    }
+    fn phase_mut(&mut self) -> &mut Phase {
+        &mut self.phase
+    }
+    fn derivatives(&self, t: f64, state: &[f64], out: &mut [f64]) -> Result<()> {
+        let py = self.cb.obj.py();
+        self.cb
+            .vector(intern!(py, "derivatives"), (t, self.cb.array(state)), out)
+    }
+    fn energy(&self, state: &[f64]) -> f64 {
+        let py = self.cb.obj.py();
+        self.cb
+            .scalar(intern!(py, "energy"), (self.cb.array(state),))
+    }
+    fn default_method(&self) -> Method {
+        Method::ImplicitMidpoint
+    }
+}
+
+impl OdeSystem for PyOde<'_> {}
+
+fn options(observer: &mut SignalObserver) -> IntegrateOptions<'_> {
+    IntegrateOptions {
+        observer: Some(observer),
+        // A Python right-hand side is ~100x slower than a native one: check more often.
+        observe_every: CHECK_EVERY / 16,
+        ..IntegrateOptions::default()
+    }
+}
+
+/// Integrates a Python `HamiltonianSystem` subclass `obj` from `(state, t0)` with the Rust
+/// integrators; returns the result tuple `(t, y, q, p, energy, method, extra)`.
+#[pyfunction]
+#[pyo3(signature = (obj, state, t0, t_span, dt, method, ndof, separable, mass_inv))]
+#[allow(clippy::too_many_arguments)]
+pub fn integrate_hamiltonian<'py>(
+    py: Python<'py>,
+    obj: Bound<'py, PyAny>,
+    state: PyReadonlyArray1<'_, f64>,
+    t0: f64,
+    t_span: (f64, f64),
+    dt: f64,
+    method: &str,
+    ndof: usize,
+    separable: bool,
+    mass_inv: PyReadonlyArray1<'_, f64>,
+) -> PyResult<Bound<'py, PyTuple>> {
+    let method = parse_method(Some(method), Method::Yoshida4).py()?;
+    let state = to_vec(&state);
+    crate::native::check_len("state", &state, 2 * ndof).py()?;
+    let mass_inv = to_vec(&mass_inv);
+    crate::native::check_len("mass_inv", &mass_inv, ndof).py()?;
+    let mut sys = PyHamiltonian {
+        cb: Callbacks::new(obj),
+        phase: Phase::new(state, t0).py()?,
+        ndof,
+        separable,
+        mass_inv,
+    };
+    let mut observer = SignalObserver::default();
+    let outcome = sys.integrate_with(t_span, dt, method, options(&mut observer));
+    let r = sys.cb.finish(outcome, observer.raised)?;
+    result_tuple(py, r)
+}
+
+/// Integrates a Python `ODESystem` (or engine-less `LagrangianSystem`) `obj` from
+/// `(state, t0)`; returns the result tuple `(t, y, None, None, energy, method, extra)`.
+#[pyfunction]
+#[pyo3(signature = (obj, state, t0, t_span, dt, method))]
+pub fn integrate_ode<'py>(
+    py: Python<'py>,
+    obj: Bound<'py, PyAny>,
+    state: PyReadonlyArray1<'_, f64>,
+    t0: f64,
+    t_span: (f64, f64),
+    dt: f64,
+    method: &str,
+) -> PyResult<Bound<'py, PyTuple>> {
+    let method = parse_method(Some(method), Method::ImplicitMidpoint).py()?;
+    let mut sys = PyOde {
+        cb: Callbacks::new(obj),
+        phase: Phase::new(to_vec(&state), t0).py()?,
+    };
+    let mut observer = SignalObserver::default();
+    let outcome = sys.integrate_with(t_span, dt, method, options(&mut observer));
+    let r = sys.cb.finish(outcome, observer.raised)?;
+    result_tuple(py, r)
+}
+
+/// Registers the callback integrators.
+///
+/// # Errors
+/// Python errors while adding to the module.
+pub fn register(m: &Bound<'_, PyModule>) -> PyResult<()> {
+    m.add_function(wrap_pyfunction!(integrate_hamiltonian, m)?)?;
+    m.add_function(wrap_pyfunction!(integrate_ode, m)?)?;
+    Ok(())
+}
