@@ -22,7 +22,7 @@
 
 use crate::classical::core::error::{check_finite, check_finite_scalar};
 use crate::classical::core::{Error, HamiltonianSystem, Method, Result};
-use crate::classical::integrators::{FirstOrder, Rk4, SplittingStepper, VectorField};
+use crate::classical::integrators::{splitting, FirstOrder, Rk4, SplittingStepper, VectorField};
 
 /// Which way through the section a crossing must go to count.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -371,14 +371,31 @@ pub fn poincare_section_separable<S: HamiltonianSystem>(
     run: &SectionRun,
     method: Method,
 ) -> Result<PoincareSection> {
-    SplittingStepper::check_system(method, system)?;
-    let mut stepper = SplittingStepper::new(method, system.ndof())?;
+    splitting::check_system(method, system)?;
     let ndof = system.ndof();
     let field = FirstOrder(system);
-    run_section(&field, t0, y0, section, run, |t, y, h| {
-        let (q, p) = y.split_at_mut(ndof);
-        stepper.step(system, t, q, p, h)
-    })
+    match method {
+        Method::Verlet => {
+            let mut stepper = SplittingStepper::verlet(ndof);
+            run_section(&field, t0, y0, section, run, |t, y, h| {
+                let (q, p) = y.split_at_mut(ndof);
+                stepper.step(system, t, q, p, h)
+            })
+        }
+        Method::Yoshida4 => {
+            let mut stepper = SplittingStepper::yoshida4(ndof);
+            run_section(&field, t0, y0, section, run, |t, y, h| {
+                let (q, p) = y.split_at_mut(ndof);
+                stepper.step(system, t, q, p, h)
+            })
+        }
+        other => Err(Error::UnsupportedMethod {
+            method: other.name().into(),
+            reason: "a separable section run uses verlet or yoshida4; use poincare_section \
+                     (rk4) for other methods"
+                .into(),
+        }),
+    }
 }
 
 #[cfg(test)]
