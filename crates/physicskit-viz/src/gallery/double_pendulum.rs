@@ -53,7 +53,7 @@ pub(crate) fn render(ctx: &Ctx) -> Result<Demo> {
         .fold((0.0_f64, 0.0_f64), |(a, b), &v| (a.min(v), b.max(v)));
 
     // Animation: bobs with a fading trail, and the phase point building up.
-    let frames = ctx.pick(40, 150);
+    let frames = ctx.pick(40, 100);
     let per = (t.len() / frames).max(1);
     let path = ctx.path("01_double_pendulum.gif");
     save_gif(&path, (760, 380), frames, 80, |k, root| {

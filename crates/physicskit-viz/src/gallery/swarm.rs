@@ -143,7 +143,7 @@ pub(crate) fn render(ctx: &Ctx) -> Result<Demo> {
     d.add(path, "four snapshots of the swarm over the separatrix, each titled with the conserved area enclosed by the patch boundary");
 
     // Animation of the cloud.
-    let frames = ctx.pick(40, 120);
+    let frames = ctx.pick(40, 80);
     let t_end = 40.0;
     let mut cloud = PendulumSwarm::from_box(
         CENTER.0,
