@@ -59,23 +59,17 @@ pub fn render(out_dir: &Path, quick: bool) -> Result<()> {
 mod backend {
     use std::path::Path;
 
-    use anyhow::{bail, Result};
+    use anyhow::Result;
 
     use super::Report;
 
-    /// Calls the plotting crate. Once `physicskit-viz` is a dependency of this crate
-    /// (`physicskit-viz = { path = "../physicskit-viz" }`), the body is:
-    ///
-    /// ```text
-    /// let r = physicskit_viz::render_gallery(out_dir, quick, progress)?;
-    /// Ok(Report { files: r.files.len(), index: r.index, seconds: r.seconds })
-    /// ```
+    /// Calls the plotting crate.
     pub fn render(out_dir: &Path, quick: bool, progress: &mut dyn FnMut(&str)) -> Result<Report> {
-        let _ = (quick, progress);
-        bail!(
-            "the gallery is not available in this build (physicskit-viz is not linked yet); \
-             nothing was written to `{}`",
-            out_dir.display()
-        )
+        let r = physicskit_viz::render_gallery(out_dir, quick, progress)?;
+        Ok(Report {
+            files: r.files.len(),
+            index: r.index,
+            seconds: r.seconds,
+        })
     }
 }
