@@ -22,10 +22,10 @@ pub(crate) fn render(ctx: &Ctx) -> Result<Demo> {
          same frequency ωⱼ = 2√(k/m) sin(jπ/2(N+1)). The first figure shows the shapes of the \
          four lowest modes of an 8-mass chain, each checked by simulation: started in a mode \
          shape, the chain stays in it (the dots are the displacements half a period later, \
-         flipped in sign as a standing wave must be). The second shows beats: two coupled \
-         oscillators with only the first one displaced. That start is a sum of the two normal \
-         modes, which drift in and out of phase, so the motion passes back and forth between \
-         the masses at the difference frequency.",
+         flipped in sign as a standing wave must be). The second shows beats: a 12-mass chain started in \
+         a superposition of its two highest modes, whose frequencies are close. Each mode keeps \
+         its own energy, yet a single mass swells and falls silent at the difference frequency, \
+         cos(ω₁₁t) + cos(ω₁₂t) = 2 cos(Δω t/2) cos(ω̄ t): beats are interference.",
     );
     // Mode shapes from the chain's own modal transform, verified by integration.
     let probe = HarmonicChain::new(&[0.0; N], &[0.0; N], 1.0, 1.0)?;
@@ -66,53 +66,83 @@ pub(crate) fn render(ctx: &Ctx) -> Result<Demo> {
     save_panel(&path, (1000, 600), &panel)?;
     d.add(path, "shapes of the four lowest normal modes of an 8-mass chain; dots: minus the simulated displacement half a period later");
 
-    // Beats between the two modes of two coupled oscillators.
+    // Beats between two modes: a chain of 12 coupled oscillators started in a superposition
+    // of its two highest modes, whose frequencies are close (the dispersion curve flattens at
+    // the band edge). The weights give mass 1 equal amplitude from each mode, so its motion is
+    // a pure beat: cos(w11 t) + cos(w12 t) = 2 cos(dw t / 2) cos(w_mean t).
+    const NB: usize = 12;
     let params = CoupledOscillatorsParams {
-        n: 2,
+        n: NB,
         m: 1.0,
         k: 1.0,
     };
-    let t1 = ctx.pick(60.0, 120.0);
-    let mut osc = CoupledOscillators::new(&[1.0, 0.0], &[0.0, 0.0], params)?;
-    let r = osc.integrate((0.0, t1), 0.01, Method::ImplicitMidpoint)?;
+    let (ja, jb) = (NB - 1, NB);
+    let (wa, wb) = (params.mode_frequency(ja), params.mode_frequency(jb));
+    let shape = |j: usize, i: usize| {
+        (2.0 / (NB as f64 + 1.0)).sqrt()
+            * (i as f64 * j as f64 * std::f64::consts::PI / (NB as f64 + 1.0)).sin()
+    };
+    let amplitude = 0.5; // metres, per mode, at mass 1
+    let q0: Vec<f64> = (1..=NB)
+        .map(|i| amplitude * (shape(ja, i) / shape(ja, 1) + shape(jb, i) / shape(jb, 1)))
+        .collect();
+    let beat_period = std::f64::consts::TAU / (wb - wa);
+    let t1 = ctx.pick(2.0, 3.0) * beat_period;
+    let dt = 0.02;
+    let t1 = (t1 / dt).round() * dt;
+    let mut osc = CoupledOscillators::new(&q0, &[0.0; NB], params)?;
+    let r = osc.integrate((0.0, t1), dt, Method::ImplicitMidpoint)?;
     let t = r.t.to_vec();
     let q1 = nonempty(column(r.q.as_ref(), 0), "q1")?;
-    let q2 = nonempty(column(r.q.as_ref(), 1), "q2")?;
-    let (w1, w2) = (params.mode_frequency(1), params.mode_frequency(2));
+    let envelope: Vec<f64> = t
+        .iter()
+        .map(|&ti| 2.0 * amplitude * (0.5 * (wb - wa) * ti).cos().abs())
+        .collect();
+    let minus: Vec<f64> = envelope.iter().map(|e| -e).collect();
     let top = Panel::new(
-        format!("Two coupled oscillators, mass 1 displaced by 1 m (mode frequencies {w1:.3} and {w2:.3} rad/s)"),
+        format!(
+            "Mass 1 of a {NB}-mass chain started in modes {ja} + {jb} (ω = {wa:.4} and {wb:.4} rad/s): beats"
+        ),
         "t (s)",
-        "displacement (m)",
+        "displacement of mass 1 (m)",
     )
     .y_range(-1.3, 1.3)
     .legend(Legend::UpperRight)
-    .with(Series::xy("mass 1", &t, &q1, color(0)))
-    .with(Series::xy("mass 2", &t, &q2, color(1)));
-    // Energy in each mass's own spring-and-motion share shows the exchange more clearly.
-    let v1 = column(r.p.as_ref(), 0);
-    let v2 = column(r.p.as_ref(), 1);
-    let e1: Vec<f64> = (0..t.len())
-        .map(|i| 0.5 * v1[i] * v1[i] + 0.5 * q1[i] * q1[i])
-        .collect();
-    let e2: Vec<f64> = (0..t.len())
-        .map(|i| 0.5 * v2[i] * v2[i] + 0.5 * q2[i] * q2[i])
-        .collect();
+    .with(Series::xy("simulated q₁(t)", &t, &q1, color(0)))
+    .with(Series::xy(
+        format!("envelope ±2a|cos(Δω t/2)|, beat period 2π/Δω = {beat_period:.0} s"),
+        &t,
+        &envelope,
+        color(1),
+    ))
+    .with(Series::xy("", &t, &minus, color(1)).unlabeled());
+    // The two modal energies: each mode keeps its own energy (the modes are independent); the
+    // beat is interference, not an exchange between modes.
+    let modes = physicskit::classical::systems::ChainModes::new(NB, 1.0, 1.0)?;
+    let (mut scratch, mut energies) = ([0.0; NB], [0.0; NB]);
+    let (mut ea, mut eb) = (Vec::new(), Vec::new());
+    let (qs, vs) = (r.q.as_ref(), r.p.as_ref());
+    if let (Some(qs), Some(vs)) = (qs, vs) {
+        for (q, v) in qs.rows().into_iter().zip(vs.rows()) {
+            let (q, v) = (q.to_vec(), v.to_vec());
+            modes.energies_into(&q, &v, &mut scratch, &mut energies)?;
+            ea.push(energies[ja - 1]);
+            eb.push(energies[jb - 1]);
+        }
+    }
     let bottom = Panel::new(
-        format!(
-            "Energy passing between the masses: beat period 2π/(ω₂ − ω₁) = {:.1} s",
-            std::f64::consts::TAU / (w2 - w1)
-        ),
+        "Energy of each normal mode: constant, so the beat is interference between the modes",
         "t (s)",
-        "mv²/2 + kq²/2 of each mass (J)",
+        "modal energy (J)",
     )
     .legend(Legend::UpperRight)
-    .with(Series::xy("mass 1", &t, &e1, color(0)))
-    .with(Series::xy("mass 2", &t, &e2, color(1)));
+    .with(Series::xy(format!("mode {ja}"), &t, &ea, color(2)))
+    .with(Series::xy(format!("mode {jb}"), &t, &eb, color(3)));
     let path = ctx.path("06_coupled_beats.png");
     let panels = [top, bottom];
     save_png(&path, (1000, 800), None, (2, 1), |i, area| {
         panels[i].draw(area, &path).map(|_| ())
     })?;
-    d.add(path, "beats: displacements of two coupled oscillators and the energy passing back and forth between them");
+    d.add(path, "beats: one mass of a 12-mass chain started in its two highest modes, with the analytic envelope, and the constant modal energies");
     Ok(d)
 }
