@@ -2,6 +2,9 @@
 //!
 //! `cargo run --release -p physicskit-benchmarks --bin workloads [steps] [case] [lib|plain]`
 //!
+//! `workloads ensemble` times a 10^6-pendulum swarm over 1000 yoshida4 steps on 1 thread and on
+//! all cores, and checks the two results are bit-identical.
+//!
 //! With a case and `lib` or `plain`, runs only that once (for instruction counting under
 //! `valgrind --tool=callgrind`, which is repeatable on a busy machine).
 
@@ -16,6 +19,10 @@ fn main() {
         "{:<22} {:<18} {:>9} {:>10} {:>12} {:>10} {:>8}",
         "case", "method", "dt", "ns/step", "max|dE/E0|", "plain ns", "ratio"
     );
+    if std::env::args().nth(1).as_deref() == Some("ensemble") {
+        ensemble();
+        return;
+    }
     let only = std::env::args().nth(2);
     let side = std::env::args().nth(3);
     if let (Some(name), Some(side)) = (&only, &side) {
@@ -84,4 +91,45 @@ fn main() {
             ),
         }
     }
+}
+
+fn ensemble() {
+    use physicskit::classical::systems::PendulumSwarm;
+    use physicskit::classical::{HamiltonianSystem, IntegrateOptions, Method};
+    let run = |threads: usize| {
+        let pool = rayon::ThreadPoolBuilder::new()
+            .num_threads(threads)
+            .build()
+            .expect("thread pool");
+        pool.install(|| {
+            let mut swarm = PendulumSwarm::from_box(1.0, 0.0, 0.5, 0.5, 1_000_000, 1.0, 0)
+                .expect("valid swarm");
+            let start = Instant::now();
+            let r = swarm
+                .integrate_with(
+                    (0.0, 1.0),
+                    1e-3,
+                    Method::Yoshida4,
+                    IntegrateOptions::final_only(),
+                )
+                .expect("runs");
+            (start.elapsed().as_secs_f64(), r)
+        })
+    };
+    let cores = std::thread::available_parallelism().map_or(1, |n| n.get());
+    let (t1, r1) = (0..2)
+        .map(|_| run(1))
+        .min_by(|a, b| a.0.total_cmp(&b.0))
+        .expect("two runs");
+    let (tn, rn) = (0..2)
+        .map(|_| run(cores))
+        .min_by(|a, b| a.0.total_cmp(&b.0))
+        .expect("two runs");
+    println!(
+        "swarm n = 1e6, 1000 yoshida4 steps, final state only: 1 thread {t1:.2} s, {cores} threads {tn:.2} s; \
+         speed-up {:.2}, parallel efficiency {:.0}%; bit-identical: {}",
+        t1 / tn,
+        100.0 * t1 / (tn * cores as f64),
+        r1 == rn
+    );
 }

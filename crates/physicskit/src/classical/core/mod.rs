@@ -3,6 +3,7 @@
 pub mod error;
 pub mod linalg;
 mod memory;
+pub(crate) use memory::check_fits as memory_check;
 pub mod method;
 pub mod options;
 pub mod phase;

@@ -14,7 +14,9 @@
 
 use crate::classical::core::error::{check_finite_scalar, check_non_negative, check_positive};
 use crate::classical::core::trig::{sin_into, sum_cos};
-use crate::classical::core::{Error, HamiltonianSystem, Phase, Result};
+use crate::classical::core::{
+    Error, HamiltonianSystem, IntegrateOptions, Method, Phase, Result, SimulationResult,
+};
 use crate::classical::integrators::Ensemble;
 
 /// `N` decoupled pendulums `H_i = p_i^2/2 - (g/l) cos q_i`, state `[q_1..q_N, p_1..p_N]`.
@@ -41,6 +43,10 @@ pub struct PendulumSwarm {
 /// fixed, documented output stream, so a seed reproduces the same swarm on every platform and
 /// every version of physicskit.
 struct SplitMix64(u64);
+
+/// Swarms of at least this many pendulums run in parallel (two chunks' worth: below that one
+/// core does the work as fast).
+pub const PARALLEL_MEMBERS: usize = 2 * crate::classical::integrators::ENSEMBLE_CHUNK;
 
 impl SplitMix64 {
     fn next_u64(&mut self) -> u64 {
@@ -224,6 +230,35 @@ impl HamiltonianSystem for PendulumSwarm {
         out.iter_mut().for_each(|f| *f *= g);
         Ok(())
     }
+    /// Swarms of at least [`PARALLEL_MEMBERS`] pendulums are integrated on all cores with
+    /// [`integrate_ensemble`](crate::classical::integrators::integrate_ensemble): fixed chunks, the same
+    /// result on any number of threads (bit-identical to this serial path for the explicit
+    /// methods).
+    fn integrate_with(
+        &mut self,
+        t_span: (f64, f64),
+        dt: f64,
+        method: Method,
+        options: IntegrateOptions<'_>,
+    ) -> Result<SimulationResult> {
+        if self.n >= PARALLEL_MEMBERS {
+            crate::classical::integrators::integrate_ensemble(self, t_span, dt, method, options)
+        } else {
+            crate::classical::integrators::driver::integrate_hamiltonian(
+                self, t_span, dt, method, options,
+            )
+        }
+    }
+
+    fn integrate(
+        &mut self,
+        t_span: (f64, f64),
+        dt: f64,
+        method: Method,
+    ) -> Result<SimulationResult> {
+        self.integrate_with(t_span, dt, method, IntegrateOptions::default())
+    }
+
     /// Diagonal `-(g/l) cos q_i`, written as a dense `N x N` matrix (used only when the
     /// implicit-midpoint fixed point fails to contract, and only for swarms small enough for a
     /// dense Newton solve).
