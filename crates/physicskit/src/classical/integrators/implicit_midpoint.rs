@@ -87,10 +87,11 @@ pub struct ImplicitMidpoint {
     k: Vec<f64>,
     k_new: Vec<f64>,
     k_prev: Vec<f64>,
+    k_prev2: Vec<f64>,
     mid: Vec<f64>,
     lu: Vec<f64>,
     piv: Vec<usize>,
-    /// Slopes of the last steps are available for the predictor: 0, 1 or 2.
+    /// Slopes of the last steps are available for the predictor: 0, 1, 2 or 3.
     slopes: u8,
     /// Tolerances and limits.
     pub settings: SolverSettings,
@@ -110,6 +111,7 @@ impl ImplicitMidpoint {
             k: vec![0.0; dim],
             k_new: vec![0.0; dim],
             k_prev: vec![0.0; dim],
+            k_prev2: vec![0.0; dim],
             mid: vec![0.0; dim],
             lu: Vec::new(),
             piv: Vec::new(),
@@ -147,11 +149,31 @@ impl ImplicitMidpoint {
                 self.stats.evaluations += 1;
             }
             1 => self.k_prev.copy_from_slice(&self.k),
-            _ => {
+            2 => {
                 // k_{n+1} ~ 2 k_n - k_{n-1}; k_prev becomes k_n for the next step.
-                for (k, kp) in self.k.iter_mut().zip(self.k_prev.iter_mut()) {
+                for ((k, kp), kp2) in self
+                    .k
+                    .iter_mut()
+                    .zip(self.k_prev.iter_mut())
+                    .zip(self.k_prev2.iter_mut())
+                {
                     let kn = *k;
                     *k = 2.0 * kn - *kp;
+                    *kp2 = *kp;
+                    *kp = kn;
+                }
+            }
+            _ => {
+                // k_{n+1} ~ 3 k_n - 3 k_{n-1} + k_{n-2} (quadratic extrapolation).
+                for ((k, kp), kp2) in self
+                    .k
+                    .iter_mut()
+                    .zip(self.k_prev.iter_mut())
+                    .zip(self.k_prev2.iter_mut())
+                {
+                    let kn = *k;
+                    *k = 3.0 * (kn - *kp) + *kp2;
+                    *kp2 = *kp;
                     *kp = kn;
                 }
             }
@@ -169,7 +191,7 @@ impl ImplicitMidpoint {
         for (yi, ki) in y.iter_mut().zip(&self.k) {
             *yi += h * ki;
         }
-        self.slopes = (self.slopes + 1).min(2);
+        self.slopes = (self.slopes + 1).min(3);
         self.stats.steps += 1;
         self.stats.max_iterations = self.stats.max_iterations.max(iterations);
         self.stats.max_residual = self.stats.max_residual.max(residual);

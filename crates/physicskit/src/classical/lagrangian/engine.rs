@@ -340,6 +340,12 @@ impl<L: Lagrangian> LagrangianEngine<L> {
         check_len("q", q, n)?;
         check_len("qdot", qdot, n)?;
         check_len("out", out, n)?;
+        match n {
+            1 => return self.acceleration_fixed::<1, 3>(q, qdot, t, out),
+            2 => return self.acceleration_fixed::<2, 5>(q, qdot, t, out),
+            3 => return self.acceleration_fixed::<3, 7>(q, qdot, t, out),
+            _ => {}
+        }
         let mut m = MatBuf::new(n * n, 0.0);
         self.hessian_vv(q, qdot, t, m.as_mut_slice(), None);
         let mut mixed = VecBuf::new(n, 0.0);
@@ -351,6 +357,50 @@ impl<L: Lagrangian> LagrangianEngine<L> {
         let mut piv = VecBuf::new(n, 0_usize);
         lu_factor(m.as_mut_slice(), n, piv.as_mut_slice()).map_err(|_| singular(t))?;
         lu_solve(m.as_slice(), n, piv.as_slice(), out);
+        Ok(())
+    }
+
+    /// [`acceleration`](Self::acceleration) for `N` degrees of freedom (`Z = 2N + 1`): one
+    /// evaluation of `L` on hyper-dual vectors, `e1` seeding `v` and `e2` seeding `(q, v, t)`,
+    /// gives `dL/dq`, `M` and the mixed derivatives `d2L/dv dq`, `d2L/dv dt` at once.
+    #[inline(never)]
+    fn acceleration_fixed<const N: usize, const Z: usize>(
+        &self,
+        q: &[f64],
+        v: &[f64],
+        t: f64,
+        out: &mut [f64],
+    ) -> Result<()> {
+        debug_assert_eq!(Z, 2 * N + 1);
+        let qd: [HyperDualSVec64<N, Z>; N] =
+            std::array::from_fn(|i| HyperDualSVec64::from(q[i]).derivative2(i));
+        let vd: [HyperDualSVec64<N, Z>; N] = std::array::from_fn(|i| {
+            HyperDualSVec64::from(v[i])
+                .derivative1(i)
+                .derivative2(N + i)
+        });
+        let td = HyperDualSVec64::from(t).derivative2(2 * N);
+        let l = self.lagrangian.lagrangian(&qd, &vd, td);
+        let mut m = [0.0; FIXED_NDOF * FIXED_NDOF];
+        let m = &mut m[..N * N];
+        let out = &mut out[..N];
+        match &l.eps2.0 {
+            Some(g) => out.iter_mut().enumerate().for_each(|(i, o)| *o = g[i]),
+            None => out.fill(0.0),
+        }
+        if let Some(h) = &l.eps1eps2.0 {
+            for i in 0..N {
+                let mut mixed = h[(i, 2 * N)];
+                for (j, &vj) in v.iter().enumerate().take(N) {
+                    mixed += h[(i, j)] * vj;
+                    m[i * N + j] = h[(i, N + j)];
+                }
+                out[i] -= mixed;
+            }
+        }
+        let mut piv = [0_usize; FIXED_NDOF];
+        factor::<N>(m, N, &mut piv[..N]).map_err(|_| singular(t))?;
+        solve::<N>(m, N, &piv[..N], out);
         Ok(())
     }
 
@@ -458,12 +508,7 @@ impl<L: Lagrangian> LagrangianEngine<L> {
 
     /// `M = d2L/dv2` into `m`, and `dL/dv` into `grad` if given.
     fn hessian_vv(&self, q: &[f64], v: &[f64], t: f64, m: &mut [f64], grad: Option<&mut [f64]>) {
-        match q.len() {
-            1 => self.hessian_vv_n::<1>(q, v, t, m, grad),
-            2 => self.hessian_vv_n::<2>(q, v, t, m, grad),
-            3 => self.hessian_vv_n::<3>(q, v, t, m, grad),
-            _ => self.hessian_vv_n::<0>(q, v, t, m, grad),
-        }
+        self.hessian_vv_scalar(q, v, t, m, grad);
     }
 
     /// [`hessian_vv`](Self::hessian_vv) for `N` degrees of freedom: one evaluation of `L` on
@@ -825,7 +870,9 @@ impl<L: Lagrangian> LagrangianEngine<L> {
             base.copy_from_slice(v);
             accepted_r = r_norm;
             lambda = 1.0;
-            self.hessian_vv_n::<N>(q, v, t, m, None);
+            // Rare (non-quadratic L): the scalar kernel keeps the vector-dual instantiations of
+            // L at one call site each, which lets them inline into this loop.
+            self.hessian_vv_scalar(q, v, t, m, None);
             m_norm = m_norm.max(inf_norm(m));
             factor::<N>(m, n, piv).map_err(|_| singular(t))?;
             step.copy_from_slice(r);
