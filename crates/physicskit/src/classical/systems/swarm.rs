@@ -163,6 +163,28 @@ impl PendulumSwarm {
     }
 }
 
+/// Area enclosed by the closed polygon through `(x_i, y_i)` in order (shoelace formula).
+///
+/// For a swarm seeded on the boundary of a phase-space patch this is the area Liouville's
+/// theorem conserves exactly, while the convex hull ([`convex_hull_area`]) grows once the
+/// patch curls into a filament.
+///
+/// # Errors
+/// [`Error::DimensionMismatch`] if the slices differ in length; [`Error::NonFinite`] for NaN or
+/// infinity.
+pub fn polygon_area(x: &[f64], y: &[f64]) -> Result<f64> {
+    crate::classical::core::error::check_vector("y", y, x.len())?;
+    crate::classical::core::error::check_finite("x", x, 0.0)?;
+    let n = x.len();
+    let twice: f64 = (0..n)
+        .map(|i| {
+            let j = (i + 1) % n;
+            x[i] * y[j] - x[j] * y[i]
+        })
+        .sum();
+    Ok(0.5 * twice.abs())
+}
+
 /// Area of the convex hull of the points `(x_i, y_i)` by Andrew's monotone chain.
 ///
 /// # Errors
@@ -285,5 +307,29 @@ impl Ensemble for PendulumSwarm {
         let mut sub = Self::new(&q[start..end], &p[start..end], self.g_over_l)?;
         sub.phase.set_t(self.phase.t())?;
         Ok(sub)
+    }
+}
+
+#[cfg(test)]
+mod polygon_tests {
+    use super::polygon_area;
+
+    #[test]
+    fn regular_polygon_area_matches_its_closed_form() {
+        // A regular n-gon inscribed in a circle of radius r has area (n/2) r^2 sin(2 pi / n).
+        let (n, r) = (97, 1.7);
+        let angle = |i: usize| std::f64::consts::TAU * i as f64 / n as f64;
+        let x: Vec<f64> = (0..n).map(|i| r * angle(i).cos()).collect();
+        let y: Vec<f64> = (0..n).map(|i| r * angle(i).sin()).collect();
+        let exact = 0.5 * n as f64 * r * r * (std::f64::consts::TAU / n as f64).sin();
+        // Sum of 97 products of size ~r^2 sin(2pi/n): rounding ~1e-15 relative.
+        assert!((polygon_area(&x, &y).unwrap() - exact).abs() < 1e-13 * exact);
+        // Orientation does not matter; a length mismatch is an error.
+        let (xr, yr): (Vec<f64>, Vec<f64>) = (
+            x.iter().rev().copied().collect(),
+            y.iter().rev().copied().collect(),
+        );
+        assert!((polygon_area(&xr, &yr).unwrap() - exact).abs() < 1e-13 * exact);
+        assert!(polygon_area(&x, &y[1..]).is_err());
     }
 }
