@@ -23,3 +23,8 @@
 #![deny(clippy::float_cmp)]
 
 pub mod classical;
+
+/// The README's Rust example, compiled and run as a doctest so that it stays true.
+#[doc = include_str!("../../../README.md")]
+#[cfg(doctest)]
+pub struct ReadmeDoctests;
