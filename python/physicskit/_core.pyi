@@ -36,8 +36,19 @@ class NativeSystem:
     def acceleration(self, q: ArrayF64, qdot: ArrayF64, t: float) -> ArrayF64: ...
     def momentum(self, q: ArrayF64, qdot: ArrayF64, t: float) -> ArrayF64: ...
     def integrate(
-        self, state: ArrayF64, t0: float, t_span: tuple[float, float], dt: float, method: str | None = None
-    ) -> ResultTuple: ...
+        self,
+        state: ArrayF64,
+        t0: float,
+        t_span: tuple[float, float],
+        dt: float,
+        method: str | None = None,
+        stride: int = 1,
+        final_only: bool = False,
+        energy: bool = True,
+    ) -> ResultTuple:
+        """Integrate from `(state, t0)`; keep every `stride`-th step (and the last), or only the
+        first and last with `final_only`; `energy=False` gives `None` energy. ValueError when
+        the stored samples would not fit in memory."""
 
 def bead_on_hoop(theta0: ArrayF64, thetadot0: ArrayF64, R: float, omega: float, g: float) -> NativeSystem:
     """`BeadOnRotatingHoop(theta0, thetadot0, R, omega, g)`."""
@@ -102,10 +113,10 @@ def heavy_symmetric_top(angles0: ArrayF64, angledots0: ArrayF64, I1: float, I3: 
 def henon_heiles(q0: ArrayF64, p0: ArrayF64) -> NativeSystem:
     """`HenonHeilesSystem(q0, p0)`."""
 
-def integrate_hamiltonian(obj: Any, state: ArrayF64, t0: float, t_span: tuple[float, float], dt: float, method: str, ndof: int, separable: bool, mass_inv: ArrayF64) -> ResultTuple:
+def integrate_hamiltonian(obj: Any, state: ArrayF64, t0: float, t_span: tuple[float, float], dt: float, method: str, ndof: int, separable: bool, mass_inv: ArrayF64, stride: int = 1, final_only: bool = False, energy: bool = True) -> ResultTuple:
     """Integrates a Python `HamiltonianSystem` subclass `obj` from `(state, t0)` with the Rust"""
 
-def integrate_ode(obj: Any, state: ArrayF64, t0: float, t_span: tuple[float, float], dt: float, method: str) -> ResultTuple:
+def integrate_ode(obj: Any, state: ArrayF64, t0: float, t_span: tuple[float, float], dt: float, method: str, stride: int = 1, final_only: bool = False, energy: bool = True) -> ResultTuple:
     """Integrates a Python `ODESystem` (or engine-less `LagrangianSystem`) `obj` from"""
 
 def kepler(q0: ArrayF64, p0: ArrayF64, k: float, mu: float, eps: float, c_eps: float, c_pn: float, softening: float) -> NativeSystem:

@@ -1,7 +1,7 @@
 //! Systems written in Python, integrated by the Rust integrators.
 //!
 //! A Python subclass of `HamiltonianSystem` (or `ODESystem`, or a `LagrangianSystem` that has
-//! no `LagrangianEngine`) is wrapped in [`PyHamiltonian`] (or [`PyOde`]), which implements the
+//! no `LagrangianEngine`) is wrapped in `PyHamiltonian` (or `PyOde`), which implements the
 //! core traits by calling the Python methods (`force`, `derivatives`, `energy`) with the GIL
 //! held. The same integrators run as for the built-in systems; only the right-hand side costs
 //! a Python call. The first Python exception raised by a callback stops the run and is
@@ -22,7 +22,7 @@ use pyo3::types::PyTuple;
 use crate::convert::{result_tuple, to_vec};
 use crate::errors::IntoPyResult;
 use crate::interrupt::{SignalObserver, CHECK_EVERY};
-use crate::native::parse_method;
+use crate::native::{parse_method, sampling};
 
 /// The Python object and the first exception its methods raised.
 struct Callbacks<'py> {
@@ -227,19 +227,27 @@ impl DynamicalSystem for PyOde<'_> {
 
 impl OdeSystem for PyOde<'_> {}
 
-fn options(observer: &mut SignalObserver) -> IntegrateOptions<'_> {
-    IntegrateOptions {
+/// The options of a callback run: the requested sampling, and Ctrl-C checks.
+fn options(
+    observer: &mut SignalObserver,
+    stride: usize,
+    final_only: bool,
+    energy: bool,
+) -> Result<IntegrateOptions<'_>> {
+    Ok(IntegrateOptions {
+        sampling: sampling(stride, final_only)?,
+        skip_energy: !energy,
         observer: Some(observer),
         // A Python right-hand side is ~100x slower than a native one: check more often.
         observe_every: CHECK_EVERY / 16,
-        ..IntegrateOptions::default()
-    }
+    })
 }
 
 /// Integrates a Python `HamiltonianSystem` subclass `obj` from `(state, t0)` with the Rust
-/// integrators; returns the result tuple `(t, y, q, p, energy, method, extra)`.
+/// integrators; returns the result tuple `(t, y, q, p, energy, method, extra)`. `stride`,
+/// `final_only` and `energy` select what is stored, as for `NativeSystem.integrate`.
 #[pyfunction]
-#[pyo3(signature = (obj, state, t0, t_span, dt, method, ndof, separable, mass_inv))]
+#[pyo3(signature = (obj, state, t0, t_span, dt, method, ndof, separable, mass_inv, stride=1, final_only=false, energy=true))]
 #[allow(clippy::too_many_arguments)]
 pub fn integrate_hamiltonian<'py>(
     py: Python<'py>,
@@ -252,6 +260,9 @@ pub fn integrate_hamiltonian<'py>(
     ndof: usize,
     separable: bool,
     mass_inv: PyReadonlyArray1<'_, f64>,
+    stride: usize,
+    final_only: bool,
+    energy: bool,
 ) -> PyResult<Bound<'py, PyTuple>> {
     let method = parse_method(Some(method), Method::Yoshida4).py()?;
     let state = to_vec(&state);
@@ -266,15 +277,18 @@ pub fn integrate_hamiltonian<'py>(
         mass_inv,
     };
     let mut observer = SignalObserver::default();
-    let outcome = sys.integrate_with(t_span, dt, method, options(&mut observer));
+    let options = options(&mut observer, stride, final_only, energy).py()?;
+    let outcome = sys.integrate_with(t_span, dt, method, options);
     let r = sys.cb.finish(outcome, observer.raised)?;
     result_tuple(py, r)
 }
 
 /// Integrates a Python `ODESystem` (or engine-less `LagrangianSystem`) `obj` from
 /// `(state, t0)`; returns the result tuple `(t, y, None, None, energy, method, extra)`.
+/// `stride`, `final_only` and `energy` select what is stored.
 #[pyfunction]
-#[pyo3(signature = (obj, state, t0, t_span, dt, method))]
+#[pyo3(signature = (obj, state, t0, t_span, dt, method, stride=1, final_only=false, energy=true))]
+#[allow(clippy::too_many_arguments)]
 pub fn integrate_ode<'py>(
     py: Python<'py>,
     obj: Bound<'py, PyAny>,
@@ -283,6 +297,9 @@ pub fn integrate_ode<'py>(
     t_span: (f64, f64),
     dt: f64,
     method: &str,
+    stride: usize,
+    final_only: bool,
+    energy: bool,
 ) -> PyResult<Bound<'py, PyTuple>> {
     let method = parse_method(Some(method), Method::ImplicitMidpoint).py()?;
     let mut sys = PyOde {
@@ -290,7 +307,8 @@ pub fn integrate_ode<'py>(
         phase: Phase::new(to_vec(&state), t0).py()?,
     };
     let mut observer = SignalObserver::default();
-    let outcome = sys.integrate_with(t_span, dt, method, options(&mut observer));
+    let options = options(&mut observer, stride, final_only, energy).py()?;
+    let outcome = sys.integrate_with(t_span, dt, method, options);
     let r = sys.cb.finish(outcome, observer.raised)?;
     result_tuple(py, r)
 }

@@ -9,7 +9,7 @@
 use std::any::Any;
 
 use numpy::{PyArray1, PyReadonlyArray1};
-use physicskit::classical::{Error, IntegrateOptions, Method, Result, SimulationResult};
+use physicskit::classical::{Error, IntegrateOptions, Method, Result, Sampling, SimulationResult};
 use pyo3::prelude::*;
 use pyo3::types::PyTuple;
 
@@ -264,6 +264,25 @@ pub fn parse_method(name: Option<&str>, default: Method) -> Result<Method> {
     name.map_or(Ok(default), str::parse)
 }
 
+/// What `integrate_sampled` stores: the sampling and whether the energy is skipped, from the
+/// Python arguments `stride`, `final_only` and `energy`.
+///
+/// # Errors
+/// [`Error::InvalidParameter`] for `stride = 0`, or `stride > 1` together with `final_only`.
+pub fn sampling(stride: usize, final_only: bool) -> Result<Sampling> {
+    match (stride, final_only) {
+        (0, _) => Err(Error::invalid("stride", 0.0, "must be an integer >= 1")),
+        (1, true) => Ok(Sampling::FinalOnly),
+        (k, true) => Err(Error::invalid(
+            "stride",
+            k as f64,
+            "cannot be combined with final_only=True; pass one or the other",
+        )),
+        (1, false) => Ok(Sampling::All),
+        (k, false) => Ok(Sampling::Stride(k)),
+    }
+}
+
 /// A built-in Rust system, owned by the Python object that wraps it.
 #[pyclass(module = "physicskit._core", name = "NativeSystem")]
 pub struct NativeSystem {
@@ -412,9 +431,12 @@ impl NativeSystem {
     }
 
     /// Starts from `(state, t0)`, integrates over `t_span` with step `dt`, and returns the result
-    /// tuple `(t, y, q, p, energy, method, extra)`. The GIL is released during the run;
-    /// Ctrl-C stops it with `KeyboardInterrupt`.
-    #[pyo3(signature = (state, t0, t_span, dt, method=None))]
+    /// tuple `(t, y, q, p, energy, method, extra)`. `stride` keeps every `stride`-th step (and
+    /// the last), `final_only` only the first and last, `energy=False` skips the energy
+    /// diagnostic (`None` in the tuple). The GIL is released during the run; Ctrl-C stops it
+    /// with `KeyboardInterrupt`.
+    #[pyo3(signature = (state, t0, t_span, dt, method=None, stride=1, final_only=false, energy=true))]
+    #[allow(clippy::too_many_arguments)]
     fn integrate<'py>(
         &mut self,
         py: Python<'py>,
@@ -423,9 +445,13 @@ impl NativeSystem {
         t_span: (f64, f64),
         dt: f64,
         method: Option<&str>,
+        stride: usize,
+        final_only: bool,
+        energy: bool,
     ) -> PyResult<Bound<'py, PyTuple>> {
         let state = to_vec(&state);
         let method = parse_method(method, self.inner.default_method()).py()?;
+        let sampling = sampling(stride, final_only).py()?;
         let inner = &mut self.inner;
         let (outcome, raised) = py.detach(move || {
             let mut observer = SignalObserver::default();
@@ -435,9 +461,10 @@ impl NativeSystem {
                     dt,
                     method,
                     IntegrateOptions {
+                        sampling,
+                        skip_energy: !energy,
                         observer: Some(&mut observer),
                         observe_every: CHECK_EVERY,
-                        ..IntegrateOptions::default()
                     },
                 )
             });

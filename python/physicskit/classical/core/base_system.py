@@ -9,13 +9,19 @@ call its Python methods back at each step.
 ``state`` and ``t`` are plain instance attributes, as in the spec: ``integrate`` starts from
 them (so editing ``system.state`` in place between calls works) and leaves them at the final
 sample.
+
+Beyond the spec, every system has ``integrate_sampled`` (stride, final-state-only and
+energy-free runs, for trajectories too large to store whole); the spec's ``integrate`` keeps its
+exact signature and stores every sample.
 """
 
 from __future__ import annotations
 
+import inspect
+import operator
 from abc import ABC, abstractmethod
 from dataclasses import dataclass, field
-from typing import Any, Optional
+from typing import Any, NamedTuple, Optional
 
 import numpy as np
 
@@ -51,7 +57,37 @@ class SimulationResult:
     method: str = ""
     """Name of the integrator used, e.g. ``"yoshida4"``."""
     extra: dict = field(default_factory=dict)
-    """Additional diagnostics (``n_steps``, ``dt``, force or solver evaluation counts ...)."""
+    """Additional diagnostics (``n_steps``, ``dt``, force or solver evaluation counts ...;
+    ``stride`` after ``integrate_sampled``)."""
+
+
+class _Sampling(NamedTuple):
+    """What a run stores (the keyword arguments of the native integrators)."""
+
+    stride: int = 1
+    final_only: bool = False
+    energy: bool = True
+
+
+_EVERY_SAMPLE = _Sampling()
+
+
+def _as_flag(name: str, value) -> bool:
+    if isinstance(value, (bool, np.bool_)):
+        return bool(value)
+    raise ValueError(f"{name} must be True or False, got {value!r}")
+
+
+def _as_stride(value) -> int:
+    if isinstance(value, (bool, np.bool_)):
+        raise ValueError(f"stride must be an integer >= 1, got {value!r}")
+    try:
+        k = operator.index(value)
+    except TypeError:
+        raise ValueError(f"stride must be an integer >= 1, got {value!r}") from None
+    if k < 1:
+        raise ValueError(f"stride must be an integer >= 1, got {k}")
+    return k
 
 
 class DynamicalSystem(ABC):
@@ -85,6 +121,72 @@ class DynamicalSystem(ABC):
         ``t`` at its last sample. Valid ``method`` names depend on the family.
         """
 
+    def integrate_sampled(
+        self, t_span, dt: float, method: Optional[str] = None, *, stride: int = 1,
+        final_only: bool = False, energy: bool = True,
+    ) -> SimulationResult:
+        """Integrate like :meth:`integrate`, storing only some samples (not in the spec).
+
+        For runs whose full trajectory is too large to keep, e.g. a million-pendulum
+        ``PendulumSwarm``: ``integrate`` stores ``(n_steps + 1) x state_dim`` values (and
+        refuses, with ``ValueError``, a run that would not fit in memory); this stores
+        ``n_steps // stride + 1`` rows (two with ``final_only``). The steps taken, and therefore
+        every stored row, are exactly those of ``integrate``: the rows equal the corresponding
+        rows of the full run bit for bit.
+
+        Parameters
+        ----------
+        t_span, dt
+            As for :meth:`integrate`.
+        method : str, optional
+            Integrator name; ``None`` (default) means the default of this class's ``integrate``.
+        stride : int, keyword-only
+            Keep every ``stride``-th step (steps ``0, stride, 2*stride, ...``) and always the
+            final step. ``1`` (default) keeps every step.
+        final_only : bool, keyword-only
+            Keep only the initial and the final state (two rows; one if ``n_steps == 0``).
+            Cannot be combined with ``stride > 1``.
+        energy : bool, keyword-only
+            Compute the energy of each stored sample (default). ``False`` leaves
+            ``result.energy`` as ``None`` and saves one energy evaluation per stored sample.
+
+        Returns
+        -------
+        SimulationResult
+            As from :meth:`integrate`, with ``t``, ``y``, ``q``, ``p`` and ``energy`` holding
+            the stored samples only, and ``extra["stride"]``: the number of steps between
+            stored rows (``n_steps`` for ``final_only``; the last gap may be shorter). ``state``
+            and ``t`` are left at the final state, as by ``integrate``.
+
+        Raises
+        ------
+        ValueError
+            ``stride`` not an integer >= 1, ``stride > 1`` with ``final_only=True``, a
+            non-boolean flag, every ``ValueError`` of ``integrate``, and a run whose stored
+            samples would not fit in memory (checked before anything is allocated).
+        NotImplementedError
+            For a Python subclass of ``DynamicalSystem`` itself that implements its own
+            ``integrate`` (there is no integrator to pass the sampling to). Subclasses of
+            ``HamiltonianSystem``, ``LagrangianSystem`` and ``ODESystem`` written in Python are
+            supported: the Rust integrators calling them back honour the sampling too.
+        """
+        stride = _as_stride(stride)
+        final_only = _as_flag("final_only", final_only)
+        energy = _as_flag("energy", energy)
+        if final_only and stride > 1:
+            raise ValueError(
+                f"stride={stride} and final_only=True cannot be combined: pass one or the other"
+            )
+        if method is None:
+            method = self._default_method()
+        result = self._integrate(t_span, dt, method, _Sampling(stride, final_only, energy))
+        if final_only:
+            n_steps = int(result.extra.get("n_steps", len(result.t) - 1))
+            result.extra["stride"] = max(n_steps, 1)
+        else:
+            result.extra["stride"] = stride
+        return result
+
     def reset(self, state0=None, t0: float = 0.0):
         """Set the clock to ``t0`` and, if given, the state to ``state0``; return the state."""
         t0 = as_scalar("t0", t0)
@@ -94,6 +196,22 @@ class DynamicalSystem(ABC):
         return self.state
 
     # -- helpers for subclasses ---------------------------------------------------------
+    def _default_method(self) -> Optional[str]:
+        """The ``method`` default of this class's ``integrate`` (None: the native default)."""
+        try:
+            default = inspect.signature(type(self).integrate).parameters["method"].default
+        except (KeyError, TypeError, ValueError):
+            default = inspect.Parameter.empty
+        return None if default is inspect.Parameter.empty else default
+
+    def _integrate(self, t_span, dt, method, sampling: _Sampling) -> SimulationResult:
+        """The run behind ``integrate`` and ``integrate_sampled``; each family overrides it."""
+        raise NotImplementedError(
+            f"{type(self).__name__} subclasses DynamicalSystem directly and defines its own "
+            "integrate, so integrate_sampled cannot pass it a sampling; subclass "
+            "HamiltonianSystem, LagrangianSystem or ODESystem instead, or call integrate"
+        )
+
     def _state_arg(self, state) -> np.ndarray:
         if state is None:
             return np.ascontiguousarray(self.state, dtype=np.float64)
@@ -106,10 +224,12 @@ class DynamicalSystem(ABC):
         self.t = float(result.t[-1])
         return result
 
-    def _run_native(self, t_span, dt, method) -> SimulationResult:
+    def _run_native(self, t_span, dt, method, sampling: _Sampling) -> SimulationResult:
         t_span = as_t_span(t_span)
         state = as_vector("state", self.state, len(self.state))
-        parts = self._native.integrate(state, float(self.t), t_span, float(dt), method)
+        parts = self._native.integrate(
+            state, float(self.t), t_span, float(dt), method, **sampling._asdict()
+        )
         return self._finish(parts)
 
 
@@ -222,8 +342,11 @@ class HamiltonianSystem(DynamicalSystem):
         ``separable``), ``"rk4"``, ``"implicit_midpoint"``. Returns the ``(q, p)`` trajectory
         and the energy at every sample.
         """
+        return self._integrate(t_span, dt, method, _EVERY_SAMPLE)
+
+    def _integrate(self, t_span, dt, method, sampling: _Sampling) -> SimulationResult:
         if self._native is not None:
-            return self._run_native(t_span, dt, method)
+            return self._run_native(t_span, dt, method, sampling)
         t_span = as_t_span(t_span)
         state = as_vector("state", self.state, 2 * self.ndof)
         parts = _core.integrate_hamiltonian(
@@ -236,6 +359,7 @@ class HamiltonianSystem(DynamicalSystem):
             self.ndof,
             bool(self.separable),
             self._mass_inv_vector(),
+            **sampling._asdict(),
         )
         return self._finish(parts)
 
@@ -333,12 +457,15 @@ class LagrangianSystem(DynamicalSystem):
         form; ``"rk4"`` integrates ``(q, qdot)`` and is not symplectic. ``result.p`` holds
         ``qdot``, not the canonical momentum.
         """
+        return self._integrate(t_span, dt, method, _EVERY_SAMPLE)
+
+    def _integrate(self, t_span, dt, method, sampling: _Sampling) -> SimulationResult:
         if self._engine_native() is not None:
-            return self._run_native(t_span, dt, method)
+            return self._run_native(t_span, dt, method, sampling)
         t_span = as_t_span(t_span)
         state = as_vector("state", self.state, 2 * self.ndof)
         t, y, _, _, energy, name, extra = _core.integrate_ode(
-            self, state, float(self.t), t_span, float(dt), method
+            self, state, float(self.t), t_span, float(dt), method, **sampling._asdict()
         )
         n = self.ndof
         q = np.ascontiguousarray(y[:, :n])
@@ -369,9 +496,14 @@ class ODESystem(DynamicalSystem):
     def integrate(self, t_span, dt: float, method: str = "implicit_midpoint") -> SimulationResult:
         """Integrate with fixed step ``dt`` over ``t_span = (t0, t1)`` (``"implicit_midpoint"``
         or ``"rk4"``); returns the state trajectory and its energy."""
+        return self._integrate(t_span, dt, method, _EVERY_SAMPLE)
+
+    def _integrate(self, t_span, dt, method, sampling: _Sampling) -> SimulationResult:
         if self._native is not None:
-            return self._run_native(t_span, dt, method)
+            return self._run_native(t_span, dt, method, sampling)
         t_span = as_t_span(t_span)
         state = as_vector("state", self.state, len(self.state))
-        parts = _core.integrate_ode(self, state, float(self.t), t_span, float(dt), method)
+        parts = _core.integrate_ode(
+            self, state, float(self.t), t_span, float(dt), method, **sampling._asdict()
+        )
         return self._finish(parts)
