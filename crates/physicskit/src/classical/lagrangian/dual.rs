@@ -60,14 +60,23 @@ pub(crate) struct HyperArr<const A: usize, const B: usize> {
     n1: bool,
 }
 
+// Plain loops rather than `std::array::from_fn`, whose closure wrapper is not always inlined.
 #[inline(always)]
 fn map<const N: usize>(x: &[f64; N], f: impl Fn(f64) -> f64) -> [f64; N] {
-    std::array::from_fn(|i| f(x[i]))
+    let mut r = [0.0; N];
+    for (ri, &xi) in r.iter_mut().zip(x) {
+        *ri = f(xi);
+    }
+    r
 }
 
 #[inline(always)]
 fn zip<const N: usize>(x: &[f64; N], y: &[f64; N], f: impl Fn(f64, f64) -> f64) -> [f64; N] {
-    std::array::from_fn(|i| f(x[i], y[i]))
+    let mut r = [0.0; N];
+    for ((ri, &xi), &yi) in r.iter_mut().zip(x).zip(y) {
+        *ri = f(xi, yi);
+    }
+    r
 }
 
 #[inline(always)]
@@ -75,7 +84,13 @@ fn map2<const A: usize, const B: usize>(
     x: &[[f64; B]; A],
     f: impl Fn(usize, usize, f64) -> f64,
 ) -> [[f64; B]; A] {
-    std::array::from_fn(|i| std::array::from_fn(|j| f(i, j, x[i][j])))
+    let mut r = [[0.0; B]; A];
+    for (i, (ri, xi)) in r.iter_mut().zip(x).enumerate() {
+        for (j, (rij, &xij)) in ri.iter_mut().zip(xi).enumerate() {
+            *rij = f(i, j, xij);
+        }
+    }
+    r
 }
 
 impl<const N: usize> DualArr<N> {
@@ -141,7 +156,9 @@ impl<const N: usize> DualArr<N> {
         }
         Self {
             re: self.re * inv,
-            eps: zip(&self.eps, &o.eps, |a, b| (a * o.re - b * self.re) * inv * inv),
+            eps: zip(&self.eps, &o.eps, |a, b| {
+                (a * o.re - b * self.re) * inv * inv
+            }),
             c: false,
         }
     }
@@ -364,10 +381,7 @@ impl<const A: usize, const B: usize> HyperArr<A, B> {
             return a.map_parts(|x| x * b.re);
         }
         if a.n1 && b.n1 {
-            return Self::only2(
-                a.re * b.re,
-                zip(&a.e2, &b.e2, |x, y| y * a.re + x * b.re),
-            );
+            return Self::only2(a.re * b.re, zip(&a.e2, &b.e2, |x, y| y * a.re + x * b.re));
         }
         Self {
             c: false,
@@ -452,7 +466,7 @@ macro_rules! impl_dual_arr {
             }
             #[inline(always)]
             fn is_one(&self) -> bool {
-                self.re == 1.0
+                self.re.is_one()
             }
         }
 
@@ -750,7 +764,7 @@ macro_rules! impl_dual_arr {
             fn powf(&self, n: f64) -> Self {
                 if n == 0.0 {
                     Self::one()
-                } else if n == 1.0 {
+                } else if n.is_one() {
                     *self
                 } else if (n - 1.0 - 1.0).abs() < f64::EPSILON {
                     self * self
@@ -1008,3 +1022,98 @@ macro_rules! impl_dual_arr {
 impl_dual_arr!([const N: usize] DualArr<N>);
 impl_dual_arr!([const N: usize] Dual2Arr<N>);
 impl_dual_arr!([const A: usize, const B: usize] HyperArr<A, B>);
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use num_dual::{Dual2_64, Dual64, HyperDual64};
+
+    /// The bits of `v`, with `-0.0` read as `0.0` (num-dual leaves an absent derivative out of
+    /// a sum; adding the array types' exact zero can flip the sign of a zero result only).
+    fn bits(v: f64) -> u64 {
+        (v + 0.0).to_bits()
+    }
+
+    /// Every function on the array types against num-dual's scalar types of the same order
+    /// (independent implementation): value and derivatives must agree bit for bit, because
+    /// the rules and their term order are the same.
+    macro_rules! check_all {
+        ($x:expr, $y:expr, $($name:literal => |$a:ident, $b:ident| $e:expr),* $(,)?) => {$(
+            {
+                let (x, y): (f64, f64) = ($x, $y);
+                // Seeds: x varies along both directions, y along the second only.
+                let h = {
+                    let $a = HyperArr::<1, 1>::from_re(x).derivative1(0).derivative2(0);
+                    let $b = HyperArr::<1, 1>::from_re(y).derivative2(0);
+                    $e
+                };
+                let hr = {
+                    let $a = HyperDual64::new(x, 1.0, 1.0, 0.0);
+                    let $b = HyperDual64::new(y, 0.0, 1.0, 0.0);
+                    $e
+                };
+                let got = [h.re, h.e1[0], h.e2[0], h.e12[0][0]];
+                let want = [hr.re, hr.eps1, hr.eps2, hr.eps1eps2];
+                assert_eq!(got.map(bits), want.map(bits), "hyper {}: {got:?} vs {want:?}", $name);
+                let d2 = {
+                    let $a = Dual2Arr::<1>::seeded(x, 0);
+                    let $b = Dual2Arr::<1>::from_re(y);
+                    $e
+                };
+                let d2r = {
+                    let $a = Dual2_64::new(x, 1.0, 0.0);
+                    let $b = Dual2_64::new(y, 0.0, 0.0);
+                    $e
+                };
+                let got = [d2.re, d2.v1[0], d2.v2[0][0]];
+                let want = [d2r.re, d2r.v1, d2r.v2];
+                assert_eq!(got.map(bits), want.map(bits), "dual2 {}: {got:?} vs {want:?}", $name);
+                let d = {
+                    let $a = DualArr::<2>::seeded(x, 0);
+                    let $b = DualArr::<2>::seeded(y, 1);
+                    $e
+                };
+                let dr_x = {
+                    let $a = Dual64::new(x, 1.0);
+                    let $b = Dual64::new(y, 0.0);
+                    $e
+                };
+                let dr_y = {
+                    let $a = Dual64::new(x, 0.0);
+                    let $b = Dual64::new(y, 1.0);
+                    $e
+                };
+                let got = [d.re, d.eps[0], d.eps[1]];
+                let want = [dr_x.re, dr_x.eps, dr_y.eps];
+                assert_eq!(got.map(bits), want.map(bits), "dual {}: {got:?} vs {want:?}", $name);
+            }
+        )*};
+    }
+
+    #[test]
+    fn derivatives_match_num_dual_bit_for_bit() {
+        for &(x, y) in &[(0.37, 1.9), (-0.61, 2.3), (0.05, -0.8)] {
+            check_all!(x, y,
+                "add" => |a, b| a + b * 2.0 - 1.5,
+                "mul" => |a, b| a * b * a,
+                "div" => |a, b| (a * 3.0 + b) / (b * a + 4.0),
+                "neg" => |a, b| -(a * b) / 3.0,
+                "recip" => |a, b| (a + b * 0.1 + 3.0).recip(),
+                "powi" => |a, b| (a * b).powi(3) + a.powi(2) + b.powi(-2),
+                "powf" => |a, b| (a * a + b * b).powf(1.7),
+                "sqrt" => |a, b| (a * a + b * b).sqrt(),
+                "cbrt" => |a, b| (a * b + 5.0).cbrt(),
+                "exp" => |a, b| (a * b).exp() + a.exp2() + a.exp_m1(),
+                "ln" => |a, b| (a * a + b * b).ln() + (a * a + 1.0).log(3.0),
+                "log2" => |a, b| (a * a + b * b).log2() + (a * a + 1.0).log10() + (a * a).ln_1p(),
+                "trig" => |a, b| (a * b).sin() * a.cos() + (a + b).tan() + b.sin(),
+                "sin_cos" => |a, b| { let (s, c) = (a - b).sin_cos(); s * c * a },
+                "inverse trig" => |a, b| (a * 0.5).asin() + (a * 0.5).acos() + (a * b).atan() + a.atan2(b),
+                "hyperbolic" => |a, b| (a * b).sinh() + a.cosh() + (a + b).tanh(),
+                "inverse hyperbolic" => |a, b| (a * b).asinh() + (a * a + 2.0).acosh() + (a * 0.5).atanh(),
+                "bessel" => |a, b| (a * b).sph_j0() + (a * 3.0).sph_j1() + b.sph_j2(),
+                "const" => |a, b| b.cos() * b * (b + 1.0).sqrt() + a,
+            );
+        }
+    }
+}
