@@ -19,17 +19,25 @@
 //!
 //! # Cost per call, in evaluations of `L` (`n` = ndof)
 //!
-//! For `n <= 3` (every built-in system) each kernel evaluates `L` **once**, on num-dual's
-//! fixed-size vector duals, so `sin`/`cos` of the coordinates are computed once per kernel
-//! (and the rest of the call works in exactly sized stack arrays with an unrolled LU):
+//! For `n <= 3` (every built-in system) each kernel evaluates `L` **once**, on fixed-size
+//! vector duals over plain arrays ([`dual`](super::dual): the rules of num-dual's
+//! `DualSVec64`/`Dual2SVec64`/`HyperDualSVec64` term by term, so the derivatives are
+//! bit-identical, without their `Option`-wrapped nalgebra storage). A flag on each number marks
+//! a constant (and, for the hyper-dual, a value independent of the `e1` directions), so
+//! sub-expressions of `q` alone inside the mass-matrix evaluation cost plain `f64` arithmetic
+//! and one `cos`, not a dual product. `sin`/`cos` of the coordinates are computed once per
+//! kernel, and the rest of the call works in exactly sized stack arrays with an unrolled LU:
 //!
 //! | operation (`n <= 3`)              | evaluations of `L` | number type (components)         |
 //! |-----------------------------------|--------------------|----------------------------------|
 //! | [`acceleration`](LagrangianEngine::acceleration) | 1 | hyper-dual vector, `e1 = v`, `e2 = (q, v, t)`: `1 + 3n + 1 + n(2n+1)` |
 //! | [`canonical_derivatives`](LagrangianEngine::canonical_derivatives), [`velocity`](LagrangianEngine::velocity) | 2 per call for a Lagrangian quadratic in `v` | second-order dual vector in `v` (`1 + n + n^2`), then dual vector in `(q, v)` (`1 + 2n`) |
 //!
-//! (measured: a canonical evaluation of the double pendulum is about 1.1k instructions, an
-//! implicit-midpoint step of it about 6k, against 26k for the per-direction scheme below).
+//! Measured (callgrind, instructions per step including `sin`/`cos`, with every sample and its
+//! energy stored): double pendulum `rk4` 3.7k (an acceleration is about 0.8k), implicit
+//! midpoint 4.8k (about 0.45k per canonical evaluation, three of them per step, plus the
+//! solver's own work); coupled oscillators (`n = 3`) 5.0k; heavy top 5.1k; hoop 2.0k. The
+//! per-direction scheme below takes 26k for a double-pendulum implicit-midpoint step.
 //! Larger systems, and the rarely used paths (`mass_matrix`, the Newton re-linearization of a
 //! non-quadratic `L`, `canonical_jacobian`), use one scalar (hyper-)dual evaluation per
 //! derivative direction:
@@ -54,9 +62,10 @@
 //! Up to [`MAX_STACK_NDOF`](super::MAX_STACK_NDOF) degrees of freedom all work buffers are on
 //! the stack: no evaluation allocates. Larger systems use heap buffers per call.
 
-use num_dual::{Dual2SVec64, Dual64, DualNum, DualSVec64, HyperDual64, HyperDualSVec64};
+use num_dual::{Dual64, DualNum, HyperDual64};
 
 use super::buffer::{MatBuf, VecBuf};
+use super::dual::{Dual2Arr, DualArr, HyperArr};
 use crate::classical::core::error::check_vector;
 use crate::classical::core::linalg::{lu_factor, lu_solve, Singular};
 
@@ -389,31 +398,26 @@ impl<L: Lagrangian> LagrangianEngine<L> {
         out: &mut [f64],
     ) -> Result<()> {
         debug_assert_eq!(Z, 2 * N + 1);
-        let qd: [HyperDualSVec64<N, Z>; N] =
-            std::array::from_fn(|i| HyperDualSVec64::from(q[i]).derivative2(i));
-        let vd: [HyperDualSVec64<N, Z>; N] = std::array::from_fn(|i| {
-            HyperDualSVec64::from(v[i])
-                .derivative1(i)
-                .derivative2(N + i)
-        });
-        let td = HyperDualSVec64::from(t).derivative2(2 * N);
+        let mut qd = [HyperArr::<N, Z>::from_re(0.0); N];
+        let mut vd = qd;
+        for i in 0..N {
+            qd[i] = HyperArr::from_re(q[i]).derivative2(i);
+            vd[i] = HyperArr::from_re(v[i]).derivative1(i).derivative2(N + i);
+        }
+        let td = HyperArr::from_re(t).derivative2(2 * N);
         let l = self.lagrangian.lagrangian(&qd, &vd, td);
         let mut m = [0.0; FIXED_NDOF * FIXED_NDOF];
         let m = &mut m[..N * N];
         let out = &mut out[..N];
-        match &l.eps2.0 {
-            Some(g) => out.iter_mut().enumerate().for_each(|(i, o)| *o = g[i]),
-            None => out.fill(0.0),
-        }
-        if let Some(h) = &l.eps1eps2.0 {
-            for i in 0..N {
-                let mut mixed = h[(i, 2 * N)];
-                for (j, &vj) in v.iter().enumerate().take(N) {
-                    mixed += h[(i, j)] * vj;
-                    m[i * N + j] = h[(i, N + j)];
-                }
-                out[i] -= mixed;
+        out.copy_from_slice(&l.e2[..N]);
+        let h = &l.e12;
+        for i in 0..N {
+            let mut mixed = h[i][2 * N];
+            for (j, &vj) in v.iter().enumerate().take(N) {
+                mixed += h[i][j] * vj;
+                m[i * N + j] = h[i][N + j];
             }
+            out[i] -= mixed;
         }
         let mut piv = [0_usize; FIXED_NDOF];
         factor::<N>(m, N, &mut piv[..N]).map_err(|_| singular(t))?;
@@ -539,26 +543,21 @@ impl<L: Lagrangian> LagrangianEngine<L> {
         m: &mut [f64],
         grad: Option<&mut [f64]>,
     ) {
-        let qd: [Dual2SVec64<N>; N] = std::array::from_fn(|i| Dual2SVec64::from(q[i]));
-        let vd: [Dual2SVec64<N>; N] =
-            std::array::from_fn(|i| Dual2SVec64::from(v[i]).derivative(i));
-        let l = self.lagrangian.lagrangian(&qd, &vd, Dual2SVec64::from(t));
-        match &l.v2.0 {
-            Some(h) => {
-                for i in 0..N {
-                    for j in i..N {
-                        m[i * N + j] = h[(i, j)];
-                        m[j * N + i] = h[(i, j)];
-                    }
-                }
+        let mut qd = [Dual2Arr::<N>::from_re(0.0); N];
+        let mut vd = qd;
+        for i in 0..N {
+            qd[i] = Dual2Arr::from_re(q[i]);
+            vd[i] = Dual2Arr::seeded(v[i], i);
+        }
+        let l = self.lagrangian.lagrangian(&qd, &vd, Dual2Arr::from_re(t));
+        for i in 0..N {
+            for j in i..N {
+                m[i * N + j] = l.v2[i][j];
+                m[j * N + i] = l.v2[i][j];
             }
-            None => m.fill(0.0),
         }
         if let Some(g) = grad {
-            match &l.v1.0 {
-                Some(d) => g.iter_mut().enumerate().for_each(|(i, gi)| *gi = d[i]),
-                None => g.fill(0.0),
-            }
+            g[..N].copy_from_slice(&l.v1);
         }
     }
 
@@ -669,22 +668,15 @@ impl<L: Lagrangian> LagrangianEngine<L> {
         force: &mut [f64],
     ) {
         debug_assert_eq!(N2, 2 * N);
-        let qd: [DualSVec64<N2>; N] = std::array::from_fn(|i| DualSVec64::from(q[i]).derivative(i));
-        let vd: [DualSVec64<N2>; N] =
-            std::array::from_fn(|i| DualSVec64::from(v[i]).derivative(N + i));
-        let l = self.lagrangian.lagrangian(&qd, &vd, DualSVec64::from(t));
-        match &l.eps.0 {
-            Some(d) => {
-                for i in 0..N {
-                    force[i] = d[i];
-                    p[i] = d[N + i];
-                }
-            }
-            None => {
-                force.fill(0.0);
-                p.fill(0.0);
-            }
+        let mut qd = [DualArr::<N2>::from_re(0.0); N];
+        let mut vd = qd;
+        for i in 0..N {
+            qd[i] = DualArr::seeded(q[i], i);
+            vd[i] = DualArr::seeded(v[i], N + i);
         }
+        let l = self.lagrangian.lagrangian(&qd, &vd, DualArr::from_re(t));
+        force[..N].copy_from_slice(&l.eps[..N]);
+        p[..N].copy_from_slice(&l.eps[N..]);
     }
 
     /// `dL/dv` and `dL/dq` at `(q, v)` for any `n`: one hyper-dual evaluation

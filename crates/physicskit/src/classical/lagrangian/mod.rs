@@ -1,6 +1,7 @@
 //! The Lagrangian engine: equations of motion from `L(q, qdot, t)` by automatic differentiation.
 
 mod buffer;
+mod dual;
 mod engine;
 mod expr;
 mod model;
