@@ -62,6 +62,10 @@ pub struct IntegrateOptions<'a> {
     pub sampling: Sampling,
     /// Skip the energy diagnostic (saves one energy evaluation per stored sample).
     pub skip_energy: bool,
+    /// Store only the stacked states `y`; `q` and `p` are left `None`. For callers that split
+    /// `y` themselves when (and if) the halves are needed: the Python layer does so lazily,
+    /// which halves the memory a run writes.
+    pub skip_qp: bool,
     /// Progress observer, called every `observe_every` steps.
     pub observer: Option<&'a mut dyn Observer>,
     /// Steps between observer calls; 0 means the default of 4096.

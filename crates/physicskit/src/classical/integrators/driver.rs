@@ -258,6 +258,7 @@ impl Setup {
         let start = system.state().to_vec();
         check_finite("state", &start, grid.t0())?;
         let samples = options.sampling.count(grid.n_steps());
+        let ndof = ndof.filter(|_| !options.skip_qp);
         let recorder = Recorder::new(samples, start.len(), ndof, !options.skip_energy)?;
         Ok(Self {
             grid,

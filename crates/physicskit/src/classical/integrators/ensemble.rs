@@ -60,6 +60,7 @@ pub fn integrate_ensemble<S: Ensemble>(
     let n = system.ndof();
     let sampling = options.sampling;
     let skip_energy = options.skip_energy;
+    let skip_qp = options.skip_qp;
     let grid = TimeGrid::new(t_span, dt)?;
     sampling.validate()?;
     let samples = sampling.count(grid.n_steps());
@@ -88,6 +89,7 @@ pub fn integrate_ensemble<S: Ensemble>(
                     IntegrateOptions {
                         sampling,
                         skip_energy: true,
+                        skip_qp: false,
                         observer: Some(&mut flag),
                         observe_every: 1024,
                     },
@@ -157,11 +159,16 @@ pub fn integrate_ensemble<S: Ensemble>(
     let t_end = t[rows - 1];
     let final_state: Vec<f64> = y.row(rows - 1).to_vec();
     system.reset(Some(&final_state), t_end)?;
+    let (q, p) = if skip_qp {
+        (None, None)
+    } else {
+        (Some(q), Some(p))
+    };
     Ok(SimulationResult {
         t,
         y,
-        q: Some(q),
-        p: Some(p),
+        q,
+        p,
         energy,
         method: method.name().to_string(),
         extra,
