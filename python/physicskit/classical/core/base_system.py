@@ -40,8 +40,10 @@ __all__ = [
 class SimulationResult:
     """Output of ``integrate``: the sampled trajectory and its diagnostics.
 
-    Every array is a C-contiguous float64 numpy array that owns memory moved from Rust
-    (no copy). With ``n_steps = round((t1 - t0) / dt)`` there are ``n_steps + 1`` samples.
+    Every array is a C-contiguous float64 numpy array. ``t``, ``y`` and ``energy`` own memory
+    moved from Rust (no copy); for built-in systems ``q`` and ``p`` are split off ``y`` when
+    first read (one copy each, then kept), so a run writes each state once. With
+    ``n_steps = round((t1 - t0) / dt)`` there are ``n_steps + 1`` samples.
     """
 
     t: np.ndarray
