@@ -19,6 +19,10 @@ pub struct Singular;
 /// # Errors
 /// [`Singular`] if a pivot falls below `1e-14` times the largest entry, or the matrix holds a
 /// non-finite number.
+///
+/// Always inlined: called with a constant `n` (the Lagrangian engine's fixed-size kernels) the
+/// loops unroll.
+#[inline(always)]
 pub fn lu_factor(a: &mut [f64], n: usize, piv: &mut [usize]) -> Result<(), Singular> {
     debug_assert!(a.len() >= n * n && piv.len() >= n);
     // `f64::max` skips NaN, so finiteness is checked on its own.
@@ -61,6 +65,7 @@ pub fn lu_factor(a: &mut [f64], n: usize, piv: &mut [usize]) -> Result<(), Singu
 }
 
 /// Solves `A x = b` in place (`b` becomes `x`) from the factors of [`lu_factor`].
+#[inline(always)]
 pub fn lu_solve(lu: &[f64], n: usize, piv: &[usize], b: &mut [f64]) {
     for (k, &swap) in piv.iter().enumerate().take(n) {
         b.swap(k, swap);

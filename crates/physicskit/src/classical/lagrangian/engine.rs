@@ -69,8 +69,6 @@ use super::dual::{Dual2Arr, DualArr, HyperArr};
 use crate::classical::core::error::check_vector;
 use crate::classical::core::linalg::{lu_factor, lu_solve, Singular};
 
-/// Pivot threshold of [`lu_factor`], repeated for the fixed-size copy [`factor`].
-const SINGULAR_RELATIVE_PIVOT: f64 = 1e-14;
 use crate::classical::core::{Error, Phase, Result};
 
 /// The number types a [`Lagrangian`] is evaluated on: `f64` and num-dual's (hyper-)dual
@@ -899,8 +897,9 @@ struct VelocityWork<'a> {
     step: &'a mut [f64],
 }
 
-/// [`lu_factor`] with the size `N` known at compile time (`N = 0`: the runtime `n`). The same
-/// operations in the same order as [`lu_factor`], so both give identical factors.
+/// [`lu_factor`] with the size `N` known at compile time (`N = 0`: the runtime `n`): the core
+/// routine is inlined, so with a constant size the compiler unrolls it; the operations (and
+/// so the factors) are the same.
 #[inline(always)]
 fn factor<const N: usize>(
     a: &mut [f64],
@@ -908,66 +907,18 @@ fn factor<const N: usize>(
     piv: &mut [usize],
 ) -> std::result::Result<(), Singular> {
     if N == 0 {
-        return lu_factor(a, n, piv);
+        lu_factor(a, n, piv)
+    } else {
+        lu_factor(&mut a[..N * N], N, &mut piv[..N])
     }
-    let a = &mut a[..N * N];
-    let piv = &mut piv[..N];
-    if !a.iter().all(|v| v.is_finite()) {
-        return Err(Singular);
-    }
-    let scale = a.iter().fold(0.0_f64, |m, v| m.max(v.abs()));
-    if scale == 0.0 {
-        return Err(Singular);
-    }
-    let tiny = SINGULAR_RELATIVE_PIVOT * scale;
-    for k in 0..N {
-        let (mut best, mut best_row) = (a[k * N + k].abs(), k);
-        for r in k + 1..N {
-            let v = a[r * N + k].abs();
-            if v > best {
-                best = v;
-                best_row = r;
-            }
-        }
-        if best <= tiny {
-            return Err(Singular);
-        }
-        piv[k] = best_row;
-        if best_row != k {
-            for c in 0..N {
-                a.swap(k * N + c, best_row * N + c);
-            }
-        }
-        let inv = 1.0 / a[k * N + k];
-        for r in k + 1..N {
-            let f = a[r * N + k] * inv;
-            a[r * N + k] = f;
-            for c in k + 1..N {
-                a[r * N + c] -= f * a[k * N + c];
-            }
-        }
-    }
-    Ok(())
 }
 
-/// [`lu_solve`] with the size `N` known at compile time (`N = 0`: the runtime `n`); same
-/// operations in the same order.
+/// [`lu_solve`] with the size `N` known at compile time (`N = 0`: the runtime `n`).
 #[inline(always)]
 fn solve<const N: usize>(lu: &[f64], n: usize, piv: &[usize], b: &mut [f64]) {
     if N == 0 {
-        return lu_solve(lu, n, piv, b);
-    }
-    let lu = &lu[..N * N];
-    let b = &mut b[..N];
-    for (k, &swap) in piv.iter().enumerate().take(N) {
-        b.swap(k, swap);
-    }
-    for r in 1..N {
-        let s: f64 = (0..r).map(|c| lu[r * N + c] * b[c]).sum();
-        b[r] -= s;
-    }
-    for r in (0..N).rev() {
-        let s: f64 = (r + 1..N).map(|c| lu[r * N + c] * b[c]).sum();
-        b[r] = (b[r] - s) / lu[r * N + r];
+        lu_solve(lu, n, piv, b)
+    } else {
+        lu_solve(&lu[..N * N], N, &piv[..N], &mut b[..N])
     }
 }
