@@ -103,23 +103,16 @@ fn sine_gordon(v: &Values) -> Built {
     // The kink centre defaults to the middle of the chain, which depends on n.
     let center = v.opt_real("center")?.unwrap_or((n as f64 - 1.0) / 2.0);
     let half = v.real("separation")? / 2.0;
+    // `velocity` is in sites per unit time, below the wave speed sqrt(k/m); the library
+    // returns canonical momenta (m dq/dt).
     let (q0, p0) = match v.choice("initial")? {
-        "kink" => SineGordonChain::kink(n, center, width, velocity, 1)?,
-        "antikink" => SineGordonChain::kink(n, center, width, velocity, -1)?,
+        "kink" => SineGordonChain::boosted_kink(n, m, k, center, width, velocity, 1)?,
+        "antikink" => SineGordonChain::boosted_kink(n, m, k, center, width, velocity, -1)?,
         "kink-antikink" => {
-            // A kink on the left moving right and an antikink on the right moving left: far
-            // apart, their sum is the usual two-soliton initial condition.
-            let (qa, pa) = SineGordonChain::kink(n, center - half, width, velocity, 1)?;
-            let (qb, pb) = SineGordonChain::kink(n, center + half, width, -velocity, -1)?;
-            (
-                qa.iter().zip(&qb).map(|(a, b)| a + b).collect(),
-                pa.iter().zip(&pb).map(|(a, b)| a + b).collect(),
-            )
+            SineGordonChain::kink_antikink(n, m, k, center - half, center + half, width, velocity)?
         }
         _ => (vec![0.0; n], vec![0.0; n]),
     };
-    // `kink` returns dq/dt; the canonical momentum is m dq/dt.
-    let p0: Vec<f64> = p0.iter().map(|p| m * p).collect();
     Ok(Box::new(Hamiltonian(SineGordonChain::new(
         n,
         m,
@@ -467,7 +460,7 @@ pub static REGISTRY: &[SystemSpec] = &[
             real(
                 "velocity",
                 "0.2",
-                "kink speed in sites per unit time, |v| < 1 (the pair approaches)",
+                "kink speed in sites per unit time, |v| < sqrt(k/m) (the pair approaches)",
             ),
         ],
         methods: ALL_METHODS,

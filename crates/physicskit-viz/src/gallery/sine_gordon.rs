@@ -29,11 +29,15 @@ pub(crate) fn render(ctx: &Ctx) -> Result<Demo> {
     let n = ctx.pick(160, 240);
     let width = K.sqrt();
     let c = K.sqrt(); // wave speed for m = 1, in sites per unit time
-    let (qk, pk) = SineGordonChain::kink(n, 0.25 * n as f64, width, BETA, 1)?;
-    let (qa, pa) = SineGordonChain::kink(n, 0.75 * n as f64, width, -BETA, -1)?;
-    // `kink` gives dq/dt for unit wave speed; the chain's wave speed is c.
-    let q0: Vec<f64> = qk.iter().zip(&qa).map(|(a, b)| a + b).collect();
-    let p0: Vec<f64> = pk.iter().zip(&pa).map(|(a, b)| c * (a + b)).collect();
+    let (q0, p0) = SineGordonChain::kink_antikink(
+        n,
+        1.0,
+        K,
+        0.25 * n as f64,
+        0.75 * n as f64,
+        width,
+        BETA * c,
+    )?;
     let mut chain = SineGordonChain::new(n, 1.0, K, Some(&q0), Some(&p0))?;
     // They meet after each covers n/4 sites (t = n/(4v)); run on for as long again.
     let t1 = 0.5 * n as f64 / (BETA * c);

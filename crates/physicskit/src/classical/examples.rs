@@ -35,9 +35,6 @@ impl HamiltonianSystem for Pendulum {
     fn ndof(&self) -> usize {
         1
     }
-    fn kinetic_energy(&self, p: &[f64]) -> f64 {
-        0.5 * p[0] * p[0]
-    }
     fn potential_energy(&self, q: &[f64]) -> f64 {
         -self.g_over_l * q[0].cos()
     }
@@ -93,9 +90,6 @@ impl HarmonicOscillator {
 impl HamiltonianSystem for HarmonicOscillator {
     fn ndof(&self) -> usize {
         1
-    }
-    fn kinetic_energy(&self, p: &[f64]) -> f64 {
-        0.5 * self.m_inv * p[0] * p[0]
     }
     fn potential_energy(&self, q: &[f64]) -> f64 {
         0.5 * self.k * q[0] * q[0]

@@ -382,3 +382,39 @@ fn sine_gordon_static_kink_energy_on_the_unit_lattice() {
         "antikink steps from 0 down to -2 pi"
     );
 }
+
+/// `boosted_kink` on a chain whose wave speed is not 1: `m = 4`, `k = 36` gives `c = 3` sites
+/// per unit time and width `sqrt(k) = 6`. A kink launched at 1.5 sites per unit time (beta =
+/// 1/2, gamma = 2/sqrt(3)) must move at 1.5: the same continuum regime as the test above (wide
+/// kink), so the same 1% bound.
+#[test]
+fn boosted_kinks_move_at_their_velocity_on_any_chain() {
+    let (n, m, k) = (400, 4.0_f64, 36.0_f64);
+    let (c, width, v) = ((k / m).sqrt(), k.sqrt(), 1.5_f64);
+    let gamma = 1.0 / (1.0 - (v / c).powi(2)).sqrt();
+    let (q0, p0) = SineGordonChain::boosted_kink(n, m, k, 100.0, width, v, 1).unwrap();
+    let mut chain = SineGordonChain::new(n, m, k, Some(&q0), Some(&p0)).unwrap();
+    let t1 = 60.0;
+    let r = chain.integrate((0.0, t1), 0.01, Method::Yoshida4).unwrap();
+    let end = r.final_state();
+    let moved = kink_centre(&end.as_slice().unwrap()[..n], width, gamma) - 100.0;
+    assert!(
+        (moved - v * t1).abs() < 0.01 * v * t1,
+        "moved {moved}, expected {}",
+        v * t1
+    );
+    // With m = k = 1 it is the spec's kink() exactly (p = m dq/dt with m = c = 1).
+    assert_eq!(
+        SineGordonChain::boosted_kink(20, 1.0, 1.0, 7.5, 1.0, 0.4, -1).unwrap(),
+        SineGordonChain::kink(20, 7.5, 1.0, 0.4, -1).unwrap()
+    );
+    // Faster than the wave speed is refused.
+    assert!(SineGordonChain::boosted_kink(n, m, k, 100.0, width, 3.0, 1).is_err());
+    // The pair is the sum of a right-moving kink and a left-moving antikink.
+    let (qp, pp) = SineGordonChain::kink_antikink(n, m, k, 100.0, 300.0, width, v).unwrap();
+    let (qa, pa) = SineGordonChain::boosted_kink(n, m, k, 300.0, width, -v, -1).unwrap();
+    for i in 0..n {
+        assert_eq!(qp[i], q0[i] + qa[i]);
+        assert_eq!(pp[i], p0[i] + pa[i]);
+    }
+}

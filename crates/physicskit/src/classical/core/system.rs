@@ -5,7 +5,7 @@
 //! trait provides `integrate`, which is generic over the concrete system: the integrators are
 //! monomorphized for it, so its force or right-hand side is inlined into the step loop.
 
-use super::error::{check_vector, Error, Result};
+use super::error::{Error, Result};
 use super::method::Method;
 use super::options::IntegrateOptions;
 use super::phase::Phase;
@@ -117,8 +117,12 @@ pub trait HamiltonianSystem: DynamicalSystem {
     /// Number of degrees of freedom.
     fn ndof(&self) -> usize;
 
-    /// Kinetic energy `T(p)`.
-    fn kinetic_energy(&self, p: &[f64]) -> f64;
+    /// Kinetic energy `T(p) = sum_i mass_inv_i p_i^2 / 2`, from [`mass_inv`](Self::mass_inv):
+    /// the same masses the splitting drift uses, so the two cannot disagree. Override only for
+    /// non-separable systems (where `T` is not used by the integrators).
+    fn kinetic_energy(&self, p: &[f64]) -> f64 {
+        quadratic_kinetic_energy(self.mass_inv(), p)
+    }
 
     /// Potential energy `V(q)`.
     fn potential_energy(&self, q: &[f64]) -> f64;
@@ -303,11 +307,12 @@ pub fn hamiltonian_energy<S: HamiltonianSystem + ?Sized>(system: &S, state: &[f6
 
 /// `sum_i mass_inv_i p_i^2 / 2`.
 pub fn quadratic_kinetic_energy(mass_inv: MassInv<'_>, p: &[f64]) -> f64 {
-    0.5 * p
-        .iter()
-        .enumerate()
-        .map(|(i, &pi)| mass_inv.get(i) * pi * pi)
-        .sum::<f64>()
+    match mass_inv {
+        MassInv::Uniform(m) => 0.5 * m * p.iter().map(|pi| pi * pi).sum::<f64>(),
+        MassInv::PerCoordinate(m) => {
+            0.5 * p.iter().zip(m).map(|(pi, mi)| mi * pi * pi).sum::<f64>()
+        }
+    }
 }
 
 /// A system defined by a Lagrangian `L(q, qdot, t)`, with state `[q, qdot]` (the spec's
@@ -441,12 +446,4 @@ pub trait OdeSystem: DynamicalSystem {
     {
         driver::integrate_ode(self, t_span, dt, method, options)
     }
-}
-
-/// Validates a state against a system's dimension (used by constructors and `reset`).
-///
-/// # Errors
-/// [`Error::DimensionMismatch`] or [`Error::NonFinite`].
-pub fn check_state(name: &str, state: &[f64], dim: usize) -> Result<()> {
-    check_vector(name, state, dim)
 }

@@ -288,9 +288,6 @@ impl HamiltonianSystem for HarmonicChain {
     fn ndof(&self) -> usize {
         self.modes.n
     }
-    fn kinetic_energy(&self, p: &[f64]) -> f64 {
-        0.5 / self.m * p.iter().map(|x| x * x).sum::<f64>()
-    }
     fn potential_energy(&self, q: &[f64]) -> f64 {
         let k = self.k;
         fixed_end_potential(q, |r| 0.5 * k * r * r)
@@ -394,9 +391,6 @@ impl NormalModes for FPUTChain {
 impl HamiltonianSystem for FPUTChain {
     fn ndof(&self) -> usize {
         self.modes.n
-    }
-    fn kinetic_energy(&self, p: &[f64]) -> f64 {
-        0.5 / self.m * p.iter().map(|x| x * x).sum::<f64>()
     }
     fn potential_energy(&self, q: &[f64]) -> f64 {
         let (k, b) = (self.k, self.beta);
@@ -531,6 +525,61 @@ impl SineGordonChain {
         Ok((q, p))
     }
 
+    /// A kink (`polarity = 1`) or antikink (`-1`) of a chain with any `m` and `k`, moving at
+    /// `velocity` sites per unit time, as canonical `(q, p)`.
+    ///
+    /// The chain's wave speed is `c = sqrt(k/m)` and its static kink has width `sqrt(k)`; the
+    /// profile is [`kink`](Self::kink)'s with the Lorentz factor of `velocity / c`, and the
+    /// momentum is `p = m dq/dt`. With `m = k = 1` this is exactly `kink`'s output.
+    ///
+    /// # Errors
+    /// As [`kink`](Self::kink), with `|velocity| < c` and `m, k > 0` required.
+    pub fn boosted_kink(
+        n: usize,
+        m: f64,
+        k: f64,
+        center: f64,
+        width: f64,
+        velocity: f64,
+        polarity: i32,
+    ) -> Result<(Vec<f64>, Vec<f64>)> {
+        let c = (check_positive("k", k)? / check_positive("m", m)?).sqrt();
+        if !(velocity.is_finite() && velocity.abs() < c) {
+            return Err(Error::invalid(
+                "velocity",
+                velocity,
+                format!("|velocity| must be < the wave speed sqrt(k/m) = {c}"),
+            ));
+        }
+        let (q, mut p) = Self::kink(n, center, width, velocity / c, polarity)?;
+        // `kink` returns dq/dt for a wave speed of 1: scale to speed c and to momentum m dq/dt.
+        p.iter_mut().for_each(|v| *v *= m * c);
+        Ok((q, p))
+    }
+
+    /// A kink at `left` moving right and an antikink at `right` moving left, both at `speed`
+    /// sites per unit time (see [`boosted_kink`](Self::boosted_kink)): far apart, the sum of the
+    /// two profiles is the standard initial condition of a kink–antikink collision.
+    ///
+    /// # Errors
+    /// As [`boosted_kink`](Self::boosted_kink).
+    #[allow(clippy::too_many_arguments)]
+    pub fn kink_antikink(
+        n: usize,
+        m: f64,
+        k: f64,
+        left: f64,
+        right: f64,
+        width: f64,
+        speed: f64,
+    ) -> Result<(Vec<f64>, Vec<f64>)> {
+        let (mut q, mut p) = Self::boosted_kink(n, m, k, left, width, speed, 1)?;
+        let (qa, pa) = Self::boosted_kink(n, m, k, right, width, -speed, -1)?;
+        q.iter_mut().zip(&qa).for_each(|(a, b)| *a += b);
+        p.iter_mut().zip(&pa).for_each(|(a, b)| *a += b);
+        Ok((q, p))
+    }
+
     /// Mass `m`.
     pub fn m(&self) -> f64 {
         self.m
@@ -551,9 +600,6 @@ impl NormalModes for SineGordonChain {
 impl HamiltonianSystem for SineGordonChain {
     fn ndof(&self) -> usize {
         self.modes.n
-    }
-    fn kinetic_energy(&self, p: &[f64]) -> f64 {
-        0.5 / self.m * p.iter().map(|x| x * x).sum::<f64>()
     }
     fn potential_energy(&self, q: &[f64]) -> f64 {
         let springs: f64 = q.windows(2).map(|w| (w[1] - w[0]) * (w[1] - w[0])).sum();

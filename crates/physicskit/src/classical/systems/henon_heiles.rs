@@ -38,9 +38,6 @@ impl HamiltonianSystem for HenonHeilesSystem {
     fn ndof(&self) -> usize {
         2
     }
-    fn kinetic_energy(&self, p: &[f64]) -> f64 {
-        0.5 * (p[0] * p[0] + p[1] * p[1])
-    }
     fn potential_energy(&self, q: &[f64]) -> f64 {
         let (x, y) = (q[0], q[1]);
         0.5 * (x * x + y * y) + x * x * y - y * y * y / 3.0

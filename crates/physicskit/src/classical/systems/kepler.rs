@@ -231,9 +231,6 @@ impl HamiltonianSystem for KeplerSystem {
     fn ndof(&self) -> usize {
         2
     }
-    fn kinetic_energy(&self, p: &[f64]) -> f64 {
-        0.5 * self.mu_inv * (p[0] * p[0] + p[1] * p[1])
-    }
     fn potential_energy(&self, q: &[f64]) -> f64 {
         self.radial(self.softened_radius(q)).0
     }

@@ -152,9 +152,6 @@ impl HamiltonianSystem for ProjectileMotion {
     fn ndof(&self) -> usize {
         2
     }
-    fn kinetic_energy(&self, p: &[f64]) -> f64 {
-        0.5 * (p[0] * p[0] + p[1] * p[1]) / self.m
-    }
     fn potential_energy(&self, q: &[f64]) -> f64 {
         self.m * self.g * q[1]
     }

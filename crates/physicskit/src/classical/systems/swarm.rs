@@ -237,9 +237,6 @@ impl HamiltonianSystem for PendulumSwarm {
     fn ndof(&self) -> usize {
         self.n
     }
-    fn kinetic_energy(&self, p: &[f64]) -> f64 {
-        0.5 * p.iter().map(|pi| pi * pi).sum::<f64>()
-    }
     fn potential_energy(&self, q: &[f64]) -> f64 {
         -self.g_over_l * sum_cos(q)
     }
