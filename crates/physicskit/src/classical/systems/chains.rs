@@ -37,6 +37,12 @@ use crate::classical::core::error::{check_finite_scalar, check_positive, check_v
 use crate::classical::core::trig::{sin_into, sum_cos};
 use crate::classical::core::{Error, HamiltonianSystem, MassInv, Phase, Result};
 
+/// Angular frequency of normal mode `j` (`1..=n`) of `n` masses `m` joined by springs `k`
+/// between fixed walls: `omega_j = 2 sqrt(k/m) sin(j pi / (2 (n + 1)))`.
+pub fn chain_mode_frequency(n: usize, m: f64, k: f64, j: usize) -> f64 {
+    2.0 * (k / m).sqrt() * (j as f64 * PI / (2.0 * (n as f64 + 1.0))).sin()
+}
+
 /// The fixed-end sine modes of an `N`-site chain with mass `m` and spring constant `k`.
 #[derive(Debug, Clone)]
 pub struct ChainModes {
@@ -58,10 +64,7 @@ impl ChainModes {
         let m = check_positive("m", m)?;
         let k = check_positive("k", k)?;
         let np1 = (n + 1) as f64;
-        let w0 = 2.0 * (k / m).sqrt();
-        let omega = (1..=n)
-            .map(|j| w0 * (j as f64 * PI / (2.0 * np1)).sin())
-            .collect();
+        let omega = (1..=n).map(|j| chain_mode_frequency(n, m, k, j)).collect();
         let norm = (2.0 / np1).sqrt();
         let sines = (0..2 * (n + 1))
             .map(|l| norm * (l as f64 * PI / np1).sin())

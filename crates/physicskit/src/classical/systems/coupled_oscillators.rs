@@ -50,8 +50,7 @@ impl CoupledOscillatorsParams {
 
     /// Angular frequency of normal mode `j` (`1..=n`): `2 sqrt(k/m) sin(j pi / (2(n+1)))`.
     pub fn mode_frequency(&self, j: usize) -> f64 {
-        let x = j as f64 * std::f64::consts::PI / (2.0 * (self.n as f64 + 1.0));
-        2.0 * (self.k / self.m).sqrt() * x.sin()
+        super::chain_mode_frequency(self.n, self.m, self.k, j)
     }
 }
 

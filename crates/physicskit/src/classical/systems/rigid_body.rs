@@ -57,6 +57,9 @@ impl Default for EulerTopParams {
 pub struct EulerTop {
     phase: Phase,
     inertia: [f64; 3],
+    /// Euler's coefficients `((I2-I3)/I1, (I3-I1)/I2, (I1-I2)/I3)`, computed once rather than
+    /// with three divisions per evaluation.
+    euler: [f64; 3],
 }
 
 fn state_len(state: &[f64]) -> Result<()> {
@@ -102,9 +105,11 @@ impl EulerTop {
         };
         let mut state = omega0.to_vec();
         state.extend_from_slice(&quat);
+        let [i1, i2, i3] = inertia;
         Ok(Self {
             phase: Phase::new(state, 0.0)?,
             inertia,
+            euler: [(i2 - i3) / i1, (i3 - i1) / i2, (i1 - i2) / i3],
         })
     }
 
@@ -194,12 +199,12 @@ impl DynamicalSystem for EulerTop {
                 found: out.len(),
             });
         }
-        let [i1, i2, i3] = self.inertia;
+        let [a1, a2, a3] = self.euler;
         let (w1, w2, w3) = (state[0], state[1], state[2]);
         let (qw, qx, qy, qz) = (state[3], state[4], state[5], state[6]);
-        out[0] = (i2 - i3) / i1 * w2 * w3;
-        out[1] = (i3 - i1) / i2 * w3 * w1;
-        out[2] = (i1 - i2) / i3 * w1 * w2;
+        out[0] = a1 * w2 * w3;
+        out[1] = a2 * w3 * w1;
+        out[2] = a3 * w1 * w2;
         // (1/2) q ⊗ (0, w) = (1/2) (-v.w, qw w + v x w), v = (qx, qy, qz).
         out[3] = -0.5 * (qx * w1 + qy * w2 + qz * w3);
         out[4] = 0.5 * (qw * w1 + qy * w3 - qz * w2);
@@ -229,8 +234,7 @@ impl DynamicalSystem for EulerTop {
                 found: out.len(),
             }));
         }
-        let [i1, i2, i3] = self.inertia;
-        let (a1, a2, a3) = ((i2 - i3) / i1, (i3 - i1) / i2, (i1 - i2) / i3);
+        let [a1, a2, a3] = self.euler;
         let (w1, w2, w3) = (state[0], state[1], state[2]);
         let (qw, qx, qy, qz) = (
             0.5 * state[3],

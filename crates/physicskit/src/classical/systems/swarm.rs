@@ -191,7 +191,7 @@ pub fn polygon_area(x: &[f64], y: &[f64]) -> Result<f64> {
 /// [`Error::InvalidParameter`] for fewer than three points; [`Error::DimensionMismatch`] if
 /// the coordinate slices differ in length; [`Error::NonFinite`] for NaN or infinity.
 pub fn convex_hull_area(x: &[f64], y: &[f64]) -> Result<f64> {
-    crate::classical::core::error::check_vector("x", x, x.len())?;
+    crate::classical::core::error::check_finite("x", x, 0.0)?;
     crate::classical::core::error::check_vector("y", y, x.len())?;
     if x.len() < 3 {
         return Err(Error::invalid(
