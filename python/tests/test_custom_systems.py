@@ -162,4 +162,7 @@ def test_speed_of_python_subclass_vs_builtin(capsys):
     with capsys.disabled():
         print(f"\n[speed] 2e4 yoshida4 steps: Python subclass {1e6 * (t1 - t0) / 2e4:.2f} us/step, "
               f"built-in {1e6 * (t2 - t1) / 2e4:.3f} us/step, ratio {(t1 - t0) / (t2 - t1):.0f}x")
-    assert t1 > t0 and t2 > t1
+    # The timing is only reported; what must hold is that both runs computed the same
+    # trajectory (same yoshida4 steps; the force beta q^3 is evaluated by numpy and by Rust
+    # with the same operations, so the states agree to rounding, ~1e-14 after 2e4 steps).
+    assert np.allclose(py_sys.state, rs_sys.state, rtol=0, atol=1e-12)

@@ -77,12 +77,17 @@ pub fn integrate_lagrangian<S: LagrangianSystem>(
         Method::ImplicitMidpoint => {
             let sys = &*system;
             // Canonical start: p = dL/dqdot at (q0, qdot0).
-            let mut work = sys.state().to_vec();
-            {
-                let (q, rest) = work.split_at_mut(ndof);
-                let qdot = sys.state()[ndof..].to_vec();
-                sys.momentum(q, &qdot, setup.grid.t0(), rest)?;
-            }
+            let initial = sys.state().to_vec();
+            let mut work = initial.clone();
+            sys.momentum(
+                &initial[..ndof],
+                &initial[ndof..],
+                setup.grid.t0(),
+                &mut work[ndof..],
+            )?;
+            // The first sample is the initial state as given: converting qdot -> p -> qdot
+            // would change its last bits.
+            let mut first = Some(initial);
             let field = Canonical(sys);
             let mut stepper = ImplicitMidpoint::new(2 * ndof);
             let (result, y) = setup.run_from(
@@ -91,9 +96,13 @@ pub fn integrate_lagrangian<S: LagrangianSystem>(
                 options,
                 |t, y| stepper.step(&field, t, y, dt),
                 |t, y, out| {
-                    let (q, p) = y.split_at(ndof);
-                    out[..ndof].copy_from_slice(q);
-                    sys.velocity(q, p, t, &mut out[ndof..])?;
+                    if let Some(initial) = first.take() {
+                        out.copy_from_slice(&initial);
+                    } else {
+                        let (q, p) = y.split_at(ndof);
+                        out[..ndof].copy_from_slice(q);
+                        sys.velocity(q, p, t, &mut out[ndof..])?;
+                    }
                     Ok(sys.energy(out))
                 },
             )?;
