@@ -86,14 +86,8 @@ def euler_top_rotation_matrix(sys: NativeSystem, state: ArrayF64) -> ArrayF64:
 def expr_lagrangian(sexpr: str, ndof: int, params: ArrayF64, q0: ArrayF64, qdot0: ArrayF64) -> NativeSystem:
     """A Lagrangian system from a prefix S-expression (see `physicskit::classical::lagrangian::Expr`)"""
 
-def expr_mass_matrix(sys: NativeSystem, q: ArrayF64, qdot: ArrayF64, t: float) -> ArrayF64:
-    """The mass matrix `d2L/dqdot2` (row-major `ndof x ndof`) of an expression Lagrangian."""
-
 def expr_validate(sexpr: str, ndof: int, nparams: int) -> None:
     """Parses `sexpr` and checks its variable and parameter indices against `ndof` and `nparams`."""
-
-def expr_value(sys: NativeSystem, q: ArrayF64, qdot: ArrayF64, t: float) -> float:
-    """`L(q, qdot, t)` of an expression Lagrangian."""
 
 def find_theta_equilibrium(p_phi: float, p_psi: float, I1: float, I3: float, Mgl: float, bracket: tuple[float, float]) -> float:
     """Minimum of `V_eff` in `bracket`."""
@@ -103,9 +97,6 @@ def fput_chain(n: int, m: float, k: float, beta: float, mode: int, amplitude: fl
 
 def harmonic_chain(q0: ArrayF64, p0: ArrayF64, m: float, k: float) -> NativeSystem:
     """`HarmonicChain(q0, p0, m, k)`."""
-
-def harmonic_oscillator(q0: ArrayF64, p0: ArrayF64, m: float, k: float) -> NativeSystem:
-    """The harmonic oscillator `H = p^2/(2m) + k q^2/2` (a reference system of the core)."""
 
 def heavy_symmetric_top(angles0: ArrayF64, angledots0: ArrayF64, I1: float, I3: float, M: float, l: float, g: float) -> NativeSystem:
     """`HeavySymmetricTop(angles0, angledots0, I1, I3, M, l, g)`."""
@@ -133,9 +124,6 @@ def kepler_lrl_vector(sys: NativeSystem, q: ArrayF64, p: ArrayF64) -> ArrayF64:
 
 def nutation_frequency(p_phi: float, p_psi: float, I1: float, I3: float, Mgl: float, theta_eq: float | None, dtheta: float) -> float:
     """Small-oscillation nutation frequency about `theta_eq`."""
-
-def pendulum(q0: ArrayF64, p0: ArrayF64, g_over_l: float) -> NativeSystem:
-    """The simple pendulum `H = p^2/2 - (g/l) cos q` (a reference system of the core)."""
 
 def pendulum_action_angle(E: float, g_over_l: float) -> tuple[float, float]:
     """Action and period of a librating pendulum orbit of energy `E`."""

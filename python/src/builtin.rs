@@ -8,7 +8,6 @@
 
 use numpy::{PyArray1, PyArray2, PyReadonlyArray1};
 use physicskit::classical::analysis;
-use physicskit::classical::examples::{HarmonicOscillator, Pendulum};
 use physicskit::classical::lagrangian::{Expr, ExprLagrangian, LagrangianModel};
 use physicskit::classical::systems::{
     BeadOnRotatingHoop, CoupledOscillators, CoupledOscillatorsParams, DoublePendulum,
@@ -22,8 +21,6 @@ use crate::convert::{array1, to_vec};
 use crate::errors::IntoPyResult;
 use crate::native::{check_len, NativeSystem};
 
-crate::native_hamiltonian!(Pendulum);
-crate::native_hamiltonian!(HarmonicOscillator);
 crate::native_hamiltonian!(KeplerSystem);
 crate::native_hamiltonian!(HenonHeilesSystem);
 crate::native_hamiltonian!(PendulumSwarm);
@@ -42,37 +39,8 @@ type Arr<'a> = PyReadonlyArray1<'a, f64>;
 /// Two numpy vectors returned together (`(x, y)`, `(q0, p0)`, `(Q, P)`).
 type Pair<'py> = (Bound<'py, PyArray1<f64>>, Bound<'py, PyArray1<f64>>);
 
-fn scalar(name: &str, v: &Arr<'_>) -> PyResult<f64> {
-    let v = to_vec(v);
-    check_len(name, &v, 1).py()?;
-    Ok(v[0])
-}
-
 fn wrap<S: crate::native::Native>(s: physicskit::classical::Result<S>) -> PyResult<NativeSystem> {
     Ok(NativeSystem::new(s.py()?))
-}
-
-// ---------------------------------------------------------------- reference systems
-
-/// The simple pendulum `H = p^2/2 - (g/l) cos q` (a reference system of the core).
-#[pyfunction]
-pub fn pendulum(q0: Arr<'_>, p0: Arr<'_>, g_over_l: f64) -> PyResult<NativeSystem> {
-    wrap(Pendulum::new(
-        scalar("q0", &q0)?,
-        scalar("p0", &p0)?,
-        g_over_l,
-    ))
-}
-
-/// The harmonic oscillator `H = p^2/(2m) + k q^2/2` (a reference system of the core).
-#[pyfunction]
-pub fn harmonic_oscillator(q0: Arr<'_>, p0: Arr<'_>, m: f64, k: f64) -> PyResult<NativeSystem> {
-    wrap(HarmonicOscillator::new(
-        scalar("q0", &q0)?,
-        scalar("p0", &p0)?,
-        m,
-        k,
-    ))
 }
 
 // ---------------------------------------------------------------- Kepler
@@ -484,34 +452,6 @@ pub fn expr_validate(sexpr: &str, ndof: usize, nparams: usize) -> PyResult<()> {
     Expr::parse(sexpr).py()?.validate(ndof, nparams).py()
 }
 
-/// The mass matrix `d2L/dqdot2` (row-major `ndof x ndof`) of an expression Lagrangian.
-#[pyfunction]
-pub fn expr_mass_matrix<'py>(
-    py: Python<'py>,
-    sys: &NativeSystem,
-    q: Arr<'_>,
-    qdot: Arr<'_>,
-    t: f64,
-) -> PyResult<Bound<'py, PyArray2<f64>>> {
-    let s = sys.downcast::<LagrangianModel<ExprLagrangian>>()?;
-    let n = s.engine().ndof();
-    let (q, qdot) = qp(&q, &qdot, n)?;
-    let mut out = vec![0.0; n * n];
-    s.engine().mass_matrix(&q, &qdot, t, &mut out).py()?;
-    let a = ndarray::Array2::from_shape_vec((n, n), out)
-        .map_err(|e| pyo3::exceptions::PyValueError::new_err(e.to_string()))?;
-    Ok(numpy::IntoPyArray::into_pyarray(a, py))
-}
-
-/// `L(q, qdot, t)` of an expression Lagrangian.
-#[pyfunction]
-pub fn expr_value(sys: &NativeSystem, q: Arr<'_>, qdot: Arr<'_>, t: f64) -> PyResult<f64> {
-    let s = sys.downcast::<LagrangianModel<ExprLagrangian>>()?;
-    let n = s.engine().ndof();
-    let (q, qdot) = qp(&q, &qdot, n)?;
-    s.engine().value(&q, &qdot, t).py()
-}
-
 // ---------------------------------------------------------------- rigid bodies
 
 /// `EulerTop(omega0, I1, I2, I3, quat0)`.
@@ -633,8 +573,6 @@ pub fn register(m: &Bound<'_, PyModule>) -> PyResult<()> {
         ($($f:ident),* $(,)?) => { $( m.add_function(wrap_pyfunction!($f, m)?)?; )* };
     }
     add!(
-        pendulum,
-        harmonic_oscillator,
         kepler,
         kepler_from_orbital_elements,
         kepler_angular_momentum,
@@ -663,8 +601,6 @@ pub fn register(m: &Bound<'_, PyModule>) -> PyResult<()> {
         top_precession_nutation_rate,
         expr_lagrangian,
         expr_validate,
-        expr_mass_matrix,
-        expr_value,
         euler_top,
         euler_top_angular_momentum_squared,
         euler_top_rotation_matrix,
