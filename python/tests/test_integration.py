@@ -76,12 +76,15 @@ def test_euler_top_quadratic_invariants():
     # accumulated over 1e5 steps: issue 4 sets 1e-12 relative.
     assert rel_drift(r.energy) < 1e-12
     lf = s.angular_momentum_squared()
+    # Quadratic invariants of implicit midpoint: rounding only (~1e-14 over 1e5 steps); the
+    # issue's bar is 1e-12.
     assert abs(lf - l0) / l0 < 1e-12
     assert abs(np.linalg.norm(s.quaternion) - 1.0) < 1e-12
     # The intermediate-axis flip of the spec's example happens before t = 100.
     assert np.max(np.abs(r.y[:, 0])) > 0.5
     rm = s.rotation_matrix()
-    assert rm.shape == (3, 3) and np.allclose(rm @ rm.T, np.eye(3), atol=1e-12)
+    # R R^T = I to the rounding of a unit quaternion's products (~1e-15); 1e-12 as above.
+    assert rm.shape == (3, 3) and np.allclose(rm @ rm.T, np.eye(3), rtol=0, atol=1e-12)
 
 
 def test_henon_heiles_bar():
@@ -119,6 +122,7 @@ def test_projectile_matches_parabola():
     # Constant force: yoshida4 is exact up to rounding; issue 3's bar is 1e-9.
     assert np.max(np.abs(r.q[:, 0] - x)) < 1e-9 and np.max(np.abs(r.q[:, 1] - y)) < 1e-9
     rng, h = pc.ProjectileMotion.range_and_max_height(20.0, 45.0, 9.81)
+    # Closed forms v^2 sin(2a)/g and (v sin a)^2/(2g): a few roundings.
     assert rng == pytest.approx(400.0 / 9.81, rel=1e-14) and h == pytest.approx(100.0 / 9.81, rel=1e-14)
 
 
@@ -127,6 +131,7 @@ def test_swarm_per_particle_energy_and_area():
     e0 = s.per_particle_energy()
     a0 = s.phase_space_area()
     s.integrate((0.0, 5.0), 1e-3)
+    # yoshida4 at dt 1e-3: energy error ~ (dt w)^4 ~ 1e-12 per pendulum, bounded; 1e-10 margin.
     assert np.max(np.abs(s.per_particle_energy() - e0)) < 1e-10
     assert abs(s.phase_space_area() - a0) / a0 < 0.05  # issue 3's 5% bar
 
@@ -151,6 +156,7 @@ def test_top_analysis_functions():
         np.array([th_eq - 1e-3, th_eq, th_eq + 1e-3]), 3.0, 4.0, 1.0, 0.5, 9.81)
     assert around[1] < around[0] and around[1] < around[2]
     assert pc.nutation_frequency(3.0, 4.0, 1.0, 0.5, 9.81) > 0
+    # Same formula, different operation order: a few ulps.
     assert pc.precession_frequency(3.0, 4.0, 1.0, th_eq) == pytest.approx(
         (3.0 - 4.0 * np.cos(th_eq)) / np.sin(th_eq) ** 2, rel=1e-14)
     J, T = pc.pendulum_action_angle(0.0)

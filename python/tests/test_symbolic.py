@@ -16,6 +16,7 @@ def test_sympy_double_pendulum_equals_builtin():
     a = engine.system([2.0, 1.0], [0.5, -0.3])
     b = pc.DoublePendulum([2.0, 1.0], [0.5, -0.3], m2=1.5, l2=0.8)
     assert isinstance(a, pc.LagrangianSystem)
+    # Same energy from two differently written Lagrangians: operation order only.
     assert a.energy() == pytest.approx(b.energy(), rel=1e-14)
     ra = a.integrate((0.0, 0.3), 3e-5, method="implicit_midpoint")  # 1e4 steps
     rb = b.integrate((0.0, 0.3), 3e-5, method="implicit_midpoint")
@@ -71,6 +72,7 @@ def test_time_dependent_lagrangian():
     q, v, t = sp.symbols("q v t")
     engine = LagrangianEngine([q], [v], v**2 / 2 - q**2 / 2 + sp.Rational(1, 2) * sp.cos(2 * t) * q, t=t)
     acc = engine.acceleration([0.3], [0.0], t=0.7)
+    # qddot = -q + F0 cos(2t) exactly; the engine's AD reproduces it to rounding.
     assert acc[0] == pytest.approx(-0.3 + 0.5 * np.cos(1.4), rel=1e-14)
 
 
