@@ -2,7 +2,7 @@
 
 use std::f64::consts::PI;
 
-use physicskit::classical::systems::{convex_hull_area, PendulumSwarm};
+use physicskit::classical::systems::{convex_hull_area, polygon_area, PendulumSwarm};
 use physicskit::classical::{HamiltonianSystem, Method};
 
 use super::common::check_force_against_potential;
@@ -82,4 +82,31 @@ fn convex_hull_area_of_known_shapes() {
             .abs()
             < 1e-15
     );
+}
+
+/// Liouville's theorem measured by the invariant itself: the area enclosed by the boundary of
+/// the box (0.05 x 0.05 at (1, 0)), carried by the flow to t = 5. The flow map preserves
+/// area exactly; what remains is yoshida4's O(dt^4) error and the chords between 400 boundary
+/// points, whose curvature error is O(spacing^2 kappa) of the area.
+#[test]
+fn enclosed_phase_space_area_is_conserved() {
+    let (c, d, per_side) = ((1.0, 0.0), 0.05, 100);
+    let mut q = Vec::new();
+    let mut p = Vec::new();
+    let corners = [(-1.0, -1.0), (1.0, -1.0), (1.0, 1.0), (-1.0, 1.0)];
+    for k in 0..4 {
+        let (a, b) = (corners[k], corners[(k + 1) % 4]);
+        for i in 0..per_side {
+            let f = i as f64 / per_side as f64;
+            q.push(c.0 + 0.5 * d * (a.0 + f * (b.0 - a.0)));
+            p.push(c.1 + 0.5 * d * (a.1 + f * (b.1 - a.1)));
+        }
+    }
+    let a0 = polygon_area(&q, &p).unwrap();
+    let mut edge = PendulumSwarm::new(&q, &p, 1.0).unwrap();
+    edge.integrate((0.0, 5.0), 1e-3, Method::Yoshida4).unwrap();
+    let a1 = polygon_area(edge.q(), edge.p()).unwrap();
+    // Measured: 2.2e-8 relative (the convex hull of the filled box moves by 4e-4 in the same
+    // run); 1e-6 leaves a 45x margin and is still 400x tighter than the hull bound.
+    assert!((a1 - a0).abs() < 1e-6 * a0, "{a0} -> {a1}");
 }
