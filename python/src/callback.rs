@@ -237,8 +237,6 @@ fn options(
     Ok(IntegrateOptions {
         sampling: sampling(stride, final_only)?,
         skip_energy: !energy,
-        // Python-defined systems get q and p from Rust (their runs are callback-bound anyway).
-        skip_qp: false,
         observer: Some(observer),
         // A Python right-hand side is ~100x slower than a native one: check more often.
         observe_every: CHECK_EVERY / 16,

@@ -21,7 +21,8 @@ pub fn array1<'py>(py: Python<'py>, v: &[f64]) -> Bound<'py, PyArray1<f64>> {
 }
 
 /// Converts a result into the tuple `(t, y, q, p, energy, method, extra)` from which the
-/// Python `SimulationResult` is built. Arrays are moved, not copied.
+/// Python `SimulationResult` is built. Arrays are moved, not copied; `q` and `p` are `None`
+/// (the Python side splits them off `y` on first access, `_SplitOnAccess`).
 ///
 /// # Errors
 /// Python allocation failures.
@@ -36,8 +37,9 @@ pub fn result_tuple<'py>(py: Python<'py>, r: SimulationResult) -> PyResult<Bound
     let items: [Bound<'py, PyAny>; 7] = [
         r.t.into_pyarray(py).into_any(),
         r.y.into_pyarray(py).into_any(),
-        opt(py, r.q.map(|a| a.into_pyarray(py).into_any())),
-        opt(py, r.p.map(|a| a.into_pyarray(py).into_any())),
+        // q and p are views of y's halves: Python splits them off on first access.
+        py.None().into_bound(py),
+        py.None().into_bound(py),
         opt(py, r.energy.map(|a| a.into_pyarray(py).into_any())),
         r.method.into_pyobject(py)?.into_any(),
         extra.into_any(),

@@ -463,8 +463,6 @@ impl NativeSystem {
                     IntegrateOptions {
                         sampling,
                         skip_energy: !energy,
-                        // Python splits q and p off y on first access (_SplitOnAccess).
-                        skip_qp: true,
                         observer: Some(&mut observer),
                         observe_every: CHECK_EVERY,
                     },

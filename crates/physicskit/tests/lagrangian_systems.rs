@@ -111,7 +111,7 @@ fn lagrangian_results_hold_qdot_and_default_to_implicit_midpoint() {
     let result = dp
         .integrate((0.0, 0.01), 1e-3, Method::ImplicitMidpoint)
         .unwrap();
-    let p = result.p.as_ref().unwrap();
+    let p = result.p().unwrap();
     assert_eq!(p.row(0).to_vec(), vec![0.5, -0.3]);
     assert_eq!(result.method, "implicit_midpoint");
     assert!(matches!(

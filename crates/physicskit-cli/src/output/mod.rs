@@ -22,7 +22,7 @@ use std::io::{BufWriter, Write};
 use std::path::{Path, PathBuf};
 
 use anyhow::{bail, Context, Result};
-use ndarray::{Array1, Array2};
+use ndarray::{Array1, ArrayView2};
 use physicskit::classical::SimulationResult;
 
 use crate::registry::{Family, Values};
@@ -86,10 +86,10 @@ pub struct Record<'a> {
 
 impl Record<'_> {
     /// The state arrays to write, by name: `q` and `p`, or `y` when the result has no split.
-    pub fn state_arrays(&self) -> Vec<(&'static str, &Array2<f64>)> {
-        match (&self.result.q, &self.result.p) {
+    pub fn state_arrays(&self) -> Vec<(&'static str, ArrayView2<'_, f64>)> {
+        match (self.result.q(), self.result.p()) {
             (Some(q), Some(p)) => vec![("q", q), ("p", p)],
-            _ => vec![("y", &self.result.y)],
+            _ => vec![("y", self.result.y.view())],
         }
     }
 

@@ -93,7 +93,7 @@ pub(crate) fn render(ctx: &Ctx) -> Result<Demo> {
     let mut osc = CoupledOscillators::new(&q0, &[0.0; NB], params)?;
     let r = osc.integrate((0.0, t1), dt, Method::ImplicitMidpoint)?;
     let t = r.t.to_vec();
-    let q1 = nonempty(column(r.q.as_ref(), 0), "q1")?;
+    let q1 = nonempty(column(r.q(), 0), "q1")?;
     let envelope: Vec<f64> = t
         .iter()
         .map(|&ti| 2.0 * amplitude * (0.5 * (wb - wa) * ti).cos().abs())
@@ -121,7 +121,7 @@ pub(crate) fn render(ctx: &Ctx) -> Result<Demo> {
     let modes = physicskit::classical::systems::ChainModes::new(NB, 1.0, 1.0)?;
     let (mut scratch, mut energies) = ([0.0; NB], [0.0; NB]);
     let (mut ea, mut eb) = (Vec::new(), Vec::new());
-    let (qs, vs) = (r.q.as_ref(), r.p.as_ref());
+    let (qs, vs) = (r.q(), r.p());
     if let (Some(qs), Some(vs)) = (qs, vs) {
         for (q, v) in qs.rows().into_iter().zip(vs.rows()) {
             let (q, v) = (q.to_vec(), v.to_vec());

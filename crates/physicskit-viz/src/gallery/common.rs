@@ -1,13 +1,13 @@
 //! Small helpers shared by the demonstrations: columns of result arrays, angle wrapping and
 //! an orthographic 3-D projection for spheres and boxes.
 
-use ndarray::Array2;
+use ndarray::{Array2, ArrayView2};
 use physicskit::classical::{IntegrateOptions, Sampling};
 
 use crate::error::{Result, VizError};
 
 /// Column `j` of an optional `(samples, n)` array (empty if absent).
-pub(crate) fn column(a: Option<&Array2<f64>>, j: usize) -> Vec<f64> {
+pub(crate) fn column(a: Option<ArrayView2<'_, f64>>, j: usize) -> Vec<f64> {
     match a {
         Some(a) if j < a.ncols() => a.column(j).to_vec(),
         _ => Vec::new(),
@@ -16,7 +16,7 @@ pub(crate) fn column(a: Option<&Array2<f64>>, j: usize) -> Vec<f64> {
 
 /// Column `j` of the raw state array.
 pub(crate) fn ycol(y: &Array2<f64>, j: usize) -> Vec<f64> {
-    column(Some(y), j)
+    column(Some(y.view()), j)
 }
 
 /// The angle wrapped into `(-pi, pi]`.

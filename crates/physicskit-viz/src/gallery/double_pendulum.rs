@@ -34,10 +34,10 @@ pub(crate) fn render(ctx: &Ctx) -> Result<Demo> {
     let mut dp = DoublePendulum::new(&THETA0, &[0.0, 0.0], params)?;
     let every = 10; // one stored sample per 0.02 s
     let r = dp.integrate_with((0.0, t1), dt, Method::Rk4, stride(every))?;
-    let th1 = nonempty(column(r.q.as_ref(), 0), "theta1")?;
-    let th2 = nonempty(column(r.q.as_ref(), 1), "theta2")?;
-    let w1 = column(r.p.as_ref(), 0);
-    let w2 = column(r.p.as_ref(), 1);
+    let th1 = nonempty(column(r.q(), 0), "theta1")?;
+    let th2 = nonempty(column(r.q(), 1), "theta2")?;
+    let w1 = column(r.p(), 0);
+    let w2 = column(r.p(), 1);
     let t = r.t.to_vec();
     let mut p2 = Vec::with_capacity(t.len());
     let mut mom = [0.0; 2];

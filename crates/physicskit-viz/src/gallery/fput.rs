@@ -30,7 +30,7 @@ pub(crate) fn render(ctx: &Ctx) -> Result<Demo> {
     let mut chain = FPUTChain::new(N, 1.0, 1.0, BETA, 1, AMPLITUDE)?;
     let every = ctx.pick(200, 100);
     let r = chain.integrate_with((0.0, t1), dt, Method::Yoshida4, stride(every))?;
-    let (q, p) = match (r.q.as_ref(), r.p.as_ref()) {
+    let (q, p) = match (r.q(), r.p()) {
         (Some(q), Some(p)) => (q, p),
         _ => return Err(super::common::missing("q and p")),
     };

@@ -35,8 +35,8 @@ pub(crate) fn render(ctx: &Ctx) -> Result<Demo> {
     let (p_phi, p_psi) = params.conserved_momenta(&state0)?;
     let e0 = top.current_energy();
     let r = top.integrate((0.0, t1), 5e-4, Method::ImplicitMidpoint)?;
-    let phi = nonempty(column(r.q.as_ref(), 0), "phi")?;
-    let theta = nonempty(column(r.q.as_ref(), 1), "theta")?;
+    let phi = nonempty(column(r.q(), 0), "phi")?;
+    let theta = nonempty(column(r.q(), 1), "theta")?;
     let t = r.t.to_vec();
 
     // Symmetry axis in space: (sin th sin phi, -sin th cos phi, cos th) for z-x-z angles.

@@ -96,8 +96,8 @@ pub(crate) fn render(ctx: &Ctx) -> Result<Demo> {
             for sign in [1.0, -1.0] {
                 let mut bead = BeadOnRotatingHoop::new(sign * th0, 0.0, params)?;
                 let r = bead.integrate((0.0, t1), 0.002, Method::ImplicitMidpoint)?;
-                let th = nonempty(column(r.q.as_ref(), 0), "theta")?;
-                let om = column(r.p.as_ref(), 0);
+                let th = nonempty(column(r.q(), 0), "theta")?;
+                let om = column(r.p(), 0);
                 let pts = th
                     .iter()
                     .map(|&a| super::common::wrap(a))

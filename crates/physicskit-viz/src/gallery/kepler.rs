@@ -57,10 +57,10 @@ pub(crate) fn render(ctx: &Ctx) -> Result<Demo> {
     for (i, (label, pert)) in cases.into_iter().enumerate() {
         let mut sys = KeplerSystem::from_orbital_elements(A, E, 1.0, 1.0, pert)?;
         let r = sys.integrate_with((0.0, t1), dt, Method::Yoshida4, stride(every))?;
-        let x = column(r.q.as_ref(), 0);
-        let y = column(r.q.as_ref(), 1);
-        let px = column(r.p.as_ref(), 0);
-        let py = column(r.p.as_ref(), 1);
+        let x = column(r.q(), 0);
+        let y = column(r.q(), 1);
+        let px = column(r.p(), 0);
+        let py = column(r.p(), 1);
         let orbit = x.iter().copied().zip(y.iter().copied()).collect();
         panel = panel.with(
             Series::line(label, orbit, color(if i == 0 { 6 } else { 1 }))

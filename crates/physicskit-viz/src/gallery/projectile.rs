@@ -22,8 +22,8 @@ fn flight(angle: f64, drag: f64) -> Result<Vec<(f64, f64)>> {
     // The vacuum flight time plus a margin, as a whole number of steps.
     let steps = ((2.0 * SPEED * angle.to_radians().sin() / G + 0.5) / dt).ceil();
     let r = ball.integrate((0.0, steps * dt), dt, Method::Rk4)?;
-    let x = column(r.q.as_ref(), 0);
-    let y = column(r.q.as_ref(), 1);
+    let x = column(r.q(), 0);
+    let y = column(r.q(), 1);
     let mut pts = vec![(x[0], y[0])];
     for i in 1..x.len() {
         if y[i] < 0.0 {

@@ -45,7 +45,7 @@ pub(crate) fn render(ctx: &Ctx) -> Result<Demo> {
     let rows = ctx.pick(150, 300);
     let every = ((t1 / dt) as usize / rows).max(1);
     let r = chain.integrate_with((0.0, t1), dt, Method::Yoshida4, stride(every))?;
-    let q = r.q.as_ref().ok_or_else(|| super::common::missing("q"))?;
+    let q = r.q().ok_or_else(|| super::common::missing("q"))?;
     let ny = q.nrows();
     let values: Vec<f64> = q.iter().map(|v| v / std::f64::consts::TAU).collect();
     let map = HeatMap {

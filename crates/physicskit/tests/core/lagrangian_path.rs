@@ -19,6 +19,6 @@ fn lagrangian_and_hamiltonian_pendulum_agree() {
         assert!(diff <= 1e-12, "{method}: {diff:e}");
         assert_eq!(a.method, method.name());
         // result.p holds qdot for Lagrangian systems.
-        assert_eq!(a.p.as_ref().unwrap().column(0), a.y.column(1));
+        assert_eq!(a.p().unwrap().column(0), a.y.column(1));
     }
 }

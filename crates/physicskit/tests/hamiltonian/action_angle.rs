@@ -89,7 +89,7 @@ fn period_matches_the_integrated_pendulum() {
                 Method::Yoshida4,
             )
             .unwrap();
-        let (q, p) = (res.q.as_ref().unwrap(), res.p.as_ref().unwrap());
+        let (q, p) = (res.q().unwrap(), res.p().unwrap());
         // q(0) = 0 is not counted (the test is y < 0 before the crossing): first crossing ~T.
         let qs: Vec<f64> = q.column(0).to_vec();
         let ps: Vec<f64> = p.column(0).to_vec();

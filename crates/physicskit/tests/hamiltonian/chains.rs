@@ -92,7 +92,7 @@ fn harmonic_chain_modal_energies_are_constant() {
             IntegrateOptions::stride(500),
         )
         .unwrap();
-    let (qs, ps) = (res.q.as_ref().unwrap(), res.p.as_ref().unwrap());
+    let (qs, ps) = (res.q().unwrap(), res.p().unwrap());
     let mut worst = 0.0_f64;
     for i in 0..res.n_samples() {
         let e = chain
@@ -119,7 +119,7 @@ fn single_mode_oscillates_at_its_frequency() {
     let res = chain
         .integrate((0.0, 200.0), 1e-2, Method::Yoshida4)
         .unwrap();
-    let (qs, ps) = (res.q.as_ref().unwrap(), res.p.as_ref().unwrap());
+    let (qs, ps) = (res.q().unwrap(), res.p().unwrap());
     // Q(t) = Q0 cos(omega t): fit the phase of (Q, P/(m omega)) rotating at -omega.
     let mut phases = Vec::new();
     let mut previous = 0.0_f64;
@@ -176,7 +176,7 @@ fn fput_mode3_envelope(dt: f64, t_end: f64, window: usize) -> (Vec<f64>, Vec<f64
             IntegrateOptions::stride(stride),
         )
         .unwrap();
-    let (qs, ps) = (res.q.as_ref().unwrap(), res.p.as_ref().unwrap());
+    let (qs, ps) = (res.q().unwrap(), res.p().unwrap());
     let mut e1 = Vec::new();
     let mut e3 = Vec::new();
     for i in 0..res.n_samples() {
@@ -332,7 +332,7 @@ fn sine_gordon_kinks_travel_at_their_velocity_and_keep_their_energy() {
                 IntegrateOptions::stride(50),
             )
             .unwrap();
-        let qs = res.q.as_ref().unwrap();
+        let qs = res.q().unwrap();
         let centres: Vec<f64> = (0..res.n_samples())
             .map(|i| kink_centre(&qs.row(i).to_vec(), width, gamma))
             .collect();

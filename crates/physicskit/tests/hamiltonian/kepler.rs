@@ -73,7 +73,7 @@ fn unperturbed_orbit_conserves_energy_and_lrl_and_has_keplers_period() {
             IntegrateOptions::stride(5),
         )
         .unwrap();
-    let (q, p) = (res.q.as_ref().unwrap(), res.p.as_ref().unwrap());
+    let (q, p) = (res.q().unwrap(), res.p().unwrap());
     let mut max_lrl = 0.0_f64;
     let mut max_l = 0.0_f64;
     for i in 0..res.n_samples() {
@@ -133,7 +133,7 @@ fn post_newtonian_term_precesses_the_lrl_vector_at_the_perturbative_rate() {
             IntegrateOptions::stride(50),
         )
         .unwrap();
-    let (q, p) = (res.q.as_ref().unwrap(), res.p.as_ref().unwrap());
+    let (q, p) = (res.q().unwrap(), res.p().unwrap());
     let mut angles = Vec::with_capacity(res.n_samples());
     let mut previous = 0.0_f64;
     for i in 0..res.n_samples() {

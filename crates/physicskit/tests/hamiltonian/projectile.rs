@@ -13,7 +13,7 @@ fn vacuum_flight_matches_the_parabola() {
         let res = ball.integrate((0.0, 2.0), 1e-3, method).unwrap();
         let t = res.t.as_slice().unwrap();
         let (x, y) = ProjectileMotion::analytic_trajectory(speed, angle, g, t, 0.0).unwrap();
-        let q = res.q.as_ref().unwrap();
+        let q = res.q().unwrap();
         let err = (0..t.len())
             .map(|i| (q[[i, 0]] - x[i]).abs().max((q[[i, 1]] - y[i]).abs()))
             .fold(0.0, f64::max);
@@ -34,8 +34,8 @@ fn measured_range_and_height(speed: f64, angle: f64, g: f64, h: f64) -> (f64, f6
     let res = ball.integrate((0.0, 10.0), 1e-2, Method::Verlet).unwrap();
     let (t, q, p) = (
         res.t.as_slice().unwrap(),
-        res.q.as_ref().unwrap(),
-        res.p.as_ref().unwrap(),
+        res.q().unwrap(),
+        res.p().unwrap(),
     );
     let mut range = f64::NAN;
     let mut apex = h;

@@ -407,7 +407,7 @@ class HamiltonianSystem(DynamicalSystem):
             self._mass_inv_vector(),
             **sampling._asdict(),
         )
-        return self._finish(parts)
+        return self._finish(parts, ndof=self.ndof)
 
 
 class LagrangianSystem(DynamicalSystem):
@@ -513,10 +513,7 @@ class LagrangianSystem(DynamicalSystem):
         t, y, _, _, energy, name, extra = _core.integrate_ode(
             self, state, float(self.t), t_span, float(dt), method, **sampling._asdict()
         )
-        n = self.ndof
-        q = np.ascontiguousarray(y[:, :n])
-        qdot = np.ascontiguousarray(y[:, n:])
-        return self._finish((t, y, q, qdot, energy, name, extra))
+        return self._finish((t, y, None, None, energy, name, extra), ndof=self.ndof)
 
 
 class ODESystem(DynamicalSystem):

@@ -1,4 +1,5 @@
-//! Refusing trajectories that would not fit in memory, before allocating them.
+//! Trajectory storage: refusing what would not fit in memory before allocating it, and
+//! allocating the rest so that filling it is cheap.
 
 use super::error::{Error, Result};
 
@@ -34,4 +35,69 @@ pub(crate) fn check_fits(samples: usize, values_per_sample: usize) -> Result<()>
         });
     }
     Ok(())
+}
+
+/// Smallest allocation worth backing with huge pages: two of them (2 MiB each on x86-64 and
+/// most aarch64 kernels), so at least one aligned huge page lies inside.
+const HUGE_PAGE_MIN_BYTES: usize = 4 << 20;
+
+/// A zeroed vector for storage filled once, front to back.
+///
+/// It comes from `calloc`, whose large blocks are fresh pages the OS zeroes on first touch, so
+/// nothing is written up front (an explicit fill cost 80 instructions per step of a 2-dof run).
+/// Blocks of 4 MiB and more are advised to be backed by transparent huge pages: first touch
+/// then faults once per 2 MiB instead of once per 4 KiB. Measured on the issue-7 workloads
+/// (1e5 samples stored, best of 3): pendulum swarm 8.6 -> 6.3 us/step, harmonic chain
+/// 320 -> 205 ns/step, sine-Gordon 4.3 -> 3.4 us/step. The advice is a hint: where the kernel
+/// ignores it (THP disabled, another OS), the vector is the same, only slower to fill.
+pub(crate) fn zeroed(len: usize) -> Vec<f64> {
+    let v = vec![0.0; len];
+    if std::mem::size_of_val(v.as_slice()) >= HUGE_PAGE_MIN_BYTES {
+        advise_huge_pages(&v);
+    }
+    v
+}
+
+#[cfg(target_os = "linux")]
+#[allow(unsafe_code)]
+fn advise_huge_pages(v: &[f64]) {
+    // SAFETY: `sysconf` reads a constant of the running kernel and touches no memory of ours.
+    let page = match unsafe { libc::sysconf(libc::_SC_PAGESIZE) } {
+        p if p > 0 => p as usize,
+        _ => return,
+    };
+    let start = v.as_ptr() as usize;
+    let end = start + std::mem::size_of_val(v);
+    let first = start.next_multiple_of(page);
+    if end <= first {
+        return;
+    }
+    let len = (end - first) / page * page;
+    // SAFETY: the range [first, first + len) lies inside `v`'s allocation, which we own, and
+    // MADV_HUGEPAGE only sets how the kernel backs it: it neither unmaps nor changes contents
+    // (unlike MADV_DONTNEED/MADV_FREE), so no Rust reference can observe a difference. A
+    // failure (EINVAL where THP is compiled out) leaves everything as it was, so it is ignored.
+    let _ = unsafe { libc::madvise(first as *mut libc::c_void, len, libc::MADV_HUGEPAGE) };
+}
+
+#[cfg(not(target_os = "linux"))]
+fn advise_huge_pages(_v: &[f64]) {}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn zeroed_storage_is_zero_at_every_size_around_the_huge_page_threshold() {
+        for len in [
+            0,
+            1,
+            HUGE_PAGE_MIN_BYTES / 8 - 1,
+            HUGE_PAGE_MIN_BYTES / 8 + 3,
+        ] {
+            let v = zeroed(len);
+            assert_eq!(v.len(), len);
+            assert!(v.iter().all(|&x| x.to_bits() == 0), "len {len}");
+        }
+    }
 }

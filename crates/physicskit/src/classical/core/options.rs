@@ -18,12 +18,14 @@ pub enum Sampling {
 }
 
 impl Sampling {
-    /// Step indices that are stored, in order, for a grid of `n_steps` steps.
-    pub(crate) fn is_stored(self, step: usize, n_steps: usize) -> bool {
+    /// The first stored step after step `step`, for a grid of `n_steps` steps (the final step
+    /// is always stored). Step 0 is always stored too.
+    #[inline]
+    pub(crate) fn next_stored(self, step: usize, n_steps: usize) -> usize {
         match self {
-            Sampling::All => true,
-            Sampling::Stride(k) => step % k == 0 || step == n_steps,
-            Sampling::FinalOnly => step == 0 || step == n_steps,
+            Sampling::All => step + 1,
+            Sampling::Stride(k) => ((step / k + 1) * k).min(n_steps),
+            Sampling::FinalOnly => n_steps,
         }
     }
 
@@ -62,10 +64,6 @@ pub struct IntegrateOptions<'a> {
     pub sampling: Sampling,
     /// Skip the energy diagnostic (saves one energy evaluation per stored sample).
     pub skip_energy: bool,
-    /// Store only the stacked states `y`; `q` and `p` are left `None`. For callers that split
-    /// `y` themselves when (and if) the halves are needed: the Python layer does so lazily,
-    /// which halves the memory a run writes.
-    pub skip_qp: bool,
     /// Progress observer, called every `observe_every` steps.
     pub observer: Option<&'a mut dyn Observer>,
     /// Steps between observer calls; 0 means the default of 4096.

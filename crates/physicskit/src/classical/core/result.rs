@@ -2,10 +2,10 @@
 
 use std::collections::BTreeMap;
 
-use ndarray::{Array1, Array2, ArrayD};
+use ndarray::{s, Array1, Array2, ArrayD, ArrayView2};
 
 use super::error::Result;
-use super::memory::check_fits;
+use super::memory::{check_fits, zeroed};
 
 /// One named extra diagnostic of a [`SimulationResult`].
 #[derive(Debug, Clone, PartialEq)]
@@ -20,6 +20,10 @@ pub enum ExtraValue {
 ///
 /// Every array is a contiguous row-major (C-order) `ndarray`, so the Python bindings hand them
 /// to numpy without copying. With the default sampling there are `n_steps + 1` samples.
+///
+/// The states are stored once, in `y`; [`q`](Self::q) and [`p`](Self::p) are views of its two
+/// halves (no copy: storing them as arrays as well doubled the memory a run writes, and for a
+/// 2-dof system cost more per step than the step itself).
 #[derive(Debug, Clone, PartialEq)]
 pub struct SimulationResult {
     /// Sample times, shape `(n_samples,)`.
@@ -27,11 +31,9 @@ pub struct SimulationResult {
     /// Raw stacked states, shape `(n_samples, state_dim)`: `[q, p]` for Hamiltonian systems,
     /// `[q, qdot]` for Lagrangian systems, the system's own layout for ODE systems.
     pub y: Array2<f64>,
-    /// Generalized positions, shape `(n_samples, ndof)`; `None` for general ODE systems.
-    pub q: Option<Array2<f64>>,
-    /// Canonical momenta (Hamiltonian systems) or velocities `qdot` (Lagrangian systems),
-    /// shape `(n_samples, ndof)`; `None` for general ODE systems.
-    pub p: Option<Array2<f64>>,
+    /// Degrees of freedom when `y` stacks `[q, p]` (Hamiltonian) or `[q, qdot]` (Lagrangian)
+    /// halves; `None` for general ODE systems, whose state has no such split.
+    pub ndof: Option<usize>,
     /// Total energy at each sample, shape `(n_samples,)`; `None` if it was not requested.
     pub energy: Option<Array1<f64>>,
     /// Spec name of the integrator used, e.g. `"yoshida4"`.
@@ -44,6 +46,19 @@ impl SimulationResult {
     /// Number of stored samples.
     pub fn n_samples(&self) -> usize {
         self.t.len()
+    }
+
+    /// Generalized positions, shape `(n_samples, ndof)`: a view of the first `ndof` columns of
+    /// `y`; `None` for general ODE systems.
+    pub fn q(&self) -> Option<ArrayView2<'_, f64>> {
+        self.ndof.map(|n| self.y.slice(s![.., ..n]))
+    }
+
+    /// Canonical momenta (Hamiltonian systems) or velocities `qdot` (Lagrangian systems), shape
+    /// `(n_samples, ndof)`: a view of columns `ndof..2 ndof` of `y`; `None` for general ODE
+    /// systems.
+    pub fn p(&self) -> Option<ArrayView2<'_, f64>> {
+        self.ndof.map(|n| self.y.slice(s![.., n..2 * n]))
     }
 
     /// Largest relative energy error `max_i |E_i - E_0| / |E_0|` (absolute if `E_0 = 0`);
@@ -74,9 +89,8 @@ impl SimulationResult {
 
 /// Writes samples into storage allocated once, in [`Recorder::new`].
 ///
-/// The arrays are zero-initialized (`calloc`: the OS hands out zeroed pages lazily, so this costs
-/// nothing up front); `t`, `y` and the energy are filled row by row in place, with no capacity
-/// checks, and `q`/`p` are split off `y` in one pass by [`Recorder::finish`].
+/// The arrays are zero-initialized by [`zeroed`] (fresh pages from the OS, advised to be huge
+/// pages); `t`, `y` and the energy are filled row by row in place, with no capacity checks.
 pub(crate) struct Recorder {
     dim: usize,
     ndof: Option<usize>,
@@ -84,37 +98,46 @@ pub(crate) struct Recorder {
     filled: usize,
     t: Vec<f64>,
     y: Vec<f64>,
-    q: Vec<f64>,
-    p: Vec<f64>,
     energy: Option<Vec<f64>>,
 }
 
-/// A zeroed vector from `calloc`: fresh pages come zeroed from the OS, so nothing is written
-/// up front (an explicit fill cost 80 instructions per step of a 2-dof run). Sizes were checked
-/// against available memory by [`check_fits`] before any call.
-fn zeroed(len: usize) -> Vec<f64> {
-    vec![0.0; len]
+/// `dst = src` for the short rows of small systems without a `memcpy` call: the common
+/// state sizes get a fixed-length element loop the compiler turns into a few vector moves (a
+/// call per sample was a tenth of a 2-dof step).
+#[inline(always)]
+pub(crate) fn copy_state(dst: &mut [f64], src: &[f64]) {
+    debug_assert_eq!(dst.len(), src.len());
+    match src.len() {
+        2 => copy_fixed::<2>(dst, src),
+        4 => copy_fixed::<4>(dst, src),
+        6 => copy_fixed::<6>(dst, src),
+        _ => dst.copy_from_slice(src),
+    }
 }
 
+/// An element loop on purpose: with `copy_from_slice` in each arm, LLVM merged the arms back
+/// into one variable-length `memcpy` call.
 #[inline(always)]
-fn copy_row(dst: &mut [f64], src: &[f64]) {
-    for (d, s) in dst.iter_mut().zip(src) {
-        *d = *s;
+#[allow(clippy::manual_memcpy)]
+fn copy_fixed<const N: usize>(dst: &mut [f64], src: &[f64]) {
+    if let (Ok(d), Ok(s)) = (<&mut [f64; N]>::try_from(dst), <&[f64; N]>::try_from(src)) {
+        for i in 0..N {
+            d[i] = s[i];
+        }
     }
 }
 
 impl Recorder {
-    /// Storage for `samples` samples of a `dim`-dimensional state; `ndof` splits each state
-    /// into `q` and `p` halves.
+    /// Storage for `samples` samples of a `dim`-dimensional state; `ndof` marks each state as
+    /// `q` and `p` halves.
     pub(crate) fn new(
         samples: usize,
         dim: usize,
         ndof: Option<usize>,
         with_energy: bool,
     ) -> Result<Self> {
-        let per_sample = 1 + dim + 2 * ndof.unwrap_or(0) + usize::from(with_energy);
+        let per_sample = 1 + dim + usize::from(with_energy);
         check_fits(samples, per_sample)?;
-        let n = ndof.unwrap_or(0);
         Ok(Self {
             dim,
             ndof,
@@ -122,31 +145,49 @@ impl Recorder {
             filled: 0,
             t: zeroed(samples),
             y: zeroed(samples * dim),
-            q: zeroed(samples * n),
-            p: zeroed(samples * n),
             energy: with_energy.then(|| zeroed(samples)),
         })
     }
 
-    /// Stores one sample: `fill(row)` writes the state into the next row of `y` and returns its
-    /// energy. Returns the stored row.
+    /// Stores one sample: the state `state` at time `t` with energy `energy` (ignored when
+    /// energies are not stored).
+    #[inline(always)]
+    pub(crate) fn push(&mut self, t: f64, state: &[f64], energy: f64) {
+        let r = self.filled;
+        debug_assert!(r < self.rows);
+        let d = self.dim;
+        copy_state(&mut self.y[r * d..(r + 1) * d], state);
+        self.t[r] = t;
+        if let Some(e) = self.energy.as_mut() {
+            e[r] = energy;
+        }
+        self.filled = r + 1;
+    }
+
+    /// Stores one sample whose stored form differs from the working state: `fill(row)` writes
+    /// it into the next row of `y` and returns its energy.
     #[inline]
     pub(crate) fn push_with(
         &mut self,
         t: f64,
         fill: impl FnOnce(&mut [f64]) -> Result<f64>,
-    ) -> Result<&[f64]> {
+    ) -> Result<()> {
         let r = self.filled;
         debug_assert!(r < self.rows);
-        let (d, start) = (self.dim, r * self.dim);
-        let row = &mut self.y[start..start + d];
-        let energy = fill(row)?;
+        let d = self.dim;
+        let energy = fill(&mut self.y[r * d..(r + 1) * d])?;
         self.t[r] = t;
         if let Some(e) = self.energy.as_mut() {
             e[r] = energy;
         }
-        self.filled += 1;
-        Ok(&self.y[start..start + d])
+        self.filled = r + 1;
+        Ok(())
+    }
+
+    /// Whether energies are stored.
+    #[inline(always)]
+    pub(crate) fn stores_energy(&self) -> bool {
+        self.energy.is_some()
     }
 
     /// Time of the first stored sample whose state holds NaN or infinity.
@@ -166,45 +207,18 @@ impl Recorder {
         &self.y[r * self.dim..(r + 1) * self.dim]
     }
 
-    /// Energy stored for the last row, if energies are stored.
-    pub(crate) fn last_energy(&self) -> Option<f64> {
-        self.energy.as_ref().map(|e| e[self.filled - 1])
-    }
-
     pub(crate) fn finish(
-        mut self,
+        self,
         method: &str,
         extra: BTreeMap<String, ExtraValue>,
     ) -> SimulationResult {
         debug_assert_eq!(self.filled, self.rows);
-        let rows = self.filled;
-        // q and p are split off y in one pass at the end: per sample that saves two small
-        // copies and their set-up (measured: ~30% of a Hénon–Heiles step), for the same
-        // memory traffic.
-        if let Some(n) = self.ndof {
-            let d = self.dim;
-            for ((row, q), p) in self
-                .y
-                .chunks_exact(d)
-                .zip(self.q.chunks_exact_mut(n))
-                .zip(self.p.chunks_exact_mut(n))
-            {
-                copy_row(q, &row[..n]);
-                copy_row(p, &row[n..2 * n]);
-            }
-        }
-        let to2 = |v: Vec<f64>, cols: usize| {
-            Array2::from_shape_vec((rows, cols), v).expect("recorder stores whole rows")
-        };
-        let (q, p) = match self.ndof {
-            Some(n) => (Some(to2(self.q, n)), Some(to2(self.p, n))),
-            None => (None, None),
-        };
+        let y = Array2::from_shape_vec((self.filled, self.dim), self.y)
+            .expect("recorder stores whole rows");
         SimulationResult {
             t: Array1::from(self.t),
-            y: to2(self.y, self.dim),
-            q,
-            p,
+            y,
+            ndof: self.ndof,
             energy: self.energy.map(Array1::from),
             method: method.to_string(),
             extra,

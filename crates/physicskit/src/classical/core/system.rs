@@ -281,6 +281,7 @@ macro_rules! impl_separable_dynamics {
             ) -> $crate::classical::Result<()> {
                 $crate::classical::core::separable_derivatives(self, t, state, out)
             }
+            #[inline]
             fn energy(&self, state: &[f64]) -> f64 {
                 $crate::classical::core::hamiltonian_energy(self, state)
             }
@@ -300,12 +301,14 @@ macro_rules! impl_separable_dynamics {
 }
 
 /// `T(p) + V(q)` of a stacked state `[q, p]`.
+#[inline]
 pub fn hamiltonian_energy<S: HamiltonianSystem + ?Sized>(system: &S, state: &[f64]) -> f64 {
     let (q, p) = state.split_at(system.ndof());
     system.kinetic_energy(p) + system.potential_energy(q)
 }
 
 /// `sum_i mass_inv_i p_i^2 / 2`.
+#[inline]
 pub fn quadratic_kinetic_energy(mass_inv: MassInv<'_>, p: &[f64]) -> f64 {
     match mass_inv {
         MassInv::Uniform(m) => 0.5 * m * p.iter().map(|pi| pi * pi).sum::<f64>(),

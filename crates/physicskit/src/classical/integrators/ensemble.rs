@@ -60,11 +60,10 @@ pub fn integrate_ensemble<S: Ensemble>(
     let n = system.ndof();
     let sampling = options.sampling;
     let skip_energy = options.skip_energy;
-    let skip_qp = options.skip_qp;
     let grid = TimeGrid::new(t_span, dt)?;
     sampling.validate()?;
     let samples = sampling.count(grid.n_steps());
-    crate::classical::core::memory_check(samples, 2 * (1 + 4 * n + usize::from(!skip_energy)))?;
+    crate::classical::core::memory_check(samples, 2 * (1 + 2 * n + usize::from(!skip_energy)))?;
     let starts: Vec<usize> = (0..n).step_by(ENSEMBLE_CHUNK).collect();
     let chunks: Vec<S> = starts
         .iter()
@@ -89,7 +88,6 @@ pub fn integrate_ensemble<S: Ensemble>(
                     IntegrateOptions {
                         sampling,
                         skip_energy: true,
-                        skip_qp: false,
                         observer: Some(&mut flag),
                         observe_every: 1024,
                     },
@@ -121,21 +119,17 @@ pub fn integrate_ensemble<S: Ensemble>(
         .first()
         .ok_or_else(|| Error::invalid("n", 0.0, "empty ensemble"))?;
     let rows = first.n_samples();
-    let mut q = Array2::<f64>::zeros((rows, n));
-    let mut p = Array2::<f64>::zeros((rows, n));
+    // Each chunk's rows are [q_chunk, p_chunk]; the assembled rows are [q, p].
+    let mut y = Array2::<f64>::zeros((rows, 2 * n));
     let mut force_evaluations = 0.0;
     for (&start, r) in starts.iter().zip(&results) {
-        let (rq, rp) = (r.q.as_ref(), r.p.as_ref());
         let width = r.y.ncols() / 2;
-        if let (Some(rq), Some(rp)) = (rq, rp) {
-            q.slice_mut(s![.., start..start + width]).assign(rq);
-            p.slice_mut(s![.., start..start + width]).assign(rp);
-        }
+        y.slice_mut(s![.., start..start + width])
+            .assign(&r.y.slice(s![.., ..width]));
+        y.slice_mut(s![.., n + start..n + start + width])
+            .assign(&r.y.slice(s![.., width..]));
         force_evaluations += r.extra_scalar("force_evaluations").unwrap_or(0.0);
     }
-    let mut y = Array2::<f64>::zeros((rows, 2 * n));
-    y.slice_mut(s![.., ..n]).assign(&q);
-    y.slice_mut(s![.., n..]).assign(&p);
     let energy = if skip_energy {
         None
     } else {
@@ -159,16 +153,10 @@ pub fn integrate_ensemble<S: Ensemble>(
     let t_end = t[rows - 1];
     let final_state: Vec<f64> = y.row(rows - 1).to_vec();
     system.reset(Some(&final_state), t_end)?;
-    let (q, p) = if skip_qp {
-        (None, None)
-    } else {
-        (Some(q), Some(p))
-    };
     Ok(SimulationResult {
         t,
         y,
-        q,
-        p,
+        ndof: Some(n),
         energy,
         method: method.name().to_string(),
         extra,

@@ -143,16 +143,18 @@ impl<const S: usize> SplittingStepper<S> {
             system.force(q, t + self.ends[i] * h, &mut self.force)?;
         }
         self.force_evaluations += S as u64;
-        let k = self.last_kick * h;
-        p.iter_mut()
-            .zip(&self.force)
-            .for_each(|(pi, fi)| *pi += k * fi);
+        kick(p, &self.force, self.last_kick * h);
         self.force_valid = true;
         Ok(())
     }
 }
 
 /// `p += kick * F; q += drift * mass_inv * p`, fused into one pass.
+///
+/// Systems with up to three degrees of freedom (Kepler, Hénon–Heiles, the projectile, a
+/// pendulum) take a fixed-length copy of the loop: a runtime-length loop over two elements
+/// spent more instructions on its own control than on the arithmetic (43 of ~270 per
+/// projectile step). The length test is one well-predicted branch.
 #[inline(always)]
 fn kick_drift(
     mass_inv: MassInv<'_>,
@@ -162,19 +164,66 @@ fn kick_drift(
     kick: f64,
     drift: f64,
 ) {
-    match mass_inv {
-        MassInv::Uniform(m) => {
+    match (q.len(), mass_inv) {
+        (1, MassInv::Uniform(m)) => kick_drift_fixed::<1>(m, q, p, force, kick, drift),
+        (2, MassInv::Uniform(m)) => kick_drift_fixed::<2>(m, q, p, force, kick, drift),
+        (3, MassInv::Uniform(m)) => kick_drift_fixed::<3>(m, q, p, force, kick, drift),
+        (_, MassInv::Uniform(m)) => {
             let dm = drift * m;
             for ((qi, pi), fi) in q.iter_mut().zip(p.iter_mut()).zip(force) {
                 *pi += kick * fi;
                 *qi += dm * *pi;
             }
         }
-        MassInv::PerCoordinate(m) => {
+        (_, MassInv::PerCoordinate(m)) => {
             for (((qi, pi), fi), mi) in q.iter_mut().zip(p.iter_mut()).zip(force).zip(m) {
                 *pi += kick * fi;
                 *qi += drift * mi * *pi;
             }
         }
+    }
+}
+
+/// [`kick_drift`] with uniform masses on exactly `N` coordinates (`q`, `p`, `force` all of
+/// length `N`, which the caller has checked).
+#[inline(always)]
+fn kick_drift_fixed<const N: usize>(
+    m: f64,
+    q: &mut [f64],
+    p: &mut [f64],
+    force: &[f64],
+    kick: f64,
+    drift: f64,
+) {
+    let (Ok(q), Ok(p), Ok(force)) = (
+        <&mut [f64; N]>::try_from(q),
+        <&mut [f64; N]>::try_from(p),
+        <&[f64; N]>::try_from(force),
+    ) else {
+        return;
+    };
+    let dm = drift * m;
+    for i in 0..N {
+        p[i] += kick * force[i];
+        q[i] += dm * p[i];
+    }
+}
+
+/// `p += kick * F`, fixed-length for up to three coordinates as in [`kick_drift`].
+#[inline(always)]
+fn kick(p: &mut [f64], force: &[f64], k: f64) {
+    #[inline(always)]
+    fn fixed<const N: usize>(p: &mut [f64], force: &[f64], k: f64) {
+        if let (Ok(p), Ok(force)) = (<&mut [f64; N]>::try_from(p), <&[f64; N]>::try_from(force)) {
+            for i in 0..N {
+                p[i] += k * force[i];
+            }
+        }
+    }
+    match p.len() {
+        1 => fixed::<1>(p, force, k),
+        2 => fixed::<2>(p, force, k),
+        3 => fixed::<3>(p, force, k),
+        _ => p.iter_mut().zip(force).for_each(|(pi, fi)| *pi += k * fi),
     }
 }

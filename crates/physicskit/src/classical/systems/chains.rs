@@ -291,6 +291,7 @@ impl HamiltonianSystem for HarmonicChain {
     fn ndof(&self) -> usize {
         self.modes.n
     }
+    #[inline]
     fn potential_energy(&self, q: &[f64]) -> f64 {
         let k = self.k;
         fixed_end_potential(q, |r| 0.5 * k * r * r)
@@ -395,6 +396,7 @@ impl HamiltonianSystem for FPUTChain {
     fn ndof(&self) -> usize {
         self.modes.n
     }
+    #[inline]
     fn potential_energy(&self, q: &[f64]) -> f64 {
         let (k, b) = (self.k, self.beta);
         fixed_end_potential(q, |r| {
@@ -604,6 +606,7 @@ impl HamiltonianSystem for SineGordonChain {
     fn ndof(&self) -> usize {
         self.modes.n
     }
+    #[inline]
     fn potential_energy(&self, q: &[f64]) -> f64 {
         let springs: f64 = q.windows(2).map(|w| (w[1] - w[0]) * (w[1] - w[0])).sum();
         let onsite = q.len() as f64 - sum_cos(q);

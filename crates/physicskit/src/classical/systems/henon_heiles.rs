@@ -38,6 +38,7 @@ impl HamiltonianSystem for HenonHeilesSystem {
     fn ndof(&self) -> usize {
         2
     }
+    #[inline]
     fn potential_energy(&self, q: &[f64]) -> f64 {
         let (x, y) = (q[0], q[1]);
         0.5 * (x * x + y * y) + x * x * y - y * y * y / 3.0

@@ -152,6 +152,7 @@ impl HamiltonianSystem for ProjectileMotion {
     fn ndof(&self) -> usize {
         2
     }
+    #[inline]
     fn potential_energy(&self, q: &[f64]) -> f64 {
         self.m * self.g * q[1]
     }
@@ -193,6 +194,7 @@ impl DynamicalSystem for ProjectileMotion {
         out[3] = -self.m * self.g - drag * vy;
         Ok(())
     }
+    #[inline]
     fn energy(&self, state: &[f64]) -> f64 {
         hamiltonian_energy(self, state)
     }

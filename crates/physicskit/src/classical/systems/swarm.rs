@@ -237,6 +237,7 @@ impl HamiltonianSystem for PendulumSwarm {
     fn ndof(&self) -> usize {
         self.n
     }
+    #[inline]
     fn potential_energy(&self, q: &[f64]) -> f64 {
         -self.g_over_l * sum_cos(q)
     }
