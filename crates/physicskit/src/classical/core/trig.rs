@@ -131,6 +131,25 @@ pub fn sin_into(x: &[f64], out: &mut [f64]) {
     }
 }
 
+/// [`sin_cos`] of `N` arguments at once, `(sin, cos)` arrays: the same values, in SIMD lanes
+/// where the target has them (two angles of a double pendulum in one pass).
+#[inline(always)]
+pub fn sin_cos_array<const N: usize>(x: [f64; N]) -> ([f64; N], [f64; N]) {
+    let (mut s, mut c) = ([0.0; N], [0.0; N]);
+    if fits_vector_path(&x) {
+        for i in 0..N {
+            let (quadrant, sr, cr) = reduce(x[i]);
+            s[i] = select(quadrant, sr, cr);
+            c[i] = select(quadrant.wrapping_add(1), sr, cr);
+        }
+    } else {
+        for i in 0..N {
+            (s[i], c[i]) = x[i].sin_cos();
+        }
+    }
+    (s, c)
+}
+
 /// `sum_i cos(x[i])`, accumulated in index order.
 pub fn sum_cos(x: &[f64]) -> f64 {
     if fits_vector_path(x) {

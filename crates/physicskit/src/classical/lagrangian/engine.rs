@@ -1,5 +1,6 @@
 //! [`LagrangianEngine`]: every equation of motion of a Lagrangian system, derived from
-//! `L(q, qdot, t)` alone by forward-mode automatic differentiation (num-dual).
+//! `L(q, qdot, t)` alone by forward-mode automatic differentiation (num-dual), or taken from
+//! hand-derived closed forms the Lagrangian supplies.
 //!
 //! A system writes its Lagrangian once, generic over the number type ([`Lagrangian`]). With
 //! `v = qdot`, the engine evaluates it on dual and hyper-dual numbers to obtain
@@ -17,7 +18,36 @@
 //! derivative is exact to rounding: a hyper-dual number `x + e1 a + e2 b + e1 e2 c` carries one
 //! second derivative through the evaluation of `L` (Fike & Alonso, AIAA 2011-886).
 //!
-//! # Cost per call, in evaluations of `L` (`n` = ndof)
+//! # Closed forms
+//!
+//! A [`Lagrangian`] may also supply any of these quantities in closed form through its
+//! provided `closed_*` methods (mass matrix, momentum, velocity, `dL/dq`, acceleration,
+//! canonical field, energy); each engine method calls the closed form first and differentiates
+//! `L` only when it returns `None`, the default. Dispatch is static, so a Lagrangian without
+//! closed forms pays nothing for the check, and a closed form is plain `f64` arithmetic on the
+//! caller's slices: no allocation, no dual numbers. The four built-in systems (double
+//! pendulum, hoop, coupled oscillators, heavy top) supply all seven, derived in their module
+//! docs; `canonical_jacobian` (the implicit-midpoint Newton fallback, used only when fixed
+//! point iteration contracts slowly) stays automatic. Wrapping a Lagrangian in [`AutoDiff`]
+//! hides its closed forms: that engine is the independent check of them
+//! (`tests/lagrangian_closed_forms.rs`).
+//!
+//! Measured (callgrind, instructions per step including `sin`/`cos` and the integrator's own
+//! work, every sample and its energy stored), closed forms against automatic differentiation:
+//!
+//! | workload                                   | automatic | closed |
+//! |--------------------------------------------|-----------|--------|
+//! | double pendulum `implicit_midpoint`, 3e-5  | 4.8k      | 2.1k   |
+//! | double pendulum `rk4`, 3e-5                | 3.7k      | 1.6k   |
+//! | hoop `implicit_midpoint`, 2.2e-5           | 2.1k      | 1.1k   |
+//! | coupled oscillators `implicit_midpoint`, 1e-4 | 5.1k   | 2.0k   |
+//! | heavy top `implicit_midpoint`, 5e-5        | 5.1k      | 2.3k   |
+//!
+//! A closed-form evaluation costs 0.1–0.3k instructions (a third of it the branch-free
+//! [`sin_cos`](crate::classical::core::trig::sin_cos)); what remains of each implicit-midpoint
+//! step is mostly the solver itself (about 0.9k for the double pendulum).
+//!
+//! # Cost per call of automatic differentiation, in evaluations of `L` (`n` = ndof)
 //!
 //! For `n <= 3` (every built-in system) each kernel evaluates `L` **once**, on fixed-size
 //! vector duals over plain arrays ([`dual`](super::dual): the rules of num-dual's
@@ -33,8 +63,8 @@
 //! | [`acceleration`](LagrangianEngine::acceleration) | 1 | hyper-dual vector, `e1 = v`, `e2 = (q, v, t)`: `1 + 3n + 1 + n(2n+1)` |
 //! | [`canonical_derivatives`](LagrangianEngine::canonical_derivatives), [`velocity`](LagrangianEngine::velocity) | 2 per call for a Lagrangian quadratic in `v` | second-order dual vector in `v` (`1 + n + n^2`), then dual vector in `(q, v)` (`1 + 2n`) |
 //!
-//! Measured (callgrind, instructions per step including `sin`/`cos`, with every sample and its
-//! energy stored): double pendulum `rk4` 3.7k (an acceleration is about 0.8k), implicit
+//! Measured on the built-in systems through [`AutoDiff`] (callgrind, instructions per step
+//! including `sin`/`cos`, with every sample and its energy stored): double pendulum `rk4` 3.7k (an acceleration is about 0.8k), implicit
 //! midpoint 4.8k (about 0.45k per canonical evaluation, three of them per step, plus the
 //! solver's own work); coupled oscillators (`n = 3`) 5.0k; heavy top 5.1k; hoop 2.0k. The
 //! per-direction scheme below takes 26k for a double-pendulum implicit-midpoint step.

@@ -39,15 +39,16 @@
 //! ```
 //!
 //! (Taylor §11.4, eqs. 11.41–11.42, multiplied through by `l1` and `l2`), solved by Cramer's
-//! rule like the velocity. `sin D` and `cos D` come from `sin`/`cos` of the two angles by the
-//! angle-difference identities: two `sin_cos` calls per evaluation instead of three, at an
-//! absolute (not relative) rounding of ~1 ulp in `sin D`, which enters only multiplied by
-//! `O(1)` terms.
+//! rule like the velocity. In the force, acceleration, canonical field and energy, `sin D`
+//! and `cos D` come from `sin`/`cos` of the two angles (one two-lane
+//! [`sin_cos_array`](crate::classical::core::trig::sin_cos_array)) by the angle-difference
+//! identities, at an absolute (not relative) rounding of ~1 ulp in `sin D`, which enters only
+//! multiplied by `O(1)` terms.
 
 use crate::classical::core::error::check_finite_scalar;
 use crate::classical::core::error::check_positive;
 use crate::classical::core::linalg::negligible_pivot;
-use crate::classical::core::trig::sin_cos;
+use crate::classical::core::trig::{sin_cos, sin_cos_array};
 use crate::classical::core::{Error, Phase, Result};
 use crate::classical::lagrangian::{singular_mass_matrix, Lagrangian, LagrangianEngine, Scalar};
 
@@ -106,8 +107,7 @@ impl DoublePendulumParams {
 /// `sin`, `cos` of both angles and of their difference `D`: `[s1, c1, s2, c2, sin D, cos D]`.
 #[inline(always)]
 fn angles(q: &[f64]) -> [f64; 6] {
-    let (s1, c1) = sin_cos(q[0]);
-    let (s2, c2) = sin_cos(q[1]);
+    let ([s1, s2], [c1, c2]) = sin_cos_array([q[0], q[1]]);
     [s1, c1, s2, c2, s1 * c2 - c1 * s2, c1 * c2 + s1 * s2]
 }
 
