@@ -173,10 +173,9 @@ impl Lagrangian for CoupledOscillatorsParams {
         qdot: &mut [f64],
         pdot: &mut [f64],
     ) -> Option<Result<()>> {
-        Some(self.inverse_mass(t).map(|inv| {
-            qdot.iter_mut().zip(p).for_each(|(v, &pi)| *v = pi * inv);
-            self.force(q, 1.0, pdot);
-        }))
+        let velocity = self.closed_velocity(q, p, t, qdot)?;
+        self.force(q, 1.0, pdot);
+        Some(velocity)
     }
 }
 

@@ -168,10 +168,9 @@ impl Lagrangian for HoopParams {
         qdot: &mut [f64],
         pdot: &mut [f64],
     ) -> Option<Result<()>> {
-        Some(self.inverse_mass(t).map(|inv| {
-            qdot[0] = p[0] * inv;
-            pdot[0] = self.force(q[0]);
-        }))
+        let velocity = self.closed_velocity(q, p, t, qdot)?;
+        pdot[0] = self.force(q[0]);
+        Some(velocity)
     }
 }
 
