@@ -9,6 +9,15 @@
 /// that small means the matrix is singular to working precision (about 50 ulps of the scale).
 const SINGULAR_RELATIVE_PIVOT: f64 = 1e-14;
 
+/// `true` if `pivot` counts as zero against a matrix whose largest entry is `scale`: the
+/// criterion of [`lu_factor`], for closed-form solves that compute their pivots by hand (the
+/// built-in Lagrangian systems), so that they call the same matrices singular. A NaN pivot or
+/// scale counts as zero.
+#[inline(always)]
+pub fn negligible_pivot(pivot: f64, scale: f64) -> bool {
+    !(pivot.abs() > SINGULAR_RELATIVE_PIVOT * scale && scale.is_finite())
+}
+
 /// The matrix is singular to working precision.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub struct Singular;

@@ -1,5 +1,6 @@
 //! [`LagrangianEngine`]: every equation of motion of a Lagrangian system, derived from
-//! `L(q, qdot, t)` alone by forward-mode automatic differentiation (num-dual).
+//! `L(q, qdot, t)` alone by forward-mode automatic differentiation (num-dual), or taken from
+//! hand-derived closed forms the Lagrangian supplies.
 //!
 //! A system writes its Lagrangian once, generic over the number type ([`Lagrangian`]). With
 //! `v = qdot`, the engine evaluates it on dual and hyper-dual numbers to obtain
@@ -17,7 +18,36 @@
 //! derivative is exact to rounding: a hyper-dual number `x + e1 a + e2 b + e1 e2 c` carries one
 //! second derivative through the evaluation of `L` (Fike & Alonso, AIAA 2011-886).
 //!
-//! # Cost per call, in evaluations of `L` (`n` = ndof)
+//! # Closed forms
+//!
+//! A [`Lagrangian`] may also supply any of these quantities in closed form through its
+//! provided `closed_*` methods (mass matrix, momentum, velocity, `dL/dq`, acceleration,
+//! canonical field, energy); each engine method calls the closed form first and differentiates
+//! `L` only when it returns `None`, the default. Dispatch is static, so a Lagrangian without
+//! closed forms pays nothing for the check, and a closed form is plain `f64` arithmetic on the
+//! caller's slices: no allocation, no dual numbers. The four built-in systems (double
+//! pendulum, hoop, coupled oscillators, heavy top) supply all seven, derived in their module
+//! docs; `canonical_jacobian` (the implicit-midpoint Newton fallback, used only when fixed
+//! point iteration contracts slowly) stays automatic. Wrapping a Lagrangian in [`AutoDiff`]
+//! hides its closed forms: that engine is the independent check of them
+//! (`tests/lagrangian_closed_forms.rs`).
+//!
+//! Measured (callgrind, instructions per step including `sin`/`cos` and the integrator's own
+//! work, every sample and its energy stored), closed forms against automatic differentiation:
+//!
+//! | workload                                   | automatic | closed |
+//! |--------------------------------------------|-----------|--------|
+//! | double pendulum `implicit_midpoint`, 3e-5  | 4.8k      | 2.1k   |
+//! | double pendulum `rk4`, 3e-5                | 3.7k      | 1.6k   |
+//! | hoop `implicit_midpoint`, 2.2e-5           | 2.1k      | 1.1k   |
+//! | coupled oscillators `implicit_midpoint`, 1e-4 | 5.1k   | 2.0k   |
+//! | heavy top `implicit_midpoint`, 5e-5        | 5.1k      | 2.3k   |
+//!
+//! A closed-form evaluation costs 0.1–0.3k instructions (a third of it the branch-free
+//! [`sin_cos`](crate::classical::core::trig::sin_cos)); what remains of each implicit-midpoint
+//! step is mostly the solver itself (about 0.9k for the double pendulum).
+//!
+//! # Cost per call of automatic differentiation, in evaluations of `L` (`n` = ndof)
 //!
 //! For `n <= 3` (every built-in system) each kernel evaluates `L` **once**, on fixed-size
 //! vector duals over plain arrays ([`dual`](super::dual): the rules of num-dual's
@@ -33,8 +63,8 @@
 //! | [`acceleration`](LagrangianEngine::acceleration) | 1 | hyper-dual vector, `e1 = v`, `e2 = (q, v, t)`: `1 + 3n + 1 + n(2n+1)` |
 //! | [`canonical_derivatives`](LagrangianEngine::canonical_derivatives), [`velocity`](LagrangianEngine::velocity) | 2 per call for a Lagrangian quadratic in `v` | second-order dual vector in `v` (`1 + n + n^2`), then dual vector in `(q, v)` (`1 + 2n`) |
 //!
-//! Measured (callgrind, instructions per step including `sin`/`cos`, with every sample and its
-//! energy stored): double pendulum `rk4` 3.7k (an acceleration is about 0.8k), implicit
+//! Measured on the built-in systems through [`AutoDiff`] (callgrind, instructions per step
+//! including `sin`/`cos`, with every sample and its energy stored): double pendulum `rk4` 3.7k (an acceleration is about 0.8k), implicit
 //! midpoint 4.8k (about 0.45k per canonical evaluation, three of them per step, plus the
 //! solver's own work); coupled oscillators (`n = 3`) 5.0k; heavy top 5.1k; hoop 2.0k. The
 //! per-direction scheme below takes 26k for a double-pendulum implicit-midpoint step.
@@ -67,6 +97,8 @@ use num_dual::{Dual64, DualNum, HyperDual64};
 use super::buffer::{MatBuf, VecBuf};
 use super::dual::{Dual2Arr, DualArr, HyperArr};
 use crate::classical::core::error::check_vector;
+#[cfg(doc)]
+use crate::classical::core::linalg::negligible_pivot;
 use crate::classical::core::linalg::{lu_factor, lu_solve, Singular};
 
 use crate::classical::core::{Error, Phase, Result};
@@ -105,6 +137,128 @@ pub trait Lagrangian {
 
     /// `L(q, qdot, t)`. `q` and `qdot` have length [`ndof`](Self::ndof).
     fn lagrangian<D: Scalar>(&self, q: &[D], qdot: &[D], t: D) -> D;
+
+    // Optional closed forms. The engine calls each of these first and differentiates `L`
+    // only when it returns `None` (the default). Each receives slices already checked to
+    // have length `ndof` (`n x n` for the mass matrix) and must agree with the derivatives
+    // of `L` to rounding: `tests/lagrangian_closed_forms.rs` checks the built-in systems'
+    // against the engine on [`AutoDiff`]. Generic dispatch makes an absent closed form free.
+
+    /// Closed form of the mass matrix `d2L/dqdot2` (row-major `n x n`), or `None`.
+    #[inline(always)]
+    fn closed_mass_matrix(&self, q: &[f64], qdot: &[f64], t: f64, out: &mut [f64]) -> Option<()> {
+        let _ = (q, qdot, t, out);
+        None
+    }
+
+    /// Closed form of the momentum `p = dL/dqdot`, or `None`.
+    #[inline(always)]
+    fn closed_momentum(&self, q: &[f64], qdot: &[f64], t: f64, out: &mut [f64]) -> Option<()> {
+        let _ = (q, qdot, t, out);
+        None
+    }
+
+    /// Closed form of the generalized force `dL/dq`, or `None`.
+    #[inline(always)]
+    fn closed_generalized_force(
+        &self,
+        q: &[f64],
+        qdot: &[f64],
+        t: f64,
+        out: &mut [f64],
+    ) -> Option<()> {
+        let _ = (q, qdot, t, out);
+        None
+    }
+
+    /// Closed form of the energy function `p . qdot - L`, or `None`.
+    #[inline(always)]
+    fn closed_energy(&self, q: &[f64], qdot: &[f64], t: f64) -> Option<f64> {
+        let _ = (q, qdot, t);
+        None
+    }
+
+    /// Closed form of the Euler–Lagrange acceleration `qddot(q, qdot, t)`, or `None`.
+    /// `Some(Err(_))` ([`singular_mass_matrix`]) where the mass matrix is singular by the
+    /// criterion of [`lu_factor`] (see [`negligible_pivot`]).
+    #[inline(always)]
+    fn closed_acceleration(
+        &self,
+        q: &[f64],
+        qdot: &[f64],
+        t: f64,
+        out: &mut [f64],
+    ) -> Option<Result<()>> {
+        let _ = (q, qdot, t, out);
+        None
+    }
+
+    /// Closed form of the inverse Legendre map `qdot(q, p, t)`, or `None`; errors as
+    /// [`closed_acceleration`](Self::closed_acceleration).
+    #[inline(always)]
+    fn closed_velocity(&self, q: &[f64], p: &[f64], t: f64, out: &mut [f64]) -> Option<Result<()>> {
+        let _ = (q, p, t, out);
+        None
+    }
+
+    /// Closed form of the canonical field at `(q, p)`: `qdot = qdot(q, p, t)` and
+    /// `pdot = dL/dq(q, qdot, t)`, or `None`; errors as
+    /// [`closed_acceleration`](Self::closed_acceleration).
+    #[inline(always)]
+    fn closed_canonical(
+        &self,
+        q: &[f64],
+        p: &[f64],
+        t: f64,
+        qdot: &mut [f64],
+        pdot: &mut [f64],
+    ) -> Option<Result<()>> {
+        let _ = (q, p, t, qdot, pdot);
+        None
+    }
+}
+
+/// A [`Lagrangian`] with its closed forms hidden: the engine derives every equation of motion
+/// of `L` by automatic differentiation. The independent check of hand-derived closed forms,
+/// and the way to time the generic path.
+///
+/// # Example
+/// ```
+/// use physicskit::classical::lagrangian::{AutoDiff, LagrangianEngine};
+/// use physicskit::classical::systems::DoublePendulumParams;
+///
+/// let closed = LagrangianEngine::new(DoublePendulumParams::default()).unwrap();
+/// let automatic = LagrangianEngine::new(AutoDiff(DoublePendulumParams::default())).unwrap();
+/// let (q, qdot) = ([2.0, 1.0], [0.5, -0.3]);
+/// let (mut a, mut b) = ([0.0; 2], [0.0; 2]);
+/// closed.acceleration(&q, &qdot, 0.0, &mut a).unwrap();
+/// automatic.acceleration(&q, &qdot, 0.0, &mut b).unwrap();
+/// assert!((a[0] - b[0]).abs() < 1e-13 && (a[1] - b[1]).abs() < 1e-13);
+/// ```
+#[derive(Debug, Clone, Copy, PartialEq, Default)]
+pub struct AutoDiff<L>(pub L);
+
+impl<L: Lagrangian> Lagrangian for AutoDiff<L> {
+    #[inline]
+    fn ndof(&self) -> usize {
+        self.0.ndof()
+    }
+
+    #[inline]
+    fn lagrangian<D: Scalar>(&self, q: &[D], qdot: &[D], t: D) -> D {
+        self.0.lagrangian(q, qdot, t)
+    }
+}
+
+/// The error of a singular mass matrix `d2L/dqdot2` at time `t`
+/// ([`Error::SingularMatrix`]), for closed forms that detect it.
+#[cold]
+#[inline(never)]
+pub fn singular_mass_matrix(t: f64) -> Error {
+    Error::SingularMatrix {
+        what: "mass matrix d2L/dqdot2".into(),
+        t,
+    }
 }
 
 /// Tolerances of the iterative inverse Legendre map `v(q, p)`.
@@ -153,10 +307,7 @@ fn hd(re: f64) -> HyperDual64 {
 }
 
 fn singular(t: f64) -> Error {
-    Error::SingularMatrix {
-        what: "mass matrix d2L/dqdot2".into(),
-        t,
-    }
+    singular_mass_matrix(t)
 }
 
 fn inf_norm(x: &[f64]) -> f64 {
@@ -267,6 +418,13 @@ impl<L: Lagrangian> LagrangianEngine<L> {
         check_len("q", q, n)?;
         check_len("qdot", qdot, n)?;
         check_len("mass matrix", out, n * n)?;
+        if self
+            .lagrangian
+            .closed_mass_matrix(q, qdot, t, out)
+            .is_some()
+        {
+            return Ok(());
+        }
         self.hessian_vv(q, qdot, t, out, None);
         Ok(())
     }
@@ -287,6 +445,13 @@ impl<L: Lagrangian> LagrangianEngine<L> {
         check_len("q", q, n)?;
         check_len("qdot", qdot, n)?;
         check_len("out", out, n)?;
+        if self
+            .lagrangian
+            .closed_generalized_force(q, qdot, t, out)
+            .is_some()
+        {
+            return Ok(());
+        }
         let mut qd = lift::<Dual64>(q);
         let vd = lift::<Dual64>(qdot);
         let td = Dual64::from(t);
@@ -310,6 +475,9 @@ impl<L: Lagrangian> LagrangianEngine<L> {
         check_len("q", q, n)?;
         check_len("qdot", qdot, n)?;
         check_len("out", out, n)?;
+        if self.lagrangian.closed_momentum(q, qdot, t, out).is_some() {
+            return Ok(());
+        }
         let qd = lift::<Dual64>(q);
         let mut vd = lift::<Dual64>(qdot);
         let td = Dual64::from(t);
@@ -332,6 +500,9 @@ impl<L: Lagrangian> LagrangianEngine<L> {
         let n = self.ndof();
         if q.len() != n || qdot.len() != n {
             return f64::NAN;
+        }
+        if let Some(e) = self.lagrangian.closed_energy(q, qdot, t) {
+            return e;
         }
         let qd = lift::<Dual64>(q);
         let mut vd = lift::<Dual64>(qdot);
@@ -364,6 +535,9 @@ impl<L: Lagrangian> LagrangianEngine<L> {
         check_len("q", q, n)?;
         check_len("qdot", qdot, n)?;
         check_len("out", out, n)?;
+        if let Some(r) = self.lagrangian.closed_acceleration(q, qdot, t, out) {
+            return r;
+        }
         match n {
             1 => return self.acceleration_fixed::<1, 3>(q, qdot, t, out),
             2 => return self.acceleration_fixed::<2, 5>(q, qdot, t, out),
@@ -434,6 +608,9 @@ impl<L: Lagrangian> LagrangianEngine<L> {
         check_len("q", q, n)?;
         check_len("p", p, n)?;
         check_len("out", out, n)?;
+        if let Some(r) = self.lagrangian.closed_velocity(q, p, t, out) {
+            return r;
+        }
         let mut force = VecBuf::new(n, 0.0);
         self.solve_velocity(q, p, t, out, force.as_mut_slice())
             .map(|_| ())
@@ -450,6 +627,9 @@ impl<L: Lagrangian> LagrangianEngine<L> {
         check_len("out", out, 2 * n)?;
         let (q, p) = state.split_at(n);
         let (v, force) = out.split_at_mut(n);
+        if let Some(r) = self.lagrangian.closed_canonical(q, p, t, v, force) {
+            return r;
+        }
         self.solve_velocity(q, p, t, v, force).map(|_| ())
     }
 

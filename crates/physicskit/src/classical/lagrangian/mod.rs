@@ -1,4 +1,5 @@
-//! The Lagrangian engine: equations of motion from `L(q, qdot, t)` by automatic differentiation.
+//! The Lagrangian engine: equations of motion from `L(q, qdot, t)` by automatic differentiation,
+//! or from closed forms the Lagrangian supplies.
 
 mod buffer;
 mod dual;

@@ -4,9 +4,10 @@
 //!
 //! Every Lagrangian system of physicskit is a struct with a `phase: Phase` and an
 //! `engine: LagrangianEngine<L>` field; the macro implements [`DynamicalSystem`] and
-//! [`LagrangianSystem`] for it entirely from the engine, so no system writes its equations of
-//! motion by hand. Default method: `implicit_midpoint` on the canonical form, with the
-//! engine's exact canonical Jacobian available to its Newton solve.
+//! [`LagrangianSystem`] for it entirely from the engine: the equations of motion are the
+//! closed forms the Lagrangian supplies, if any (the built-in systems supply all of them), and
+//! automatic differentiation of `L` otherwise. Default method: `implicit_midpoint` on the
+//! canonical form, with the engine's exact canonical Jacobian available to its Newton solve.
 
 use super::engine::{Lagrangian, LagrangianEngine};
 #[cfg(doc)]

@@ -11,10 +11,26 @@
 //! The normal modes are `q_i = sin(i j pi / (n + 1))` with angular frequencies
 //! `omega_j = 2 sqrt(k/m) sin(j pi / (2 (n + 1)))`, `j = 1..n` (Goldstein, *Classical
 //! Mechanics*, 3rd ed., §6.4; French, *Vibrations and Waves* (1971), ch. 5).
+//!
+//! # Closed forms
+//!
+//! `L` is quadratic with a constant mass matrix, so every equation of motion is linear
+//! (Goldstein §6.2); the integrators use these instead of differentiating `L` (checked against
+//! the [`LagrangianEngine`] in `tests/lagrangian_closed_forms.rs`):
+//!
+//! ```text
+//! mass          M = m I,   p = m qdot,   qdot = p / m
+//! force         dL/dq_i = k (q_{i-1} - 2 q_i + q_{i+1})        (q_0 = q_{n+1} = 0)
+//! acceleration  q_i'' = (dL/dq_i) / m
+//! energy        E = (m/2) sum_i q_i'^2 + (k/2) sum_{i=0}^{n} (q_{i+1} - q_i)^2
+//! ```
+//!
+//! They work on the slices in place for any `n`, without buffers.
 
 use crate::classical::core::error::check_positive;
+use crate::classical::core::linalg::negligible_pivot;
 use crate::classical::core::{Error, Phase, Result};
-use crate::classical::lagrangian::{Lagrangian, LagrangianEngine, Scalar};
+use crate::classical::lagrangian::{singular_mass_matrix, Lagrangian, LagrangianEngine, Scalar};
 
 /// Size, mass and spring constant of a [`CoupledOscillators`] chain; its [`Lagrangian`].
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -52,6 +68,27 @@ impl CoupledOscillatorsParams {
     pub fn mode_frequency(&self, j: usize) -> f64 {
         super::chain_mode_frequency(self.n, self.m, self.k, j)
     }
+
+    /// `out_i = scale * k (q_{i-1} - 2 q_i + q_{i+1})`: `dL/dq` for `scale = 1`.
+    #[inline(always)]
+    fn force(&self, q: &[f64], scale: f64, out: &mut [f64]) {
+        let k = self.k * scale;
+        let n = q.len();
+        for (i, o) in out.iter_mut().enumerate() {
+            let left = if i > 0 { q[i - 1] } else { 0.0 };
+            let right = if i + 1 < n { q[i + 1] } else { 0.0 };
+            *o = k * ((left - q[i]) + (right - q[i]));
+        }
+    }
+
+    /// `1 / m`, or the singular-matrix error for `m = 0` (unvalidated parameters).
+    #[inline(always)]
+    fn inverse_mass(&self, t: f64) -> Result<f64> {
+        if negligible_pivot(self.m, self.m) {
+            return Err(singular_mass_matrix(t));
+        }
+        Ok(self.m.recip())
+    }
 }
 
 impl Lagrangian for CoupledOscillatorsParams {
@@ -68,6 +105,77 @@ impl Lagrangian for CoupledOscillatorsParams {
             stretch += d * d;
         }
         kinetic * (0.5 * self.m) - stretch * (0.5 * self.k)
+    }
+
+    #[inline]
+    fn closed_mass_matrix(&self, _q: &[f64], _v: &[f64], _t: f64, out: &mut [f64]) -> Option<()> {
+        out.fill(0.0);
+        out.iter_mut().step_by(self.n + 1).for_each(|d| *d = self.m);
+        Some(())
+    }
+
+    #[inline]
+    fn closed_momentum(&self, _q: &[f64], v: &[f64], _t: f64, out: &mut [f64]) -> Option<()> {
+        out.iter_mut().zip(v).for_each(|(p, &vi)| *p = self.m * vi);
+        Some(())
+    }
+
+    #[inline]
+    fn closed_generalized_force(
+        &self,
+        q: &[f64],
+        _v: &[f64],
+        _t: f64,
+        out: &mut [f64],
+    ) -> Option<()> {
+        self.force(q, 1.0, out);
+        Some(())
+    }
+
+    #[inline]
+    fn closed_energy(&self, q: &[f64], v: &[f64], _t: f64) -> Option<f64> {
+        let kinetic: f64 = v.iter().map(|vi| vi * vi).sum();
+        let walls = q[0] * q[0] + q[self.n - 1] * q[self.n - 1];
+        let stretch: f64 = q.windows(2).map(|w| (w[1] - w[0]) * (w[1] - w[0])).sum();
+        Some(0.5 * (self.m * kinetic + self.k * (walls + stretch)))
+    }
+
+    #[inline]
+    fn closed_acceleration(
+        &self,
+        q: &[f64],
+        _v: &[f64],
+        t: f64,
+        out: &mut [f64],
+    ) -> Option<Result<()>> {
+        Some(self.inverse_mass(t).map(|inv| self.force(q, inv, out)))
+    }
+
+    #[inline]
+    fn closed_velocity(
+        &self,
+        _q: &[f64],
+        p: &[f64],
+        t: f64,
+        out: &mut [f64],
+    ) -> Option<Result<()>> {
+        Some(self.inverse_mass(t).map(|inv| {
+            out.iter_mut().zip(p).for_each(|(v, &pi)| *v = pi * inv);
+        }))
+    }
+
+    #[inline]
+    fn closed_canonical(
+        &self,
+        q: &[f64],
+        p: &[f64],
+        t: f64,
+        qdot: &mut [f64],
+        pdot: &mut [f64],
+    ) -> Option<Result<()>> {
+        let velocity = self.closed_velocity(q, p, t, qdot)?;
+        self.force(q, 1.0, pdot);
+        Some(velocity)
     }
 }
 

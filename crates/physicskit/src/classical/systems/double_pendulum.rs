@@ -10,15 +10,47 @@
 //!     + (m1 + m2) g l1 cos(theta1) + m2 g l2 cos(theta2)
 //! ```
 //!
-//! It is written once below; the equations of motion, momenta, energy `T + V` and the
-//! canonical form come from the [`LagrangianEngine`]. The mass matrix depends on
-//! `theta1 - theta2`, so the Hamiltonian is not separable: `implicit_midpoint` (default) is the
-//! symplectic choice, `rk4` integrates `(q, qdot)`.
+//! The mass matrix depends on `theta1 - theta2`, so the Hamiltonian is not separable:
+//! `implicit_midpoint` (default) is the symplectic choice, `rk4` integrates `(q, qdot)`.
+//!
+//! # Closed forms
+//!
+//! The [`LagrangianEngine`] can derive everything from `L` by automatic differentiation; the
+//! integrators use these hand-derived forms instead (checked against it in
+//! `tests/lagrangian_closed_forms.rs`). With `D = theta1 - theta2`, `w = qdot` and the
+//! constants `a = (m1 + m2) l1^2`, `b = m2 l1 l2`, `d = m2 l2^2`, `g1 = (m1 + m2) g l1`,
+//! `g2 = m2 g l2`, so that `L = a w1^2/2 + d w2^2/2 + b w1 w2 cos D + g1 cos theta1 +
+//! g2 cos theta2`:
+//!
+//! ```text
+//! mass matrix   M = [[a, b cos D], [b cos D, d]],   det M = a d - b^2 cos^2 D >= m1 m2 l1^2 l2^2
+//! momentum      p = M w
+//! velocity      w = M^-1 p = [d p1 - b cos D p2, a p2 - b cos D p1] / det M
+//! force         dL/dtheta1 = -b w1 w2 sin D - g1 sin theta1
+//!               dL/dtheta2 =  b w1 w2 sin D - g2 sin theta2
+//! energy        E = a w1^2/2 + d w2^2/2 + b w1 w2 cos D - g1 cos theta1 - g2 cos theta2
+//! ```
+//!
+//! Euler–Lagrange: `d/dt p1 = a w1' + b cos D w2' - b sin D (w1 - w2) w2` equals `dL/dtheta1`,
+//! and likewise for `p2`, so the `w1 w2 sin D` terms cancel and
+//!
+//! ```text
+//! M qddot = f,   f1 = -b w2^2 sin D - g1 sin theta1,   f2 = b w1^2 sin D - g2 sin theta2
+//! ```
+//!
+//! (Taylor §11.4, eqs. 11.41–11.42, multiplied through by `l1` and `l2`), solved by Cramer's
+//! rule like the velocity. In the force, acceleration, canonical field and energy, `sin D`
+//! and `cos D` come from `sin`/`cos` of the two angles (one two-lane
+//! [`sin_cos_array`](crate::classical::core::trig::sin_cos_array)) by the angle-difference
+//! identities, at an absolute (not relative) rounding of ~1 ulp in `sin D`, which enters only
+//! multiplied by `O(1)` terms.
 
 use crate::classical::core::error::check_finite_scalar;
 use crate::classical::core::error::check_positive;
+use crate::classical::core::linalg::negligible_pivot;
+use crate::classical::core::trig::{sin_cos, sin_cos_array};
 use crate::classical::core::{Error, Phase, Result};
-use crate::classical::lagrangian::{Lagrangian, LagrangianEngine, Scalar};
+use crate::classical::lagrangian::{singular_mass_matrix, Lagrangian, LagrangianEngine, Scalar};
 
 /// Masses, rod lengths and gravity of a [`DoublePendulum`]; its [`Lagrangian`].
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -57,6 +89,51 @@ impl DoublePendulumParams {
         check_finite_scalar("g", self.g)?;
         Ok(self)
     }
+
+    /// `[a, b, d, g1, g2]` of the closed forms (module documentation).
+    #[inline(always)]
+    fn coefficients(&self) -> [f64; 5] {
+        let Self { m1, m2, l1, l2, g } = *self;
+        [
+            (m1 + m2) * l1 * l1,
+            m2 * l1 * l2,
+            m2 * l2 * l2,
+            (m1 + m2) * g * l1,
+            m2 * g * l2,
+        ]
+    }
+}
+
+/// `sin`, `cos` of both angles and of their difference `D`: `[s1, c1, s2, c2, sin D, cos D]`.
+#[inline(always)]
+fn angles(q: &[f64]) -> [f64; 6] {
+    let ([s1, s2], [c1, c2]) = sin_cos_array([q[0], q[1]]);
+    [s1, c1, s2, c2, s1 * c2 - c1 * s2, c1 * c2 + s1 * s2]
+}
+
+/// `dL/dq` at angular velocities `w`, from [`DoublePendulumParams::coefficients`] and
+/// [`angles`].
+#[inline(always)]
+fn force(coefficients: &[f64; 5], angles: &[f64; 6], w: &[f64]) -> [f64; 2] {
+    let [_, b, _, g1, g2] = *coefficients;
+    let [s1, _, s2, _, sd, _] = *angles;
+    let k = b * w[0] * w[1] * sd;
+    [-k - g1 * s1, k - g2 * s2]
+}
+
+/// Solves `[[a, e], [e, d]] x = r` by Cramer's rule, or the singular-matrix error where
+/// partial-pivoting LU would find a negligible pivot (first pivot `max(|a|, |e|)`, second
+/// `det / max(|a|, |e|)`).
+#[inline(always)]
+fn solve_2x2(a: f64, e: f64, d: f64, r: [f64; 2], t: f64) -> Result<[f64; 2]> {
+    let det = a * d - e * e;
+    let first = a.abs().max(e.abs());
+    let scale = first.max(d.abs());
+    if negligible_pivot(first, scale) || negligible_pivot(det, scale * first) {
+        return Err(singular_mass_matrix(t));
+    }
+    let inv = det.recip();
+    Ok([(d * r[0] - e * r[1]) * inv, (a * r[1] - e * r[0]) * inv])
 }
 
 impl Lagrangian for DoublePendulumParams {
@@ -73,6 +150,85 @@ impl Lagrangian for DoublePendulumParams {
             + w1 * w2 * (q[0] - q[1]).cos() * (m2 * l1 * l2);
         let potential = q[0].cos() * (-(m1 + m2) * g * l1) - q[1].cos() * (m2 * g * l2);
         kinetic - potential
+    }
+
+    #[inline]
+    fn closed_mass_matrix(&self, q: &[f64], _qdot: &[f64], _t: f64, out: &mut [f64]) -> Option<()> {
+        let [a, b, d, ..] = self.coefficients();
+        let e = b * sin_cos(q[0] - q[1]).1;
+        out.copy_from_slice(&[a, e, e, d]);
+        Some(())
+    }
+
+    #[inline]
+    fn closed_momentum(&self, q: &[f64], w: &[f64], _t: f64, out: &mut [f64]) -> Option<()> {
+        let [a, b, d, ..] = self.coefficients();
+        let e = b * sin_cos(q[0] - q[1]).1;
+        out[0] = a * w[0] + e * w[1];
+        out[1] = e * w[0] + d * w[1];
+        Some(())
+    }
+
+    #[inline]
+    fn closed_generalized_force(
+        &self,
+        q: &[f64],
+        w: &[f64],
+        _t: f64,
+        out: &mut [f64],
+    ) -> Option<()> {
+        out.copy_from_slice(&force(&self.coefficients(), &angles(q), w));
+        Some(())
+    }
+
+    #[inline]
+    fn closed_energy(&self, q: &[f64], w: &[f64], _t: f64) -> Option<f64> {
+        let [a, b, d, g1, g2] = self.coefficients();
+        let [_, c1, _, c2, _, cd] = angles(q);
+        let kinetic = 0.5 * (a * w[0] * w[0] + d * w[1] * w[1]) + b * cd * w[0] * w[1];
+        Some(kinetic - g1 * c1 - g2 * c2)
+    }
+
+    #[inline]
+    fn closed_acceleration(
+        &self,
+        q: &[f64],
+        w: &[f64],
+        t: f64,
+        out: &mut [f64],
+    ) -> Option<Result<()>> {
+        let [a, b, d, g1, g2] = self.coefficients();
+        let [s1, _, s2, _, sd, cd] = angles(q);
+        let f = [
+            -b * w[1] * w[1] * sd - g1 * s1,
+            b * w[0] * w[0] * sd - g2 * s2,
+        ];
+        Some(solve_2x2(a, b * cd, d, f, t).map(|x| out.copy_from_slice(&x)))
+    }
+
+    #[inline]
+    fn closed_velocity(&self, q: &[f64], p: &[f64], t: f64, out: &mut [f64]) -> Option<Result<()>> {
+        let [a, b, d, ..] = self.coefficients();
+        let e = b * sin_cos(q[0] - q[1]).1;
+        Some(solve_2x2(a, e, d, [p[0], p[1]], t).map(|w| out.copy_from_slice(&w)))
+    }
+
+    #[inline]
+    fn closed_canonical(
+        &self,
+        q: &[f64],
+        p: &[f64],
+        t: f64,
+        qdot: &mut [f64],
+        pdot: &mut [f64],
+    ) -> Option<Result<()>> {
+        let coefficients = self.coefficients();
+        let [a, b, d, ..] = coefficients;
+        let angles = angles(q);
+        Some(solve_2x2(a, b * angles[5], d, [p[0], p[1]], t).map(|w| {
+            qdot.copy_from_slice(&w);
+            pdot.copy_from_slice(&force(&coefficients, &angles, &w));
+        }))
     }
 }
 

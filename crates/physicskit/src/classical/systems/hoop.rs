@@ -15,10 +15,25 @@
 //! the lab-frame energy is not. Above the critical speed `omega_c = sqrt(g / R)` the bottom
 //! becomes unstable and two stable equilibria appear at `cos theta = g / (R omega^2)`
 //! (a supercritical pitchfork bifurcation).
+//!
+//! # Closed forms
+//!
+//! The integrators use these instead of differentiating `L` (checked against the
+//! [`LagrangianEngine`] in `tests/lagrangian_closed_forms.rs`). With `s = sin theta`,
+//! `c = cos theta`, `w = theta'`:
+//!
+//! ```text
+//! mass          M = R^2,   p = R^2 w,   w = p / R^2
+//! force         dL/dtheta = (R^2 omega^2 c - g R) s
+//! acceleration  theta'' = (dL/dtheta) / R^2 = (omega^2 c - g / R) s      (Taylor eq. 7.69)
+//! energy        E = R^2 w^2 / 2 - R^2 omega^2 s^2 / 2 - g R (c - 1)
+//! ```
 
 use crate::classical::core::error::{check_finite_scalar, check_positive};
+use crate::classical::core::linalg::negligible_pivot;
+use crate::classical::core::trig::sin_cos;
 use crate::classical::core::{Phase, Result};
-use crate::classical::lagrangian::{Lagrangian, LagrangianEngine, Scalar};
+use crate::classical::lagrangian::{singular_mass_matrix, Lagrangian, LagrangianEngine, Scalar};
 
 /// Radius, rotation rate and gravity of a [`BeadOnRotatingHoop`]; its [`Lagrangian`].
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -55,6 +70,24 @@ impl HoopParams {
     pub fn critical_omega(&self) -> f64 {
         (self.g / self.r).sqrt()
     }
+
+    /// `dL/dtheta = (R^2 omega^2 cos theta - g R) sin theta`.
+    #[inline(always)]
+    fn force(&self, theta: f64) -> f64 {
+        let Self { r, omega, g } = *self;
+        let (s, c) = sin_cos(theta);
+        (r * r * omega * omega * c - g * r) * s
+    }
+
+    /// `1 / M = 1 / R^2`, or the singular-matrix error for `R^2 = 0` (unvalidated parameters).
+    #[inline(always)]
+    fn inverse_mass(&self, t: f64) -> Result<f64> {
+        let m = self.r * self.r;
+        if negligible_pivot(m, m) {
+            return Err(singular_mass_matrix(t));
+        }
+        Ok(m.recip())
+    }
 }
 
 impl Lagrangian for HoopParams {
@@ -67,6 +100,77 @@ impl Lagrangian for HoopParams {
         let Self { r, omega, g } = *self;
         let s = q[0].sin();
         (qdot[0] * qdot[0] + s * s * (omega * omega)) * (0.5 * r * r) + (q[0].cos() - 1.0) * (g * r)
+    }
+
+    #[inline]
+    fn closed_mass_matrix(&self, _q: &[f64], _w: &[f64], _t: f64, out: &mut [f64]) -> Option<()> {
+        out[0] = self.r * self.r;
+        Some(())
+    }
+
+    #[inline]
+    fn closed_momentum(&self, _q: &[f64], w: &[f64], _t: f64, out: &mut [f64]) -> Option<()> {
+        out[0] = self.r * self.r * w[0];
+        Some(())
+    }
+
+    #[inline]
+    fn closed_generalized_force(
+        &self,
+        q: &[f64],
+        _w: &[f64],
+        _t: f64,
+        out: &mut [f64],
+    ) -> Option<()> {
+        out[0] = self.force(q[0]);
+        Some(())
+    }
+
+    #[inline]
+    fn closed_energy(&self, q: &[f64], w: &[f64], _t: f64) -> Option<f64> {
+        let Self { r, omega, g } = *self;
+        let (s, c) = sin_cos(q[0]);
+        let (ws, r2) = (omega * s, r * r);
+        Some(0.5 * r2 * (w[0] * w[0] - ws * ws) - g * r * (c - 1.0))
+    }
+
+    #[inline]
+    fn closed_acceleration(
+        &self,
+        q: &[f64],
+        _w: &[f64],
+        t: f64,
+        out: &mut [f64],
+    ) -> Option<Result<()>> {
+        Some(
+            self.inverse_mass(t)
+                .map(|inv| out[0] = self.force(q[0]) * inv),
+        )
+    }
+
+    #[inline]
+    fn closed_velocity(
+        &self,
+        _q: &[f64],
+        p: &[f64],
+        t: f64,
+        out: &mut [f64],
+    ) -> Option<Result<()>> {
+        Some(self.inverse_mass(t).map(|inv| out[0] = p[0] * inv))
+    }
+
+    #[inline]
+    fn closed_canonical(
+        &self,
+        q: &[f64],
+        p: &[f64],
+        t: f64,
+        qdot: &mut [f64],
+        pdot: &mut [f64],
+    ) -> Option<Result<()>> {
+        let velocity = self.closed_velocity(q, p, t, qdot)?;
+        pdot[0] = self.force(q[0]);
+        Some(velocity)
     }
 }
 

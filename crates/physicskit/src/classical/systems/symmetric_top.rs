@@ -9,15 +9,43 @@
 //! L = (I1/2)(theta'^2 + phi'^2 sin^2 theta) + (I3/2)(psi' + phi' cos theta)^2 - M g l cos theta
 //! ```
 //!
-//! `phi` and `psi` are cyclic, so `p_phi` and `p_psi` are conserved; the engine computes
-//! `dL/dphi = dL/dpsi = 0` exactly, so the canonical integration keeps them to rounding. The
-//! mass matrix depends on `theta` and is singular at `sin theta = 0` (gimbal lock of the Euler
-//! angles). Energy `T + M g l cos theta`. The slow dynamics is analysed in
+//! `phi` and `psi` are cyclic, so `p_phi` and `p_psi` are conserved; the canonical field has
+//! `dp_phi/dt = dp_psi/dt = 0` exactly, so the canonical integration keeps them to rounding.
+//! The mass matrix depends on `theta` and is singular at `sin theta = 0` (gimbal lock of the
+//! Euler angles). Energy `T + M g l cos theta`. The slow dynamics is analysed in
 //! [`analysis::symmetric_top`](crate::classical::analysis).
+//!
+//! # Closed forms
+//!
+//! The integrators use these instead of differentiating `L` (checked against the
+//! [`LagrangianEngine`] in `tests/lagrangian_closed_forms.rs`). With `s = sin theta`,
+//! `c = cos theta` and the spin `w3 = psi' + phi' c` (Goldstein §5.7, eqs. 5.59–5.62):
+//!
+//! ```text
+//! mass matrix   M = [[I1 s^2 + I3 c^2, 0, I3 c], [0, I1, 0], [I3 c, 0, I3]],  det = I1^2 I3 s^2
+//! momentum      p_phi = I1 s^2 phi' + I3 w3 c,   p_theta = I1 theta',   p_psi = I3 w3
+//! velocity      w3 = p_psi / I3,   phi' = (p_phi - p_psi c) / (I1 s^2),
+//!               theta' = p_theta / I1,   psi' = w3 - phi' c
+//! force         dL/dtheta = (phi' (I1 phi' c - I3 w3) + M g l) s,   dL/dphi = dL/dpsi = 0
+//! energy        E = I1 (theta'^2 + phi'^2 s^2) / 2 + I3 w3^2 / 2 + M g l c
+//! ```
+//!
+//! The accelerations follow from the Euler–Lagrange equations: `theta'' = (dL/dtheta) / I1`;
+//! `d p_psi / dt = 0` gives `w3' = 0`; `d p_phi / dt = 0` then gives
+//! `I1 (s^2 phi'' + 2 s c theta' phi') - I3 w3 s theta' = 0`, so
+//!
+//! ```text
+//! phi'' = theta' (I3 w3 - 2 I1 phi' c) / (I1 s),   psi'' = phi' theta' s - phi'' c
+//! ```
+//!
+//! The mass matrix counts as singular where the pivot `I1 s^2` (the Schur complement of the
+//! `psi` row) is negligible against its largest entry, the criterion of partial-pivoting LU.
 
 use crate::classical::core::error::{check_finite_scalar, check_positive};
+use crate::classical::core::linalg::negligible_pivot;
+use crate::classical::core::trig::sin_cos;
 use crate::classical::core::{Error, Phase, Result};
-use crate::classical::lagrangian::{Lagrangian, LagrangianEngine, Scalar};
+use crate::classical::lagrangian::{singular_mass_matrix, Lagrangian, LagrangianEngine, Scalar};
 
 /// Inertia, mass, lever arm and gravity of a [`HeavySymmetricTop`]; its [`Lagrangian`].
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -80,6 +108,34 @@ impl SymmetricTopParams {
         let p_psi = self.i3 * (state[5] + state[3] * c);
         Ok((self.i1 * state[3] * s * s + p_psi * c, p_psi))
     }
+
+    /// `I1 s^2`, the pivot that vanishes with `sin theta`, or the singular-matrix error where
+    /// it is negligible against the largest entry of the mass matrix.
+    #[inline(always)]
+    fn pivot(&self, s: f64, c: f64, t: f64) -> Result<f64> {
+        let pivot = self.i1 * s * s;
+        let scale = (pivot + self.i3 * c * c).max(self.i1).max(self.i3);
+        if negligible_pivot(pivot, scale)
+            || negligible_pivot(self.i1, scale)
+            || negligible_pivot(self.i3, scale)
+        {
+            return Err(singular_mass_matrix(t));
+        }
+        Ok(pivot)
+    }
+
+    /// `(phi', w3)` from `(p_phi, p_psi)` at `(s, c)` (module documentation).
+    #[inline(always)]
+    fn precession_and_spin(&self, p: &[f64], s: f64, c: f64, t: f64) -> Result<(f64, f64)> {
+        let pivot = self.pivot(s, c, t)?;
+        Ok(((p[0] - p[2] * c) / pivot, p[2] / self.i3))
+    }
+
+    /// `dL/dtheta` at `(s, c)`, precession rate `phid` and spin `w3`.
+    #[inline(always)]
+    fn nutation_force(&self, s: f64, c: f64, phid: f64, w3: f64) -> f64 {
+        (phid * (self.i1 * phid * c - self.i3 * w3) + self.mgl()) * s
+    }
 }
 
 impl Lagrangian for SymmetricTopParams {
@@ -94,6 +150,89 @@ impl Lagrangian for SymmetricTopParams {
         let spin = psid + phid * c;
         (thetad * thetad + phid * phid * s * s) * (0.5 * self.i1) + spin * spin * (0.5 * self.i3)
             - c * self.mgl()
+    }
+
+    #[inline]
+    fn closed_mass_matrix(&self, q: &[f64], _w: &[f64], _t: f64, out: &mut [f64]) -> Option<()> {
+        let (s, c) = sin_cos(q[1]);
+        let (i1, i3) = (self.i1, self.i3);
+        let ic = i3 * c;
+        out.copy_from_slice(&[i1 * s * s + ic * c, 0.0, ic, 0.0, i1, 0.0, ic, 0.0, i3]);
+        Some(())
+    }
+
+    #[inline]
+    fn closed_momentum(&self, q: &[f64], w: &[f64], _t: f64, out: &mut [f64]) -> Option<()> {
+        let (s, c) = sin_cos(q[1]);
+        let p_psi = self.i3 * (w[2] + w[0] * c);
+        out.copy_from_slice(&[self.i1 * w[0] * s * s + p_psi * c, self.i1 * w[1], p_psi]);
+        Some(())
+    }
+
+    #[inline]
+    fn closed_generalized_force(
+        &self,
+        q: &[f64],
+        w: &[f64],
+        _t: f64,
+        out: &mut [f64],
+    ) -> Option<()> {
+        let (s, c) = sin_cos(q[1]);
+        let w3 = w[2] + w[0] * c;
+        out.copy_from_slice(&[0.0, self.nutation_force(s, c, w[0], w3), 0.0]);
+        Some(())
+    }
+
+    #[inline]
+    fn closed_energy(&self, q: &[f64], w: &[f64], _t: f64) -> Option<f64> {
+        let (s, c) = sin_cos(q[1]);
+        let (phis, w3) = (w[0] * s, w[2] + w[0] * c);
+        Some(0.5 * (self.i1 * (w[1] * w[1] + phis * phis) + self.i3 * w3 * w3) + self.mgl() * c)
+    }
+
+    #[inline]
+    fn closed_acceleration(
+        &self,
+        q: &[f64],
+        w: &[f64],
+        t: f64,
+        out: &mut [f64],
+    ) -> Option<Result<()>> {
+        let (s, c) = sin_cos(q[1]);
+        let (phid, thetad) = (w[0], w[1]);
+        let w3 = w[2] + phid * c;
+        Some(self.pivot(s, c, t).map(|_| {
+            let phidd = thetad * (self.i3 * w3 - 2.0 * self.i1 * phid * c) / (self.i1 * s);
+            out.copy_from_slice(&[
+                phidd,
+                self.nutation_force(s, c, phid, w3) / self.i1,
+                phid * thetad * s - phidd * c,
+            ]);
+        }))
+    }
+
+    #[inline]
+    fn closed_velocity(&self, q: &[f64], p: &[f64], t: f64, out: &mut [f64]) -> Option<Result<()>> {
+        let (s, c) = sin_cos(q[1]);
+        Some(self.precession_and_spin(p, s, c, t).map(|(phid, w3)| {
+            out.copy_from_slice(&[phid, p[1] / self.i1, w3 - phid * c]);
+        }))
+    }
+
+    #[inline]
+    fn closed_canonical(
+        &self,
+        q: &[f64],
+        p: &[f64],
+        t: f64,
+        qdot: &mut [f64],
+        pdot: &mut [f64],
+    ) -> Option<Result<()>> {
+        let (s, c) = sin_cos(q[1]);
+        Some(self.precession_and_spin(p, s, c, t).map(|(phid, w3)| {
+            qdot.copy_from_slice(&[phid, p[1] / self.i1, w3 - phid * c]);
+            pdot.copy_from_slice(&[0.0, self.nutation_force(s, c, phid, w3), 0.0]);
+        }))
     }
 }
 
