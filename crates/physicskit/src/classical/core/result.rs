@@ -5,7 +5,7 @@ use std::collections::BTreeMap;
 use ndarray::{s, Array1, Array2, ArrayD, ArrayView2};
 
 use super::error::Result;
-use super::memory::{check_fits, zeroed};
+use super::memory::{check_fits, storage};
 
 /// One named extra diagnostic of a [`SimulationResult`].
 #[derive(Debug, Clone, PartialEq)]
@@ -89,41 +89,33 @@ impl SimulationResult {
 
 /// Writes samples into storage allocated once, in [`Recorder::new`].
 ///
-/// The arrays are zero-initialized by [`zeroed`] (fresh pages from the OS, advised to be huge
-/// pages); `t`, `y` and the energy are filled row by row in place, with no capacity checks.
+/// The vectors are reserved up front (by [`storage`]: never zeroed, large ones advised onto
+/// huge pages) and appended to, row by row; they never reallocate.
 pub(crate) struct Recorder {
     dim: usize,
     ndof: Option<usize>,
     rows: usize,
-    filled: usize,
     t: Vec<f64>,
     y: Vec<f64>,
     energy: Option<Vec<f64>>,
 }
 
-/// `dst = src` for the short rows of small systems without a `memcpy` call: the common
-/// state sizes get a fixed-length element loop the compiler turns into a few vector moves (a
+/// Appends `src` to `dst`, without a `memcpy` call for the short rows of small systems: the
+/// common state sizes get a fixed-length append the compiler turns into a few vector moves (a
 /// call per sample was a tenth of a 2-dof step).
 #[inline(always)]
-pub(crate) fn copy_state(dst: &mut [f64], src: &[f64]) {
-    debug_assert_eq!(dst.len(), src.len());
-    match src.len() {
-        2 => copy_fixed::<2>(dst, src),
-        4 => copy_fixed::<4>(dst, src),
-        6 => copy_fixed::<6>(dst, src),
-        _ => dst.copy_from_slice(src),
-    }
-}
-
-/// An element loop on purpose: with `copy_from_slice` in each arm, LLVM merged the arms back
-/// into one variable-length `memcpy` call.
-#[inline(always)]
-#[allow(clippy::manual_memcpy)]
-fn copy_fixed<const N: usize>(dst: &mut [f64], src: &[f64]) {
-    if let (Ok(d), Ok(s)) = (<&mut [f64; N]>::try_from(dst), <&[f64; N]>::try_from(src)) {
-        for i in 0..N {
-            d[i] = s[i];
+fn append_state(dst: &mut Vec<f64>, src: &[f64]) {
+    #[inline(always)]
+    fn fixed<const N: usize>(dst: &mut Vec<f64>, src: &[f64]) {
+        if let Ok(s) = <&[f64; N]>::try_from(src) {
+            dst.extend_from_slice(s);
         }
+    }
+    match src.len() {
+        2 => fixed::<2>(dst, src),
+        4 => fixed::<4>(dst, src),
+        6 => fixed::<6>(dst, src),
+        _ => dst.extend_from_slice(src),
     }
 }
 
@@ -142,26 +134,28 @@ impl Recorder {
             dim,
             ndof,
             rows: samples,
-            filled: 0,
-            t: zeroed(samples),
-            y: zeroed(samples * dim),
-            energy: with_energy.then(|| zeroed(samples)),
+            t: storage(samples)?,
+            y: storage(samples * dim)?,
+            energy: with_energy.then(|| storage(samples)).transpose()?,
         })
+    }
+
+    /// Whether energies are stored.
+    #[inline(always)]
+    pub(crate) fn stores_energy(&self) -> bool {
+        self.energy.is_some()
     }
 
     /// Stores one sample: the state `state` at time `t` with energy `energy` (ignored when
     /// energies are not stored).
     #[inline(always)]
     pub(crate) fn push(&mut self, t: f64, state: &[f64], energy: f64) {
-        let r = self.filled;
-        debug_assert!(r < self.rows);
-        let d = self.dim;
-        copy_state(&mut self.y[r * d..(r + 1) * d], state);
-        self.t[r] = t;
+        debug_assert!(self.t.len() < self.rows && state.len() == self.dim);
+        append_state(&mut self.y, state);
+        self.t.push(t);
         if let Some(e) = self.energy.as_mut() {
-            e[r] = energy;
+            e.push(energy);
         }
-        self.filled = r + 1;
     }
 
     /// Stores one sample whose stored form differs from the working state: `fill(row)` writes
@@ -172,39 +166,34 @@ impl Recorder {
         t: f64,
         fill: impl FnOnce(&mut [f64]) -> Result<f64>,
     ) -> Result<()> {
-        let r = self.filled;
-        debug_assert!(r < self.rows);
-        let d = self.dim;
-        let energy = fill(&mut self.y[r * d..(r + 1) * d])?;
-        self.t[r] = t;
+        debug_assert!(self.t.len() < self.rows);
+        let start = self.y.len();
+        self.y.resize(start + self.dim, 0.0);
+        let energy = match fill(&mut self.y[start..]) {
+            Ok(e) => e,
+            Err(e) => {
+                self.y.truncate(start);
+                return Err(e);
+            }
+        };
+        self.t.push(t);
         if let Some(e) = self.energy.as_mut() {
-            e[r] = energy;
+            e.push(energy);
         }
-        self.filled = r + 1;
         Ok(())
-    }
-
-    /// Whether energies are stored.
-    #[inline(always)]
-    pub(crate) fn stores_energy(&self) -> bool {
-        self.energy.is_some()
     }
 
     /// Time of the first stored sample whose state holds NaN or infinity.
     pub(crate) fn first_non_finite(&self) -> Option<f64> {
-        (0..self.filled)
-            .find(|&r| {
-                !self.y[r * self.dim..(r + 1) * self.dim]
-                    .iter()
-                    .all(|v| v.is_finite())
-            })
+        self.y
+            .chunks_exact(self.dim.max(1))
+            .position(|row| !row.iter().all(|v| v.is_finite()))
             .map(|r| self.t[r])
     }
 
     /// The last stored row of `y`.
     pub(crate) fn last_row(&self) -> &[f64] {
-        let r = self.filled - 1;
-        &self.y[r * self.dim..(r + 1) * self.dim]
+        &self.y[self.y.len() - self.dim..]
     }
 
     pub(crate) fn finish(
@@ -212,9 +201,10 @@ impl Recorder {
         method: &str,
         extra: BTreeMap<String, ExtraValue>,
     ) -> SimulationResult {
-        debug_assert_eq!(self.filled, self.rows);
-        let y = Array2::from_shape_vec((self.filled, self.dim), self.y)
-            .expect("recorder stores whole rows");
+        let rows = self.t.len();
+        debug_assert_eq!(rows, self.rows);
+        let y =
+            Array2::from_shape_vec((rows, self.dim), self.y).expect("recorder stores whole rows");
         SimulationResult {
             t: Array1::from(self.t),
             y,
