@@ -13,4 +13,5 @@ mod invariants;
 mod lagrangian_path;
 mod reversibility;
 mod sampling;
+mod solver;
 mod validation;

@@ -5,7 +5,7 @@
 //! | `verlet` | [`verlet`] | 2 | 1 force (first same as last) | symplectic, time-reversible |
 //! | `yoshida4` | [`yoshida4`] | 4 | 3 forces (first same as last) | symplectic, time-reversible |
 //! | `rk4` | [`rk4`] | 4 | 4 right-hand sides | none (energy drifts) |
-//! | `implicit_midpoint` | [`implicit_midpoint`] | 2 | 2–4 right-hand sides (iterated) | symplectic for any `H`, reversible, every quadratic invariant |
+//! | `implicit_midpoint` | [`implicit_midpoint`] | 2 | 2 right-hand sides at small steps (iterated to the rounding floor) | symplectic for any `H`, reversible, every quadratic invariant |
 //!
 //! `verlet` and `yoshida4` share one kick–drift–kick loop ([`splitting`]) and differ only in
 //! their coefficients. The steppers are public for users who drive steps themselves (with
