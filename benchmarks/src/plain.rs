@@ -3,7 +3,10 @@
 //! Allocation-free inside the loop, Yoshida-4 with merged kicks (three force evaluations per
 //! step, the last force reused), storing `t`, `q`, `p` and the energy of every sample in
 //! preallocated vectors. The library must come within 1.25x of these (issue 7). The force and
-//! energy are closures, which monomorphization inlines exactly like hand-written code.
+//! energy are closures, which monomorphization inlines exactly like hand-written code. The
+//! trig-bound loops use libm unless `PHYSICSKIT_PLAIN_SLICE_TRIG` is set (see [`case`]).
+
+use physicskit::classical::core::trig::{sin_into, sum_cos};
 
 /// `w1 = 1/(2 - 2^(1/3))` (Yoshida 1990).
 const W1: f64 = 1.351_207_191_959_657_6;
@@ -85,6 +88,14 @@ pub fn yoshida4(
     out
 }
 
+/// Whether the trig-bound plain loops (swarm, sine-Gordon) call physicskit's slice sine and
+/// cosine sum instead of libm element by element: `PHYSICSKIT_PLAIN_SLICE_TRIG` set. By default
+/// they use libm, as a hand-written loop would; with it, both sides share the trig code and the
+/// ratio isolates the integrator.
+fn slice_trig() -> bool {
+    std::env::var_os("PHYSICSKIT_PLAIN_SLICE_TRIG").is_some()
+}
+
 /// The plain-loop version of a separable workload, by the workload's name, with the same
 /// initial condition as [`crate::workloads`]; `None` for non-separable workloads.
 pub fn case(name: &str) -> Option<fn(usize, f64) -> Trajectory> {
@@ -131,24 +142,28 @@ pub fn case(name: &str) -> Option<fn(usize, f64) -> Trajectory> {
             )
         },
         "swarm" => |n, dt| {
-            let s = physicskit::classical::systems::PendulumSwarm::from_box(
-                1.0, 0.0, 0.05, 0.05, 200, 1.0, 0,
-            )
-            .expect("valid swarm");
-            let state = physicskit::classical::DynamicalSystem::state(&s);
-            yoshida4(
-                &state[..200],
-                &state[200..],
-                1.0,
-                dt,
-                n,
-                |q, f| {
-                    for (fi, qi) in f.iter_mut().zip(q) {
-                        *fi = -qi.sin();
-                    }
-                },
-                |q, p| q.iter().zip(p).map(|(q, p)| 0.5 * p * p - q.cos()).sum(),
-            )
+            if slice_trig() {
+                swarm(
+                    n,
+                    dt,
+                    |q, f| {
+                        sin_into(q, f);
+                        f.iter_mut().for_each(|fi| *fi = -*fi);
+                    },
+                    |q, p| p.iter().map(|p| 0.5 * p * p).sum::<f64>() - sum_cos(q),
+                )
+            } else {
+                swarm(
+                    n,
+                    dt,
+                    |q, f| {
+                        for (fi, qi) in f.iter_mut().zip(q) {
+                            *fi = -qi.sin();
+                        }
+                    },
+                    |q, p| q.iter().zip(p).map(|(q, p)| 0.5 * p * p - q.cos()).sum(),
+                )
+            }
         },
         "harmonic_chain" => |n, dt| {
             let q0 = crate::workloads::harmonic_chain_q0(16);
@@ -177,33 +192,41 @@ pub fn case(name: &str) -> Option<fn(usize, f64) -> Trajectory> {
             )
         },
         "sine_gordon" => |n, dt| {
-            let (q0, p0) =
-                physicskit::classical::systems::SineGordonChain::kink(100, 50.0, 1.0, 0.2, 1)
-                    .expect("valid kink");
-            yoshida4(
-                &q0,
-                &p0,
-                1.0,
-                dt,
-                n,
-                |q, f| {
-                    let last = q.len() - 1;
-                    for i in 0..=last {
-                        let left = if i > 0 { q[i - 1] - q[i] } else { 0.0 };
-                        let right = if i < last { q[i + 1] - q[i] } else { 0.0 };
-                        f[i] = left + right - q[i].sin();
-                    }
-                },
-                |q, p| {
-                    let bonds: f64 = q.windows(2).map(|w| 0.5 * (w[1] - w[0]).powi(2)).sum();
-                    let sites: f64 = q
-                        .iter()
-                        .zip(p)
-                        .map(|(q, p)| 0.5 * p * p + 1.0 - q.cos())
-                        .sum();
-                    bonds + sites
-                },
-            )
+            let bond_energy =
+                |q: &[f64]| -> f64 { q.windows(2).map(|w| 0.5 * (w[1] - w[0]).powi(2)).sum() };
+            if slice_trig() {
+                sine_gordon(
+                    n,
+                    dt,
+                    |q, f| {
+                        sin_into(q, f);
+                        sine_gordon_force(q, f);
+                    },
+                    |q, p| {
+                        let kinetic: f64 = p.iter().map(|p| 0.5 * p * p).sum();
+                        bond_energy(q) + kinetic + q.len() as f64 - sum_cos(q)
+                    },
+                )
+            } else {
+                sine_gordon(
+                    n,
+                    dt,
+                    |q, f| {
+                        for (fi, qi) in f.iter_mut().zip(q) {
+                            *fi = qi.sin();
+                        }
+                        sine_gordon_force(q, f);
+                    },
+                    |q, p| {
+                        let sites: f64 = q
+                            .iter()
+                            .zip(p)
+                            .map(|(q, p)| 0.5 * p * p + 1.0 - q.cos())
+                            .sum();
+                        bond_energy(q) + sites
+                    },
+                )
+            }
         },
         _ => return None,
     })
@@ -230,6 +253,42 @@ fn kepler(e: f64, c_pn: f64, n: usize, dt: f64) -> Trajectory {
             0.5 * (p[0] * p[0] + p[1] * p[1]) - inv + c_pn * inv * inv * inv
         },
     )
+}
+
+/// The workloads' swarm (n = 200) with the given force and energy.
+fn swarm(
+    n: usize,
+    dt: f64,
+    force: impl Fn(&[f64], &mut [f64]),
+    energy: impl Fn(&[f64], &[f64]) -> f64,
+) -> Trajectory {
+    let s =
+        physicskit::classical::systems::PendulumSwarm::from_box(1.0, 0.0, 0.05, 0.05, 200, 1.0, 0)
+            .expect("valid swarm");
+    let (q0, p0) = physicskit::classical::DynamicalSystem::state(&s).split_at(200);
+    yoshida4(q0, p0, 1.0, dt, n, force, energy)
+}
+
+/// The workloads' sine-Gordon kink (n = 100) with the given force and energy.
+fn sine_gordon(
+    n: usize,
+    dt: f64,
+    force: impl Fn(&[f64], &mut [f64]),
+    energy: impl Fn(&[f64], &[f64]) -> f64,
+) -> Trajectory {
+    let (q0, p0) = physicskit::classical::systems::SineGordonChain::kink(100, 50.0, 1.0, 0.2, 1)
+        .expect("valid kink");
+    yoshida4(&q0, &p0, 1.0, dt, n, force, energy)
+}
+
+/// `F_i = (q_{i-1} - q_i) + (q_{i+1} - q_i) - sin q_i` with free ends, from `f = sin q`.
+fn sine_gordon_force(q: &[f64], f: &mut [f64]) {
+    let last = q.len() - 1;
+    for i in 0..=last {
+        let left = if i > 0 { q[i - 1] - q[i] } else { 0.0 };
+        let right = if i < last { q[i + 1] - q[i] } else { 0.0 };
+        f[i] = left + right - f[i];
+    }
 }
 
 /// `F_i = (r_i - r_{i-1}) + beta (r_i^3 - r_{i-1}^3)`, `r_i = q_{i+1} - q_i`, walls at both ends.

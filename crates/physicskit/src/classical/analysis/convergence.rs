@@ -102,7 +102,7 @@ pub fn log_separation(a: &[f64], b: &[f64], dim: usize) -> Result<Vec<f64>> {
     if dim == 0 {
         return Err(Error::invalid("dim", 0.0, "must be >= 1"));
     }
-    if a.len() != b.len() || a.len() % dim != 0 {
+    if a.len() != b.len() || !a.len().is_multiple_of(dim) {
         return Err(Error::DimensionMismatch {
             name: "b".into(),
             expected: a.len(),

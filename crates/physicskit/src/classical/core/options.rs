@@ -33,7 +33,7 @@ impl Sampling {
     pub(crate) fn count(self, n_steps: usize) -> usize {
         match self {
             Sampling::All => n_steps + 1,
-            Sampling::Stride(k) => n_steps / k + 1 + usize::from(n_steps % k != 0),
+            Sampling::Stride(k) => n_steps / k + 1 + usize::from(!n_steps.is_multiple_of(k)),
             Sampling::FinalOnly => 1 + usize::from(n_steps > 0),
         }
     }

@@ -11,14 +11,40 @@
 //!    Microsystems, 1993; error below 1 ulp on the kernel interval).
 //! 3. The quadrant `n mod 4` selects `+-sin r` or `+-cos r` by arithmetic, not branches.
 //!
-//! Accuracy, measured against libm over 2 x 10^6 results with `|x| <= 1e4` (tests below):
-//! 86.5% bit-identical, 13.5% one ulp apart, 0.002% two ulps apart (fdlibm's tail word of the
-//! reduced argument is dropped to keep the loop branch-free), i.e. the same 1-ulp class. Slices with any `|x| > 1e6` (where the three-part reduction would lose bits)
-//! fall back to libm element by element, so results are always within the bound.
+//! [`sum_cos`] computes its cosines in blocks of 128 into a stack buffer and adds them in index
+//! order, so the cosines vectorize while the sum keeps its rounding.
+//!
+//! # Instruction sets
+//!
+//! Each public function is compiled twice by `#[multiversion]` (the `multiversion` crate): for
+//! baseline x86-64 (SSE2, 2 doubles per vector) and with AVX2 enabled (4 per vector, `ymm`
+//! registers). The first call detects the CPU (std's `is_x86_feature_detected!`, cached) and
+//! stores the chosen clone in an atomic function pointer; later calls cost one load and an
+//! indirect call. Other architectures compile only the portable body. `fma` is deliberately
+//! not enabled, and Rust never contracts `a * b + c` on its own, so both clones perform the
+//! same IEEE operations in the same order: their results are bit-identical, checked on 3.9 x
+//! 10^6 arguments including the neighbours of `k pi/2`, signed zeros, subnormals, the vector
+//! limit, NaN and infinities (`dispatched_and_baseline_paths_are_bit_identical`). A result
+//! therefore does not depend on which x86-64 machine computed it.
+//!
+//! Per element, minimum of repeated runs on a shared 2-core Xeon with AVX-512 (only AVX2
+//! used), n = 200: sine 4.7 ns (SSE2) -> 2.1 ns (AVX2), libm 4.8 ns (arguments in `[-1, 1.6]`,
+//! libm's fast path; 7.8 ns at n = 1e5 over `[-1, 1299]`); [`sum_cos`] 7.5 ns (SSE2, before
+//! blocking: the in-order sum kept the whole loop scalar) -> 2.8 ns, libm 4.8 ns.
+//!
+//! # Accuracy
+//!
+//! Measured against libm over 2 x 10^6 results with `|x| <= 1e4` (tests below): 86.5%
+//! bit-identical, 13.5% one ulp apart, 0.002% two ulps apart (fdlibm's tail word of the
+//! reduced argument is dropped to keep the loop branch-free), i.e. the same 1-ulp class.
+//! Slices with any `|x| > 1e6` (where the three-part reduction would lose bits) or any NaN fall
+//! back to libm element by element, so results are always within the bound.
 
 // The constants are quoted with fdlibm's published digits, so they can be checked against the
 // source; the parsed doubles are the same.
 #![allow(clippy::excessive_precision)]
+
+use multiversion::multiversion;
 
 /// Largest `|x|` handled by the vector path: `2^20 pi/2 ~ 1.6e6`, rounded down.
 const VECTOR_LIMIT: f64 = 1e6;
@@ -114,12 +140,21 @@ pub fn sin_cos(x: f64) -> (f64, f64) {
 }
 
 fn fits_vector_path(x: &[f64]) -> bool {
-    // NaN fails the comparison and takes the libm path, which propagates it.
-    x.iter().all(|v| v.abs() <= VECTOR_LIMIT)
+    // A fold without early exit, so that the check vectorizes too. NaN fails the comparison
+    // and takes the libm path, which propagates it.
+    x.iter().fold(true, |ok, v| ok & (v.abs() <= VECTOR_LIMIT))
 }
 
-/// Writes `sin(x[i])` into `out[i]`.
-pub fn sin_into(x: &[f64], out: &mut [f64]) {
+/// Elements per block of [`sum_cos`]: the cosines of a block are computed into a stack buffer
+/// (a loop that vectorizes) and then added in index order (one that cannot, as reordering the
+/// additions would change the rounding).
+const SUM_BLOCK: usize = 128;
+
+// The bodies below are compiled once per instruction set: inlined into each clone that
+// `#[multiversion]` makes of the public functions, and into the tests at the baseline.
+
+#[inline(always)]
+fn sin_into_body(x: &[f64], out: &mut [f64]) {
     if fits_vector_path(x) {
         for (o, &v) in out.iter_mut().zip(x) {
             *o = sin_cos_reduced(v, 0);
@@ -150,17 +185,8 @@ pub fn sin_cos_array<const N: usize>(x: [f64; N]) -> ([f64; N], [f64; N]) {
     (s, c)
 }
 
-/// `sum_i cos(x[i])`, accumulated in index order.
-pub fn sum_cos(x: &[f64]) -> f64 {
-    if fits_vector_path(x) {
-        x.iter().map(|&v| sin_cos_reduced(v, 1)).sum()
-    } else {
-        x.iter().map(|v| v.cos()).sum()
-    }
-}
-
-/// Writes `cos(x[i])` into `out[i]`.
-pub fn cos_into(x: &[f64], out: &mut [f64]) {
+#[inline(always)]
+fn cos_into_body(x: &[f64], out: &mut [f64]) {
     if fits_vector_path(x) {
         for (o, &v) in out.iter_mut().zip(x) {
             *o = sin_cos_reduced(v, 1);
@@ -170,6 +196,44 @@ pub fn cos_into(x: &[f64], out: &mut [f64]) {
             *o = v.cos();
         }
     }
+}
+
+#[inline(always)]
+fn sum_cos_body(x: &[f64]) -> f64 {
+    if fits_vector_path(x) {
+        let mut block = [0.0; SUM_BLOCK];
+        // -0.0 is the additive identity `Iterator::sum` starts from: the same bits as
+        // `x.iter().map(cos).sum()`, also for an empty slice.
+        let mut sum = -0.0;
+        for chunk in x.chunks(SUM_BLOCK) {
+            let c = &mut block[..chunk.len()];
+            for (o, &v) in c.iter_mut().zip(chunk) {
+                *o = sin_cos_reduced(v, 1);
+            }
+            sum = c.iter().fold(sum, |s, &v| s + v);
+        }
+        sum
+    } else {
+        x.iter().map(|v| v.cos()).sum()
+    }
+}
+
+/// Writes `sin(x[i])` into `out[i]`.
+#[multiversion(targets("x86_64+avx2"))]
+pub fn sin_into(x: &[f64], out: &mut [f64]) {
+    sin_into_body(x, out);
+}
+
+/// `sum_i cos(x[i])`, accumulated in index order.
+#[multiversion(targets("x86_64+avx2"))]
+pub fn sum_cos(x: &[f64]) -> f64 {
+    sum_cos_body(x)
+}
+
+/// Writes `cos(x[i])` into `out[i]`.
+#[multiversion(targets("x86_64+avx2"))]
+pub fn cos_into(x: &[f64], out: &mut [f64]) {
+    cos_into_body(x, out);
 }
 
 #[cfg(test)]
@@ -193,16 +257,21 @@ mod tests {
         key(a).abs_diff(key(b))
     }
 
-    /// A deterministic spread of arguments: dense near zero and near multiples of pi/2 (where
-    /// reduction is hardest), and uniform up to 1e4.
-    fn arguments() -> Vec<f64> {
-        let mut state = 0x9E37_79B9_7F4A_7C15_u64;
-        let mut next = || {
+    /// Marsaglia's xorshift64 (J. Stat. Softw. 8, 2003): a fixed stream of 64-bit words.
+    fn xorshift(mut state: u64) -> impl FnMut() -> u64 {
+        move || {
             state ^= state << 13;
             state ^= state >> 7;
             state ^= state << 17;
-            (state >> 11) as f64 / (1u64 << 53) as f64
-        };
+            state
+        }
+    }
+
+    /// A deterministic spread of arguments: dense near zero and near multiples of pi/2 (where
+    /// reduction is hardest), and uniform up to 1e4.
+    fn arguments() -> Vec<f64> {
+        let mut bits = xorshift(0x9E37_79B9_7F4A_7C15);
+        let mut next = || (bits() >> 11) as f64 / (1u64 << 53) as f64;
         let mut xs = Vec::new();
         for _ in 0..400_000 {
             xs.push((next() - 0.5) * 2e4);
@@ -246,6 +315,123 @@ mod tests {
         // so a rare argument lands 2 ulps from libm (~1.5 ulp from the true value at most).
         assert!(worst.0 <= 2, "{} ulps at x = {:e}", worst.0, worst.1);
         assert!(beyond_one < 1e-4, "{beyond_one} of results beyond 1 ulp");
+    }
+
+    /// Arguments that stress the vector path, all with `|x| <= VECTOR_LIMIT`: the bit
+    /// neighbours of `k pi/2` across the whole range of `k` (reduction to a tiny `r`, and the
+    /// quadrant boundaries), the midpoints `(k + 1/2) pi/2` (where `x 2/pi` rounds at a tie),
+    /// magnitudes spread log-uniformly from the smallest subnormal up to the limit, and signed
+    /// zeros, subnormals and the limit itself.
+    fn vector_path_edge_cases() -> Vec<f64> {
+        let mut next = xorshift(0x2545_F491_4F6C_DD1D);
+        let mut xs = vec![
+            0.0,
+            -0.0,
+            f64::from_bits(1),
+            -f64::from_bits(1),
+            f64::MIN_POSITIVE,
+            -f64::MIN_POSITIVE,
+            f64::from_bits(f64::MIN_POSITIVE.to_bits() - 1),
+            VECTOR_LIMIT,
+            -VECTOR_LIMIT,
+            f64::from_bits(VECTOR_LIMIT.to_bits() - 1),
+        ];
+        let neighbours = |v: f64, xs: &mut Vec<f64>| {
+            for j in -20_i64..=20 {
+                let w = f64::from_bits(v.to_bits().wrapping_add_signed(j));
+                if w.abs() <= VECTOR_LIMIT {
+                    xs.push(w);
+                }
+            }
+        };
+        // |k| <= 636_619 keeps k pi/2 within the limit.
+        for k in (-636_619_i32..=636_619).step_by(61) {
+            neighbours(f64::from(k) * std::f64::consts::FRAC_PI_2, &mut xs);
+            neighbours((f64::from(k) + 0.5) * std::f64::consts::FRAC_PI_2, &mut xs);
+        }
+        for _ in 0..1_000_000 {
+            let bits = next();
+            // Exponent uniform over subnormals..2^19, mantissa and sign random.
+            let exponent = (bits >> 53) % 1043;
+            let x = f64::from_bits((exponent << 52) | (bits & ((1 << 52) - 1)));
+            let x = if bits & (1 << 52) != 0 { -x } else { x };
+            if x.abs() <= VECTOR_LIMIT {
+                xs.push(x);
+            }
+        }
+        xs
+    }
+
+    /// Arguments off the vector path: NaN (with payloads and either sign), infinities, and
+    /// finite values beyond the limit, mixed with ordinary ones.
+    fn libm_path_cases() -> Vec<f64> {
+        let specials = [
+            f64::NAN,
+            -f64::NAN,
+            f64::from_bits(0x7FF0_0000_0000_0001),
+            f64::from_bits(0xFFF8_0000_DEAD_BEEF),
+            f64::INFINITY,
+            f64::NEG_INFINITY,
+            f64::MAX,
+            -f64::MAX,
+            f64::from_bits(VECTOR_LIMIT.to_bits() + 1),
+            -f64::from_bits(VECTOR_LIMIT.to_bits() + 1),
+            1.7e6,
+            -3e9,
+            1e22,
+            1e300,
+        ];
+        let mut xs = Vec::new();
+        for (i, &s) in specials.iter().cycle().take(20_000).enumerate() {
+            xs.push(s);
+            xs.extend((0..7).map(|j| f64::from((i * 7 + j) as u32) * 0.37 - 5000.0));
+        }
+        xs
+    }
+
+    /// Runs the public functions (dispatched at run time: the AVX2 clone on a CPU that has
+    /// it) and the same bodies compiled here at the baseline (SSE2 on x86-64) over slices of
+    /// every length from 1 to 300 (so the vector loops' remainders run too), comparing bits.
+    #[test]
+    fn dispatched_and_baseline_paths_are_bit_identical() {
+        #[cfg(target_arch = "x86_64")]
+        println!(
+            "AVX2 detected: {} (otherwise both sides are the baseline build)",
+            std::arch::is_x86_feature_detected!("avx2")
+        );
+        let mut vector = arguments();
+        vector.extend(vector_path_edge_cases());
+        assert!(vector.iter().all(|x| x.abs() <= VECTOR_LIMIT));
+        let libm = libm_path_cases();
+        let (mut fast, mut base) = (vec![0.0; 300], vec![0.0; 300]);
+        let mut compared = 0;
+        for xs in [&vector, &libm] {
+            let mut start = 0;
+            let mut i = 0;
+            while start < xs.len() {
+                let end = (start + 1 + (i * 37) % 300).min(xs.len());
+                let chunk = &xs[start..end];
+                let (fast, base) = (&mut fast[..chunk.len()], &mut base[..chunk.len()]);
+                sin_into(chunk, fast);
+                sin_into_body(chunk, base);
+                let same =
+                    |a: &[f64], b: &[f64]| a.iter().zip(b).all(|(a, b)| a.to_bits() == b.to_bits());
+                assert!(same(fast, base), "sin differs on {chunk:?}");
+                cos_into(chunk, fast);
+                cos_into_body(chunk, base);
+                assert!(same(fast, base), "cos differs on {chunk:?}");
+                assert_eq!(
+                    sum_cos(chunk).to_bits(),
+                    sum_cos_body(chunk).to_bits(),
+                    "sum_cos differs on {chunk:?}"
+                );
+                compared += chunk.len();
+                start = end;
+                i += 1;
+            }
+        }
+        println!("{compared} arguments, {} on the vector path", vector.len());
+        assert!(compared > 3_000_000);
     }
 
     #[test]
