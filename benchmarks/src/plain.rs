@@ -23,10 +23,6 @@ pub struct Trajectory {
     pub p: Vec<f64>,
     /// Energy of each sample.
     pub energy: Vec<f64>,
-    /// The stacked `[q, p]` rows as well, when `PHYSICSKIT_PLAIN_STORE_Y` is set: the library's
-    /// `SimulationResult` carries `y` besides `q` and `p` (the spec asks for all three), so this
-    /// measures what that extra array costs.
-    pub y: Vec<f64>,
 }
 
 /// Yoshida-4 over `n` steps of `dt` from `(q0, p0)`; `force(q, f)` writes `-dV/dq`.
@@ -45,19 +41,10 @@ pub fn yoshida4(
         q: Vec::with_capacity((n + 1) * d),
         p: Vec::with_capacity((n + 1) * d),
         energy: Vec::with_capacity(n + 1),
-        y: Vec::new(),
     };
-    let store_y = std::env::var_os("PHYSICSKIT_PLAIN_STORE_Y").is_some();
-    if store_y {
-        out.y.reserve_exact((n + 1) * 2 * d);
-    }
     let (mut q, mut p) = (q0.to_vec(), p0.to_vec());
     let mut f = vec![0.0; d];
     let record = |out: &mut Trajectory, t: f64, q: &[f64], p: &[f64]| {
-        if store_y {
-            out.y.extend_from_slice(q);
-            out.y.extend_from_slice(p);
-        }
         out.t.push(t);
         out.q.extend_from_slice(q);
         out.p.extend_from_slice(p);
