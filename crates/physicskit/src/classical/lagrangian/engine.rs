@@ -27,7 +27,8 @@
 //! closed forms pays nothing for the check, and a closed form is plain `f64` arithmetic on the
 //! caller's slices: no allocation, no dual numbers. The four built-in systems (double
 //! pendulum, hoop, coupled oscillators, heavy top) supply all seven, derived in their module
-//! docs; `canonical_jacobian` (the implicit-midpoint Newton fallback, used only when fixed
+//! docs (the hoop and the chain get the canonical field from the provided
+//! `closed_canonical`, which composes their velocity and `dL/dq`); `canonical_jacobian` (the implicit-midpoint Newton fallback, used only when fixed
 //! point iteration contracts slowly) stays automatic. Wrapping a Lagrangian in [`AutoDiff`]
 //! hides its closed forms: that engine is the independent check of them
 //! (`tests/lagrangian_closed_forms.rs`).
@@ -204,6 +205,10 @@ pub trait Lagrangian {
     /// Closed form of the canonical field at `(q, p)`: `qdot = qdot(q, p, t)` and
     /// `pdot = dL/dq(q, qdot, t)`, or `None`; errors as
     /// [`closed_acceleration`](Self::closed_acceleration).
+    ///
+    /// The default composes [`closed_velocity`](Self::closed_velocity) and
+    /// [`closed_generalized_force`](Self::closed_generalized_force) when both are supplied
+    /// (`None` otherwise); override it only to share work between the two.
     #[inline(always)]
     fn closed_canonical(
         &self,
@@ -213,8 +218,11 @@ pub trait Lagrangian {
         qdot: &mut [f64],
         pdot: &mut [f64],
     ) -> Option<Result<()>> {
-        let _ = (q, p, t, qdot, pdot);
-        None
+        if let Err(e) = self.closed_velocity(q, p, t, qdot)? {
+            return Some(Err(e));
+        }
+        self.closed_generalized_force(q, qdot, t, pdot)?;
+        Some(Ok(()))
     }
 }
 

@@ -163,20 +163,6 @@ impl Lagrangian for CoupledOscillatorsParams {
             out.iter_mut().zip(p).for_each(|(v, &pi)| *v = pi * inv);
         }))
     }
-
-    #[inline]
-    fn closed_canonical(
-        &self,
-        q: &[f64],
-        p: &[f64],
-        t: f64,
-        qdot: &mut [f64],
-        pdot: &mut [f64],
-    ) -> Option<Result<()>> {
-        let velocity = self.closed_velocity(q, p, t, qdot)?;
-        self.force(q, 1.0, pdot);
-        Some(velocity)
-    }
 }
 
 /// The chain of coupled oscillators between fixed walls (the spec's `CoupledOscillators`).

@@ -158,20 +158,6 @@ impl Lagrangian for HoopParams {
     ) -> Option<Result<()>> {
         Some(self.inverse_mass(t).map(|inv| out[0] = p[0] * inv))
     }
-
-    #[inline]
-    fn closed_canonical(
-        &self,
-        q: &[f64],
-        p: &[f64],
-        t: f64,
-        qdot: &mut [f64],
-        pdot: &mut [f64],
-    ) -> Option<Result<()>> {
-        let velocity = self.closed_velocity(q, p, t, qdot)?;
-        pdot[0] = self.force(q[0]);
-        Some(velocity)
-    }
 }
 
 /// The bead on a rotating hoop (the spec's `BeadOnRotatingHoop`). State `[theta, thetadot]`.
