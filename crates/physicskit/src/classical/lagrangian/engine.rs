@@ -314,10 +314,6 @@ fn hd(re: f64) -> HyperDual64 {
     HyperDual64::new(re, 0.0, 0.0, 0.0)
 }
 
-fn singular(t: f64) -> Error {
-    singular_mass_matrix(t)
-}
-
 fn inf_norm(x: &[f64]) -> f64 {
     x.iter().fold(0.0_f64, |m, v| m.max(v.abs()))
 }
@@ -332,6 +328,13 @@ fn check_len(name: &str, x: &[f64], n: usize) -> Result<()> {
             found: x.len(),
         })
     }
+}
+
+/// Checks that `q`, `x` (named `name`: `qdot` or `p`) and `out` all have length `n`.
+fn check_args(n: usize, q: &[f64], name: &str, x: &[f64], out: &[f64]) -> Result<()> {
+    check_len("q", q, n)?;
+    check_len(name, x, n)?;
+    check_len("out", out, n)
 }
 
 impl<L: Lagrangian> LagrangianEngine<L> {
@@ -413,7 +416,7 @@ impl<L: Lagrangian> LagrangianEngine<L> {
         let mut m = MatBuf::new(n * n, 0.0);
         self.mass_matrix(q, qdot, t, m.as_mut_slice())?;
         let mut piv = VecBuf::new(n, 0_usize);
-        lu_factor(m.as_mut_slice(), n, piv.as_mut_slice()).map_err(|_| singular(t))
+        lu_factor(m.as_mut_slice(), n, piv.as_mut_slice()).map_err(|_| singular_mass_matrix(t))
     }
 
     /// Writes the mass matrix `M = d2L/dqdot2` (row-major `n x n`) into `out`.
@@ -433,7 +436,7 @@ impl<L: Lagrangian> LagrangianEngine<L> {
         {
             return Ok(());
         }
-        self.hessian_vv(q, qdot, t, out, None);
+        self.hessian_vv_scalar(q, qdot, t, out, None);
         Ok(())
     }
 
@@ -450,9 +453,7 @@ impl<L: Lagrangian> LagrangianEngine<L> {
         out: &mut [f64],
     ) -> Result<()> {
         let n = self.ndof();
-        check_len("q", q, n)?;
-        check_len("qdot", qdot, n)?;
-        check_len("out", out, n)?;
+        check_args(n, q, "qdot", qdot, out)?;
         if self
             .lagrangian
             .closed_generalized_force(q, qdot, t, out)
@@ -480,9 +481,7 @@ impl<L: Lagrangian> LagrangianEngine<L> {
     /// [`Error::DimensionMismatch`] for wrong lengths.
     pub fn momentum(&self, q: &[f64], qdot: &[f64], t: f64, out: &mut [f64]) -> Result<()> {
         let n = self.ndof();
-        check_len("q", q, n)?;
-        check_len("qdot", qdot, n)?;
-        check_len("out", out, n)?;
+        check_args(n, q, "qdot", qdot, out)?;
         if self.lagrangian.closed_momentum(q, qdot, t, out).is_some() {
             return Ok(());
         }
@@ -540,9 +539,7 @@ impl<L: Lagrangian> LagrangianEngine<L> {
     /// wrong lengths.
     pub fn acceleration(&self, q: &[f64], qdot: &[f64], t: f64, out: &mut [f64]) -> Result<()> {
         let n = self.ndof();
-        check_len("q", q, n)?;
-        check_len("qdot", qdot, n)?;
-        check_len("out", out, n)?;
+        check_args(n, q, "qdot", qdot, out)?;
         if let Some(r) = self.lagrangian.closed_acceleration(q, qdot, t, out) {
             return r;
         }
@@ -553,7 +550,7 @@ impl<L: Lagrangian> LagrangianEngine<L> {
             _ => {}
         }
         let mut m = MatBuf::new(n * n, 0.0);
-        self.hessian_vv(q, qdot, t, m.as_mut_slice(), None);
+        self.hessian_vv_scalar(q, qdot, t, m.as_mut_slice(), None);
         let mut mixed = VecBuf::new(n, 0.0);
         self.mixed_time_derivative(q, qdot, t, mixed.as_mut_slice());
         self.generalized_force(q, qdot, t, out)?;
@@ -561,7 +558,7 @@ impl<L: Lagrangian> LagrangianEngine<L> {
             *o -= c;
         }
         let mut piv = VecBuf::new(n, 0_usize);
-        lu_factor(m.as_mut_slice(), n, piv.as_mut_slice()).map_err(|_| singular(t))?;
+        lu_factor(m.as_mut_slice(), n, piv.as_mut_slice()).map_err(|_| singular_mass_matrix(t))?;
         lu_solve(m.as_slice(), n, piv.as_slice(), out);
         Ok(())
     }
@@ -600,7 +597,7 @@ impl<L: Lagrangian> LagrangianEngine<L> {
             out[i] -= mixed;
         }
         let mut piv = [0_usize; FIXED_NDOF];
-        factor::<N>(m, N, &mut piv[..N]).map_err(|_| singular(t))?;
+        factor::<N>(m, N, &mut piv[..N]).map_err(|_| singular_mass_matrix(t))?;
         solve::<N>(m, N, &piv[..N], out);
         Ok(())
     }
@@ -613,9 +610,7 @@ impl<L: Lagrangian> LagrangianEngine<L> {
     /// [`Error::DimensionMismatch`] for wrong lengths.
     pub fn velocity(&self, q: &[f64], p: &[f64], t: f64, out: &mut [f64]) -> Result<()> {
         let n = self.ndof();
-        check_len("q", q, n)?;
-        check_len("p", p, n)?;
-        check_len("out", out, n)?;
+        check_args(n, q, "p", p, out)?;
         if let Some(r) = self.lagrangian.closed_velocity(q, p, t, out) {
             return r;
         }
@@ -674,7 +669,7 @@ impl<L: Lagrangian> LagrangianEngine<L> {
             }
         }
         let mut piv = VecBuf::new(n, 0_usize);
-        lu_factor(lu.as_mut_slice(), n, piv.as_mut_slice()).map_err(|_| singular(t))?;
+        lu_factor(lu.as_mut_slice(), n, piv.as_mut_slice()).map_err(|_| singular_mass_matrix(t))?;
         let (lu, piv) = (lu.as_slice(), piv.as_slice());
         // X = M^-1 L_vq, column by column.
         let mut x = MatBuf::new(n * n, 0.0);
@@ -713,13 +708,8 @@ impl<L: Lagrangian> LagrangianEngine<L> {
         Ok(())
     }
 
-    /// `M = d2L/dv2` into `m`, and `dL/dv` into `grad` if given.
-    fn hessian_vv(&self, q: &[f64], v: &[f64], t: f64, m: &mut [f64], grad: Option<&mut [f64]>) {
-        self.hessian_vv_scalar(q, v, t, m, grad);
-    }
-
-    /// [`hessian_vv`](Self::hessian_vv) for `N` degrees of freedom: one evaluation of `L` on
-    /// second-order vector duals seeded in `v`.
+    /// [`hessian_vv_scalar`](Self::hessian_vv_scalar) for `N` degrees of freedom: one
+    /// evaluation of `L` on second-order vector duals seeded in `v`.
     #[inline]
     fn hessian_vv_static<const N: usize>(
         &self,
@@ -747,7 +737,8 @@ impl<L: Lagrangian> LagrangianEngine<L> {
         }
     }
 
-    /// [`hessian_vv`](Self::hessian_vv) for any `n`: `n(n+1)/2` hyper-dual evaluations.
+    /// `M = d2L/dv2` into `m`, and `dL/dv` into `grad` if given, for any `n`: `n(n+1)/2`
+    /// hyper-dual evaluations.
     fn hessian_vv_scalar(
         &self,
         q: &[f64],
@@ -1018,7 +1009,7 @@ impl<L: Lagrangian> LagrangianEngine<L> {
             *si = pi - p0;
             accepted_r = accepted_r.max(si.abs());
         }
-        factor::<N>(m, n, piv).map_err(|_| singular(t))?;
+        factor::<N>(m, n, piv).map_err(|_| singular_mass_matrix(t))?;
         solve::<N>(m, n, piv, step);
         let p_norm = inf_norm(p).max(inf_norm(pv));
         let mut lambda = 1.0_f64;
@@ -1059,7 +1050,7 @@ impl<L: Lagrangian> LagrangianEngine<L> {
             // L at one call site each, which lets them inline into this loop.
             self.hessian_vv_scalar(q, v, t, m, None);
             m_norm = m_norm.max(inf_norm(m));
-            factor::<N>(m, n, piv).map_err(|_| singular(t))?;
+            factor::<N>(m, n, piv).map_err(|_| singular_mass_matrix(t))?;
             step.copy_from_slice(r);
             solve::<N>(m, n, piv, step);
         }
