@@ -124,11 +124,12 @@ impl SymmetricTopParams {
         Ok(pivot)
     }
 
-    /// `(phi', w3)` from `(p_phi, p_psi)` at `(s, c)` (module documentation).
+    /// The velocity `qdot(q, p)` and the spin `w3` at `(s, c)` (module documentation).
     #[inline(always)]
-    fn precession_and_spin(&self, p: &[f64], s: f64, c: f64, t: f64) -> Result<(f64, f64)> {
+    fn velocity_and_spin(&self, p: &[f64], s: f64, c: f64, t: f64) -> Result<([f64; 3], f64)> {
         let pivot = self.pivot(s, c, t)?;
-        Ok(((p[0] - p[2] * c) / pivot, p[2] / self.i3))
+        let (phid, w3) = ((p[0] - p[2] * c) / pivot, p[2] / self.i3);
+        Ok(([phid, p[1] / self.i1, w3 - phid * c], w3))
     }
 
     /// `dL/dtheta` at `(s, c)`, precession rate `phid` and spin `w3`.
@@ -214,9 +215,10 @@ impl Lagrangian for SymmetricTopParams {
     #[inline]
     fn closed_velocity(&self, q: &[f64], p: &[f64], t: f64, out: &mut [f64]) -> Option<Result<()>> {
         let (s, c) = sin_cos(q[1]);
-        Some(self.precession_and_spin(p, s, c, t).map(|(phid, w3)| {
-            out.copy_from_slice(&[phid, p[1] / self.i1, w3 - phid * c]);
-        }))
+        Some(
+            self.velocity_and_spin(p, s, c, t)
+                .map(|(w, _)| out.copy_from_slice(&w)),
+        )
     }
 
     #[inline]
@@ -229,9 +231,9 @@ impl Lagrangian for SymmetricTopParams {
         pdot: &mut [f64],
     ) -> Option<Result<()>> {
         let (s, c) = sin_cos(q[1]);
-        Some(self.precession_and_spin(p, s, c, t).map(|(phid, w3)| {
-            qdot.copy_from_slice(&[phid, p[1] / self.i1, w3 - phid * c]);
-            pdot.copy_from_slice(&[0.0, self.nutation_force(s, c, phid, w3), 0.0]);
+        Some(self.velocity_and_spin(p, s, c, t).map(|(w, w3)| {
+            qdot.copy_from_slice(&w);
+            pdot.copy_from_slice(&[0.0, self.nutation_force(s, c, w[0], w3), 0.0]);
         }))
     }
 }
