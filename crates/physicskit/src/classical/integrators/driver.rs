@@ -31,24 +31,10 @@ pub fn integrate_hamiltonian<S: HamiltonianSystem>(
     let setup = Setup::new(&*system, t_span, dt, Some(ndof), &options)?;
     match method {
         Method::Verlet => {
-            check_system(method, &*system)?;
-            integrate_splitting(
-                system,
-                setup,
-                method,
-                options,
-                SplittingStepper::verlet(ndof),
-            )
+            integrate_splitting(system, setup, method, options, SplittingStepper::verlet)
         }
         Method::Yoshida4 => {
-            check_system(method, &*system)?;
-            integrate_splitting(
-                system,
-                setup,
-                method,
-                options,
-                SplittingStepper::yoshida4(ndof),
-            )
+            integrate_splitting(system, setup, method, options, SplittingStepper::yoshida4)
         }
         Method::Rk4 | Method::ImplicitMidpoint => {
             integrate_first_order(system, setup, method, options)
@@ -151,15 +137,18 @@ pub fn integrate_ode<S: OdeSystem>(
     }
 }
 
-/// A splitting method with `S` substeps on a separable system.
+/// A splitting method with `N` substeps, after checking that the system is separable and
+/// conservative; `stepper(ndof)` builds its stepper.
 fn integrate_splitting<S: HamiltonianSystem, const N: usize>(
     system: &mut S,
     setup: Setup,
     method: Method,
     options: IntegrateOptions<'_>,
-    mut stepper: SplittingStepper<N>,
+    stepper: fn(usize) -> SplittingStepper<N>,
 ) -> Result<SimulationResult> {
+    check_system(method, &*system)?;
     let ndof = system.ndof();
+    let mut stepper = stepper(ndof);
     let dt = setup.grid.dt();
     let sys = &*system;
     let (result, y) = setup.run(
