@@ -63,7 +63,7 @@ pub fn integrate_lagrangian<S: LagrangianSystem>(
         Method::ImplicitMidpoint => {
             let sys = &*system;
             // Canonical start: p = dL/dqdot at (q0, qdot0).
-            let initial = sys.state().to_vec();
+            let initial = setup.start.clone();
             let mut work = initial.clone();
             sys.momentum(
                 &initial[..ndof],
@@ -296,14 +296,15 @@ impl Setup {
         })
     }
 
+    /// [`run_from`](Self::run_from) the validated initial state.
     fn run(
-        self,
+        mut self,
         method: Method,
         options: IntegrateOptions<'_>,
         step: impl FnMut(f64, &mut [f64]) -> Result<()>,
         sample: impl Sampler,
     ) -> Result<((SimulationResult, f64), Vec<f64>)> {
-        let work = self.start.clone();
+        let work = std::mem::take(&mut self.start);
         self.run_from(work, method, options, step, sample)
     }
 
