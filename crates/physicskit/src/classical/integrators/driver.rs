@@ -83,7 +83,6 @@ pub fn integrate_lagrangian<S: LagrangianSystem>(
                 |t, y| stepper.step(&field, t, y, dt),
                 |recorder: &mut Recorder, t: f64, y: &[f64]| {
                     let energy = recorder.stores_energy();
-                    let mut e = 0.0;
                     recorder.push_with(t, |out| {
                         if let Some(initial) = first.take() {
                             out.copy_from_slice(&initial);
@@ -92,12 +91,8 @@ pub fn integrate_lagrangian<S: LagrangianSystem>(
                             out[..ndof].copy_from_slice(q);
                             sys.velocity(q, p, t, &mut out[ndof..])?;
                         }
-                        if energy {
-                            e = sys.energy(out);
-                        }
-                        Ok(e)
-                    })?;
-                    Ok(e)
+                        Ok(if energy { sys.energy(out) } else { 0.0 })
+                    })
                 },
             )?;
             let stats = stepper.stats();
