@@ -165,9 +165,7 @@ pub fn case(name: &str) -> Option<fn(usize, f64) -> Trajectory> {
             )
         },
         "fput" => |n, dt| {
-            let q0: Vec<f64> = (1..=32)
-                .map(|i| 0.5 * (std::f64::consts::PI * i as f64 / 33.0).sin())
-                .collect();
+            let q0 = crate::workloads::harmonic_chain_q0(32);
             yoshida4(
                 &q0,
                 &[0.0; 32],

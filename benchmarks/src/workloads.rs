@@ -32,7 +32,13 @@ fn kepler(a: f64, e: f64, c_pn: f64) -> Result<KeplerSystem> {
     )
 }
 
-/// Initial state of the 16-mass harmonic chain: mode 1 with amplitude 0.5.
+/// The double pendulum of both its workloads (implicit midpoint and rk4).
+fn double_pendulum() -> Result<DoublePendulum> {
+    DoublePendulum::new(&[2.0, 1.0], &[0.5, -0.3], Default::default())
+}
+
+/// Initial positions of an `n`-mass chain with fixed ends (the 16-mass harmonic chain, the
+/// 32-mass FPUT chain): mode 1 with amplitude 0.5.
 pub fn harmonic_chain_q0(n: usize) -> Vec<f64> {
     (1..=n)
         .map(|i| 0.5 * (std::f64::consts::PI * i as f64 / (n + 1) as f64).sin())
@@ -76,25 +82,13 @@ pub fn all() -> Vec<Workload> {
             name: "double_pendulum",
             method: Method::ImplicitMidpoint,
             dt: 3e-5,
-            run: |n, dt, m| {
-                DoublePendulum::new(&[2.0, 1.0], &[0.5, -0.3], Default::default())?.integrate(
-                    span(n, dt),
-                    dt,
-                    m,
-                )
-            },
+            run: |n, dt, m| double_pendulum()?.integrate(span(n, dt), dt, m),
         },
         Workload {
             name: "double_pendulum_rk4",
             method: Method::Rk4,
             dt: 3e-5,
-            run: |n, dt, m| {
-                DoublePendulum::new(&[2.0, 1.0], &[0.5, -0.3], Default::default())?.integrate(
-                    span(n, dt),
-                    dt,
-                    m,
-                )
-            },
+            run: |n, dt, m| double_pendulum()?.integrate(span(n, dt), dt, m),
         },
         Workload {
             name: "hoop",

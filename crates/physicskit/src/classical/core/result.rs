@@ -159,28 +159,23 @@ impl Recorder {
     }
 
     /// Stores one sample whose stored form differs from the working state: `fill(row)` writes
-    /// it into the next row of `y` and returns its energy.
+    /// it into the next row of `y` and returns its energy, which is returned too. On an error
+    /// the recorder is left with a partial row: the run is abandoned and the recorder dropped.
     #[inline]
     pub(crate) fn push_with(
         &mut self,
         t: f64,
         fill: impl FnOnce(&mut [f64]) -> Result<f64>,
-    ) -> Result<()> {
+    ) -> Result<f64> {
         debug_assert!(self.t.len() < self.rows);
         let start = self.y.len();
         self.y.resize(start + self.dim, 0.0);
-        let energy = match fill(&mut self.y[start..]) {
-            Ok(e) => e,
-            Err(e) => {
-                self.y.truncate(start);
-                return Err(e);
-            }
-        };
+        let energy = fill(&mut self.y[start..])?;
         self.t.push(t);
         if let Some(e) = self.energy.as_mut() {
             e.push(energy);
         }
-        Ok(())
+        Ok(energy)
     }
 
     /// Time of the first stored sample whose state holds NaN or infinity.

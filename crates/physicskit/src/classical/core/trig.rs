@@ -155,17 +155,24 @@ const SUM_BLOCK: usize = 128;
 // The bodies below are compiled once per instruction set: inlined into each clone that
 // `#[multiversion]` makes of the public functions, and into the tests at the baseline.
 
+/// `out[i] = sin(x[i])` (`SHIFT = 0`, `libm = f64::sin`) or `cos(x[i])` (`SHIFT = 1`,
+/// `libm = f64::cos`): the quadrant shift selects the function on the vector path.
 #[inline(always)]
-fn sin_into_body(x: &[f64], out: &mut [f64]) {
+fn trig_into_body<const SHIFT: u64>(x: &[f64], out: &mut [f64], libm: fn(f64) -> f64) {
     if fits_vector_path(x) {
         for (o, &v) in out.iter_mut().zip(x) {
-            *o = sin_cos_reduced(v, 0);
+            *o = sin_cos_reduced(v, SHIFT);
         }
     } else {
         for (o, &v) in out.iter_mut().zip(x) {
-            *o = v.sin();
+            *o = libm(v);
         }
     }
+}
+
+#[inline(always)]
+fn sin_into_body(x: &[f64], out: &mut [f64]) {
+    trig_into_body::<0>(x, out, f64::sin);
 }
 
 /// [`sin_cos`] of `N` arguments at once, `(sin, cos)` arrays: the same values, in SIMD lanes
@@ -189,15 +196,7 @@ pub fn sin_cos_array<const N: usize>(x: [f64; N]) -> ([f64; N], [f64; N]) {
 
 #[inline(always)]
 fn cos_into_body(x: &[f64], out: &mut [f64]) {
-    if fits_vector_path(x) {
-        for (o, &v) in out.iter_mut().zip(x) {
-            *o = sin_cos_reduced(v, 1);
-        }
-    } else {
-        for (o, &v) in out.iter_mut().zip(x) {
-            *o = v.cos();
-        }
-    }
+    trig_into_body::<1>(x, out, f64::cos);
 }
 
 #[inline(always)]

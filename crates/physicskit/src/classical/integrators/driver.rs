@@ -31,24 +31,10 @@ pub fn integrate_hamiltonian<S: HamiltonianSystem>(
     let setup = Setup::new(&*system, t_span, dt, Some(ndof), &options)?;
     match method {
         Method::Verlet => {
-            check_system(method, &*system)?;
-            integrate_splitting(
-                system,
-                setup,
-                method,
-                options,
-                SplittingStepper::verlet(ndof),
-            )
+            integrate_splitting(system, setup, method, options, SplittingStepper::verlet)
         }
         Method::Yoshida4 => {
-            check_system(method, &*system)?;
-            integrate_splitting(
-                system,
-                setup,
-                method,
-                options,
-                SplittingStepper::yoshida4(ndof),
-            )
+            integrate_splitting(system, setup, method, options, SplittingStepper::yoshida4)
         }
         Method::Rk4 | Method::ImplicitMidpoint => {
             integrate_first_order(system, setup, method, options)
@@ -77,7 +63,7 @@ pub fn integrate_lagrangian<S: LagrangianSystem>(
         Method::ImplicitMidpoint => {
             let sys = &*system;
             // Canonical start: p = dL/dqdot at (q0, qdot0).
-            let initial = sys.state().to_vec();
+            let initial = setup.start.clone();
             let mut work = initial.clone();
             sys.momentum(
                 &initial[..ndof],
@@ -97,7 +83,6 @@ pub fn integrate_lagrangian<S: LagrangianSystem>(
                 |t, y| stepper.step(&field, t, y, dt),
                 |recorder: &mut Recorder, t: f64, y: &[f64]| {
                     let energy = recorder.stores_energy();
-                    let mut e = 0.0;
                     recorder.push_with(t, |out| {
                         if let Some(initial) = first.take() {
                             out.copy_from_slice(&initial);
@@ -106,12 +91,8 @@ pub fn integrate_lagrangian<S: LagrangianSystem>(
                             out[..ndof].copy_from_slice(q);
                             sys.velocity(q, p, t, &mut out[ndof..])?;
                         }
-                        if energy {
-                            e = sys.energy(out);
-                        }
-                        Ok(e)
-                    })?;
-                    Ok(e)
+                        Ok(if energy { sys.energy(out) } else { 0.0 })
+                    })
                 },
             )?;
             let stats = stepper.stats();
@@ -151,15 +132,18 @@ pub fn integrate_ode<S: OdeSystem>(
     }
 }
 
-/// A splitting method with `S` substeps on a separable system.
+/// A splitting method with `N` substeps, after checking that the system is separable and
+/// conservative; `stepper(ndof)` builds its stepper.
 fn integrate_splitting<S: HamiltonianSystem, const N: usize>(
     system: &mut S,
     setup: Setup,
     method: Method,
     options: IntegrateOptions<'_>,
-    mut stepper: SplittingStepper<N>,
+    stepper: fn(usize) -> SplittingStepper<N>,
 ) -> Result<SimulationResult> {
+    check_system(method, &*system)?;
     let ndof = system.ndof();
+    let mut stepper = stepper(ndof);
     let dt = setup.grid.dt();
     let sys = &*system;
     let (result, y) = setup.run(
@@ -307,14 +291,15 @@ impl Setup {
         })
     }
 
+    /// [`run_from`](Self::run_from) the validated initial state.
     fn run(
-        self,
+        mut self,
         method: Method,
         options: IntegrateOptions<'_>,
         step: impl FnMut(f64, &mut [f64]) -> Result<()>,
         sample: impl Sampler,
     ) -> Result<((SimulationResult, f64), Vec<f64>)> {
-        let work = self.start.clone();
+        let work = std::mem::take(&mut self.start);
         self.run_from(work, method, options, step, sample)
     }
 

@@ -150,10 +150,9 @@ pub struct ImplicitMidpoint {
     stats: SolverStats,
 }
 
-enum Outcome {
-    Converged(usize, f64),
-    Stalled(usize, f64),
-}
+/// How a solve ended: `(iterations, residual)`, whether it converged or stalled at the
+/// rounding floor (the two are reported alike).
+type Outcome = (usize, f64);
 
 impl ImplicitMidpoint {
     /// Buffers for a `dim`-dimensional state.
@@ -241,9 +240,7 @@ impl ImplicitMidpoint {
                 self.newton(f, t, y, h, scale_y, iterations, residual)?
             }
         };
-        let (iterations, residual) = match outcome {
-            Outcome::Converged(i, r) | Outcome::Stalled(i, r) => (i, r),
-        };
+        let (iterations, residual) = outcome;
         let k = &self.k[..n];
         self.newest = (self.newest + 1) % HISTORY;
         self.history[self.newest * n..(self.newest + 1) * n].copy_from_slice(k);
@@ -305,7 +302,7 @@ impl ImplicitMidpoint {
             swapped = !swapped;
             if dk == 0.0 {
                 // A fixed point of the rounded map: nothing left to iterate.
-                outcome = Ok(Outcome::Converged(it, 0.0));
+                outcome = Ok((it, 0.0));
                 break;
             }
             // The slope's max-norm, and the correction of the state relative to its scale (the
@@ -320,7 +317,7 @@ impl ImplicitMidpoint {
                 break;
             }
             if delta <= s.tolerance {
-                outcome = Ok(Outcome::Converged(it, delta));
+                outcome = Ok((it, delta));
                 break;
             }
             if it >= 2 {
@@ -328,13 +325,13 @@ impl ImplicitMidpoint {
                     // Contracting at the rate theta = dk / previous: the distance left to the
                     // fixed point, at most theta / (1 - theta) times this correction, is below
                     // the floor.
-                    outcome = Ok(Outcome::Converged(it, delta * dk / (previous - dk)));
+                    outcome = Ok((it, delta * dk / (previous - dk)));
                     break;
                 }
                 let stall = delta <= s.stall_tolerance;
                 if dk >= previous && stall {
                     // No longer shrinking: the rounding floor of f is reached.
-                    outcome = Ok(Outcome::Stalled(it, delta));
+                    outcome = Ok((it, delta));
                     break;
                 }
                 if 2.0 * dk >= previous && !stall {
@@ -352,7 +349,7 @@ impl ImplicitMidpoint {
         }
         match outcome {
             Err((it, delta)) if it == s.max_fixed_point && delta <= s.stall_tolerance => {
-                Ok(Ok(Outcome::Stalled(it, delta)))
+                Ok(Ok((it, delta)))
             }
             other => Ok(other),
         }
@@ -432,11 +429,11 @@ impl ImplicitMidpoint {
                 return Err(fail(spent + it, residual));
             }
             if residual <= s.tolerance {
-                return Ok(Outcome::Converged(spent + it, residual));
+                return Ok((spent + it, residual));
             }
             let rate = residual / previous;
             if it >= 2 && rate >= 1.0 && residual <= s.stall_tolerance {
-                return Ok(Outcome::Stalled(spent + it, residual));
+                return Ok((spent + it, residual));
             }
             if it >= 2 && rate >= 0.5 && residual > s.stall_tolerance {
                 // Simplified Newton slowed down: refresh the Jacobian next iteration.
@@ -445,7 +442,7 @@ impl ImplicitMidpoint {
             previous = residual;
         }
         if residual <= s.stall_tolerance {
-            return Ok(Outcome::Stalled(spent + s.max_newton, residual));
+            return Ok((spent + s.max_newton, residual));
         }
         Err(fail(spent + s.max_newton, residual))
     }
