@@ -89,8 +89,8 @@ impl SimulationResult {
 
 /// Writes samples into storage allocated once, in [`Recorder::new`].
 ///
-/// The vectors are reserved up front (by [`storage`]: never zeroed, large ones advised onto
-/// huge pages) and appended to, row by row; they never reallocate.
+/// The vectors are reserved up front (by [`storage`]: never zeroed, faulted in with one
+/// system call) and appended to, row by row; they never reallocate.
 pub(crate) struct Recorder {
     dim: usize,
     ndof: Option<usize>,
