@@ -244,7 +244,7 @@ fn options(
 }
 
 /// Integrates a Python `HamiltonianSystem` subclass `obj` from `(state, t0)` with the Rust
-/// integrators; returns the result tuple `(t, y, q, p, energy, method, extra)`. `stride`,
+/// integrators; returns the result tuple `(t, y, energy, method, extra)`. `stride`,
 /// `final_only` and `energy` select what is stored, as for `NativeSystem.integrate`.
 #[pyfunction]
 #[pyo3(signature = (obj, state, t0, t_span, dt, method, ndof, separable, mass_inv, stride=1, final_only=false, energy=true))]
@@ -284,7 +284,7 @@ pub fn integrate_hamiltonian<'py>(
 }
 
 /// Integrates a Python `ODESystem` (or engine-less `LagrangianSystem`) `obj` from
-/// `(state, t0)`; returns the result tuple `(t, y, None, None, energy, method, extra)`.
+/// `(state, t0)`; returns the result tuple `(t, y, energy, method, extra)`.
 /// `stride`, `final_only` and `energy` select what is stored.
 #[pyfunction]
 #[pyo3(signature = (obj, state, t0, t_span, dt, method, stride=1, final_only=false, energy=true))]

@@ -431,7 +431,7 @@ impl NativeSystem {
     }
 
     /// Starts from `(state, t0)`, integrates over `t_span` with step `dt`, and returns the result
-    /// tuple `(t, y, q, p, energy, method, extra)`. `stride` keeps every `stride`-th step (and
+    /// tuple `(t, y, energy, method, extra)`. `stride` keeps every `stride`-th step (and
     /// the last), `final_only` only the first and last, `energy=False` skips the energy
     /// diagnostic (`None` in the tuple). The GIL is released during the run; Ctrl-C stops it
     /// with `KeyboardInterrupt`.
