@@ -59,31 +59,30 @@ impl<'py> Callbacks<'py> {
     }
 
     /// Calls `name(*args)` and copies the returned 1-D array into `out`.
+    ///
+    /// The method name is only formatted on failure: this runs once per step (or per stage).
     fn vector(
         &self,
         name: &Bound<'py, pyo3::types::PyString>,
         args: impl pyo3::call::PyCallArgs<'py>,
         out: &mut [f64],
     ) -> Result<()> {
-        let what = name.to_string();
-        let r = self.call(name, args).map_err(|e| self.stash(e, &what))?;
-        let copied = match r.extract::<PyReadonlyArray1<'_, f64>>() {
+        let r = self
+            .call(name, args)
+            .map_err(|e| self.stash(e, &name.to_string()))?;
+        match r.extract::<PyReadonlyArray1<'_, f64>>() {
             Ok(a) => match a.as_slice() {
                 Ok(s) if s.len() == out.len() => {
                     out.copy_from_slice(s);
                     Ok(())
                 }
-                _ => {
-                    let v = to_vec(&a);
-                    fill(out, &v, &what)
-                }
+                _ => fill(out, &to_vec(&a), name),
             },
             Err(_) => match r.extract::<Vec<f64>>() {
-                Ok(v) => fill(out, &v, &what),
-                Err(e) => Err(self.stash(e, &what)),
+                Ok(v) => fill(out, &v, name),
+                Err(e) => Err(self.stash(e, &name.to_string())),
             },
-        };
-        copied
+        }
     }
 
     /// Calls `name(*args)` and converts the result to a float; NaN (and a stashed exception)
@@ -93,14 +92,25 @@ impl<'py> Callbacks<'py> {
         name: &Bound<'py, pyo3::types::PyString>,
         args: impl pyo3::call::PyCallArgs<'py>,
     ) -> f64 {
-        let what = name.to_string();
         match self.call(name, args).and_then(|r| r.extract::<f64>()) {
             Ok(v) => v,
             Err(e) => {
-                self.stash(e, &what);
+                self.stash(e, &name.to_string());
                 f64::NAN
             }
         }
+    }
+
+    /// The Python `derivatives(t, state)`, the right-hand side of both callback families.
+    fn derivatives(&self, t: f64, state: &[f64], out: &mut [f64]) -> Result<()> {
+        let py = self.obj.py();
+        self.vector(intern!(py, "derivatives"), (t, self.array(state)), out)
+    }
+
+    /// The Python `energy(state)`.
+    fn energy(&self, state: &[f64]) -> f64 {
+        let py = self.obj.py();
+        self.scalar(intern!(py, "energy"), (self.array(state),))
     }
 
     fn array(&self, v: &[f64]) -> Bound<'py, PyArray1<f64>> {
@@ -123,7 +133,7 @@ impl<'py> Callbacks<'py> {
     }
 }
 
-fn fill(out: &mut [f64], v: &[f64], what: &str) -> Result<()> {
+fn fill(out: &mut [f64], v: &[f64], what: &Bound<'_, pyo3::types::PyString>) -> Result<()> {
     if v.len() != out.len() {
         return Err(Error::DimensionMismatch {
             name: format!("value returned by {what}"),
@@ -155,15 +165,11 @@ impl DynamicalSystem for PyHamiltonian<'_> {
         if self.separable {
             separable_derivatives(self, t, state, out)
         } else {
-            let py = self.cb.obj.py();
-            self.cb
-                .vector(intern!(py, "derivatives"), (t, self.cb.array(state)), out)
+            self.cb.derivatives(t, state, out)
         }
     }
     fn energy(&self, state: &[f64]) -> f64 {
-        let py = self.cb.obj.py();
-        self.cb
-            .scalar(intern!(py, "energy"), (self.cb.array(state),))
+        self.cb.energy(state)
     }
     fn default_method(&self) -> Method {
         Method::Yoshida4
@@ -211,14 +217,10 @@ impl DynamicalSystem for PyOde<'_> {
         &mut self.phase
     }
     fn derivatives(&self, t: f64, state: &[f64], out: &mut [f64]) -> Result<()> {
-        let py = self.cb.obj.py();
-        self.cb
-            .vector(intern!(py, "derivatives"), (t, self.cb.array(state)), out)
+        self.cb.derivatives(t, state, out)
     }
     fn energy(&self, state: &[f64]) -> f64 {
-        let py = self.cb.obj.py();
-        self.cb
-            .scalar(intern!(py, "energy"), (self.cb.array(state),))
+        self.cb.energy(state)
     }
     fn default_method(&self) -> Method {
         Method::ImplicitMidpoint
@@ -244,7 +246,7 @@ fn options(
 }
 
 /// Integrates a Python `HamiltonianSystem` subclass `obj` from `(state, t0)` with the Rust
-/// integrators; returns the result tuple `(t, y, q, p, energy, method, extra)`. `stride`,
+/// integrators; returns the result tuple `(t, y, energy, method, extra)`. `stride`,
 /// `final_only` and `energy` select what is stored, as for `NativeSystem.integrate`.
 #[pyfunction]
 #[pyo3(signature = (obj, state, t0, t_span, dt, method, ndof, separable, mass_inv, stride=1, final_only=false, energy=true))]
@@ -284,7 +286,7 @@ pub fn integrate_hamiltonian<'py>(
 }
 
 /// Integrates a Python `ODESystem` (or engine-less `LagrangianSystem`) `obj` from
-/// `(state, t0)`; returns the result tuple `(t, y, None, None, energy, method, extra)`.
+/// `(state, t0)`; returns the result tuple `(t, y, energy, method, extra)`.
 /// `stride`, `final_only` and `energy` select what is stored.
 #[pyfunction]
 #[pyo3(signature = (obj, state, t0, t_span, dt, method, stride=1, final_only=false, energy=true))]

@@ -20,9 +20,10 @@ pub fn array1<'py>(py: Python<'py>, v: &[f64]) -> Bound<'py, PyArray1<f64>> {
     PyArray1::from_slice(py, v)
 }
 
-/// Converts a result into the tuple `(t, y, q, p, energy, method, extra)` from which the
-/// Python `SimulationResult` is built. Arrays are moved, not copied; `q` and `p` are `None`
-/// (the Python side splits them off `y` on first access, `_SplitOnAccess`).
+/// Converts a result into the tuple `(t, y, energy, method, extra)` from which the Python
+/// `SimulationResult` is built. Arrays are moved, not copied; `q` and `p` are not sent (they
+/// are views of `y`'s halves, which the Python side splits off on first access,
+/// `_SplitOnAccess`).
 ///
 /// # Errors
 /// Python allocation failures.
@@ -34,12 +35,9 @@ pub fn result_tuple<'py>(py: Python<'py>, r: SimulationResult) -> PyResult<Bound
             ExtraValue::Array(a) => extra.set_item(k, a.into_pyarray(py))?,
         }
     }
-    let items: [Bound<'py, PyAny>; 7] = [
+    let items: [Bound<'py, PyAny>; 5] = [
         r.t.into_pyarray(py).into_any(),
         r.y.into_pyarray(py).into_any(),
-        // q and p are views of y's halves: Python splits them off on first access.
-        py.None().into_bound(py),
-        py.None().into_bound(py),
         opt(py, r.energy.map(|a| a.into_pyarray(py).into_any())),
         r.method.into_pyobject(py)?.into_any(),
         extra.into_any(),

@@ -77,11 +77,12 @@ pub trait Native: Send + Sync + Any {
     }
 }
 
-/// The [`Native`] methods every family shares.
+/// The [`Native`] methods every family shares; `integrate` calls `$system`'s
+/// `integrate_with` (the family trait: `HamiltonianSystem`, `LagrangianSystem`, `OdeSystem`).
 #[macro_export]
 #[doc(hidden)]
 macro_rules! native_common {
-    ($family:expr, $ndof:expr) => {
+    ($family:expr, $system:path, $ndof:expr) => {
         fn family(&self) -> $crate::native::Family {
             $family
         }
@@ -112,6 +113,15 @@ macro_rules! native_common {
         fn default_method(&self) -> physicskit::classical::Method {
             physicskit::classical::DynamicalSystem::default_method(self)
         }
+        fn integrate(
+            &mut self,
+            t_span: (f64, f64),
+            dt: f64,
+            method: physicskit::classical::Method,
+            options: physicskit::classical::IntegrateOptions<'_>,
+        ) -> physicskit::classical::Result<physicskit::classical::SimulationResult> {
+            <Self as $system>::integrate_with(self, t_span, dt, method, options)
+        }
         fn as_any(&self) -> &dyn std::any::Any {
             self
         }
@@ -123,20 +133,11 @@ macro_rules! native_common {
 macro_rules! native_hamiltonian {
     ($ty:ty) => {
         impl $crate::native::Native for $ty {
-            $crate::native_common!($crate::native::Family::Hamiltonian, |s: &Self| Some(
-                physicskit::classical::HamiltonianSystem::ndof(s)
-            ));
-            fn integrate(
-                &mut self,
-                t_span: (f64, f64),
-                dt: f64,
-                method: physicskit::classical::Method,
-                options: physicskit::classical::IntegrateOptions<'_>,
-            ) -> physicskit::classical::Result<physicskit::classical::SimulationResult> {
-                physicskit::classical::HamiltonianSystem::integrate_with(
-                    self, t_span, dt, method, options,
-                )
-            }
+            $crate::native_common!(
+                $crate::native::Family::Hamiltonian,
+                physicskit::classical::HamiltonianSystem,
+                |s: &Self| Some(physicskit::classical::HamiltonianSystem::ndof(s))
+            );
             fn kinetic_energy(&self, p: &[f64]) -> physicskit::classical::Result<f64> {
                 $crate::native::check_len(
                     "p",
@@ -187,20 +188,11 @@ macro_rules! native_hamiltonian {
 macro_rules! native_lagrangian {
     ($ty:ty) => {
         impl $crate::native::Native for $ty {
-            $crate::native_common!($crate::native::Family::Lagrangian, |s: &Self| Some(
-                physicskit::classical::LagrangianSystem::ndof(s)
-            ));
-            fn integrate(
-                &mut self,
-                t_span: (f64, f64),
-                dt: f64,
-                method: physicskit::classical::Method,
-                options: physicskit::classical::IntegrateOptions<'_>,
-            ) -> physicskit::classical::Result<physicskit::classical::SimulationResult> {
-                physicskit::classical::LagrangianSystem::integrate_with(
-                    self, t_span, dt, method, options,
-                )
-            }
+            $crate::native_common!(
+                $crate::native::Family::Lagrangian,
+                physicskit::classical::LagrangianSystem,
+                |s: &Self| Some(physicskit::classical::LagrangianSystem::ndof(s))
+            );
             fn acceleration(
                 &self,
                 q: &[f64],
@@ -234,16 +226,11 @@ macro_rules! native_lagrangian {
 macro_rules! native_ode {
     ($ty:ty) => {
         impl $crate::native::Native for $ty {
-            $crate::native_common!($crate::native::Family::Ode, |_s: &Self| None);
-            fn integrate(
-                &mut self,
-                t_span: (f64, f64),
-                dt: f64,
-                method: physicskit::classical::Method,
-                options: physicskit::classical::IntegrateOptions<'_>,
-            ) -> physicskit::classical::Result<physicskit::classical::SimulationResult> {
-                physicskit::classical::OdeSystem::integrate_with(self, t_span, dt, method, options)
-            }
+            $crate::native_common!(
+                $crate::native::Family::Ode,
+                physicskit::classical::OdeSystem,
+                |_s: &Self| None
+            );
         }
     };
 }
@@ -431,7 +418,7 @@ impl NativeSystem {
     }
 
     /// Starts from `(state, t0)`, integrates over `t_span` with step `dt`, and returns the result
-    /// tuple `(t, y, q, p, energy, method, extra)`. `stride` keeps every `stride`-th step (and
+    /// tuple `(t, y, energy, method, extra)`. `stride` keeps every `stride`-th step (and
     /// the last), `final_only` only the first and last, `energy=False` skips the energy
     /// diagnostic (`None` in the tuple). The GIL is released during the run; Ctrl-C stops it
     /// with `KeyboardInterrupt`.

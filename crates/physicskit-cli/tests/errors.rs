@@ -38,6 +38,14 @@ fn pendulum(dt: &str, t1: &str, out: &str, extra: &[&str]) -> String {
     fails(&args)
 }
 
+/// `simulate <system> <flags> --dt 0.1 --t1 1 --out <out>`, which must fail; returns stderr.
+fn system_fails(system: &str, flags: &[&str], out: &str) -> String {
+    let mut args = vec!["simulate", system];
+    args.extend_from_slice(flags);
+    args.extend_from_slice(&["--dt", "0.1", "--t1", "1", "--out", out]);
+    fails(&args)
+}
+
 #[test]
 fn the_good_run_succeeds() {
     // Guards the cases below: each must fail because of its one change, not the baseline.
@@ -51,16 +59,7 @@ fn the_good_run_succeeds() {
 
 #[test]
 fn unknown_system() {
-    let err = fails(&[
-        "simulate",
-        "warp-drive",
-        "--dt",
-        "0.1",
-        "--t1",
-        "1",
-        "--out",
-        "a.csv",
-    ]);
+    let err = system_fails("warp-drive", &[], "a.csv");
     assert!(err.contains("unknown system `warp-drive`"), "{err}");
     assert!(
         err.contains("pendulum"),
@@ -212,108 +211,42 @@ fn failed_run_leaves_existing_file_untouched() {
 #[test]
 fn wrong_array_length() {
     // Declared length 2: caught while parsing, naming the flag.
-    let err = fails(&[
-        "simulate",
-        "henon-heiles",
-        "--q0",
-        "0,0.1,0.2",
-        "--dt",
-        "0.1",
-        "--t1",
-        "1",
-        "--out",
-        "a.csv",
-    ]);
+    let err = system_fails("henon-heiles", &["--q0", "0,0.1,0.2"], "a.csv");
     assert!(
         err.contains("`--q0`") && err.contains("expected 2"),
         "{err}"
     );
     // Length set by another parameter (n = 3): the library's DimensionMismatch.
-    let err = fails(&[
-        "simulate",
-        "coupled-oscillators",
-        "--q0",
-        "0.1,0.2",
-        "--dt",
-        "0.1",
-        "--t1",
-        "1",
-        "--out",
-        "a.csv",
-    ]);
+    let err = system_fails("coupled-oscillators", &["--q0", "0.1,0.2"], "a.csv");
     assert!(err.contains("q0") && err.contains("expected 3"), "{err}");
 }
 
 #[test]
 fn library_range_checks_reach_the_user() {
     // |velocity| >= 1 has no Lorentz boost (SineGordonChain::kink).
-    let err = fails(&[
-        "simulate",
-        "sine-gordon",
-        "--velocity",
-        "1.0",
-        "--dt",
-        "0.1",
-        "--t1",
-        "1",
-        "--out",
-        "a.npz",
-    ]);
+    let err = system_fails("sine-gordon", &["--velocity", "1.0"], "a.npz");
     assert!(err.contains("velocity"), "{err}");
     // Unbound orbits are refused by KeplerSystem::from_orbital_elements.
-    let err = fails(&[
-        "simulate", "kepler", "--e", "1.2", "--dt", "0.1", "--t1", "1", "--out", "a.npz",
-    ]);
+    let err = system_fails("kepler", &["--e", "1.2"], "a.npz");
     assert!(err.contains("eccentricity"), "{err}");
     // A zero quaternion is no rotation (EulerTop::new).
-    fails(&[
-        "simulate",
-        "euler-top",
-        "--quat0",
-        "0,0,0,0",
-        "--dt",
-        "0.1",
-        "--t1",
-        "1",
-        "--out",
-        "a.npz",
-    ]);
+    system_fails("euler-top", &["--quat0", "0,0,0,0"], "a.npz");
 }
 
 #[test]
 fn method_the_system_cannot_use() {
     // Refused by the registry: the double pendulum is not separable.
-    let err = fails(&[
-        "simulate",
-        "double-pendulum",
-        "--method",
-        "verlet",
-        "--dt",
-        "0.1",
-        "--t1",
-        "1",
-        "--out",
-        "a.csv",
-    ]);
+    let err = system_fails("double-pendulum", &["--method", "verlet"], "a.csv");
     assert!(
         err.contains("verlet") && err.contains("implicit_midpoint"),
         "{err}"
     );
     // Refused by the library: drag is not conservative, so splitting would drop it.
-    let err = fails(&[
-        "simulate",
+    let err = system_fails(
         "projectile",
-        "--drag_coeff",
-        "0.1",
-        "--method",
-        "yoshida4",
-        "--dt",
-        "0.1",
-        "--t1",
-        "1",
-        "--out",
+        &["--drag_coeff", "0.1", "--method", "yoshida4"],
         "a.csv",
-    ]);
+    );
     assert!(err.contains("yoshida4"), "{err}");
 }
 

@@ -9,7 +9,7 @@ import numpy as np
 
 from .. import _core
 
-__all__ = ["_core", "as_vector", "as_scalar", "as_t_span", "native", "make_result"]
+__all__ = ["_core", "as_vector", "as_scalar", "as_t_span", "native"]
 
 
 def as_vector(name: str, value: Any, length: int | None = None, finite: bool = True) -> np.ndarray:
@@ -60,8 +60,3 @@ def native(name: str):
         raise NotImplementedError(f"{name} is not available in this build of physicskit._core")
     return fn
 
-
-def make_result(cls, parts):
-    """Build a SimulationResult from the native tuple ``(t, y, q, p, energy, method, extra)``."""
-    t, y, q, p, energy, method, extra = parts
-    return cls(t, y, q=q, p=p, energy=energy, method=method, extra=extra)

@@ -78,13 +78,18 @@ pub(crate) fn render(ctx: &Ctx) -> Result<Demo> {
     };
     let (ja, jb) = (NB - 1, NB);
     let (wa, wb) = (params.mode_frequency(ja), params.mode_frequency(jb));
-    let shape = |j: usize, i: usize| {
-        (2.0 / (NB as f64 + 1.0)).sqrt()
-            * (i as f64 * j as f64 * std::f64::consts::PI / (NB as f64 + 1.0)).sin()
+    // Mode shapes of 1-based mode j from the library's modal transform, as above (the fixed-end
+    // chain has the same modes in its Hamiltonian and Lagrangian forms).
+    let probe = HarmonicChain::new(&[0.0; NB], &[0.0; NB], params.m, params.k)?;
+    let shape = |j: usize| -> Result<Vec<f64>> {
+        let mut e = [0.0; NB];
+        e[j - 1] = 1.0;
+        Ok(probe.normal_mode_coords(&e, &[0.0; NB])?.0)
     };
+    let (sa, sb) = (shape(ja)?, shape(jb)?);
     let amplitude = 0.5; // metres, per mode, at mass 1
-    let q0: Vec<f64> = (1..=NB)
-        .map(|i| amplitude * (shape(ja, i) / shape(ja, 1) + shape(jb, i) / shape(jb, 1)))
+    let q0: Vec<f64> = (0..NB)
+        .map(|i| amplitude * (sa[i] / sa[0] + sb[i] / sb[0]))
         .collect();
     let beat_period = std::f64::consts::TAU / (wb - wa);
     let t1 = ctx.pick(2.0, 3.0) * beat_period;

@@ -25,7 +25,7 @@ from typing import Any, NamedTuple, Optional
 
 import numpy as np
 
-from .._native import _core, as_scalar, as_t_span, as_vector, make_result
+from .._native import _core, as_scalar, as_t_span, as_vector
 
 __all__ = [
     "SimulationResult",
@@ -260,11 +260,13 @@ class DynamicalSystem(ABC):
         return as_vector("state", state, len(self.state), finite=False)
 
     def _finish(self, parts, ndof: int = 0) -> SimulationResult:
-        if ndof and parts[2] is None:
-            t, y, _, _, energy, method, extra = parts
+        """Builds the result from the native tuple ``(t, y, energy, method, extra)`` and moves
+        the system to its last sample; ``ndof > 0`` splits ``q`` and ``p`` off ``y`` lazily."""
+        t, y, energy, method, extra = parts
+        if ndof:
             result = _SplitOnAccess(t, y, energy=energy, method=method, extra=extra, ndof=ndof)
         else:
-            result = make_result(SimulationResult, parts)
+            result = SimulationResult(t, y, energy=energy, method=method, extra=extra)
         self.state = result.y[-1].copy()
         self.t = float(result.t[-1])
         return result
@@ -510,10 +512,10 @@ class LagrangianSystem(DynamicalSystem):
             return self._run_native(t_span, dt, method, sampling)
         t_span = as_t_span(t_span)
         state = as_vector("state", self.state, 2 * self.ndof)
-        t, y, _, _, energy, name, extra = _core.integrate_ode(
+        parts = _core.integrate_ode(
             self, state, float(self.t), t_span, float(dt), method, **sampling._asdict()
         )
-        return self._finish((t, y, None, None, energy, name, extra), ndof=self.ndof)
+        return self._finish(parts, ndof=self.ndof)
 
 
 class ODESystem(DynamicalSystem):
