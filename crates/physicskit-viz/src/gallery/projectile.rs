@@ -20,7 +20,7 @@ fn flight(angle: f64, drag: f64) -> Result<Vec<(f64, f64)>> {
     let mut ball = ProjectileMotion::from_launch(SPEED, angle, 1.0, G, drag, 0.0)?;
     let dt = 2e-3;
     // The vacuum flight time plus a margin, as a whole number of steps.
-    let steps = ((2.0 * SPEED * angle.to_radians().sin() / G + 0.5) / dt).ceil();
+    let steps = ((ProjectileMotion::flight_time(SPEED, angle, G, 0.0)? + 0.5) / dt).ceil();
     let r = ball.integrate((0.0, steps * dt), dt, Method::Rk4)?;
     let x = column(r.q(), 0);
     let y = column(r.q(), 1);

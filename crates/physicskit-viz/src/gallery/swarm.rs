@@ -38,12 +38,12 @@ fn boundary(n_side: usize) -> (Vec<f64>, Vec<f64>) {
     (q, p)
 }
 
-fn separatrix() -> Vec<Series> {
+fn separatrix(swarm: &PendulumSwarm) -> Vec<Series> {
     let pts = |sign: f64| -> Vec<(f64, f64)> {
         (0..=400)
             .map(|i| {
                 let q = -std::f64::consts::PI + std::f64::consts::TAU * i as f64 / 400.0;
-                (q, sign * 2.0 * (0.5 * q).cos())
+                (q, sign * swarm.separatrix_momentum(q))
             })
             .collect()
     };
@@ -105,7 +105,7 @@ pub(crate) fn render(ctx: &Ctx) -> Result<Demo> {
         .x_range(-std::f64::consts::PI, std::f64::consts::PI)
         .y_range(-2.6, 2.6)
         .legend(Legend::LowerRight);
-        for s in separatrix() {
+        for s in separatrix(&cloud) {
             panel = panel.with(s);
         }
         panel = panel.with(
@@ -160,7 +160,7 @@ pub(crate) fn render(ctx: &Ctx) -> Result<Demo> {
         .x_range(-std::f64::consts::PI, std::f64::consts::PI)
         .y_range(-2.6, 2.6)
         .legend(Legend::None);
-        for s in separatrix() {
+        for s in separatrix(&cloud) {
             panel = panel.with(s);
         }
         panel = panel.with(Series::dots("", wrapped(cloud.q(), cloud.p()), color(0)));

@@ -110,3 +110,24 @@ fn enclosed_phase_space_area_is_conserved() {
     // run); 1e-6 leaves a 45x margin and is still 400x tighter than the hull bound.
     assert!((a1 - a0).abs() < 1e-6 * a0, "{a0} -> {a1}");
 }
+
+#[test]
+fn the_separatrix_has_the_energy_of_the_unstable_equilibrium() {
+    // Every point of the branch must have H = g/l (the top of the potential): checked through
+    // per_particle_energy, independent of the half-angle formula. Both sides are sums of
+    // order-g/l terms rounded a few times, hence 1e-14 relative.
+    let g_over_l = 2.5;
+    let q: Vec<f64> = (0..=20).map(|i| -3.0 + 0.3 * f64::from(i)).collect();
+    let swarm = PendulumSwarm::new(&q, &q, g_over_l).unwrap();
+    for sign in [1.0, -1.0] {
+        let p: Vec<f64> = q
+            .iter()
+            .map(|&qi| sign * swarm.separatrix_momentum(qi))
+            .collect();
+        let e = swarm.per_particle_energy(&q, &p).unwrap();
+        assert!(
+            e.iter().all(|&ei| (ei - g_over_l).abs() < 1e-14 * g_over_l),
+            "{e:?}"
+        );
+    }
+}

@@ -139,12 +139,24 @@ impl ProjectileMotion {
         g: f64,
         height: f64,
     ) -> Result<(f64, f64)> {
+        let t_land = Self::flight_time(speed, angle_deg, g, height)?;
         let (vx, vy) = launch_velocity(speed, angle_deg)?;
-        let g = check_positive("g", g)?;
-        let h = check_non_negative("height", height)?;
-        let t_land = (vy + (vy * vy + 2.0 * g * h).sqrt()) / g;
+        let h = height;
         let max_height = if vy > 0.0 { h + vy * vy / (2.0 * g) } else { h };
         Ok((vx * t_land, max_height))
+    }
+
+    /// Vacuum time of flight of a launch from `(0, height)` until it lands on `y = 0`: the
+    /// positive root `t = (v0 sin(theta) + sqrt(v0^2 sin^2(theta) + 2 g h)) / g` of `y(t) = 0`
+    /// (`2 v0 sin(theta) / g` from the ground).
+    ///
+    /// # Errors
+    /// As [`range_and_max_height`](Self::range_and_max_height).
+    pub fn flight_time(speed: f64, angle_deg: f64, g: f64, height: f64) -> Result<f64> {
+        let (_, vy) = launch_velocity(speed, angle_deg)?;
+        let g = check_positive("g", g)?;
+        let h = check_non_negative("height", height)?;
+        Ok((vy + (vy * vy + 2.0 * g * h).sqrt()) / g)
     }
 }
 

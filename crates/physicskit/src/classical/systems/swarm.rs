@@ -151,6 +151,13 @@ impl PendulumSwarm {
             .collect())
     }
 
+    /// Upper branch `p = 2 sqrt(g/l) cos(q/2)` of the separatrix, the orbit of energy `g/l`
+    /// (the unstable equilibrium's) between libration and rotation, at `|q| <= pi`; the lower
+    /// branch is its negative. From `p^2/2 - (g/l) cos q = g/l` and `1 + cos q = 2 cos^2(q/2)`.
+    pub fn separatrix_momentum(&self, q: f64) -> f64 {
+        2.0 * self.g_over_l.sqrt() * (0.5 * q).cos()
+    }
+
     /// Area of the convex hull of the `(q_i, p_i)` cloud (Andrew's monotone chain,
     /// `O(N log N)`); zero for collinear points.
     ///
