@@ -22,19 +22,23 @@ fn pseudo_random(n: usize, seed: u64) -> Vec<f64> {
 
 #[test]
 fn forces_are_minus_gradients() {
-    let q = pseudo_random(7, 1);
-    let p = vec![0.0; 7];
-    check_force_against_potential(&HarmonicChain::new(&q, &p, 1.5, 2.0).unwrap(), &q);
-    let mut fput = FPUTChain::new(7, 1.5, 2.0, 0.7, 2, 0.3).unwrap();
-    let mut state = q.clone();
-    state.extend(&p);
-    fput.reset(Some(&state), 0.0).unwrap();
-    check_force_against_potential(&fput, &q);
-    let q_big: Vec<f64> = q.iter().map(|x| 8.0 * x).collect();
-    check_force_against_potential(
-        &SineGordonChain::new(7, 1.5, 2.0, None, None).unwrap(),
-        &q_big,
-    );
+    // Every length the force code treats apart: one site (both ends), two (no interior
+    // site), three (one), and longer chains whose interior loop has vector remainders.
+    for n in [1, 2, 3, 7, 20] {
+        let q = pseudo_random(n, 1);
+        let p = vec![0.0; n];
+        check_force_against_potential(&HarmonicChain::new(&q, &p, 1.5, 2.0).unwrap(), &q);
+        let mut fput = FPUTChain::new(n, 1.5, 2.0, 0.7, 1, 0.3).unwrap();
+        let mut state = q.clone();
+        state.extend(&p);
+        fput.reset(Some(&state), 0.0).unwrap();
+        check_force_against_potential(&fput, &q);
+        let q_big: Vec<f64> = q.iter().map(|x| 8.0 * x).collect();
+        check_force_against_potential(
+            &SineGordonChain::new(n, 1.5, 2.0, None, None).unwrap(),
+            &q_big,
+        );
+    }
 }
 
 #[test]

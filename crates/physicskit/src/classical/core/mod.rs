@@ -8,6 +8,7 @@ pub mod method;
 pub mod options;
 pub mod phase;
 pub mod result;
+pub mod sum;
 pub mod system;
 pub mod time_grid;
 pub mod trig;

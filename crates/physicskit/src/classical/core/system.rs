@@ -10,6 +10,7 @@ use super::method::Method;
 use super::options::IntegrateOptions;
 use super::phase::Phase;
 use super::result::SimulationResult;
+use super::sum::{lane_sum_map, lane_sum_map2};
 use crate::classical::integrators::driver;
 
 /// Any system with a state vector evolving in time (the spec's `DynamicalSystem`).
@@ -307,14 +308,13 @@ pub fn hamiltonian_energy<S: HamiltonianSystem + ?Sized>(system: &S, state: &[f6
     system.kinetic_energy(p) + system.potential_energy(q)
 }
 
-/// `sum_i mass_inv_i p_i^2 / 2`.
+/// `sum_i mass_inv_i p_i^2 / 2`, summed in the fixed order of
+/// [`lane_sum`](super::sum::lane_sum).
 #[inline]
 pub fn quadratic_kinetic_energy(mass_inv: MassInv<'_>, p: &[f64]) -> f64 {
     match mass_inv {
-        MassInv::Uniform(m) => 0.5 * m * p.iter().map(|pi| pi * pi).sum::<f64>(),
-        MassInv::PerCoordinate(m) => {
-            0.5 * p.iter().zip(m).map(|(pi, mi)| mi * pi * pi).sum::<f64>()
-        }
+        MassInv::Uniform(m) => 0.5 * m * lane_sum_map(p, |pi| pi * pi),
+        MassInv::PerCoordinate(m) => 0.5 * lane_sum_map2(p, m, |pi, mi| mi * pi * pi),
     }
 }
 

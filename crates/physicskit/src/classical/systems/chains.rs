@@ -34,6 +34,7 @@
 use std::f64::consts::PI;
 
 use crate::classical::core::error::{check_finite_scalar, check_positive, check_vector};
+use crate::classical::core::sum::lane_sum_map2;
 use crate::classical::core::trig::{sin_into, sum_cos};
 use crate::classical::core::{Error, HamiltonianSystem, MassInv, Phase, Result};
 
@@ -203,18 +204,46 @@ pub trait NormalModes {
     }
 }
 
+/// `out[i] = site(bond(q[i+1] - q[i]) - bond(q[i] - q[i-1]), out[i])` for the interior sites
+/// `0 < i < n-1` (`n = q.len() >= 3`; the caller writes the two ends).
+///
+/// Each bond is evaluated twice, for the site on either side, so that no value is carried from
+/// one site to the next and the loop vectorizes; the values are the same bits as a single
+/// evaluation.
+#[inline(always)]
+fn interior_bond_differences(
+    q: &[f64],
+    out: &mut [f64],
+    bond: impl Fn(f64) -> f64,
+    site: impl Fn(f64, f64) -> f64,
+) {
+    let n = q.len();
+    for (((o, &prev), &here), &next) in out[1..n - 1]
+        .iter_mut()
+        .zip(&q[..n - 2])
+        .zip(&q[1..n - 1])
+        .zip(&q[2..])
+    {
+        *o = site(bond(next - here) - bond(here - prev), *o);
+    }
+}
+
 /// Fixed-end nearest-neighbour force `F_i = phi'(q_{i+1} - q_i) - phi'(q_i - q_{i-1})` with
 /// walls `q_0 = q_{N+1} = 0`.
 #[inline]
 fn fixed_end_force(q: &[f64], out: &mut [f64], dphi: impl Fn(f64) -> f64) {
     let n = q.len();
-    let mut left = dphi(q[0]);
-    for i in 0..n {
-        let next = if i + 1 < n { q[i + 1] } else { 0.0 };
-        let right = dphi(next - q[i]);
-        out[i] = right - left;
-        left = right;
+    // The wall bonds are `q_1 - 0` and `0 - q_N`, written as such (`0.0 - x` and `-x` differ
+    // for x = 0).
+    if n == 1 {
+        out[0] = dphi(0.0 - q[0]) - dphi(q[0]);
+        return;
     }
+    out[0] = dphi(q[1] - q[0]) - dphi(q[0]);
+    if n > 2 {
+        interior_bond_differences(q, out, &dphi, |difference, _| difference);
+    }
+    out[n - 1] = dphi(0.0 - q[n - 1]) - dphi(q[n - 1] - q[n - 2]);
 }
 
 /// Tridiagonal force Jacobian of [`fixed_end_force`] written densely (`N x N`).
@@ -234,10 +263,11 @@ fn fixed_end_jacobian(q: &[f64], out: &mut [f64], d2phi: impl Fn(f64) -> f64) {
     }
 }
 
-/// Sum of `phi` over the `N + 1` bonds of a fixed-end chain.
+/// Sum of `phi` over the `N + 1` bonds of a fixed-end chain (the interior bonds in the fixed
+/// order of [`lane_sum`](crate::classical::core::sum::lane_sum)).
 fn fixed_end_potential(q: &[f64], phi: impl Fn(f64) -> f64) -> f64 {
     let n = q.len();
-    let interior: f64 = q.windows(2).map(|w| phi(w[1] - w[0])).sum();
+    let interior = lane_sum_map2(&q[..n - 1], &q[1..], |a, b| phi(b - a));
     interior + phi(q[0]) + phi(-q[n - 1])
 }
 
@@ -608,7 +638,9 @@ impl HamiltonianSystem for SineGordonChain {
     }
     #[inline]
     fn potential_energy(&self, q: &[f64]) -> f64 {
-        let springs: f64 = q.windows(2).map(|w| (w[1] - w[0]) * (w[1] - w[0])).sum();
+        let springs = lane_sum_map2(&q[..q.len().saturating_sub(1)], &q[1..], |a, b| {
+            (b - a) * (b - a)
+        });
         let onsite = q.len() as f64 - sum_cos(q);
         0.5 * self.k * springs + onsite
     }
@@ -623,15 +655,21 @@ impl HamiltonianSystem for SineGordonChain {
         sin_into(q, out);
         let n = q.len();
         let k = self.k;
-        let mut left = 0.0;
-        for i in 0..n {
-            let right = if i + 1 < n {
-                k * (q[i + 1] - q[i])
-            } else {
-                0.0
-            };
-            out[i] = right - left - out[i];
-            left = right;
+        // out holds sin q here; each site subtracts it from its bond difference. A missing bond
+        // counts as +0.0: the right end's difference is `0.0 - left`, written as such (not
+        // `-left`) so that signed zeros come out as from the uniform formula; the left end's
+        // `right - 0.0` is `right`, bit for bit.
+        if n == 1 {
+            out[0] = 0.0 - out[0];
+            return Ok(());
+        }
+        let bond = |r: f64| k * r;
+        let first = bond(q[1] - q[0]);
+        let last = 0.0 - bond(q[n - 1] - q[n - 2]);
+        out[0] = first - out[0];
+        out[n - 1] = last - out[n - 1];
+        if n > 2 {
+            interior_bond_differences(q, out, bond, |difference, sin_q| difference - sin_q);
         }
         Ok(())
     }
