@@ -8,13 +8,15 @@
 //! * [`builtin`]: one constructor per built-in system;
 //! * [`callback`]: Rust integrators running systems written in Python;
 //! * [`errors`]: the mapping of core errors onto Python exceptions;
-//! * [`convert`]: zero-copy hand-over of result arrays to numpy.
+//! * [`convert`]: zero-copy hand-over of result arrays to numpy;
+//! * [`memory`]: the allocator (mimalloc) and its hook into the core's memory check.
 
 pub mod builtin;
 pub mod callback;
 pub mod convert;
 pub mod errors;
 pub mod interrupt;
+pub mod memory;
 pub mod native;
 
 use pyo3::prelude::*;
@@ -27,6 +29,7 @@ fn _core(m: &Bound<'_, PyModule>) -> PyResult<()> {
         "ConvergenceError",
         m.py().get_type::<errors::ConvergenceError>(),
     )?;
+    memory::register();
     builtin::register(m)?;
     callback::register(m)?;
     Ok(())

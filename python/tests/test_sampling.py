@@ -250,6 +250,42 @@ def test_full_storage_of_huge_run_refused_before_allocating():
     assert same_bits(s.state, start) and s.t == 0.0
 
 
+RETAINED_MEMORY = """
+import os
+import physicskit.classical as pc
+
+def rss_mb():
+    return int(open(f"/proc/{os.getpid()}/statm").read().split()[1]) * os.sysconf("SC_PAGE_SIZE") / 2**20
+
+s = pc.PendulumSwarm.from_box(1.0, 0.0, 0.05, 0.05, n=200)
+base = rss_mb()
+s.integrate((0.0, 20.0), 1e-3)      # 2e4 rows x 402 values: 64 MB, dropped at once
+first = rss_mb()
+s.integrate((0.0, 20.0), 1e-3)
+second = rss_mb()
+try:
+    s.integrate((0.0, 1e9), 1e-3)   # far beyond any machine: refused
+except ValueError:
+    pass
+print(base, first, second, rss_mb())
+"""
+
+
+@pytest.mark.skipif(not sys.platform.startswith("linux"), reason="reads /proc/<pid>/statm")
+def test_freed_storage_is_reused_and_handed_back_before_a_refusal():
+    # The extension's allocator keeps a dropped result's storage for the next run (which then
+    # need not fault 64 MB in again) and returns it to the OS when a run would not fit. In a
+    # fresh process, resident set sizes in MB: the second run must not grow it by another
+    # 64 MB (16 MB of slack for numpy and the interpreter), and after the refusal at most
+    # 16 MB of the 64 may remain.
+    out = subprocess.run([sys.executable, "-c", RETAINED_MEMORY], capture_output=True,
+                         text=True, check=True, timeout=120)
+    base, first, second, released = map(float, out.stdout.split())
+    assert first - base > 48, (base, first)
+    assert second - first < 16, (first, second)
+    assert released - base < 16, (base, released)
+
+
 # -- start-up ------------------------------------------------------------------------------
 
 FIRST_CALL = """

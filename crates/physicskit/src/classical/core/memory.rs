@@ -1,7 +1,25 @@
 //! Trajectory storage: refusing what would not fit in memory before allocating it, and
 //! allocating the rest so that filling it is cheap.
 
+use std::sync::OnceLock;
+
 use super::error::{Error, Result};
+
+/// See [`set_memory_release_hook`].
+static RELEASE_HOOK: OnceLock<fn()> = OnceLock::new();
+
+/// Registers `release`, to be called when a trajectory would not fit in the available memory,
+/// before the run is refused; the check is then made once more.
+///
+/// The check reads what the OS reports as available. An allocator that keeps freed memory
+/// for reuse (the Python extension's mimalloc keeps it for a second, so that repeated runs do
+/// not fault their storage in again) holds memory the OS counts as used although the next
+/// trajectory could take it: the hook hands it back (`mi_collect(true)`) so that such a run
+/// is not refused. Returns `false`, leaving the first hook in place, if one was registered
+/// already.
+pub fn set_memory_release_hook(release: fn()) -> bool {
+    RELEASE_HOOK.set(release).is_ok()
+}
 
 /// Fraction of the available memory one result may take: the rest is left to the OS, the
 /// caller and (from Python) numpy's copies.
@@ -24,8 +42,18 @@ pub(crate) fn check_fits(samples: usize, values_per_sample: usize) -> Result<()>
     let bytes = samples as u128 * values_per_sample as u128 * 8;
     // Without a reading, the address space is the limit (allocation is then also checked with
     // `try_reserve`).
-    let available = available_bytes().unwrap_or(isize::MAX as u128);
-    let budget = (available as f64 * MAX_FRACTION_OF_AVAILABLE) as u128;
+    let budget = || {
+        let available = available_bytes().unwrap_or(isize::MAX as u128);
+        (available as f64 * MAX_FRACTION_OF_AVAILABLE) as u128
+    };
+    let mut budget_now = budget();
+    if bytes > budget_now {
+        if let Some(release) = RELEASE_HOOK.get() {
+            release();
+            budget_now = budget();
+        }
+    }
+    let budget = budget_now;
     if bytes > budget {
         return Err(Error::TrajectoryTooLarge {
             samples: samples as u128,
@@ -130,6 +158,28 @@ mod tests {
                 .enumerate()
                 .all(|(i, &x)| x.to_bits() == (i as f64).to_bits()));
         }
+    }
+
+    /// The hook runs when, and only when, a run does not fit, and the run is still refused
+    /// when releasing did not make room.
+    #[test]
+    fn the_release_hook_runs_before_a_refusal() {
+        use std::sync::atomic::{AtomicUsize, Ordering};
+        static CALLS: AtomicUsize = AtomicUsize::new(0);
+        fn count() {
+            CALLS.fetch_add(1, Ordering::SeqCst);
+        }
+        // The only test of this binary that registers a hook.
+        assert!(set_memory_release_hook(count));
+        assert!(!set_memory_release_hook(count));
+        check_fits(1000, 4).unwrap();
+        assert_eq!(CALLS.load(Ordering::SeqCst), 0);
+        // 2^60 samples of 16 values: 2^67 bytes, more than any machine has.
+        assert!(matches!(
+            check_fits(1 << 60, 16),
+            Err(Error::TrajectoryTooLarge { .. })
+        ));
+        assert_eq!(CALLS.load(Ordering::SeqCst), 1);
     }
 
     #[test]

@@ -4,6 +4,7 @@ pub mod error;
 pub mod linalg;
 mod memory;
 pub(crate) use memory::check_fits as memory_check;
+pub use memory::set_memory_release_hook;
 pub mod method;
 pub mod options;
 pub mod phase;
