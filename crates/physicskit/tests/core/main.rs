@@ -9,6 +9,7 @@ mod convergence;
 mod energy_behaviour;
 mod ensemble;
 mod fixtures;
+mod fused_potential;
 mod invariants;
 mod lagrangian_path;
 mod reversibility;

@@ -157,6 +157,25 @@ pub trait HamiltonianSystem: DynamicalSystem {
         })
     }
 
+    /// Writes the force at `(q, t)` into `out` exactly as [`force`](Self::force) does and,
+    /// where the system gets the potential almost for free on the way, returns `Some(V(q))`.
+    ///
+    /// The splitting integrators call this for the last force of each step whose sample is
+    /// stored with its energy, and store `kinetic_energy(p) + V` instead of calling
+    /// [`energy`](DynamicalSystem::energy), which would evaluate the potential a second time
+    /// (the pendulum swarm's cosines were an eighth of its step). So return `Some` only if
+    /// `V` has the same bits as [`potential_energy`](Self::potential_energy) and `energy` is
+    /// [`hamiltonian_energy`] (as [`impl_separable_dynamics!`](crate::impl_separable_dynamics)
+    /// makes it). The default returns `None`, and the sample's energy comes from `energy`.
+    ///
+    /// # Errors
+    /// As [`force`](Self::force).
+    #[inline]
+    fn force_and_potential(&self, q: &[f64], t: f64, out: &mut [f64]) -> Result<Option<f64>> {
+        self.force(q, t, out)?;
+        Ok(None)
+    }
+
     /// Writes the force Jacobian `dF_i/dq_j = -d2V/dq_i dq_j` (row-major `ndof x ndof`);
     /// `None` if not supplied. Used by the implicit-midpoint Newton solve.
     fn force_jacobian(&self, q: &[f64], t: f64, out: &mut [f64]) -> Option<Result<()>> {

@@ -220,6 +220,39 @@ fn sum_cos_body(x: &[f64]) -> f64 {
     sum.total()
 }
 
+/// [`sin_into_body`] and [`sum_cos_body`] in one pass: the cosines come from the reductions
+/// the sines make anyway.
+#[inline(always)]
+fn sin_into_sum_cos_body(x: &[f64], out: &mut [f64]) -> f64 {
+    let mut sum = LaneSum::default();
+    if fits_vector_path(x) {
+        let mut block = [0.0; SUM_BLOCK];
+        for (chunk, o) in x.chunks(SUM_BLOCK).zip(out.chunks_mut(SUM_BLOCK)) {
+            let c = &mut block[..chunk.len()];
+            for ((oi, ci), &v) in o.iter_mut().zip(c.iter_mut()).zip(chunk) {
+                let (quadrant, s, co) = reduce(v);
+                *oi = select(quadrant, s, co);
+                *ci = select(quadrant.wrapping_add(1), s, co);
+            }
+            sum.add_map(c, |v| v);
+        }
+    } else {
+        for (o, &v) in out.iter_mut().zip(x) {
+            *o = v.sin();
+        }
+        sum.add_map(x, f64::cos);
+    }
+    sum.total()
+}
+
+/// Writes `sin(x[i])` into `out[i]` and returns `sum_i cos(x[i])`: the same bits as
+/// [`sin_into`] and [`sum_cos`], for about the cost of the sines alone (a potential
+/// `sum (1 - cos q_i)` stored with the force `-sin q_i`).
+#[multiversion(targets("x86_64+avx512f+avx512dq+avx512vl+avx2", "x86_64+avx2"))]
+pub fn sin_into_sum_cos(x: &[f64], out: &mut [f64]) -> f64 {
+    sin_into_sum_cos_body(x, out)
+}
+
 /// Writes `sin(x[i])` into `out[i]`.
 #[multiversion(targets("x86_64+avx512f+avx512dq+avx512vl+avx2", "x86_64+avx2"))]
 pub fn sin_into(x: &[f64], out: &mut [f64]) {
@@ -425,10 +458,22 @@ mod tests {
                 assert!(same(fast, base), "cos differs on {chunk:?}");
                 // A sum with an infinity or NaN term is NaN either way; which NaN (sign,
                 // payload) depends on the operand order the vectorizer gives each addition.
+                let same_sum =
+                    |a: f64, b: f64| a.to_bits() == b.to_bits() || (a.is_nan() && b.is_nan());
                 let (a, b) = (sum_cos(chunk), sum_cos_body(chunk));
+                assert!(same_sum(a, b), "sum_cos differs on {chunk:?}");
+                // The fused sine and cosine sum: the same bits as the two separate calls,
+                // dispatched and at the baseline.
+                sin_into(chunk, base);
+                let fused = sin_into_sum_cos(chunk, fast);
                 assert!(
-                    a.to_bits() == b.to_bits() || (a.is_nan() && b.is_nan()),
-                    "sum_cos differs on {chunk:?}"
+                    same(fast, base) && same_sum(fused, a),
+                    "sin_into_sum_cos on {chunk:?}"
+                );
+                let fused_base = sin_into_sum_cos_body(chunk, fast);
+                assert!(
+                    same(fast, base) && same_sum(fused_base, a),
+                    "at the baseline"
                 );
                 compared += chunk.len();
                 start = end;

@@ -4,6 +4,7 @@
 //! system and stepper, so nothing in a step is dynamically dispatched; the observer (progress
 //! bar, Ctrl-C) is consulted every few thousand steps only.
 
+use std::cell::Cell;
 use std::collections::BTreeMap;
 use std::ops::ControlFlow;
 
@@ -80,7 +81,7 @@ pub fn integrate_lagrangian<S: LagrangianSystem>(
                 work,
                 method,
                 options,
-                |t, y| stepper.step(&field, t, y, dt),
+                |t, y, _| stepper.step(&field, t, y, dt),
                 |recorder: &mut Recorder, t: f64, y: &[f64]| {
                     let energy = recorder.stores_energy();
                     recorder.push_with(t, |out| {
@@ -146,14 +147,20 @@ fn integrate_splitting<S: HamiltonianSystem, const N: usize>(
     let mut stepper = stepper(ndof);
     let dt = setup.grid.dt();
     let sys = &*system;
+    // The potential of the state a step leaves, where the system computes it with the force.
+    let potential = Cell::new(None);
     let (result, y) = setup.run(
         method,
         options,
-        |t, y| {
+        |t, y, stored| {
             let (q, p) = y.split_at_mut(ndof);
-            stepper.step(sys, t, q, p, dt)
+            potential.set(stepper.step_with_potential(sys, t, q, p, dt, stored)?);
+            Ok(())
         },
-        StoreAsIs(sys),
+        StoreWithPotential {
+            system: sys,
+            potential: &potential,
+        },
     )?;
     finish(system, result, &y, |extra| {
         extra.insert(
@@ -178,7 +185,7 @@ fn integrate_first_order<S: DynamicalSystem>(
         let (result, y) = setup.run(
             method,
             options,
-            |t, y| stepper.step(&field, t, y, dt),
+            |t, y, _| stepper.step(&field, t, y, dt),
             StoreAsIs(sys),
         )?;
         let evaluations = stepper.evaluations();
@@ -193,7 +200,7 @@ fn integrate_first_order<S: DynamicalSystem>(
         let (result, y) = setup.run(
             method,
             options,
-            |t, y| stepper.step(&field, t, y, dt),
+            |t, y, _| stepper.step(&field, t, y, dt),
             StoreAsIs(sys),
         )?;
         let stats = stepper.stats();
@@ -219,6 +226,30 @@ impl<S: DynamicalSystem + ?Sized> Sampler for StoreAsIs<'_, S> {
     fn store(&mut self, recorder: &mut Recorder, t: f64, y: &[f64]) -> Result<f64> {
         let e = if recorder.stores_energy() {
             self.0.energy(y)
+        } else {
+            0.0
+        };
+        recorder.push(t, y, e);
+        Ok(e)
+    }
+}
+
+/// Stores the working state `[q, p]` of a Hamiltonian system with the energy
+/// `kinetic_energy(p) + V`, `V` the potential the step's last force evaluation returned
+/// ([`HamiltonianSystem::force_and_potential`]); with none, with `energy`.
+struct StoreWithPotential<'a, S: ?Sized> {
+    system: &'a S,
+    potential: &'a Cell<Option<f64>>,
+}
+
+impl<S: HamiltonianSystem + ?Sized> Sampler for StoreWithPotential<'_, S> {
+    #[inline(always)]
+    fn store(&mut self, recorder: &mut Recorder, t: f64, y: &[f64]) -> Result<f64> {
+        let e = if recorder.stores_energy() {
+            match self.potential.take() {
+                Some(v) => self.system.kinetic_energy(&y[self.system.ndof()..]) + v,
+                None => self.system.energy(y),
+            }
         } else {
             0.0
         };
@@ -296,14 +327,15 @@ impl Setup {
         mut self,
         method: Method,
         options: IntegrateOptions<'_>,
-        step: impl FnMut(f64, &mut [f64]) -> Result<()>,
+        step: impl FnMut(f64, &mut [f64], bool) -> Result<()>,
         sample: impl Sampler,
     ) -> Result<((SimulationResult, f64), Vec<f64>)> {
         let work = std::mem::take(&mut self.start);
         self.run_from(work, method, options, step, sample)
     }
 
-    /// The loop: `step(t, y)` advances the working state `y` by one step from `t`;
+    /// The loop: `step(t, y, stored)` advances the working state `y` by one step from `t`
+    /// (`stored`: the new state is stored with its energy);
     /// `sample(recorder, t, y)` stores the stored form of `y` and returns its stored energy (0
     /// if energies are not stored). Returns the result, its final time and the final stored
     /// state.
@@ -312,7 +344,7 @@ impl Setup {
         mut work: Vec<f64>,
         method: Method,
         mut options: IntegrateOptions<'_>,
-        mut step: impl FnMut(f64, &mut [f64]) -> Result<()>,
+        mut step: impl FnMut(f64, &mut [f64], bool) -> Result<()>,
         mut sample: S2,
     ) -> Result<((SimulationResult, f64), Vec<f64>)> {
         let Setup {
@@ -355,9 +387,10 @@ impl Setup {
         store(&mut recorder, grid.t0(), &work, &mut sample)?;
         let mut next_stored = sampling.next_stored(0, n);
         let mut until_observe = interval;
+        let energies = recorder.stores_energy();
         for i in 0..n {
-            step(grid.time(i), &mut work)?;
             let done = i + 1;
+            step(grid.time(i), &mut work, energies && done == next_stored)?;
             let t = grid.time(done);
             if done == next_stored {
                 store(&mut recorder, t, &work, &mut sample)?;

@@ -123,6 +123,26 @@ impl<const S: usize> SplittingStepper<S> {
         p: &mut [f64],
         h: f64,
     ) -> Result<()> {
+        self.step_with_potential(system, t, q, p, h, false)
+            .map(|_| ())
+    }
+
+    /// [`step`](Self::step), evaluating the last force with
+    /// [`HamiltonianSystem::force_and_potential`] when `potential` is true: returns the
+    /// potential of the new `q` where the system supplies it that way.
+    ///
+    /// # Errors
+    /// Whatever [`HamiltonianSystem::force`] returns.
+    #[inline(always)]
+    pub fn step_with_potential<H: HamiltonianSystem + ?Sized>(
+        &mut self,
+        system: &H,
+        t: f64,
+        q: &mut [f64],
+        p: &mut [f64],
+        h: f64,
+        potential: bool,
+    ) -> Result<Option<f64>> {
         if !self.force_valid {
             system.force(q, t, &mut self.force)?;
             self.force_evaluations += 1;
@@ -131,6 +151,7 @@ impl<const S: usize> SplittingStepper<S> {
         // invalid).
         self.force_valid = false;
         let mass_inv = system.mass_inv();
+        let mut v = None;
         for i in 0..S {
             kick_drift(
                 mass_inv,
@@ -140,12 +161,17 @@ impl<const S: usize> SplittingStepper<S> {
                 self.kicks[i] * h,
                 self.drifts[i] * h,
             );
-            system.force(q, t + self.ends[i] * h, &mut self.force)?;
+            let t_force = t + self.ends[i] * h;
+            if potential && i + 1 == S {
+                v = system.force_and_potential(q, t_force, &mut self.force)?;
+            } else {
+                system.force(q, t_force, &mut self.force)?;
+            }
         }
         self.force_evaluations += S as u64;
         kick(p, &self.force, self.last_kick * h);
         self.force_valid = true;
-        Ok(())
+        Ok(v)
     }
 }
 

@@ -35,7 +35,7 @@ use std::f64::consts::PI;
 
 use crate::classical::core::error::{check_finite_scalar, check_positive, check_vector};
 use crate::classical::core::sum::lane_sum_map2;
-use crate::classical::core::trig::{sin_into, sum_cos};
+use crate::classical::core::trig::{sin_into, sin_into_sum_cos, sum_cos};
 use crate::classical::core::{Error, HamiltonianSystem, MassInv, Phase, Result};
 
 /// Angular frequency of normal mode `j` (`1..=n`) of `n` masses `m` joined by springs `k`
@@ -638,11 +638,7 @@ impl HamiltonianSystem for SineGordonChain {
     }
     #[inline]
     fn potential_energy(&self, q: &[f64]) -> f64 {
-        let springs = lane_sum_map2(&q[..q.len().saturating_sub(1)], &q[1..], |a, b| {
-            (b - a) * (b - a)
-        });
-        let onsite = q.len() as f64 - sum_cos(q);
-        0.5 * self.k * springs + onsite
+        self.potential_with_cos_sum(q, sum_cos(q))
     }
     fn mass_inv(&self) -> MassInv<'_> {
         MassInv::Uniform(1.0 / self.m)
@@ -653,25 +649,15 @@ impl HamiltonianSystem for SineGordonChain {
     fn force(&self, q: &[f64], _t: f64, out: &mut [f64]) -> Result<()> {
         // The on-site term first, with the vectorized slice sine (1-ulp class).
         sin_into(q, out);
-        let n = q.len();
-        let k = self.k;
-        // out holds sin q here; each site subtracts it from its bond difference. A missing bond
-        // counts as +0.0: the right end's difference is `0.0 - left`, written as such (not
-        // `-left`) so that signed zeros come out as from the uniform formula; the left end's
-        // `right - 0.0` is `right`, bit for bit.
-        if n == 1 {
-            out[0] = 0.0 - out[0];
-            return Ok(());
-        }
-        let bond = |r: f64| k * r;
-        let first = bond(q[1] - q[0]);
-        let last = 0.0 - bond(q[n - 1] - q[n - 2]);
-        out[0] = first - out[0];
-        out[n - 1] = last - out[n - 1];
-        if n > 2 {
-            interior_bond_differences(q, out, bond, |difference, sin_q| difference - sin_q);
-        }
+        self.add_bonds(q, out);
         Ok(())
+    }
+    /// The force, and the potential with the cosines of the same reductions.
+    #[inline]
+    fn force_and_potential(&self, q: &[f64], _t: f64, out: &mut [f64]) -> Result<Option<f64>> {
+        let cos_sum = sin_into_sum_cos(q, out);
+        self.add_bonds(q, out);
+        Ok(Some(self.potential_with_cos_sum(q, cos_sum)))
     }
     fn force_jacobian(&self, q: &[f64], _t: f64, out: &mut [f64]) -> Option<Result<()>> {
         let n = q.len();
@@ -686,6 +672,41 @@ impl HamiltonianSystem for SineGordonChain {
             }
         }
         Some(Ok(()))
+    }
+}
+
+impl SineGordonChain {
+    /// `0.5 k sum (q_{i+1} - q_i)^2 + sum (1 - cos q_i)`, given `sum cos q_i`.
+    #[inline(always)]
+    fn potential_with_cos_sum(&self, q: &[f64], cos_sum: f64) -> f64 {
+        let springs = lane_sum_map2(&q[..q.len().saturating_sub(1)], &q[1..], |a, b| {
+            (b - a) * (b - a)
+        });
+        let onsite = q.len() as f64 - cos_sum;
+        0.5 * self.k * springs + onsite
+    }
+
+    /// Turns `out = sin q` into the force: each site's bond difference minus its sine.
+    #[inline(always)]
+    fn add_bonds(&self, q: &[f64], out: &mut [f64]) {
+        let n = q.len();
+        let k = self.k;
+        // out holds sin q here; each site subtracts it from its bond difference. A missing bond
+        // counts as +0.0: the right end's difference is `0.0 - left`, written as such (not
+        // `-left`) so that signed zeros come out as from the uniform formula; the left end's
+        // `right - 0.0` is `right`, bit for bit.
+        if n == 1 {
+            out[0] = 0.0 - out[0];
+            return;
+        }
+        let bond = |r: f64| k * r;
+        let first = bond(q[1] - q[0]);
+        let last = 0.0 - bond(q[n - 1] - q[n - 2]);
+        out[0] = first - out[0];
+        out[n - 1] = last - out[n - 1];
+        if n > 2 {
+            interior_bond_differences(q, out, bond, |difference, sin_q| difference - sin_q);
+        }
     }
 }
 

@@ -238,17 +238,23 @@ impl HamiltonianSystem for KeplerSystem {
     fn mass_inv(&self) -> MassInv<'_> {
         MassInv::Uniform(self.mu_inv)
     }
-    /// `F = -V'(r_s) q / r_s`.
+    /// `F = -V'(r_s) q / r_s` (the potential [`force_and_potential`](Self::force_and_potential)
+    /// also returns is dead code here, removed once inlined).
     #[inline]
-    fn force(&self, q: &[f64], _t: f64, out: &mut [f64]) -> Result<()> {
+    fn force(&self, q: &[f64], t: f64, out: &mut [f64]) -> Result<()> {
+        self.force_and_potential(q, t, out).map(|_| ())
+    }
+    /// The force and `V(r_s)` from the same radial evaluation (no second square root).
+    #[inline]
+    fn force_and_potential(&self, q: &[f64], _t: f64, out: &mut [f64]) -> Result<Option<f64>> {
         let s = self.softened_radius(q);
-        let (_, dv, _) = self.radial(s);
+        let (v, dv, _) = self.radial(s);
         // Times the reciprocal `radial` already formed (the compiler merges the two), not a
         // second division: a division's latency was a sixth of a Kepler step.
         let f = -dv * (1.0 / s);
         out[0] = f * q[0];
         out[1] = f * q[1];
-        Ok(())
+        Ok(Some(v))
     }
     /// `dF_i/dq_j = f delta_ij + f'(r_s) q_i q_j / r_s` with `f = -V'/r_s`.
     fn force_jacobian(&self, q: &[f64], _t: f64, out: &mut [f64]) -> Option<Result<()>> {

@@ -13,7 +13,7 @@
 //! of Classical Mechanics* (2nd ed., 1989), §16.
 
 use crate::classical::core::error::{check_finite_scalar, check_non_negative, check_positive};
-use crate::classical::core::trig::{sin_into, sum_cos};
+use crate::classical::core::trig::{sin_into, sin_into_sum_cos, sum_cos};
 use crate::classical::core::{
     Error, HamiltonianSystem, IntegrateOptions, Method, Phase, Result, SimulationResult,
 };
@@ -246,7 +246,8 @@ impl HamiltonianSystem for PendulumSwarm {
     }
     #[inline]
     fn potential_energy(&self, q: &[f64]) -> f64 {
-        -self.g_over_l * sum_cos(q)
+        let g = -self.g_over_l;
+        g * sum_cos(q)
     }
     /// `F_i = -(g/l) sin q_i`, with the vectorized slice sine (1-ulp class, see
     /// [`trig`](crate::classical::core::trig)).
@@ -256,6 +257,14 @@ impl HamiltonianSystem for PendulumSwarm {
         let g = -self.g_over_l;
         out.iter_mut().for_each(|f| *f *= g);
         Ok(())
+    }
+    /// The force and `-(g/l) sum cos q_i` from one pass of reductions.
+    #[inline]
+    fn force_and_potential(&self, q: &[f64], _t: f64, out: &mut [f64]) -> Result<Option<f64>> {
+        let cos_sum = sin_into_sum_cos(q, out);
+        let g = -self.g_over_l;
+        out.iter_mut().for_each(|f| *f *= g);
+        Ok(Some(g * cos_sum))
     }
     /// Swarms of at least [`PARALLEL_MEMBERS`] pendulums are integrated on all cores with
     /// [`integrate_ensemble`](crate::classical::integrators::integrate_ensemble): fixed chunks, the same
