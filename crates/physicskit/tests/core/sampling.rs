@@ -90,3 +90,58 @@ fn identical_inputs_give_bit_identical_outputs() {
         assert_eq!(a, b, "{method}");
     }
 }
+
+/// The driver runs systems of one and two degrees of freedom on fixed-length arrays and larger
+/// ones on vectors; either way it must take exactly the steps of the public
+/// [`SplittingStepper`](physicskit::classical::integrators::SplittingStepper) on a `Vec`, bit
+/// for bit, every row.
+#[test]
+fn the_driver_takes_the_steps_of_the_public_stepper() {
+    use physicskit::classical::integrators::SplittingStepper;
+    use physicskit::classical::systems::{
+        HenonHeilesSystem, KeplerSystem, PendulumSwarm, ProjectileMotion,
+    };
+
+    fn check<S: HamiltonianSystem + Clone>(name: &str, system: &S) {
+        let (dt, n) = (0.01, 300);
+        let ndof = system.ndof();
+        for method in [Method::Verlet, Method::Yoshida4] {
+            let mut s = system.clone();
+            let r = s.integrate((0.0, n as f64 * dt), dt, method).unwrap();
+            let mut state = system.state().to_vec();
+            let mut verlet = SplittingStepper::verlet(ndof);
+            let mut yoshida = SplittingStepper::yoshida4(ndof);
+            for (i, row) in r.y.rows().into_iter().enumerate() {
+                assert!(
+                    row.iter()
+                        .zip(&state)
+                        .all(|(a, b)| a.to_bits() == b.to_bits()),
+                    "{name}, {method:?}, row {i}"
+                );
+                let (q, p) = state.split_at_mut(ndof);
+                let t = i as f64 * dt;
+                match method {
+                    Method::Verlet => verlet.step(system, t, q, p, dt).unwrap(),
+                    _ => yoshida.step(system, t, q, p, dt).unwrap(),
+                }
+            }
+        }
+    }
+    check("pendulum", &Pendulum::new(1.0, 0.2, 1.0).unwrap());
+    check(
+        "projectile",
+        &ProjectileMotion::from_launch(20.0, 45.0, 1.0, 9.81, 0.0, 0.0).unwrap(),
+    );
+    check(
+        "Kepler",
+        &KeplerSystem::from_orbital_elements(1.0, 0.5, 1.0, 1.0, Default::default()).unwrap(),
+    );
+    check(
+        "Henon-Heiles",
+        &HenonHeilesSystem::new(&[0.0, 0.3], &[0.3, 0.0]).unwrap(),
+    );
+    check(
+        "swarm of 3",
+        &PendulumSwarm::new(&[0.1, 0.5, -1.0], &[0.0, 0.2, 0.3], 1.0).unwrap(),
+    );
+}

@@ -71,12 +71,17 @@ pub fn lane_sum_map(x: &[f64], f: impl Fn(f64) -> f64) -> f64 {
         [a, b] => f(a) + f(b),
         [a, b, c] => (f(a) + f(c)) + f(b),
         [a, b, c, d] => (f(a) + f(c)) + (f(b) + f(d)),
-        _ => {
-            let mut sum = LaneSum::default();
-            sum.add_map(x, f);
-            sum.total()
-        }
+        _ => lane_sum_map_long(x, f),
     }
+}
+
+/// [`lane_sum_map`] past four terms: out of line, so that the short sums stay small enough to
+/// inline into every caller (a 2-dof energy per sample).
+#[inline(never)]
+fn lane_sum_map_long(x: &[f64], f: impl Fn(f64) -> f64) -> f64 {
+    let mut sum = LaneSum::default();
+    sum.add_map(x, f);
+    sum.total()
 }
 
 /// `sum_i f(x[i], y[i])` over the common length, in the same order as [`lane_sum_map`].
@@ -95,6 +100,13 @@ pub fn lane_sum_map2(x: &[f64], y: &[f64], f: impl Fn(f64, f64) -> f64) -> f64 {
             _ => (t(0) + t(2)) + (t(1) + t(3)),
         };
     }
+    lane_sum_map2_long(x, y, f)
+}
+
+/// [`lane_sum_map2`] past four terms, out of line as [`lane_sum_map_long`].
+#[inline(never)]
+fn lane_sum_map2_long(x: &[f64], y: &[f64], f: impl Fn(f64, f64) -> f64) -> f64 {
+    let n = x.len();
     let mut acc = [-0.0; LANES];
     let full = n - n % LANES;
     for (cx, cy) in x[..full]

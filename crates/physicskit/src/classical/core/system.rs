@@ -121,6 +121,7 @@ pub trait HamiltonianSystem: DynamicalSystem {
     /// Kinetic energy `T(p) = sum_i mass_inv_i p_i^2 / 2`, from [`mass_inv`](Self::mass_inv):
     /// the same masses the splitting drift uses, so the two cannot disagree. Override only for
     /// non-separable systems (where `T` is not used by the integrators).
+    #[inline]
     fn kinetic_energy(&self, p: &[f64]) -> f64 {
         quadratic_kinetic_energy(self.mass_inv(), p)
     }

@@ -32,10 +32,10 @@ pub fn integrate_hamiltonian<S: HamiltonianSystem>(
     let setup = Setup::new(&*system, t_span, dt, Some(ndof), &options)?;
     match method {
         Method::Verlet => {
-            integrate_splitting(system, setup, method, options, SplittingStepper::verlet)
+            integrate_splitting(system, setup, method, options, super::verlet::DRIFTS)
         }
         Method::Yoshida4 => {
-            integrate_splitting(system, setup, method, options, SplittingStepper::yoshida4)
+            integrate_splitting(system, setup, method, options, super::yoshida4::DRIFTS)
         }
         Method::Rk4 | Method::ImplicitMidpoint => {
             integrate_first_order(system, setup, method, options)
@@ -133,23 +133,66 @@ pub fn integrate_ode<S: OdeSystem>(
     }
 }
 
-/// A splitting method with `N` substeps, after checking that the system is separable and
-/// conservative; `stepper(ndof)` builds its stepper.
+/// A splitting method with `N` substeps (drift weights `drifts`), after checking that the
+/// system is separable and conservative.
+///
+/// Systems of one or two degrees of freedom run with their state and force in fixed-length
+/// arrays, which the compiler keeps in registers across substeps and steps: through a `Vec`
+/// every kick waited for the previous substep's store to be forwarded to its load (the
+/// projectile: 17.4 -> 7.6 ns/step, Hénon–Heiles 33.5 -> 30.1; Rust API, best of 9).
 fn integrate_splitting<S: HamiltonianSystem, const N: usize>(
     system: &mut S,
     setup: Setup,
     method: Method,
     options: IntegrateOptions<'_>,
-    stepper: fn(usize) -> SplittingStepper<N>,
+    drifts: [f64; N],
 ) -> Result<SimulationResult> {
     check_system(method, &*system)?;
     let ndof = system.ndof();
-    let mut stepper = stepper(ndof);
+    match ndof {
+        1 => {
+            let (work, stepper) = (
+                setup.start_in([0.0; 2]),
+                SplittingStepper::with_buffer(drifts, [0.0; 1]),
+            );
+            run_splitting(system, setup, method, options, stepper, work)
+        }
+        2 => {
+            let (work, stepper) = (
+                setup.start_in([0.0; 4]),
+                SplittingStepper::with_buffer(drifts, [0.0; 2]),
+            );
+            run_splitting(system, setup, method, options, stepper, work)
+        }
+        _ => {
+            let work = setup.start.clone();
+            let stepper = SplittingStepper::with_buffer(drifts, vec![0.0; ndof]);
+            run_splitting(system, setup, method, options, stepper, work)
+        }
+    }
+}
+
+/// The loop of [`integrate_splitting`] with the force cached in `B` and the state in `W`.
+fn run_splitting<S, const N: usize, B, W>(
+    system: &mut S,
+    setup: Setup,
+    method: Method,
+    options: IntegrateOptions<'_>,
+    mut stepper: SplittingStepper<N, B>,
+    work: W,
+) -> Result<SimulationResult>
+where
+    S: HamiltonianSystem,
+    B: AsRef<[f64]> + AsMut<[f64]>,
+    W: AsRef<[f64]> + AsMut<[f64]>,
+{
+    let ndof = system.ndof();
     let dt = setup.grid.dt();
     let sys = &*system;
     // The potential of the state a step leaves, where the system computes it with the force.
     let potential = Cell::new(None);
-    let (result, y) = setup.run(
+    let (result, y) = setup.run_from(
+        work,
         method,
         options,
         |t, y, stored| {
@@ -322,6 +365,12 @@ impl Setup {
         })
     }
 
+    /// The validated initial state copied into `work` (of the state's length).
+    fn start_in<W: AsMut<[f64]>>(&self, mut work: W) -> W {
+        work.as_mut().copy_from_slice(&self.start);
+        work
+    }
+
     /// [`run_from`](Self::run_from) the validated initial state.
     fn run(
         mut self,
@@ -339,9 +388,9 @@ impl Setup {
     /// `sample(recorder, t, y)` stores the stored form of `y` and returns its stored energy (0
     /// if energies are not stored). Returns the result, its final time and the final stored
     /// state.
-    fn run_from<S2: Sampler>(
+    fn run_from<S2: Sampler, W: AsRef<[f64]> + AsMut<[f64]>>(
         self,
-        mut work: Vec<f64>,
+        mut work: W,
         method: Method,
         mut options: IntegrateOptions<'_>,
         mut step: impl FnMut(f64, &mut [f64], bool) -> Result<()>,
@@ -384,22 +433,22 @@ impl Setup {
                 })
             }
         };
-        store(&mut recorder, grid.t0(), &work, &mut sample)?;
+        store(&mut recorder, grid.t0(), work.as_ref(), &mut sample)?;
         let mut next_stored = sampling.next_stored(0, n);
         let mut until_observe = interval;
         let energies = recorder.stores_energy();
         for i in 0..n {
             let done = i + 1;
-            step(grid.time(i), &mut work, energies && done == next_stored)?;
+            step(grid.time(i), work.as_mut(), energies && done == next_stored)?;
             let t = grid.time(done);
             if done == next_stored {
-                store(&mut recorder, t, &work, &mut sample)?;
+                store(&mut recorder, t, work.as_ref(), &mut sample)?;
                 next_stored = sampling.next_stored(done, n);
             }
             until_observe -= 1;
             if until_observe == 0 {
                 until_observe = interval;
-                check(&recorder, &work, t)?;
+                check(&recorder, work.as_ref(), t)?;
                 if let Some(observer) = options.observer.as_deref_mut() {
                     if let ControlFlow::Break(()) = observer.observe(done, n, t) {
                         return Err(Error::Interrupted { t });
@@ -407,7 +456,7 @@ impl Setup {
                 }
             }
         }
-        check(&recorder, &work, grid.t_end())?;
+        check(&recorder, work.as_ref(), grid.t_end())?;
         // Every sampling mode stores the final step.
         let last = recorder.last_row().to_vec();
         let mut extra = BTreeMap::new();

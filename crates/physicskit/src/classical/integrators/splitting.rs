@@ -17,8 +17,11 @@ use crate::classical::core::{Error, HamiltonianSystem, MassInv, Method, Result};
 /// Kick–drift–kick stepper for a separable Hamiltonian system, for a composition of `S`
 /// Verlet substeps (`S = 1`: verlet, `S = 3`: yoshida4). `S` is a compile-time constant so the
 /// substep loop unrolls and each kick fuses with the following drift into one pass.
+///
+/// `B` holds the cached force: a `Vec` (any size), or for small systems a fixed-length array
+/// ([`with_buffer`](Self::with_buffer)), which the compiler can keep in registers.
 #[derive(Debug, Clone)]
-pub struct SplittingStepper<const S: usize> {
+pub struct SplittingStepper<const S: usize, B = Vec<f64>> {
     drifts: [f64; S],
     /// Kick weight before each drift: `(w_{i-1} + w_i) / 2`, with `w_{-1} = 0`.
     kicks: [f64; S],
@@ -26,7 +29,7 @@ pub struct SplittingStepper<const S: usize> {
     last_kick: f64,
     /// Substep end times as fractions of the step; the last is exactly 1.
     ends: [f64; S],
-    force: Vec<f64>,
+    force: B,
     /// The cached force belongs to the current `q` (first same as last).
     force_valid: bool,
     force_evaluations: u64,
@@ -76,6 +79,14 @@ pub fn check_system<S: HamiltonianSystem + ?Sized>(method: Method, system: &S) -
 impl<const S: usize> SplittingStepper<S> {
     /// A stepper for the symmetric composition with drift weights `drifts` (summing to 1).
     pub fn from_drifts(drifts: [f64; S], ndof: usize) -> Self {
+        SplittingStepper::with_buffer(drifts, vec![0.0; ndof])
+    }
+}
+
+impl<const S: usize, B: AsRef<[f64]> + AsMut<[f64]>> SplittingStepper<S, B> {
+    /// A stepper for the symmetric composition with drift weights `drifts` (summing to 1),
+    /// caching the force in `force` (of length `ndof`).
+    pub fn with_buffer(drifts: [f64; S], force: B) -> Self {
         let mut kicks = [0.0; S];
         let mut ends = [0.0; S];
         let mut elapsed = 0.0;
@@ -90,7 +101,7 @@ impl<const S: usize> SplittingStepper<S> {
             kicks,
             last_kick: 0.5 * drifts[S - 1],
             ends,
-            force: vec![0.0; ndof],
+            force,
             force_valid: false,
             force_evaluations: 0,
         }
@@ -144,7 +155,7 @@ impl<const S: usize> SplittingStepper<S> {
         potential: bool,
     ) -> Result<Option<f64>> {
         if !self.force_valid {
-            system.force(q, t, &mut self.force)?;
+            system.force(q, t, self.force.as_mut())?;
             self.force_evaluations += 1;
         }
         // Until the step completes, the cache does not match q (an error mid-step leaves it
@@ -157,19 +168,19 @@ impl<const S: usize> SplittingStepper<S> {
                 mass_inv,
                 q,
                 p,
-                &self.force,
+                self.force.as_ref(),
                 self.kicks[i] * h,
                 self.drifts[i] * h,
             );
             let t_force = t + self.ends[i] * h;
             if potential && i + 1 == S {
-                v = system.force_and_potential(q, t_force, &mut self.force)?;
+                v = system.force_and_potential(q, t_force, self.force.as_mut())?;
             } else {
-                system.force(q, t_force, &mut self.force)?;
+                system.force(q, t_force, self.force.as_mut())?;
             }
         }
         self.force_evaluations += S as u64;
-        kick(p, &self.force, self.last_kick * h);
+        kick(p, self.force.as_ref(), self.last_kick * h);
         self.force_valid = true;
         Ok(v)
     }
