@@ -160,22 +160,29 @@ const SUM_BLOCK: usize = 128;
 
 /// `out[i] = sin(x[i])` (`SHIFT = 0`, `libm = f64::sin`) or `cos(x[i])` (`SHIFT = 1`,
 /// `libm = f64::cos`): the quadrant shift selects the function on the vector path.
+///
+/// Each value is multiplied by `scale` (`1.0`, exact, for the plain functions).
 #[inline(always)]
-fn trig_into_body<const SHIFT: u64>(x: &[f64], out: &mut [f64], libm: fn(f64) -> f64) {
+fn trig_into_body<const SHIFT: u64>(x: &[f64], out: &mut [f64], libm: fn(f64) -> f64, scale: f64) {
     if fits_vector_path(x) {
         for (o, &v) in out.iter_mut().zip(x) {
-            *o = sin_cos_reduced(v, SHIFT);
+            *o = scale * sin_cos_reduced(v, SHIFT);
         }
     } else {
         for (o, &v) in out.iter_mut().zip(x) {
-            *o = libm(v);
+            *o = scale * libm(v);
         }
     }
 }
 
 #[inline(always)]
 fn sin_into_body(x: &[f64], out: &mut [f64]) {
-    trig_into_body::<0>(x, out, f64::sin);
+    trig_into_body::<0>(x, out, f64::sin, 1.0);
+}
+
+#[inline(always)]
+fn sin_into_scaled_body(x: &[f64], out: &mut [f64], scale: f64) {
+    trig_into_body::<0>(x, out, f64::sin, scale);
 }
 
 /// [`sin_cos`] of `N` arguments at once, `(sin, cos)` arrays: the same values, in SIMD lanes
@@ -199,7 +206,7 @@ pub fn sin_cos_array<const N: usize>(x: [f64; N]) -> ([f64; N], [f64; N]) {
 
 #[inline(always)]
 fn cos_into_body(x: &[f64], out: &mut [f64]) {
-    trig_into_body::<1>(x, out, f64::cos);
+    trig_into_body::<1>(x, out, f64::cos, 1.0);
 }
 
 #[inline(always)]
@@ -220,10 +227,10 @@ fn sum_cos_body(x: &[f64]) -> f64 {
     sum.total()
 }
 
-/// [`sin_into_body`] and [`sum_cos_body`] in one pass: the cosines come from the reductions
-/// the sines make anyway.
+/// [`sin_into_scaled_body`] and [`sum_cos_body`] in one pass: the cosines come from the
+/// reductions the sines make anyway.
 #[inline(always)]
-fn sin_into_sum_cos_body(x: &[f64], out: &mut [f64]) -> f64 {
+fn sin_into_sum_cos_body(x: &[f64], out: &mut [f64], scale: f64) -> f64 {
     let mut sum = LaneSum::default();
     if fits_vector_path(x) {
         let mut block = [0.0; SUM_BLOCK];
@@ -231,26 +238,33 @@ fn sin_into_sum_cos_body(x: &[f64], out: &mut [f64]) -> f64 {
             let c = &mut block[..chunk.len()];
             for ((oi, ci), &v) in o.iter_mut().zip(c.iter_mut()).zip(chunk) {
                 let (quadrant, s, co) = reduce(v);
-                *oi = select(quadrant, s, co);
+                *oi = scale * select(quadrant, s, co);
                 *ci = select(quadrant.wrapping_add(1), s, co);
             }
             sum.add_map(c, |v| v);
         }
     } else {
         for (o, &v) in out.iter_mut().zip(x) {
-            *o = v.sin();
+            *o = scale * v.sin();
         }
         sum.add_map(x, f64::cos);
     }
     sum.total()
 }
 
-/// Writes `sin(x[i])` into `out[i]` and returns `sum_i cos(x[i])`: the same bits as
-/// [`sin_into`] and [`sum_cos`], for about the cost of the sines alone (a potential
+/// Writes `scale * sin(x[i])` into `out[i]` and returns `sum_i cos(x[i])`: the same bits as
+/// [`sin_into_scaled`] and [`sum_cos`], for about the cost of the sines alone (a potential
 /// `sum (1 - cos q_i)` stored with the force `-sin q_i`).
 #[multiversion(targets("x86_64+avx512f+avx512dq+avx512vl+avx2", "x86_64+avx2"))]
-pub fn sin_into_sum_cos(x: &[f64], out: &mut [f64]) -> f64 {
-    sin_into_sum_cos_body(x, out)
+pub fn sin_into_sum_cos(x: &[f64], out: &mut [f64], scale: f64) -> f64 {
+    sin_into_sum_cos_body(x, out, scale)
+}
+
+/// Writes `scale * sin(x[i])` into `out[i]` (the same bits as [`sin_into`] followed by a
+/// multiplication, in one pass: a force `-(g/l) sin q_i`).
+#[multiversion(targets("x86_64+avx512f+avx512dq+avx512vl+avx2", "x86_64+avx2"))]
+pub fn sin_into_scaled(x: &[f64], out: &mut [f64], scale: f64) {
+    sin_into_scaled_body(x, out, scale);
 }
 
 /// Writes `sin(x[i])` into `out[i]`.
@@ -462,19 +476,22 @@ mod tests {
                     |a: f64, b: f64| a.to_bits() == b.to_bits() || (a.is_nan() && b.is_nan());
                 let (a, b) = (sum_cos(chunk), sum_cos_body(chunk));
                 assert!(same_sum(a, b), "sum_cos differs on {chunk:?}");
-                // The fused sine and cosine sum: the same bits as the two separate calls,
-                // dispatched and at the baseline.
+                // The fused sine and cosine sum and the scaled sine: the same bits as the
+                // separate calls followed by the multiplication (rounded once), dispatched and
+                // at the baseline.
                 sin_into(chunk, base);
-                let fused = sin_into_sum_cos(chunk, fast);
-                assert!(
-                    same(fast, base) && same_sum(fused, a),
-                    "sin_into_sum_cos on {chunk:?}"
-                );
-                let fused_base = sin_into_sum_cos_body(chunk, fast);
+                base.iter_mut().for_each(|v| *v *= -1.7);
+                let fused = sin_into_sum_cos(chunk, fast, -1.7);
+                assert!(same(fast, base) && same_sum(fused, a), "fused on {chunk:?}");
+                let fused_base = sin_into_sum_cos_body(chunk, fast, -1.7);
                 assert!(
                     same(fast, base) && same_sum(fused_base, a),
-                    "at the baseline"
+                    "fused, baseline"
                 );
+                sin_into_scaled(chunk, fast, -1.7);
+                assert!(same(fast, base), "sin_into_scaled on {chunk:?}");
+                sin_into_scaled_body(chunk, fast, -1.7);
+                assert!(same(fast, base), "sin_into_scaled at the baseline");
                 compared += chunk.len();
                 start = end;
                 i += 1;

@@ -655,7 +655,7 @@ impl HamiltonianSystem for SineGordonChain {
     /// The force, and the potential with the cosines of the same reductions.
     #[inline]
     fn force_and_potential(&self, q: &[f64], _t: f64, out: &mut [f64]) -> Result<Option<f64>> {
-        let cos_sum = sin_into_sum_cos(q, out);
+        let cos_sum = sin_into_sum_cos(q, out, 1.0);
         self.add_bonds(q, out);
         Ok(Some(self.potential_with_cos_sum(q, cos_sum)))
     }

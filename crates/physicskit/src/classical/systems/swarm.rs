@@ -13,7 +13,7 @@
 //! of Classical Mechanics* (2nd ed., 1989), §16.
 
 use crate::classical::core::error::{check_finite_scalar, check_non_negative, check_positive};
-use crate::classical::core::trig::{sin_into, sin_into_sum_cos, sum_cos};
+use crate::classical::core::trig::{sin_into_scaled, sin_into_sum_cos, sum_cos};
 use crate::classical::core::{
     Error, HamiltonianSystem, IntegrateOptions, Method, Phase, Result, SimulationResult,
 };
@@ -253,17 +253,14 @@ impl HamiltonianSystem for PendulumSwarm {
     /// [`trig`](crate::classical::core::trig)).
     #[inline]
     fn force(&self, q: &[f64], _t: f64, out: &mut [f64]) -> Result<()> {
-        sin_into(q, out);
-        let g = -self.g_over_l;
-        out.iter_mut().for_each(|f| *f *= g);
+        sin_into_scaled(q, out, -self.g_over_l);
         Ok(())
     }
     /// The force and `-(g/l) sum cos q_i` from one pass of reductions.
     #[inline]
     fn force_and_potential(&self, q: &[f64], _t: f64, out: &mut [f64]) -> Result<Option<f64>> {
-        let cos_sum = sin_into_sum_cos(q, out);
         let g = -self.g_over_l;
-        out.iter_mut().for_each(|f| *f *= g);
+        let cos_sum = sin_into_sum_cos(q, out, g);
         Ok(Some(g * cos_sum))
     }
     /// Swarms of at least [`PARALLEL_MEMBERS`] pendulums are integrated on all cores with
