@@ -275,9 +275,10 @@ print(base, first, second, rss_mb())
 def test_freed_storage_is_reused_and_handed_back_before_a_refusal():
     # The extension's allocator keeps a dropped result's storage for the next run (which then
     # need not fault 64 MB in again) and returns it to the OS when a run would not fit. In a
-    # fresh process, resident set sizes in MB: the second run must not grow it by another
-    # 64 MB (16 MB of slack for numpy and the interpreter), and after the refusal at most
-    # 16 MB of the 64 may remain.
+    # fresh process, resident set sizes in MB: after the first result is dropped its 64 MB are
+    # still resident (kept: the system allocator would have unmapped them), the second run
+    # does not add another 64 MB (16 MB of slack for numpy and the interpreter), and after the
+    # refusal at most 16 MB of the 64 remain.
     out = subprocess.run([sys.executable, "-c", RETAINED_MEMORY], capture_output=True,
                          text=True, check=True, timeout=120)
     base, first, second, released = map(float, out.stdout.split())

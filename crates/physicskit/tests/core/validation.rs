@@ -285,3 +285,31 @@ fn singular_mass_matrix_is_an_error() {
         );
     }
 }
+
+#[test]
+fn a_state_that_disagrees_with_ndof_is_refused_not_a_panic() {
+    // A user-written system whose `ndof` (1) does not match its state (4 values): every method
+    // refuses it up front (the splitting loop would otherwise index a 2-value array).
+    let mut d = Damped {
+        phase: Phase::new(vec![0.1, 0.2, 0.3, 0.4], 0.0).unwrap(),
+        gamma: 0.0,
+    };
+    for method in [
+        Method::Rk4,
+        Method::ImplicitMidpoint,
+        Method::Verlet,
+        Method::Yoshida4,
+    ] {
+        assert!(
+            matches!(
+                HamiltonianSystem::integrate(&mut d, (0.0, 1.0), 0.1, method),
+                Err(Error::DimensionMismatch {
+                    expected: 2,
+                    found: 4,
+                    ..
+                })
+            ),
+            "{method:?}"
+        );
+    }
+}

@@ -40,16 +40,25 @@ impl LaneSum {
     /// Adds `f(x[i])` for every element, element `i` into partial sum `i mod 8`.
     #[inline(always)]
     pub fn add_map(&mut self, x: &[f64], f: impl Fn(f64) -> f64) {
+        self.add_map2(x, x, |v, _| f(v));
+    }
+
+    /// Adds `f(x[i], y[i])` over the common length, term `i` into partial sum `i mod 8`.
+    #[inline(always)]
+    pub fn add_map2(&mut self, x: &[f64], y: &[f64], f: impl Fn(f64, f64) -> f64) {
+        let n = x.len().min(y.len());
+        let full = n - n % LANES;
         let acc = &mut self.0;
-        let chunks = x.chunks_exact(LANES);
-        let tail = chunks.remainder();
-        for c in chunks {
+        for (cx, cy) in x[..full]
+            .chunks_exact(LANES)
+            .zip(y[..full].chunks_exact(LANES))
+        {
             for j in 0..LANES {
-                acc[j] += f(c[j]);
+                acc[j] += f(cx[j], cy[j]);
             }
         }
-        for (a, &v) in acc.iter_mut().zip(tail) {
-            *a += f(v);
+        for ((a, &u), &v) in acc.iter_mut().zip(&x[full..n]).zip(&y[full..n]) {
+            *a += f(u, v);
         }
     }
 
@@ -63,64 +72,33 @@ impl LaneSum {
 /// `sum_i f(x[i])`, element `i` added into partial sum `i mod 8` (see the module docs).
 #[inline(always)]
 pub fn lane_sum_map(x: &[f64], f: impl Fn(f64) -> f64) -> f64 {
-    // Up to four terms, the tree over lanes holding one term each or `-0.0`, written out:
-    // the same bits, without the loop (the kinetic energy of a 1-3 dof system, every sample).
-    match *x {
-        [] => -0.0,
-        [a] => f(a),
-        [a, b] => f(a) + f(b),
-        [a, b, c] => (f(a) + f(c)) + f(b),
-        [a, b, c, d] => (f(a) + f(c)) + (f(b) + f(d)),
-        _ => lane_sum_map_long(x, f),
-    }
+    lane_sum_map2(x, x, |v, _| f(v))
 }
 
-/// [`lane_sum_map`] past four terms: out of line, so that the short sums stay small enough to
-/// inline into every caller (a 2-dof energy per sample).
-#[inline(never)]
-fn lane_sum_map_long(x: &[f64], f: impl Fn(f64) -> f64) -> f64 {
-    let mut sum = LaneSum::default();
-    sum.add_map(x, f);
-    sum.total()
-}
-
-/// `sum_i f(x[i], y[i])` over the common length, in the same order as [`lane_sum_map`].
+/// `sum_i f(x[i], y[i])` over the common length, in the order of [`lane_sum_map`].
 #[inline(always)]
 pub fn lane_sum_map2(x: &[f64], y: &[f64], f: impl Fn(f64, f64) -> f64) -> f64 {
     let n = x.len().min(y.len());
-    let (x, y) = (&x[..n], &y[..n]);
-    if n <= 4 {
-        // As in `lane_sum_map`.
-        let t = |i: usize| f(x[i], y[i]);
-        return match n {
-            0 => -0.0,
-            1 => t(0),
-            2 => t(0) + t(1),
-            3 => (t(0) + t(2)) + t(1),
-            _ => (t(0) + t(2)) + (t(1) + t(3)),
-        };
+    let t = |i: usize| f(x[i], y[i]);
+    // Up to four terms, the tree over lanes holding one term each or `-0.0`, written out:
+    // the same bits, without the loop (the kinetic energy of a 1-3 dof system, every sample).
+    match n {
+        0 => -0.0,
+        1 => t(0),
+        2 => t(0) + t(1),
+        3 => (t(0) + t(2)) + t(1),
+        4 => (t(0) + t(2)) + (t(1) + t(3)),
+        _ => lane_sum_map2_long(x, y, f),
     }
-    lane_sum_map2_long(x, y, f)
 }
 
-/// [`lane_sum_map2`] past four terms, out of line as [`lane_sum_map_long`].
+/// [`lane_sum_map2`] past four terms: out of line, so that the short sums stay small enough
+/// to inline into every caller (a 2-dof energy per sample).
 #[inline(never)]
 fn lane_sum_map2_long(x: &[f64], y: &[f64], f: impl Fn(f64, f64) -> f64) -> f64 {
-    let n = x.len();
-    let mut acc = [-0.0; LANES];
-    let full = n - n % LANES;
-    for (cx, cy) in x[..full]
-        .chunks_exact(LANES)
-        .zip(y[..full].chunks_exact(LANES))
-    {
-        for j in 0..LANES {
-            acc[j] += f(cx[j], cy[j]);
-        }
-    }
-    for ((a, &u), &v) in acc.iter_mut().zip(&x[full..]).zip(&y[full..]) {
-        *a += f(u, v);
-    }
-    combine(acc)
+    let mut sum = LaneSum::default();
+    sum.add_map2(x, y, f);
+    sum.total()
 }
 
 /// `sum_i x[i]` in the order of [`lane_sum_map`].

@@ -1,8 +1,10 @@
 //! The drivers behind every `integrate`: validate, allocate once, loop, record.
 //!
 //! One generic loop (`Setup::run_from`) serves every method and family. It is monomorphized for each
-//! system and stepper, so nothing in a step is dynamically dispatched; the observer (progress
-//! bar, Ctrl-C) is consulted every few thousand steps only.
+//! system and stepper, so no trait object is called in a step (the SIMD clones of long slice
+//! loops and of the trig are reached through one cached function pointer each, see
+//! `core/trig.rs`); the observer (progress bar, Ctrl-C) is consulted every few thousand steps
+//! only.
 
 use std::cell::Cell;
 use std::collections::BTreeMap;
@@ -150,26 +152,28 @@ fn integrate_splitting<S: HamiltonianSystem, const N: usize>(
     check_system(method, &*system)?;
     let ndof = system.ndof();
     match ndof {
-        1 => {
-            let (work, stepper) = (
-                setup.start_in([0.0; 2]),
-                SplittingStepper::with_buffer(drifts, [0.0; 1]),
-            );
-            run_splitting(system, setup, method, options, stepper, work)
-        }
-        2 => {
-            let (work, stepper) = (
-                setup.start_in([0.0; 4]),
-                SplittingStepper::with_buffer(drifts, [0.0; 2]),
-            );
-            run_splitting(system, setup, method, options, stepper, work)
-        }
+        1 => run_fixed::<S, N, 1, 2>(system, setup, method, options, drifts),
+        2 => run_fixed::<S, N, 2, 4>(system, setup, method, options, drifts),
         _ => {
-            let work = setup.start.clone();
+            let mut setup = setup;
+            let work = std::mem::take(&mut setup.start);
             let stepper = SplittingStepper::with_buffer(drifts, vec![0.0; ndof]);
             run_splitting(system, setup, method, options, stepper, work)
         }
     }
+}
+
+/// [`run_splitting`] with the force in `[f64; F]` and the state in `[f64; D]`, `D = 2 F`.
+fn run_fixed<S: HamiltonianSystem, const N: usize, const F: usize, const D: usize>(
+    system: &mut S,
+    setup: Setup,
+    method: Method,
+    options: IntegrateOptions<'_>,
+    drifts: [f64; N],
+) -> Result<SimulationResult> {
+    let work = setup.start_in([0.0; D]);
+    let stepper = SplittingStepper::with_buffer(drifts, [0.0; F]);
+    run_splitting(system, setup, method, options, stepper, work)
 }
 
 /// The loop of [`integrate_splitting`] with the force cached in `B` and the state in `W`.
@@ -355,6 +359,18 @@ impl Setup {
         let grid = TimeGrid::new(t_span, dt)?;
         options.sampling.validate()?;
         let start = system.state().to_vec();
+        match ndof {
+            // [q, p] or [q, qdot]: a system whose state and `ndof` disagree is refused here,
+            // not left to index out of bounds in the loop.
+            Some(ndof) if start.len() != 2 * ndof => {
+                return Err(Error::DimensionMismatch {
+                    name: "state".into(),
+                    expected: 2 * ndof,
+                    found: start.len(),
+                });
+            }
+            _ => {}
+        }
         check_finite("state", &start, grid.t0())?;
         let samples = options.sampling.count(grid.n_steps());
         let recorder = Recorder::new(samples, start.len(), ndof, !options.skip_energy)?;

@@ -193,7 +193,8 @@ impl<const S: usize, B: AsRef<[f64]> + AsMut<[f64]>> SplittingStepper<S, B> {
 /// Systems with up to three degrees of freedom (Kepler, Hénon–Heiles, the projectile, a
 /// pendulum) take a fixed-length copy of the loop: a runtime-length loop over two elements
 /// spent more instructions on its own control than on the arithmetic (43 of ~270 per
-/// projectile step). The length test is one well-predicted branch.
+/// projectile step). The length test is one well-predicted branch. From [`DISPATCH_MIN`]
+/// coordinates on, the loop runs in the AVX2/AVX-512 clone this CPU supports.
 #[inline(always)]
 fn kick_drift(
     mass_inv: MassInv<'_>,
@@ -305,7 +306,8 @@ fn kick_drift_fixed<const N: usize>(
     }
 }
 
-/// `p += kick * F`, fixed-length for up to three coordinates as in [`kick_drift`].
+/// `p += kick * F`, fixed-length for up to three coordinates and dispatched to a SIMD clone
+/// from [`DISPATCH_MIN`] on, as in [`kick_drift`].
 #[inline(always)]
 fn kick(p: &mut [f64], force: &[f64], k: f64) {
     #[inline(always)]

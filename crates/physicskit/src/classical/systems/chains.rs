@@ -679,9 +679,8 @@ impl SineGordonChain {
     /// `0.5 k sum (q_{i+1} - q_i)^2 + sum (1 - cos q_i)`, given `sum cos q_i`.
     #[inline(always)]
     fn potential_with_cos_sum(&self, q: &[f64], cos_sum: f64) -> f64 {
-        let springs = lane_sum_map2(&q[..q.len().saturating_sub(1)], &q[1..], |a, b| {
-            (b - a) * (b - a)
-        });
+        // Pairs (q_i, q_{i+1}): the sum runs over the common length, N - 1.
+        let springs = lane_sum_map2(q, q.get(1..).unwrap_or(&[]), |a, b| (b - a) * (b - a));
         let onsite = q.len() as f64 - cos_sum;
         0.5 * self.k * springs + onsite
     }
