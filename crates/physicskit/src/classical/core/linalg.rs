@@ -42,7 +42,6 @@ pub fn lu_factor(a: &mut [f64], n: usize, piv: &mut [usize]) -> Result<(), Singu
     if scale == 0.0 {
         return Err(Singular);
     }
-    let tiny = SINGULAR_RELATIVE_PIVOT * scale;
     for k in 0..n {
         let (mut best, mut best_row) = (a[k * n + k].abs(), k);
         for r in k + 1..n {
@@ -52,7 +51,7 @@ pub fn lu_factor(a: &mut [f64], n: usize, piv: &mut [usize]) -> Result<(), Singu
                 best_row = r;
             }
         }
-        if best <= tiny {
+        if negligible_pivot(best, scale) {
             return Err(Singular);
         }
         piv[k] = best_row;

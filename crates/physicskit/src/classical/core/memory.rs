@@ -34,26 +34,27 @@ fn available_bytes() -> Option<u128> {
     Some(kib * 1024)
 }
 
+/// The most one result may take: [`MAX_FRACTION_OF_AVAILABLE`] of what is available.
+/// Without a reading, the address space is the limit (allocation is then also checked with
+/// `try_reserve`).
+fn budget_bytes() -> u128 {
+    let available = available_bytes().unwrap_or(isize::MAX as u128);
+    (available as f64 * MAX_FRACTION_OF_AVAILABLE) as u128
+}
+
 /// Checks that `samples * values_per_sample` f64 values fit in memory.
 ///
 /// # Errors
 /// [`Error::TrajectoryTooLarge`].
 pub(crate) fn check_fits(samples: usize, values_per_sample: usize) -> Result<()> {
     let bytes = samples as u128 * values_per_sample as u128 * 8;
-    // Without a reading, the address space is the limit (allocation is then also checked with
-    // `try_reserve`).
-    let budget = || {
-        let available = available_bytes().unwrap_or(isize::MAX as u128);
-        (available as f64 * MAX_FRACTION_OF_AVAILABLE) as u128
-    };
-    let mut budget_now = budget();
-    if bytes > budget_now {
+    let mut budget = budget_bytes();
+    if bytes > budget {
         if let Some(release) = RELEASE_HOOK.get() {
             release();
-            budget_now = budget();
+            budget = budget_bytes();
         }
     }
-    let budget = budget_now;
     if bytes > budget {
         return Err(Error::TrajectoryTooLarge {
             samples: samples as u128,

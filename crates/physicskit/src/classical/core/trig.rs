@@ -213,20 +213,7 @@ fn cos_into_body(x: &[f64], out: &mut [f64]) {
 
 #[inline(always)]
 fn sum_cos_body(x: &[f64]) -> f64 {
-    let mut sum = LaneSum::default();
-    if fits_vector_path(x) {
-        let mut block = [0.0; SUM_BLOCK];
-        for chunk in x.chunks(SUM_BLOCK) {
-            let c = &mut block[..chunk.len()];
-            for (o, &v) in c.iter_mut().zip(chunk) {
-                *o = sin_cos_reduced(v, 1);
-            }
-            sum.add_map(c, |v| v);
-        }
-    } else {
-        sum.add_map(x, f64::cos);
-    }
-    sum.total()
+    cos_sum_body::<false>(x, &mut [], 1.0)
 }
 
 /// [`sin_into_scaled_body`] and [`sum_cos_body`] in one pass: the cosines come from the
@@ -235,21 +222,38 @@ fn sum_cos_body(x: &[f64]) -> f64 {
 fn sin_into_sum_cos_body(x: &[f64], out: &mut [f64], scale: f64) -> f64 {
     // Over the common length, like the zipped loops of the other functions.
     let x = &x[..x.len().min(out.len())];
+    cos_sum_body::<true>(x, out, scale)
+}
+
+/// `sum_i cos(x[i])` and, with `SINES`, `out[i] = scale * sin(x[i])` (`out` at least as long
+/// as `x`; unused without `SINES`). The cosines of a block go to a stack buffer, then into the
+/// lane sum.
+#[inline(always)]
+fn cos_sum_body<const SINES: bool>(x: &[f64], out: &mut [f64], scale: f64) -> f64 {
     let mut sum = LaneSum::default();
     if fits_vector_path(x) {
         let mut block = [0.0; SUM_BLOCK];
-        for (chunk, o) in x.chunks(SUM_BLOCK).zip(out.chunks_mut(SUM_BLOCK)) {
+        for (b, chunk) in x.chunks(SUM_BLOCK).enumerate() {
             let c = &mut block[..chunk.len()];
-            for ((oi, ci), &v) in o.iter_mut().zip(c.iter_mut()).zip(chunk) {
-                let (quadrant, s, co) = reduce(v);
-                *oi = scale * select(quadrant, s, co);
-                *ci = select(quadrant.wrapping_add(1), s, co);
+            if SINES {
+                let o = &mut out[b * SUM_BLOCK..b * SUM_BLOCK + chunk.len()];
+                for ((oi, ci), &v) in o.iter_mut().zip(c.iter_mut()).zip(chunk) {
+                    let (quadrant, s, co) = reduce(v);
+                    *oi = scale * select(quadrant, s, co);
+                    *ci = select(quadrant.wrapping_add(1), s, co);
+                }
+            } else {
+                for (ci, &v) in c.iter_mut().zip(chunk) {
+                    *ci = sin_cos_reduced(v, 1);
+                }
             }
             sum.add_map(c, |v| v);
         }
     } else {
-        for (o, &v) in out.iter_mut().zip(x) {
-            *o = scale * v.sin();
+        if SINES {
+            for (o, &v) in out.iter_mut().zip(x) {
+                *o = scale * v.sin();
+            }
         }
         sum.add_map(x, f64::cos);
     }

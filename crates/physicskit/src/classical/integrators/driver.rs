@@ -152,37 +152,40 @@ fn integrate_splitting<S: HamiltonianSystem, const N: usize>(
     check_system(method, &*system)?;
     let ndof = system.ndof();
     match ndof {
-        1 => run_fixed::<S, N, 1, 2>(system, setup, method, options, drifts),
-        2 => run_fixed::<S, N, 2, 4>(system, setup, method, options, drifts),
+        1 => {
+            let work = setup.start_in([0.0; 2]);
+            run_splitting(system, setup, method, options, drifts, [0.0; 1], work)
+        }
+        2 => {
+            let work = setup.start_in([0.0; 4]);
+            run_splitting(system, setup, method, options, drifts, [0.0; 2], work)
+        }
         _ => {
             let mut setup = setup;
             let work = std::mem::take(&mut setup.start);
-            let stepper = SplittingStepper::with_buffer(drifts, vec![0.0; ndof]);
-            run_splitting(system, setup, method, options, stepper, work)
+            run_splitting(
+                system,
+                setup,
+                method,
+                options,
+                drifts,
+                vec![0.0; ndof],
+                work,
+            )
         }
     }
 }
 
-/// [`run_splitting`] with the force in `[f64; F]` and the state in `[f64; D]`, `D = 2 F`.
-fn run_fixed<S: HamiltonianSystem, const N: usize, const F: usize, const D: usize>(
-    system: &mut S,
-    setup: Setup,
-    method: Method,
-    options: IntegrateOptions<'_>,
-    drifts: [f64; N],
-) -> Result<SimulationResult> {
-    let work = setup.start_in([0.0; D]);
-    let stepper = SplittingStepper::with_buffer(drifts, [0.0; F]);
-    run_splitting(system, setup, method, options, stepper, work)
-}
-
-/// The loop of [`integrate_splitting`] with the force cached in `B` and the state in `W`.
+/// The loop of [`integrate_splitting`] with the force cached in `force` and the state in
+/// `work`.
+#[allow(clippy::too_many_arguments)]
 fn run_splitting<S, const N: usize, B, W>(
     system: &mut S,
     setup: Setup,
     method: Method,
     options: IntegrateOptions<'_>,
-    mut stepper: SplittingStepper<N, B>,
+    drifts: [f64; N],
+    force: B,
     work: W,
 ) -> Result<SimulationResult>
 where
@@ -192,6 +195,7 @@ where
 {
     let ndof = system.ndof();
     let dt = setup.grid.dt();
+    let mut stepper = SplittingStepper::with_buffer(drifts, force);
     let sys = &*system;
     // The potential of the state a step leaves, where the system computes it with the force.
     let potential = Cell::new(None);

@@ -423,8 +423,7 @@ impl ImplicitMidpoint {
                 num = num.max((h * d).abs());
                 hk = hk.max((h * *ki).abs());
             }
-            let scale = scale_y.max(hk);
-            residual = if num == 0.0 { 0.0 } else { num / scale };
+            residual = relative(num, scale_y.max(hk));
             if !residual.is_finite() {
                 return Err(fail(spent + it, residual));
             }

@@ -49,6 +49,8 @@ pub fn chain_mode_frequency(n: usize, m: f64, k: f64, j: usize) -> f64 {
 pub struct ChainModes {
     n: usize,
     m: f64,
+    /// `1/m`, formed once: every splitting step asks for it (`mass_inv`).
+    m_inv: f64,
     omega: Vec<f64>,
     /// `sqrt(2/(N+1)) sin(l pi/(N+1))` for `l = 0..2(N+1)`: every entry of the transform,
     /// indexed by `(i j) mod 2(N+1)`, so no matrix is stored.
@@ -70,7 +72,13 @@ impl ChainModes {
         let sines = (0..2 * (n + 1))
             .map(|l| norm * (l as f64 * PI / np1).sin())
             .collect();
-        Ok(Self { n, m, omega, sines })
+        Ok(Self {
+            n,
+            m,
+            m_inv: 1.0 / m,
+            omega,
+            sines,
+        })
     }
 
     /// Number of sites `N`.
@@ -231,7 +239,7 @@ fn interior_bond_differences(
 /// Fixed-end nearest-neighbour force `F_i = phi'(q_{i+1} - q_i) - phi'(q_i - q_{i-1})` with
 /// walls `q_0 = q_{N+1} = 0`.
 #[inline]
-fn fixed_end_force(q: &[f64], out: &mut [f64], dphi: impl Fn(f64) -> f64) {
+pub(super) fn fixed_end_force(q: &[f64], out: &mut [f64], dphi: impl Fn(f64) -> f64) {
     let n = q.len();
     // The wall bonds are `q_1 - 0` and `0 - q_N`, written as such (`0.0 - x` and `-x` differ
     // for x = 0).
@@ -265,7 +273,7 @@ fn fixed_end_jacobian(q: &[f64], out: &mut [f64], d2phi: impl Fn(f64) -> f64) {
 
 /// Sum of `phi` over the `N + 1` bonds of a fixed-end chain (the interior bonds in the fixed
 /// order of [`lane_sum`](crate::classical::core::sum::lane_sum)).
-fn fixed_end_potential(q: &[f64], phi: impl Fn(f64) -> f64) -> f64 {
+pub(super) fn fixed_end_potential(q: &[f64], phi: impl Fn(f64) -> f64) -> f64 {
     let n = q.len();
     let interior = lane_sum_map2(&q[..n - 1], &q[1..], |a, b| phi(b - a));
     interior + phi(q[0]) + phi(-q[n - 1])
@@ -278,8 +286,8 @@ fn fixed_end_potential(q: &[f64], phi: impl Fn(f64) -> f64) -> f64 {
 #[derive(Debug, Clone)]
 pub struct HarmonicChain {
     phase: Phase,
+    /// The normal modes, and the mass `m` (one copy, read through them).
     modes: ChainModes,
-    m: f64,
     k: f64,
 }
 
@@ -295,14 +303,13 @@ impl HarmonicChain {
         Ok(Self {
             phase: Phase::from_halves("q0", q0, "p0", p0)?,
             modes,
-            m,
             k,
         })
     }
 
     /// Mass `m`.
     pub fn m(&self) -> f64 {
-        self.m
+        self.modes.m
     }
 
     /// Spring constant `k`.
@@ -327,7 +334,7 @@ impl HamiltonianSystem for HarmonicChain {
         fixed_end_potential(q, |r| 0.5 * k * r * r)
     }
     fn mass_inv(&self) -> MassInv<'_> {
-        MassInv::Uniform(1.0 / self.m)
+        MassInv::Uniform(self.modes.m_inv)
     }
     #[inline]
     fn force(&self, q: &[f64], _t: f64, out: &mut [f64]) -> Result<()> {
@@ -361,8 +368,8 @@ crate::impl_separable_dynamics!(HarmonicChain);
 #[derive(Debug, Clone)]
 pub struct FPUTChain {
     phase: Phase,
+    /// The normal modes, and the mass `m` (one copy, read through them).
     modes: ChainModes,
-    m: f64,
     k: f64,
     beta: f64,
 }
@@ -394,7 +401,6 @@ impl FPUTChain {
         Ok(Self {
             phase: Phase::from_halves("q0", &q0, "p0", &p0)?,
             modes,
-            m,
             k,
             beta,
         })
@@ -402,7 +408,7 @@ impl FPUTChain {
 
     /// Mass `m`.
     pub fn m(&self) -> f64 {
-        self.m
+        self.modes.m
     }
 
     /// Linear spring constant `k`.
@@ -435,7 +441,7 @@ impl HamiltonianSystem for FPUTChain {
         })
     }
     fn mass_inv(&self) -> MassInv<'_> {
-        MassInv::Uniform(1.0 / self.m)
+        MassInv::Uniform(self.modes.m_inv)
     }
     #[inline]
     fn force(&self, q: &[f64], _t: f64, out: &mut [f64]) -> Result<()> {
@@ -472,8 +478,8 @@ crate::impl_separable_dynamics!(FPUTChain);
 #[derive(Debug, Clone)]
 pub struct SineGordonChain {
     phase: Phase,
+    /// The normal modes, and the mass `m` (one copy, read through them).
     modes: ChainModes,
-    m: f64,
     k: f64,
 }
 
@@ -495,7 +501,6 @@ impl SineGordonChain {
         Ok(Self {
             phase: Phase::from_halves("q0", q0, "p0", p0)?,
             modes,
-            m,
             k,
         })
     }
@@ -617,7 +622,7 @@ impl SineGordonChain {
 
     /// Mass `m`.
     pub fn m(&self) -> f64 {
-        self.m
+        self.modes.m
     }
 
     /// Coupling constant `k`.
@@ -641,7 +646,7 @@ impl HamiltonianSystem for SineGordonChain {
         self.potential_with_cos_sum(q, sum_cos(q))
     }
     fn mass_inv(&self) -> MassInv<'_> {
-        MassInv::Uniform(1.0 / self.m)
+        MassInv::Uniform(self.modes.m_inv)
     }
     /// `F_i = k (q_{i+1} - q_i) - k (q_i - q_{i-1}) - sin q_i`, the missing bond at each free
     /// end contributing nothing.

@@ -36,6 +36,8 @@ use crate::classical::core::{
 pub struct ProjectileMotion {
     phase: Phase,
     m: f64,
+    /// `1/m`, formed once: every splitting step asks for it (`mass_inv`).
+    m_inv: f64,
     g: f64,
     drag_coeff: f64,
 }
@@ -56,9 +58,11 @@ impl ProjectileMotion {
     pub fn new(q0: &[f64], p0: &[f64], m: f64, g: f64, drag_coeff: f64) -> Result<Self> {
         check_vector("q0", q0, 2)?;
         check_vector("p0", p0, 2)?;
+        let m = check_positive("m", m)?;
         Ok(Self {
             phase: Phase::from_halves("q0", q0, "p0", p0)?,
-            m: check_positive("m", m)?,
+            m,
+            m_inv: 1.0 / m,
             g: check_positive("g", g)?,
             drag_coeff: check_non_negative("drag_coeff", drag_coeff)?,
         })
@@ -172,7 +176,7 @@ impl HamiltonianSystem for ProjectileMotion {
         self.drag_coeff <= 0.0
     }
     fn mass_inv(&self) -> MassInv<'_> {
-        MassInv::Uniform(1.0 / self.m)
+        MassInv::Uniform(self.m_inv)
     }
     /// The conservative force only, gravity `(0, -m g)`; drag enters through
     /// [`DynamicalSystem::derivatives`].
@@ -197,7 +201,7 @@ impl DynamicalSystem for ProjectileMotion {
     }
     /// `[p/m, (0, -m g) - c |v| v]` with `v = p/m`.
     fn derivatives(&self, _t: f64, state: &[f64], out: &mut [f64]) -> Result<()> {
-        let inv_m = 1.0 / self.m;
+        let inv_m = self.m_inv;
         let (vx, vy) = (state[2] * inv_m, state[3] * inv_m);
         let drag = self.drag_coeff * vx.hypot(vy);
         out[0] = vx;
@@ -213,7 +217,7 @@ impl DynamicalSystem for ProjectileMotion {
     /// Rows `dq/dt`: `I/m` in the `p` block; rows `dp/dt`: the drag Jacobian
     /// `-(c/m)(|v| I + v v^T / |v|)` (zero at rest).
     fn jacobian(&self, _t: f64, state: &[f64], out: &mut [f64]) -> Option<Result<()>> {
-        let inv_m = 1.0 / self.m;
+        let inv_m = self.m_inv;
         let v = [state[2] * inv_m, state[3] * inv_m];
         let speed = v[0].hypot(v[1]);
         out.iter_mut().for_each(|x| *x = 0.0);
