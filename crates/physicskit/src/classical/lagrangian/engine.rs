@@ -67,7 +67,7 @@
 //! Measured on the built-in systems through [`AutoDiff`] (callgrind, instructions per step
 //! including `sin`/`cos`, with every sample and its energy stored): double pendulum `rk4` 3.7k (an acceleration is about 0.8k), implicit
 //! midpoint 4.8k (about 0.45k per canonical evaluation, three of them per step, plus the
-//! solver's own work); coupled oscillators (`n = 3`) 5.0k; heavy top 5.1k; hoop 2.0k. The
+//! solver's own work); coupled oscillators (`n = 3`) 5.1k; heavy top 5.1k; hoop 2.1k (the table above). The
 //! per-direction scheme below takes 26k for a double-pendulum implicit-midpoint step.
 //! Larger systems, and the rarely used paths (`mass_matrix`, the Newton re-linearization of a
 //! non-quadratic `L`, `canonical_jacobian`), use one scalar (hyper-)dual evaluation per

@@ -27,8 +27,10 @@
 //!
 //! They work on the slices in place for any `n`, without buffers.
 
+use super::chains::{fixed_end_force, fixed_end_potential};
 use crate::classical::core::error::check_positive;
 use crate::classical::core::linalg::negligible_pivot;
+use crate::classical::core::sum::lane_sum_map;
 use crate::classical::core::{Error, Phase, Result};
 use crate::classical::lagrangian::{singular_mass_matrix, Lagrangian, LagrangianEngine, Scalar};
 
@@ -69,16 +71,12 @@ impl CoupledOscillatorsParams {
         super::chain_mode_frequency(self.n, self.m, self.k, j)
     }
 
-    /// `out_i = scale * k (q_{i-1} - 2 q_i + q_{i+1})`: `dL/dq` for `scale = 1`.
+    /// `out_i = scale * k ((q_{i+1} - q_i) - (q_i - q_{i-1}))` between the walls: `dL/dq` for
+    /// `scale = 1` (the harmonic chain's force, [`fixed_end_force`]).
     #[inline(always)]
     fn force(&self, q: &[f64], scale: f64, out: &mut [f64]) {
         let k = self.k * scale;
-        let n = q.len();
-        for (i, o) in out.iter_mut().enumerate() {
-            let left = if i > 0 { q[i - 1] } else { 0.0 };
-            let right = if i + 1 < n { q[i + 1] } else { 0.0 };
-            *o = k * ((left - q[i]) + (right - q[i]));
-        }
+        fixed_end_force(q, out, |r| k * r);
     }
 
     /// `1 / m`, or the singular-matrix error for `m = 0` (unvalidated parameters).
@@ -134,10 +132,9 @@ impl Lagrangian for CoupledOscillatorsParams {
 
     #[inline]
     fn closed_energy(&self, q: &[f64], v: &[f64], _t: f64) -> Option<f64> {
-        let kinetic: f64 = v.iter().map(|vi| vi * vi).sum();
-        let walls = q[0] * q[0] + q[self.n - 1] * q[self.n - 1];
-        let stretch: f64 = q.windows(2).map(|w| (w[1] - w[0]) * (w[1] - w[0])).sum();
-        Some(0.5 * (self.m * kinetic + self.k * (walls + stretch)))
+        let kinetic = lane_sum_map(v, |vi| vi * vi);
+        let springs = fixed_end_potential(q, |r| r * r);
+        Some(0.5 * (self.m * kinetic + self.k * springs))
     }
 
     #[inline]

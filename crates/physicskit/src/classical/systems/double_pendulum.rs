@@ -90,6 +90,14 @@ impl DoublePendulumParams {
         Ok(self)
     }
 
+    /// The off-diagonal mass-matrix entry `e = b cos(theta1 - theta2)`, from one reduction of
+    /// the difference (the mass matrix, the momenta and the velocity; the canonical field and
+    /// the acceleration take `cos D` from [`angles`], which they need anyway).
+    #[inline(always)]
+    fn coupling(&self, q: &[f64]) -> f64 {
+        self.coefficients()[1] * sin_cos(q[0] - q[1]).1
+    }
+
     /// `[a, b, d, g1, g2]` of the closed forms (module documentation).
     #[inline(always)]
     fn coefficients(&self) -> [f64; 5] {
@@ -154,16 +162,16 @@ impl Lagrangian for DoublePendulumParams {
 
     #[inline]
     fn closed_mass_matrix(&self, q: &[f64], _qdot: &[f64], _t: f64, out: &mut [f64]) -> Option<()> {
-        let [a, b, d, ..] = self.coefficients();
-        let e = b * sin_cos(q[0] - q[1]).1;
+        let [a, _, d, ..] = self.coefficients();
+        let e = self.coupling(q);
         out.copy_from_slice(&[a, e, e, d]);
         Some(())
     }
 
     #[inline]
     fn closed_momentum(&self, q: &[f64], w: &[f64], _t: f64, out: &mut [f64]) -> Option<()> {
-        let [a, b, d, ..] = self.coefficients();
-        let e = b * sin_cos(q[0] - q[1]).1;
+        let [a, _, d, ..] = self.coefficients();
+        let e = self.coupling(q);
         out[0] = a * w[0] + e * w[1];
         out[1] = e * w[0] + d * w[1];
         Some(())
@@ -208,8 +216,8 @@ impl Lagrangian for DoublePendulumParams {
 
     #[inline]
     fn closed_velocity(&self, q: &[f64], p: &[f64], t: f64, out: &mut [f64]) -> Option<Result<()>> {
-        let [a, b, d, ..] = self.coefficients();
-        let e = b * sin_cos(q[0] - q[1]).1;
+        let [a, _, d, ..] = self.coefficients();
+        let e = self.coupling(q);
         Some(solve_2x2(a, e, d, [p[0], p[1]], t).map(|w| out.copy_from_slice(&w)))
     }
 

@@ -105,8 +105,16 @@ impl SymmetricTopParams {
             });
         }
         let (s, c) = state[1].sin_cos();
-        let p_psi = self.i3 * (state[5] + state[3] * c);
-        Ok((self.i1 * state[3] * s * s + p_psi * c, p_psi))
+        let [p_phi, _, p_psi] = self.momenta(s, c, &state[3..]);
+        Ok((p_phi, p_psi))
+    }
+
+    /// `p = dL/dqdot` at `(sin theta, cos theta) = (s, c)` and rates `w`:
+    /// `[I1 phi' s^2 + p_psi c, I1 theta', p_psi]`, `p_psi = I3 w3`.
+    #[inline(always)]
+    fn momenta(&self, s: f64, c: f64, w: &[f64]) -> [f64; 3] {
+        let p_psi = self.i3 * spin(w, c);
+        [self.i1 * w[0] * s * s + p_psi * c, self.i1 * w[1], p_psi]
     }
 
     /// `I1 s^2`, the pivot that vanishes with `sin theta`, or the singular-matrix error where
@@ -139,6 +147,13 @@ impl SymmetricTopParams {
     }
 }
 
+/// The spin `w3 = psi' + phi' cos theta` from the rates `w = (phi', theta', psi')` and
+/// `c = cos theta`.
+#[inline(always)]
+fn spin(w: &[f64], c: f64) -> f64 {
+    w[2] + w[0] * c
+}
+
 impl Lagrangian for SymmetricTopParams {
     fn ndof(&self) -> usize {
         3
@@ -165,8 +180,7 @@ impl Lagrangian for SymmetricTopParams {
     #[inline]
     fn closed_momentum(&self, q: &[f64], w: &[f64], _t: f64, out: &mut [f64]) -> Option<()> {
         let (s, c) = sin_cos(q[1]);
-        let p_psi = self.i3 * (w[2] + w[0] * c);
-        out.copy_from_slice(&[self.i1 * w[0] * s * s + p_psi * c, self.i1 * w[1], p_psi]);
+        out.copy_from_slice(&self.momenta(s, c, w));
         Some(())
     }
 
@@ -179,7 +193,7 @@ impl Lagrangian for SymmetricTopParams {
         out: &mut [f64],
     ) -> Option<()> {
         let (s, c) = sin_cos(q[1]);
-        let w3 = w[2] + w[0] * c;
+        let w3 = spin(w, c);
         out.copy_from_slice(&[0.0, self.nutation_force(s, c, w[0], w3), 0.0]);
         Some(())
     }
@@ -187,7 +201,7 @@ impl Lagrangian for SymmetricTopParams {
     #[inline]
     fn closed_energy(&self, q: &[f64], w: &[f64], _t: f64) -> Option<f64> {
         let (s, c) = sin_cos(q[1]);
-        let (phis, w3) = (w[0] * s, w[2] + w[0] * c);
+        let (phis, w3) = (w[0] * s, spin(w, c));
         Some(0.5 * (self.i1 * (w[1] * w[1] + phis * phis) + self.i3 * w3 * w3) + self.mgl() * c)
     }
 
@@ -201,7 +215,7 @@ impl Lagrangian for SymmetricTopParams {
     ) -> Option<Result<()>> {
         let (s, c) = sin_cos(q[1]);
         let (phid, thetad) = (w[0], w[1]);
-        let w3 = w[2] + phid * c;
+        let w3 = spin(w, c);
         Some(self.pivot(s, c, t).map(|_| {
             let phidd = thetad * (self.i3 * w3 - 2.0 * self.i1 * phid * c) / (self.i1 * s);
             out.copy_from_slice(&[
