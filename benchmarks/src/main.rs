@@ -1,6 +1,6 @@
 //! Prints ns/step and energy drift of every workload through the Rust API.
 //!
-//! `cargo run --release -p physicskit-benchmarks --bin workloads [steps] [case] [lib|plain]`
+//! `cargo run --release -p physicskit-benchmarks --bin workloads [steps] [case] [lib|plain] [repeats]`
 //!
 //! `workloads ensemble` times a 10^6-pendulum swarm over 1000 yoshida4 steps on 1 thread and on
 //! all cores, and checks the two results are bit-identical.
@@ -38,53 +38,41 @@ fn main() {
             .nth(4)
             .and_then(|s| s.parse().ok())
             .unwrap_or(1);
-        let mut best = f64::INFINITY;
-        for _ in 0..repeats {
-            let start = Instant::now();
-            if side == "plain" {
-                let run = physicskit_benchmarks::plain::case(w.name).expect("a plain version");
+        let ns = if side == "plain" {
+            let run = physicskit_benchmarks::plain::case(w.name).expect("a plain version");
+            best_ns(repeats, steps, || {
                 std::hint::black_box(run(steps, w.dt));
-            } else {
+            })
+        } else {
+            best_ns(repeats, steps, || {
                 std::hint::black_box((w.run)(steps, w.dt, w.method).expect("runs"));
-            }
-            best = best.min(start.elapsed().as_secs_f64());
-        }
+            })
+        };
         if repeats > 1 {
-            println!(
-                "{name:<22} {side:<6} {:>10.1} ns/step, best of {repeats}",
-                best * 1e9 / steps as f64
-            );
+            println!("{name:<22} {side:<6} {ns:>10.1} ns/step, best of {repeats}");
         }
         return;
     }
     for w in physicskit_benchmarks::workloads::all() {
-        // Best of three: the machine is shared.
-        let mut best = f64::INFINITY;
-        let mut drift = f64::NAN;
-        for _ in 0..3 {
-            let start = Instant::now();
-            match (w.run)(steps, w.dt, w.method) {
-                Ok(r) => {
-                    best = best.min(start.elapsed().as_secs_f64());
-                    drift = r.max_relative_energy_error().unwrap_or(f64::NAN);
-                }
-                Err(e) => {
-                    println!("{:<22} error: {e}", w.name);
-                    break;
-                }
+        // One untimed run (the energy drift; errors), then the best of three (the machine is
+        // shared); the plain loop likewise.
+        let drift = match (w.run)(steps, w.dt, w.method) {
+            Ok(r) => r.max_relative_energy_error().unwrap_or(f64::NAN),
+            Err(e) => {
+                println!("{:<22} error: {e}", w.name);
+                continue;
             }
-        }
-        let ns = best * 1e9 / steps as f64;
+        };
+        let ns = best_ns(3, steps, || {
+            std::hint::black_box((w.run)(steps, w.dt, w.method).expect("ran above"));
+        });
         let plain = physicskit_benchmarks::plain::case(w.name)
             .filter(|_| w.method == physicskit::classical::Method::Yoshida4)
             .map(|run| {
-                (0..3)
-                    .map(|_| {
-                        let start = Instant::now();
-                        std::hint::black_box(run(steps, w.dt));
-                        start.elapsed().as_secs_f64() * 1e9 / steps as f64
-                    })
-                    .fold(f64::INFINITY, f64::min)
+                std::hint::black_box(run(steps, w.dt));
+                best_ns(3, steps, || {
+                    std::hint::black_box(run(steps, w.dt));
+                })
             });
         match plain {
             Some(p) => println!(
@@ -107,6 +95,17 @@ fn main() {
             ),
         }
     }
+}
+
+/// The best of `repeats` timings of `run`, in ns per step of a `steps`-step run.
+fn best_ns(repeats: usize, steps: usize, mut run: impl FnMut()) -> f64 {
+    (0..repeats.max(1))
+        .map(|_| {
+            let start = Instant::now();
+            run();
+            start.elapsed().as_secs_f64() * 1e9 / steps as f64
+        })
+        .fold(f64::INFINITY, f64::min)
 }
 
 fn ensemble() {

@@ -2,11 +2,14 @@
 //!
 //! Allocation-free inside the loop, Yoshida-4 with merged kicks (three force evaluations per
 //! step, the last force reused), storing `t`, `q`, `p` and the energy of every sample in
-//! preallocated vectors. The library must come within 1.25x of these (issue 7). The force and
-//! energy are closures, which monomorphization inlines exactly like hand-written code. The
-//! trig-bound loops use libm unless `PHYSICSKIT_PLAIN_SLICE_TRIG` is set (see [`case`]).
+//! preallocated vectors; the potential of a stored sample comes from its step's last force
+//! evaluation (the same `q`), as a careful hand-written loop would take it, and each force
+//! loop is written without values carried from one site to the next, so it vectorizes. The
+//! library must come within 1.25x of these (issue 7). The force and energy are closures, which
+//! monomorphization inlines exactly like hand-written code. The trig-bound loops use libm
+//! unless `PHYSICSKIT_PLAIN_SLICE_TRIG` is set (see [`case`]).
 
-use physicskit::classical::core::trig::{sin_into, sum_cos};
+use physicskit::classical::core::trig::{sin_into_scaled, sin_into_sum_cos};
 
 /// `w1 = 1/(2 - 2^(1/3))` (Yoshida 1990).
 const W1: f64 = 1.351_207_191_959_657_6;
@@ -25,15 +28,17 @@ pub struct Trajectory {
     pub energy: Vec<f64>,
 }
 
-/// Yoshida-4 over `n` steps of `dt` from `(q0, p0)`; `force(q, f)` writes `-dV/dq`.
+/// Yoshida-4 over `n` steps of `dt` from `(q0, p0)`. `force(q, f, potential)` writes `-dV/dq`
+/// into `f` and, when `potential` is true, returns `V(q)` (anything otherwise); `kinetic(p)`
+/// is `T(p)`.
 pub fn yoshida4(
     q0: &[f64],
     p0: &[f64],
     mass_inv: f64,
     dt: f64,
     n: usize,
-    force: impl Fn(&[f64], &mut [f64]),
-    energy: impl Fn(&[f64], &[f64]) -> f64,
+    force: impl Fn(&[f64], &mut [f64], bool) -> f64,
+    kinetic: impl Fn(&[f64]) -> f64,
 ) -> Trajectory {
     let d = q0.len();
     let mut out = Trajectory {
@@ -44,14 +49,14 @@ pub fn yoshida4(
     };
     let (mut q, mut p) = (q0.to_vec(), p0.to_vec());
     let mut f = vec![0.0; d];
-    let record = |out: &mut Trajectory, t: f64, q: &[f64], p: &[f64]| {
+    let record = |out: &mut Trajectory, t: f64, q: &[f64], p: &[f64], v: f64| {
         out.t.push(t);
         out.q.extend_from_slice(q);
         out.p.extend_from_slice(p);
-        out.energy.push(energy(q, p));
+        out.energy.push(kinetic(p) + v);
     };
-    record(&mut out, 0.0, &q, &p);
-    force(&q, &mut f);
+    let v = force(&q, &mut f, true);
+    record(&mut out, 0.0, &q, &p, v);
     let kicks = [
         0.5 * W1 * dt,
         0.5 * (W1 + W0) * dt,
@@ -60,17 +65,18 @@ pub fn yoshida4(
     ];
     let drifts = [W1 * dt * mass_inv, W0 * dt * mass_inv, W1 * dt * mass_inv];
     for step in 1..=n {
+        let mut v = 0.0;
         for i in 0..3 {
             for j in 0..d {
                 p[j] += kicks[i] * f[j];
                 q[j] += drifts[i] * p[j];
             }
-            force(&q, &mut f);
+            v = force(&q, &mut f, i == 2);
         }
         for j in 0..d {
             p[j] += kicks[3] * f[j];
         }
-        record(&mut out, step as f64 * dt, &q, &p);
+        record(&mut out, step as f64 * dt, &q, &p, v);
     }
     out
 }
@@ -81,6 +87,11 @@ pub fn yoshida4(
 /// ratio isolates the integrator.
 fn slice_trig() -> bool {
     std::env::var_os("PHYSICSKIT_PLAIN_SLICE_TRIG").is_some()
+}
+
+/// `sum p_i^2 / 2` (unit masses).
+fn half_sum_squares(p: &[f64]) -> f64 {
+    0.5 * p.iter().map(|x| x * x).sum::<f64>()
 }
 
 /// The plain-loop version of a separable workload, by the workload's name, with the same
@@ -96,11 +107,12 @@ pub fn case(name: &str) -> Option<fn(usize, f64) -> Trajectory> {
                 1.0,
                 dt,
                 n,
-                |_, f| {
+                |q, f, _| {
                     f[0] = 0.0;
                     f[1] = -g;
+                    g * q[1]
                 },
-                |q, p| 0.5 * (p[0] * p[0] + p[1] * p[1]) + g * q[1],
+                half_sum_squares,
             )
         },
         "kepler" | "kepler_pn" => {
@@ -117,39 +129,42 @@ pub fn case(name: &str) -> Option<fn(usize, f64) -> Trajectory> {
                 1.0,
                 dt,
                 n,
-                |q, f| {
+                |q, f, _| {
                     f[0] = -q[0] - 2.0 * q[0] * q[1];
                     f[1] = -q[1] - q[0] * q[0] + q[1] * q[1];
-                },
-                |q, p| {
-                    0.5 * (p[0] * p[0] + p[1] * p[1] + q[0] * q[0] + q[1] * q[1])
-                        + q[0] * q[0] * q[1]
+                    0.5 * (q[0] * q[0] + q[1] * q[1]) + q[0] * q[0] * q[1]
                         - q[1] * q[1] * q[1] / 3.0
                 },
+                half_sum_squares,
             )
         },
         "swarm" => |n, dt| {
             if slice_trig() {
-                swarm(
-                    n,
-                    dt,
-                    |q, f| {
-                        sin_into(q, f);
-                        f.iter_mut().for_each(|fi| *fi = -*fi);
-                    },
-                    |q, p| p.iter().map(|p| 0.5 * p * p).sum::<f64>() - sum_cos(q),
-                )
+                swarm(n, dt, |q, f, potential| {
+                    if potential {
+                        -sin_into_sum_cos(q, f, -1.0)
+                    } else {
+                        sin_into_scaled(q, f, -1.0);
+                        0.0
+                    }
+                })
             } else {
-                swarm(
-                    n,
-                    dt,
-                    |q, f| {
+                swarm(n, dt, |q, f, potential| {
+                    if potential {
+                        let mut v = 0.0;
+                        for (fi, qi) in f.iter_mut().zip(q) {
+                            let (s, c) = qi.sin_cos();
+                            *fi = -s;
+                            v -= c;
+                        }
+                        v
+                    } else {
                         for (fi, qi) in f.iter_mut().zip(q) {
                             *fi = -qi.sin();
                         }
-                    },
-                    |q, p| q.iter().zip(p).map(|(q, p)| 0.5 * p * p - q.cos()).sum(),
-                )
+                        0.0
+                    }
+                })
             }
         },
         "harmonic_chain" => |n, dt| {
@@ -160,8 +175,8 @@ pub fn case(name: &str) -> Option<fn(usize, f64) -> Trajectory> {
                 1.0,
                 dt,
                 n,
-                |q, f| fixed_chain_force(q, f, 0.0),
-                |q, p| fixed_chain_energy(q, p, 0.0),
+                |q, f, potential| fixed_chain_force(q, f, 0.0, potential),
+                half_sum_squares,
             )
         },
         "fput" => |n, dt| {
@@ -172,45 +187,37 @@ pub fn case(name: &str) -> Option<fn(usize, f64) -> Trajectory> {
                 1.0,
                 dt,
                 n,
-                |q, f| fixed_chain_force(q, f, 0.7),
-                |q, p| fixed_chain_energy(q, p, 0.7),
+                |q, f, potential| fixed_chain_force(q, f, 0.7, potential),
+                half_sum_squares,
             )
         },
         "sine_gordon" => |n, dt| {
-            let bond_energy =
-                |q: &[f64]| -> f64 { q.windows(2).map(|w| 0.5 * (w[1] - w[0]).powi(2)).sum() };
             if slice_trig() {
-                sine_gordon(
-                    n,
-                    dt,
-                    |q, f| {
-                        sin_into(q, f);
-                        sine_gordon_force(q, f);
-                    },
-                    |q, p| {
-                        let kinetic: f64 = p.iter().map(|p| 0.5 * p * p).sum();
-                        bond_energy(q) + kinetic + q.len() as f64 - sum_cos(q)
-                    },
-                )
+                sine_gordon(n, dt, |q, f, potential| {
+                    let onsite = if potential {
+                        q.len() as f64 - sin_into_sum_cos(q, f, 1.0)
+                    } else {
+                        sin_into_scaled(q, f, 1.0);
+                        0.0
+                    };
+                    sine_gordon_bonds(q, f, potential) + onsite
+                })
             } else {
-                sine_gordon(
-                    n,
-                    dt,
-                    |q, f| {
+                sine_gordon(n, dt, |q, f, potential| {
+                    let mut onsite = 0.0;
+                    if potential {
+                        for (fi, qi) in f.iter_mut().zip(q) {
+                            let (s, c) = qi.sin_cos();
+                            *fi = s;
+                            onsite += 1.0 - c;
+                        }
+                    } else {
                         for (fi, qi) in f.iter_mut().zip(q) {
                             *fi = qi.sin();
                         }
-                        sine_gordon_force(q, f);
-                    },
-                    |q, p| {
-                        let sites: f64 = q
-                            .iter()
-                            .zip(p)
-                            .map(|(q, p)| 0.5 * p * p + 1.0 - q.cos())
-                            .sum();
-                        bond_energy(q) + sites
-                    },
-                )
+                    }
+                    sine_gordon_bonds(q, f, potential) + onsite
+                })
             }
         },
         _ => return None,
@@ -226,73 +233,65 @@ fn kepler(e: f64, c_pn: f64, n: usize, dt: f64) -> Trajectory {
         1.0,
         dt,
         n,
-        |q, f| {
+        |q, f, _| {
             let inv = 1.0 / (q[0] * q[0] + q[1] * q[1]).sqrt();
             let inv3 = inv * inv * inv;
             let s = -inv3 + 3.0 * c_pn * inv3 * inv * inv;
             f[0] = s * q[0];
             f[1] = s * q[1];
+            -inv + c_pn * inv3
         },
-        |q, p| {
-            let inv = 1.0 / (q[0] * q[0] + q[1] * q[1]).sqrt();
-            0.5 * (p[0] * p[0] + p[1] * p[1]) - inv + c_pn * inv * inv * inv
-        },
+        half_sum_squares,
     )
 }
 
-/// The workloads' swarm (n = 200) with the given force and energy.
-fn swarm(
-    n: usize,
-    dt: f64,
-    force: impl Fn(&[f64], &mut [f64]),
-    energy: impl Fn(&[f64], &[f64]) -> f64,
-) -> Trajectory {
-    let s =
-        physicskit::classical::systems::PendulumSwarm::from_box(1.0, 0.0, 0.05, 0.05, 200, 1.0, 0)
-            .expect("valid swarm");
+/// The workloads' swarm (n = 200) with the given force.
+fn swarm(n: usize, dt: f64, force: impl Fn(&[f64], &mut [f64], bool) -> f64) -> Trajectory {
+    let s = crate::workloads::swarm().expect("valid swarm");
     let (q0, p0) = physicskit::classical::DynamicalSystem::state(&s).split_at(200);
-    yoshida4(q0, p0, 1.0, dt, n, force, energy)
+    yoshida4(q0, p0, 1.0, dt, n, force, half_sum_squares)
 }
 
-/// The workloads' sine-Gordon kink (n = 100) with the given force and energy.
-fn sine_gordon(
-    n: usize,
-    dt: f64,
-    force: impl Fn(&[f64], &mut [f64]),
-    energy: impl Fn(&[f64], &[f64]) -> f64,
-) -> Trajectory {
-    let (q0, p0) = physicskit::classical::systems::SineGordonChain::kink(100, 50.0, 1.0, 0.2, 1)
-        .expect("valid kink");
-    yoshida4(&q0, &p0, 1.0, dt, n, force, energy)
+/// The workloads' sine-Gordon kink (n = 100) with the given force.
+fn sine_gordon(n: usize, dt: f64, force: impl Fn(&[f64], &mut [f64], bool) -> f64) -> Trajectory {
+    let (q0, p0) = crate::workloads::sine_gordon_kink().expect("valid kink");
+    yoshida4(&q0, &p0, 1.0, dt, n, force, half_sum_squares)
 }
 
-/// `F_i = (q_{i-1} - q_i) + (q_{i+1} - q_i) - sin q_i` with free ends, from `f = sin q`.
-fn sine_gordon_force(q: &[f64], f: &mut [f64]) {
-    let last = q.len() - 1;
-    for i in 0..=last {
-        let left = if i > 0 { q[i - 1] - q[i] } else { 0.0 };
-        let right = if i < last { q[i + 1] - q[i] } else { 0.0 };
-        f[i] = left + right - f[i];
-    }
-}
-
-/// `F_i = (r_i - r_{i-1}) + beta (r_i^3 - r_{i-1}^3)`, `r_i = q_{i+1} - q_i`, walls at both ends.
-fn fixed_chain_force(q: &[f64], f: &mut [f64], beta: f64) {
+/// Turns `f = sin q` into `F_i = (q_{i-1} - q_i) + (q_{i+1} - q_i) - sin q_i` with free ends
+/// (the ends outside the loop, so it vectorizes); returns the springs' energy
+/// `sum (q_{i+1} - q_i)^2 / 2` when `potential`, else 0.
+fn sine_gordon_bonds(q: &[f64], f: &mut [f64], potential: bool) -> f64 {
     let n = q.len();
-    let mut left = q[0];
-    for i in 0..n {
-        let right = if i + 1 < n { q[i + 1] - q[i] } else { -q[i] };
-        f[i] = right - left + beta * (right * right * right - left * left * left);
-        left = right;
+    for i in 1..n - 1 {
+        f[i] = (q[i - 1] - q[i]) + (q[i + 1] - q[i]) - f[i];
+    }
+    f[0] = (q[1] - q[0]) - f[0];
+    f[n - 1] = (q[n - 2] - q[n - 1]) - f[n - 1];
+    if potential {
+        q.windows(2)
+            .map(|w| 0.5 * (w[1] - w[0]) * (w[1] - w[0]))
+            .sum()
+    } else {
+        0.0
     }
 }
 
-fn fixed_chain_energy(q: &[f64], p: &[f64], beta: f64) -> f64 {
+/// `F_i = phi'(r_i) - phi'(r_{i-1})`, `phi'(r) = r + beta r^3`, `r_i = q_{i+1} - q_i`, walls at
+/// both ends, each bond computed for both its sites (no value carried along, so the loop
+/// vectorizes); returns `sum phi(r)`, `phi(r) = r^2/2 + beta r^4/4`, when `potential`, else 0.
+fn fixed_chain_force(q: &[f64], f: &mut [f64], beta: f64, potential: bool) -> f64 {
     let n = q.len();
-    let bond = |r: f64| 0.5 * r * r + 0.25 * beta * r * r * r * r;
-    let mut v = bond(q[0]) + bond(q[n - 1]);
-    for i in 0..n - 1 {
-        v += bond(q[i + 1] - q[i]);
+    let dphi = |r: f64| r + beta * r * r * r;
+    for i in 1..n - 1 {
+        f[i] = dphi(q[i + 1] - q[i]) - dphi(q[i] - q[i - 1]);
     }
-    v + p.iter().map(|x| 0.5 * x * x).sum::<f64>()
+    f[0] = dphi(q[1] - q[0]) - dphi(q[0]);
+    f[n - 1] = dphi(-q[n - 1]) - dphi(q[n - 1] - q[n - 2]);
+    if potential {
+        let phi = |r: f64| 0.5 * r * r + 0.25 * beta * r * r * r * r;
+        phi(q[0]) + phi(q[n - 1]) + q.windows(2).map(|w| phi(w[1] - w[0])).sum::<f64>()
+    } else {
+        0.0
+    }
 }

@@ -37,12 +37,29 @@ fn double_pendulum() -> Result<DoublePendulum> {
     DoublePendulum::new(&[2.0, 1.0], &[0.5, -0.3], Default::default())
 }
 
+/// The swarm workload's 200 pendulums (also the plain loop's start).
+///
+/// # Errors
+/// None for these parameters; the constructor's otherwise.
+pub fn swarm() -> Result<PendulumSwarm> {
+    PendulumSwarm::from_box(1.0, 0.0, 0.05, 0.05, 200, 1.0, 0)
+}
+
+/// The sine-Gordon workload's kink on 100 sites, `(q0, p0)` (also the plain loop's start).
+///
+/// # Errors
+/// None for these parameters; the constructor's otherwise.
+pub fn sine_gordon_kink() -> Result<(Vec<f64>, Vec<f64>)> {
+    SineGordonChain::kink(100, 50.0, 1.0, 0.2, 1)
+}
+
 /// Initial positions of an `n`-mass chain with fixed ends (the 16-mass harmonic chain, the
-/// 32-mass FPUT chain): mode 1 with amplitude 0.5.
+/// 32-mass FPUT chain): mode 1 with amplitude 0.5, as `FPUTChain::new` lays it out.
 pub fn harmonic_chain_q0(n: usize) -> Vec<f64> {
-    (1..=n)
-        .map(|i| 0.5 * (std::f64::consts::PI * i as f64 / (n + 1) as f64).sin())
-        .collect()
+    FPUTChain::new(n, 1.0, 1.0, 0.0, 1, 0.5)
+        .expect("valid chain")
+        .q()
+        .to_vec()
 }
 
 /// Every workload, in the order of the issue.
@@ -123,13 +140,7 @@ pub fn all() -> Vec<Workload> {
             name: "swarm",
             method: Method::Yoshida4,
             dt: 1e-3,
-            run: |n, dt, m| {
-                PendulumSwarm::from_box(1.0, 0.0, 0.05, 0.05, 200, 1.0, 0)?.integrate(
-                    span(n, dt),
-                    dt,
-                    m,
-                )
-            },
+            run: |n, dt, m| swarm()?.integrate(span(n, dt), dt, m),
         },
         Workload {
             name: "harmonic_chain",
@@ -156,7 +167,7 @@ pub fn all() -> Vec<Workload> {
             method: Method::Yoshida4,
             dt: 1e-2,
             run: |n, dt, m| {
-                let (q0, p0) = SineGordonChain::kink(100, 50.0, 1.0, 0.2, 1)?;
+                let (q0, p0) = sine_gordon_kink()?;
                 SineGordonChain::new(100, 1.0, 1.0, Some(&q0), Some(&p0))?.integrate(
                     span(n, dt),
                     dt,

@@ -7,7 +7,7 @@ import numpy as np
 import numpy.typing as npt
 
 ArrayF64 = npt.NDArray[np.float64]
-ResultTuple = tuple[ArrayF64, ArrayF64, ArrayF64 | None, str, dict[str, Any]]
+ResultTuple = tuple[ArrayF64, ArrayF64, int | None, ArrayF64 | None, str, dict[str, Any]]
 
 class ConvergenceError(RuntimeError):
     """The implicit solver of a step did not converge; reduce dt."""

@@ -109,8 +109,12 @@ impl<'py> Callbacks<'py> {
 
     /// The Python `energy(state)`.
     fn energy(&self, state: &[f64]) -> f64 {
-        let py = self.obj.py();
-        self.scalar(intern!(py, "energy"), (self.array(state),))
+        self.scalar_of(intern!(self.obj.py(), "energy"), state)
+    }
+
+    /// `name(x)` for one array argument, as a float (see [`scalar`](Self::scalar)).
+    fn scalar_of(&self, name: &Bound<'py, pyo3::types::PyString>, x: &[f64]) -> f64 {
+        self.scalar(name, (self.array(x),))
     }
 
     fn array(&self, v: &[f64]) -> Bound<'py, PyArray1<f64>> {
@@ -181,14 +185,12 @@ impl HamiltonianSystem for PyHamiltonian<'_> {
         self.ndof
     }
     fn kinetic_energy(&self, p: &[f64]) -> f64 {
-        let py = self.cb.obj.py();
         self.cb
-            .scalar(intern!(py, "kinetic_energy"), (self.cb.array(p),))
+            .scalar_of(intern!(self.cb.obj.py(), "kinetic_energy"), p)
     }
     fn potential_energy(&self, q: &[f64]) -> f64 {
-        let py = self.cb.obj.py();
         self.cb
-            .scalar(intern!(py, "potential_energy"), (self.cb.array(q),))
+            .scalar_of(intern!(self.cb.obj.py(), "potential_energy"), q)
     }
     fn separable(&self) -> bool {
         self.separable

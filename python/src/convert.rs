@@ -20,10 +20,10 @@ pub fn array1<'py>(py: Python<'py>, v: &[f64]) -> Bound<'py, PyArray1<f64>> {
     PyArray1::from_slice(py, v)
 }
 
-/// Converts a result into the tuple `(t, y, energy, method, extra)` from which the Python
+/// Converts a result into the tuple `(t, y, ndof, energy, method, extra)` from which the Python
 /// `SimulationResult` is built. Arrays are moved, not copied; `q` and `p` are not sent (they
 /// are views of `y`'s halves, which the Python side splits off on first access,
-/// `_SplitOnAccess`).
+/// `_SplitOnAccess`, where `ndof` is not `None`).
 ///
 /// # Errors
 /// Python allocation failures.
@@ -35,9 +35,10 @@ pub fn result_tuple<'py>(py: Python<'py>, r: SimulationResult) -> PyResult<Bound
             ExtraValue::Array(a) => extra.set_item(k, a.into_pyarray(py))?,
         }
     }
-    let items: [Bound<'py, PyAny>; 5] = [
+    let items: [Bound<'py, PyAny>; 6] = [
         r.t.into_pyarray(py).into_any(),
         r.y.into_pyarray(py).into_any(),
+        r.ndof.into_pyobject(py)?.into_any(),
         opt(py, r.energy.map(|a| a.into_pyarray(py).into_any())),
         r.method.into_pyobject(py)?.into_any(),
         extra.into_any(),

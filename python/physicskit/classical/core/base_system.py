@@ -41,8 +41,8 @@ class SimulationResult:
     """Output of ``integrate``: the sampled trajectory and its diagnostics.
 
     Every array is a C-contiguous float64 numpy array. ``t``, ``y`` and ``energy`` own memory
-    moved from Rust (no copy); for built-in systems ``q`` and ``p`` are split off ``y`` when
-    first read (one copy each, then kept), so a run writes each state once. With
+    moved from Rust (no copy); ``q`` and ``p`` are split off ``y`` when first read (one copy
+    each, then kept), so a run writes each state once. With
     ``n_steps = round((t1 - t0) / dt)`` there are ``n_steps + 1`` samples.
     """
 
@@ -259,10 +259,13 @@ class DynamicalSystem(ABC):
         # Evaluating a non-finite state is allowed (it yields NaN); only the length is checked.
         return as_vector("state", state, len(self.state), finite=False)
 
-    def _finish(self, parts, ndof: int = 0) -> SimulationResult:
-        """Builds the result from the native tuple ``(t, y, energy, method, extra)`` and moves
-        the system to its last sample; ``ndof > 0`` splits ``q`` and ``p`` off ``y`` lazily."""
-        t, y, energy, method, extra = parts
+    def _finish(self, parts, ndof: Optional[int] = None) -> SimulationResult:
+        """Builds the result from the native tuple ``(t, y, ndof, energy, method, extra)`` and
+        moves the system to its last sample. Where ``ndof`` is set (by the native side, or by
+        the caller for a run the native side saw as a plain ODE), ``q`` and ``p`` are split off
+        ``y`` lazily."""
+        t, y, native_ndof, energy, method, extra = parts
+        ndof = native_ndof if ndof is None else ndof
         if ndof:
             result = _SplitOnAccess(t, y, energy=energy, method=method, extra=extra, ndof=ndof)
         else:
@@ -277,8 +280,7 @@ class DynamicalSystem(ABC):
         parts = self._native.integrate(
             state, float(self.t), t_span, float(dt), method, **sampling._asdict()
         )
-        split = isinstance(self, (HamiltonianSystem, LagrangianSystem))
-        return self._finish(parts, ndof=self.ndof if split else 0)
+        return self._finish(parts)
 
 
 class HamiltonianSystem(DynamicalSystem):
@@ -409,7 +411,7 @@ class HamiltonianSystem(DynamicalSystem):
             self._mass_inv_vector(),
             **sampling._asdict(),
         )
-        return self._finish(parts, ndof=self.ndof)
+        return self._finish(parts)
 
 
 class LagrangianSystem(DynamicalSystem):
@@ -515,6 +517,7 @@ class LagrangianSystem(DynamicalSystem):
         parts = _core.integrate_ode(
             self, state, float(self.t), t_span, float(dt), method, **sampling._asdict()
         )
+        # Integrated as a plain ODE on [q, qdot]: the split is known here only.
         return self._finish(parts, ndof=self.ndof)
 
 
