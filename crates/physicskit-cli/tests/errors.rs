@@ -230,7 +230,8 @@ fn library_range_checks_reach_the_user() {
     let err = system_fails("kepler", &["--e", "1.2"], "a.npz");
     assert!(err.contains("eccentricity"), "{err}");
     // A zero quaternion is no rotation (EulerTop::new).
-    system_fails("euler-top", &["--quat0", "0,0,0,0"], "a.npz");
+    let err = system_fails("euler-top", &["--quat0", "0,0,0,0"], "a.npz");
+    assert!(err.contains("quat0") && err.contains("quaternion"), "{err}");
 }
 
 #[test]
