@@ -2,8 +2,11 @@
 //!
 //! They are deliberately minimal: the full systems of the spec live in `systems`.
 
+use crate::classical::core::catalog::{Default as D, Family, ParamSpec as P, Range, SystemEntry};
+use crate::classical::core::erased::{Capabilities, Hamiltonian};
+use crate::classical::core::error::check_len;
 use crate::classical::core::error::{check_finite_scalar, check_positive};
-use crate::classical::core::{HamiltonianSystem, MassInv, Phase, Result};
+use crate::classical::core::{HamiltonianSystem, MassInv, Method, Phase, Result};
 
 /// The simple pendulum `H = p^2/2 - (g/l) cos q` (unit `m l^2`).
 #[derive(Debug, Clone)]
@@ -109,3 +112,96 @@ impl HamiltonianSystem for HarmonicOscillator {
 }
 
 crate::impl_separable_dynamics!(HarmonicOscillator);
+
+impl Capabilities for Pendulum {
+    fn positions(&self, q: &[f64]) -> Option<Result<Vec<f64>>> {
+        // The bob of a unit-length pendulum, angle from the downward vertical.
+        Some(check_len("q", q, 1).map(|()| vec![q[0].sin(), -q[0].cos()]))
+    }
+}
+
+impl Capabilities for HarmonicOscillator {}
+
+/// The catalogue entry of [`Pendulum`].
+pub static PENDULUM_ENTRY: SystemEntry = SystemEntry {
+    name: "pendulum",
+    python: None,
+    summary: "simple pendulum H = p^2/2 - (g/l) cos q (examples::Pendulum)",
+    family: Family::Hamiltonian,
+    params: &[
+        P::scalar(
+            "q0",
+            D::demo_scalar(1.0),
+            "rad",
+            Range::ANY,
+            "initial angle",
+        ),
+        P::scalar(
+            "p0",
+            D::demo_scalar(0.0),
+            "rad/s",
+            Range::ANY,
+            "initial momentum (unit m l^2)",
+        ),
+        P::scalar(
+            "g_over_l",
+            D::scalar(1.0),
+            "1/s^2",
+            Range::POSITIVE,
+            "g / l",
+        ),
+    ],
+    separable: true,
+    default_method: Method::Yoshida4,
+    note: None,
+    build: |v| {
+        Ok(Box::new(Hamiltonian(Pendulum::new(
+            v.scalar("q0")?,
+            v.scalar("p0")?,
+            v.scalar("g_over_l")?,
+        )?)))
+    },
+};
+
+/// The catalogue entry of [`HarmonicOscillator`].
+pub static HARMONIC_OSCILLATOR_ENTRY: SystemEntry = SystemEntry {
+    name: "harmonic-oscillator",
+    python: None,
+    summary: "harmonic oscillator H = p^2/(2m) + k q^2/2 (examples::HarmonicOscillator)",
+    family: Family::Hamiltonian,
+    params: &[
+        P::scalar(
+            "q0",
+            D::demo_scalar(1.0),
+            "m",
+            Range::ANY,
+            "initial position",
+        ),
+        P::scalar(
+            "p0",
+            D::demo_scalar(0.0),
+            "kg m/s",
+            Range::ANY,
+            "initial momentum",
+        ),
+        P::scalar("m", D::scalar(1.0), "kg", Range::POSITIVE, "mass"),
+        P::scalar(
+            "k",
+            D::scalar(1.0),
+            "N/m",
+            Range::POSITIVE,
+            "spring constant",
+        ),
+    ],
+    separable: true,
+    default_method: Method::Yoshida4,
+    note: None,
+    build: |v| {
+        Ok(Box::new(Hamiltonian(HarmonicOscillator::new(
+            v.scalar("q0")?,
+            v.scalar("p0")?,
+            v.scalar("m")?,
+            v.scalar("k")?,
+        )?)))
+    },
+};

@@ -11,6 +11,7 @@
 //!   and benchmarks.
 
 pub mod analysis;
+pub mod catalog;
 pub mod core;
 pub mod examples;
 pub mod integrators;
@@ -18,7 +19,7 @@ pub mod lagrangian;
 pub mod systems;
 
 pub use self::core::{
-    split, DynamicalSystem, Error, ExtraValue, HamiltonianSystem, IntegrateOptions,
+    split, DynSystem, DynamicalSystem, Error, ExtraValue, HamiltonianSystem, IntegrateOptions,
     LagrangianSystem, MassInv, Method, Observer, OdeSystem, Phase, Result, Sampling,
     SimulationResult, TimeGrid,
 };

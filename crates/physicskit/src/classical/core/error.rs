@@ -21,6 +21,23 @@ pub enum Error {
         /// What the value must satisfy.
         reason: String,
     },
+    /// An argument that is not a number, or not of the kind expected (a vector where a number
+    /// belongs, an unknown parameter name, a word outside its set, a missing value).
+    #[error("invalid argument `{name}`: {reason}")]
+    InvalidArgument {
+        /// Argument name as the user wrote it.
+        name: String,
+        /// What is wrong and what is expected.
+        reason: String,
+    },
+    /// A system name that the catalogue does not know.
+    #[error("unknown system `{name}`; known systems are: {valid}")]
+    UnknownSystem {
+        /// The name given.
+        name: String,
+        /// Comma-separated list of valid names.
+        valid: String,
+    },
     /// An array has the wrong length.
     #[error("`{name}` has length {found}, expected {expected}")]
     DimensionMismatch {
@@ -196,5 +213,21 @@ pub fn check_non_negative(name: &str, value: f64) -> Result<f64> {
         Ok(value)
     } else {
         Err(Error::invalid(name, value, "must be finite and >= 0"))
+    }
+}
+
+/// Checks that `values` has length `expected` (any values).
+///
+/// # Errors
+/// [`Error::DimensionMismatch`].
+pub fn check_len(name: &str, values: &[f64], expected: usize) -> Result<()> {
+    if values.len() == expected {
+        Ok(())
+    } else {
+        Err(Error::DimensionMismatch {
+            name: name.to_string(),
+            expected,
+            found: values.len(),
+        })
     }
 }

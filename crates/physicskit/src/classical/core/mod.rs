@@ -1,5 +1,7 @@
 //! Traits, state layout, results, options and errors: what every other module builds on.
 
+pub mod catalog;
+pub mod erased;
 pub mod error;
 pub mod linalg;
 mod memory;
@@ -14,6 +16,8 @@ pub mod system;
 pub mod time_grid;
 pub mod trig;
 
+pub use catalog::{Family, ParamSpec, SystemEntry, Value, Values};
+pub use erased::{Capabilities, DynSystem};
 pub use error::{Error, Result};
 pub use method::Method;
 pub use options::{IntegrateOptions, Observer, Sampling};

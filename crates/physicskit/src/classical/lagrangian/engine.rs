@@ -97,7 +97,7 @@ use num_dual::{Dual64, DualNum, HyperDual64};
 
 use super::buffer::{MatBuf, VecBuf};
 use super::dual::{Dual2Arr, DualArr, HyperArr};
-use crate::classical::core::error::check_vector;
+use crate::classical::core::error::{check_len, check_vector};
 #[cfg(doc)]
 use crate::classical::core::linalg::negligible_pivot;
 use crate::classical::core::linalg::{lu_factor, lu_solve, Singular};
@@ -316,18 +316,6 @@ fn hd(re: f64) -> HyperDual64 {
 
 fn inf_norm(x: &[f64]) -> f64 {
     x.iter().fold(0.0_f64, |m, v| m.max(v.abs()))
-}
-
-fn check_len(name: &str, x: &[f64], n: usize) -> Result<()> {
-    if x.len() == n {
-        Ok(())
-    } else {
-        Err(Error::DimensionMismatch {
-            name: name.into(),
-            expected: n,
-            found: x.len(),
-        })
-    }
 }
 
 /// Checks that `q`, `x` (named `name`: `qdot` or `p`) and `out` all have length `n`.

@@ -160,3 +160,6 @@ impl<L: Lagrangian> LagrangianModel<L> {
 }
 
 crate::impl_lagrangian_dynamics!(impl [L: Lagrangian] LagrangianModel<L>);
+
+/// A user's Lagrangian offers no capabilities beyond the family's.
+impl<L: Lagrangian> crate::classical::core::Capabilities for LagrangianModel<L> {}

@@ -33,10 +33,14 @@
 
 use std::f64::consts::PI;
 
+use crate::classical::core::catalog::{
+    Default as D, Family, Length, Literal, ParamSpec as P, Range, SystemEntry,
+};
+use crate::classical::core::erased::{Capabilities, Hamiltonian};
 use crate::classical::core::error::{check_finite_scalar, check_positive, check_vector};
 use crate::classical::core::sum::lane_sum_map2;
 use crate::classical::core::trig::{sin_into, sin_into_sum_cos, sum_cos};
-use crate::classical::core::{Error, HamiltonianSystem, MassInv, Phase, Result};
+use crate::classical::core::{Error, HamiltonianSystem, MassInv, Method, Phase, Result};
 
 /// Angular frequency of normal mode `j` (`1..=n`) of `n` masses `m` joined by springs `k`
 /// between fixed walls: `omega_j = 2 sqrt(k/m) sin(j pi / (2 (n + 1)))`.
@@ -715,3 +719,267 @@ impl SineGordonChain {
 }
 
 crate::impl_separable_dynamics!(SineGordonChain);
+
+// ---------------------------------------------------------------------------------------------
+// The catalogue.
+
+macro_rules! chain_capabilities {
+    ($($ty:ty),*) => {$(
+        impl Capabilities for $ty {
+            fn normal_mode_frequencies(&self) -> Option<Vec<f64>> {
+                Some(NormalModes::normal_mode_frequencies(self).to_vec())
+            }
+            fn normal_mode_coordinates(
+                &self,
+                q: &[f64],
+                p: &[f64],
+            ) -> Option<Result<(Vec<f64>, Vec<f64>)>> {
+                Some(self.normal_mode_coords(q, p))
+            }
+            fn modal_energies(&self, q: &[f64], p: &[f64]) -> Option<Result<Vec<f64>>> {
+                Some(NormalModes::modal_energies(self, q, p))
+            }
+        }
+    )*};
+}
+
+chain_capabilities!(HarmonicChain, FPUTChain, SineGordonChain);
+
+const MASS: P = P::scalar(
+    "m",
+    D::scalar(1.0),
+    "mass",
+    Range::POSITIVE,
+    "mass of each particle",
+);
+const SPRING: P = P::scalar(
+    "k",
+    D::scalar(1.0),
+    "force/length",
+    Range::POSITIVE,
+    "spring constant",
+);
+const SITES: Range = Range::at_least(1.0);
+
+/// The catalogue entry of [`HarmonicChain`].
+pub static HARMONIC_CHAIN_ENTRY: SystemEntry = SystemEntry {
+    name: "harmonic-chain",
+    python: Some("HarmonicChain"),
+    summary: "masses and linear springs between fixed walls (HarmonicChain)",
+    family: Family::Hamiltonian,
+    params: &[
+        P::vector(
+            "q0",
+            Length::Any,
+            D::demo_vector(&[0.1, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0]),
+            "length",
+            "initial displacements; the chain has one mass per entry",
+        ),
+        P::vector(
+            "p0",
+            Length::SameAs("q0"),
+            D::DemoAbsent,
+            "mass length/time",
+            "initial momenta, one per mass (left out: zeros)",
+        ),
+        MASS,
+        SPRING,
+    ],
+    separable: true,
+    default_method: Method::Yoshida4,
+    note: None,
+    build: |v| {
+        let q0 = v.vector("q0")?;
+        let zeros = vec![0.0; q0.len()];
+        let p0 = v.opt_vector("p0")?.unwrap_or(&zeros);
+        Ok(Box::new(Hamiltonian(HarmonicChain::new(
+            q0,
+            p0,
+            v.scalar("m")?,
+            v.scalar("k")?,
+        )?)))
+    },
+};
+
+/// The catalogue entry of [`FPUTChain`].
+pub static FPUT_ENTRY: SystemEntry = SystemEntry {
+    name: "fput",
+    python: Some("FPUTChain"),
+    summary: "Fermi-Pasta-Ulam-Tsingou beta chain started in one normal mode (FPUTChain)",
+    family: Family::Hamiltonian,
+    params: &[
+        P::integer("n", D::integer(32), SITES, "number of masses"),
+        MASS,
+        SPRING,
+        P::scalar(
+            "beta",
+            D::scalar(0.0),
+            "force/length^3",
+            Range::ANY,
+            "quartic coupling, V(r) = k r^2/2 + beta r^4/4",
+        ),
+        P::integer(
+            "mode",
+            D::integer(1),
+            Range::at_least(1.0),
+            "initially excited mode, 1..n",
+        ),
+        P::scalar(
+            "amplitude",
+            D::scalar(1.0),
+            "length",
+            Range::ANY,
+            "amplitude of the initial mode shape",
+        ),
+    ],
+    separable: true,
+    default_method: Method::Yoshida4,
+    note: Some("the recurrence shows with e.g. --beta 0.7 --amplitude 0.5"),
+    build: |v| {
+        Ok(Box::new(Hamiltonian(FPUTChain::new(
+            v.count("n")?,
+            v.scalar("m")?,
+            v.scalar("k")?,
+            v.scalar("beta")?,
+            v.count("mode")?,
+            v.scalar("amplitude")?,
+        )?)))
+    },
+};
+
+const SINE_GORDON_SITES: P = P::integer("n", D::integer(200), SITES, "number of sites");
+const SINE_GORDON_MASS: P = P::scalar(
+    "m",
+    D::scalar(1.0),
+    "mass",
+    Range::POSITIVE,
+    "mass of each site",
+);
+const SINE_GORDON_COUPLING: P = P::scalar(
+    "k",
+    D::scalar(1.0),
+    "",
+    Range::POSITIVE,
+    "coupling constant",
+);
+
+/// The catalogue entry of [`SineGordonChain::new`].
+pub static SINE_GORDON_STATE_ENTRY: SystemEntry = SystemEntry {
+    name: "sine-gordon-state",
+    python: Some("SineGordonChain"),
+    summary: "discrete sine-Gordon chain from explicit displacements (SineGordonChain::new)",
+    family: Family::Hamiltonian,
+    params: &[
+        SINE_GORDON_SITES,
+        SINE_GORDON_MASS,
+        SINE_GORDON_COUPLING,
+        P::vector(
+            "q0",
+            Length::Count("n"),
+            D::Absent,
+            "rad",
+            "initial displacements, length n (left out: zeros)",
+        ),
+        P::vector(
+            "p0",
+            Length::Count("n"),
+            D::Absent,
+            "",
+            "initial momenta, length n (left out: zeros)",
+        ),
+    ],
+    separable: true,
+    default_method: Method::Yoshida4,
+    note: None,
+    build: |v| {
+        Ok(Box::new(Hamiltonian(SineGordonChain::new(
+            v.count("n")?,
+            v.scalar("m")?,
+            v.scalar("k")?,
+            v.opt_vector("q0")?,
+            v.opt_vector("p0")?,
+        )?)))
+    },
+};
+
+/// The catalogue entry of the sine-Gordon kink demonstrations: a chain built from
+/// [`SineGordonChain::boosted_kink`] or [`SineGordonChain::kink_antikink`] initial data.
+pub static SINE_GORDON_KINK_ENTRY: SystemEntry = SystemEntry {
+    name: "sine-gordon",
+    python: None,
+    summary: "discrete sine-Gordon chain with kink initial data \
+              (SineGordonChain::kink, free ends)",
+    family: Family::Hamiltonian,
+    params: &[
+        SINE_GORDON_SITES,
+        SINE_GORDON_MASS,
+        SINE_GORDON_COUPLING,
+        P::choice(
+            "initial",
+            &["kink-antikink", "kink", "antikink", "rest"],
+            D::Demo(Literal::Choice("kink-antikink")),
+            "initial data: a colliding kink-antikink pair, one (anti)kink, or rest",
+        ),
+        P::scalar(
+            "center",
+            D::DemoAbsent,
+            "sites",
+            Range::ANY,
+            "centre site (left out: the middle, (n-1)/2)",
+        ),
+        P::scalar(
+            "separation",
+            D::demo_scalar(60.0),
+            "sites",
+            Range::ANY,
+            "kink-antikink distance",
+        ),
+        P::scalar(
+            "width",
+            D::demo_scalar(1.0),
+            "sites",
+            Range::POSITIVE,
+            "kink width; sqrt(k) for a true soliton",
+        ),
+        P::scalar(
+            "velocity",
+            D::demo_scalar(0.2),
+            "sites/time",
+            Range::ANY,
+            "kink speed, |v| < sqrt(k/m) (the pair approaches)",
+        ),
+    ],
+    separable: true,
+    default_method: Method::Yoshida4,
+    note: None,
+    build: |v| {
+        let n = v.count("n")?;
+        let (m, k) = (v.scalar("m")?, v.scalar("k")?);
+        let (width, velocity) = (v.scalar("width")?, v.scalar("velocity")?);
+        let center = v.opt_scalar("center")?.unwrap_or((n as f64 - 1.0) / 2.0);
+        let half = v.scalar("separation")? / 2.0;
+        // `velocity` is in sites per unit time, below the wave speed sqrt(k/m); the library
+        // returns canonical momenta (m dq/dt).
+        let (q0, p0) = match v.choice("initial")? {
+            "kink" => SineGordonChain::boosted_kink(n, m, k, center, width, velocity, 1)?,
+            "antikink" => SineGordonChain::boosted_kink(n, m, k, center, width, velocity, -1)?,
+            "kink-antikink" => SineGordonChain::kink_antikink(
+                n,
+                m,
+                k,
+                center - half,
+                center + half,
+                width,
+                velocity,
+            )?,
+            _ => (vec![0.0; n], vec![0.0; n]),
+        };
+        Ok(Box::new(Hamiltonian(SineGordonChain::new(
+            n,
+            m,
+            k,
+            Some(&q0),
+            Some(&p0),
+        )?)))
+    },
+};

@@ -28,9 +28,14 @@
 //! They work on the slices in place for any `n`, without buffers.
 
 use super::chains::{fixed_end_force, fixed_end_potential};
+use crate::classical::core::catalog::{
+    Default as D, Family, Length, ParamSpec as P, Range, SystemEntry,
+};
+use crate::classical::core::erased::{Capabilities, Lagrangian as Erased};
 use crate::classical::core::error::check_positive;
 use crate::classical::core::linalg::negligible_pivot;
 use crate::classical::core::sum::lane_sum_map;
+use crate::classical::core::Method;
 use crate::classical::core::{Error, Phase, Result};
 use crate::classical::lagrangian::{singular_mass_matrix, Lagrangian, LagrangianEngine, Scalar};
 
@@ -194,3 +199,60 @@ impl CoupledOscillators {
 }
 
 crate::impl_lagrangian_dynamics!(CoupledOscillators);
+
+impl Capabilities for CoupledOscillators {}
+
+/// The catalogue entry of [`CoupledOscillators`].
+pub static COUPLED_OSCILLATORS_ENTRY: SystemEntry = SystemEntry {
+    name: "coupled-oscillators",
+    python: Some("CoupledOscillators"),
+    summary: "n masses and springs between fixed walls, Lagrangian form (CoupledOscillators)",
+    family: Family::Lagrangian,
+    params: &[
+        P::vector(
+            "q0",
+            Length::Count("n"),
+            D::demo_vector(&[0.1, -0.2, 0.15]),
+            "m",
+            "initial displacements, length n",
+        ),
+        P::vector(
+            "qdot0",
+            Length::Count("n"),
+            D::DemoAbsent,
+            "m/s",
+            "initial velocities, length n (left out: zeros)",
+        ),
+        P::integer("n", D::integer(3), Range::at_least(1.0), "number of masses"),
+        P::scalar(
+            "m",
+            D::scalar(1.0),
+            "kg",
+            Range::POSITIVE,
+            "mass of each particle",
+        ),
+        P::scalar(
+            "k",
+            D::scalar(1.0),
+            "N/m",
+            Range::POSITIVE,
+            "spring constant",
+        ),
+    ],
+    separable: false,
+    default_method: Method::ImplicitMidpoint,
+    note: Some("p holds qdot, as in the spec"),
+    build: |v| {
+        let q0 = v.vector("q0")?;
+        let zeros = vec![0.0; q0.len()];
+        let qdot0 = v.opt_vector("qdot0")?.unwrap_or(&zeros);
+        let params = CoupledOscillatorsParams {
+            n: v.count("n")?,
+            m: v.scalar("m")?,
+            k: v.scalar("k")?,
+        };
+        Ok(Box::new(Erased(CoupledOscillators::new(
+            q0, qdot0, params,
+        )?)))
+    },
+};

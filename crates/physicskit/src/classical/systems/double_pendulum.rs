@@ -45,10 +45,15 @@
 //! identities, at an absolute (not relative) rounding of ~1 ulp in `sin D`, which enters only
 //! multiplied by `O(1)` terms.
 
+use crate::classical::core::catalog::{
+    Default as D, Family, Length, ParamSpec as P, Range, SystemEntry,
+};
+use crate::classical::core::erased::{Capabilities, Lagrangian as Erased};
 use crate::classical::core::error::check_finite_scalar;
 use crate::classical::core::error::check_positive;
 use crate::classical::core::linalg::negligible_pivot;
 use crate::classical::core::trig::{sin_cos, sin_cos_array};
+use crate::classical::core::Method;
 use crate::classical::core::{Error, Phase, Result};
 use crate::classical::lagrangian::{singular_mass_matrix, Lagrangian, LagrangianEngine, Scalar};
 
@@ -306,3 +311,73 @@ impl DoublePendulum {
 }
 
 crate::impl_lagrangian_dynamics!(DoublePendulum);
+
+impl Capabilities for DoublePendulum {
+    fn positions(&self, q: &[f64]) -> Option<Result<Vec<f64>>> {
+        Some(DoublePendulum::positions(self, Some(q)).map(|x| x.to_vec()))
+    }
+}
+
+/// The catalogue entry of [`DoublePendulum`].
+pub static DOUBLE_PENDULUM_ENTRY: SystemEntry = SystemEntry {
+    name: "double-pendulum",
+    python: Some("DoublePendulum"),
+    summary: "planar double pendulum, angles from the downward vertical (DoublePendulum)",
+    family: Family::Lagrangian,
+    params: &[
+        P::vector(
+            "theta0",
+            Length::Fixed(2),
+            D::demo_vector(&[2.0, 1.0]),
+            "rad",
+            "initial angles",
+        ),
+        P::vector(
+            "thetadot0",
+            Length::Fixed(2),
+            D::demo_vector(&[0.5, -0.3]),
+            "rad/s",
+            "initial angular velocities",
+        ),
+        P::scalar("m1", D::scalar(1.0), "kg", Range::POSITIVE, "upper mass"),
+        P::scalar("m2", D::scalar(1.0), "kg", Range::POSITIVE, "lower mass"),
+        P::scalar(
+            "l1",
+            D::scalar(1.0),
+            "m",
+            Range::POSITIVE,
+            "upper rod length",
+        ),
+        P::scalar(
+            "l2",
+            D::scalar(1.0),
+            "m",
+            Range::POSITIVE,
+            "lower rod length",
+        ),
+        P::scalar(
+            "g",
+            D::scalar(9.81),
+            "m/s^2",
+            Range::ANY,
+            "gravitational acceleration",
+        ),
+    ],
+    separable: false,
+    default_method: Method::ImplicitMidpoint,
+    note: Some("p holds thetadot, as in the spec"),
+    build: |v| {
+        let params = DoublePendulumParams {
+            m1: v.scalar("m1")?,
+            m2: v.scalar("m2")?,
+            l1: v.scalar("l1")?,
+            l2: v.scalar("l2")?,
+            g: v.scalar("g")?,
+        };
+        Ok(Box::new(Erased(DoublePendulum::new(
+            v.vector("theta0")?,
+            v.vector("thetadot0")?,
+            params,
+        )?)))
+    },
+};

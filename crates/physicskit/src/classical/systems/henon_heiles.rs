@@ -9,8 +9,10 @@
 //! `(x, p_x)` at `y = 0` is dominated by KAM tori; near and above it they break into a chaotic
 //! sea. Reference: M. Hénon and C. Heiles, Astron. J. 69 (1964) 73–79.
 
-use crate::classical::core::error::check_vector;
-use crate::classical::core::{HamiltonianSystem, Phase, Result};
+use crate::classical::core::catalog::{Default as D, Family, Length, ParamSpec as P, SystemEntry};
+use crate::classical::core::erased::{Capabilities, Hamiltonian};
+use crate::classical::core::error::{check_len, check_vector};
+use crate::classical::core::{HamiltonianSystem, Method, Phase, Result};
 
 /// The Hénon–Heiles Hamiltonian `H = |p|^2/2 + (x^2 + y^2)/2 + x^2 y - y^3/3` (unit masses).
 #[derive(Debug, Clone)]
@@ -62,3 +64,42 @@ impl HamiltonianSystem for HenonHeilesSystem {
 }
 
 crate::impl_separable_dynamics!(HenonHeilesSystem);
+
+impl Capabilities for HenonHeilesSystem {
+    fn positions(&self, q: &[f64]) -> Option<Result<Vec<f64>>> {
+        Some(check_len("q", q, 2).map(|()| q.to_vec()))
+    }
+}
+
+/// The catalogue entry of [`HenonHeilesSystem`].
+pub static HENON_HEILES_ENTRY: SystemEntry = SystemEntry {
+    name: "henon-heiles",
+    python: Some("HenonHeilesSystem"),
+    summary: "Henon-Heiles H = |p|^2/2 + (x^2 + y^2)/2 + x^2 y - y^3/3 (HenonHeilesSystem)",
+    family: Family::Hamiltonian,
+    params: &[
+        P::vector(
+            "q0",
+            Length::Fixed(2),
+            D::demo_vector(&[0.0, 0.3]),
+            "",
+            "initial position (x, y)",
+        ),
+        P::vector(
+            "p0",
+            Length::Fixed(2),
+            D::demo_vector(&[0.3, 0.0]),
+            "",
+            "initial momentum (p_x, p_y)",
+        ),
+    ],
+    separable: true,
+    default_method: Method::Yoshida4,
+    note: Some("orbits are bounded for E < 1/6"),
+    build: |v| {
+        Ok(Box::new(Hamiltonian(HenonHeilesSystem::new(
+            v.vector("q0")?,
+            v.vector("p0")?,
+        )?)))
+    },
+};

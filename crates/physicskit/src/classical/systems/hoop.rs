@@ -29,9 +29,13 @@
 //! energy        E = R^2 w^2 / 2 - R^2 omega^2 s^2 / 2 - g R (c - 1)
 //! ```
 
+use crate::classical::core::catalog::{Default as D, Family, ParamSpec as P, Range, SystemEntry};
+use crate::classical::core::erased::{Capabilities, Lagrangian as Erased};
+use crate::classical::core::error::check_len;
 use crate::classical::core::error::{check_finite_scalar, check_positive};
 use crate::classical::core::linalg::negligible_pivot;
 use crate::classical::core::trig::sin_cos;
+use crate::classical::core::Method;
 use crate::classical::core::{Phase, Result};
 use crate::classical::lagrangian::{singular_mass_matrix, Lagrangian, LagrangianEngine, Scalar};
 
@@ -190,3 +194,65 @@ impl BeadOnRotatingHoop {
 }
 
 crate::impl_lagrangian_dynamics!(BeadOnRotatingHoop);
+
+impl Capabilities for BeadOnRotatingHoop {
+    fn positions(&self, q: &[f64]) -> Option<Result<Vec<f64>>> {
+        // The bead in the hoop's rotating plane: (R sin theta, -R cos theta).
+        let r = self.params().r;
+        Some(check_len("q", q, 1).map(|()| vec![r * q[0].sin(), -r * q[0].cos()]))
+    }
+}
+
+/// The catalogue entry of [`BeadOnRotatingHoop`].
+pub static HOOP_ENTRY: SystemEntry = SystemEntry {
+    name: "hoop",
+    python: Some("BeadOnRotatingHoop"),
+    summary: "bead on a hoop rotating about its vertical diameter (BeadOnRotatingHoop)",
+    family: Family::Lagrangian,
+    params: &[
+        P::scalar(
+            "theta0",
+            D::demo_scalar(0.3),
+            "rad",
+            Range::ANY,
+            "initial polar angle on the hoop",
+        ),
+        P::scalar(
+            "thetadot0",
+            D::demo_scalar(0.0),
+            "rad/s",
+            Range::ANY,
+            "initial angular velocity",
+        ),
+        P::scalar("R", D::scalar(1.0), "m", Range::POSITIVE, "hoop radius"),
+        P::scalar(
+            "omega",
+            D::scalar(2.0),
+            "rad/s",
+            Range::ANY,
+            "rotation rate",
+        ),
+        P::scalar(
+            "g",
+            D::scalar(9.81),
+            "m/s^2",
+            Range::ANY,
+            "gravitational acceleration",
+        ),
+    ],
+    separable: false,
+    default_method: Method::ImplicitMidpoint,
+    note: Some("critical speed omega_c = sqrt(g/R); p holds thetadot"),
+    build: |v| {
+        let params = HoopParams {
+            r: v.scalar("R")?,
+            omega: v.scalar("omega")?,
+            g: v.scalar("g")?,
+        };
+        Ok(Box::new(Erased(BeadOnRotatingHoop::new(
+            v.scalar("theta0")?,
+            v.scalar("thetadot0")?,
+            params,
+        )?)))
+    },
+};

@@ -19,8 +19,13 @@
 //! `T = 2 pi sqrt(mu a^3 / k)`. Reference: H. Goldstein, C. Poole and J. Safko, *Classical
 //! Mechanics* (3rd ed., 2002), §3.7–3.9.
 
+use crate::classical::core::catalog::{
+    Default as D, Family, Length, ParamSpec as P, Range, SystemEntry, Values,
+};
+use crate::classical::core::erased::{Capabilities, Hamiltonian};
+use crate::classical::core::error::check_len;
 use crate::classical::core::error::{check_finite_scalar, check_non_negative, check_positive};
-use crate::classical::core::{Error, HamiltonianSystem, MassInv, Phase, Result};
+use crate::classical::core::{Error, HamiltonianSystem, MassInv, Method, Phase, Result};
 
 /// The optional perturbations of [`KeplerSystem`]; `Default` is the pure two-body problem.
 #[derive(Debug, Clone, Copy, PartialEq, Default)]
@@ -273,3 +278,161 @@ impl HamiltonianSystem for KeplerSystem {
 }
 
 crate::impl_separable_dynamics!(KeplerSystem);
+
+impl Capabilities for KeplerSystem {
+    fn positions(&self, q: &[f64]) -> Option<Result<Vec<f64>>> {
+        // The body relative to the force centre.
+        Some(check_len("q", q, 2).map(|()| q.to_vec()))
+    }
+    fn lrl_vector(&self, q: &[f64], p: &[f64]) -> Option<Result<[f64; 2]>> {
+        Some(check_qp(q, p).map(|()| KeplerSystem::lrl_vector(self, q, p)))
+    }
+    fn angular_momentum(&self, q: &[f64], p: &[f64]) -> Option<Result<f64>> {
+        Some(check_qp(q, p).map(|()| KeplerSystem::angular_momentum(self, q, p)))
+    }
+}
+
+fn check_qp(q: &[f64], p: &[f64]) -> Result<()> {
+    check_len("q", q, 2)?;
+    check_len("p", p, 2)
+}
+
+/// The perturbation parameters, shared by both Kepler entries (`**kwargs` of
+/// `from_orbital_elements` in the spec).
+const PERTURBATION_PARAMS: [P; 4] = [
+    P::scalar(
+        "eps",
+        D::scalar(0.0),
+        "",
+        Range::ANY,
+        "exponent of the c_eps / r^(1+eps) term",
+    ),
+    P::scalar(
+        "c_eps",
+        D::scalar(0.0),
+        "",
+        Range::ANY,
+        "coefficient of the c_eps / r^(1+eps) term",
+    ),
+    P::scalar(
+        "c_pn",
+        D::scalar(0.0),
+        "",
+        Range::ANY,
+        "coefficient of the post-Newtonian c_pn / r^3 term",
+    ),
+    P::scalar(
+        "softening",
+        D::scalar(0.0),
+        "length",
+        Range::NON_NEGATIVE,
+        "Plummer softening length",
+    ),
+];
+
+fn perturbations(v: &Values) -> Result<KeplerPerturbations> {
+    Ok(KeplerPerturbations::none()
+        .with_power_law(v.scalar("eps")?, v.scalar("c_eps")?)
+        .with_post_newtonian(v.scalar("c_pn")?)
+        .with_softening(v.scalar("softening")?))
+}
+
+const COUPLING: P = P::scalar(
+    "k",
+    D::scalar(1.0),
+    "",
+    Range::POSITIVE,
+    "coupling k = G M mu",
+);
+const REDUCED_MASS: P = P::scalar(
+    "mu",
+    D::scalar(1.0),
+    "mass",
+    Range::POSITIVE,
+    "reduced mass",
+);
+
+/// The catalogue entry of [`KeplerSystem::new`].
+pub static KEPLER_STATE_ENTRY: SystemEntry = SystemEntry {
+    name: "kepler-state",
+    python: Some("KeplerSystem"),
+    summary: "planar Kepler problem from a position and momentum (KeplerSystem::new)",
+    family: Family::Hamiltonian,
+    params: &[
+        P::vector(
+            "q0",
+            Length::Fixed(2),
+            D::demo_vector(&[1.0, 0.0]),
+            "length",
+            "initial relative position (x, y)",
+        ),
+        P::vector(
+            "p0",
+            Length::Fixed(2),
+            D::demo_vector(&[0.0, 1.0]),
+            "mass length/time",
+            "initial momentum (p_x, p_y)",
+        ),
+        COUPLING,
+        REDUCED_MASS,
+        PERTURBATION_PARAMS[0],
+        PERTURBATION_PARAMS[1],
+        PERTURBATION_PARAMS[2],
+        PERTURBATION_PARAMS[3],
+    ],
+    separable: true,
+    default_method: Method::Yoshida4,
+    note: None,
+    build: |v| {
+        Ok(Box::new(Hamiltonian(KeplerSystem::new(
+            v.vector("q0")?,
+            v.vector("p0")?,
+            v.scalar("k")?,
+            v.scalar("mu")?,
+            perturbations(v)?,
+        )?)))
+    },
+};
+
+/// The catalogue entry of [`KeplerSystem::from_orbital_elements`].
+pub static KEPLER_ENTRY: SystemEntry = SystemEntry {
+    name: "kepler",
+    python: Some("KeplerSystem.from_orbital_elements"),
+    summary: "planar Kepler orbit from its elements, starting at perihelion \
+              (KeplerSystem::from_orbital_elements)",
+    family: Family::Hamiltonian,
+    params: &[
+        P::scalar(
+            "a",
+            D::demo_scalar(1.0),
+            "length",
+            Range::POSITIVE,
+            "semi-major axis",
+        ),
+        P::scalar(
+            "e",
+            D::demo_scalar(0.5),
+            "",
+            Range::half_open(0.0, 1.0),
+            "eccentricity (bound orbits)",
+        ),
+        COUPLING,
+        REDUCED_MASS,
+        PERTURBATION_PARAMS[0],
+        PERTURBATION_PARAMS[1],
+        PERTURBATION_PARAMS[2],
+        PERTURBATION_PARAMS[3],
+    ],
+    separable: true,
+    default_method: Method::Yoshida4,
+    note: Some("period 2 pi sqrt(mu a^3 / k); c_pn != 0 makes the orbit precess"),
+    build: |v| {
+        Ok(Box::new(Hamiltonian(KeplerSystem::from_orbital_elements(
+            v.scalar("a")?,
+            v.scalar("e")?,
+            v.scalar("k")?,
+            v.scalar("mu")?,
+            perturbations(v)?,
+        )?)))
+    },
+};

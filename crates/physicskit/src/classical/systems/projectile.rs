@@ -13,8 +13,12 @@
 //! `implicit_midpoint` integrate the full right-hand side. Reference: J. R. Taylor,
 //! *Classical Mechanics* (2005), ch. 2.
 
+use crate::classical::core::catalog::{
+    Default as D, Family, Length, ParamSpec as P, Range, SystemEntry,
+};
+use crate::classical::core::erased::{Capabilities, Hamiltonian};
 use crate::classical::core::error::{
-    check_finite_scalar, check_non_negative, check_positive, check_vector,
+    check_finite_scalar, check_len, check_non_negative, check_positive, check_vector,
 };
 use crate::classical::core::{
     hamiltonian_energy, DynamicalSystem, HamiltonianSystem, MassInv, Method, Phase, Result,
@@ -243,3 +247,111 @@ impl DynamicalSystem for ProjectileMotion {
         }
     }
 }
+
+impl Capabilities for ProjectileMotion {
+    fn positions(&self, q: &[f64]) -> Option<Result<Vec<f64>>> {
+        Some(check_len("q", q, 2).map(|()| q.to_vec()))
+    }
+}
+
+const PROJECTILE_PARAMS: [P; 3] = [
+    P::scalar("m", D::scalar(1.0), "kg", Range::POSITIVE, "mass"),
+    P::scalar(
+        "g",
+        D::scalar(9.81),
+        "m/s^2",
+        Range::POSITIVE,
+        "gravitational acceleration",
+    ),
+    P::scalar(
+        "drag_coeff",
+        D::scalar(0.0),
+        "kg/m",
+        Range::NON_NEGATIVE,
+        "quadratic drag coefficient c",
+    ),
+];
+
+const DRAG_NOTE: &str =
+    "with drag_coeff > 0 only rk4 (then the default) and implicit_midpoint apply";
+
+/// The catalogue entry of [`ProjectileMotion::new`].
+pub static PROJECTILE_STATE_ENTRY: SystemEntry = SystemEntry {
+    name: "projectile-state",
+    python: Some("ProjectileMotion"),
+    summary: "projectile from a position and momentum (ProjectileMotion::new)",
+    family: Family::Hamiltonian,
+    params: &[
+        P::vector(
+            "q0",
+            Length::Fixed(2),
+            D::demo_vector(&[0.0, 0.0]),
+            "m",
+            "initial position (x, y)",
+        ),
+        P::vector(
+            "p0",
+            Length::Fixed(2),
+            D::demo_vector(&[10.0, 10.0]),
+            "kg m/s",
+            "initial momentum m v",
+        ),
+        PROJECTILE_PARAMS[0],
+        PROJECTILE_PARAMS[1],
+        PROJECTILE_PARAMS[2],
+    ],
+    separable: true,
+    default_method: Method::Yoshida4,
+    note: Some(DRAG_NOTE),
+    build: |v| {
+        Ok(Box::new(Hamiltonian(ProjectileMotion::new(
+            v.vector("q0")?,
+            v.vector("p0")?,
+            v.scalar("m")?,
+            v.scalar("g")?,
+            v.scalar("drag_coeff")?,
+        )?)))
+    },
+};
+
+/// The catalogue entry of [`ProjectileMotion::from_launch`].
+pub static PROJECTILE_ENTRY: SystemEntry = SystemEntry {
+    name: "projectile",
+    python: Some("ProjectileMotion.from_launch"),
+    summary: "projectile launched from (0, height), optional quadratic drag \
+              (ProjectileMotion::from_launch)",
+    family: Family::Hamiltonian,
+    params: &[
+        P::scalar(
+            "speed",
+            D::demo_scalar(20.0),
+            "m/s",
+            Range::NON_NEGATIVE,
+            "launch speed",
+        ),
+        P::scalar(
+            "angle_deg",
+            D::demo_scalar(45.0),
+            "deg",
+            Range::ANY,
+            "launch angle above the horizontal",
+        ),
+        PROJECTILE_PARAMS[0],
+        PROJECTILE_PARAMS[1],
+        PROJECTILE_PARAMS[2],
+        P::scalar("height", D::scalar(0.0), "m", Range::ANY, "launch height"),
+    ],
+    separable: true,
+    default_method: Method::Yoshida4,
+    note: Some(DRAG_NOTE),
+    build: |v| {
+        Ok(Box::new(Hamiltonian(ProjectileMotion::from_launch(
+            v.scalar("speed")?,
+            v.scalar("angle_deg")?,
+            v.scalar("m")?,
+            v.scalar("g")?,
+            v.scalar("drag_coeff")?,
+            v.scalar("height")?,
+        )?)))
+    },
+};

@@ -16,6 +16,10 @@
 //! near the intermediate axis tumbles periodically (the intermediate-axis theorem) with a
 //! period given by a complete elliptic integral (Landau & Lifshitz §37).
 
+use crate::classical::core::catalog::{
+    Default as D, Family, Length, ParamSpec as P, Range, SystemEntry,
+};
+use crate::classical::core::erased::{Capabilities, Ode};
 use crate::classical::core::error::{check_positive, check_vector};
 use crate::classical::core::{DynamicalSystem, Error, Method, OdeSystem, Phase, Result};
 
@@ -264,3 +268,77 @@ impl DynamicalSystem for EulerTop {
 }
 
 impl OdeSystem for EulerTop {}
+
+impl Capabilities for EulerTop {
+    fn rotation_matrix(&self, state: &[f64]) -> Option<Result<[f64; 9]>> {
+        Some(EulerTop::rotation_matrix(self, Some(state)).map(|r| {
+            [
+                r[0][0], r[0][1], r[0][2], r[1][0], r[1][1], r[1][2], r[2][0], r[2][1], r[2][2],
+            ]
+        }))
+    }
+    fn angular_momentum_squared(&self, state: &[f64]) -> Option<Result<f64>> {
+        Some(EulerTop::angular_momentum_squared(self, Some(state)))
+    }
+}
+
+/// The catalogue entry of [`EulerTop`].
+pub static EULER_TOP_ENTRY: SystemEntry = SystemEntry {
+    name: "euler-top",
+    python: Some("EulerTop"),
+    summary: "torque-free rigid body: Euler's equations and the orientation quaternion \
+              (EulerTop)",
+    family: Family::Ode,
+    params: &[
+        P::vector(
+            "omega0",
+            Length::Fixed(3),
+            D::demo_vector(&[0.01, 1.0, 0.01]),
+            "rad/s",
+            "initial body angular velocity",
+        ),
+        P::scalar(
+            "I1",
+            D::scalar(1.0),
+            "kg m^2",
+            Range::POSITIVE,
+            "principal moment 1",
+        ),
+        P::scalar(
+            "I2",
+            D::scalar(2.0),
+            "kg m^2",
+            Range::POSITIVE,
+            "principal moment 2",
+        ),
+        P::scalar(
+            "I3",
+            D::scalar(3.0),
+            "kg m^2",
+            Range::POSITIVE,
+            "principal moment 3",
+        ),
+        P::vector(
+            "quat0",
+            Length::Fixed(4),
+            D::Absent,
+            "",
+            "initial orientation (w, x, y, z) (left out: identity)",
+        ),
+    ],
+    separable: false,
+    default_method: Method::ImplicitMidpoint,
+    note: Some("y columns: w1, w2, w3, qw, qx, qy, qz; spin near axis 2 to see the flips"),
+    build: |v| {
+        let params = EulerTopParams {
+            i1: v.scalar("I1")?,
+            i2: v.scalar("I2")?,
+            i3: v.scalar("I3")?,
+        };
+        Ok(Box::new(Ode(EulerTop::new(
+            v.vector("omega0")?,
+            params,
+            v.opt_vector("quat0")?,
+        )?)))
+    },
+};

@@ -12,6 +12,10 @@
 //! faithful proxy while the patch stays convex. Reference: V. I. Arnold, *Mathematical Methods
 //! of Classical Mechanics* (2nd ed., 1989), §16.
 
+use crate::classical::core::catalog::{
+    Default as D, Family, Length, ParamSpec as P, Range, SystemEntry,
+};
+use crate::classical::core::erased::{Capabilities, Hamiltonian};
 use crate::classical::core::error::{check_finite_scalar, check_non_negative, check_positive};
 use crate::classical::core::trig::{sin_into_scaled, sin_into_sum_cos, sum_cos};
 use crate::classical::core::{
@@ -344,3 +348,120 @@ mod polygon_tests {
         assert!(polygon_area(&x, &y[1..]).is_err());
     }
 }
+
+impl Capabilities for PendulumSwarm {
+    fn per_particle_energy(&self, q: &[f64], p: &[f64]) -> Option<Result<Vec<f64>>> {
+        Some(PendulumSwarm::per_particle_energy(self, q, p))
+    }
+    fn phase_space_area(&self, q: &[f64], p: &[f64]) -> Option<Result<f64>> {
+        Some(PendulumSwarm::phase_space_area(self, q, p))
+    }
+}
+
+const G_OVER_L: P = P::scalar(
+    "g_over_l",
+    D::scalar(1.0),
+    "1/s^2",
+    Range::POSITIVE,
+    "g / l",
+);
+
+/// The catalogue entry of [`PendulumSwarm::new`].
+pub static SWARM_STATE_ENTRY: SystemEntry = SystemEntry {
+    name: "pendulum-swarm-state",
+    python: Some("PendulumSwarm"),
+    summary: "independent pendulums from explicit angles and momenta (PendulumSwarm::new)",
+    family: Family::Hamiltonian,
+    params: &[
+        P::vector(
+            "q0",
+            Length::Any,
+            D::demo_vector(&[1.0, 1.05, 1.0, 1.05]),
+            "rad",
+            "initial angles",
+        ),
+        P::vector(
+            "p0",
+            Length::SameAs("q0"),
+            D::demo_vector(&[0.0, 0.0, 0.05, 0.05]),
+            "rad/s",
+            "initial momenta, one per angle",
+        ),
+        G_OVER_L,
+    ],
+    separable: true,
+    default_method: Method::Yoshida4,
+    note: None,
+    build: |v| {
+        Ok(Box::new(Hamiltonian(PendulumSwarm::new(
+            v.vector("q0")?,
+            v.vector("p0")?,
+            v.scalar("g_over_l")?,
+        )?)))
+    },
+};
+
+/// The catalogue entry of [`PendulumSwarm::from_box`].
+pub static SWARM_ENTRY: SystemEntry = SystemEntry {
+    name: "pendulum-swarm",
+    python: Some("PendulumSwarm.from_box"),
+    summary: "n independent pendulums filling a box in phase space (PendulumSwarm::from_box)",
+    family: Family::Hamiltonian,
+    params: &[
+        P::scalar(
+            "q_center",
+            D::demo_scalar(1.0),
+            "rad",
+            Range::ANY,
+            "centre angle of the box",
+        ),
+        P::scalar(
+            "p_center",
+            D::demo_scalar(0.0),
+            "rad/s",
+            Range::ANY,
+            "centre momentum of the box",
+        ),
+        P::scalar(
+            "dq",
+            D::demo_scalar(0.05),
+            "rad",
+            Range::NON_NEGATIVE,
+            "box width in q",
+        ),
+        P::scalar(
+            "dp",
+            D::demo_scalar(0.05),
+            "rad/s",
+            Range::NON_NEGATIVE,
+            "box height in p",
+        ),
+        P::integer(
+            "n",
+            D::integer(1000),
+            Range::at_least(1.0),
+            "number of pendulums",
+        ),
+        G_OVER_L,
+        P::integer(
+            "seed",
+            D::integer(0),
+            Range::NON_NEGATIVE,
+            "seed of the reproducible uniform fill",
+        ),
+    ],
+    separable: true,
+    default_method: Method::Yoshida4,
+    note: Some("q and p have one column per pendulum; use --stride for long runs"),
+    build: |v| {
+        Ok(Box::new(Hamiltonian(PendulumSwarm::from_box(
+            v.scalar("q_center")?,
+            v.scalar("p_center")?,
+            v.scalar("dq")?,
+            v.scalar("dp")?,
+            v.count("n")?,
+            v.scalar("g_over_l")?,
+            v.count("seed")? as u64,
+        )?)))
+    },
+};

@@ -41,9 +41,15 @@
 //! The mass matrix counts as singular where the pivot `I1 s^2` (the Schur complement of the
 //! `psi` row) is negligible against its largest entry, the criterion of partial-pivoting LU.
 
+use crate::classical::core::catalog::{
+    Default as D, Family, Length, ParamSpec as P, Range, SystemEntry,
+};
+use crate::classical::core::erased::{Capabilities, Lagrangian as Erased};
+use crate::classical::core::error::check_len;
 use crate::classical::core::error::{check_finite_scalar, check_positive};
 use crate::classical::core::linalg::negligible_pivot;
 use crate::classical::core::trig::sin_cos;
+use crate::classical::core::Method;
 use crate::classical::core::{Error, Phase, Result};
 use crate::classical::lagrangian::{singular_mass_matrix, Lagrangian, LagrangianEngine, Scalar};
 
@@ -301,3 +307,93 @@ impl HeavySymmetricTop {
 }
 
 crate::impl_lagrangian_dynamics!(HeavySymmetricTop);
+
+impl Capabilities for HeavySymmetricTop {
+    fn positions(&self, q: &[f64]) -> Option<Result<Vec<f64>>> {
+        // The tip of the symmetry axis at the centre of mass, pivot at the origin, z up:
+        // l (sin theta sin phi, -sin theta cos phi, cos theta).
+        let l = self.params().l;
+        Some(check_len("q", q, 3).map(|()| {
+            let (sp, cp) = q[0].sin_cos();
+            let (st, ct) = q[1].sin_cos();
+            vec![l * st * sp, -l * st * cp, l * ct]
+        }))
+    }
+    fn precession_nutation_rate(&self, state: &[f64]) -> Option<Result<(f64, f64)>> {
+        Some(HeavySymmetricTop::precession_nutation_rate(
+            self,
+            Some(state),
+        ))
+    }
+}
+
+/// The catalogue entry of [`HeavySymmetricTop`].
+pub static HEAVY_TOP_ENTRY: SystemEntry = SystemEntry {
+    name: "heavy-top",
+    python: Some("HeavySymmetricTop"),
+    summary: "heavy symmetric top on a fixed point, Euler angles (phi, theta, psi) \
+              (HeavySymmetricTop)",
+    family: Family::Lagrangian,
+    params: &[
+        P::vector(
+            "angles0",
+            Length::Fixed(3),
+            D::demo_vector(&[0.0, 0.5, 0.0]),
+            "rad",
+            "initial (phi, theta, psi)",
+        ),
+        P::vector(
+            "angledots0",
+            Length::Fixed(3),
+            D::demo_vector(&[0.0, 0.0, 20.0]),
+            "rad/s",
+            "initial rates (phidot, thetadot, psidot)",
+        ),
+        P::scalar(
+            "I1",
+            D::scalar(1.0),
+            "kg m^2",
+            Range::POSITIVE,
+            "transverse moment of inertia about the pivot",
+        ),
+        P::scalar(
+            "I3",
+            D::scalar(0.5),
+            "kg m^2",
+            Range::POSITIVE,
+            "axial moment of inertia",
+        ),
+        P::scalar("M", D::scalar(1.0), "kg", Range::POSITIVE, "mass"),
+        P::scalar(
+            "l",
+            D::scalar(1.0),
+            "m",
+            Range::ANY,
+            "pivot to centre of mass",
+        ),
+        P::scalar(
+            "g",
+            D::scalar(9.81),
+            "m/s^2",
+            Range::ANY,
+            "gravitational acceleration",
+        ),
+    ],
+    separable: false,
+    default_method: Method::ImplicitMidpoint,
+    note: Some("p holds the angle rates, as in the spec"),
+    build: |v| {
+        let params = SymmetricTopParams {
+            i1: v.scalar("I1")?,
+            i3: v.scalar("I3")?,
+            m: v.scalar("M")?,
+            l: v.scalar("l")?,
+            g: v.scalar("g")?,
+        };
+        Ok(Box::new(Erased(HeavySymmetricTop::new(
+            v.vector("angles0")?,
+            v.vector("angledots0")?,
+            params,
+        )?)))
+    },
+};

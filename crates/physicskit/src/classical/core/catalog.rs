@@ -1,0 +1,727 @@
+//! The catalogue's vocabulary: how a built-in system and its parameters are described as data.
+//!
+//! Every front end (the Python extension, the `physicskit` command, the browser lab, the
+//! ensemble engine) builds systems by name from a [`SystemEntry`]: the system's name, summary
+//! and family, its typed parameters ([`ParamSpec`]: kind, default, unit, valid range, help),
+//! whether the splitting methods apply, its default method, and a `build` function into the
+//! type-erased [`DynSystem`](super::erased::DynSystem). The entries themselves live next to
+//! each system (`systems/*.rs`), and the one list of them is
+//! [`catalog::SYSTEMS`](crate::classical::catalog::SYSTEMS).
+//!
+//! Front ends turn their own input (Python objects, command-line text, JSON) into [`Value`]s
+//! of the declared kind and hand them to [`SystemEntry::values`], which is where every value is
+//! checked: unknown and missing names, the kind, vector lengths, finiteness and the range. The
+//! constructors the entry's `build` calls check again for users of the Rust API, and a test
+//! checks that both agree at every range boundary.
+
+use std::fmt;
+
+use super::error::{Error, Result};
+use super::method::Method;
+
+/// The family of a system, which fixes its state layout and the methods that apply.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
+pub enum Family {
+    /// `HamiltonianSystem`: state `[q, p]`.
+    Hamiltonian,
+    /// `LagrangianSystem`: state `[q, qdot]` (results hold `qdot` in `p`, as the spec says).
+    Lagrangian,
+    /// `ODESystem`: the system's own state layout.
+    Ode,
+}
+
+impl Family {
+    /// Lower-case name, as written in output files and `list --json`.
+    pub fn name(self) -> &'static str {
+        match self {
+            Family::Hamiltonian => "hamiltonian",
+            Family::Lagrangian => "lagrangian",
+            Family::Ode => "ode",
+        }
+    }
+}
+
+/// The length of a vector parameter.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Length {
+    /// Exactly this many entries.
+    Fixed(usize),
+    /// Any length from 1 on.
+    Any,
+    /// As long as the vector parameter of this name.
+    SameAs(&'static str),
+    /// As many entries as the value of the integer parameter of this name (e.g. `n`).
+    Count(&'static str),
+}
+
+/// What kind of value a parameter takes.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum ParamKind {
+    /// A real number.
+    Scalar,
+    /// An integer (a count, a mode number, a seed, a sign).
+    Integer,
+    /// A vector of real numbers.
+    Vector(Length),
+    /// One word from a fixed set.
+    Choice(&'static [&'static str]),
+}
+
+impl ParamKind {
+    /// Lower-case name of the kind, for messages and `list --json`.
+    pub fn name(self) -> &'static str {
+        match self {
+            ParamKind::Scalar => "scalar",
+            ParamKind::Integer => "integer",
+            ParamKind::Vector(_) => "vector",
+            ParamKind::Choice(_) => "choice",
+        }
+    }
+}
+
+/// A constant value in a [`ParamSpec`] (a default), written in the entry's source.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub enum Literal {
+    /// A real number.
+    Scalar(f64),
+    /// An integer.
+    Integer(i64),
+    /// A vector of real numbers.
+    Vector(&'static [f64]),
+    /// A word of a [`ParamKind::Choice`].
+    Choice(&'static str),
+}
+
+impl Literal {
+    /// The literal as an owned [`Value`].
+    pub fn to_value(self) -> Value {
+        match self {
+            Literal::Scalar(x) => Value::Scalar(x),
+            Literal::Integer(n) => Value::Integer(n),
+            Literal::Vector(v) => Value::Vector(v.to_vec()),
+            Literal::Choice(w) => Value::Choice(w.to_string()),
+        }
+    }
+}
+
+/// The default of a parameter, and whether the spec's Python signature carries it.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub enum Default {
+    /// No default anywhere: every front end must give a value.
+    Required,
+    /// The spec's default value (the Python signature has it).
+    Value(Literal),
+    /// The spec's default is `None`: the parameter may be left out and the constructor decides
+    /// (the help says what it does).
+    Absent,
+    /// The spec has no default (Python requires the value); front ends without required
+    /// arguments (the command line, the lab) start from this demonstration value.
+    Demo(Literal),
+    /// The spec has no default; other front ends may leave it out and the entry's builder
+    /// decides (the help says what it does, e.g. zeros).
+    DemoAbsent,
+}
+
+impl Default {
+    /// The spec's default real number.
+    pub const fn scalar(x: f64) -> Self {
+        Default::Value(Literal::Scalar(x))
+    }
+
+    /// The spec's default integer.
+    pub const fn integer(n: i64) -> Self {
+        Default::Value(Literal::Integer(n))
+    }
+
+    /// A demonstration real number (the spec has no default).
+    pub const fn demo_scalar(x: f64) -> Self {
+        Default::Demo(Literal::Scalar(x))
+    }
+
+    /// A demonstration vector (the spec has no default).
+    pub const fn demo_vector(v: &'static [f64]) -> Self {
+        Default::Demo(Literal::Vector(v))
+    }
+}
+
+impl Default {
+    /// The value used when the parameter is not given by a front end that has no required
+    /// arguments (`None`: absent; `Err`: the parameter is required).
+    fn fill(self) -> std::result::Result<Option<Value>, ()> {
+        match self {
+            Default::Required => Err(()),
+            Default::Value(l) | Default::Demo(l) => Ok(Some(l.to_value())),
+            Default::Absent | Default::DemoAbsent => Ok(None),
+        }
+    }
+
+    /// True if the spec's signature has a default (a value or `None`).
+    pub fn in_spec(self) -> bool {
+        matches!(self, Default::Value(_) | Default::Absent)
+    }
+}
+
+/// One side of a [`Range`].
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub enum Bound {
+    /// No limit on this side.
+    Unbounded,
+    /// The value must be `>=` (or `<=`) this.
+    Inclusive(f64),
+    /// The value must be `>` (or `<`) this.
+    Exclusive(f64),
+}
+
+/// The valid range of a scalar or integer parameter (finiteness is always required).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Range {
+    /// Lower limit.
+    pub min: Bound,
+    /// Upper limit.
+    pub max: Bound,
+}
+
+impl Range {
+    /// Any finite value.
+    pub const ANY: Range = Range {
+        min: Bound::Unbounded,
+        max: Bound::Unbounded,
+    };
+    /// `> 0`.
+    pub const POSITIVE: Range = Range {
+        min: Bound::Exclusive(0.0),
+        max: Bound::Unbounded,
+    };
+    /// `>= 0`.
+    pub const NON_NEGATIVE: Range = Range {
+        min: Bound::Inclusive(0.0),
+        max: Bound::Unbounded,
+    };
+
+    /// `>= min`.
+    pub const fn at_least(min: f64) -> Range {
+        Range {
+            min: Bound::Inclusive(min),
+            max: Bound::Unbounded,
+        }
+    }
+
+    /// `min <= x < max`.
+    pub const fn half_open(min: f64, max: f64) -> Range {
+        Range {
+            min: Bound::Inclusive(min),
+            max: Bound::Exclusive(max),
+        }
+    }
+
+    /// `min < x < max`.
+    pub const fn open(min: f64, max: f64) -> Range {
+        Range {
+            min: Bound::Exclusive(min),
+            max: Bound::Exclusive(max),
+        }
+    }
+
+    /// `min <= x <= max`.
+    pub const fn closed(min: f64, max: f64) -> Range {
+        Range {
+            min: Bound::Inclusive(min),
+            max: Bound::Inclusive(max),
+        }
+    }
+
+    /// Whether `x` (finite) lies in the range.
+    pub fn contains(&self, x: f64) -> bool {
+        let above = match self.min {
+            Bound::Unbounded => true,
+            Bound::Inclusive(m) => x >= m,
+            Bound::Exclusive(m) => x > m,
+        };
+        let below = match self.max {
+            Bound::Unbounded => true,
+            Bound::Inclusive(m) => x <= m,
+            Bound::Exclusive(m) => x < m,
+        };
+        above && below
+    }
+}
+
+impl fmt::Display for Range {
+    /// The range as a condition, e.g. `> 0`, `>= 0 and < 1`, `any finite value`.
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        let lower = match self.min {
+            Bound::Unbounded => None,
+            Bound::Inclusive(m) => Some(format!(">= {m}")),
+            Bound::Exclusive(m) => Some(format!("> {m}")),
+        };
+        let upper = match self.max {
+            Bound::Unbounded => None,
+            Bound::Inclusive(m) => Some(format!("<= {m}")),
+            Bound::Exclusive(m) => Some(format!("< {m}")),
+        };
+        match (lower, upper) {
+            (None, None) => f.write_str("any finite value"),
+            (Some(l), None) => f.write_str(&l),
+            (None, Some(u)) => f.write_str(&u),
+            (Some(l), Some(u)) => write!(f, "{l} and {u}"),
+        }
+    }
+}
+
+/// One typed parameter of a system.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct ParamSpec {
+    /// Name: the spec's Python keyword, and the command line's `--name`.
+    pub name: &'static str,
+    /// The kind of value.
+    pub kind: ParamKind,
+    /// The default, and whether the spec has it.
+    pub default: Default,
+    /// Unit, in plain text (`""` for dimensionless or arbitrary units).
+    pub unit: &'static str,
+    /// Valid range of a scalar or integer (vectors: every entry finite).
+    pub range: Range,
+    /// One-line description.
+    pub help: &'static str,
+}
+
+impl ParamSpec {
+    /// A real parameter.
+    pub const fn scalar(
+        name: &'static str,
+        default: Default,
+        unit: &'static str,
+        range: Range,
+        help: &'static str,
+    ) -> Self {
+        Self {
+            name,
+            kind: ParamKind::Scalar,
+            default,
+            unit,
+            range,
+            help,
+        }
+    }
+
+    /// An integer parameter.
+    pub const fn integer(
+        name: &'static str,
+        default: Default,
+        range: Range,
+        help: &'static str,
+    ) -> Self {
+        Self {
+            name,
+            kind: ParamKind::Integer,
+            default,
+            unit: "",
+            range,
+            help,
+        }
+    }
+
+    /// A vector parameter.
+    pub const fn vector(
+        name: &'static str,
+        length: Length,
+        default: Default,
+        unit: &'static str,
+        help: &'static str,
+    ) -> Self {
+        Self {
+            name,
+            kind: ParamKind::Vector(length),
+            default,
+            unit,
+            range: Range::ANY,
+            help,
+        }
+    }
+
+    /// A choice among `words`.
+    pub const fn choice(
+        name: &'static str,
+        words: &'static [&'static str],
+        default: Default,
+        help: &'static str,
+    ) -> Self {
+        Self {
+            name,
+            kind: ParamKind::Choice(words),
+            default,
+            unit: "",
+            range: Range::ANY,
+            help,
+        }
+    }
+
+    /// The valid values in words, e.g. `a real number > 0`, `3 real numbers`.
+    pub fn expectation(&self) -> String {
+        match self.kind {
+            ParamKind::Scalar => format!("a real number, {}", self.range),
+            ParamKind::Integer => format!("an integer, {}", self.range),
+            ParamKind::Vector(Length::Fixed(n)) => format!("{n} real numbers"),
+            ParamKind::Vector(Length::Any) => "one or more real numbers".into(),
+            ParamKind::Vector(Length::SameAs(other)) => {
+                format!("real numbers, as many as `{other}`")
+            }
+            ParamKind::Vector(Length::Count(count)) => format!("`{count}` real numbers"),
+            ParamKind::Choice(words) => format!("one of: {}", words.join(", ")),
+        }
+    }
+
+    fn invalid(&self, reason: impl Into<String>) -> Error {
+        Error::InvalidArgument {
+            name: self.name.into(),
+            reason: reason.into(),
+        }
+    }
+
+    /// Checks a value given for this parameter: its kind, finiteness and range (lengths that
+    /// depend on other parameters are checked by [`SystemEntry::values`]).
+    ///
+    /// # Errors
+    /// [`Error::InvalidArgument`] naming the parameter, or [`Error::InvalidParameter`] with
+    /// the rejected number for a value out of range.
+    pub fn check(&self, value: &Value) -> Result<()> {
+        match (self.kind, value) {
+            (ParamKind::Scalar, Value::Scalar(x)) => {
+                if !x.is_finite() {
+                    return Err(Error::invalid(self.name, *x, "must be finite"));
+                }
+                self.check_range(*x)
+            }
+            (ParamKind::Integer, Value::Integer(n)) => self.check_range(*n as f64),
+            (ParamKind::Vector(length), Value::Vector(v)) => {
+                if let Length::Fixed(n) = length {
+                    if v.len() != n {
+                        return Err(Error::DimensionMismatch {
+                            name: self.name.into(),
+                            expected: n,
+                            found: v.len(),
+                        });
+                    }
+                }
+                if v.is_empty() {
+                    return Err(self.invalid("must hold at least one number"));
+                }
+                if v.iter().all(|x| x.is_finite()) {
+                    Ok(())
+                } else {
+                    Err(self.invalid("contains NaN or infinity; pass finite numbers"))
+                }
+            }
+            (ParamKind::Choice(words), Value::Choice(w)) => {
+                if words.contains(&w.as_str()) {
+                    Ok(())
+                } else {
+                    Err(self.invalid(format!("`{w}` is not one of: {}", words.join(", "))))
+                }
+            }
+            (_, other) => Err(self.invalid(format!(
+                "expected {}, got {}",
+                self.expectation(),
+                other.kind_name()
+            ))),
+        }
+    }
+
+    fn check_range(&self, x: f64) -> Result<()> {
+        if self.range.contains(x) {
+            Ok(())
+        } else {
+            Err(Error::invalid(
+                self.name,
+                x,
+                format!("must be {}", self.range),
+            ))
+        }
+    }
+}
+
+/// A parameter value, as a front end converted it.
+#[derive(Debug, Clone, PartialEq)]
+pub enum Value {
+    /// A real number.
+    Scalar(f64),
+    /// An integer.
+    Integer(i64),
+    /// A vector of real numbers.
+    Vector(Vec<f64>),
+    /// A word.
+    Choice(String),
+}
+
+impl Value {
+    /// Lower-case name of the value's kind, for messages.
+    pub fn kind_name(&self) -> &'static str {
+        match self {
+            Value::Scalar(_) => "a real number",
+            Value::Integer(_) => "an integer",
+            Value::Vector(_) => "a vector",
+            Value::Choice(_) => "a word",
+        }
+    }
+}
+
+/// Every parameter of one system with its checked value (`None`: left out, where allowed), in
+/// the entry's order.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Values {
+    entries: Vec<(&'static str, Option<Value>)>,
+}
+
+impl Values {
+    /// `(name, value)` pairs in the entry's order.
+    pub fn iter(&self) -> impl Iterator<Item = (&'static str, Option<&Value>)> {
+        self.entries.iter().map(|(n, v)| (*n, v.as_ref()))
+    }
+
+    /// The value of `name`, `None` if it was left out.
+    ///
+    /// # Errors
+    /// [`Error::InvalidArgument`] if the entry declares no such parameter (a catalogue bug,
+    /// caught by the catalogue's tests, which build every entry).
+    pub fn get(&self, name: &str) -> Result<Option<&Value>> {
+        self.entries
+            .iter()
+            .find(|(n, _)| *n == name)
+            .map(|(_, v)| v.as_ref())
+            .ok_or_else(|| Error::InvalidArgument {
+                name: name.into(),
+                reason: "internal: the catalogue entry declares no such parameter".into(),
+            })
+    }
+
+    fn wrong(name: &str, what: &str) -> Error {
+        Error::InvalidArgument {
+            name: name.into(),
+            reason: format!("internal: not {what}"),
+        }
+    }
+
+    fn required(name: &str) -> Error {
+        Error::InvalidArgument {
+            name: name.into(),
+            reason: "is required".into(),
+        }
+    }
+
+    /// A real parameter.
+    ///
+    /// # Errors
+    /// Undeclared, absent, or of another kind.
+    pub fn scalar(&self, name: &str) -> Result<f64> {
+        self.opt_scalar(name)?.ok_or_else(|| Self::required(name))
+    }
+
+    /// A real parameter that may be absent.
+    ///
+    /// # Errors
+    /// Undeclared, or of another kind.
+    pub fn opt_scalar(&self, name: &str) -> Result<Option<f64>> {
+        match self.get(name)? {
+            None => Ok(None),
+            Some(Value::Scalar(x)) => Ok(Some(*x)),
+            Some(_) => Err(Self::wrong(name, "a real number")),
+        }
+    }
+
+    /// An integer parameter.
+    ///
+    /// # Errors
+    /// Undeclared, absent, or of another kind.
+    pub fn integer(&self, name: &str) -> Result<i64> {
+        match self.get(name)? {
+            None => Err(Self::required(name)),
+            Some(Value::Integer(n)) => Ok(*n),
+            Some(_) => Err(Self::wrong(name, "an integer")),
+        }
+    }
+
+    /// A non-negative integer parameter as a count.
+    ///
+    /// # Errors
+    /// As [`integer`](Self::integer), or a negative value (a range missing from the entry).
+    pub fn count(&self, name: &str) -> Result<usize> {
+        let n = self.integer(name)?;
+        usize::try_from(n).map_err(|_| Error::invalid(name, n as f64, "must be >= 0"))
+    }
+
+    /// A vector parameter.
+    ///
+    /// # Errors
+    /// Undeclared, absent, or of another kind.
+    pub fn vector(&self, name: &str) -> Result<&[f64]> {
+        self.opt_vector(name)?.ok_or_else(|| Self::required(name))
+    }
+
+    /// A vector parameter that may be absent.
+    ///
+    /// # Errors
+    /// Undeclared, or of another kind.
+    pub fn opt_vector(&self, name: &str) -> Result<Option<&[f64]>> {
+        match self.get(name)? {
+            None => Ok(None),
+            Some(Value::Vector(v)) => Ok(Some(v)),
+            Some(_) => Err(Self::wrong(name, "a vector")),
+        }
+    }
+
+    /// A choice parameter.
+    ///
+    /// # Errors
+    /// Undeclared, absent, or of another kind.
+    pub fn choice(&self, name: &str) -> Result<&str> {
+        match self.get(name)? {
+            None => Err(Self::required(name)),
+            Some(Value::Choice(w)) => Ok(w),
+            Some(_) => Err(Self::wrong(name, "a word")),
+        }
+    }
+}
+
+/// Builds a system from checked values.
+pub type Builder = fn(&Values) -> Result<Box<dyn super::erased::DynSystem>>;
+
+/// One built-in system (or one of its constructors) in the catalogue.
+#[derive(Clone, Copy)]
+pub struct SystemEntry {
+    /// Name used by the command line, the lab and `list --json` (kebab-case).
+    pub name: &'static str,
+    /// The Python class, and for an alternate constructor the classmethod, as
+    /// `"KeplerSystem.from_orbital_elements"`; `None` for entries with no Python
+    /// counterpart.
+    pub python: Option<&'static str>,
+    /// One-line description.
+    pub summary: &'static str,
+    /// The family.
+    pub family: Family,
+    /// Parameters, in the order of the spec's signature.
+    pub params: &'static [ParamSpec],
+    /// Whether `H = T(p) + V(q)` with conservative forces for some parameters, so that the
+    /// splitting methods apply (the built system has the last word: a projectile with drag
+    /// refuses them).
+    pub separable: bool,
+    /// The method `integrate` uses by default for the default parameters.
+    pub default_method: Method,
+    /// A remark for listings (which parameters show what).
+    pub note: Option<&'static str>,
+    /// The constructor.
+    pub build: Builder,
+}
+
+impl fmt::Debug for SystemEntry {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        f.debug_struct("SystemEntry")
+            .field("name", &self.name)
+            .finish_non_exhaustive()
+    }
+}
+
+impl SystemEntry {
+    /// The parameter called `name`.
+    pub fn param(&self, name: &str) -> Option<&'static ParamSpec> {
+        self.params.iter().find(|p| p.name == name)
+    }
+
+    /// The methods that can integrate this system: every method for separable systems,
+    /// otherwise those that do not need `H = T(p) + V(q)`.
+    pub fn methods(&self) -> impl Iterator<Item = Method> + '_ {
+        Method::ALL
+            .into_iter()
+            .filter(move |m| self.separable || !m.needs_separable())
+    }
+
+    /// Checks `given` (parameter name and value) and fills in the defaults.
+    ///
+    /// # Errors
+    /// [`Error::InvalidArgument`] for an unknown or repeated name, a missing required value,
+    /// a value of the wrong kind or a vector of the wrong length;
+    /// [`Error::InvalidParameter`] for a number out of its range.
+    pub fn values(&self, given: impl IntoIterator<Item = (String, Value)>) -> Result<Values> {
+        let mut slots: Vec<Option<Value>> = vec![None; self.params.len()];
+        let mut seen = vec![false; self.params.len()];
+        for (name, value) in given {
+            let index = self
+                .params
+                .iter()
+                .position(|p| p.name == name)
+                .ok_or_else(|| Error::InvalidArgument {
+                    name: name.clone(),
+                    reason: format!(
+                        "`{}` has no such parameter; its parameters are: {}",
+                        self.name,
+                        self.params
+                            .iter()
+                            .map(|p| p.name)
+                            .collect::<Vec<_>>()
+                            .join(", ")
+                    ),
+                })?;
+            if seen[index] {
+                return Err(Error::InvalidArgument {
+                    name,
+                    reason: "given twice".into(),
+                });
+            }
+            self.params[index].check(&value)?;
+            seen[index] = true;
+            slots[index] = Some(value);
+        }
+        for (spec, (slot, given)) in self.params.iter().zip(slots.iter_mut().zip(&seen)) {
+            if !given {
+                *slot = spec
+                    .default
+                    .fill()
+                    .map_err(|()| Values::required(spec.name))?;
+            }
+        }
+        let values = Values {
+            entries: self.params.iter().map(|p| p.name).zip(slots).collect(),
+        };
+        self.check_lengths(&values)?;
+        Ok(values)
+    }
+
+    /// Vector lengths tied to another parameter.
+    fn check_lengths(&self, values: &Values) -> Result<()> {
+        for spec in self.params {
+            let ParamKind::Vector(length) = spec.kind else {
+                continue;
+            };
+            let Some(v) = values.opt_vector(spec.name)? else {
+                continue;
+            };
+            let expected = match length {
+                Length::Fixed(_) | Length::Any => continue,
+                Length::SameAs(other) => match values.opt_vector(other)? {
+                    Some(o) => o.len(),
+                    None => continue,
+                },
+                Length::Count(count) => values.count(count)?,
+            };
+            if v.len() != expected {
+                return Err(Error::DimensionMismatch {
+                    name: spec.name.into(),
+                    expected,
+                    found: v.len(),
+                });
+            }
+        }
+        Ok(())
+    }
+
+    /// Checks `given` and builds the system.
+    ///
+    /// # Errors
+    /// As [`values`](Self::values), then whatever the system's constructor refuses.
+    pub fn build_from(
+        &self,
+        given: impl IntoIterator<Item = (String, Value)>,
+    ) -> Result<Box<dyn super::erased::DynSystem>> {
+        let values = self.values(given)?;
+        (self.build)(&values)
+    }
+}

@@ -1,0 +1,288 @@
+//! [`DynSystem`]: one type-erased system for every front end, with optional
+//! [`Capabilities`].
+//!
+//! `integrate` is generic over the concrete system so that its force is inlined into the
+//! step loop. A front end that picks a system by name at run time holds a
+//! `Box<dyn DynSystem>` instead: each family is wrapped once ([`Hamiltonian`],
+//! [`Lagrangian`], [`Ode`]), and the wrapper's `integrate` calls the family's generic
+//! `integrate_with`, so the only dynamic call is the one into `integrate`, never one per step.
+//!
+//! What only some systems can tell (bob positions for drawing, normal modes, a rotation
+//! matrix, a conserved vector) is a [`Capabilities`] method with a default of `None`, which a
+//! system overrides in its own file. Front ends ask for a capability and report its absence;
+//! they never downcast to a concrete type.
+
+use std::ops::Deref;
+
+use super::catalog::Family;
+use super::error::{Error, Result};
+use super::method::Method;
+use super::options::IntegrateOptions;
+use super::result::SimulationResult;
+use super::system::{DynamicalSystem, HamiltonianSystem, LagrangianSystem, OdeSystem};
+
+/// What only some systems offer. Every method returns `None` unless the system overrides it;
+/// `Some(Err(..))` reports bad arguments (wrong lengths).
+///
+/// Arguments are the caller's states (front ends pass the current state by default), so the
+/// same accessor serves a whole trajectory.
+pub trait Capabilities {
+    /// Cartesian positions of the drawn bodies for the configuration `q`, as
+    /// `[x1, y1, x2, y2, ...]` (the double pendulum's two bobs, a spring pendulum's bob).
+    fn positions(&self, q: &[f64]) -> Option<Result<Vec<f64>>> {
+        let _ = q;
+        None
+    }
+
+    /// The Laplace–Runge–Lenz vector of a central-force orbit.
+    fn lrl_vector(&self, q: &[f64], p: &[f64]) -> Option<Result<[f64; 2]>> {
+        let _ = (q, p);
+        None
+    }
+
+    /// The angular momentum about the force centre (planar: the out-of-plane component).
+    fn angular_momentum(&self, q: &[f64], p: &[f64]) -> Option<Result<f64>> {
+        let _ = (q, p);
+        None
+    }
+
+    /// The energy of each particle (they sum to the total energy).
+    fn per_particle_energy(&self, q: &[f64], p: &[f64]) -> Option<Result<Vec<f64>>> {
+        let _ = (q, p);
+        None
+    }
+
+    /// The area of the phase-space patch that the particles fill.
+    fn phase_space_area(&self, q: &[f64], p: &[f64]) -> Option<Result<f64>> {
+        let _ = (q, p);
+        None
+    }
+
+    /// Angular frequencies of the normal modes, lowest first.
+    fn normal_mode_frequencies(&self) -> Option<Vec<f64>> {
+        None
+    }
+
+    /// Normal-mode coordinates `(Q, P)` of the state `(q, p)`.
+    fn normal_mode_coordinates(
+        &self,
+        q: &[f64],
+        p: &[f64],
+    ) -> Option<Result<(Vec<f64>, Vec<f64>)>> {
+        let _ = (q, p);
+        None
+    }
+
+    /// Energy in each normal mode of the state `(q, p)`.
+    fn modal_energies(&self, q: &[f64], p: &[f64]) -> Option<Result<Vec<f64>>> {
+        let _ = (q, p);
+        None
+    }
+
+    /// The rotation matrix (row-major, body to space) of a rigid body's state.
+    fn rotation_matrix(&self, state: &[f64]) -> Option<Result<[f64; 9]>> {
+        let _ = state;
+        None
+    }
+
+    /// `|L|^2` of a rigid body's state.
+    fn angular_momentum_squared(&self, state: &[f64]) -> Option<Result<f64>> {
+        let _ = state;
+        None
+    }
+
+    /// The instantaneous precession and nutation rates `(phidot, thetadot)` of a top.
+    fn precession_nutation_rate(&self, state: &[f64]) -> Option<Result<(f64, f64)>> {
+        let _ = state;
+        None
+    }
+
+    /// Conserved quantities beyond the energy (an integrable system's integrals), sorted.
+    fn conserved_quantities(&self, state: &[f64]) -> Option<Result<Vec<f64>>> {
+        let _ = state;
+        None
+    }
+}
+
+/// The names of the [`Capabilities`] accessors, in declaration order, for listings (`list
+/// --json`, the lab): [`offered`] says which of them a system has.
+pub const CAPABILITY_NAMES: [&str; 12] = [
+    "positions",
+    "lrl_vector",
+    "angular_momentum",
+    "per_particle_energy",
+    "phase_space_area",
+    "normal_mode_frequencies",
+    "normal_mode_coordinates",
+    "modal_energies",
+    "rotation_matrix",
+    "angular_momentum_squared",
+    "precession_nutation_rate",
+    "conserved_quantities",
+];
+
+/// Which [`CAPABILITY_NAMES`] `system` offers, asked at its current state.
+pub fn offered(system: &dyn DynSystem) -> Vec<&'static str> {
+    let d = system.dynamical();
+    let state = d.state();
+    let (q, p) = match system.ndof() {
+        Some(n) if state.len() == 2 * n => state.split_at(n),
+        _ => (state, state),
+    };
+    let c = system.capabilities();
+    let has = [
+        c.positions(q).is_some(),
+        c.lrl_vector(q, p).is_some(),
+        c.angular_momentum(q, p).is_some(),
+        c.per_particle_energy(q, p).is_some(),
+        c.phase_space_area(q, p).is_some(),
+        c.normal_mode_frequencies().is_some(),
+        c.normal_mode_coordinates(q, p).is_some(),
+        c.modal_energies(q, p).is_some(),
+        c.rotation_matrix(state).is_some(),
+        c.angular_momentum_squared(state).is_some(),
+        c.precession_nutation_rate(state).is_some(),
+        c.conserved_quantities(state).is_some(),
+    ];
+    CAPABILITY_NAMES
+        .into_iter()
+        .zip(has)
+        .filter_map(|(name, yes)| yes.then_some(name))
+        .collect()
+}
+
+/// A built-in system behind one object-safe interface, whatever its family.
+pub trait DynSystem: Send + Sync {
+    /// The family.
+    fn family(&self) -> Family;
+
+    /// Degrees of freedom (`None` for ODE systems, whose state has its own layout).
+    fn ndof(&self) -> Option<usize>;
+
+    /// State, clock, energy, derivatives and default method.
+    fn dynamical(&self) -> &dyn DynamicalSystem;
+
+    /// Resets the clock to `t0` and, if given, the state.
+    ///
+    /// # Errors
+    /// As [`DynamicalSystem::reset`].
+    fn reset(&mut self, state0: Option<&[f64]>, t0: f64) -> Result<()>;
+
+    /// Runs the family's `integrate_with`.
+    ///
+    /// # Errors
+    /// Whatever the integrator returns.
+    fn integrate(
+        &mut self,
+        t_span: (f64, f64),
+        dt: f64,
+        method: Method,
+        options: IntegrateOptions<'_>,
+    ) -> Result<SimulationResult>;
+
+    /// The Hamiltonian view (kinetic and potential energy, force, masses), for Hamiltonian
+    /// systems.
+    fn hamiltonian(&self) -> Option<&dyn HamiltonianSystem> {
+        None
+    }
+
+    /// The Lagrangian view (acceleration, momentum, Legendre map), for Lagrangian systems.
+    fn lagrangian(&self) -> Option<&dyn LagrangianSystem> {
+        None
+    }
+
+    /// What only some systems offer.
+    fn capabilities(&self) -> &dyn Capabilities;
+
+    /// The method `integrate` uses when none is given.
+    fn default_method(&self) -> Method {
+        self.dynamical().default_method()
+    }
+}
+
+/// A [`HamiltonianSystem`] behind [`DynSystem`].
+#[derive(Debug, Clone)]
+pub struct Hamiltonian<S>(pub S);
+
+/// A [`LagrangianSystem`] behind [`DynSystem`].
+#[derive(Debug, Clone)]
+pub struct Lagrangian<S>(pub S);
+
+/// An [`OdeSystem`] behind [`DynSystem`].
+#[derive(Debug, Clone)]
+pub struct Ode<S>(pub S);
+
+macro_rules! impl_dyn_system {
+    ($wrapper:ident, $family:ident, $tag:expr, $ndof:expr, $view:ident) => {
+        impl<S> Deref for $wrapper<S> {
+            type Target = S;
+            fn deref(&self) -> &S {
+                &self.0
+            }
+        }
+
+        impl<S: $family + Capabilities + Send + Sync> DynSystem for $wrapper<S> {
+            fn family(&self) -> Family {
+                $tag
+            }
+            fn ndof(&self) -> Option<usize> {
+                #[allow(clippy::redundant_closure_call)]
+                ($ndof)(&self.0)
+            }
+            fn dynamical(&self) -> &dyn DynamicalSystem {
+                &self.0
+            }
+            fn reset(&mut self, state0: Option<&[f64]>, t0: f64) -> Result<()> {
+                self.0.reset(state0, t0)
+            }
+            fn integrate(
+                &mut self,
+                t_span: (f64, f64),
+                dt: f64,
+                method: Method,
+                options: IntegrateOptions<'_>,
+            ) -> Result<SimulationResult> {
+                $family::integrate_with(&mut self.0, t_span, dt, method, options)
+            }
+            impl_dyn_system!(@view $view);
+            fn capabilities(&self) -> &dyn Capabilities {
+                &self.0
+            }
+        }
+    };
+    (@view hamiltonian) => {
+        fn hamiltonian(&self) -> Option<&dyn HamiltonianSystem> {
+            Some(&self.0)
+        }
+    };
+    (@view lagrangian) => {
+        fn lagrangian(&self) -> Option<&dyn LagrangianSystem> {
+            Some(&self.0)
+        }
+    };
+    (@view none) => {};
+}
+
+impl_dyn_system!(
+    Hamiltonian,
+    HamiltonianSystem,
+    Family::Hamiltonian,
+    |s: &S| Some(HamiltonianSystem::ndof(s)),
+    hamiltonian
+);
+impl_dyn_system!(
+    Lagrangian,
+    LagrangianSystem,
+    Family::Lagrangian,
+    |s: &S| Some(LagrangianSystem::ndof(s)),
+    lagrangian
+);
+impl_dyn_system!(Ode, OdeSystem, Family::Ode, |_: &S| None, none);
+
+/// An [`Error::Unsupported`] for a capability `system` lacks, for front ends.
+pub fn missing(capability: &str, system: &str) -> Error {
+    Error::Unsupported {
+        operation: capability.into(),
+        reason: format!("`{system}` does not offer it"),
+    }
+}
