@@ -494,6 +494,13 @@ impl Values {
             })
     }
 
+    /// Replaces the value at `index`, bypassing the checks (for tests that feed constructors
+    /// values the catalogue refuses).
+    #[cfg(test)]
+    pub(crate) fn set_unchecked(&mut self, index: usize, value: Option<Value>) {
+        self.entries[index].1 = value;
+    }
+
     fn wrong(name: &str, what: &str) -> Error {
         Error::InvalidArgument {
             name: name.into(),
