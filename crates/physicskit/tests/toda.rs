@@ -50,7 +50,7 @@ fn fused_potential_is_the_potential_bit_for_bit() {
     // The splitting integrators store T + the fused potential as the sample's energy; it must
     // be exactly what `energy` computes.
     let q = scaled(pseudo_random(9, 5), 3.0);
-    let toda = TodaLattice::new(&q, &vec![0.1; 9], 1.2, 0.8).unwrap();
+    let toda = TodaLattice::new(&q, &[0.1; 9], 1.2, 0.8).unwrap();
     let mut f1 = vec![0.0; 9];
     let mut f2 = vec![0.0; 9];
     toda.force(&q, 0.0, &mut f1).unwrap();

@@ -164,7 +164,8 @@ impl ElasticPendulumParams {
         let m = self.m;
         let mr2 = m * r * r;
         let scale = m.max(mr2);
-        if !(r > 0.0) || negligible_pivot(m, scale) || negligible_pivot(mr2, scale) {
+        // A NaN r makes m r^2 NaN, which negligible_pivot calls singular.
+        if r <= 0.0 || negligible_pivot(m, scale) || negligible_pivot(mr2, scale) {
             return Err(Error::SingularMatrix {
                 what: format!(
                     "mass matrix diag(m, m r^2) at r = {r} (the bob reached the pivot, r <= 0 \
@@ -269,7 +270,7 @@ impl Lagrangian for ElasticPendulumParams {
 /// # Example
 /// ```
 /// use physicskit::classical::systems::{ElasticPendulum, ElasticPendulumParams};
-/// use physicskit::classical::{DynamicalSystem, Method};
+/// use physicskit::classical::{DynamicalSystem, LagrangianSystem, Method};
 ///
 /// let params = ElasticPendulumParams::default();
 /// let r_eq = params.equilibrium_length();
