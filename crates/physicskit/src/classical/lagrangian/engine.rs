@@ -25,9 +25,9 @@
 //! canonical field, energy); each engine method calls the closed form first and differentiates
 //! `L` only when it returns `None`, the default. Dispatch is static, so a Lagrangian without
 //! closed forms pays nothing for the check, and a closed form is plain `f64` arithmetic on the
-//! caller's slices: no allocation, no dual numbers. The four built-in systems (double
-//! pendulum, hoop, coupled oscillators, heavy top) supply all seven, derived in their module
-//! docs (the hoop and the chain get the canonical field from the provided
+//! caller's slices: no allocation, no dual numbers. The built-in systems (double
+//! pendulum, hoop, coupled oscillators, heavy top, elastic pendulum) supply all seven, derived
+//! in their module docs (the hoop, the chain and the elastic pendulum get the canonical field from the provided
 //! `closed_canonical`, which composes their velocity and `dL/dq`); `canonical_jacobian` (the implicit-midpoint Newton fallback, used only when fixed
 //! point iteration contracts slowly) stays automatic. Wrapping a Lagrangian in [`AutoDiff`]
 //! hides its closed forms: that engine is the independent check of them

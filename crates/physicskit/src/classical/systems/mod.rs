@@ -1,8 +1,9 @@
 //! The spec's systems, one file per family.
 //!
-//! Hamiltonian (issue 3): `kepler`, `henon_heiles`, `swarm`, `projectile`, `chains`.
+//! Hamiltonian (issue 3): `kepler`, `henon_heiles`, `swarm`, `projectile`, `chains`; and
+//! the integrable `toda` lattice.
 //! Lagrangian and rigid bodies (issue 4): `double_pendulum`, `hoop`, `coupled_oscillators`,
-//! `symmetric_top`, `rigid_body`.
+//! `symmetric_top`, `rigid_body`; and the `elastic_pendulum`.
 
 mod kepler;
 pub use kepler::*;
@@ -14,6 +15,8 @@ mod projectile;
 pub use projectile::*;
 mod chains;
 pub use chains::*;
+mod toda;
+pub use toda::*;
 mod double_pendulum;
 pub use double_pendulum::*;
 mod hoop;
@@ -24,3 +27,5 @@ mod symmetric_top;
 pub use symmetric_top::*;
 mod rigid_body;
 pub use rigid_body::*;
+mod elastic_pendulum;
+pub use elastic_pendulum::*;
