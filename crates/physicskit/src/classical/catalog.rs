@@ -43,6 +43,8 @@ pub static SYSTEMS: &[&SystemEntry] = &[
     &systems::COUPLED_OSCILLATORS_ENTRY,
     &systems::HEAVY_TOP_ENTRY,
     &systems::EULER_TOP_ENTRY,
+    &systems::TODA_ENTRY,
+    &systems::ELASTIC_PENDULUM_ENTRY,
 ];
 
 /// The entry called `name`.

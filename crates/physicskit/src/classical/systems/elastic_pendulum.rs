@@ -71,9 +71,14 @@
 //! lives in the factor `r` of the swing energy
 //! ([`ElasticPendulum::mode_energies`]).
 
+use crate::classical::core::catalog::{
+    Default as D, Family, Length, ParamSpec as P, Range, SystemEntry,
+};
+use crate::classical::core::erased::{Capabilities, Lagrangian as Erased};
 use crate::classical::core::error::{check_finite_scalar, check_non_negative, check_positive};
 use crate::classical::core::linalg::negligible_pivot;
 use crate::classical::core::trig::sin_cos;
+use crate::classical::core::Method;
 use crate::classical::core::{Error, Phase, Result};
 use crate::classical::lagrangian::{Lagrangian, LagrangianEngine, Scalar};
 
@@ -366,3 +371,79 @@ impl ElasticPendulum {
 }
 
 crate::impl_lagrangian_dynamics!(ElasticPendulum);
+
+impl Capabilities for ElasticPendulum {
+    fn positions(&self, q: &[f64]) -> Option<Result<Vec<f64>>> {
+        Some(ElasticPendulum::positions(self, Some(q)).map(|x| x.to_vec()))
+    }
+    fn modal_energies(&self, q: &[f64], qdot: &[f64]) -> Option<Result<Vec<f64>>> {
+        // The bounce and the swing: the two modes the 2:1 resonance couples.
+        let state = [q, qdot].concat();
+        Some(self.mode_energies(Some(&state)).map(|e| e.to_vec()))
+    }
+}
+
+/// The catalogue entry of [`ElasticPendulum`].
+pub static ELASTIC_PENDULUM_ENTRY: SystemEntry = SystemEntry {
+    name: "elastic-pendulum",
+    python: Some("ElasticPendulum"),
+    summary: "spring pendulum, q = (r, theta) with theta from the downward vertical \
+              (ElasticPendulum)",
+    family: Family::Lagrangian,
+    params: &[
+        P::vector(
+            "q0",
+            Length::Fixed(2),
+            D::demo_vector(&[1.3, 0.3]),
+            "m, rad",
+            "initial (r, theta)",
+        ),
+        P::vector(
+            "qdot0",
+            Length::Fixed(2),
+            D::demo_vector(&[0.0, 0.0]),
+            "m/s, rad/s",
+            "initial (rdot, thetadot)",
+        ),
+        P::scalar("m", D::scalar(1.0), "kg", Range::POSITIVE, "bob mass"),
+        P::scalar(
+            "k",
+            D::scalar(40.0),
+            "N/m",
+            Range::POSITIVE,
+            "spring constant",
+        ),
+        P::scalar(
+            "l0",
+            D::scalar(1.0),
+            "m",
+            Range::NON_NEGATIVE,
+            "rest length of the spring",
+        ),
+        P::scalar(
+            "g",
+            D::scalar(9.81),
+            "m/s^2",
+            Range::ANY,
+            "gravitational acceleration",
+        ),
+    ],
+    separable: false,
+    default_method: Method::ImplicitMidpoint,
+    note: Some(
+        "exact 2:1 resonance (bounce twice the swing frequency) at k = 3 m g / l0; p holds qdot",
+    ),
+    build: |v| {
+        let params = ElasticPendulumParams {
+            m: v.scalar("m")?,
+            k: v.scalar("k")?,
+            l0: v.scalar("l0")?,
+            g: v.scalar("g")?,
+        };
+        Ok(Box::new(Erased(ElasticPendulum::new(
+            v.vector("q0")?,
+            v.vector("qdot0")?,
+            params,
+        )?)))
+    },
+};

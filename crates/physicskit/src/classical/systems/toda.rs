@@ -53,8 +53,12 @@
 
 use nalgebra::{DMatrix, SymmetricEigen};
 
+use crate::classical::core::catalog::{
+    Default as D, Family, Length, ParamSpec as P, Range, SystemEntry,
+};
+use crate::classical::core::erased::{Capabilities, Hamiltonian};
 use crate::classical::core::error::{check_positive, check_vector};
-use crate::classical::core::{Error, HamiltonianSystem, MassInv, Phase, Result};
+use crate::classical::core::{Error, HamiltonianSystem, MassInv, Method, Phase, Result};
 
 /// The periodic Toda lattice `H = sum p_i^2/2 + (a/b) sum exp(-b (q_{i+1} - q_i))` (see the
 /// module documentation). Unit masses; state `[q, p]`; default method `yoshida4`.
@@ -295,3 +299,63 @@ impl HamiltonianSystem for TodaLattice {
 }
 
 crate::impl_separable_dynamics!(TodaLattice);
+
+impl Capabilities for TodaLattice {
+    fn per_particle_energy(&self, q: &[f64], p: &[f64]) -> Option<Result<Vec<f64>>> {
+        let mut out = vec![0.0; q.len()];
+        Some(self.particle_energies_into(q, p, &mut out).map(|()| out))
+    }
+    fn conserved_quantities(&self, state: &[f64]) -> Option<Result<Vec<f64>>> {
+        Some(TodaLattice::conserved_quantities(self, Some(state)))
+    }
+}
+
+/// The catalogue entry of [`TodaLattice`].
+pub static TODA_ENTRY: SystemEntry = SystemEntry {
+    name: "toda",
+    python: Some("TodaLattice"),
+    summary: "periodic Toda lattice H = sum p^2/2 + (a/b) sum exp(-b (q_{i+1} - q_i)), \
+              completely integrable (TodaLattice)",
+    family: Family::Hamiltonian,
+    params: &[
+        P::vector(
+            "q0",
+            Length::Any,
+            D::demo_vector(&[0.0; 8]),
+            "length",
+            "initial positions; the ring has one particle per entry (>= 2)",
+        ),
+        P::vector(
+            "p0",
+            Length::SameAs("q0"),
+            D::demo_vector(&[1.5, 0.0, 0.0, 0.0, -0.5, 0.0, 0.0, -1.0]),
+            "momentum",
+            "initial momenta, one per particle",
+        ),
+        P::scalar(
+            "a",
+            D::scalar(1.0),
+            "force",
+            Range::POSITIVE,
+            "bond strength: stiffness a b",
+        ),
+        P::scalar(
+            "b",
+            D::scalar(1.0),
+            "1/length",
+            Range::POSITIVE,
+            "bond anharmonicity",
+        ),
+    ],
+    separable: true,
+    default_method: Method::Yoshida4,
+    note: Some("conserved_quantities: the n eigenvalues of Flaschka's Lax matrix"),
+    build: |v| {
+        Ok(Box::new(Hamiltonian(TodaLattice::new(
+            v.vector("q0")?,
+            v.vector("p0")?,
+            v.scalar("a")?,
+            v.scalar("b")?,
+        )?)))
+    },
+};
