@@ -70,7 +70,7 @@ pub(crate) fn render(ctx: &Ctx) -> Result<Demo> {
         title: "Energy per particle eᵢ − a/b".into(),
         x_label: "particle i".into(),
         y_label: "t (units of 1/√(ab))".into(),
-        value_label: "eᵢ − a/b (units of a/b)".into(),
+        value_label: "eᵢ − a/b".into(),
         x_range: (1.0, N as f64),
         y_range: (t[0], t[ny - 1]),
         nx: N,
@@ -106,7 +106,9 @@ pub(crate) fn render(ctx: &Ctx) -> Result<Demo> {
         |_, area| {
             let (w, _) = area.dim_in_pixel();
             let (left, rest) = area.split_horizontally(w * 2 / 5);
-            let (middle, right) = rest.split_horizontally(w * 3 / 10);
+            // A gap between the colour bar's label and the next panel's axis label.
+            let (_, rest) = rest.split_horizontally(w / 30);
+            let (middle, right) = rest.split_horizontally(w * 3 / 10 - w / 30);
             map.draw(&left, &path)?;
             sloshing.draw(&middle, &path)?;
             spectrum.draw(&right, &path)?;
