@@ -48,8 +48,8 @@ pub(crate) fn render(ctx: &Ctx) -> Result<Demo> {
 
     // Energy of each particle above a/b, and the eigenvalues, per stored sample.
     let mut values = Vec::with_capacity(ny * N);
-    let mut traces: Vec<Vec<(f64, f64)>> = vec![Vec::with_capacity(ny); 2];
-    let mut eigen: Vec<Vec<(f64, f64)>> = vec![Vec::with_capacity(ny); N];
+    let mut traces: Vec<Vec<(f64, f64)>> = (0..2).map(|_| Vec::with_capacity(ny)).collect();
+    let mut eigen: Vec<Vec<(f64, f64)>> = (0..N).map(|_| Vec::with_capacity(ny)).collect();
     let mut drift = 0.0_f64;
     let watched = [0, N / 2 + N / 4];
     for (row, &ti) in r.y.rows().into_iter().zip(&t) {
