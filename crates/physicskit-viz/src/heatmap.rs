@@ -100,14 +100,24 @@ impl HeatMap {
                 )
             }))
             .at(path)?;
+        // Labels on the right of the bar, left-aligned: right-aligned on its left, their ends
+        // ran past the label area (the font's width estimate is short) and were cut off.
         let mut bar = ChartBuilder::on(&bar_area)
             .margin_top(44)
             .margin_bottom(58)
-            .margin_left(4)
-            .margin_right(40)
-            .y_label_area_size(56)
+            .margin_left(16)
+            .margin_right(4)
+            .right_y_label_area_size(72)
             .build_cartesian_2d(0.0..1.0, lo..hi)
             .at(path)?;
+        let steps = 120;
+        bar.draw_series((0..steps).map(|k| {
+            let a = lo + (hi - lo) * k as f64 / steps as f64;
+            let b = lo + (hi - lo) * (k + 1) as f64 / steps as f64;
+            let c = ViridisRGB::get_color_normalized(0.5 * (a + b), lo, hi);
+            Rectangle::new([(0.0, a), (1.0, b)], c.filled())
+        }))
+        .at(path)?;
         bar.configure_mesh()
             .disable_mesh()
             .disable_x_axis()
@@ -118,14 +128,6 @@ impl HeatMap {
             .y_labels(6)
             .draw()
             .at(path)?;
-        let steps = 120;
-        bar.draw_series((0..steps).map(|k| {
-            let a = lo + (hi - lo) * k as f64 / steps as f64;
-            let b = lo + (hi - lo) * (k + 1) as f64 / steps as f64;
-            let c = ViridisRGB::get_color_normalized(0.5 * (a + b), lo, hi);
-            Rectangle::new([(0.0, a), (1.0, b)], c.filled())
-        }))
-        .at(path)?;
         Ok(())
     }
 }

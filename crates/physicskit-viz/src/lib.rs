@@ -8,7 +8,7 @@
 //!   PNG files.
 //! * [`heatmap`]: space–time heat maps with a colour bar.
 //! * [`animation`]: animated GIFs.
-//! * [`gallery`]: the twelve demonstrations and [`render_gallery`], which writes them all and
+//! * [`gallery`]: the demonstrations and [`render_gallery`], which writes them all and
 //!   an offline `index.html` explaining the physics of each.
 //!
 //! All physics comes from the `physicskit` crate; this crate only simulates through its public
@@ -23,4 +23,4 @@ pub mod heatmap;
 mod html;
 
 pub use error::{Result, VizError};
-pub use gallery::{render_gallery, Demo, GalleryFile, GalleryReport};
+pub use gallery::{demo_count, render_gallery, Demo, GalleryFile, GalleryReport};

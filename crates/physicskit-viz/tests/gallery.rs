@@ -75,10 +75,16 @@ fn quick_gallery_renders_every_promised_file() {
         physicskit_viz::render_gallery(&dir.0, true, &mut |m: &str| messages.push(m.to_string()))
             .expect("gallery renders");
 
-    // Twelve demonstrations, each announced to the progress callback, each with a paragraph of
-    // physics and at least one file.
-    assert_eq!(report.demos.len(), 12);
-    assert_eq!(messages.len(), 12);
+    // Every demonstration (the list in gallery/mod.rs), each announced to the progress
+    // callback, each with a paragraph of physics and at least one file, under its own anchor.
+    let count = physicskit_viz::demo_count();
+    assert!(count >= 14, "{count} demonstrations");
+    assert_eq!(report.demos.len(), count);
+    assert_eq!(messages.len(), count);
+    let mut slugs: Vec<&str> = report.demos.iter().map(|d| d.slug.as_str()).collect();
+    slugs.sort_unstable();
+    slugs.dedup();
+    assert_eq!(slugs.len(), count, "duplicate anchors");
     for d in &report.demos {
         assert!(!d.files.is_empty(), "{} has no file", d.title);
         assert!(

@@ -1,5 +1,6 @@
-//! The gallery: twelve demonstrations, each a set of figures and a one-paragraph explanation
-//! of the physics, and [`render_gallery`], which renders them all and writes `index.html`.
+//! The gallery: the demonstrations (fourteen; [`demo_count`]), each a set of figures and a
+//! one-paragraph explanation of the physics, and [`render_gallery`], which renders them all and
+//! writes `index.html`.
 //!
 //! Every demonstration module has a `render(&Ctx) -> Result<Demo>` function. `quick` mode
 //! (used by tests and `physicskit gallery --quick`) runs fewer orbits, shorter times and fewer
@@ -13,6 +14,7 @@ use crate::error::{Result, VizError};
 mod chains;
 mod common;
 mod double_pendulum;
+mod elastic_pendulum;
 mod euler_top;
 mod fput;
 mod heavy_top;
@@ -23,6 +25,7 @@ mod kepler;
 mod projectile;
 mod sine_gordon;
 mod swarm;
+mod toda;
 
 /// One file written by the gallery.
 #[derive(Debug, Clone, PartialEq, Eq)]
@@ -120,7 +123,14 @@ fn demos() -> Vec<(&'static str, Render)> {
         ("bead on a rotating hoop", hoop::render),
         ("projectile", projectile::render),
         ("integrators compared", integrators::render),
+        ("Toda lattice", toda::render),
+        ("elastic pendulum", elastic_pendulum::render),
     ]
+}
+
+/// Number of demonstrations [`render_gallery`] renders.
+pub fn demo_count() -> usize {
+    demos().len()
 }
 
 /// Renders every demonstration into `out_dir` (created if missing) and writes `index.html`
