@@ -87,7 +87,7 @@ impl<'py> Callbacks<'py> {
             Err(_) => match self.convert("as_vector", name, &r) {
                 Ok(a) => match a.extract::<PyReadonlyArray1<'_, f64>>() {
                     Ok(a) => fill(out, &to_vec(&a), name),
-                    Err(e) => Err(self.stash(e.into(), &name.to_string())),
+                    Err(e) => Err(self.stash(e, &name.to_string())),
                 },
                 Err(e) => Err(self.stash(e, &name.to_string())),
             },
