@@ -1,8 +1,9 @@
 #!/usr/bin/env bash
 # Build and test the Python package `physicskit` (python/).
 #
-#   bash python/dev.sh env    create/refresh <repo>/.venv, install maturin numpy pytest sympy,
-#                             build the extension in release mode and install it (editable)
+#   bash python/dev.sh env    create/refresh <repo>/.venv, install maturin numpy pytest sympy
+#                             hypothesis, build the extension in release mode and install it
+#                             (editable)
 #   bash python/dev.sh test   run pytest on python/tests (warnings are errors)
 #
 # Needs only python3 (>= 3.10, with venv and pip) and cargo. Idempotent.
@@ -28,7 +29,7 @@ env)
     fi
     "$py" -m pip install --quiet --disable-pip-version-check --upgrade pip
     "$py" -m pip install --quiet --disable-pip-version-check \
-        "maturin>=1.7,<2" "numpy>=1.24" "pytest>=7" "sympy>=1.12"
+        "maturin>=1.7,<2" "numpy>=1.24" "pytest>=7" "sympy>=1.12" "hypothesis>=6.100,<7"
     # maturin develop builds the cdylib in release mode and installs the package in the venv
     # (the pure-Python part is linked, so edits under python/physicskit need no rebuild).
     # The grep only trims maturin's chatter; maturin's own exit status decides (a failed build

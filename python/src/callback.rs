@@ -6,6 +6,11 @@
 //! held. The same integrators run as for the built-in systems; only the right-hand side costs
 //! a Python call. The first Python exception raised by a callback stops the run and is
 //! re-raised unchanged.
+//!
+//! What a callback returns is read as float64 directly when it is a float64 array or a
+//! `float`; anything else (a list, an integer array, a numpy integer, a complex number) goes
+//! through the Python package's converters (`physicskit.classical._native`), whose rules refuse
+//! complex values, booleans and strings with a `ValueError` instead of casting them.
 
 use std::cell::RefCell;
 
@@ -17,7 +22,7 @@ use physicskit::classical::{
 };
 use pyo3::intern;
 use pyo3::prelude::*;
-use pyo3::types::PyTuple;
+use pyo3::types::{PyFloat, PyTuple};
 
 use crate::convert::{result_tuple, to_vec};
 use crate::errors::IntoPyResult;
@@ -60,7 +65,8 @@ impl<'py> Callbacks<'py> {
 
     /// Calls `name(*args)` and copies the returned 1-D array into `out`.
     ///
-    /// The method name is only formatted on failure: this runs once per step (or per stage).
+    /// The method name is only formatted on failure, or for a result that is not a float64
+    /// array: this runs once per step (or per stage).
     fn vector(
         &self,
         name: &Bound<'py, pyo3::types::PyString>,
@@ -78,8 +84,11 @@ impl<'py> Callbacks<'py> {
                 }
                 _ => fill(out, &to_vec(&a), name),
             },
-            Err(_) => match r.extract::<Vec<f64>>() {
-                Ok(v) => fill(out, &v, name),
+            Err(_) => match self.convert("as_vector", name, &r) {
+                Ok(a) => match a.extract::<PyReadonlyArray1<'_, f64>>() {
+                    Ok(a) => fill(out, &to_vec(&a), name),
+                    Err(e) => Err(self.stash(e, &name.to_string())),
+                },
                 Err(e) => Err(self.stash(e, &name.to_string())),
             },
         }
@@ -92,13 +101,42 @@ impl<'py> Callbacks<'py> {
         name: &Bound<'py, pyo3::types::PyString>,
         args: impl pyo3::call::PyCallArgs<'py>,
     ) -> f64 {
-        match self.call(name, args).and_then(|r| r.extract::<f64>()) {
+        let value = self.call(name, args).and_then(|r| {
+            // `float` and its subclasses (numpy's float64) are read as they are; anything else
+            // by the package's rules, which refuse a complex number rather than drop its
+            // imaginary part.
+            if r.is_instance_of::<PyFloat>() {
+                r.extract::<f64>()
+            } else {
+                self.convert("as_real", name, &r)?.extract::<f64>()
+            }
+        });
+        match value {
             Ok(v) => v,
             Err(e) => {
                 self.stash(e, &name.to_string());
                 f64::NAN
             }
         }
+    }
+
+    /// `physicskit.classical._native.<converter>("value returned by <name>", value)`.
+    fn convert(
+        &self,
+        converter: &str,
+        name: &Bound<'py, pyo3::types::PyString>,
+        value: &Bound<'py, PyAny>,
+    ) -> PyResult<Bound<'py, PyAny>> {
+        let py = self.obj.py();
+        let module = py.import(intern!(py, "physicskit.classical._native"))?;
+        let what = format!("value returned by {name}");
+        let kwargs = pyo3::types::PyDict::new(py);
+        if converter == "as_vector" {
+            kwargs.set_item(intern!(py, "finite"), false)?;
+        }
+        module
+            .getattr(converter)?
+            .call((what, value), Some(&kwargs))
     }
 
     /// The Python `derivatives(t, state)`, the right-hand side of both callback families.

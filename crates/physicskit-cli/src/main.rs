@@ -1,8 +1,10 @@
 //! `physicskit`: list the systems, export a trajectory, render the gallery.
 //!
 //! Exit status: 0 on success; 2 on any error, printed as one line `error: ...` on stderr
-//! (bad input, a run the library refuses, an unwritable output); 130 after Ctrl-C. No
-//! physics lives here: systems come from the library through the registry in [`systems`].
+//! (bad input, a run the library refuses, an unwritable output); `128 + signal` after a run
+//! stopped by Ctrl-C (130), SIGTERM (143) or SIGHUP (129), with no file left behind
+//! ([`signals`]). No physics lives here: systems come from the library through the registry in
+//! [`systems`].
 
 mod cli;
 mod gallery;
@@ -10,13 +12,12 @@ mod list;
 mod output;
 mod progress;
 mod registry;
+mod signals;
 mod simulate;
 mod simulation;
 mod systems;
 
 use std::process::ExitCode;
-use std::sync::atomic::{AtomicBool, Ordering};
-use std::sync::Arc;
 
 use clap::error::{ContextKind, ContextValue, ErrorKind};
 use clap::Parser;
@@ -25,39 +26,35 @@ use crate::cli::{Action, Cli};
 
 /// Exit status for every error.
 const EXIT_ERROR: u8 = 2;
-/// Exit status after Ctrl-C (128 + SIGINT), as shells report it.
-const EXIT_INTERRUPTED: u8 = 130;
 
 fn main() -> ExitCode {
     let cli = match Cli::try_parse() {
         Ok(cli) => cli,
         Err(err) => return clap_failure(&err),
     };
-    let interrupted = Arc::new(AtomicBool::new(false));
-    {
-        let flag = Arc::clone(&interrupted);
-        // Without the handler Ctrl-C still stops the program, only less tidily.
-        let _ = ctrlc::set_handler(move || flag.store(true, Ordering::Relaxed));
-    }
+    let stop = signals::Stop::install();
     let outcome = match &cli.command {
         Action::List => match list::print(&mut std::io::stdout().lock()) {
             // `physicskit list | head` closes the pipe early; that is not an error.
             Err(e) if e.kind() == std::io::ErrorKind::BrokenPipe => Ok(()),
             other => other.map_err(anyhow::Error::from),
         },
-        Action::Simulate(args) => simulate::run(&args.system, Arc::clone(&interrupted)),
+        Action::Simulate(args) => simulate::run(&args.system, &stop),
         Action::Gallery(args) => gallery::render(&args.out, args.quick),
     };
     match outcome {
         Ok(()) => ExitCode::SUCCESS,
-        Err(err) => {
-            eprintln!("error: {}", one_line(&format!("{err:#}")));
-            if interrupted.load(Ordering::Relaxed) {
-                ExitCode::from(EXIT_INTERRUPTED)
-            } else {
+        Err(err) => match stop.exit_status() {
+            Some(status) => {
+                let message = one_line(&format!("{err:#}"));
+                eprintln!("error: {message} (by {})", stop.name());
+                ExitCode::from(status)
+            }
+            None => {
+                eprintln!("error: {}", one_line(&format!("{err:#}")));
                 ExitCode::from(EXIT_ERROR)
             }
-        }
+        },
     }
 }
 

@@ -5,8 +5,6 @@
 //! invocation fails at once and a long run is never wasted on a typo.
 
 use std::ops::ControlFlow;
-use std::sync::atomic::{AtomicBool, Ordering};
-use std::sync::Arc;
 
 use anyhow::{anyhow, Context, Result};
 use physicskit::classical::{IntegrateOptions, Observer, Sampling, TimeGrid};
@@ -15,6 +13,7 @@ use crate::cli::SystemCall;
 use crate::output::{Pending, Record};
 use crate::progress::{Progress, OBSERVE_EVERY};
 use crate::registry;
+use crate::signals::Stop;
 
 fn number(flag: &str, text: &str) -> Result<f64> {
     let v: f64 = text
@@ -28,8 +27,9 @@ fn number(flag: &str, text: &str) -> Result<f64> {
 ///
 /// # Errors
 /// Any bad input, a run the library refuses or fails, or a file that cannot be written. No
-/// output file exists afterwards in any of these cases.
-pub fn run(call: &SystemCall, interrupted: Arc<AtomicBool>) -> Result<()> {
+/// output file exists afterwards in any of these cases, nor after a stopping signal
+/// ([`Stop`]) that arrives before the file is complete.
+pub fn run(call: &SystemCall, stop: &Stop) -> Result<()> {
     let spec = registry::find(&call.name)?;
     let method = call.method.as_deref().map(|m| spec.method(m)).transpose()?;
     let values = spec.parse_values(
@@ -59,7 +59,7 @@ pub fn run(call: &SystemCall, interrupted: Arc<AtomicBool>) -> Result<()> {
 
     let mut observer = RunObserver {
         bar: Progress::for_terminal(grid.n_steps()),
-        interrupted,
+        stop,
     };
     let options = IntegrateOptions {
         sampling: if stride == 1 {
@@ -76,6 +76,11 @@ pub fn run(call: &SystemCall, interrupted: Arc<AtomicBool>) -> Result<()> {
         bar.finish();
     }
     let result = result?;
+    if stop.requested() {
+        // Arrived after the last check of the run: nothing is written (the temporary file
+        // goes with `pending`).
+        anyhow::bail!("interrupted before writing `{}`", call.out.display());
+    }
     pending.commit(&Record {
         system: spec.name,
         family: spec.family,
@@ -87,16 +92,16 @@ pub fn run(call: &SystemCall, interrupted: Arc<AtomicBool>) -> Result<()> {
     })
 }
 
-/// The progress bar (when stderr is a terminal) and the Ctrl-C flag, checked every
+/// The progress bar (when stderr is a terminal) and the stopping signals, checked every
 /// [`OBSERVE_EVERY`] steps.
-struct RunObserver {
+struct RunObserver<'a> {
     bar: Option<Progress>,
-    interrupted: Arc<AtomicBool>,
+    stop: &'a Stop,
 }
 
-impl Observer for RunObserver {
+impl Observer for RunObserver<'_> {
     fn observe(&mut self, step: usize, n_steps: usize, t: f64) -> ControlFlow<()> {
-        if self.interrupted.load(Ordering::Relaxed) {
+        if self.stop.requested() {
             return ControlFlow::Break(());
         }
         match &mut self.bar {

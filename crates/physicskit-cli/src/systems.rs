@@ -105,13 +105,19 @@ fn sine_gordon(v: &Values) -> Built {
     let half = v.real("separation")? / 2.0;
     // `velocity` is in sites per unit time, below the wave speed sqrt(k/m); the library
     // returns canonical momenta (m dq/dt).
+    // Sizes come from the user: every allocation of size n is the library's, which refuses
+    // an n that would not fit in memory before allocating.
     let (q0, p0) = match v.choice("initial")? {
         "kink" => SineGordonChain::boosted_kink(n, m, k, center, width, velocity, 1)?,
         "antikink" => SineGordonChain::boosted_kink(n, m, k, center, width, velocity, -1)?,
         "kink-antikink" => {
             SineGordonChain::kink_antikink(n, m, k, center - half, center + half, width, velocity)?
         }
-        _ => (vec![0.0; n], vec![0.0; n]),
+        _ => {
+            return Ok(Box::new(Hamiltonian(SineGordonChain::new(
+                n, m, k, None, None,
+            )?)))
+        }
     };
     Ok(Box::new(Hamiltonian(SineGordonChain::new(
         n,

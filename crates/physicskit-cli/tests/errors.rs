@@ -251,11 +251,11 @@ fn method_the_system_cannot_use() {
     assert!(err.contains("yoshida4"), "{err}");
 }
 
-/// Ctrl-C (SIGINT) stops a long run at the next progress check: exit status 130, and the
-/// temporary file is removed, so nothing is left behind.
+/// Starts a long run, sends it `signal` (a `kill` name) once the run has started, and checks
+/// that it stops with exit status `status` and one error line naming the signal, leaving no
+/// file (the temporary `.physicskit-*.tmp` included) behind.
 #[cfg(unix)]
-#[test]
-fn interrupted_run_leaves_nothing() {
+fn signal_stops_a_run_and_leaves_nothing(signal: &str, status: i32) {
     use std::process::{Command, Stdio};
     use std::time::{Duration, Instant};
 
@@ -289,13 +289,67 @@ fn interrupted_run_leaves_nothing() {
         std::thread::sleep(Duration::from_millis(20));
     }
     std::thread::sleep(Duration::from_millis(200));
-    let status = Command::new("kill")
-        .args(["-INT", &child.id().to_string()])
+    let sent = Command::new("kill")
+        .args([&format!("-{signal}"), &child.id().to_string()])
         .status()
         .unwrap();
-    assert!(status.success());
+    assert!(sent.success());
     let out = child.wait_with_output().unwrap();
-    assert_eq!(out.status.code(), Some(130), "{}", stderr(&out));
-    assert!(stderr(&out).contains("interrupted"), "{}", stderr(&out));
+    let err = stderr(&out);
+    assert_eq!(out.status.code(), Some(status), "{err}");
+    assert!(err.contains("interrupted"), "{err}");
+    assert!(err.contains(&format!("SIG{signal}")), "{err}");
+    assert_eq!(err.trim_end().lines().count(), 1, "not one line: {err:?}");
     assert!(entries(dir.path()).is_empty(), "{:?}", entries(dir.path()));
+}
+
+/// Ctrl-C (SIGINT) stops a long run at the next progress check: exit status 130 (128 + 2, as
+/// shells report it), and the temporary file is removed, so nothing is left behind.
+#[cfg(unix)]
+#[test]
+fn interrupted_run_leaves_nothing() {
+    signal_stops_a_run_and_leaves_nothing("INT", 130);
+}
+
+/// SIGTERM (what `kill`, systemd and container runtimes send) is handled as Ctrl-C: exit
+/// status 143 (128 + 15), no temporary file left.
+#[cfg(unix)]
+#[test]
+fn terminated_run_leaves_nothing() {
+    signal_stops_a_run_and_leaves_nothing("TERM", 143);
+}
+
+/// SIGHUP (the terminal closed): exit status 129, no temporary file left.
+#[cfg(unix)]
+#[test]
+fn hung_up_run_leaves_nothing() {
+    signal_stops_a_run_and_leaves_nothing("HUP", 129);
+}
+
+/// Sizes that cannot fit in memory (the cases: 10^12 sites, and 2^62, whose byte
+/// count overflows) are refused by the library before anything is allocated: exit 2, one line
+/// naming `n`, no file. Before, 10^12 aborted (exit 134) and 2^62 panicked (exit 101).
+#[test]
+fn sizes_that_cannot_fit_in_memory_are_refused() {
+    for n in ["1000000000000", "4611686018427387904"] {
+        for (system, extra) in [
+            ("fput", &[][..]),
+            ("pendulum-swarm", &[][..]),
+            ("sine-gordon", &[][..]),
+            ("sine-gordon", &["--initial", "kink"][..]),
+            ("sine-gordon", &["--initial", "rest"][..]),
+            ("sine-gordon-state", &[][..]),
+        ] {
+            let mut flags = vec!["--n", n];
+            flags.extend_from_slice(extra);
+            let err = system_fails(system, &flags, "o.npz");
+            assert!(
+                err.contains(&format!("`n` = {n} is too large")),
+                "{system}: {err}"
+            );
+        }
+    }
+    // A count beyond u64 is not a number the CLI takes: still one clean line.
+    let err = system_fails("fput", &["--n", "18446744073709551616"], "o.npz");
+    assert!(err.contains("--n"), "{err}");
 }

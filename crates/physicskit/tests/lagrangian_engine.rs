@@ -434,6 +434,35 @@ fn engine_rejects_wrong_lengths_and_zero_ndof() {
     ));
 }
 
+/// A Lagrangian of `ndof` free particles, `L = |qdot|^2 / 2`, of any size.
+struct FreeParticles(usize);
+
+impl Lagrangian for FreeParticles {
+    fn ndof(&self) -> usize {
+        self.0
+    }
+    fn lagrangian<D: Scalar>(&self, _q: &[D], v: &[D], _t: D) -> D {
+        v.iter().fold(D::zero(), |s, &x| s + x * x) * 0.5
+    }
+}
+
+/// `ndof = 10^6` needs three `ndof x ndof` work matrices (24 TB); `2^62` overflows `usize` when
+/// multiplied out. Both are refused by the constructor, before any evaluation allocates one
+/// (which would abort); a size that fits is still accepted.
+#[test]
+fn engine_refuses_an_ndof_whose_matrices_do_not_fit() {
+    for n in [1_000_000_usize, 1 << 62] {
+        match LagrangianEngine::new(FreeParticles(n)) {
+            Err(Error::TooLarge { name, value, .. }) => {
+                assert_eq!(name, "ndof");
+                assert_eq!(value, n as u128);
+            }
+            other => panic!("expected TooLarge for ndof = {n}, got {:?}", other.err()),
+        }
+    }
+    assert!(LagrangianEngine::new(FreeParticles(100)).is_ok());
+}
+
 #[test]
 fn large_systems_use_the_heap_fallback_and_agree() {
     // A chain longer than MAX_STACK_NDOF: the acceleration must still be -K q / m exactly as

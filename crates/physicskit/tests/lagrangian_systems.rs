@@ -494,3 +494,34 @@ fn the_first_sample_is_the_initial_state_bit_for_bit() {
     let first: Vec<u64> = r.y.row(0).iter().map(|v| v.to_bits()).collect();
     assert_eq!(first, given);
 }
+
+/// `n = 10^12` and `n = 2^62` masses: the engine's `n x n` work matrices cannot fit in any
+/// memory (the second overflows `usize` when multiplied out), so construction is refused
+/// before `q0` is even looked at, and before any matrix is allocated (which would abort).
+#[test]
+fn coupled_oscillators_refuse_a_size_whose_matrices_do_not_fit() {
+    for n in [1_000_000_000_000_usize, 1 << 62] {
+        let params = CoupledOscillatorsParams {
+            n,
+            ..CoupledOscillatorsParams::default()
+        };
+        match CoupledOscillators::new(&[0.1], &[0.0], params) {
+            Err(Error::TooLarge { name, value, .. }) => {
+                assert_eq!(name, "n");
+                assert_eq!(value, n as u128);
+            }
+            other => panic!("expected TooLarge for n = {n}, got {:?}", other.err()),
+        }
+    }
+    // 10^6 masses (8 MB of state) would need 24 TB of matrices: refused too.
+    let n = 1_000_000;
+    let params = CoupledOscillatorsParams {
+        n,
+        ..CoupledOscillatorsParams::default()
+    };
+    let zeros = vec![0.0; n];
+    assert!(matches!(
+        CoupledOscillators::new(&zeros, &zeros, params),
+        Err(Error::TooLarge { .. })
+    ));
+}

@@ -7,5 +7,6 @@ mod common;
 mod henon_heiles;
 mod kepler;
 mod projectile;
+mod sizes;
 mod swarm;
 mod validation;

@@ -18,14 +18,13 @@ exact signature and stores every sample.
 from __future__ import annotations
 
 import inspect
-import operator
 from abc import ABC, abstractmethod
 from dataclasses import dataclass, field
 from typing import Any, NamedTuple, Optional
 
 import numpy as np
 
-from .._native import _core, as_scalar, as_t_span, as_vector
+from .._native import _core, as_array, as_int, as_scalar, as_t_span, as_vector
 
 __all__ = [
     "SimulationResult",
@@ -120,15 +119,7 @@ def _as_flag(name: str, value) -> bool:
 
 
 def _as_stride(value) -> int:
-    if isinstance(value, (bool, np.bool_)):
-        raise ValueError(f"stride must be an integer >= 1, got {value!r}")
-    try:
-        k = operator.index(value)
-    except TypeError:
-        raise ValueError(f"stride must be an integer >= 1, got {value!r}") from None
-    if k < 1:
-        raise ValueError(f"stride must be an integer >= 1, got {k}")
-    return k
+    return as_int("stride", value, minimum=1)
 
 
 class DynamicalSystem(ABC):
@@ -255,7 +246,7 @@ class DynamicalSystem(ABC):
 
     def _state_arg(self, state) -> np.ndarray:
         if state is None:
-            return np.ascontiguousarray(self.state, dtype=np.float64)
+            return as_vector("state", self.state, finite=False)
         # Evaluating a non-finite state is allowed (it yields NaN); only the length is checked.
         return as_vector("state", state, len(self.state), finite=False)
 
@@ -275,12 +266,32 @@ class DynamicalSystem(ABC):
         return result
 
     def _run_native(self, t_span, dt, method, sampling: _Sampling) -> SimulationResult:
-        t_span = as_t_span(t_span)
-        state = as_vector("state", self.state, len(self.state))
-        parts = self._native.integrate(
-            state, float(self.t), t_span, float(dt), method, **sampling._asdict()
-        )
+        t_span, dt, t, state = self._run_inputs(t_span, dt, len(self.state))
+        parts = self._native.integrate(state, t, t_span, dt, method, **sampling._asdict())
         return self._finish(parts)
+
+    def _run_inputs(self, t_span, dt, state_len: int):
+        """``(t_span, dt, t, state)`` of a run, converted and checked (ValueError naming the
+        argument: ``self.state`` and ``self.t`` are plain attributes a user may have set to
+        anything, a complex array included)."""
+        return (
+            as_t_span(t_span),
+            as_scalar("dt", dt),
+            as_scalar("t", self.t),
+            as_vector("state", self.state, state_len),
+        )
+
+    def _run_callbacks(self, run, state: np.ndarray, t: float) -> SimulationResult:
+        """``run()``, a run whose right-hand side calls this object's Python methods back,
+        restoring ``state`` and ``t`` if it fails: a callback may have reassigned
+        ``self.state`` (or ``self.t``) before the run was refused or raised, which must not
+        leave the object changed by a call that did not happen."""
+        try:
+            parts = run()
+        except BaseException:
+            self.state, self.t = state.copy(), t
+            raise
+        return parts
 
 
 class HamiltonianSystem(DynamicalSystem):
@@ -356,8 +367,9 @@ class HamiltonianSystem(DynamicalSystem):
         return as_vector("q", q, self.ndof), as_vector("p", p, self.ndof)
 
     def _mass_inv_vector(self) -> np.ndarray:
+        m = as_array("mass_inv", self.mass_inv)
         try:
-            m = np.broadcast_to(np.asarray(self.mass_inv, dtype=np.float64), (self.ndof,))
+            m = np.broadcast_to(m, (self.ndof,))
         except ValueError:
             raise ValueError(
                 f"mass_inv must be a float or an array of length ndof={self.ndof}"
@@ -374,7 +386,7 @@ class HamiltonianSystem(DynamicalSystem):
                 f"{type(self).__name__} is not separable: it must override derivatives(t, state)"
             )
         q, p = self.split(state, self.ndof)
-        force = np.asarray(self.force(q, t), dtype=np.float64)
+        force = as_vector("force(q, t)", self.force(q, t), self.ndof, finite=False)
         return np.concatenate([self._mass_inv_vector() * p, force])
 
     def energy(self, state: Optional[np.ndarray] = None) -> float:
@@ -397,19 +409,15 @@ class HamiltonianSystem(DynamicalSystem):
     def _integrate(self, t_span, dt, method, sampling: _Sampling) -> SimulationResult:
         if self._native is not None:
             return self._run_native(t_span, dt, method, sampling)
-        t_span = as_t_span(t_span)
-        state = as_vector("state", self.state, 2 * self.ndof)
-        parts = _core.integrate_hamiltonian(
-            self,
+        t_span, dt, t, state = self._run_inputs(t_span, dt, 2 * self.ndof)
+        mass_inv = self._mass_inv_vector()
+        parts = self._run_callbacks(
+            lambda: _core.integrate_hamiltonian(
+                self, state, t, t_span, dt, method, self.ndof, bool(self.separable), mass_inv,
+                **sampling._asdict(),
+            ),
             state,
-            float(self.t),
-            t_span,
-            float(dt),
-            method,
-            self.ndof,
-            bool(self.separable),
-            self._mass_inv_vector(),
-            **sampling._asdict(),
+            t,
         )
         return self._finish(parts)
 
@@ -483,7 +491,8 @@ class LagrangianSystem(DynamicalSystem):
         if nat is None:
             raise NotImplementedError(f"{type(self).__name__} does not define momentum(q, qdot)")
         return nat.momentum(
-            as_vector("q", q, self.ndof), as_vector("qdot", qdot, self.ndof), float(self.t)
+            as_vector("q", q, self.ndof), as_vector("qdot", qdot, self.ndof),
+            as_scalar("t", self.t),
         )
 
     def derivatives(self, t: float, state: np.ndarray) -> np.ndarray:
@@ -493,7 +502,8 @@ class LagrangianSystem(DynamicalSystem):
         if nat is not None:
             return nat.derivatives(as_scalar("t", t), state)
         q, qdot = self.split(state, self.ndof)
-        acc = np.asarray(self.acceleration(q, qdot, t), dtype=np.float64)
+        acc = as_vector("acceleration(q, qdot, t)", self.acceleration(q, qdot, t), self.ndof,
+                        finite=False)
         return np.concatenate([qdot, acc])
 
     @abstractmethod
@@ -512,10 +522,11 @@ class LagrangianSystem(DynamicalSystem):
     def _integrate(self, t_span, dt, method, sampling: _Sampling) -> SimulationResult:
         if self._engine_native() is not None:
             return self._run_native(t_span, dt, method, sampling)
-        t_span = as_t_span(t_span)
-        state = as_vector("state", self.state, 2 * self.ndof)
-        parts = _core.integrate_ode(
-            self, state, float(self.t), t_span, float(dt), method, **sampling._asdict()
+        t_span, dt, t, state = self._run_inputs(t_span, dt, 2 * self.ndof)
+        parts = self._run_callbacks(
+            lambda: _core.integrate_ode(self, state, t, t_span, dt, method, **sampling._asdict()),
+            state,
+            t,
         )
         # Integrated as a plain ODE on [q, qdot]: the split is known here only.
         return self._finish(parts, ndof=self.ndof)
@@ -549,9 +560,10 @@ class ODESystem(DynamicalSystem):
     def _integrate(self, t_span, dt, method, sampling: _Sampling) -> SimulationResult:
         if self._native is not None:
             return self._run_native(t_span, dt, method, sampling)
-        t_span = as_t_span(t_span)
-        state = as_vector("state", self.state, len(self.state))
-        parts = _core.integrate_ode(
-            self, state, float(self.t), t_span, float(dt), method, **sampling._asdict()
+        t_span, dt, t, state = self._run_inputs(t_span, dt, len(self.state))
+        parts = self._run_callbacks(
+            lambda: _core.integrate_ode(self, state, t, t_span, dt, method, **sampling._asdict()),
+            state,
+            t,
         )
         return self._finish(parts)

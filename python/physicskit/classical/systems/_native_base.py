@@ -2,26 +2,13 @@
 
 from __future__ import annotations
 
-import operator
 from typing import Optional
 
 import numpy as np
 
-from .._native import as_vector
+from .._native import as_int, as_vector
 
-
-def as_int(name: str, value, minimum: int = 0) -> int:
-    """``value`` as an int >= ``minimum``; ValueError saying what to change otherwise."""
-    try:
-        n = operator.index(value)
-    except TypeError:
-        if isinstance(value, float) and value.is_integer():
-            n = int(value)
-        else:
-            raise ValueError(f"{name} must be an integer, got {value!r}") from None
-    if n < minimum:
-        raise ValueError(f"{name} must be >= {minimum}, got {n}")
-    return n
+__all__ = ["as_int", "adopt", "kinetic_energy", "potential_energy", "energy"]
 
 
 def adopt(system, nat) -> None:

@@ -3,6 +3,8 @@
 
 from __future__ import annotations
 
+import operator
+
 import numpy as np
 
 from .._native import as_scalar, as_vector, native
@@ -98,7 +100,7 @@ class FPUTChain(_ChainBase):
         )
         adopt(self, nat)
         self._set_params(m, k)
-        self.beta, self.mode, self.amplitude = float(beta), int(mode), float(amplitude)
+        self.beta, self.mode, self.amplitude = float(beta), operator.index(mode), float(amplitude)
 
     def potential_energy(self, q: np.ndarray) -> float:
         """Return ``V(q) = sum_bonds (k/2) r^2 + (beta/4) r^4``."""
@@ -137,10 +139,8 @@ class SineGordonChain(_ChainBase):
         ValueError
             If ``abs(velocity) >= 1``.
         """
-        try:
-            pol = int(polarity)
-        except (TypeError, ValueError):
-            raise ValueError(f"polarity must be +1 or -1, got {polarity!r}") from None
+        # Any other integer reaches the native check, which names the two valid values.
+        pol = as_int("polarity", polarity, minimum=-(2**31), maximum=2**31 - 1)
         return native("sine_gordon_kink")(
             as_int("n", n), as_scalar("center", center), as_scalar("width", width),
             as_scalar("velocity", velocity), pol,

@@ -4,7 +4,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from .._native import as_scalar, as_vector, native
+from .._native import as_array, as_scalar, as_vector, native
 from ..core.base_system import HamiltonianSystem, SimulationResult
 from ._native_base import adopt, kinetic_energy as _kinetic_energy, potential_energy as _potential_energy
 
@@ -123,7 +123,7 @@ class ProjectileMotion(HamiltonianSystem):
     @staticmethod
     def analytic_trajectory(speed: float, angle_deg: float, g: float, t, height: float = 0.0):
         """Exact vacuum trajectory ``(x(t), y(t))`` (Galileo's parabola) at times ``t``."""
-        t_arr = np.asarray(t, dtype=np.float64)
+        t_arr = as_array("t", t)
         x, y = native("projectile_analytic_trajectory")(
             as_scalar("speed", speed), as_scalar("angle_deg", angle_deg), as_scalar("g", g),
             as_vector("t", t_arr.ravel()), as_scalar("height", height),

@@ -7,7 +7,7 @@ from typing import Optional
 
 import numpy as np
 
-from .._native import as_scalar, as_vector, native
+from .._native import as_array, as_scalar, as_vector, native
 from ..core.base_system import LagrangianSystem, ODESystem
 from ._native_base import adopt, energy as _energy
 
@@ -109,7 +109,7 @@ def effective_potential_symmetric_top(theta, p_phi: float, p_psi: float, I1: flo
                                       Mgl: float):
     """``V_eff(theta) = (p_phi - p_psi cos theta)^2 / (2 I1 sin^2 theta) + p_psi^2/(2 I3) +
     Mgl cos theta`` for the conserved momenta ``p_phi``, ``p_psi``; array of theta's shape."""
-    th = np.asarray(theta, dtype=np.float64)
+    th = as_array("theta", theta)
     v = native("effective_potential_symmetric_top")(
         as_vector("theta", th.ravel()), as_scalar("p_phi", p_phi), as_scalar("p_psi", p_psi),
         as_scalar("I1", I1), as_scalar("I3", I3), as_scalar("Mgl", Mgl),

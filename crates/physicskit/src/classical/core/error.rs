@@ -131,6 +131,24 @@ pub enum Error {
         /// Bytes available.
         available: u128,
     },
+    /// A size parameter asks for more memory than is available (checked before allocating,
+    /// by [`check_items_fit`](crate::classical::core::check_items_fit)).
+    #[error(
+        "`{name}` = {value} is too large: {value} items of {item_bytes} bytes need {bytes} \
+         bytes, more than the {available} bytes available"
+    )]
+    TooLarge {
+        /// The size parameter, as the user wrote it (`n`, `ndof`, ...).
+        name: String,
+        /// Its value: the number of items.
+        value: u128,
+        /// Bytes per item (everything the call allocates per unit of the parameter).
+        item_bytes: u128,
+        /// Bytes needed.
+        bytes: u128,
+        /// Bytes available.
+        available: u128,
+    },
     /// An observer asked the integration to stop (for example on Ctrl-C).
     #[error("integration interrupted at t = {t}")]
     Interrupted {

@@ -48,13 +48,7 @@ fn budget_bytes() -> u128 {
 /// [`Error::TrajectoryTooLarge`].
 pub(crate) fn check_fits(samples: usize, values_per_sample: usize) -> Result<()> {
     let bytes = samples as u128 * values_per_sample as u128 * 8;
-    let mut budget = budget_bytes();
-    if bytes > budget {
-        if let Some(release) = RELEASE_HOOK.get() {
-            release();
-            budget = budget_bytes();
-        }
-    }
+    let budget = budget_after_release(bytes);
     if bytes > budget {
         return Err(Error::TrajectoryTooLarge {
             samples: samples as u128,
@@ -64,6 +58,65 @@ pub(crate) fn check_fits(samples: usize, values_per_sample: usize) -> Result<()>
         });
     }
     Ok(())
+}
+
+/// Blocks up to this size are never refused by [`check_items_fit`]: they are small next to
+/// any machine's memory, and constructors of small systems (the usual case, often in loops)
+/// then do not read `/proc/meminfo`.
+const ALWAYS_FITS_BYTES: u128 = 16 << 20;
+
+/// Checks, before anything is allocated, that `n` items of `item_bytes` bytes each fit in
+/// memory, by the budget [`check_fits`] applies to trajectories (the same fraction of the
+/// available memory, after the same release hook).
+///
+/// For constructors whose allocations a user's size parameter `name` (a chain's `n`, a
+/// swarm's `n`, a Lagrangian's `ndof`) controls: `item_bytes` is everything the call
+/// allocates per unit of the parameter (for an `n x n` matrix, a row: `8 n`). The product is
+/// formed in `u128`, so no `usize` input can overflow it (`n = 2^62` is refused, not wrapped).
+/// Blocks up to 16 MiB are accepted without reading the available memory.
+///
+/// # Example
+/// ```
+/// use physicskit::classical::core::check_items_fit;
+///
+/// assert!(check_items_fit("n", 1000, 64).is_ok());
+/// assert!(check_items_fit("n", 1 << 62, 64).is_err()); // 2^68 bytes
+/// ```
+///
+/// # Errors
+/// [`Error::TooLarge`] naming `name`.
+pub fn check_items_fit(name: &str, n: usize, item_bytes: usize) -> Result<()> {
+    // Two factors below 2^64 multiply to below 2^128: the product cannot overflow.
+    let bytes = n as u128 * item_bytes as u128;
+    if bytes <= ALWAYS_FITS_BYTES {
+        return Ok(());
+    }
+    let budget = budget_after_release(bytes);
+    if bytes > budget {
+        return Err(Error::TooLarge {
+            name: name.to_string(),
+            value: n as u128,
+            item_bytes: item_bytes as u128,
+            bytes,
+            available: budget,
+        });
+    }
+    Ok(())
+}
+
+/// The budget, read again after calling the release hook if `bytes` exceeds it.
+fn budget_after_release(bytes: u128) -> u128 {
+    let budget = budget_bytes();
+    if bytes <= budget {
+        return budget;
+    }
+    match RELEASE_HOOK.get() {
+        Some(release) => {
+            release();
+            budget_bytes()
+        }
+        None => budget,
+    }
 }
 
 /// Smallest allocation worth faulting in up front, in one call: below it, the block is a few

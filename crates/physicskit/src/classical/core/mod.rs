@@ -6,7 +6,7 @@ pub mod error;
 pub mod linalg;
 mod memory;
 pub(crate) use memory::check_fits as memory_check;
-pub use memory::set_memory_release_hook;
+pub use memory::{check_items_fit, set_memory_release_hook};
 pub mod method;
 pub mod options;
 pub mod phase;

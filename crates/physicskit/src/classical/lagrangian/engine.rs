@@ -102,7 +102,7 @@ use crate::classical::core::error::{check_len, check_vector};
 use crate::classical::core::linalg::negligible_pivot;
 use crate::classical::core::linalg::{lu_factor, lu_solve, Singular};
 
-use crate::classical::core::{Error, Phase, Result};
+use crate::classical::core::{check_items_fit, Error, Phase, Result};
 
 /// The number types a [`Lagrangian`] is evaluated on: `f64` and num-dual's (hyper-)dual
 /// numbers over `f64`. Bring [`DualNum`](num_dual::DualNum) into scope for `sin`, `cos`,
@@ -329,11 +329,17 @@ impl<L: Lagrangian> LagrangianEngine<L> {
     /// An engine for `lagrangian`.
     ///
     /// # Errors
-    /// [`Error::InvalidParameter`] if `lagrangian.ndof()` is 0.
+    /// [`Error::InvalidParameter`] if `lagrangian.ndof()` is 0; [`Error::TooLarge`] if the
+    /// `ndof x ndof` work matrices of an evaluation would not fit in memory (a chain of `10^5`
+    /// masses would need 240 GB: refused here, not aborted at the first evaluation).
     pub fn new(lagrangian: L) -> Result<Self> {
-        if lagrangian.ndof() == 0 {
+        let n = lagrangian.ndof();
+        if n == 0 {
             return Err(Error::invalid("ndof", 0.0, "must be at least 1"));
         }
+        // The most an evaluation holds at once: three `n x n` matrices
+        // (`canonical_jacobian`), i.e. per degree of freedom three rows of `n` values.
+        check_items_fit("ndof", n, n.saturating_mul(3 * 8))?;
         Ok(Self {
             lagrangian,
             settings: LegendreSettings::default(),

@@ -40,7 +40,9 @@ use crate::classical::core::erased::{Capabilities, Hamiltonian};
 use crate::classical::core::error::{check_finite_scalar, check_positive, check_vector};
 use crate::classical::core::sum::lane_sum_map2;
 use crate::classical::core::trig::{sin_into, sin_into_sum_cos, sum_cos};
-use crate::classical::core::{Error, HamiltonianSystem, MassInv, Method, Phase, Result};
+use crate::classical::core::{
+    check_items_fit, Error, HamiltonianSystem, MassInv, Method, Phase, Result,
+};
 
 /// Angular frequency of normal mode `j` (`1..=n`) of `n` masses `m` joined by springs `k`
 /// between fixed walls: `omega_j = 2 sqrt(k/m) sin(j pi / (2 (n + 1)))`.
@@ -65,9 +67,10 @@ impl ChainModes {
     /// The modes of a chain of `n >= 1` masses `m > 0` and springs `k > 0`.
     ///
     /// # Errors
-    /// [`Error::InvalidParameter`] for `n < 1`, `m <= 0` or `k <= 0`.
+    /// [`Error::InvalidParameter`] for `n < 1`, `m <= 0` or `k <= 0`; [`Error::TooLarge`] if
+    /// the tables would not fit in memory.
     pub fn new(n: usize, m: f64, k: f64) -> Result<Self> {
-        check_chain_size(n)?;
+        check_chain_size(n, MODES_BYTES_PER_SITE)?;
         let m = check_positive("m", m)?;
         let k = check_positive("k", k)?;
         let np1 = (n + 1) as f64;
@@ -171,16 +174,28 @@ fn check_len(name: &str, found: usize, expected: usize) -> Result<()> {
     }
 }
 
-fn check_chain_size(n: usize) -> Result<()> {
+/// Bytes [`ChainModes`] holds per site: `omega` (one value) and `sines` (two, plus two).
+const MODES_BYTES_PER_SITE: usize = 3 * 8 + 16;
+
+/// Bytes [`SineGordonChain::kink_antikink`] holds per site, the most of the kink builders:
+/// two profiles `(q, p)`.
+const KINK_BYTES_PER_SITE: usize = 4 * 8;
+
+/// Bytes a chain constructor allocates per site, at most: its modes, its state `[q, p]` and
+/// the initial `q0`, `p0` it builds or defaults before copying them into the state.
+const CHAIN_BYTES_PER_SITE: usize = MODES_BYTES_PER_SITE + 4 * 8;
+
+/// Checks that a chain has at least one site and that `n` sites of `bytes_per_site` fit in
+/// memory, before anything of size `n` is allocated.
+fn check_chain_size(n: usize, bytes_per_site: usize) -> Result<()> {
     if n < 1 {
-        Err(Error::invalid(
+        return Err(Error::invalid(
             "n",
             n as f64,
             "a chain needs at least one site",
-        ))
-    } else {
-        Ok(())
+        ));
     }
+    check_items_fit("n", n, bytes_per_site)
 }
 
 /// The normal-mode analysis every chain shares (the spec's `_ChainBase`).
@@ -300,9 +315,10 @@ impl HarmonicChain {
     ///
     /// # Errors
     /// [`Error::InvalidParameter`] for an empty chain, `m <= 0` or `k <= 0`;
-    /// [`Error::DimensionMismatch`] if `p0` differs in length; [`Error::NonFinite`].
+    /// [`Error::DimensionMismatch`] if `p0` differs in length; [`Error::NonFinite`];
+    /// [`Error::TooLarge`] if the chain would not fit in memory.
     pub fn new(q0: &[f64], p0: &[f64], m: f64, k: f64) -> Result<Self> {
-        check_chain_size(q0.len())?;
+        check_chain_size(q0.len(), CHAIN_BYTES_PER_SITE)?;
         let modes = ChainModes::new(q0.len(), m, k)?;
         Ok(Self {
             phase: Phase::from_halves("q0", q0, "p0", p0)?,
@@ -385,8 +401,10 @@ impl FPUTChain {
     ///
     /// # Errors
     /// [`Error::InvalidParameter`] for `n < 1`, `m <= 0`, `k <= 0`, a non-finite `beta` or
-    /// `amplitude`, or `mode` outside `1..=n`.
+    /// `amplitude`, or `mode` outside `1..=n`; [`Error::TooLarge`] if `n` sites would not fit in
+    /// memory (checked before allocating).
     pub fn new(n: usize, m: f64, k: f64, beta: f64, mode: usize, amplitude: f64) -> Result<Self> {
+        check_chain_size(n, CHAIN_BYTES_PER_SITE)?;
         let modes = ChainModes::new(n, m, k)?;
         let beta = check_finite_scalar("beta", beta)?;
         let amplitude = check_finite_scalar("amplitude", amplitude)?;
@@ -494,10 +512,16 @@ impl SineGordonChain {
     /// # Errors
     /// [`Error::InvalidParameter`] for `n < 1`, `m <= 0` or `k <= 0`;
     /// [`Error::DimensionMismatch`] if `q0` or `p0` does not have length `n`;
-    /// [`Error::NonFinite`].
+    /// [`Error::NonFinite`]; [`Error::TooLarge`] if `n` sites would not fit in memory (checked
+    /// before allocating).
     pub fn new(n: usize, m: f64, k: f64, q0: Option<&[f64]>, p0: Option<&[f64]>) -> Result<Self> {
+        check_chain_size(n, CHAIN_BYTES_PER_SITE)?;
         let modes = ChainModes::new(n, m, k)?;
-        let zeros = vec![0.0; n];
+        let zeros = if q0.is_none() || p0.is_none() {
+            vec![0.0; n]
+        } else {
+            Vec::new()
+        };
         let q0 = q0.unwrap_or(&zeros);
         let p0 = p0.unwrap_or(&zeros);
         check_vector("q0", q0, n)?;
@@ -533,7 +557,8 @@ impl SineGordonChain {
     /// # Errors
     /// [`Error::InvalidParameter`] for `n < 1`, a non-finite `center`, `width <= 0`,
     /// `|velocity| >= 1` (no Lorentz boost reaches the wave speed) or a polarity other than
-    /// `1` or `-1`.
+    /// `1` or `-1`; [`Error::TooLarge`] if the two profiles would not fit in memory (checked
+    /// before allocating).
     pub fn kink(
         n: usize,
         center: f64,
@@ -541,7 +566,7 @@ impl SineGordonChain {
         velocity: f64,
         polarity: i32,
     ) -> Result<(Vec<f64>, Vec<f64>)> {
-        check_chain_size(n)?;
+        check_chain_size(n, KINK_BYTES_PER_SITE)?;
         let center = check_finite_scalar("center", center)?;
         let width = check_positive("width", width)?;
         if !(velocity.is_finite() && velocity.abs() < 1.0) {

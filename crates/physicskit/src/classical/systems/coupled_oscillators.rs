@@ -35,8 +35,7 @@ use crate::classical::core::erased::{Capabilities, Lagrangian as Erased};
 use crate::classical::core::error::check_positive;
 use crate::classical::core::linalg::negligible_pivot;
 use crate::classical::core::sum::lane_sum_map;
-use crate::classical::core::Method;
-use crate::classical::core::{Error, Phase, Result};
+use crate::classical::core::{check_items_fit, Error, Method, Phase, Result};
 use crate::classical::lagrangian::{singular_mass_matrix, Lagrangian, LagrangianEngine, Scalar};
 
 /// Size, mass and spring constant of a [`CoupledOscillators`] chain; its [`Lagrangian`].
@@ -66,6 +65,9 @@ impl CoupledOscillatorsParams {
         if self.n == 0 {
             return Err(Error::invalid("n", 0.0, "must be at least 1"));
         }
+        // The engine's work matrices are `n x n` (see `LagrangianEngine::new`, which checks
+        // the same under the name `ndof`): named here as the user wrote it.
+        check_items_fit("n", self.n, self.n.saturating_mul(3 * 8))?;
         check_positive("m", self.m)?;
         check_positive("k", self.k)?;
         Ok(self)
@@ -180,7 +182,7 @@ impl CoupledOscillators {
     ///
     /// # Errors
     /// `n = 0`, `q0` or `qdot0` of length other than `n`, non-finite values, `m <= 0` or
-    /// `k <= 0`.
+    /// `k <= 0`; [`Error::TooLarge`] if the `n x n` work matrices would not fit in memory.
     pub fn new(q0: &[f64], qdot0: &[f64], params: CoupledOscillatorsParams) -> Result<Self> {
         let engine = LagrangianEngine::new(params.validate()?)?;
         let phase = engine.initial_phase(q0, qdot0)?;

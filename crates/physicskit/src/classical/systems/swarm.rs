@@ -19,7 +19,8 @@ use crate::classical::core::erased::{Capabilities, Hamiltonian};
 use crate::classical::core::error::{check_finite_scalar, check_non_negative, check_positive};
 use crate::classical::core::trig::{sin_into_scaled, sin_into_sum_cos, sum_cos};
 use crate::classical::core::{
-    Error, HamiltonianSystem, IntegrateOptions, Method, Phase, Result, SimulationResult,
+    check_items_fit, Error, HamiltonianSystem, IntegrateOptions, Method, Phase, Result,
+    SimulationResult,
 };
 use crate::classical::integrators::Ensemble;
 
@@ -42,6 +43,10 @@ pub struct PendulumSwarm {
     n: usize,
     g_over_l: f64,
 }
+
+/// Bytes [`PendulumSwarm::from_box`] allocates per pendulum: the drawn `q0`, `p0` and the
+/// state `[q, p]` they are copied into.
+const SWARM_BYTES_PER_MEMBER: usize = 4 * 8;
 
 /// SplitMix64 (G. L. Steele, D. Lea and C. H. Flood, OOPSLA 2014): a tiny generator with a
 /// fixed, documented output stream, so a seed reproduces the same swarm on every platform and
@@ -73,7 +78,7 @@ impl PendulumSwarm {
     /// # Errors
     /// [`Error::InvalidParameter`] for an empty swarm or `g_over_l <= 0`;
     /// [`Error::DimensionMismatch`] if `p0` and `q0` differ in length; [`Error::NonFinite`]
-    /// for NaN or infinity.
+    /// for NaN or infinity; [`Error::TooLarge`] if the state would not fit in memory.
     pub fn new(q0: &[f64], p0: &[f64], g_over_l: f64) -> Result<Self> {
         if q0.is_empty() {
             return Err(Error::invalid(
@@ -82,6 +87,8 @@ impl PendulumSwarm {
                 "the swarm needs at least one pendulum",
             ));
         }
+        // The state [q, p] is a copy of the two slices.
+        check_items_fit("n", q0.len(), 2 * 8)?;
         Ok(Self {
             phase: Phase::from_halves("q0", q0, "p0", p0)?,
             n: q0.len(),
@@ -96,7 +103,8 @@ impl PendulumSwarm {
     ///
     /// # Errors
     /// [`Error::InvalidParameter`] for non-finite centres, `dq < 0` or `dp < 0`, `n < 1` or
-    /// `g_over_l <= 0`.
+    /// `g_over_l <= 0`; [`Error::TooLarge`] if `n` pendulums would not fit in memory (checked
+    /// before allocating).
     pub fn from_box(
         q_center: f64,
         p_center: f64,
@@ -117,6 +125,7 @@ impl PendulumSwarm {
                 "the swarm needs at least one pendulum",
             ));
         }
+        check_items_fit("n", n, SWARM_BYTES_PER_MEMBER)?;
         let mut rng = SplitMix64(seed);
         let q0: Vec<f64> = (0..n)
             .map(|_| q_center + (rng.next_f64() - 0.5) * dq)
