@@ -997,7 +997,12 @@ pub static SINE_GORDON_KINK_ENTRY: SystemEntry = SystemEntry {
                 width,
                 velocity,
             )?,
-            _ => (vec![0.0; n], vec![0.0; n]),
+            // At rest: the constructor's zeros, allocated after its size check.
+            _ => {
+                return Ok(Box::new(Hamiltonian(SineGordonChain::new(
+                    n, m, k, None, None,
+                )?)))
+            }
         };
         Ok(Box::new(Hamiltonian(SineGordonChain::new(
             n,
