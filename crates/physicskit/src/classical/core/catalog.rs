@@ -633,6 +633,34 @@ impl SystemEntry {
         self.params.iter().find(|p| p.name == name)
     }
 
+    /// The parameter called `name`, for front ends that convert a value by its kind before
+    /// handing it to [`values`](Self::values).
+    ///
+    /// # Errors
+    /// [`Error::InvalidArgument`] naming the unknown parameter and listing the valid ones.
+    pub fn lookup(&self, name: &str) -> Result<&'static ParamSpec> {
+        let params: &'static [ParamSpec] = self.params;
+        self.index_of(name).map(|i| &params[i])
+    }
+
+    fn index_of(&self, name: &str) -> Result<usize> {
+        self.params
+            .iter()
+            .position(|p| p.name == name)
+            .ok_or_else(|| Error::InvalidArgument {
+                name: name.into(),
+                reason: format!(
+                    "`{}` has no such parameter; its parameters are: {}",
+                    self.name,
+                    self.params
+                        .iter()
+                        .map(|p| p.name)
+                        .collect::<Vec<_>>()
+                        .join(", ")
+                ),
+            })
+    }
+
     /// The methods that can integrate this system: every method for separable systems,
     /// otherwise those that do not need `H = T(p) + V(q)`.
     pub fn methods(&self) -> impl Iterator<Item = Method> + '_ {
@@ -651,22 +679,7 @@ impl SystemEntry {
         let mut slots: Vec<Option<Value>> = vec![None; self.params.len()];
         let mut seen = vec![false; self.params.len()];
         for (name, value) in given {
-            let index = self
-                .params
-                .iter()
-                .position(|p| p.name == name)
-                .ok_or_else(|| Error::InvalidArgument {
-                    name: name.clone(),
-                    reason: format!(
-                        "`{}` has no such parameter; its parameters are: {}",
-                        self.name,
-                        self.params
-                            .iter()
-                            .map(|p| p.name)
-                            .collect::<Vec<_>>()
-                            .join(", ")
-                    ),
-                })?;
+            let index = self.index_of(&name)?;
             if seen[index] {
                 return Err(Error::InvalidArgument {
                     name,
