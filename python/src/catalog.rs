@@ -19,8 +19,10 @@ use crate::native::NativeSystem;
 use crate::params::{key, to_value};
 
 /// Builds the catalogue system `name` from `params` (parameter name -> value; a value of
-/// `None` leaves the parameter out, so the catalogue's default applies where there is one).
-/// The checked values are the returned system's `params`.
+/// `None` leaves the parameter out). As the Python signatures are the spec's, the catalogue
+/// fills in only the spec's defaults: a parameter the spec gives no default must be given
+/// ([`SystemEntry::values_as_in_spec`]). The checked values are the returned system's
+/// `params`.
 ///
 /// # Errors
 /// `ValueError` for an unknown system or parameter, a value of the wrong kind, a missing
@@ -38,7 +40,7 @@ pub fn build(name: &str, params: &Bound<'_, PyDict>) -> PyResult<NativeSystem> {
             given.push((k, value));
         }
     }
-    let values = entry.values(given).py()?;
+    let values = entry.values_as_in_spec(given).py()?;
     let system = (entry.build)(&values).py()?;
     Ok(NativeSystem::from_entry(entry, values, system))
 }

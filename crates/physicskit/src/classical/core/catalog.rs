@@ -155,6 +155,17 @@ impl Default {
         }
     }
 
+    /// The value used when the parameter is not given by a front end that follows the spec's
+    /// signatures (Python): a parameter without a default in the spec is required there, even
+    /// if it has a demonstration value.
+    fn fill_as_in_spec(self) -> std::result::Result<Option<Value>, ()> {
+        match self {
+            Default::Value(l) => Ok(Some(l.to_value())),
+            Default::Absent => Ok(None),
+            Default::Required | Default::Demo(_) | Default::DemoAbsent => Err(()),
+        }
+    }
+
     /// True if the spec's signature has a default (a value or `None`).
     pub fn in_spec(self) -> bool {
         matches!(self, Default::Value(_) | Default::Absent)
@@ -676,6 +687,27 @@ impl SystemEntry {
     /// a value of the wrong kind or a vector of the wrong length;
     /// [`Error::InvalidParameter`] for a number out of its range.
     pub fn values(&self, given: impl IntoIterator<Item = (String, Value)>) -> Result<Values> {
+        self.checked(given, Default::fill)
+    }
+
+    /// As [`values`](Self::values), for front ends that follow the spec's signatures (the
+    /// Python classes): only the spec's defaults are filled in, and a parameter the spec gives
+    /// no default (a `Demo` or `DemoAbsent` one) must be given.
+    ///
+    /// # Errors
+    /// As [`values`](Self::values).
+    pub fn values_as_in_spec(
+        &self,
+        given: impl IntoIterator<Item = (String, Value)>,
+    ) -> Result<Values> {
+        self.checked(given, Default::fill_as_in_spec)
+    }
+
+    fn checked(
+        &self,
+        given: impl IntoIterator<Item = (String, Value)>,
+        fill: fn(Default) -> std::result::Result<Option<Value>, ()>,
+    ) -> Result<Values> {
         let mut slots: Vec<Option<Value>> = vec![None; self.params.len()];
         let mut seen = vec![false; self.params.len()];
         for (name, value) in given {
@@ -692,10 +724,7 @@ impl SystemEntry {
         }
         for (spec, (slot, given)) in self.params.iter().zip(slots.iter_mut().zip(&seen)) {
             if !given {
-                *slot = spec
-                    .default
-                    .fill()
-                    .map_err(|()| Values::required(spec.name))?;
+                *slot = fill(spec.default).map_err(|()| Values::required(spec.name))?;
             }
         }
         let values = Values {
