@@ -253,7 +253,7 @@ mod tests {
             ("thetadot0".to_string(), Value::Vector(vec![0.0, 0.0])),
         ];
         let values = entry.values_as_in_spec(given).unwrap();
-        assert_eq!(values.scalar("m1").unwrap(), 1.0);
+        assert_eq!(values.get("m1").unwrap(), Some(&Value::Scalar(1.0)));
         // `p0` of the harmonic chain: zeros on the command line, required in Python.
         let chain = find("harmonic-chain").unwrap();
         let q0 = [("q0".to_string(), Value::Vector(vec![0.1]))];
@@ -263,6 +263,9 @@ mod tests {
         // The spec's `None` (Absent) stays optional.
         let top = find("euler-top").unwrap();
         let omega0 = [("omega0".to_string(), Value::Vector(vec![0.0, 1.0, 0.0]))];
-        assert_eq!(top.values_as_in_spec(omega0).unwrap().get("quat0").unwrap(), None);
+        assert_eq!(
+            top.values_as_in_spec(omega0).unwrap().get("quat0").unwrap(),
+            None
+        );
     }
 }
