@@ -2,7 +2,7 @@
 //!
 //! | Rust error | Python exception |
 //! |---|---|
-//! | `InvalidParameter`, `DimensionMismatch`, `NonFinite`, `InvalidTimeSpan`, `UnknownMethod`, `UnsupportedMethod`, `SingularMatrix`, `TrajectoryTooLarge`, `TooLarge` | `ValueError` |
+//! | `InvalidParameter`, `InvalidArgument` (a value of the wrong kind, an unknown or missing parameter), `UnknownSystem`, `DimensionMismatch`, `NonFinite`, `InvalidTimeSpan`, `UnknownMethod`, `UnsupportedMethod`, `SingularMatrix`, `TrajectoryTooLarge`, `TooLarge` | `ValueError` |
 //! | `Unsupported` (e.g. `force` of a non-separable system) | `NotImplementedError` (as the spec says) |
 //! | `SolverDidNotConverge` | [`ConvergenceError`], a `RuntimeError` subclass: the input was valid, the step too large |
 //! | `Interrupted` | `KeyboardInterrupt` (the pending signal's own exception when there is one) |

@@ -3,21 +3,28 @@
 //! The pure-Python package (`python/physicskit/`) holds the spec's class hierarchy, names,
 //! signatures and docstrings; every numeric operation lands here:
 //!
-//! * [`native`]: `NativeSystem`, the wrapper of every built-in Rust system (integrates with the
-//!   GIL released, stops on Ctrl-C);
-//! * [`builtin`]: one constructor per built-in system;
+//! * [`catalog`]: `build(name, params)`, the one constructor of every built-in system, and the
+//!   `catalog()` / `methods()` listings, all read from the core's catalogue;
+//! * [`params`]: the conversion of Python arguments into the catalogue's typed values;
+//! * [`native`]: `NativeSystem`, the wrapper of the core's type-erased system (integrates with
+//!   the GIL released, stops on Ctrl-C; capabilities such as `positions` as methods);
+//! * [`functions`]: closed forms and analyses that take no system;
+//! * [`expr`]: Lagrangians from the SymPy engine's expressions;
 //! * [`callback`]: Rust integrators running systems written in Python;
 //! * [`errors`]: the mapping of core errors onto Python exceptions;
 //! * [`convert`]: zero-copy hand-over of result arrays to numpy;
 //! * [`memory`]: the allocator (mimalloc) and its hook into the core's memory check.
 
-pub mod builtin;
 pub mod callback;
+pub mod catalog;
 pub mod convert;
 pub mod errors;
+pub mod expr;
+pub mod functions;
 pub mod interrupt;
 pub mod memory;
 pub mod native;
+pub mod params;
 
 use pyo3::prelude::*;
 
@@ -30,7 +37,9 @@ fn _core(m: &Bound<'_, PyModule>) -> PyResult<()> {
         m.py().get_type::<errors::ConvergenceError>(),
     )?;
     memory::register();
-    builtin::register(m)?;
+    catalog::register(m)?;
+    functions::register(m)?;
+    expr::register(m)?;
     callback::register(m)?;
     Ok(())
 }

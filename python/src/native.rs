@@ -1,239 +1,27 @@
 //! [`NativeSystem`]: the one Python class that wraps every built-in Rust system.
 //!
-//! Each built-in system implements the object-safe [`Native`] trait through one of the macros
-//! [`native_hamiltonian!`](crate::native_hamiltonian), [`native_lagrangian!`](crate::native_lagrangian)
-//! or [`native_ode!`](crate::native_ode). `Native::integrate` calls the family's generic
-//! `integrate_with`, so the step loop is monomorphized for the concrete system: the only
-//! dynamic dispatch is the one call into `integrate`.
+//! It holds the core's type-erased [`DynSystem`] (built by `_core.build` from the catalogue,
+//! or by `_core.expr_lagrangian` for the SymPy engine). `integrate` calls the family's generic
+//! `integrate_with` behind `DynSystem::integrate`, so the step loop is monomorphized for the
+//! concrete system: the only dynamic dispatch is the one call into `integrate`. The family
+//! views (`hamiltonian()`, `lagrangian()`) serve `kinetic_energy`, `force`, `acceleration` ...;
+//! what only some systems offer (`positions`, `lrl_vector`, normal modes, a rotation matrix
+//! ...) is one method per [`Capabilities`] accessor, which raises `NotImplementedError` for a
+//! system without it. Nothing here knows a concrete system type.
 
-use std::any::Any;
-
-use numpy::{PyArray1, PyReadonlyArray1};
-use physicskit::classical::{Error, IntegrateOptions, Method, Result, Sampling, SimulationResult};
+use numpy::{IntoPyArray, PyArray1, PyArray2, PyReadonlyArray1};
+use physicskit::classical::core::catalog::{SystemEntry, Values};
+use physicskit::classical::core::erased::{missing, offered, Capabilities, DynSystem};
+use physicskit::classical::{
+    Error, HamiltonianSystem, IntegrateOptions, LagrangianSystem, Method, Result, Sampling,
+};
 use pyo3::prelude::*;
-use pyo3::types::PyTuple;
+use pyo3::types::{PyDict, PyTuple};
 
 use crate::convert::{array1, result_tuple, to_vec};
 use crate::errors::IntoPyResult;
 use crate::interrupt::{SignalObserver, CHECK_EVERY};
-
-/// Which family of the spec a system belongs to.
-#[derive(Debug, Clone, Copy, PartialEq, Eq)]
-pub enum Family {
-    /// `HamiltonianSystem`: state `[q, p]`.
-    Hamiltonian,
-    /// `LagrangianSystem`: state `[q, qdot]`.
-    Lagrangian,
-    /// `ODESystem`: the system's own layout.
-    Ode,
-}
-
-fn unsupported(operation: &str, family: Family) -> Error {
-    Error::Unsupported {
-        operation: operation.into(),
-        reason: format!("not defined for a {family:?} system"),
-    }
-}
-
-/// Object-safe view of a built-in system, as the Python layer needs it.
-#[allow(missing_docs)]
-pub trait Native: Send + Sync + Any {
-    fn family(&self) -> Family;
-    fn ndof(&self) -> Option<usize>;
-    fn state(&self) -> &[f64];
-    fn t(&self) -> f64;
-    fn reset(&mut self, state: &[f64], t0: f64) -> Result<()>;
-    fn energy(&self, state: &[f64]) -> f64;
-    fn derivatives(&self, t: f64, state: &[f64], out: &mut [f64]) -> Result<()>;
-    fn default_method(&self) -> Method;
-    fn integrate(
-        &mut self,
-        t_span: (f64, f64),
-        dt: f64,
-        method: Method,
-        options: IntegrateOptions<'_>,
-    ) -> Result<SimulationResult>;
-    fn as_any(&self) -> &dyn Any;
-    fn kinetic_energy(&self, _p: &[f64]) -> Result<f64> {
-        Err(unsupported("kinetic_energy", self.family()))
-    }
-    fn potential_energy(&self, _q: &[f64]) -> Result<f64> {
-        Err(unsupported("potential_energy", self.family()))
-    }
-    fn force(&self, _q: &[f64], _t: f64, _out: &mut [f64]) -> Result<()> {
-        Err(unsupported("force", self.family()))
-    }
-    fn separable(&self) -> bool {
-        false
-    }
-    fn mass_inv(&self) -> Option<Vec<f64>> {
-        None
-    }
-    fn acceleration(&self, _q: &[f64], _qdot: &[f64], _t: f64, _out: &mut [f64]) -> Result<()> {
-        Err(unsupported("acceleration", self.family()))
-    }
-    fn momentum(&self, _q: &[f64], _qdot: &[f64], _t: f64, _out: &mut [f64]) -> Result<()> {
-        Err(unsupported("momentum", self.family()))
-    }
-}
-
-/// The [`Native`] methods every family shares; `integrate` calls `$system`'s
-/// `integrate_with` (the family trait: `HamiltonianSystem`, `LagrangianSystem`, `OdeSystem`).
-#[macro_export]
-#[doc(hidden)]
-macro_rules! native_common {
-    ($family:expr, $system:path, $ndof:expr) => {
-        fn family(&self) -> $crate::native::Family {
-            $family
-        }
-        fn ndof(&self) -> Option<usize> {
-            #[allow(clippy::redundant_closure_call)]
-            ($ndof)(self)
-        }
-        fn state(&self) -> &[f64] {
-            physicskit::classical::DynamicalSystem::state(self)
-        }
-        fn t(&self) -> f64 {
-            physicskit::classical::DynamicalSystem::t(self)
-        }
-        fn reset(&mut self, state: &[f64], t0: f64) -> physicskit::classical::Result<()> {
-            physicskit::classical::DynamicalSystem::reset(self, Some(state), t0)
-        }
-        fn energy(&self, state: &[f64]) -> f64 {
-            physicskit::classical::DynamicalSystem::energy(self, state)
-        }
-        fn derivatives(
-            &self,
-            t: f64,
-            state: &[f64],
-            out: &mut [f64],
-        ) -> physicskit::classical::Result<()> {
-            physicskit::classical::DynamicalSystem::derivatives(self, t, state, out)
-        }
-        fn default_method(&self) -> physicskit::classical::Method {
-            physicskit::classical::DynamicalSystem::default_method(self)
-        }
-        fn integrate(
-            &mut self,
-            t_span: (f64, f64),
-            dt: f64,
-            method: physicskit::classical::Method,
-            options: physicskit::classical::IntegrateOptions<'_>,
-        ) -> physicskit::classical::Result<physicskit::classical::SimulationResult> {
-            <Self as $system>::integrate_with(self, t_span, dt, method, options)
-        }
-        fn as_any(&self) -> &dyn std::any::Any {
-            self
-        }
-    };
-}
-
-/// Implements [`Native`] for a [`physicskit::classical::HamiltonianSystem`].
-#[macro_export]
-macro_rules! native_hamiltonian {
-    ($ty:ty) => {
-        impl $crate::native::Native for $ty {
-            $crate::native_common!(
-                $crate::native::Family::Hamiltonian,
-                physicskit::classical::HamiltonianSystem,
-                |s: &Self| Some(physicskit::classical::HamiltonianSystem::ndof(s))
-            );
-            fn kinetic_energy(&self, p: &[f64]) -> physicskit::classical::Result<f64> {
-                $crate::native::check_len(
-                    "p",
-                    p,
-                    physicskit::classical::HamiltonianSystem::ndof(self),
-                )?;
-                Ok(physicskit::classical::HamiltonianSystem::kinetic_energy(
-                    self, p,
-                ))
-            }
-            fn potential_energy(&self, q: &[f64]) -> physicskit::classical::Result<f64> {
-                $crate::native::check_len(
-                    "q",
-                    q,
-                    physicskit::classical::HamiltonianSystem::ndof(self),
-                )?;
-                Ok(physicskit::classical::HamiltonianSystem::potential_energy(
-                    self, q,
-                ))
-            }
-            fn force(
-                &self,
-                q: &[f64],
-                t: f64,
-                out: &mut [f64],
-            ) -> physicskit::classical::Result<()> {
-                $crate::native::check_len(
-                    "q",
-                    q,
-                    physicskit::classical::HamiltonianSystem::ndof(self),
-                )?;
-                physicskit::classical::HamiltonianSystem::force(self, q, t, out)
-            }
-            fn separable(&self) -> bool {
-                physicskit::classical::HamiltonianSystem::separable(self)
-            }
-            fn mass_inv(&self) -> Option<Vec<f64>> {
-                let n = physicskit::classical::HamiltonianSystem::ndof(self);
-                let m = physicskit::classical::HamiltonianSystem::mass_inv(self);
-                Some((0..n).map(|i| m.get(i)).collect())
-            }
-        }
-    };
-}
-
-/// Implements [`Native`] for a [`physicskit::classical::LagrangianSystem`].
-#[macro_export]
-macro_rules! native_lagrangian {
-    ($ty:ty) => {
-        impl $crate::native::Native for $ty {
-            $crate::native_common!(
-                $crate::native::Family::Lagrangian,
-                physicskit::classical::LagrangianSystem,
-                |s: &Self| Some(physicskit::classical::LagrangianSystem::ndof(s))
-            );
-            fn acceleration(
-                &self,
-                q: &[f64],
-                qdot: &[f64],
-                t: f64,
-                out: &mut [f64],
-            ) -> physicskit::classical::Result<()> {
-                let n = physicskit::classical::LagrangianSystem::ndof(self);
-                $crate::native::check_len("q", q, n)?;
-                $crate::native::check_len("qdot", qdot, n)?;
-                physicskit::classical::LagrangianSystem::acceleration(self, q, qdot, t, out)
-            }
-            fn momentum(
-                &self,
-                q: &[f64],
-                qdot: &[f64],
-                t: f64,
-                out: &mut [f64],
-            ) -> physicskit::classical::Result<()> {
-                let n = physicskit::classical::LagrangianSystem::ndof(self);
-                $crate::native::check_len("q", q, n)?;
-                $crate::native::check_len("qdot", qdot, n)?;
-                physicskit::classical::LagrangianSystem::momentum(self, q, qdot, t, out)
-            }
-        }
-    };
-}
-
-/// Implements [`Native`] for a [`physicskit::classical::OdeSystem`].
-#[macro_export]
-macro_rules! native_ode {
-    ($ty:ty) => {
-        impl $crate::native::Native for $ty {
-            $crate::native_common!(
-                $crate::native::Family::Ode,
-                physicskit::classical::OdeSystem,
-                |_s: &Self| None
-            );
-        }
-    };
-}
+use crate::params::values_to_dict;
 
 /// Checks an input length (and finiteness) before it reaches a system.
 ///
@@ -270,48 +58,116 @@ pub fn sampling(stride: usize, final_only: bool) -> Result<Sampling> {
     }
 }
 
+/// The name of the systems the SymPy engine builds (not in the catalogue).
+pub const EXPRESSION_SYSTEM: &str = "lagrangian-expression";
+
 /// A built-in Rust system, owned by the Python object that wraps it.
 #[pyclass(module = "physicskit._core", name = "NativeSystem")]
 pub struct NativeSystem {
-    /// The system.
-    pub inner: Box<dyn Native>,
+    inner: Box<dyn DynSystem>,
+    name: &'static str,
+    values: Option<Values>,
 }
 
 impl NativeSystem {
-    /// Wraps a system.
-    pub fn new<S: Native>(system: S) -> Self {
+    /// A system built from the catalogue `entry` with the checked `values`.
+    pub fn from_entry(
+        entry: &'static SystemEntry,
+        values: Values,
+        inner: Box<dyn DynSystem>,
+    ) -> Self {
         Self {
-            inner: Box::new(system),
+            inner,
+            name: entry.name,
+            values: Some(values),
         }
     }
 
-    /// The wrapped system as its concrete type.
-    ///
-    /// # Errors
-    /// `TypeError` if it is another system.
-    pub fn downcast<S: Native>(&self) -> PyResult<&S> {
-        self.inner.as_any().downcast_ref::<S>().ok_or_else(|| {
-            pyo3::exceptions::PyTypeError::new_err("native system of the wrong type")
-        })
+    /// A system built outside the catalogue (the SymPy engine's), called `name`.
+    pub fn unlisted(name: &'static str, inner: Box<dyn DynSystem>) -> Self {
+        Self {
+            inner,
+            name,
+            values: None,
+        }
     }
 
     fn dim(&self) -> usize {
-        self.inner.state().len()
+        self.inner.dynamical().state().len()
+    }
+
+    fn hamiltonian(&self, operation: &str) -> Result<&dyn HamiltonianSystem> {
+        self.inner
+            .hamiltonian()
+            .ok_or_else(|| self.not_in_family(operation))
+    }
+
+    fn lagrangian(&self, operation: &str) -> Result<&dyn LagrangianSystem> {
+        self.inner
+            .lagrangian()
+            .ok_or_else(|| self.not_in_family(operation))
+    }
+
+    fn not_in_family(&self, operation: &str) -> Error {
+        Error::Unsupported {
+            operation: operation.into(),
+            reason: format!("not defined for a {} system", self.inner.family().name()),
+        }
+    }
+
+    fn caps(&self) -> &dyn Capabilities {
+        self.inner.capabilities()
+    }
+
+    /// The capability's result, or `NotImplementedError` naming it and the system.
+    fn offer<T>(&self, capability: &str, answer: Option<T>) -> Result<T> {
+        answer.ok_or_else(|| missing(capability, self.name))
     }
 }
 
+type Arr<'a> = PyReadonlyArray1<'a, f64>;
+type Array<'py> = Bound<'py, PyArray1<f64>>;
+
 #[pymethods]
 impl NativeSystem {
+    /// The catalogue name of the system (`"double-pendulum"`, ...).
+    #[getter]
+    fn name(&self) -> &'static str {
+        self.name
+    }
+
+    /// `"hamiltonian"`, `"lagrangian"` or `"ode"`.
+    #[getter]
+    fn family(&self) -> &'static str {
+        self.inner.family().name()
+    }
+
+    /// The parameters as the catalogue checked them (`name -> value`, `None` for one left
+    /// out), or `None` for a system built outside the catalogue.
+    #[getter]
+    fn params<'py>(&self, py: Python<'py>) -> PyResult<Option<Bound<'py, PyDict>>> {
+        self.values
+            .as_ref()
+            .map(|v| values_to_dict(py, v))
+            .transpose()
+    }
+
+    /// The names of the capability methods this system offers (`positions`, ...).
+    #[getter]
+    fn capabilities(&self) -> Vec<&'static str> {
+        offered(self.inner.as_ref())
+    }
+
     /// Current state (a copy).
     #[getter]
-    fn state<'py>(&self, py: Python<'py>) -> Bound<'py, PyArray1<f64>> {
-        array1(py, self.inner.state())
+    fn state<'py>(&self, py: Python<'py>) -> Array<'py> {
+        array1(py, self.inner.dynamical().state())
     }
 
     /// Current time.
     #[getter]
     fn t(&self) -> f64 {
-        self.inner.t()
+        self.inner.dynamical().t()
     }
 
     /// Degrees of freedom, or `None` for a general ODE system.
@@ -323,13 +179,17 @@ impl NativeSystem {
     /// Whether `H = T(p) + V(q)`.
     #[getter]
     fn separable(&self) -> bool {
-        self.inner.separable()
+        self.inner.hamiltonian().is_some_and(|h| h.separable())
     }
 
-    /// Inverse masses per coordinate, or `None`.
+    /// Inverse masses per coordinate (Hamiltonian systems), or `None`.
     #[getter]
-    fn mass_inv<'py>(&self, py: Python<'py>) -> Option<Bound<'py, PyArray1<f64>>> {
-        self.inner.mass_inv().map(|m| array1(py, &m))
+    fn mass_inv<'py>(&self, py: Python<'py>) -> Option<Array<'py>> {
+        self.inner.hamiltonian().map(|h| {
+            let m = h.mass_inv();
+            let v: Vec<f64> = (0..h.ndof()).map(|i| m.get(i)).collect();
+            PyArray1::from_vec(py, v)
+        })
     }
 
     /// Name of the default integrator.
@@ -339,86 +199,88 @@ impl NativeSystem {
     }
 
     /// Sets state and clock after validating them.
-    fn reset(&mut self, state: PyReadonlyArray1<'_, f64>, t0: f64) -> PyResult<()> {
-        self.inner.reset(&to_vec(&state), t0).py()
+    fn reset(&mut self, state: Arr<'_>, t0: f64) -> PyResult<()> {
+        self.inner.reset(Some(&to_vec(&state)), t0).py()
     }
 
     /// Total energy of `state`.
-    fn energy(&self, state: PyReadonlyArray1<'_, f64>) -> PyResult<f64> {
+    fn energy(&self, state: Arr<'_>) -> PyResult<f64> {
         let s = to_vec(&state);
         check_len("state", &s, self.dim()).py()?;
-        Ok(self.inner.energy(&s))
+        Ok(self.inner.dynamical().energy(&s))
     }
 
     /// `dstate/dt` at `(t, state)`.
-    fn derivatives<'py>(
-        &self,
-        py: Python<'py>,
-        t: f64,
-        state: PyReadonlyArray1<'_, f64>,
-    ) -> PyResult<Bound<'py, PyArray1<f64>>> {
+    fn derivatives<'py>(&self, py: Python<'py>, t: f64, state: Arr<'_>) -> PyResult<Array<'py>> {
         let s = to_vec(&state);
         check_len("state", &s, self.dim()).py()?;
         let mut out = vec![0.0; s.len()];
-        self.inner.derivatives(t, &s, &mut out).py()?;
-        Ok(array1(py, &out))
+        self.inner.dynamical().derivatives(t, &s, &mut out).py()?;
+        Ok(PyArray1::from_vec(py, out))
     }
 
-    /// `T(p)`.
-    fn kinetic_energy(&self, p: PyReadonlyArray1<'_, f64>) -> PyResult<f64> {
-        self.inner.kinetic_energy(&to_vec(&p)).py()
+    /// `T(p)` (Hamiltonian systems).
+    fn kinetic_energy(&self, p: Arr<'_>) -> PyResult<f64> {
+        let h = self.hamiltonian("kinetic_energy").py()?;
+        let p = to_vec(&p);
+        check_len("p", &p, h.ndof()).py()?;
+        Ok(h.kinetic_energy(&p))
     }
 
-    /// `V(q)`.
-    fn potential_energy(&self, q: PyReadonlyArray1<'_, f64>) -> PyResult<f64> {
-        self.inner.potential_energy(&to_vec(&q)).py()
-    }
-
-    /// `-dV/dq` at `(q, t)`.
-    fn force<'py>(
-        &self,
-        py: Python<'py>,
-        q: PyReadonlyArray1<'_, f64>,
-        t: f64,
-    ) -> PyResult<Bound<'py, PyArray1<f64>>> {
+    /// `V(q)` (Hamiltonian systems).
+    fn potential_energy(&self, q: Arr<'_>) -> PyResult<f64> {
+        let h = self.hamiltonian("potential_energy").py()?;
         let q = to_vec(&q);
-        let mut out = vec![0.0; q.len()];
-        self.inner.force(&q, t, &mut out).py()?;
-        Ok(array1(py, &out))
+        check_len("q", &q, h.ndof()).py()?;
+        Ok(h.potential_energy(&q))
     }
 
-    /// `qddot` at `(q, qdot, t)`.
+    /// `-dV/dq` at `(q, t)` (separable Hamiltonian systems).
+    fn force<'py>(&self, py: Python<'py>, q: Arr<'_>, t: f64) -> PyResult<Array<'py>> {
+        let h = self.hamiltonian("force").py()?;
+        let q = to_vec(&q);
+        check_len("q", &q, h.ndof()).py()?;
+        let mut out = vec![0.0; q.len()];
+        h.force(&q, t, &mut out).py()?;
+        Ok(PyArray1::from_vec(py, out))
+    }
+
+    /// `qddot` at `(q, qdot, t)` (Lagrangian systems).
     fn acceleration<'py>(
         &self,
         py: Python<'py>,
-        q: PyReadonlyArray1<'_, f64>,
-        qdot: PyReadonlyArray1<'_, f64>,
+        q: Arr<'_>,
+        qdot: Arr<'_>,
         t: f64,
-    ) -> PyResult<Bound<'py, PyArray1<f64>>> {
-        let q = to_vec(&q);
+    ) -> PyResult<Array<'py>> {
+        let l = self.lagrangian("acceleration").py()?;
+        let (q, qdot) = (to_vec(&q), to_vec(&qdot));
+        check_len("q", &q, l.ndof()).py()?;
+        check_len("qdot", &qdot, l.ndof()).py()?;
         let mut out = vec![0.0; q.len()];
-        self.inner
-            .acceleration(&q, &to_vec(&qdot), t, &mut out)
-            .py()?;
-        Ok(array1(py, &out))
+        l.acceleration(&q, &qdot, t, &mut out).py()?;
+        Ok(PyArray1::from_vec(py, out))
     }
 
-    /// `p = dL/dqdot` at `(q, qdot, t)`.
+    /// `p = dL/dqdot` at `(q, qdot, t)` (Lagrangian systems).
     fn momentum<'py>(
         &self,
         py: Python<'py>,
-        q: PyReadonlyArray1<'_, f64>,
-        qdot: PyReadonlyArray1<'_, f64>,
+        q: Arr<'_>,
+        qdot: Arr<'_>,
         t: f64,
-    ) -> PyResult<Bound<'py, PyArray1<f64>>> {
-        let q = to_vec(&q);
+    ) -> PyResult<Array<'py>> {
+        let l = self.lagrangian("momentum").py()?;
+        let (q, qdot) = (to_vec(&q), to_vec(&qdot));
+        check_len("q", &q, l.ndof()).py()?;
+        check_len("qdot", &qdot, l.ndof()).py()?;
         let mut out = vec![0.0; q.len()];
-        self.inner.momentum(&q, &to_vec(&qdot), t, &mut out).py()?;
-        Ok(array1(py, &out))
+        l.momentum(&q, &qdot, t, &mut out).py()?;
+        Ok(PyArray1::from_vec(py, out))
     }
 
     /// Starts from `(state, t0)`, integrates over `t_span` with step `dt`, and returns the result
-    /// tuple `(t, y, energy, method, extra)`. `stride` keeps every `stride`-th step (and
+    /// tuple `(t, y, ndof, energy, method, extra)`. `stride` keeps every `stride`-th step (and
     /// the last), `final_only` only the first and last, `energy=False` skips the energy
     /// diagnostic (`None` in the tuple). The GIL is released during the run; Ctrl-C stops it
     /// with `KeyboardInterrupt`.
@@ -427,7 +289,7 @@ impl NativeSystem {
     fn integrate<'py>(
         &mut self,
         py: Python<'py>,
-        state: PyReadonlyArray1<'_, f64>,
+        state: Arr<'_>,
         t0: f64,
         t_span: (f64, f64),
         dt: f64,
@@ -442,7 +304,7 @@ impl NativeSystem {
         let inner = &mut self.inner;
         let (outcome, raised) = py.detach(move || {
             let mut observer = SignalObserver::default();
-            let outcome = inner.reset(&state, t0).and_then(|()| {
+            let outcome = inner.reset(Some(&state), t0).and_then(|()| {
                 inner.integrate(
                     t_span,
                     dt,
@@ -462,5 +324,114 @@ impl NativeSystem {
             (Err(Error::Interrupted { .. }), Some(signal)) => Err(signal),
             (Err(e), _) => Err(crate::errors::to_py(e)),
         }
+    }
+
+    // -- capabilities: one method per `Capabilities` accessor ------------------------------
+
+    /// Cartesian positions of the drawn bodies for the configuration `q`, `[x1, y1, ...]`.
+    fn positions<'py>(&self, py: Python<'py>, q: Arr<'_>) -> PyResult<Array<'py>> {
+        let x = self.offer("positions", self.caps().positions(&to_vec(&q)));
+        Ok(PyArray1::from_vec(py, x.and_then(|r| r).py()?))
+    }
+
+    /// Laplace-Runge-Lenz vector of `(q, p)`.
+    fn lrl_vector<'py>(&self, py: Python<'py>, q: Arr<'_>, p: Arr<'_>) -> PyResult<Array<'py>> {
+        let a = self.offer(
+            "lrl_vector",
+            self.caps().lrl_vector(&to_vec(&q), &to_vec(&p)),
+        );
+        Ok(array1(py, &a.and_then(|r| r).py()?))
+    }
+
+    /// Angular momentum about the force centre of `(q, p)`.
+    fn angular_momentum(&self, q: Arr<'_>, p: Arr<'_>) -> PyResult<f64> {
+        let l = self.caps().angular_momentum(&to_vec(&q), &to_vec(&p));
+        self.offer("angular_momentum", l).and_then(|r| r).py()
+    }
+
+    /// Energy of each particle of `(q, p)`.
+    fn per_particle_energy<'py>(
+        &self,
+        py: Python<'py>,
+        q: Arr<'_>,
+        p: Arr<'_>,
+    ) -> PyResult<Array<'py>> {
+        let e = self.caps().per_particle_energy(&to_vec(&q), &to_vec(&p));
+        let e = self.offer("per_particle_energy", e).and_then(|r| r).py()?;
+        Ok(PyArray1::from_vec(py, e))
+    }
+
+    /// Area of the phase-space patch the particles of `(q, p)` fill.
+    fn phase_space_area(&self, q: Arr<'_>, p: Arr<'_>) -> PyResult<f64> {
+        let a = self.caps().phase_space_area(&to_vec(&q), &to_vec(&p));
+        self.offer("phase_space_area", a).and_then(|r| r).py()
+    }
+
+    /// Normal-mode angular frequencies, lowest first.
+    fn normal_mode_frequencies<'py>(&self, py: Python<'py>) -> PyResult<Array<'py>> {
+        let w = self.caps().normal_mode_frequencies();
+        Ok(PyArray1::from_vec(
+            py,
+            self.offer("normal_mode_frequencies", w).py()?,
+        ))
+    }
+
+    /// Normal-mode coordinates `(Q, P)` of `(q, p)`.
+    fn normal_mode_coordinates<'py>(
+        &self,
+        py: Python<'py>,
+        q: Arr<'_>,
+        p: Arr<'_>,
+    ) -> PyResult<(Array<'py>, Array<'py>)> {
+        let c = self
+            .caps()
+            .normal_mode_coordinates(&to_vec(&q), &to_vec(&p));
+        let (bq, bp) = self
+            .offer("normal_mode_coordinates", c)
+            .and_then(|r| r)
+            .py()?;
+        Ok((PyArray1::from_vec(py, bq), PyArray1::from_vec(py, bp)))
+    }
+
+    /// Energy in each normal mode of `(q, p)`.
+    fn modal_energies<'py>(&self, py: Python<'py>, q: Arr<'_>, p: Arr<'_>) -> PyResult<Array<'py>> {
+        let e = self.caps().modal_energies(&to_vec(&q), &to_vec(&p));
+        let e = self.offer("modal_energies", e).and_then(|r| r).py()?;
+        Ok(PyArray1::from_vec(py, e))
+    }
+
+    /// Body-to-space rotation matrix, shape (3, 3), of `state`.
+    fn rotation_matrix<'py>(
+        &self,
+        py: Python<'py>,
+        state: Arr<'_>,
+    ) -> PyResult<Bound<'py, PyArray2<f64>>> {
+        let r = self.caps().rotation_matrix(&to_vec(&state));
+        let r = self.offer("rotation_matrix", r).and_then(|r| r).py()?;
+        let a = ndarray::Array2::from_shape_fn((3, 3), |(i, j)| r[3 * i + j]);
+        Ok(a.into_pyarray(py))
+    }
+
+    /// `|L|^2` of `state`.
+    fn angular_momentum_squared(&self, state: Arr<'_>) -> PyResult<f64> {
+        let l2 = self.caps().angular_momentum_squared(&to_vec(&state));
+        self.offer("angular_momentum_squared", l2)
+            .and_then(|r| r)
+            .py()
+    }
+
+    /// Instantaneous precession and nutation rates `(phidot, thetadot)` of `state`.
+    fn precession_nutation_rate(&self, state: Arr<'_>) -> PyResult<(f64, f64)> {
+        let r = self.caps().precession_nutation_rate(&to_vec(&state));
+        self.offer("precession_nutation_rate", r)
+            .and_then(|r| r)
+            .py()
+    }
+
+    /// Conserved quantities beyond the energy of `state`, sorted.
+    fn conserved_quantities<'py>(&self, py: Python<'py>, state: Arr<'_>) -> PyResult<Array<'py>> {
+        let c = self.caps().conserved_quantities(&to_vec(&state));
+        let c = self.offer("conserved_quantities", c).and_then(|r| r).py()?;
+        Ok(PyArray1::from_vec(py, c))
     }
 }

@@ -13,6 +13,10 @@ def stub_defs():
     tree = ast.parse(path.read_text())
     out = {}
     for node in tree.body:
+        # Private names are stub-only typing helpers (the TypedDicts of `catalog()`), not
+        # attributes of the module.
+        if getattr(node, "name", "").startswith("_"):
+            continue
         if isinstance(node, ast.FunctionDef):
             out[node.name] = [a.arg for a in node.args.args]
         elif isinstance(node, ast.ClassDef):

@@ -16,26 +16,8 @@ from .core import (
     ODESystem,
     SimulationResult,
 )
-from .systems import (
-    BeadOnRotatingHoop,
-    CoupledOscillators,
-    DoublePendulum,
-    EulerTop,
-    FPUTChain,
-    HarmonicChain,
-    HeavySymmetricTop,
-    HenonHeilesSystem,
-    KeplerSystem,
-    PendulumSwarm,
-    ProjectileMotion,
-    SineGordonChain,
-    effective_potential_symmetric_top,
-    find_theta_equilibrium,
-    nutation_frequency,
-    pendulum_action_angle,
-    precession_frequency,
-)
-from .systems import __all__ as _systems_all
+from .systems import *  # noqa: F401,F403
+from .listings import catalog, methods
 from . import core, systems, utils  # noqa: E402  (sub-packages importable as attributes)
 
 __all__ = [
@@ -45,6 +27,8 @@ __all__ = [
     "HamiltonianSystem",
     "LagrangianSystem",
     "SimulationResult",
-    *_systems_all,
+    *systems.__all__,
     "ConvergenceError",
+    "methods",
+    "catalog",
 ]

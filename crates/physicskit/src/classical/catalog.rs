@@ -242,4 +242,32 @@ mod tests {
             .collect();
         assert!(required.is_empty(), "{required:?}");
     }
+
+    /// The spec's signatures: only the spec's defaults are filled in; a demonstration value is
+    /// not a default there, nor is a `DemoAbsent` parameter optional.
+    #[test]
+    fn values_as_in_spec_require_what_the_spec_requires() {
+        let entry = find("double-pendulum").unwrap();
+        let e = entry.values_as_in_spec([]).unwrap_err().to_string();
+        assert!(e.contains("`theta0`: is required"), "{e}");
+        let given = [
+            ("theta0".to_string(), Value::Vector(vec![0.1, 0.2])),
+            ("thetadot0".to_string(), Value::Vector(vec![0.0, 0.0])),
+        ];
+        let values = entry.values_as_in_spec(given).unwrap();
+        assert_eq!(values.get("m1").unwrap(), Some(&Value::Scalar(1.0)));
+        // `p0` of the harmonic chain: zeros on the command line, required in Python.
+        let chain = find("harmonic-chain").unwrap();
+        let q0 = [("q0".to_string(), Value::Vector(vec![0.1]))];
+        assert!(chain.values(q0.clone()).is_ok());
+        let e = chain.values_as_in_spec(q0).unwrap_err().to_string();
+        assert!(e.contains("`p0`: is required"), "{e}");
+        // The spec's `None` (Absent) stays optional.
+        let top = find("euler-top").unwrap();
+        let omega0 = [("omega0".to_string(), Value::Vector(vec![0.0, 1.0, 0.0]))];
+        assert_eq!(
+            top.values_as_in_spec(omega0).unwrap().get("quat0").unwrap(),
+            None
+        );
+    }
 }

@@ -1,22 +1,20 @@
-"""The built-in systems of :mod:`physicskit.classical`."""
+"""The built-in systems of :mod:`physicskit.classical`.
 
-from .chains import FPUTChain, HarmonicChain, SineGordonChain
-from .hamiltonian import HenonHeilesSystem, PendulumSwarm, pendulum_action_angle
-from .lagrangian import BeadOnRotatingHoop, CoupledOscillators, DoublePendulum
-from .newtonian import KeplerSystem, ProjectileMotion
-from .rotations import (
-    EulerTop,
-    HeavySymmetricTop,
-    effective_potential_symmetric_top,
-    find_theta_equilibrium,
-    nutation_frequency,
-    precession_frequency,
-)
+The public names are those of the submodules' ``__all__`` lists, in this order; nothing is
+listed twice.
+"""
+
+from . import chains, hamiltonian, lagrangian, newtonian, rotations
+from .chains import *  # noqa: F401,F403
+from .hamiltonian import *  # noqa: F401,F403
+from .lagrangian import *  # noqa: F401,F403
+from .newtonian import *  # noqa: F401,F403
+from .rotations import *  # noqa: F401,F403
 
 __all__ = [
-    "ProjectileMotion", "KeplerSystem", "DoublePendulum", "BeadOnRotatingHoop",
-    "CoupledOscillators", "HenonHeilesSystem", "PendulumSwarm", "pendulum_action_angle",
-    "HarmonicChain", "FPUTChain", "SineGordonChain", "EulerTop", "HeavySymmetricTop",
-    "effective_potential_symmetric_top", "find_theta_equilibrium", "nutation_frequency",
-    "precession_frequency",
+    *newtonian.__all__,
+    *lagrangian.__all__,
+    *hamiltonian.__all__,
+    *chains.__all__,
+    *rotations.__all__,
 ]

@@ -1,23 +1,45 @@
-"""Shared plumbing of the built-in systems: adopt a native Rust object as ``self._native``."""
+"""Shared plumbing of the built-in systems: build one from the catalogue and adopt it as
+``self._native``.
+
+Every built-in class constructs through :func:`build`, which hands all of its arguments to
+``physicskit._core.build`` under the catalogue entry's name. The catalogue converts and checks
+every value (kind, finiteness, range, vector lengths) and fills in defaults; the classes check
+nothing themselves and take the attributes they expose (``self.m1`` ...) from the checked
+values.
+"""
 
 from __future__ import annotations
 
-from typing import Optional
+from typing import Any, Optional
 
 import numpy as np
 
-from .._native import as_int, as_vector
-
-__all__ = ["as_int", "adopt", "kinetic_energy", "potential_energy", "energy"]
+from .._native import _core, as_int, as_vector
 
 
-def adopt(system, nat) -> None:
-    """Make ``nat`` the numerics of ``system`` and copy its validated initial state."""
+def build(entry: str, /, **params: Any):
+    """The native system of the catalogue entry ``entry`` built from ``params`` (a value of
+    ``None`` leaves a parameter to the catalogue)."""
+    return _core.build(entry, params)
+
+
+def adopt(system, nat) -> dict[str, Any]:
+    """Make ``nat`` the numerics of ``system``, copy its validated initial state, and return
+    the catalogue's checked parameter values."""
     system._native = nat
     system.state = nat.state
     system.t = 0.0
     if nat.ndof is not None:
         system.ndof = nat.ndof
+    return nat.params
+
+
+def from_native(cls, nat):
+    """An instance of ``cls`` adopting ``nat`` (alternate constructors: the catalogue entry
+    already built and checked the system, so ``__init__`` does not run again)."""
+    system = cls.__new__(cls)
+    system._adopt(nat)
+    return system
 
 
 def kinetic_energy(self, p: np.ndarray) -> float:

@@ -9,7 +9,7 @@ import numpy as np
 
 from .._native import as_scalar, as_vector, native
 from ..core.base_system import HamiltonianSystem
-from ._native_base import adopt, as_int
+from ._native_base import adopt, as_int, build
 
 __all__ = ["HarmonicChain", "FPUTChain", "SineGordonChain"]
 
@@ -29,14 +29,13 @@ class _ChainBase(HamiltonianSystem):
     separable = True
 
     def __init__(self, q0, p0, m=1.0, k=1.0):
-        q0 = as_vector("q0", q0)
-        adopt(self, native("harmonic_chain")(q0, as_vector("p0", p0, len(q0)),
-                                             as_scalar("m", m), as_scalar("k", k)))
-        self._set_params(m, k)
+        self._adopt(build("harmonic-chain", q0=q0, p0=p0, m=m, k=k))
 
-    def _set_params(self, m, k) -> None:
-        self.m, self.k = float(m), float(k)
+    def _adopt(self, nat) -> dict:
+        v = adopt(self, nat)
+        self.m, self.k = v["m"], v["k"]
         self.mass_inv = 1.0 / self.m
+        return v
 
     def kinetic_energy(self, p: np.ndarray) -> float:
         """Return ``T(p) = |p|^2 / (2m)``."""
@@ -44,15 +43,15 @@ class _ChainBase(HamiltonianSystem):
 
     def normal_mode_frequencies(self) -> np.ndarray:
         """Angular frequencies ``omega_j``, ``j = 1..N``, shape (n,)."""
-        return native("chain_normal_mode_frequencies")(self._native)
+        return self._native.normal_mode_frequencies()
 
     def normal_mode_coords(self, q=None, p=None):
         """Modal amplitudes ``(Q, P)`` (sine transform) of a state; default: current state."""
-        return native("chain_normal_mode_coords")(self._native, *self._qp(q, p))
+        return self._native.normal_mode_coordinates(*self._qp(q, p))
 
     def modal_energies(self, q=None, p=None) -> np.ndarray:
         """Harmonic energy in each normal mode, ``E_j = P_j^2/(2m) + m omega_j^2 Q_j^2/2``."""
-        return native("chain_modal_energies")(self._native, *self._qp(q, p))
+        return self._native.modal_energies(*self._qp(q, p))
 
 
 class HarmonicChain(_ChainBase):
@@ -94,13 +93,8 @@ class FPUTChain(_ChainBase):
     """
 
     def __init__(self, n=32, m=1.0, k=1.0, beta=0.0, mode=1, amplitude=1.0):
-        nat = native("fput_chain")(
-            as_int("n", n), as_scalar("m", m), as_scalar("k", k), as_scalar("beta", beta),
-            as_int("mode", mode), as_scalar("amplitude", amplitude),
-        )
-        adopt(self, nat)
-        self._set_params(m, k)
-        self.beta, self.mode, self.amplitude = float(beta), operator.index(mode), float(amplitude)
+        v = self._adopt(build("fput", n=n, m=m, k=k, beta=beta, mode=mode, amplitude=amplitude))
+        self.beta, self.mode, self.amplitude = v["beta"], v["mode"], v["amplitude"]
 
     def potential_energy(self, q: np.ndarray) -> float:
         """Return ``V(q) = sum_bonds (k/2) r^2 + (beta/4) r^4``."""
@@ -122,11 +116,7 @@ class SineGordonChain(_ChainBase):
     """
 
     def __init__(self, n=200, m=1.0, k=1.0, q0=None, p0=None):
-        n = as_int("n", n)
-        q0 = None if q0 is None else as_vector("q0", q0, n)
-        p0 = None if p0 is None else as_vector("p0", p0, n)
-        adopt(self, native("sine_gordon_chain")(n, as_scalar("m", m), as_scalar("k", k), q0, p0))
-        self._set_params(m, k)
+        self._adopt(build("sine-gordon-state", n=n, m=m, k=k, q0=q0, p0=p0))
 
     @staticmethod
     def kink(n: int, center: float, width: float = 1.0, velocity: float = 0.0,

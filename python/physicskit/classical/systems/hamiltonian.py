@@ -4,9 +4,10 @@ from __future__ import annotations
 
 import numpy as np
 
-from .._native import as_scalar, as_vector, native
+from .._native import as_scalar, native
 from ..core.base_system import HamiltonianSystem
-from ._native_base import adopt, kinetic_energy as _kinetic_energy, potential_energy as _potential_energy, as_int
+from ._native_base import adopt, build, from_native
+from ._native_base import kinetic_energy as _kinetic_energy, potential_energy as _potential_energy
 
 __all__ = ["HenonHeilesSystem", "PendulumSwarm", "pendulum_action_angle"]
 
@@ -28,7 +29,7 @@ class HenonHeilesSystem(HamiltonianSystem):
     mass_inv = 1.0
 
     def __init__(self, q0, p0):
-        adopt(self, native("henon_heiles")(as_vector("q0", q0, 2), as_vector("p0", p0, 2)))
+        adopt(self, build("henon-heiles", q0=q0, p0=p0))
 
 
 class PendulumSwarm(HamiltonianSystem):
@@ -49,34 +50,26 @@ class PendulumSwarm(HamiltonianSystem):
     separable = True
 
     def __init__(self, q0, p0, g_over_l: float = 1.0):
-        q0 = as_vector("q0", q0)
-        nat = native("pendulum_swarm")(
-            q0, as_vector("p0", p0, len(q0)), as_scalar("g_over_l", g_over_l)
-        )
-        adopt(self, nat)
-        self.g_over_l = float(g_over_l)
+        self._adopt(build("pendulum-swarm-state", q0=q0, p0=p0, g_over_l=g_over_l))
+
+    def _adopt(self, nat) -> None:
+        self.g_over_l = adopt(self, nat)["g_over_l"]
 
     @classmethod
     def from_box(cls, q_center: float, p_center: float, dq: float, dp: float, n: int = 1000,
                  g_over_l: float = 1.0, seed: int = 0):
         """Seed ``n`` points uniformly in the ``dq x dp`` box centred at ``(q_center,
         p_center)``, reproducibly from ``seed``."""
-        nat = native("pendulum_swarm_from_box")(
-            as_scalar("q_center", q_center), as_scalar("p_center", p_center),
-            as_scalar("dq", dq), as_scalar("dp", dp), as_int("n", n), as_scalar("g_over_l", g_over_l),
-            as_int("seed", seed),
-        )
-        k = nat.ndof
-        state = nat.state
-        return cls(state[:k], state[k:], g_over_l=g_over_l)
+        return from_native(cls, build("pendulum-swarm", q_center=q_center, p_center=p_center,
+                                      dq=dq, dp=dp, n=n, g_over_l=g_over_l, seed=seed))
 
     def per_particle_energy(self, q=None, p=None) -> np.ndarray:
         """Energy of each pendulum, shape (n,); each is conserved (the ensemble is decoupled)."""
-        return native("swarm_per_particle_energy")(self._native, *self._qp(q, p))
+        return self._native.per_particle_energy(*self._qp(q, p))
 
     def phase_space_area(self, q=None, p=None) -> float:
         """Convex-hull area of the ``(q, p)`` point cloud: a proxy of the occupied area."""
-        return native("swarm_phase_space_area")(self._native, *self._qp(q, p))
+        return self._native.phase_space_area(*self._qp(q, p))
 
 
 def pendulum_action_angle(E: float, g_over_l: float = 1.0):

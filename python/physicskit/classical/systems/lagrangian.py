@@ -10,9 +10,9 @@ from typing import Optional
 
 import numpy as np
 
-from .._native import as_scalar, as_vector, native
+from .._native import as_vector
 from ..core.base_system import LagrangianSystem
-from ._native_base import adopt, as_int, energy as _energy
+from ._native_base import adopt, build, energy as _energy
 
 __all__ = ["DoublePendulum", "BeadOnRotatingHoop", "CoupledOscillators"]
 
@@ -34,12 +34,9 @@ class DoublePendulum(LagrangianSystem):
     """
 
     def __init__(self, theta0, thetadot0, m1=1.0, m2=1.0, l1=1.0, l2=1.0, g=9.81):
-        nat = native("double_pendulum")(
-            as_vector("theta0", theta0, 2), as_vector("thetadot0", thetadot0, 2),
-            *(as_scalar(n, v) for n, v in [("m1", m1), ("m2", m2), ("l1", l1), ("l2", l2), ("g", g)]),
-        )
-        adopt(self, nat)
-        self.m1, self.m2, self.l1, self.l2, self.g = map(float, (m1, m2, l1, l2, g))
+        v = adopt(self, build("double-pendulum", theta0=theta0, thetadot0=thetadot0, m1=m1,
+                              m2=m2, l1=l1, l2=l2, g=g))
+        self.m1, self.m2, self.l1, self.l2, self.g = (v[n] for n in ("m1", "m2", "l1", "l2", "g"))
 
     def energy(self, state: Optional[np.ndarray] = None) -> float:
         """Return ``T + V`` of ``state`` (default: ``self.state``)."""
@@ -48,7 +45,7 @@ class DoublePendulum(LagrangianSystem):
     def positions(self, q=None) -> np.ndarray:
         """Bob positions ``(x1, y1, x2, y2)`` for angles ``q`` (default: current angles)."""
         q = self.q if q is None else q
-        return native("double_pendulum_positions")(self._native, as_vector("q", q, 2))
+        return self._native.positions(as_vector("q", q, self.ndof))
 
 
 class BeadOnRotatingHoop(LagrangianSystem):
@@ -69,12 +66,8 @@ class BeadOnRotatingHoop(LagrangianSystem):
     """
 
     def __init__(self, theta0, thetadot0, R=1.0, omega=2.0, g=9.81):
-        th = as_vector("theta0", theta0, 1)[0]
-        thd = as_vector("thetadot0", thetadot0, 1)[0]
-        nat = native("bead_on_hoop")(th, thd, as_scalar("R", R), as_scalar("omega", omega),
-                                     as_scalar("g", g))
-        adopt(self, nat)
-        self.R, self.omega, self.g = float(R), float(omega), float(g)
+        v = adopt(self, build("hoop", theta0=theta0, thetadot0=thetadot0, R=R, omega=omega, g=g))
+        self.R, self.omega, self.g = v["R"], v["omega"], v["g"]
 
     def energy(self, state: Optional[np.ndarray] = None) -> float:
         """Return the conserved energy (Jacobi integral) of ``state``."""
@@ -95,13 +88,8 @@ class CoupledOscillators(LagrangianSystem):
     """
 
     def __init__(self, q0, qdot0, n=3, m=1.0, k=1.0):
-        n = as_int("n", n, 1)
-        nat = native("coupled_oscillators")(
-            as_vector("q0", q0, n), as_vector("qdot0", qdot0, n), n, as_scalar("m", m),
-            as_scalar("k", k),
-        )
-        adopt(self, nat)
-        self.n_masses, self.m, self.k = n, float(m), float(k)
+        v = adopt(self, build("coupled-oscillators", q0=q0, qdot0=qdot0, n=n, m=m, k=k))
+        self.n_masses, self.m, self.k = v["n"], v["m"], v["k"]
 
     def energy(self, state: Optional[np.ndarray] = None) -> float:
         """Return ``T + V`` of ``state`` (default: ``self.state``)."""

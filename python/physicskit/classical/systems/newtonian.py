@@ -6,7 +6,8 @@ import numpy as np
 
 from .._native import as_array, as_scalar, as_vector, native
 from ..core.base_system import HamiltonianSystem, SimulationResult
-from ._native_base import adopt, kinetic_energy as _kinetic_energy, potential_energy as _potential_energy
+from ._native_base import adopt, build, from_native
+from ._native_base import kinetic_energy as _kinetic_energy, potential_energy as _potential_energy
 
 __all__ = ["ProjectileMotion", "KeplerSystem"]
 
@@ -39,17 +40,14 @@ class KeplerSystem(HamiltonianSystem):
     separable = True
 
     def __init__(self, q0, p0, k=1.0, mu=1.0, eps=0.0, c_eps=0.0, c_pn=0.0, softening=0.0):
-        nat = native("kepler")(
-            as_vector("q0", q0, 2),
-            as_vector("p0", p0, 2),
-            *(as_scalar(n, v) for n, v in
-              [("k", k), ("mu", mu), ("eps", eps), ("c_eps", c_eps), ("c_pn", c_pn),
-               ("softening", softening)]),
-        )
-        adopt(self, nat)
-        self.k, self.mu = float(k), float(mu)
-        self.eps, self.c_eps, self.c_pn = float(eps), float(c_eps), float(c_pn)
-        self.softening = float(softening)
+        self._adopt(build("kepler-state", q0=q0, p0=p0, k=k, mu=mu, eps=eps, c_eps=c_eps,
+                          c_pn=c_pn, softening=softening))
+
+    def _adopt(self, nat) -> None:
+        v = adopt(self, nat)
+        self.k, self.mu = v["k"], v["mu"]
+        self.eps, self.c_eps, self.c_pn = v["eps"], v["c_eps"], v["c_pn"]
+        self.softening = v["softening"]
         self.mass_inv = 1.0 / self.mu
 
     @classmethod
@@ -57,25 +55,16 @@ class KeplerSystem(HamiltonianSystem):
         """Start at perihelion of the unperturbed orbit with semi-major axis ``a`` and
         eccentricity ``e``; ``kwargs`` (``eps``, ``c_eps``, ``c_pn``, ``softening``) are passed
         to ``__init__``."""
-        allowed = {"eps", "c_eps", "c_pn", "softening"}
-        unknown = set(kwargs) - allowed
-        if unknown:
-            raise TypeError(f"unexpected keyword arguments {sorted(unknown)}")
-        pert = [as_scalar(n, kwargs.get(n, 0.0)) for n in ("eps", "c_eps", "c_pn", "softening")]
-        nat = native("kepler_from_orbital_elements")(
-            as_scalar("a", a), as_scalar("e", e), as_scalar("k", k), as_scalar("mu", mu), *pert
-        )
-        state = nat.state
-        return cls(state[:2], state[2:], k=k, mu=mu, **kwargs)
+        return from_native(cls, build("kepler", a=a, e=e, k=k, mu=mu, **kwargs))
 
     def angular_momentum(self, q=None, p=None) -> float:
         """Out-of-plane angular momentum ``L = x p_y - y p_x`` (default: current state)."""
-        return native("kepler_angular_momentum")(self._native, *self._qp(q, p))
+        return self._native.angular_momentum(*self._qp(q, p))
 
     def lrl_vector(self, q=None, p=None) -> np.ndarray:
         """Laplace-Runge-Lenz vector ``A = p x L - mu k r_hat``, shape (2,); conserved for the
         pure 1/r potential, it rotates (precesses) under the perturbations."""
-        return native("kepler_lrl_vector")(self._native, *self._qp(q, p))
+        return self._native.lrl_vector(*self._qp(q, p))
 
 
 class ProjectileMotion(HamiltonianSystem):
@@ -101,24 +90,19 @@ class ProjectileMotion(HamiltonianSystem):
     separable = True
 
     def __init__(self, q0, p0, m: float = 1.0, g: float = 9.81, drag_coeff: float = 0.0):
-        nat = native("projectile")(
-            as_vector("q0", q0, 2), as_vector("p0", p0, 2),
-            as_scalar("m", m), as_scalar("g", g), as_scalar("drag_coeff", drag_coeff),
-        )
-        adopt(self, nat)
-        self.m, self.g, self.drag_coeff = float(m), float(g), float(drag_coeff)
+        self._adopt(build("projectile-state", q0=q0, p0=p0, m=m, g=g, drag_coeff=drag_coeff))
+
+    def _adopt(self, nat) -> None:
+        v = adopt(self, nat)
+        self.m, self.g, self.drag_coeff = v["m"], v["g"], v["drag_coeff"]
         self.mass_inv = 1.0 / self.m
 
     @classmethod
     def from_launch(cls, speed: float, angle_deg: float, m: float = 1.0, g: float = 9.81,
                     drag_coeff: float = 0.0, height: float = 0.0):
         """Launch from ``(0, height)`` at ``speed`` and ``angle_deg`` above the horizontal."""
-        nat = native("projectile_from_launch")(
-            as_scalar("speed", speed), as_scalar("angle_deg", angle_deg), as_scalar("m", m),
-            as_scalar("g", g), as_scalar("drag_coeff", drag_coeff), as_scalar("height", height),
-        )
-        state = nat.state
-        return cls(state[:2], state[2:], m=m, g=g, drag_coeff=drag_coeff)
+        return from_native(cls, build("projectile", speed=speed, angle_deg=angle_deg, m=m, g=g,
+                                      drag_coeff=drag_coeff, height=height))
 
     @staticmethod
     def analytic_trajectory(speed: float, angle_deg: float, g: float, t, height: float = 0.0):

@@ -9,7 +9,7 @@ import numpy as np
 
 from .._native import as_array, as_scalar, as_vector, native
 from ..core.base_system import LagrangianSystem, ODESystem
-from ._native_base import adopt, energy as _energy
+from ._native_base import adopt, build, energy as _energy
 
 __all__ = [
     "EulerTop",
@@ -38,13 +38,8 @@ class EulerTop(ODESystem):
     """
 
     def __init__(self, omega0, I1=1.0, I2=2.0, I3=3.0, quat0=None):
-        quat0 = None if quat0 is None else as_vector("quat0", quat0, 4)
-        nat = native("euler_top")(
-            as_vector("omega0", omega0, 3), as_scalar("I1", I1), as_scalar("I2", I2),
-            as_scalar("I3", I3), quat0,
-        )
-        adopt(self, nat)
-        self.I1, self.I2, self.I3 = float(I1), float(I2), float(I3)
+        v = adopt(self, build("euler-top", omega0=omega0, I1=I1, I2=I2, I3=I3, quat0=quat0))
+        self.I1, self.I2, self.I3 = v["I1"], v["I2"], v["I3"]
 
     @property
     def omega(self) -> np.ndarray:
@@ -62,11 +57,11 @@ class EulerTop(ODESystem):
 
     def angular_momentum_squared(self, state: Optional[np.ndarray] = None) -> float:
         """``|L|^2`` in the body frame."""
-        return native("euler_top_angular_momentum_squared")(self._native, self._state_arg(state))
+        return self._native.angular_momentum_squared(self._state_arg(state))
 
     def rotation_matrix(self, state: Optional[np.ndarray] = None) -> np.ndarray:
         """Body-to-world rotation matrix, shape (3, 3), from the state's quaternion."""
-        return native("euler_top_rotation_matrix")(self._native, self._state_arg(state))
+        return self._native.rotation_matrix(self._state_arg(state))
 
 
 class HeavySymmetricTop(LagrangianSystem):
@@ -89,12 +84,9 @@ class HeavySymmetricTop(LagrangianSystem):
     """
 
     def __init__(self, angles0, angledots0, I1=1.0, I3=0.5, M=1.0, l=1.0, g=9.81):  # noqa: E741
-        nat = native("heavy_symmetric_top")(
-            as_vector("angles0", angles0, 3), as_vector("angledots0", angledots0, 3),
-            *(as_scalar(n, v) for n, v in [("I1", I1), ("I3", I3), ("M", M), ("l", l), ("g", g)]),
-        )
-        adopt(self, nat)
-        self.I1, self.I3, self.M, self.l, self.g = map(float, (I1, I3, M, l, g))
+        v = adopt(self, build("heavy-top", angles0=angles0, angledots0=angledots0, I1=I1, I3=I3,
+                              M=M, l=l, g=g))
+        self.I1, self.I3, self.M, self.l, self.g = (v[n] for n in ("I1", "I3", "M", "l", "g"))
 
     def energy(self, state: Optional[np.ndarray] = None) -> float:
         """Return ``T + V`` of ``state`` (default: ``self.state``)."""
@@ -102,7 +94,7 @@ class HeavySymmetricTop(LagrangianSystem):
 
     def precession_nutation_rate(self, state: Optional[np.ndarray] = None):
         """Instantaneous ``(phidot, thetadot)``: precession and nutation rates."""
-        return native("top_precession_nutation_rate")(self._native, self._state_arg(state))
+        return self._native.precession_nutation_rate(self._state_arg(state))
 
 
 def effective_potential_symmetric_top(theta, p_phi: float, p_psi: float, I1: float, I3: float,

@@ -155,6 +155,17 @@ impl Default {
         }
     }
 
+    /// The value used when the parameter is not given by a front end that follows the spec's
+    /// signatures (Python): a parameter without a default in the spec is required there, even
+    /// if it has a demonstration value.
+    fn fill_as_in_spec(self) -> std::result::Result<Option<Value>, ()> {
+        match self {
+            Default::Value(l) => Ok(Some(l.to_value())),
+            Default::Absent => Ok(None),
+            Default::Required | Default::Demo(_) | Default::DemoAbsent => Err(()),
+        }
+    }
+
     /// True if the spec's signature has a default (a value or `None`).
     pub fn in_spec(self) -> bool {
         matches!(self, Default::Value(_) | Default::Absent)
@@ -633,6 +644,34 @@ impl SystemEntry {
         self.params.iter().find(|p| p.name == name)
     }
 
+    /// The parameter called `name`, for front ends that convert a value by its kind before
+    /// handing it to [`values`](Self::values).
+    ///
+    /// # Errors
+    /// [`Error::InvalidArgument`] naming the unknown parameter and listing the valid ones.
+    pub fn lookup(&self, name: &str) -> Result<&'static ParamSpec> {
+        let params: &'static [ParamSpec] = self.params;
+        self.index_of(name).map(|i| &params[i])
+    }
+
+    fn index_of(&self, name: &str) -> Result<usize> {
+        self.params
+            .iter()
+            .position(|p| p.name == name)
+            .ok_or_else(|| Error::InvalidArgument {
+                name: name.into(),
+                reason: format!(
+                    "`{}` has no such parameter; its parameters are: {}",
+                    self.name,
+                    self.params
+                        .iter()
+                        .map(|p| p.name)
+                        .collect::<Vec<_>>()
+                        .join(", ")
+                ),
+            })
+    }
+
     /// The methods that can integrate this system: every method for separable systems,
     /// otherwise those that do not need `H = T(p) + V(q)`.
     pub fn methods(&self) -> impl Iterator<Item = Method> + '_ {
@@ -648,25 +687,31 @@ impl SystemEntry {
     /// a value of the wrong kind or a vector of the wrong length;
     /// [`Error::InvalidParameter`] for a number out of its range.
     pub fn values(&self, given: impl IntoIterator<Item = (String, Value)>) -> Result<Values> {
+        self.checked(given, Default::fill)
+    }
+
+    /// As [`values`](Self::values), for front ends that follow the spec's signatures (the
+    /// Python classes): only the spec's defaults are filled in, and a parameter the spec gives
+    /// no default (a `Demo` or `DemoAbsent` one) must be given.
+    ///
+    /// # Errors
+    /// As [`values`](Self::values).
+    pub fn values_as_in_spec(
+        &self,
+        given: impl IntoIterator<Item = (String, Value)>,
+    ) -> Result<Values> {
+        self.checked(given, Default::fill_as_in_spec)
+    }
+
+    fn checked(
+        &self,
+        given: impl IntoIterator<Item = (String, Value)>,
+        fill: fn(Default) -> std::result::Result<Option<Value>, ()>,
+    ) -> Result<Values> {
         let mut slots: Vec<Option<Value>> = vec![None; self.params.len()];
         let mut seen = vec![false; self.params.len()];
         for (name, value) in given {
-            let index = self
-                .params
-                .iter()
-                .position(|p| p.name == name)
-                .ok_or_else(|| Error::InvalidArgument {
-                    name: name.clone(),
-                    reason: format!(
-                        "`{}` has no such parameter; its parameters are: {}",
-                        self.name,
-                        self.params
-                            .iter()
-                            .map(|p| p.name)
-                            .collect::<Vec<_>>()
-                            .join(", ")
-                    ),
-                })?;
+            let index = self.index_of(&name)?;
             if seen[index] {
                 return Err(Error::InvalidArgument {
                     name,
@@ -679,10 +724,7 @@ impl SystemEntry {
         }
         for (spec, (slot, given)) in self.params.iter().zip(slots.iter_mut().zip(&seen)) {
             if !given {
-                *slot = spec
-                    .default
-                    .fill()
-                    .map_err(|()| Values::required(spec.name))?;
+                *slot = fill(spec.default).map_err(|()| Values::required(spec.name))?;
             }
         }
         let values = Values {

@@ -1,0 +1,27 @@
+"""What the native core offers, read from its catalogue: the integrators and the built-in
+systems with their typed parameters (not in the spec)."""
+
+from __future__ import annotations
+
+from typing import Any
+
+from ._native import _core
+
+__all__ = ["methods", "catalog"]
+
+
+def methods() -> list[dict[str, Any]]:
+    """Every integrator as a dict: ``name`` (the ``method`` argument of ``integrate``),
+    ``order`` (of the global error), ``symplectic``, ``separable_only`` (needs ``H = T(p) +
+    V(q)``), ``evaluations_per_step`` (force or vector-field evaluations; ``None`` where not
+    yet recorded) and ``reference`` (the method's source; ``None`` where not yet recorded)."""
+    return [dict(m) for m in _core.methods()]
+
+
+def catalog() -> list[dict[str, Any]]:
+    """Every built-in system of the native catalogue as a dict: ``name``, ``python`` (the class
+    or ``"Class.classmethod"`` that builds it), ``summary``, ``family``, ``separable``,
+    ``methods``, ``default_method``, ``note`` and ``params`` (each with ``name``, ``kind``,
+    ``default``, ``default_kind``, ``spec_default``, ``unit``, ``range``, ``length``,
+    ``choices``, ``expectation`` and ``help``)."""
+    return [dict(e) for e in _core.catalog()]

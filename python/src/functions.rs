@@ -1,0 +1,145 @@
+//! Functions that take no system: closed forms and analyses of the built-in systems
+//! (pendulum action-angle variables, the heavy top's effective potential, the projectile's
+//! vacuum trajectory, sine-Gordon kink initial data). Each is a thin shell: numpy in, slices
+//! to the core function, numpy out.
+
+use numpy::{PyArray1, PyReadonlyArray1};
+use physicskit::classical::analysis;
+use physicskit::classical::systems::{ProjectileMotion, SineGordonChain};
+use pyo3::prelude::*;
+
+use crate::convert::to_vec;
+use crate::errors::IntoPyResult;
+
+type Arr<'a> = PyReadonlyArray1<'a, f64>;
+/// Two numpy vectors returned together (`(x, y)`, `(q0, p0)`).
+type Pair<'py> = (Bound<'py, PyArray1<f64>>, Bound<'py, PyArray1<f64>>);
+
+/// Galileo's parabola `(x(t), y(t))`.
+#[pyfunction]
+pub fn projectile_analytic_trajectory<'py>(
+    py: Python<'py>,
+    speed: f64,
+    angle_deg: f64,
+    g: f64,
+    t: Arr<'_>,
+    height: f64,
+) -> PyResult<Pair<'py>> {
+    let (x, y) =
+        ProjectileMotion::analytic_trajectory(speed, angle_deg, g, &to_vec(&t), height).py()?;
+    Ok((PyArray1::from_vec(py, x), PyArray1::from_vec(py, y)))
+}
+
+/// Vacuum range and maximum height.
+#[pyfunction]
+pub fn projectile_range_and_max_height(
+    speed: f64,
+    angle_deg: f64,
+    g: f64,
+    height: f64,
+) -> PyResult<(f64, f64)> {
+    ProjectileMotion::range_and_max_height(speed, angle_deg, g, height).py()
+}
+
+/// `SineGordonChain.kink`: boosted single-kink initial data `(q0, p0)`.
+#[pyfunction]
+pub fn sine_gordon_kink<'py>(
+    py: Python<'py>,
+    n: usize,
+    center: f64,
+    width: f64,
+    velocity: f64,
+    polarity: i32,
+) -> PyResult<Pair<'py>> {
+    let (q, p) = SineGordonChain::kink(n, center, width, velocity, polarity).py()?;
+    Ok((PyArray1::from_vec(py, q), PyArray1::from_vec(py, p)))
+}
+
+/// Action and period of a librating pendulum orbit of energy `E`.
+#[pyfunction]
+#[allow(non_snake_case)]
+pub fn pendulum_action_angle(E: f64, g_over_l: f64) -> PyResult<(f64, f64)> {
+    analysis::pendulum_action_angle(E, g_over_l).py()
+}
+
+/// `V_eff(theta)` of the heavy symmetric top at each angle.
+#[pyfunction]
+#[allow(non_snake_case)]
+pub fn effective_potential_symmetric_top<'py>(
+    py: Python<'py>,
+    theta: Arr<'_>,
+    p_phi: f64,
+    p_psi: f64,
+    I1: f64,
+    I3: f64,
+    Mgl: f64,
+) -> PyResult<Bound<'py, PyArray1<f64>>> {
+    let v = analysis::effective_potential_symmetric_top_many(
+        &to_vec(&theta),
+        p_phi,
+        p_psi,
+        I1,
+        I3,
+        Mgl,
+    )
+    .py()?;
+    Ok(PyArray1::from_vec(py, v))
+}
+
+/// Minimum of `V_eff` in `bracket`.
+#[pyfunction]
+#[allow(non_snake_case)]
+pub fn find_theta_equilibrium(
+    p_phi: f64,
+    p_psi: f64,
+    I1: f64,
+    I3: f64,
+    Mgl: f64,
+    bracket: (f64, f64),
+) -> PyResult<f64> {
+    analysis::find_theta_equilibrium(p_phi, p_psi, I1, I3, Mgl, bracket).py()
+}
+
+/// Small-oscillation nutation frequency about `theta_eq`.
+#[pyfunction]
+#[allow(non_snake_case, clippy::too_many_arguments)]
+#[pyo3(signature = (p_phi, p_psi, I1, I3, Mgl, theta_eq, dtheta))]
+pub fn nutation_frequency(
+    p_phi: f64,
+    p_psi: f64,
+    I1: f64,
+    I3: f64,
+    Mgl: f64,
+    theta_eq: Option<f64>,
+    dtheta: f64,
+) -> PyResult<f64> {
+    analysis::nutation_frequency(p_phi, p_psi, I1, I3, Mgl, theta_eq, dtheta).py()
+}
+
+/// Steady-precession rate at `theta_eq`.
+#[pyfunction]
+#[allow(non_snake_case)]
+pub fn precession_frequency(p_phi: f64, p_psi: f64, I1: f64, theta_eq: f64) -> PyResult<f64> {
+    analysis::precession_frequency(p_phi, p_psi, I1, theta_eq).py()
+}
+
+/// Registers every function.
+///
+/// # Errors
+/// Python errors while adding to the module.
+pub fn register(m: &Bound<'_, PyModule>) -> PyResult<()> {
+    macro_rules! add {
+        ($($f:ident),* $(,)?) => { $( m.add_function(wrap_pyfunction!($f, m)?)?; )* };
+    }
+    add!(
+        projectile_analytic_trajectory,
+        projectile_range_and_max_height,
+        sine_gordon_kink,
+        pendulum_action_angle,
+        effective_potential_symmetric_top,
+        find_theta_equilibrium,
+        nutation_frequency,
+        precession_frequency,
+    );
+    Ok(())
+}
