@@ -74,24 +74,18 @@ pub fn default_text(default: Default) -> String {
     }
 }
 
-/// The unit and range, e.g. `kg; > 0`, empty if there is neither.
-fn unit_and_range(spec: &ParamSpec) -> String {
-    let ranged = matches!(spec.kind, ParamKind::Scalar | ParamKind::Integer);
-    let range = (ranged && spec.range != Range::ANY).then(|| spec.range.to_string());
-    let unit = (!spec.unit.is_empty()).then_some(spec.unit.to_string());
-    unit.into_iter().chain(range).collect::<Vec<_>>().join("; ")
-}
-
-/// One help line: description, unit and range, default, e.g.
-/// `upper mass (kg; > 0) [default: 1.0]`.
+/// One help line: description, unit in brackets, range, default, e.g.
+/// `upper mass [kg], > 0 [default: 1.0]`.
 pub fn help_line(spec: &ParamSpec) -> String {
-    let details = unit_and_range(spec);
-    let details = if details.is_empty() {
-        String::new()
-    } else {
-        format!(" ({details})")
-    };
-    format!("{}{details} {}", spec.help, default_text(spec.default))
+    let mut line = spec.help.to_string();
+    if !spec.unit.is_empty() {
+        line.push_str(&format!(" [{}]", spec.unit));
+    }
+    let ranged = matches!(spec.kind, ParamKind::Scalar | ParamKind::Integer);
+    if ranged && spec.range != Range::ANY {
+        line.push_str(&format!(", {}", spec.range));
+    }
+    format!("{line} {}", default_text(spec.default))
 }
 
 /// Reads `text` as a value of `spec`'s kind, without judging it.
@@ -316,10 +310,14 @@ mod tests {
     fn help_lines_show_unit_range_and_default() {
         let entry = find("double-pendulum").unwrap();
         let line = |name| help_line(entry.param(name).unwrap());
-        assert_eq!(line("m1"), "upper mass (kg; > 0) [default: 1.0]");
+        assert_eq!(line("m1"), "upper mass [kg], > 0 [default: 1.0]");
         assert_eq!(
             line("theta0"),
-            format!("initial angles (rad) [default: 2.0,1.0 {DEMO_MARK}]")
+            format!("initial angles [rad] [default: 2.0,1.0 {DEMO_MARK}]")
+        );
+        assert_eq!(
+            line("g"),
+            "gravitational acceleration [m/s^2] [default: 9.81]"
         );
     }
 }

@@ -60,9 +60,12 @@ fn yes_no(b: bool) -> String {
     if b { "yes" } else { "no" }.to_string()
 }
 
+/// A column of the methods table: its header and how a row fills it.
+type Column = (&'static str, fn(&MethodRow) -> String);
+
 /// The methods table, one column per [`MethodRow`] field.
 fn methods(w: &mut impl Write) -> io::Result<()> {
-    let columns: [(&str, fn(&MethodRow) -> String); 4] = [
+    let columns: [Column; 4] = [
         ("method", |r| r.name.to_string()),
         ("order", |r| r.order.to_string()),
         ("symplectic", |r| yes_no(r.symplectic)),

@@ -66,6 +66,25 @@ pub(crate) fn check_fits(samples: usize, values_per_sample: usize) -> Result<()>
     Ok(())
 }
 
+/// Checks that a system of `n` items (sites, pendulums) holding about `values_per_item` f64
+/// values each fits in memory, so that a constructor refuses an absurd size (a typo, a
+/// `2**62` from a script) with an error instead of aborting in the allocator.
+///
+/// # Errors
+/// [`Error::InvalidParameter`] naming `name`.
+pub(crate) fn check_system_size(name: &str, n: usize, values_per_item: usize) -> Result<()> {
+    check_fits(n, values_per_item).map_err(|e| match e {
+        Error::TrajectoryTooLarge {
+            bytes, available, ..
+        } => Error::invalid(
+            name,
+            n as f64,
+            format!("the system would need {bytes} bytes, more than the {available} available"),
+        ),
+        other => other,
+    })
+}
+
 /// Smallest allocation worth faulting in up front, in one call: below it, the block is a few
 /// pages of the heap, most likely present already.
 const PREFAULT_MIN_BYTES: usize = 64 << 10;
@@ -138,6 +157,18 @@ fn prefault(_start: usize, _bytes: usize) {}
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    /// Sizes far beyond any memory (2^62 sites: 2^68 bytes) are refused by name, not
+    /// allocated; a small system passes (8 KiB, below any machine's free memory).
+    #[test]
+    fn absurd_system_sizes_are_refused_with_an_error() {
+        let err = check_system_size("n", 1 << 62, 8).unwrap_err();
+        assert!(
+            matches!(&err, Error::InvalidParameter { name, .. } if name == "n"),
+            "{err}"
+        );
+        assert!(check_system_size("n", 1 << 10, 8).is_ok());
+    }
 
     #[test]
     fn storage_has_the_requested_room_at_every_size_around_the_prefault_threshold() {

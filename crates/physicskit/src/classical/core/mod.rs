@@ -6,6 +6,7 @@ pub mod error;
 pub mod linalg;
 mod memory;
 pub(crate) use memory::check_fits as memory_check;
+pub(crate) use memory::check_system_size;
 pub use memory::set_memory_release_hook;
 pub mod method;
 pub mod options;

@@ -40,7 +40,9 @@ use crate::classical::core::erased::{Capabilities, Hamiltonian};
 use crate::classical::core::error::{check_finite_scalar, check_positive, check_vector};
 use crate::classical::core::sum::lane_sum_map2;
 use crate::classical::core::trig::{sin_into, sin_into_sum_cos, sum_cos};
-use crate::classical::core::{Error, HamiltonianSystem, MassInv, Method, Phase, Result};
+use crate::classical::core::{
+    check_system_size, Error, HamiltonianSystem, MassInv, Method, Phase, Result,
+};
 
 /// Angular frequency of normal mode `j` (`1..=n`) of `n` masses `m` joined by springs `k`
 /// between fixed walls: `omega_j = 2 sqrt(k/m) sin(j pi / (2 (n + 1)))`.
@@ -171,6 +173,10 @@ fn check_len(name: &str, found: usize, expected: usize) -> Result<()> {
     }
 }
 
+/// Values stored per site, at most, while a chain is built: the state, the modes' table and
+/// the initial data.
+const VALUES_PER_SITE: usize = 8;
+
 fn check_chain_size(n: usize) -> Result<()> {
     if n < 1 {
         Err(Error::invalid(
@@ -179,7 +185,7 @@ fn check_chain_size(n: usize) -> Result<()> {
             "a chain needs at least one site",
         ))
     } else {
-        Ok(())
+        check_system_size("n", n, VALUES_PER_SITE)
     }
 }
 
@@ -972,7 +978,11 @@ pub static SINE_GORDON_KINK_ENTRY: SystemEntry = SystemEntry {
                 width,
                 velocity,
             )?,
-            _ => (vec![0.0; n], vec![0.0; n]),
+            _ => {
+                return Ok(Box::new(Hamiltonian(SineGordonChain::new(
+                    n, m, k, None, None,
+                )?)))
+            }
         };
         Ok(Box::new(Hamiltonian(SineGordonChain::new(
             n,

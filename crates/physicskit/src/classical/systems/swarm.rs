@@ -19,7 +19,8 @@ use crate::classical::core::erased::{Capabilities, Hamiltonian};
 use crate::classical::core::error::{check_finite_scalar, check_non_negative, check_positive};
 use crate::classical::core::trig::{sin_into_scaled, sin_into_sum_cos, sum_cos};
 use crate::classical::core::{
-    Error, HamiltonianSystem, IntegrateOptions, Method, Phase, Result, SimulationResult,
+    check_system_size, Error, HamiltonianSystem, IntegrateOptions, Method, Phase, Result,
+    SimulationResult,
 };
 use crate::classical::integrators::Ensemble;
 
@@ -117,6 +118,8 @@ impl PendulumSwarm {
                 "the swarm needs at least one pendulum",
             ));
         }
+        // The drawn q0 and p0, then the state built from them.
+        check_system_size("n", n, 4)?;
         let mut rng = SplitMix64(seed);
         let q0: Vec<f64> = (0..n)
             .map(|_| q_center + (rng.next_f64() - 0.5) * dq)
