@@ -1,13 +1,15 @@
-//! The command-line grammar (clap derive), with one `simulate` subcommand per registered
-//! system generated from the registry so that `physicskit simulate SYSTEM --help` lists that
-//! system's parameters and defaults.
+//! The command-line grammar (clap derive), with one `simulate` subcommand per catalogue entry
+//! generated from the entry, so that `physicskit simulate SYSTEM --help` lists that system's
+//! parameters with their units, ranges and defaults.
 
 use std::path::PathBuf;
 
 use clap::{Arg, ArgAction, ArgMatches, Args, Command, FromArgMatches, Parser, Subcommand};
 
-use crate::registry::SystemSpec;
-use crate::systems::REGISTRY;
+use physicskit::classical::catalog::{self, SYSTEMS};
+use physicskit::classical::core::SystemEntry;
+
+use crate::params;
 
 /// Classical-mechanics demonstrations: export trajectories and render the gallery.
 #[derive(Debug, Parser)]
@@ -21,8 +23,8 @@ pub struct Cli {
 /// The subcommands.
 #[derive(Debug, Subcommand)]
 pub enum Action {
-    /// List every system with its parameters, defaults and valid methods.
-    List,
+    /// List every system with its parameters, defaults and valid methods, and the methods.
+    List(ListArgs),
     /// Integrate one system and write t, q, p (or y), energy and the parameters used.
     ///
     /// The output format follows the extension of --out: .npz (numpy.load), .csv or .json.
@@ -43,6 +45,14 @@ pub struct SimulateArgs {
     pub system: SystemCall,
 }
 
+/// Arguments of `list`.
+#[derive(Debug, Args)]
+pub struct ListArgs {
+    /// Print the whole catalogue as one JSON object, for tools and the browser lab.
+    #[arg(long)]
+    pub json: bool,
+}
+
 /// Arguments of `gallery`.
 #[derive(Debug, Args)]
 pub struct GalleryArgs {
@@ -55,7 +65,7 @@ pub struct GalleryArgs {
 }
 
 /// `simulate SYSTEM ...` as parsed: the system's name and its raw argument texts. Values are
-/// parsed by the registry afterwards, so every mistake gets the same one-line message.
+/// parsed against the catalogue afterwards, so every mistake gets the same one-line message.
 #[derive(Debug, Clone)]
 pub struct SystemCall {
     /// System name as typed.
@@ -76,17 +86,17 @@ pub struct SystemCall {
     pub stride: String,
 }
 
-fn system_command(spec: &SystemSpec) -> Command {
-    let mut cmd = Command::new(spec.name)
-        .about(spec.summary)
+fn system_command(entry: &SystemEntry) -> Command {
+    let mut cmd = Command::new(entry.name)
+        .about(entry.summary)
         .arg(
             Arg::new("method")
                 .long("method")
                 .value_name("M")
                 .help(format!(
                     "integrator: {} (default {})",
-                    crate::registry::method_names(spec.methods),
-                    spec.default_method
+                    params::method_names(entry),
+                    entry.default_method
                 )),
         )
         .arg(
@@ -128,19 +138,24 @@ fn system_command(spec: &SystemSpec) -> Command {
                 .default_value("1")
                 .help("store every K-th step (and the last)"),
         );
-    for p in spec.params {
+    for p in entry.params {
         cmd = cmd.arg(
             Arg::new(p.name)
                 .long(p.name)
-                .value_name(p.kind.placeholder())
+                .value_name(params::placeholder(p.kind))
                 .allow_hyphen_values(true)
                 .action(ArgAction::Set)
                 .help_heading("Parameters")
-                .help(p.help_with_default()),
+                .help(params::help_line(p)),
         );
     }
-    if let Some(note) = spec.note {
-        cmd = cmd.after_help(note);
+    let after: Vec<&str> = entry
+        .note
+        .into_iter()
+        .chain(params::has_demo_default(entry).then_some(params::DEMO_LEGEND))
+        .collect();
+    if !after.is_empty() {
+        cmd = cmd.after_help(after.join("\n\n"));
     }
     cmd
 }
@@ -154,8 +169,8 @@ impl FromArgMatches for SystemCall {
         let Some((name, m)) = matches.subcommand() else {
             return Err(clap::Error::new(clap::error::ErrorKind::MissingSubcommand));
         };
-        let Ok(spec) = crate::registry::find(name) else {
-            // An unknown name parses as an external subcommand; the registry reports it.
+        let Ok(entry) = catalog::find(name) else {
+            // An unknown name parses as an external subcommand; `simulate` reports it.
             return Ok(Self {
                 name: name.to_string(),
                 params: Vec::new(),
@@ -168,7 +183,7 @@ impl FromArgMatches for SystemCall {
             });
         };
         let mut params: Vec<(usize, String, String)> = Vec::new();
-        for p in spec.params {
+        for p in entry.params {
             if let (Some(v), Some(idx)) = (text(m, p.name), m.index_of(p.name)) {
                 params.push((idx, p.name.to_string(), v));
             }
@@ -201,8 +216,8 @@ impl FromArgMatches for SystemCall {
 
 impl Subcommand for SystemCall {
     fn augment_subcommands(mut cmd: Command) -> Command {
-        for spec in REGISTRY {
-            cmd = cmd.subcommand(system_command(spec));
+        for entry in SYSTEMS {
+            cmd = cmd.subcommand(system_command(entry));
         }
         cmd.subcommand_required(true)
             .subcommand_value_name("SYSTEM")
@@ -215,6 +230,6 @@ impl Subcommand for SystemCall {
     }
 
     fn has_subcommand(name: &str) -> bool {
-        REGISTRY.iter().any(|s| s.name == name)
+        SYSTEMS.iter().any(|s| s.name == name)
     }
 }

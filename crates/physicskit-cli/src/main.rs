@@ -3,19 +3,17 @@
 //! Exit status: 0 on success; 2 on any error, printed as one line `error: ...` on stderr
 //! (bad input, a run the library refuses, an unwritable output); `128 + signal` after a run
 //! stopped by Ctrl-C (130), SIGTERM (143) or SIGHUP (129), with no file left behind
-//! ([`signals`]). No physics lives here: systems come from the library through the registry in
-//! [`systems`].
+//! ([`signals`]). No physics lives here: systems, their parameters and defaults come from the
+//! library's catalogue (`physicskit::classical::catalog`).
 
 mod cli;
 mod gallery;
 mod list;
 mod output;
+mod params;
 mod progress;
-mod registry;
 mod signals;
 mod simulate;
-mod simulation;
-mod systems;
 
 use std::process::ExitCode;
 
@@ -34,7 +32,7 @@ fn main() -> ExitCode {
     };
     let stop = signals::Stop::install();
     let outcome = match &cli.command {
-        Action::List => match list::print(&mut std::io::stdout().lock()) {
+        Action::List(args) => match list::print(&mut std::io::stdout().lock(), args.json) {
             // `physicskit list | head` closes the pipe early; that is not an error.
             Err(e) if e.kind() == std::io::ErrorKind::BrokenPipe => Ok(()),
             other => other.map_err(anyhow::Error::from),
@@ -87,7 +85,7 @@ fn unknown_parameter(err: &clap::Error) -> Option<String> {
     };
     let args: Vec<String> = std::env::args().collect();
     let at = args.iter().position(|a| a == "simulate")?;
-    let spec = registry::find(args.get(at + 1)?).ok()?;
+    let spec = physicskit::classical::catalog::find(args.get(at + 1)?).ok()?;
     let names: Vec<&str> = spec.params.iter().map(|p| p.name).collect();
     Some(format!(
         "unknown parameter `{arg}` for `{}`; its parameters are: {} (and --method, --dt, --t0, \

@@ -1,18 +1,21 @@
 //! `physicskit simulate`: parse, build, integrate, write.
 //!
-//! Everything that can be checked before the integration is checked first (system, method,
-//! parameters, the library's constructor checks, the time grid, the output path), so a bad
-//! invocation fails at once and a long run is never wasted on a typo.
+//! The system is built through the catalogue (`catalog::find(name)`, its entry's checked
+//! values, its builder) into a `Box<dyn DynSystem>`, which integrates with the library's
+//! generic loop. Everything that can be checked before the integration is checked first
+//! (system, method, parameters, the constructor's checks, the time grid, the output path), so
+//! a bad invocation fails at once and a long run is never wasted on a typo.
 
 use std::ops::ControlFlow;
 
-use anyhow::{anyhow, Context, Result};
+use anyhow::{anyhow, Result};
+use physicskit::classical::catalog;
 use physicskit::classical::{IntegrateOptions, Observer, Sampling, TimeGrid};
 
 use crate::cli::SystemCall;
 use crate::output::{Pending, Record};
+use crate::params;
 use crate::progress::{Progress, OBSERVE_EVERY};
-use crate::registry;
 use crate::signals::Stop;
 
 fn number(flag: &str, text: &str) -> Result<f64> {
@@ -30,13 +33,13 @@ fn number(flag: &str, text: &str) -> Result<f64> {
 /// output file exists afterwards in any of these cases, nor after a stopping signal
 /// ([`Stop`]) that arrives before the file is complete.
 pub fn run(call: &SystemCall, stop: &Stop) -> Result<()> {
-    let spec = registry::find(&call.name)?;
-    let method = call.method.as_deref().map(|m| spec.method(m)).transpose()?;
-    let values = spec.parse_values(
-        call.params
-            .iter()
-            .map(|(name, text)| (name.as_str(), text.as_str())),
-    )?;
+    let entry = catalog::find(&call.name).map_err(|e| anyhow!("{e} (see `physicskit list`)"))?;
+    let method = call
+        .method
+        .as_deref()
+        .map(|m| params::method(entry, m))
+        .transpose()?;
+    let values = params::values(entry, &call.params)?;
     let dt = number("dt", &call.dt)?;
     let t0 = number("t0", &call.t0)?;
     let t1 = number("t1", &call.t1)?;
@@ -53,8 +56,9 @@ pub fn run(call: &SystemCall, stop: &Stop) -> Result<()> {
             )
         })?;
     let grid = TimeGrid::new((t0, t1), dt)?;
-    let mut sim = (spec.build)(&values).with_context(|| format!("cannot build `{}`", spec.name))?;
-    let method = method.unwrap_or_else(|| sim.default_method());
+    // The built system has the last word on its default (a projectile with drag: rk4).
+    let mut system = params::build(entry, &call.params, &values)?;
+    let method = method.unwrap_or_else(|| system.default_method());
     let pending = Pending::create(&call.out)?;
 
     let mut observer = RunObserver {
@@ -71,7 +75,7 @@ pub fn run(call: &SystemCall, stop: &Stop) -> Result<()> {
         observe_every: OBSERVE_EVERY,
         ..IntegrateOptions::default()
     };
-    let result = sim.run((t0, t1), dt, method, options);
+    let result = system.integrate((t0, t1), dt, method, options);
     if let Some(bar) = &observer.bar {
         bar.finish();
     }
@@ -82,8 +86,8 @@ pub fn run(call: &SystemCall, stop: &Stop) -> Result<()> {
         anyhow::bail!("interrupted before writing `{}`", call.out.display());
     }
     pending.commit(&Record {
-        system: spec.name,
-        family: spec.family,
+        system: entry.name,
+        family: entry.family,
         t0,
         t1,
         dt,

@@ -158,9 +158,52 @@ fn non_numeric_value() {
 
 #[test]
 fn out_of_range_physics_parameter() {
-    // The library's constructor rejects g/l <= 0; the CLI reports its error.
+    // The catalogue's range for g/l is > 0; the message names the flag and the range.
     let err = pendulum("0.1", "1", "a.csv", &["--g_over_l", "-9.81"]);
-    assert!(err.contains("g_over_l"), "{err}");
+    assert!(err.contains("`--g_over_l`") && err.contains("> 0"), "{err}");
+}
+
+#[test]
+fn integers_are_integers() {
+    let err = system_fails("pendulum-swarm", &["--n", "1.5"], "a.csv");
+    assert!(
+        err.contains("`--n`") && err.contains("expected an integer"),
+        "{err}"
+    );
+    let err = system_fails("pendulum-swarm", &["--n", "0"], "a.csv");
+    assert!(err.contains("`--n`") && err.contains(">= 1"), "{err}");
+    let err = system_fails("pendulum-swarm", &["--n", "99999999999999999999"], "a.csv");
+    assert!(
+        err.contains("`--n`") && err.contains("out of range"),
+        "{err}"
+    );
+    let err = system_fails("pendulum-swarm", &["--seed", "-1"], "a.csv");
+    assert!(err.contains("`--seed`"), "{err}");
+}
+
+/// A size far beyond any memory (2^62) is refused by the constructor with one line naming
+/// `--n`, never a panic or an abort in the allocator.
+#[test]
+fn absurd_sizes_are_refused() {
+    for system in ["pendulum-swarm", "fput", "sine-gordon", "sine-gordon-state"] {
+        let err = system_fails(system, &["--n", "4611686018427387904"], "a.npz");
+        assert!(err.contains("`--n`"), "{system}: {err}");
+    }
+    let err = system_fails(
+        "sine-gordon",
+        &["--n", "4611686018427387904", "--initial", "rest"],
+        "a.npz",
+    );
+    assert!(err.contains("`--n`"), "{err}");
+}
+
+#[test]
+fn a_word_outside_its_choice() {
+    let err = system_fails("sine-gordon", &["--initial", "breather"], "a.csv");
+    assert!(
+        err.contains("`--initial`") && err.contains("kink-antikink"),
+        "{err}"
+    );
 }
 
 #[test]
@@ -210,13 +253,13 @@ fn failed_run_leaves_existing_file_untouched() {
 
 #[test]
 fn wrong_array_length() {
-    // Declared length 2: caught while parsing, naming the flag.
+    // Declared length 2: refused by the catalogue, naming the flag.
     let err = system_fails("henon-heiles", &["--q0", "0,0.1,0.2"], "a.csv");
     assert!(
         err.contains("`--q0`") && err.contains("expected 2"),
         "{err}"
     );
-    // Length set by another parameter (n = 3): the library's DimensionMismatch.
+    // Length set by another parameter (n = 3): also the catalogue's.
     let err = system_fails("coupled-oscillators", &["--q0", "0.1,0.2"], "a.csv");
     assert!(err.contains("q0") && err.contains("expected 3"), "{err}");
 }
@@ -236,7 +279,8 @@ fn library_range_checks_reach_the_user() {
 
 #[test]
 fn method_the_system_cannot_use() {
-    // Refused by the registry: the double pendulum is not separable.
+    // Refused by the catalogue's methods for the entry: the double pendulum is not
+    // separable.
     let err = system_fails("double-pendulum", &["--method", "verlet"], "a.csv");
     assert!(
         err.contains("verlet") && err.contains("implicit_midpoint"),

@@ -9,9 +9,10 @@
 
 use std::io::{self, Write};
 
+use physicskit::classical::core::Value;
+
 use super::number::push_f64;
 use super::Record;
-use crate::registry::Value;
 
 /// The constant trailing columns: names and values.
 fn constants(record: &Record<'_>) -> (Vec<String>, Vec<f64>) {
@@ -19,22 +20,22 @@ fn constants(record: &Record<'_>) -> (Vec<String>, Vec<f64>) {
     let mut values = vec![record.dt];
     for (name, value) in record.params.iter() {
         match value {
-            Value::Real(v) => {
+            Some(Value::Scalar(v)) => {
                 names.push(format!("param_{name}"));
                 values.push(*v);
             }
-            Value::Count(n) => {
+            Some(Value::Integer(n)) => {
                 names.push(format!("param_{name}"));
-                // Counts are sizes and seeds, far below 2^53: exact as f64.
+                // Integers are sizes, seeds and mode numbers, far below 2^53: exact as f64.
                 values.push(*n as f64);
             }
-            Value::List(items) => {
+            Some(Value::Vector(items)) => {
                 for (i, v) in items.iter().enumerate() {
                     names.push(format!("param_{name}_{i}"));
                     values.push(*v);
                 }
             }
-            Value::Choice(_) | Value::Absent => {}
+            Some(Value::Choice(_)) | None => {}
         }
     }
     (names, values)

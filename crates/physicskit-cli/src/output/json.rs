@@ -4,11 +4,11 @@
 
 use std::io::{self, Write};
 
+use physicskit::classical::core::Value;
 use physicskit::classical::ExtraValue;
 
 use super::number::push_f64;
 use super::Record;
-use crate::registry::Value;
 
 pub(super) fn write(w: &mut impl Write, record: &Record<'_>) -> io::Result<()> {
     let result = record.result;
@@ -73,17 +73,17 @@ fn push_list(out: &mut String, items: impl Iterator<Item = f64>) {
     out.push(']');
 }
 
-fn push_value(out: &mut String, value: &Value) {
+fn push_value(out: &mut String, value: Option<&Value>) {
     match value {
-        Value::Real(v) => push_f64(out, *v),
-        Value::Count(n) => out.push_str(&n.to_string()),
-        Value::List(items) => push_list(out, items.iter().copied()),
-        Value::Choice(word) => out.push_str(&quote(word)),
-        Value::Absent => out.push_str("null"),
+        Some(Value::Scalar(v)) => push_f64(out, *v),
+        Some(Value::Integer(n)) => out.push_str(&n.to_string()),
+        Some(Value::Vector(items)) => push_list(out, items.iter().copied()),
+        Some(Value::Choice(word)) => out.push_str(&quote(word)),
+        None => out.push_str("null"),
     }
 }
 
-/// A JSON string literal. Names here come from the registry, but escaping keeps the output
+/// A JSON string literal. Names here come from the catalogue, but escaping keeps the output
 /// valid whatever they hold.
 fn quote(s: &str) -> String {
     let mut out = String::with_capacity(s.len() + 2);

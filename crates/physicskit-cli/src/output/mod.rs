@@ -23,9 +23,8 @@ use std::path::{Path, PathBuf};
 
 use anyhow::{bail, Context, Result};
 use ndarray::{Array1, ArrayView2};
+use physicskit::classical::core::{Family, Values};
 use physicskit::classical::SimulationResult;
-
-use crate::registry::{Family, Values};
 
 /// An output format.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -68,9 +67,9 @@ impl Format {
 /// Everything written about one run.
 #[derive(Debug)]
 pub struct Record<'a> {
-    /// Registry name of the system.
+    /// Catalogue name of the system.
     pub system: &'a str,
-    /// Its family (decides `q`/`p` versus `y`).
+    /// Its family, from the catalogue entry.
     pub family: Family,
     /// Start time.
     pub t0: f64,

@@ -2,19 +2,19 @@
 //!
 //! Arrays: `t` (n,), `q` and `p` (n, ndof) or `y` (n, dim), `energy` (n,); 0-d arrays
 //! `t0`, `t1`, `dt`; 0-d strings `system`, `family`, `method`; one `param_<name>` per given
-//! parameter (`<f8` scalar or 1-d, `<i8` for counts, a string for choices; absent optional
+//! parameter (`<f8` scalar or 1-d, `<i8` for integers, a string for choices; absent optional
 //! parameters are omitted); scalar extra diagnostics as `extra_<name>`.
 
 use std::fs::File;
 use std::io::{self, BufWriter, Write};
 
+use physicskit::classical::core::Value;
 use physicskit::classical::ExtraValue;
 use zip::write::SimpleFileOptions;
 use zip::{CompressionMethod, ZipWriter};
 
 use super::npy;
 use super::Record;
-use crate::registry::Value;
 
 pub(super) fn write(file: &File, record: &Record<'_>) -> io::Result<()> {
     let result = record.result;
@@ -55,24 +55,23 @@ pub(super) fn write(file: &File, record: &Record<'_>) -> io::Result<()> {
     for (name, value) in record.params.iter() {
         let key = format!("param_{name}");
         match value {
-            Value::Real(v) => {
+            Some(Value::Scalar(v)) => {
                 entry(&mut zip, &key)?;
                 npy::write_f64(&mut zip, &[], [*v])?;
             }
-            Value::Count(n) => {
+            Some(Value::Integer(n)) => {
                 entry(&mut zip, &key)?;
-                let n = i64::try_from(*n).map_err(io::Error::other)?;
-                npy::write_i64(&mut zip, &[], [n])?;
+                npy::write_i64(&mut zip, &[], [*n])?;
             }
-            Value::List(items) => {
+            Some(Value::Vector(items)) => {
                 entry(&mut zip, &key)?;
                 npy::write_f64(&mut zip, &[items.len()], items.iter().copied())?;
             }
-            Value::Choice(word) => {
+            Some(Value::Choice(word)) => {
                 entry(&mut zip, &key)?;
                 npy::write_str(&mut zip, word)?;
             }
-            Value::Absent => {}
+            None => {}
         }
     }
     for (name, value) in &result.extra {

@@ -11,7 +11,7 @@ from .._native import as_scalar, as_vector, native
 from ..core.base_system import HamiltonianSystem
 from ._native_base import adopt, as_int, build
 
-__all__ = ["HarmonicChain", "FPUTChain", "SineGordonChain"]
+__all__ = ["HarmonicChain", "FPUTChain", "SineGordonChain", "TodaLattice"]
 
 
 class _ChainBase(HamiltonianSystem):
@@ -139,3 +139,45 @@ class SineGordonChain(_ChainBase):
     def potential_energy(self, q: np.ndarray) -> float:
         """Return ``V(q) = sum (k/2)(q_{i+1} - q_i)^2 + (1 - cos q_i)``."""
         return self._native.potential_energy(as_vector("q", q, self.ndof))
+
+
+class TodaLattice(HamiltonianSystem):
+    """Periodic Toda lattice, ``H = sum p_i^2/2 + (a/b) sum exp(-b (q_{i+1} - q_i))`` with
+    ``q_{n+1} = q_1``: ``n`` unit masses on a ring joined by exponential springs, completely
+    integrable. The ``n`` eigenvalues of Flaschka's Lax matrix are conserved
+    (:meth:`conserved_quantities`) while the energy moves between the particles
+    (:meth:`per_particle_energy`).
+
+    Parameters
+    ----------
+    q0, p0 : array-like, shape (n,)
+        Initial positions and momenta, ``n >= 2``.
+    a, b : float
+        Bond strength and anharmonicity (both > 0): small oscillations have stiffness ``a b``.
+    """
+
+    separable = True
+
+    def __init__(self, q0, p0, a=1.0, b=1.0):
+        v = adopt(self, build("toda", q0=q0, p0=p0, a=a, b=b))
+        self.a, self.b = v["a"], v["b"]
+        self.mass_inv = 1.0
+
+    def kinetic_energy(self, p: np.ndarray) -> float:
+        """Return ``T(p) = |p|^2 / 2``."""
+        return self._native.kinetic_energy(as_vector("p", p, self.ndof))
+
+    def potential_energy(self, q: np.ndarray) -> float:
+        """Return ``V(q) = (a/b) sum exp(-b (q_{i+1} - q_i))`` around the ring."""
+        return self._native.potential_energy(as_vector("q", q, self.ndof))
+
+    def conserved_quantities(self, state=None) -> np.ndarray:
+        """The ``n`` eigenvalues of Flaschka's Lax matrix of ``state`` (default: the current
+        state), ascending; ``sum = total momentum`` and ``sum of squares = 2 H`` (``2 H + 4 a/b``
+        for ``n = 2``)."""
+        return self._native.conserved_quantities(self._state_arg(state))
+
+    def per_particle_energy(self, q=None, p=None) -> np.ndarray:
+        """Energy of each particle, ``p_i^2/2`` plus half of each of its two bonds; sums to
+        ``H``."""
+        return self._native.per_particle_energy(*self._qp(q, p))

@@ -14,7 +14,7 @@ from .._native import as_vector
 from ..core.base_system import LagrangianSystem
 from ._native_base import adopt, build, energy as _energy
 
-__all__ = ["DoublePendulum", "BeadOnRotatingHoop", "CoupledOscillators"]
+__all__ = ["DoublePendulum", "BeadOnRotatingHoop", "CoupledOscillators", "ElasticPendulum"]
 
 
 class DoublePendulum(LagrangianSystem):
@@ -94,3 +94,45 @@ class CoupledOscillators(LagrangianSystem):
     def energy(self, state: Optional[np.ndarray] = None) -> float:
         """Return ``T + V`` of ``state`` (default: ``self.state``)."""
         return _energy(self, state)
+
+
+class ElasticPendulum(LagrangianSystem):
+    """Spring pendulum: a bob of mass ``m`` on a spring of stiffness ``k`` and rest length
+    ``l0``; ``q = (r, theta)``, ``theta`` from the downward vertical,
+    ``L = m (rdot^2 + r^2 thetadot^2)/2 + m g r cos(theta) - k (r - l0)^2/2``. At the 2:1
+    resonance (bounce frequency twice the swing's, ``k = 3 m g / l0`` exactly) energy trades
+    between the bounce and the swing.
+
+    Parameters
+    ----------
+    q0, qdot0 : array-like, shape (2,)
+        Initial ``(r, theta)`` and ``(rdot, thetadot)``; ``r > 0``.
+    m : float
+        Bob mass.
+    k : float
+        Spring constant.
+    l0 : float
+        Rest length of the spring.
+    g : float
+        Gravitational acceleration.
+    """
+
+    def __init__(self, q0, qdot0, m=1.0, k=40.0, l0=1.0, g=9.81):
+        v = adopt(self, build("elastic-pendulum", q0=q0, qdot0=qdot0, m=m, k=k, l0=l0, g=g))
+        self.m, self.k, self.l0, self.g = (v[n] for n in ("m", "k", "l0", "g"))
+
+    def energy(self, state: Optional[np.ndarray] = None) -> float:
+        """Return ``T + V`` of ``state`` (default: ``self.state``)."""
+        return _energy(self, state)
+
+    def positions(self, q=None) -> np.ndarray:
+        """Bob position ``(x, y) = (r sin theta, -r cos theta)`` for ``q = (r, theta)``
+        (default: the current ``q``); pivot at the origin, ``y`` up."""
+        q = self.q if q is None else q
+        return self._native.positions(as_vector("q", q, self.ndof))
+
+    def mode_energies(self, state=None) -> np.ndarray:
+        """``(E_bounce, E_swing)`` of ``state`` (default: the current state); they sum to the
+        energy above the hanging equilibrium."""
+        s = self._state_arg(state)
+        return self._native.modal_energies(s[: self.ndof], s[self.ndof:])

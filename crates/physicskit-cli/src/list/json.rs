@@ -1,0 +1,192 @@
+//! `list --json`: the whole catalogue as one JSON object, keys in a fixed order.
+//!
+//! ```text
+//! {"version": "0.1.0",
+//!  "systems": [{"name", "python", "summary", "family", "separable", "methods": [..],
+//!               "default_method", "note", "capabilities": [..],
+//!               "params": [{"name", "kind", "length", "choices", "default",
+//!                           "default_origin", "unit", "range", "help"}, ..]}, ..],
+//!  "methods": [{"name", "order", "symplectic", "separable_only"}, ..]}
+//! ```
+//!
+//! - `kind`: `scalar`, `integer`, `vector` or `choice`; `choices` lists the words of a choice
+//!   (else `null`); `length` is a vector's length rule (else `null`): `{"rule": "fixed",
+//!   "n": 2}`, `{"rule": "any"}`, `{"rule": "same_as", "param": "q0"}` or `{"rule": "count",
+//!   "param": "n"}`.
+//! - `default`: the value a front end without required arguments starts from (a number, an
+//!   integer, an array or a word), or `null` when the parameter is left to the constructor.
+//!   `default_origin` says whose it is: `spec` (the Python signature's; `null` there is the
+//!   spec's `None`), `demo` (the spec requires the value; the command line and the lab start
+//!   from this demonstration) or `required`.
+//! - `range`: for scalars and integers `{"min": B, "max": B}` with `B` `null` (unbounded) or
+//!   `{"value": x, "inclusive": bool}`; `null` for vectors and choices (entries must be
+//!   finite). Every number must be finite.
+//! - `capabilities`: the optional accessors the system built from its defaults offers
+//!   (`physicskit::classical::core::erased::CAPABILITY_NAMES`).
+//! - `methods` per system: those that can integrate it, as `simulate --method` takes them.
+
+use std::io::{self, Write};
+
+use physicskit::classical::catalog::SYSTEMS;
+use physicskit::classical::core::catalog::{Bound, Default, Length, Literal, ParamKind, Range};
+use physicskit::classical::core::erased::offered;
+use physicskit::classical::core::{ParamSpec, SystemEntry};
+use serde::Serialize;
+
+use super::{method_rows, MethodRow};
+
+#[derive(Serialize)]
+struct Catalogue {
+    version: &'static str,
+    systems: Vec<System>,
+    methods: Vec<MethodRow>,
+}
+
+#[derive(Serialize)]
+struct System {
+    name: &'static str,
+    python: Option<&'static str>,
+    summary: &'static str,
+    family: &'static str,
+    separable: bool,
+    methods: Vec<&'static str>,
+    default_method: &'static str,
+    note: Option<&'static str>,
+    capabilities: Vec<&'static str>,
+    params: Vec<Param>,
+}
+
+#[derive(Serialize)]
+struct Param {
+    name: &'static str,
+    kind: &'static str,
+    length: Option<LengthRule>,
+    choices: Option<&'static [&'static str]>,
+    default: Option<DefaultValue>,
+    default_origin: &'static str,
+    unit: &'static str,
+    range: Option<RangeJson>,
+    help: &'static str,
+}
+
+#[derive(Serialize)]
+#[serde(tag = "rule", rename_all = "snake_case")]
+enum LengthRule {
+    Fixed { n: usize },
+    Any,
+    SameAs { param: &'static str },
+    Count { param: &'static str },
+}
+
+#[derive(Serialize)]
+#[serde(untagged)]
+enum DefaultValue {
+    Scalar(f64),
+    Integer(i64),
+    Vector(&'static [f64]),
+    Choice(&'static str),
+}
+
+#[derive(Serialize)]
+struct RangeJson {
+    min: Option<BoundJson>,
+    max: Option<BoundJson>,
+}
+
+#[derive(Serialize)]
+struct BoundJson {
+    value: f64,
+    inclusive: bool,
+}
+
+/// Writes the catalogue to `w`, pretty-printed, with a final newline.
+pub(super) fn write(w: &mut impl Write) -> io::Result<()> {
+    let catalogue = Catalogue {
+        version: env!("CARGO_PKG_VERSION"),
+        systems: SYSTEMS.iter().map(|e| system(e)).collect(),
+        methods: method_rows(),
+    };
+    serde_json::to_writer_pretty(&mut *w, &catalogue)?;
+    writeln!(w)
+}
+
+fn system(entry: &SystemEntry) -> System {
+    System {
+        name: entry.name,
+        python: entry.python,
+        summary: entry.summary,
+        family: entry.family.name(),
+        separable: entry.separable,
+        methods: entry.methods().map(|m| m.name()).collect(),
+        default_method: entry.default_method.name(),
+        note: entry.note,
+        // Every entry builds from its defaults (the catalogue's own tests check it); should
+        // one not, it offers nothing rather than breaking the listing.
+        capabilities: entry
+            .build_from([])
+            .map(|s| offered(s.as_ref()))
+            .unwrap_or_default(),
+        params: entry.params.iter().map(param).collect(),
+    }
+}
+
+fn param(spec: &ParamSpec) -> Param {
+    let (default, default_origin) = match spec.default {
+        Default::Required => (None, "required"),
+        Default::Value(l) => (Some(literal(l)), "spec"),
+        Default::Absent => (None, "spec"),
+        Default::Demo(l) => (Some(literal(l)), "demo"),
+        Default::DemoAbsent => (None, "demo"),
+    };
+    let length = match spec.kind {
+        ParamKind::Vector(Length::Fixed(n)) => Some(LengthRule::Fixed { n }),
+        ParamKind::Vector(Length::Any) => Some(LengthRule::Any),
+        ParamKind::Vector(Length::SameAs(param)) => Some(LengthRule::SameAs { param }),
+        ParamKind::Vector(Length::Count(param)) => Some(LengthRule::Count { param }),
+        _ => None,
+    };
+    let choices = match spec.kind {
+        ParamKind::Choice(words) => Some(words),
+        _ => None,
+    };
+    let range =
+        matches!(spec.kind, ParamKind::Scalar | ParamKind::Integer).then(|| range(spec.range));
+    Param {
+        name: spec.name,
+        kind: spec.kind.name(),
+        length,
+        choices,
+        default,
+        default_origin,
+        unit: spec.unit,
+        range,
+        help: spec.help,
+    }
+}
+
+fn literal(l: Literal) -> DefaultValue {
+    match l {
+        Literal::Scalar(x) => DefaultValue::Scalar(x),
+        Literal::Integer(n) => DefaultValue::Integer(n),
+        Literal::Vector(v) => DefaultValue::Vector(v),
+        Literal::Choice(w) => DefaultValue::Choice(w),
+    }
+}
+
+fn range(r: Range) -> RangeJson {
+    let bound = |b| match b {
+        Bound::Unbounded => None,
+        Bound::Inclusive(value) => Some(BoundJson {
+            value,
+            inclusive: true,
+        }),
+        Bound::Exclusive(value) => Some(BoundJson {
+            value,
+            inclusive: false,
+        }),
+    };
+    RangeJson {
+        min: bound(r.min),
+        max: bound(r.max),
+    }
+}
