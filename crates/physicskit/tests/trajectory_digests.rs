@@ -1,0 +1,620 @@
+//! Stored trajectory digests: the bits of every spec system's trajectory, per method and
+//! sampling, must not change unless a commit says why.
+//!
+//! # Why digests
+//!
+//! Refactors of the machinery (a system catalogue, a method table, a shared implicit solve)
+//! must leave every trajectory bit-identical. Tolerance tests cannot see a change in the last
+//! bit; a digest can. Each case builds a system through its public constructor with fixed,
+//! non-trivial parameters, integrates a few hundred to two thousand steps and hashes, with
+//! FNV-1a 64 (Fowler, Noll & Vo; written here, no dependency) over the little-endian bytes of
+//! `f64::to_bits`:
+//!
+//! ```text
+//! (rows, columns) of y,  t[..],  y[..] (row-major),  energy[..] (or a marker if absent),
+//! the system's clock and state after the run (what a second `integrate` continues from)
+//! ```
+//!
+//! The result is compared with the table [`DIGESTS`], one entry per
+//! `system/method/sampling` case. A method the system refuses is recorded as `refused`, so
+//! which methods each system accepts is pinned down too.
+//!
+//! # Why the bits are reproducible
+//!
+//! Rust does not reassociate or contract floating-point arithmetic, and this workspace never
+//! enables `fma`: the SSE2, AVX2 and AVX-512 clones of the vectorized kernels round
+//! identically, and the trig-bound forces (swarm, sine-Gordon) use our own slice sine/cosine
+//! (`core/trig.rs`), so every x86-64 machine gives the same bits (ARCHITECTURE.md, "Vectorized
+//! trig"). Ensembles use fixed chunk boundaries, so the thread count does not matter either.
+//! One caveat: scalar `f64::sin`, `cos`, `exp`, `atan`, `cosh`, `powf` (pendulum, double
+//! pendulum and hoop energies, kink initial data, the Kepler power law, ...) go to the
+//! platform's libm, so the digests also assume glibc's libm on x86-64. A mismatch on another
+//! platform (or libm) is expected and is not a regression.
+//!
+//! # When a digest changes
+//!
+//! The test lists every changed case. If the change is intended, regenerate the table with
+//!
+//! ```text
+//! PHYSICSKIT_PRINT_DIGESTS=1 cargo test -p physicskit --test trajectory_digests -- --nocapture
+//! ```
+//!
+//! paste the printed table over [`DIGESTS`], and say in the commit message which cases changed
+//! and why the new bits are right.
+
+use std::collections::BTreeMap;
+use std::fmt::Write as _;
+
+use physicskit::classical::examples::{HarmonicOscillator, Pendulum};
+use physicskit::classical::systems::{
+    BeadOnRotatingHoop, CoupledOscillators, CoupledOscillatorsParams, DoublePendulum,
+    DoublePendulumParams, EulerTop, EulerTopParams, FPUTChain, HarmonicChain, HeavySymmetricTop,
+    HenonHeilesSystem, HoopParams, KeplerPerturbations, KeplerSystem, PendulumSwarm,
+    ProjectileMotion, SineGordonChain, SymmetricTopParams, PARALLEL_MEMBERS,
+};
+use physicskit::classical::{
+    DynamicalSystem, Error, HamiltonianSystem, IntegrateOptions, LagrangianSystem, Method,
+    OdeSystem, Result, Sampling, SimulationResult,
+};
+
+/// Set (to anything) to print the table instead of checking it.
+const PRINT_ENV: &str = "PHYSICSKIT_PRINT_DIGESTS";
+
+/// The digest of a case whose method the system refuses with `Error::UnsupportedMethod`.
+const REFUSED: &str = "refused";
+
+/// Stored digests, generated on x86-64 Linux (glibc) at the commit that added this file.
+const DIGESTS: &[(&str, &str)] = &[
+    (
+        "coupled_oscillators/implicit_midpoint/all",
+        "dd9cf9f6389ac790",
+    ),
+    ("coupled_oscillators/rk4/all", "9a48373467ca1f9b"),
+    ("coupled_oscillators/verlet/all", "refused"),
+    ("coupled_oscillators/yoshida4/all", "refused"),
+    ("double_pendulum/implicit_midpoint/all", "302c276647837e0b"),
+    ("double_pendulum/rk4/all", "4094566ec6235c65"),
+    ("double_pendulum/verlet/all", "refused"),
+    ("double_pendulum/yoshida4/all", "refused"),
+    ("euler_top/implicit_midpoint/all", "ccd8b9bdf9c8b93b"),
+    ("euler_top/rk4/all", "de1f25eab547b2f4"),
+    ("euler_top/verlet/all", "refused"),
+    ("euler_top/yoshida4/all", "refused"),
+    ("fput_beta/implicit_midpoint/all", "5877d29851c7590e"),
+    ("fput_beta/rk4/all", "1bbe8fffe3e26271"),
+    ("fput_beta/verlet/all", "0aa11a89b6981eef"),
+    ("fput_beta/yoshida4/all", "eaf95c22525b4c22"),
+    ("harmonic_chain/implicit_midpoint/all", "707677cdad6e587d"),
+    ("harmonic_chain/rk4/all", "07c0a0495ae7aa1f"),
+    ("harmonic_chain/verlet/all", "5c04637fc1afffca"),
+    ("harmonic_chain/yoshida4/all", "9da262600e601c17"),
+    (
+        "harmonic_oscillator/implicit_midpoint/all",
+        "7dcf7e0dffcc5ec0",
+    ),
+    ("harmonic_oscillator/rk4/all", "89eca2efeb0088ab"),
+    ("harmonic_oscillator/verlet/all", "33e22be3d92e0338"),
+    ("harmonic_oscillator/yoshida4/all", "8d73efc6a8d0e631"),
+    (
+        "heavy_symmetric_top/implicit_midpoint/all",
+        "d0d1b27312c1c827",
+    ),
+    ("heavy_symmetric_top/rk4/all", "87389d8dcb56e12c"),
+    ("heavy_symmetric_top/verlet/all", "refused"),
+    ("heavy_symmetric_top/yoshida4/all", "refused"),
+    ("henon_heiles/implicit_midpoint/all", "c207af959da9a556"),
+    ("henon_heiles/rk4/all", "cda586fa7e4f959b"),
+    ("henon_heiles/verlet/all", "6838f013967fb371"),
+    ("henon_heiles/yoshida4/all", "0e6858050973b846"),
+    ("hoop/implicit_midpoint/all", "82298cf45fd9ac9c"),
+    ("hoop/rk4/all", "4eb18340384223ef"),
+    ("hoop/verlet/all", "refused"),
+    ("hoop/yoshida4/all", "refused"),
+    ("kepler_elements/implicit_midpoint/all", "fa7d98d854979af2"),
+    (
+        "kepler_elements/implicit_midpoint/final",
+        "1e55ac30be3f045f",
+    ),
+    (
+        "kepler_elements/implicit_midpoint/stride7",
+        "03651423c4c5c4ff",
+    ),
+    ("kepler_elements/rk4/all", "119a64504cc50eb2"),
+    ("kepler_elements/rk4/final", "ab8c384e3c643c2b"),
+    ("kepler_elements/rk4/stride7", "4a36492288759cd6"),
+    ("kepler_elements/verlet/all", "9541c57e193eab69"),
+    ("kepler_elements/verlet/final", "3ac30e2d347e490d"),
+    ("kepler_elements/verlet/stride7", "028d7644b5be40f6"),
+    ("kepler_elements/yoshida4/all", "48cb16c3e33d7716"),
+    ("kepler_elements/yoshida4/final", "d53141c4a83d184f"),
+    ("kepler_elements/yoshida4/stride7", "a90e59bf05ee4127"),
+    ("kepler_new/implicit_midpoint/all", "400efcd0865974eb"),
+    ("kepler_new/rk4/all", "dd1325b5ced061fe"),
+    ("kepler_new/verlet/all", "90cd38210ec2b8b3"),
+    ("kepler_new/yoshida4/all", "7d6dab72e0356672"),
+    (
+        "kepler_pn_softened/implicit_midpoint/all",
+        "978d9a5b47e11f82",
+    ),
+    ("kepler_pn_softened/rk4/all", "6270431c2b6f5193"),
+    ("kepler_pn_softened/verlet/all", "d9430725af71e84f"),
+    ("kepler_pn_softened/yoshida4/all", "9234953b02fe8a60"),
+    ("kepler_power_law/implicit_midpoint/all", "21515690e136b0bd"),
+    ("kepler_power_law/rk4/all", "22973ccac9dba27f"),
+    ("kepler_power_law/verlet/all", "9e6c23682a3c3aea"),
+    ("kepler_power_law/yoshida4/all", "f64f749aa5ca6c5b"),
+    ("pendulum/implicit_midpoint/all", "d1dd5f8263891852"),
+    ("pendulum/rk4/all", "a81ff6c7b7b1b06e"),
+    ("pendulum/verlet/all", "8755dbecbc17de4b"),
+    ("pendulum/yoshida4/all", "69ec6b36d94b11bd"),
+    ("projectile/implicit_midpoint/all", "4c8e6873d225cc07"),
+    ("projectile/rk4/all", "eabc948b950e1b10"),
+    ("projectile/verlet/all", "09acb63483204538"),
+    ("projectile/yoshida4/all", "20c608d9486834d9"),
+    ("projectile_drag/implicit_midpoint/all", "eafaf8369a74af36"),
+    ("projectile_drag/rk4/all", "b2d693066d678180"),
+    ("projectile_drag/verlet/all", "refused"),
+    ("projectile_drag/yoshida4/all", "refused"),
+    ("sine_gordon_kink/implicit_midpoint/all", "5e4d1157426e5ab5"),
+    ("sine_gordon_kink/rk4/all", "ef370076a69a68ec"),
+    ("sine_gordon_kink/verlet/all", "ebc073581632a0a8"),
+    ("sine_gordon_kink/yoshida4/all", "be4ee32a6af18ac6"),
+    ("swarm_box/implicit_midpoint/all", "25e13a117badc77b"),
+    ("swarm_box/rk4/all", "044e1f8907cbc7de"),
+    ("swarm_box/verlet/all", "0c86ea4e2d5711cc"),
+    ("swarm_box/yoshida4/all", "8f8e90cbb105078e"),
+    ("swarm_new/implicit_midpoint/all", "587de0ad0eb0de94"),
+    ("swarm_new/rk4/all", "2c69eaef741684cc"),
+    ("swarm_new/verlet/all", "dfd5796ab6aa0ee8"),
+    ("swarm_new/yoshida4/all", "f2d3e853559de1da"),
+    ("swarm_parallel/implicit_midpoint/all", "5b973b3068d647f7"),
+    ("swarm_parallel/implicit_midpoint/final", "5458cde9505fe5d6"),
+    ("swarm_parallel/rk4/all", "771e122ee02fa2bc"),
+    ("swarm_parallel/rk4/final", "c4a9d7f75e677319"),
+    ("swarm_parallel/verlet/all", "e080c80da8de8fa1"),
+    ("swarm_parallel/verlet/final", "d79611844de21bec"),
+    ("swarm_parallel/yoshida4/all", "7903a520c2ca203c"),
+    ("swarm_parallel/yoshida4/final", "2b2230e078a3fbed"),
+];
+
+/// FNV-1a, 64-bit: `h = (h ^ byte) * 0x100000001b3` from `h = 0xcbf29ce484222325`.
+struct Fnv1a(u64);
+
+impl Fnv1a {
+    const OFFSET_BASIS: u64 = 0xcbf2_9ce4_8422_2325;
+    const PRIME: u64 = 0x0000_0100_0000_01b3;
+
+    fn new() -> Self {
+        Self(Self::OFFSET_BASIS)
+    }
+
+    fn bytes(&mut self, bytes: &[u8]) {
+        for &b in bytes {
+            self.0 = (self.0 ^ u64::from(b)).wrapping_mul(Self::PRIME);
+        }
+    }
+
+    fn u64(&mut self, x: u64) {
+        self.bytes(&x.to_le_bytes());
+    }
+
+    fn f64s<'a>(&mut self, xs: impl IntoIterator<Item = &'a f64>) {
+        for x in xs {
+            self.u64(x.to_bits());
+        }
+    }
+}
+
+/// The digest of a finished run: the stored samples and the state the system was left in.
+fn digest(result: &SimulationResult, system: &impl DynamicalSystem) -> String {
+    let mut h = Fnv1a::new();
+    let (rows, cols) = result.y.dim();
+    h.u64(rows as u64);
+    h.u64(cols as u64);
+    h.f64s(&result.t);
+    // `iter` walks the logical (row-major) order whatever the memory layout.
+    h.f64s(&result.y);
+    match &result.energy {
+        Some(energy) => {
+            h.u64(1);
+            h.f64s(energy);
+        }
+        None => h.u64(0),
+    }
+    h.f64s(&[system.t()]);
+    h.f64s(system.state());
+    format!("{:016x}", h.0)
+}
+
+/// One way to call each family's `integrate`, so one loop serves every system.
+/// `Sampling::All` goes through `integrate` itself (the call users make), the others through
+/// `integrate_with`.
+trait Run: DynamicalSystem + Sized {
+    fn run(
+        &mut self,
+        t_span: (f64, f64),
+        dt: f64,
+        method: Method,
+        sampling: Sampling,
+    ) -> Result<SimulationResult>;
+}
+
+macro_rules! impl_run {
+    ($family:ident: $($system:ty),+ $(,)?) => {$(
+        impl Run for $system {
+            fn run(
+                &mut self,
+                t_span: (f64, f64),
+                dt: f64,
+                method: Method,
+                sampling: Sampling,
+            ) -> Result<SimulationResult> {
+                match sampling {
+                    Sampling::All => $family::integrate(self, t_span, dt, method),
+                    _ => $family::integrate_with(
+                        self,
+                        t_span,
+                        dt,
+                        method,
+                        IntegrateOptions {
+                            sampling,
+                            ..IntegrateOptions::default()
+                        },
+                    ),
+                }
+            }
+        }
+    )+};
+}
+
+impl_run!(HamiltonianSystem: KeplerSystem, HenonHeilesSystem, PendulumSwarm, ProjectileMotion,
+    HarmonicChain, FPUTChain, SineGordonChain, Pendulum, HarmonicOscillator);
+impl_run!(LagrangianSystem: DoublePendulum, BeadOnRotatingHoop, CoupledOscillators,
+    HeavySymmetricTop);
+impl_run!(OdeSystem: EulerTop);
+
+/// The digests computed in this run, by case name.
+#[derive(Default)]
+struct Cases(BTreeMap<String, String>);
+
+impl Cases {
+    /// Runs a fresh system from `make` with every method of [`Method::ALL`] and records one
+    /// digest per method as `name/method/sampling`.
+    fn every_method<S: Run>(
+        &mut self,
+        name: &str,
+        make: impl Fn() -> Result<S>,
+        t_span: (f64, f64),
+        dt: f64,
+        sampling: Sampling,
+    ) {
+        let label = match sampling {
+            Sampling::All => "all".to_string(),
+            Sampling::Stride(k) => format!("stride{k}"),
+            Sampling::FinalOnly => "final".to_string(),
+        };
+        for method in Method::ALL {
+            let case = format!("{name}/{method}/{label}");
+            let mut system = make().unwrap_or_else(|e| panic!("{case}: constructor failed: {e}"));
+            let digest = match system.run(t_span, dt, method, sampling) {
+                Ok(result) => {
+                    assert_eq!(result.method, method.name(), "{case}");
+                    digest(&result, &system)
+                }
+                Err(Error::UnsupportedMethod { .. }) => REFUSED.to_string(),
+                Err(e) => panic!("{case}: integration failed: {e}"),
+            };
+            assert!(
+                self.0.insert(case.clone(), digest).is_none(),
+                "duplicate case {case}"
+            );
+        }
+    }
+}
+
+/// Every case: the 12 spec systems and the two examples, every method, full sampling; a
+/// stride and a final-only run of one Kepler orbit; the swarm's parallel ensemble path.
+fn compute_cases() -> Cases {
+    let mut c = Cases::default();
+    let all = Sampling::All;
+
+    // Kepler: eccentric orbits, so the force varies strongly over the run.
+    c.every_method(
+        "kepler_new",
+        || {
+            KeplerSystem::new(
+                &[1.0, 0.1],
+                &[-0.05, 1.1],
+                1.0,
+                1.0,
+                KeplerPerturbations::none(),
+            )
+        },
+        (0.0, 5.0),
+        1e-2,
+        all,
+    );
+    let elements =
+        || KeplerSystem::from_orbital_elements(1.3, 0.6, 1.0, 0.8, KeplerPerturbations::none());
+    c.every_method("kepler_elements", elements, (0.0, 5.0), 5e-3, all);
+    // 1000 steps: stride 7 leaves a remainder, so the extra final sample is covered too.
+    c.every_method(
+        "kepler_elements",
+        elements,
+        (0.0, 5.0),
+        5e-3,
+        Sampling::Stride(7),
+    );
+    c.every_method(
+        "kepler_elements",
+        elements,
+        (0.0, 5.0),
+        5e-3,
+        Sampling::FinalOnly,
+    );
+    c.every_method(
+        "kepler_pn_softened",
+        || {
+            let pert = KeplerPerturbations::none()
+                .with_post_newtonian(1e-3)
+                .with_softening(0.05);
+            KeplerSystem::new(&[0.9, -0.2], &[0.1, 1.05], 1.0, 1.0, pert)
+        },
+        (0.0, 5.0),
+        1e-2,
+        all,
+    );
+    c.every_method(
+        "kepler_power_law",
+        || {
+            let pert = KeplerPerturbations::none().with_power_law(0.1, 0.02);
+            KeplerSystem::new(&[0.9, -0.2], &[0.1, 1.05], 1.0, 1.0, pert)
+        },
+        (0.0, 5.0),
+        1e-2,
+        all,
+    );
+
+    // Hénon–Heiles at E ~ 0.092 (below the escape energy 1/6).
+    c.every_method(
+        "henon_heiles",
+        || HenonHeilesSystem::new(&[0.1, -0.2], &[0.35, 0.1]),
+        (0.0, 10.0),
+        1e-2,
+        all,
+    );
+
+    // Swarms: a hand-written one and a seeded box of 100 (past the 64-coordinate threshold of
+    // the vectorized kick and drift).
+    c.every_method(
+        "swarm_new",
+        || {
+            PendulumSwarm::new(
+                &[0.1, 0.5, 1.0, 1.5, 2.0, 2.5, 3.0],
+                &[0.0, 0.3, -0.2, 0.5, -0.4, 0.1, 0.05],
+                2.5,
+            )
+        },
+        (0.0, 5.0),
+        1e-2,
+        all,
+    );
+    c.every_method(
+        "swarm_box",
+        || PendulumSwarm::from_box(1.0, 0.2, 0.5, 0.3, 100, 1.5, 42),
+        (0.0, 5.0),
+        1e-2,
+        all,
+    );
+    // PARALLEL_MEMBERS pendulums go through the parallel ensemble; 4 steps keep it cheap.
+    let big = || PendulumSwarm::from_box(0.0, 0.0, 2.0, 1.0, PARALLEL_MEMBERS, 1.0, 7);
+    c.every_method("swarm_parallel", big, (0.0, 0.04), 1e-2, all);
+    c.every_method(
+        "swarm_parallel",
+        big,
+        (0.0, 0.04),
+        1e-2,
+        Sampling::FinalOnly,
+    );
+
+    c.every_method(
+        "projectile",
+        || ProjectileMotion::new(&[0.0, 1.0], &[3.0, 4.0], 0.5, 9.81, 0.0),
+        (0.25, 1.05),
+        1e-3,
+        all,
+    );
+    c.every_method(
+        "projectile_drag",
+        || ProjectileMotion::new(&[0.0, 1.0], &[3.0, 4.0], 0.5, 9.81, 0.1),
+        (0.25, 1.05),
+        1e-3,
+        all,
+    );
+
+    // Chains.
+    c.every_method(
+        "harmonic_chain",
+        || {
+            HarmonicChain::new(
+                &[0.3, -0.1, 0.2, 0.0, 0.5, -0.4, 0.1, 0.2],
+                &[0.0, 0.4, -0.2, 0.1, 0.0, 0.3, -0.1, 0.05],
+                1.3,
+                0.7,
+            )
+        },
+        (0.0, 10.0),
+        1e-2,
+        all,
+    );
+    c.every_method(
+        "fput_beta",
+        || FPUTChain::new(32, 1.0, 1.0, 1.5, 1, 1.0),
+        (0.0, 50.0),
+        5e-2,
+        all,
+    );
+    // A boosted kink on m = k = 9 (width 3, a genuine soliton), 80 sites.
+    c.every_method(
+        "sine_gordon_kink",
+        || {
+            let (m, k) = (9.0, 9.0);
+            let (q0, p0) = SineGordonChain::kink(80, 30.0, 3.0, 0.3, 1)?;
+            let p0: Vec<f64> = p0.iter().map(|p| m * p).collect();
+            SineGordonChain::new(80, m, k, Some(&q0), Some(&p0))
+        },
+        (0.0, 30.0),
+        5e-2,
+        all,
+    );
+
+    // Lagrangian systems.
+    c.every_method(
+        "double_pendulum",
+        || {
+            let params = DoublePendulumParams {
+                m1: 1.0,
+                m2: 0.7,
+                l1: 1.1,
+                l2: 0.8,
+                g: 9.81,
+            };
+            DoublePendulum::new(&[1.2, -0.5], &[0.3, 1.0], params)
+        },
+        (0.0, 1.0),
+        1e-3,
+        all,
+    );
+    c.every_method(
+        "hoop",
+        || {
+            let params = HoopParams {
+                r: 0.8,
+                omega: 5.0,
+                g: 9.81,
+            };
+            BeadOnRotatingHoop::new(0.9, 0.4, params)
+        },
+        (0.0, 1.0),
+        1e-3,
+        all,
+    );
+    c.every_method(
+        "coupled_oscillators",
+        || {
+            let params = CoupledOscillatorsParams {
+                n: 4,
+                m: 1.2,
+                k: 0.9,
+            };
+            CoupledOscillators::new(&[0.3, -0.1, 0.2, 0.0], &[0.0, 0.4, -0.2, 0.1], params)
+        },
+        (0.0, 5.0),
+        1e-2,
+        all,
+    );
+    c.every_method(
+        "heavy_symmetric_top",
+        || {
+            let params = SymmetricTopParams {
+                i1: 1.2,
+                i3: 0.4,
+                m: 0.9,
+                l: 1.1,
+                g: 9.81,
+            };
+            HeavySymmetricTop::new(&[0.1, 0.8, 0.0], &[0.5, 0.0, 12.0], params)
+        },
+        (0.0, 1.0),
+        1e-3,
+        all,
+    );
+
+    c.every_method(
+        "euler_top",
+        || {
+            let params = EulerTopParams {
+                i1: 1.2,
+                i2: 2.1,
+                i3: 3.3,
+            };
+            EulerTop::new(&[0.3, 1.0, -0.4], params, Some(&[0.9, 0.1, -0.3, 0.2]))
+        },
+        (0.25, 1.25),
+        1e-3,
+        all,
+    );
+
+    // The examples.
+    c.every_method(
+        "pendulum",
+        || Pendulum::new(2.0, 0.3, 4.0),
+        (0.25, 10.25),
+        1e-2,
+        all,
+    );
+    c.every_method(
+        "harmonic_oscillator",
+        || HarmonicOscillator::new(1.0, -0.5, 2.0, 3.0),
+        (0.0, 10.0),
+        1e-2,
+        all,
+    );
+    c
+}
+
+#[test]
+fn trajectories_match_the_stored_digests() {
+    let computed = compute_cases().0;
+
+    if std::env::var_os(PRINT_ENV).is_some() {
+        let mut table = String::from("const DIGESTS: &[(&str, &str)] = &[\n");
+        for (case, digest) in &computed {
+            writeln!(table, "    (\"{case}\", \"{digest}\"),").unwrap();
+        }
+        table.push_str("];");
+        println!("{table}");
+        println!("{PRINT_ENV} is set: the table above was printed, not checked.");
+        return;
+    }
+
+    let stored: BTreeMap<&str, &str> = DIGESTS.iter().copied().collect();
+    assert_eq!(stored.len(), DIGESTS.len(), "duplicate case in DIGESTS");
+    let mut problems = String::new();
+    for (case, digest) in &computed {
+        match stored.get(case.as_str()) {
+            Some(s) if *s == digest => {}
+            Some(s) => writeln!(problems, "  {case}: stored {s}, now {digest}").unwrap(),
+            None => writeln!(problems, "  {case}: not in DIGESTS (now {digest})").unwrap(),
+        }
+    }
+    for case in stored.keys() {
+        if !computed.contains_key(*case) {
+            writeln!(problems, "  {case}: in DIGESTS but no longer computed").unwrap();
+        }
+    }
+    assert!(
+        problems.is_empty(),
+        "trajectories changed bits in these cases:\n{problems}\
+         Existing trajectories must stay bit-identical. If the change is intended, regenerate \
+         the table with `{PRINT_ENV}=1 cargo test -p physicskit --test trajectory_digests -- \
+         --nocapture`, paste it over DIGESTS in tests/trajectory_digests.rs, and justify in \
+         the commit message which cases changed and why."
+    );
+}
+
+#[test]
+fn the_hash_is_fnv1a_64_and_sees_one_bit() {
+    // Published FNV-1a 64 test vectors (Fowler, Noll & Vo, draft-eastlake-fnv): "" and "a".
+    assert_eq!(Fnv1a::new().0, 0xcbf2_9ce4_8422_2325);
+    let mut h = Fnv1a::new();
+    h.bytes(b"a");
+    assert_eq!(h.0, 0xaf63_dc4c_8601_ec8c);
+    // A change in the last bit of one sample changes the digest.
+    let mut p = Pendulum::new(2.0, 0.3, 4.0).unwrap();
+    let mut result =
+        HamiltonianSystem::integrate(&mut p, (0.0, 1.0), 1e-2, Method::Verlet).unwrap();
+    let before = digest(&result, &p);
+    result.y[[50, 1]] = f64::from_bits(result.y[[50, 1]].to_bits() ^ 1);
+    assert_ne!(digest(&result, &p), before);
+}
