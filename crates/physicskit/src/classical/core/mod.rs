@@ -15,7 +15,7 @@ pub mod time_grid;
 pub mod trig;
 
 pub use error::{Error, Result};
-pub use method::Method;
+pub use method::{Method, MethodInfo, Scheme};
 pub use options::{IntegrateOptions, Observer, Sampling};
 pub use phase::Phase;
 pub(crate) use result::Recorder;
