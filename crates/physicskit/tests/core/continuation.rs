@@ -1,7 +1,7 @@
 //! A second `integrate` call continues the trajectory of the first.
 
-use physicskit::classical::examples::Pendulum;
 use physicskit::classical::core::method::Scheme;
+use physicskit::classical::examples::Pendulum;
 use physicskit::classical::{HamiltonianSystem, Method};
 
 #[test]

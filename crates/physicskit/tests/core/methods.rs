@@ -20,7 +20,11 @@ fn names_round_trip_through_from_str() {
     }
     // The names are distinct, so each parses to one method only.
     for (i, a) in methods().iter().enumerate() {
-        assert!(methods()[..i].iter().all(|b| b.name != a.name), "{}", a.name);
+        assert!(
+            methods()[..i].iter().all(|b| b.name != a.name),
+            "{}",
+            a.name
+        );
     }
 }
 
@@ -40,7 +44,10 @@ fn splitting_drifts_sum_to_one_and_are_symmetric() {
         let sum: f64 = drifts.iter().sum();
         let largest = drifts.iter().fold(0.0_f64, |m, w| m.max(w.abs()));
         let tolerance = drifts.len() as f64 * f64::EPSILON * largest;
-        assert!((sum - 1.0).abs() <= tolerance, "{method}: drifts sum to {sum}");
+        assert!(
+            (sum - 1.0).abs() <= tolerance,
+            "{method}: drifts sum to {sum}"
+        );
         // The loop is written for symmetric compositions (time-reversible, even order): the
         // weights read the same backwards, bit for bit.
         assert!(
@@ -112,7 +119,10 @@ fn every_method_is_dispatched_to_its_own_path() {
             (route, scheme) => panic!("{method}: dispatched as {route:?}, declared {scheme:?}"),
         };
         // No two methods share a path (coefficients or stepper): none runs as another.
-        assert!(!paths.contains(&path), "{method} runs on the path of another: {path}");
+        assert!(
+            !paths.contains(&path),
+            "{method} runs on the path of another: {path}"
+        );
         paths.push(path);
     }
 }
@@ -184,7 +194,10 @@ fn each_family_accepts_exactly_the_methods_the_table_allows() {
         let separable = Pendulum::new(1.0, 0.0, 1.0)
             .unwrap()
             .integrate(span, 0.01, method);
-        assert!(accepted(separable, method), "{method} on a separable system");
+        assert!(
+            accepted(separable, method),
+            "{method} on a separable system"
+        );
         let non_separable = NonSeparable::new(0.5, 0.1).integrate(span, 0.01, method);
         assert_eq!(accepted(non_separable, method), general, "{method}");
         let lagrangian = LagrangianPendulum::new(0.5, 0.1).integrate(span, 0.01, method);
