@@ -18,14 +18,8 @@
 //! `k - f(t + h/2, y0 + h k/2) = 0` where the sweeps contract slowly and the field has a
 //! Jacobian. At the small steps symplectic runs use, a step costs two evaluations of `f`.
 
-use std::collections::BTreeMap;
-use std::ops::{Deref, DerefMut};
-
-use super::field::VectorField;
-use super::implicit_solve::{ImplicitRk, Tableau};
-use super::stepper::{FieldStepper, Report};
+use super::implicit_solve::{ButcherTableau, ImplicitRk, Tableau};
 use crate::classical::core::method::{MethodInfo, Scheme};
-use crate::classical::core::{ExtraValue, Result};
 
 /// The facts about `implicit_midpoint`.
 pub const INFO: MethodInfo = MethodInfo {
@@ -43,59 +37,18 @@ pub const INFO: MethodInfo = MethodInfo {
     scheme: Scheme::ImplicitRk,
 };
 
-/// The one-stage tableau: `k = f(t + h/2, y0 + (h/2) k)`, `y1 = y0 + h k`.
-pub const TABLEAU: Tableau<1> = Tableau {
-    a: [[0.5]],
-    b: [1.0],
-    c: [0.5],
-};
+/// The implicit midpoint rule's tableau.
+#[derive(Debug, Clone, Copy)]
+pub struct MidpointRule;
 
-/// The implicit midpoint stepper: the shared implicit solve on [`TABLEAU`]. Dereferences to the
-/// [`ImplicitRk`] it wraps, for its settings, statistics and `step`.
-#[derive(Debug, Clone)]
-pub struct ImplicitMidpoint(ImplicitRk<1>);
-
-impl ImplicitMidpoint {
-    /// Buffers for a `dim`-dimensional state.
-    pub fn new(dim: usize) -> Self {
-        Self(ImplicitRk::new(TABLEAU, dim))
-    }
+impl ButcherTableau<1> for MidpointRule {
+    /// One stage: `k = f(t + h/2, y0 + (h/2) k)`, `y1 = y0 + h k`.
+    const TABLEAU: Tableau<1> = Tableau {
+        a: [[0.5]],
+        b: [1.0],
+        c: [0.5],
+    };
 }
 
-impl Deref for ImplicitMidpoint {
-    type Target = ImplicitRk<1>;
-
-    fn deref(&self) -> &ImplicitRk<1> {
-        &self.0
-    }
-}
-
-impl DerefMut for ImplicitMidpoint {
-    fn deref_mut(&mut self) -> &mut ImplicitRk<1> {
-        &mut self.0
-    }
-}
-
-impl FieldStepper for ImplicitMidpoint {
-    fn new(dim: usize) -> Self {
-        ImplicitMidpoint::new(dim)
-    }
-
-    #[inline(always)]
-    fn step_field<F: VectorField + ?Sized>(
-        &mut self,
-        f: &F,
-        t: f64,
-        y: &mut [f64],
-        h: f64,
-    ) -> Result<()> {
-        self.0.step(f, t, y, h)
-    }
-}
-
-impl Report for ImplicitMidpoint {
-    /// The solver's statistics ([`SolverStats::report`](super::SolverStats::report)).
-    fn report(&self, extra: &mut BTreeMap<String, ExtraValue>) {
-        self.0.report(extra);
-    }
-}
+/// The implicit midpoint stepper: the shared implicit solve on [`MidpointRule`].
+pub type ImplicitMidpoint = ImplicitRk<1, MidpointRule>;

@@ -10,9 +10,11 @@
 //! ```
 //!
 //! [`ImplicitRk`] solves the stage equations for the stacked stage vector
-//! `K = (k_1, ..., k_s)` (`s * dim` numbers) and takes the step. The method is data
-//! ([`Tableau`]); `implicit_midpoint` is the one-stage tableau `a = 1/2, b = 1, c = 1/2`, and
-//! the Gauss–Legendre collocation methods are its `s`-stage relatives.
+//! `K = (k_1, ..., k_s)` (`s * dim` numbers) and takes the step. The method is data, a
+//! [`Tableau`] named by a type ([`ButcherTableau`]); `implicit_midpoint` is the one-stage
+//! tableau `a = 1/2, b = 1, c = 1/2`, and the Gauss–Legendre collocation methods are its
+//! `s`-stage relatives: a new one is a file with its tableau, its `INFO` and a type alias of
+//! `ImplicitRk`.
 //!
 //! # The solve
 //!
@@ -54,9 +56,10 @@
 //! unroll.
 
 use std::collections::BTreeMap;
+use std::marker::PhantomData;
 
 use super::field::VectorField;
-use super::stepper::Report;
+use super::stepper::{FieldStepper, Report};
 use crate::classical::core::linalg::{lu_factor, lu_solve};
 use crate::classical::core::{Error, ExtraValue, Result};
 
@@ -75,6 +78,14 @@ pub struct Tableau<const S: usize> {
     pub b: [f64; S],
     /// `c[i]`: time of stage `i`, as a fraction of the step.
     pub c: [f64; S],
+}
+
+/// A method's tableau as a compile-time constant: the type parameter of [`ImplicitRk`] that
+/// names the method. Being constants, the coefficients fold into the step's arithmetic
+/// (`b h` with `b = 1` is `h`, `a h` a multiplication by a constant).
+pub trait ButcherTableau<const S: usize> {
+    /// The coefficients.
+    const TABLEAU: Tableau<S>;
 }
 
 /// Tolerances and iteration limits of the implicit solve.
@@ -166,11 +177,10 @@ const EXTRAPOLATION: [[f64; HISTORY]; HISTORY] = [
 /// `benchmarks/README.md`).
 pub const FLOOR: f64 = f64::EPSILON / 1024.0;
 
-/// One step of an `S`-stage implicit Runge–Kutta method, solved to the rounding floor (see the
-/// module docs), with its work buffers, allocated once.
+/// One step of the `S`-stage implicit Runge–Kutta method with tableau `T`, solved to the
+/// rounding floor (see the module docs), with its work buffers, allocated once.
 #[derive(Debug, Clone)]
-pub struct ImplicitRk<const S: usize> {
-    tableau: Tableau<S>,
+pub struct ImplicitRk<const S: usize, T> {
     dim: usize,
     /// The stage vector `K` (`S * dim`).
     k: Vec<f64>,
@@ -195,6 +205,7 @@ pub struct ImplicitRk<const S: usize> {
     /// Tolerances and limits.
     pub settings: SolverSettings,
     stats: SolverStats,
+    method: PhantomData<T>,
 }
 
 /// How a solve ended: `(iterations, residual)`, whether it converged or stalled at the
@@ -226,11 +237,10 @@ impl<const S: usize> Scaled<S> {
     }
 }
 
-impl<const S: usize> ImplicitRk<S> {
-    /// Buffers for the method `tableau` on `dim`-dimensional states.
-    pub fn new(tableau: Tableau<S>, dim: usize) -> Self {
+impl<const S: usize, T: ButcherTableau<S>> ImplicitRk<S, T> {
+    /// Buffers for `dim`-dimensional states.
+    pub fn new(dim: usize) -> Self {
         Self {
-            tableau,
             dim,
             k: vec![0.0; S * dim],
             k_new: vec![0.0; S * dim],
@@ -244,12 +254,8 @@ impl<const S: usize> ImplicitRk<S> {
             last_h: 0.0,
             settings: SolverSettings::default(),
             stats: SolverStats::default(),
+            method: PhantomData,
         }
-    }
-
-    /// The method's tableau.
-    pub fn tableau(&self) -> &Tableau<S> {
-        &self.tableau
     }
 
     /// What the solver did so far.
@@ -300,7 +306,7 @@ impl<const S: usize> ImplicitRk<S> {
     ) -> Result<()> {
         let m = S * n;
         let y = &mut y[..n];
-        let scaled = Scaled::new(&self.tableau, t, h);
+        let scaled = Scaled::new(&T::TABLEAU, t, h);
         if h.to_bits() != self.last_h.to_bits() {
             self.slopes = 0;
             self.last_h = h;
@@ -662,16 +668,33 @@ fn relative(num: f64, scale: f64) -> f64 {
     }
 }
 
-impl<const S: usize> Report for ImplicitRk<S> {
+impl<const S: usize, T> Report for ImplicitRk<S, T> {
     /// The [`SolverStats`] ([`SolverStats::report`]).
     fn report(&self, extra: &mut BTreeMap<String, ExtraValue>) {
         self.stats.report(extra);
     }
 }
 
+impl<const S: usize, T: ButcherTableau<S>> FieldStepper for ImplicitRk<S, T> {
+    fn new(dim: usize) -> Self {
+        ImplicitRk::new(dim)
+    }
+
+    #[inline(always)]
+    fn step_field<F: VectorField + ?Sized>(
+        &mut self,
+        f: &F,
+        t: f64,
+        y: &mut [f64],
+        h: f64,
+    ) -> Result<()> {
+        self.step(f, t, y, h)
+    }
+}
+
 #[cfg(test)]
 mod tests {
-    use super::super::implicit_midpoint::TABLEAU;
+    use super::super::implicit_midpoint::MidpointRule;
     use super::*;
 
     /// `y' = (y1, -y0)`: slopes are sinusoids, smooth on the scale of the step.
@@ -692,7 +715,7 @@ mod tests {
     /// Max-norm distance between the predictor and the converged slope of one step, after
     /// `HISTORY` steps have filled the predictor's history.
     fn predictor_error(h: f64) -> f64 {
-        let mut stepper = ImplicitRk::new(TABLEAU, 2);
+        let mut stepper = ImplicitRk::<1, MidpointRule>::new(2);
         let mut y = [1.0, 0.3];
         for i in 0..HISTORY {
             stepper.step(&Rotation, i as f64 * h, &mut y, h).unwrap();

@@ -37,7 +37,7 @@ pub mod stepper;
 pub use ensemble::{integrate_ensemble, Ensemble, ENSEMBLE_CHUNK};
 pub use field::{Canonical, FirstOrder, VectorField};
 pub use implicit_midpoint::ImplicitMidpoint;
-pub use implicit_solve::{ImplicitRk, SolverSettings, SolverStats, Tableau};
+pub use implicit_solve::{ButcherTableau, ImplicitRk, SolverSettings, SolverStats, Tableau};
 pub use rk4::Rk4;
 pub use splitting::{SplittingStepper, VerletStepper, Yoshida4Stepper};
 pub use stepper::{Dispatch, FieldStepper, Report, Stepper};
