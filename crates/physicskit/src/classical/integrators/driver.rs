@@ -464,8 +464,8 @@ impl Setup {
         // Per sample only the energy is checked (a scalar); the whole state is checked every
         // `interval` steps and at the end, and a blow-up is then reported at the first stored
         // sample that holds it.
-        // A function, not a closure, so that it can be forced inline: as a call it cost ~40
-        // instructions per sample of a 2-dof run.
+        // A function, not a closure, so that it can be forced inline: as a call it costs tens
+        // of instructions per sample of a small system.
         #[inline(always)]
         fn store<S2: Sampler>(
             recorder: &mut Recorder,

@@ -331,12 +331,11 @@ impl<const S: usize, T: ButcherTableau<S>> ImplicitRk<S, T> {
         let k = &self.k[..m];
         self.newest = (self.newest + 1) % HISTORY;
         self.history[self.newest * m..(self.newest + 1) * m].copy_from_slice(k);
-        for (l, yl) in y.iter_mut().enumerate() {
-            let mut acc = *yl;
-            for (i, bh) in scaled.bh.iter().enumerate() {
-                acc += bh * k[i * n + l];
+        // y1 = y0 + sum_i (b_i h) k_i, summed in stage order.
+        for (i, bh) in scaled.bh.iter().enumerate() {
+            for (yl, kl) in y.iter_mut().zip(&k[i * n..(i + 1) * n]) {
+                *yl += bh * kl;
             }
-            *yl = acc;
         }
         self.slopes = (self.slopes + 1).min(HISTORY);
         self.stats.steps += 1;
@@ -616,12 +615,13 @@ fn stage_states<const S: usize>(
 ) {
     for (i, ah_i) in scaled.ah.iter().enumerate() {
         let stage_i = &mut stage[i * n..(i + 1) * n];
-        for (l, (x, yl)) in stage_i.iter_mut().zip(&y[..n]).enumerate() {
-            let mut acc = yl + ah_i[0] * k[l];
-            for (j, ah_ij) in ah_i.iter().enumerate().skip(1) {
-                acc += ah_ij * k[j * n + l];
+        for ((x, yl), kl) in stage_i.iter_mut().zip(&y[..n]).zip(&k[..n]) {
+            *x = yl + ah_i[0] * kl;
+        }
+        for (j, ah_ij) in ah_i.iter().enumerate().skip(1) {
+            for (x, kl) in stage_i.iter_mut().zip(&k[j * n..(j + 1) * n]) {
+                *x += ah_ij * kl;
             }
-            *x = acc;
         }
     }
 }
