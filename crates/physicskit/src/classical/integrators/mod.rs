@@ -5,7 +5,7 @@
 //! symplecticity, whether it needs a separable Hamiltonian, evaluations per step, reference,
 //! and its [`Scheme`](crate::classical::core::method::Scheme)); the list below is the one
 //! registry of methods, from which [`Method`], [`Method::ALL`], [`Method::info`],
-//! [`Method::dispatch`] and [`methods`] are generated ([`registry`]).
+//! [`Method::dispatch`] and [`methods`] are generated (by the macro in `registry.rs`).
 //!
 //! - Splitting methods (`verlet`, `yoshida4`) are a coefficient array in their file; one
 //!   kick–drift–kick loop ([`splitting`]) runs them all. Adding one is a new file with its
