@@ -3,8 +3,9 @@
 //! * [`core`]: the system traits ([`DynamicalSystem`], [`HamiltonianSystem`],
 //!   [`LagrangianSystem`], [`OdeSystem`]), the state-and-clock [`Phase`], the validated
 //!   [`TimeGrid`], [`SimulationResult`] and the [`Error`] type.
-//! * [`integrators`]: `verlet`, `yoshida4`, `rk4` and `implicit_midpoint`, one file each, and
-//!   the drivers that run them over a time grid.
+//! * [`integrators`]: `verlet`, `yoshida4`, `rk4` and `implicit_midpoint`, one file each
+//!   declaring its facts ([`methods`] lists them), and the drivers that run them over a time
+//!   grid.
 //! * [`lagrangian`]: the engine deriving equations of motion from `L(q, qdot, t)`.
 //! * [`systems`]: the spec's systems; [`analysis`]: functions on states and trajectories.
 //! * [`examples`]: small reference systems (pendulum, harmonic oscillator) used in docs, tests
@@ -20,6 +21,7 @@ pub mod systems;
 
 pub use self::core::{
     split, DynSystem, DynamicalSystem, Error, ExtraValue, HamiltonianSystem, IntegrateOptions,
-    LagrangianSystem, MassInv, Method, Observer, OdeSystem, Phase, Result, Sampling,
+    LagrangianSystem, MassInv, Method, MethodInfo, Observer, OdeSystem, Phase, Result, Sampling,
     SimulationResult, TimeGrid,
 };
+pub use self::integrators::methods;

@@ -12,6 +12,7 @@ mod fixtures;
 mod fused_potential;
 mod invariants;
 mod lagrangian_path;
+mod methods;
 mod reversibility;
 mod sampling;
 mod solver;

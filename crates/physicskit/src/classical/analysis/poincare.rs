@@ -22,7 +22,9 @@
 
 use crate::classical::core::error::{check_finite, check_finite_scalar};
 use crate::classical::core::{Error, HamiltonianSystem, Method, Result};
-use crate::classical::integrators::{splitting, FirstOrder, Rk4, SplittingStepper, VectorField};
+use crate::classical::integrators::{
+    splitting, Dispatch, FieldStepper, FirstOrder, Rk4, SplittingStepper, VectorField,
+};
 
 /// Which way through the section a crossing must go to count.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -357,11 +359,11 @@ pub fn poincare_section<F: VectorField + ?Sized>(
 }
 
 /// The Poincaré section of a separable Hamiltonian system from the state `y0 = [q, p]` at
-/// `t0`, integrated with the symplectic `verlet` or `yoshida4` (so long runs keep the energy
-/// surface); the crossings are located with the system's own vector field.
+/// `t0`, integrated with a symplectic splitting method such as `verlet` or `yoshida4` (so long
+/// runs keep the energy surface); the crossings are located with the system's own vector field.
 ///
 /// # Errors
-/// [`Error::UnsupportedMethod`] for a method other than `verlet`/`yoshida4` or a system they
+/// [`Error::UnsupportedMethod`] for a method that is not a splitting method or a system it
 /// cannot integrate; otherwise as [`poincare_section`].
 pub fn poincare_section_separable<S: HamiltonianSystem>(
     system: &S,
@@ -371,30 +373,62 @@ pub fn poincare_section_separable<S: HamiltonianSystem>(
     run: &SectionRun,
     method: Method,
 ) -> Result<PoincareSection> {
-    splitting::check_system(method, system)?;
-    let ndof = system.ndof();
-    let field = FirstOrder(system);
-    match method {
-        Method::Verlet => {
-            let mut stepper = SplittingStepper::verlet(ndof);
-            run_section(&field, t0, y0, section, run, |t, y, h| {
-                let (q, p) = y.split_at_mut(ndof);
-                stepper.step(system, t, q, p, h)
-            })
-        }
-        Method::Yoshida4 => {
-            let mut stepper = SplittingStepper::yoshida4(ndof);
-            run_section(&field, t0, y0, section, run, |t, y, h| {
-                let (q, p) = y.split_at_mut(ndof);
-                stepper.step(system, t, q, p, h)
-            })
-        }
-        other => Err(Error::UnsupportedMethod {
-            method: other.name().into(),
-            reason: "a separable section run uses verlet or yoshida4; use poincare_section \
+    method.dispatch(SeparableSection {
+        system,
+        t0,
+        y0,
+        section,
+        run,
+    })
+}
+
+/// The inputs of [`poincare_section_separable`], waiting for the method's kind.
+struct SeparableSection<'a, S> {
+    system: &'a S,
+    t0: f64,
+    y0: &'a [f64],
+    section: &'a Section,
+    run: &'a SectionRun,
+}
+
+impl<S: HamiltonianSystem> SeparableSection<'_, S> {
+    fn not_splitting(method: Method) -> Result<PoincareSection> {
+        Err(Error::UnsupportedMethod {
+            method: method.name().into(),
+            reason: "a separable section run uses a splitting method; use poincare_section \
                      (rk4) for other methods"
                 .into(),
-        }),
+        })
+    }
+}
+
+impl<S: HamiltonianSystem> Dispatch for SeparableSection<'_, S> {
+    type Output = Result<PoincareSection>;
+
+    fn splitting<const N: usize>(self, method: Method, drifts: [f64; N]) -> Self::Output {
+        let system = self.system;
+        splitting::check_system(method, system)?;
+        let ndof = system.ndof();
+        let mut stepper = SplittingStepper::from_drifts(drifts, ndof);
+        run_section(
+            &FirstOrder(system),
+            self.t0,
+            self.y0,
+            self.section,
+            self.run,
+            |t, y, h| {
+                let (q, p) = y.split_at_mut(ndof);
+                stepper.step(system, t, q, p, h)
+            },
+        )
+    }
+
+    fn explicit_rk<St: FieldStepper>(self, method: Method) -> Self::Output {
+        Self::not_splitting(method)
+    }
+
+    fn implicit_rk<St: FieldStepper>(self, method: Method) -> Self::Output {
+        Self::not_splitting(method)
     }
 }
 

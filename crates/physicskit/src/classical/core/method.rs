@@ -1,59 +1,90 @@
-//! [`Method`]: the integrators, by the spec's names.
+//! What a method is, as data: [`MethodInfo`] (the facts each integrator's file declares about
+//! itself) and [`Scheme`] (the kind of loop that runs it).
+//!
+//! The [`Method`] enum itself is generated from the one registry list in
+//! [`integrators`](crate::classical::integrators), next to the integrators' files; it is
+//! re-exported here because the system traits name a default method.
 
 use std::fmt;
 use std::str::FromStr;
 
 use super::error::Error;
+pub use crate::classical::integrators::{methods, Method};
 
-/// A fixed-step integrator, named as in the spec.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
-pub enum Method {
-    /// Classical 4th-order Runge–Kutta (`"rk4"`); not symplectic.
-    Rk4,
-    /// Störmer–Verlet kick–drift–kick (`"verlet"`); order 2, symplectic, separable only.
-    Verlet,
-    /// Yoshida's 4th-order triple-jump composition of Verlet (`"yoshida4"`); separable only.
-    Yoshida4,
-    /// Implicit midpoint rule (`"implicit_midpoint"`); order 2, symplectic for any
-    /// Hamiltonian, conserves every quadratic invariant.
-    ImplicitMidpoint,
+/// The facts about one integrator, declared as `pub const INFO: MethodInfo` in the
+/// integrator's own file and listed by [`methods`] (what `physicskit list` and Python's
+/// `physicskit.classical.methods()` show).
+#[derive(Debug, Clone, Copy, PartialEq)]
+#[non_exhaustive]
+pub struct MethodInfo {
+    /// The spec's name (`"yoshida4"`), which [`Method`]'s `FromStr` parses.
+    pub name: &'static str,
+    /// One line for listings.
+    pub summary: &'static str,
+    /// Order of accuracy of the global error.
+    pub order: u32,
+    /// Symplectic on the systems the method accepts.
+    pub symplectic: bool,
+    /// Needs a separable Hamiltonian `H = T(p) + V(q)` with conservative forces (the splitting
+    /// methods); such a method refuses every other system with
+    /// [`Error::UnsupportedMethod`].
+    pub separable_only: bool,
+    /// Evaluations of the force (splitting methods) or of the right-hand side `f(t, y)` (the
+    /// others) per step. For explicit methods the exact count; for implicit methods, whose
+    /// count depends on how fast the solve converges, the typical count at the small steps
+    /// these methods are used with, as [`evaluations`](Self::evaluations) explains. What a run
+    /// actually spent is in its `result.extra`.
+    pub evaluations_per_step: u32,
+    /// What [`evaluations_per_step`](Self::evaluations_per_step) counts, and whether it is
+    /// exact or typical.
+    pub evaluations: &'static str,
+    /// Where the method comes from (author, year, journal).
+    pub reference: &'static str,
+    /// The kind of loop that runs the method; the drivers dispatch on it.
+    pub scheme: Scheme,
+}
+
+/// The kind of a method, which decides the loop that runs it and the systems it accepts.
+///
+/// Adding a kind (an adaptive method with dense output, say) means adding a variant here and a
+/// method to [`Dispatch`](crate::classical::integrators::Dispatch): every match on a kind is
+/// exhaustive, so the compiler lists each place that must decide what the new kind does.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub enum Scheme {
+    /// A symmetric composition of Störmer–Verlet substeps with these drift weights (summing
+    /// to one), run by the one kick–drift–kick loop of
+    /// [`splitting`](crate::classical::integrators::splitting) on separable Hamiltonians.
+    Splitting {
+        /// Drift weight of each substep, as a fraction of the step.
+        drifts: &'static [f64],
+    },
+    /// An explicit one-step method on a vector field `dy/dt = f(t, y)`.
+    ExplicitRk,
+    /// An implicit Runge–Kutta method on a vector field, solved each step by the shared
+    /// implicit solve ([`implicit_solve`](crate::classical::integrators::implicit_solve)).
+    /// Lagrangian systems run it on their canonical form `[q, p]`, where it is symplectic.
+    ImplicitRk,
 }
 
 impl Method {
-    /// Every method, in the order they are listed to users.
-    pub const ALL: [Method; 4] = [
-        Method::Rk4,
-        Method::Verlet,
-        Method::Yoshida4,
-        Method::ImplicitMidpoint,
-    ];
-
     /// The spec's name of the method.
     pub fn name(self) -> &'static str {
-        match self {
-            Method::Rk4 => "rk4",
-            Method::Verlet => "verlet",
-            Method::Yoshida4 => "yoshida4",
-            Method::ImplicitMidpoint => "implicit_midpoint",
-        }
+        self.info().name
     }
 
     /// Order of accuracy of the global error.
     pub fn order(self) -> u32 {
-        match self {
-            Method::Rk4 | Method::Yoshida4 => 4,
-            Method::Verlet | Method::ImplicitMidpoint => 2,
-        }
+        self.info().order
     }
 
     /// True for the splitting methods that need `H = T(p) + V(q)` and conservative forces.
     pub fn needs_separable(self) -> bool {
-        matches!(self, Method::Verlet | Method::Yoshida4)
+        self.info().separable_only
     }
 
     /// True if the method is symplectic (on the systems it accepts).
     pub fn is_symplectic(self) -> bool {
-        !matches!(self, Method::Rk4)
+        self.info().symplectic
     }
 
     /// Comma-separated list of valid names, for messages.

@@ -19,7 +19,7 @@ pub mod trig;
 pub use catalog::{Family, ParamSpec, SystemEntry, Value, Values};
 pub use erased::{Capabilities, DynSystem};
 pub use error::{Error, Result};
-pub use method::Method;
+pub use method::{Method, MethodInfo, Scheme};
 pub use options::{IntegrateOptions, Observer, Sampling};
 pub use phase::Phase;
 pub(crate) use result::Recorder;

@@ -1,25 +1,30 @@
-//! The drivers behind every `integrate`: validate, allocate once, loop, record.
+//! The drivers behind every `integrate`: validate, allocate once, dispatch, loop, record.
 //!
-//! One generic loop (`Setup::run_from`) serves every method and family. It is monomorphized for each
-//! system and stepper, so no trait object is called in a step (the SIMD clones of long slice
-//! loops and of the trig are reached through one cached function pointer each, see
-//! `core/trig.rs`); the observer (progress bar, Ctrl-C) is consulted every few thousand steps
-//! only.
+//! Each system family has a driver ([`integrate_hamiltonian`], [`integrate_lagrangian`],
+//! [`integrate_ode`]) that validates the inputs and hands a [`Dispatch`] to
+//! [`Method::dispatch`], which calls the family's handler for the method's kind: a splitting
+//! method, an explicit or an implicit method on a vector field. Each handler builds the
+//! stepper and runs one generic loop (`Setup::run_from`) over a [`Stepper`]. The loop is
+//! monomorphized for each system and stepper, so no trait object is called in a step (the SIMD
+//! clones of long slice loops and of the trig are reached through one cached function pointer
+//! each, see `core/trig.rs`); the observer (progress bar, Ctrl-C) is consulted every few
+//! thousand steps only.
 
-use std::cell::Cell;
 use std::collections::BTreeMap;
 use std::ops::ControlFlow;
 
 use super::field::{Canonical, FirstOrder, VectorField};
-use super::implicit_midpoint::ImplicitMidpoint;
-use super::rk4::Rk4;
 use super::splitting::{check_system, SplittingStepper};
+use super::stepper::{Dispatch, FieldStepper, Report, Stepper};
 use crate::classical::core::{
     error::check_finite, DynamicalSystem, Error, ExtraValue, HamiltonianSystem, IntegrateOptions,
     LagrangianSystem, Method, OdeSystem, Recorder, Result, SimulationResult, TimeGrid,
 };
 
 /// Integrates a Hamiltonian system (see [`HamiltonianSystem::integrate`]).
+///
+/// Splitting methods run on `[q, p]` with the force; the others on the system's first-order
+/// form.
 ///
 /// # Errors
 /// See [`HamiltonianSystem::integrate`].
@@ -32,23 +37,18 @@ pub fn integrate_hamiltonian<S: HamiltonianSystem>(
 ) -> Result<SimulationResult> {
     let ndof = system.ndof();
     let setup = Setup::new(&*system, t_span, dt, Some(ndof), &options)?;
-    match method {
-        Method::Verlet => {
-            integrate_splitting(system, setup, method, options, super::verlet::DRIFTS)
-        }
-        Method::Yoshida4 => {
-            integrate_splitting(system, setup, method, options, super::yoshida4::DRIFTS)
-        }
-        Method::Rk4 | Method::ImplicitMidpoint => {
-            integrate_first_order(system, setup, method, options)
-        }
-    }
+    method.dispatch(Hamiltonian(Run {
+        system,
+        setup,
+        options,
+    }))
 }
 
 /// Integrates a Lagrangian system (see [`LagrangianSystem::integrate`]).
 ///
-/// `implicit_midpoint` runs on the canonical state `[q, p]` and converts each stored sample back
-/// to `[q, qdot]`; `rk4` runs on `[q, qdot]`.
+/// Implicit methods (symplectic ones among them) run on the canonical state `[q, p]` and
+/// convert each stored sample back to `[q, qdot]`; explicit methods run on `[q, qdot]`.
+/// Splitting methods are refused: the canonical form is not separable in general.
 ///
 /// # Errors
 /// See [`LagrangianSystem::integrate`].
@@ -61,53 +61,11 @@ pub fn integrate_lagrangian<S: LagrangianSystem>(
 ) -> Result<SimulationResult> {
     let ndof = system.ndof();
     let setup = Setup::new(&*system, t_span, dt, Some(ndof), &options)?;
-    match method {
-        Method::Rk4 => integrate_first_order(system, setup, method, options),
-        Method::ImplicitMidpoint => {
-            let sys = &*system;
-            // Canonical start: p = dL/dqdot at (q0, qdot0).
-            let initial = setup.start.clone();
-            let mut work = initial.clone();
-            sys.momentum(
-                &initial[..ndof],
-                &initial[ndof..],
-                setup.grid.t0(),
-                &mut work[ndof..],
-            )?;
-            // The first sample is the initial state as given: converting qdot -> p -> qdot
-            // would change its last bits.
-            let mut first = Some(initial);
-            let field = Canonical(sys);
-            let mut stepper = ImplicitMidpoint::new(2 * ndof);
-            let (result, y) = setup.run_from(
-                work,
-                method,
-                options,
-                |t, y, _| stepper.step(&field, t, y, dt),
-                |recorder: &mut Recorder, t: f64, y: &[f64]| {
-                    let energy = recorder.stores_energy();
-                    recorder.push_with(t, |out| {
-                        if let Some(initial) = first.take() {
-                            out.copy_from_slice(&initial);
-                        } else {
-                            let (q, p) = y.split_at(ndof);
-                            out[..ndof].copy_from_slice(q);
-                            sys.velocity(q, p, t, &mut out[ndof..])?;
-                        }
-                        Ok(if energy { sys.energy(out) } else { 0.0 })
-                    })
-                },
-            )?;
-            let stats = stepper.stats();
-            finish(system, result, &y, |extra| solver_extras(extra, &stats))
-        }
-        Method::Verlet | Method::Yoshida4 => Err(Error::UnsupportedMethod {
-            method: method.name().into(),
-            reason: "Lagrangian systems are integrated in canonical form, which is not \
-                     separable in general; use implicit_midpoint (symplectic) or rk4"
-                .into(),
-        }),
-    }
+    method.dispatch(Lagrangian(Run {
+        system,
+        setup,
+        options,
+    }))
 }
 
 /// Integrates a general ODE system (see [`OdeSystem::integrate`]).
@@ -122,16 +80,84 @@ pub fn integrate_ode<S: OdeSystem>(
     options: IntegrateOptions<'_>,
 ) -> Result<SimulationResult> {
     let setup = Setup::new(&*system, t_span, dt, None, &options)?;
-    match method {
-        Method::Rk4 | Method::ImplicitMidpoint => {
-            integrate_first_order(system, setup, method, options)
-        }
-        Method::Verlet | Method::Yoshida4 => Err(Error::UnsupportedMethod {
+    method.dispatch(Ode(Run {
+        system,
+        setup,
+        options,
+    }))
+}
+
+/// One validated call of a driver, waiting for its method's kind.
+struct Run<'s, 'o, S> {
+    system: &'s mut S,
+    setup: Setup,
+    options: IntegrateOptions<'o>,
+}
+
+/// The Hamiltonian family's handlers.
+struct Hamiltonian<'s, 'o, S>(Run<'s, 'o, S>);
+
+impl<S: HamiltonianSystem> Dispatch for Hamiltonian<'_, '_, S> {
+    type Output = Result<SimulationResult>;
+
+    fn splitting<const N: usize>(self, method: Method, drifts: [f64; N]) -> Self::Output {
+        integrate_splitting(self.0, method, drifts)
+    }
+
+    fn explicit_rk<St: FieldStepper>(self, method: Method) -> Self::Output {
+        integrate_first_order::<St, S>(self.0, method)
+    }
+
+    fn implicit_rk<St: FieldStepper>(self, method: Method) -> Self::Output {
+        integrate_first_order::<St, S>(self.0, method)
+    }
+}
+
+/// The Lagrangian family's handlers.
+struct Lagrangian<'s, 'o, S>(Run<'s, 'o, S>);
+
+impl<S: LagrangianSystem> Dispatch for Lagrangian<'_, '_, S> {
+    type Output = Result<SimulationResult>;
+
+    fn splitting<const N: usize>(self, method: Method, _drifts: [f64; N]) -> Self::Output {
+        Err(Error::UnsupportedMethod {
+            method: method.name().into(),
+            reason: "Lagrangian systems are integrated in canonical form, which is not \
+                     separable in general; use implicit_midpoint (symplectic) or rk4"
+                .into(),
+        })
+    }
+
+    fn explicit_rk<St: FieldStepper>(self, method: Method) -> Self::Output {
+        integrate_first_order::<St, S>(self.0, method)
+    }
+
+    fn implicit_rk<St: FieldStepper>(self, method: Method) -> Self::Output {
+        integrate_canonical::<St, S>(self.0, method)
+    }
+}
+
+/// The general-ODE family's handlers.
+struct Ode<'s, 'o, S>(Run<'s, 'o, S>);
+
+impl<S: OdeSystem> Dispatch for Ode<'_, '_, S> {
+    type Output = Result<SimulationResult>;
+
+    fn splitting<const N: usize>(self, method: Method, _drifts: [f64; N]) -> Self::Output {
+        Err(Error::UnsupportedMethod {
             method: method.name().into(),
             reason: "a general ODE system has no separable Hamiltonian structure; use \
                      implicit_midpoint or rk4"
                 .into(),
-        }),
+        })
+    }
+
+    fn explicit_rk<St: FieldStepper>(self, method: Method) -> Self::Output {
+        integrate_first_order::<St, S>(self.0, method)
+    }
+
+    fn implicit_rk<St: FieldStepper>(self, method: Method) -> Self::Output {
+        integrate_first_order::<St, S>(self.0, method)
     }
 }
 
@@ -140,50 +166,36 @@ pub fn integrate_ode<S: OdeSystem>(
 ///
 /// Systems of one or two degrees of freedom run with their state and force in fixed-length
 /// arrays, which the compiler keeps in registers across substeps and steps: through a `Vec`
-/// every kick waited for the previous substep's store to be forwarded to its load (the
-/// projectile: 17.4 -> 7.6 ns/step, Hénon–Heiles 33.5 -> 30.1; Rust API, best of 9).
+/// every kick waits for the previous substep's store to be forwarded to its load.
 fn integrate_splitting<S: HamiltonianSystem, const N: usize>(
-    system: &mut S,
-    setup: Setup,
+    run: Run<'_, '_, S>,
     method: Method,
-    options: IntegrateOptions<'_>,
     drifts: [f64; N],
 ) -> Result<SimulationResult> {
-    check_system(method, &*system)?;
-    let ndof = system.ndof();
+    check_system(method, &*run.system)?;
+    let ndof = run.system.ndof();
     match ndof {
         1 => {
-            let work = setup.start_in([0.0; 2]);
-            run_splitting(system, setup, method, options, drifts, [0.0; 1], work)
+            let work = run.setup.start_in([0.0; 2]);
+            run_splitting(run, method, drifts, [0.0; 1], work)
         }
         2 => {
-            let work = setup.start_in([0.0; 4]);
-            run_splitting(system, setup, method, options, drifts, [0.0; 2], work)
+            let work = run.setup.start_in([0.0; 4]);
+            run_splitting(run, method, drifts, [0.0; 2], work)
         }
         _ => {
-            let mut setup = setup;
-            let work = std::mem::take(&mut setup.start);
-            run_splitting(
-                system,
-                setup,
-                method,
-                options,
-                drifts,
-                vec![0.0; ndof],
-                work,
-            )
+            let mut run = run;
+            let work = std::mem::take(&mut run.setup.start);
+            run_splitting(run, method, drifts, vec![0.0; ndof], work)
         }
     }
 }
 
 /// The loop of [`integrate_splitting`] with the force cached in `force` and the state in
 /// `work`.
-#[allow(clippy::too_many_arguments)]
 fn run_splitting<S, const N: usize, B, W>(
-    system: &mut S,
-    setup: Setup,
+    run: Run<'_, '_, S>,
     method: Method,
-    options: IntegrateOptions<'_>,
     drifts: [f64; N],
     force: B,
     work: W,
@@ -193,80 +205,107 @@ where
     B: AsRef<[f64]> + AsMut<[f64]>,
     W: AsRef<[f64]> + AsMut<[f64]>,
 {
-    let ndof = system.ndof();
-    let dt = setup.grid.dt();
+    let Run {
+        system,
+        setup,
+        options,
+    } = run;
     let mut stepper = SplittingStepper::with_buffer(drifts, force);
     let sys = &*system;
-    // The potential of the state a step leaves, where the system computes it with the force.
-    let potential = Cell::new(None);
     let (result, y) = setup.run_from(
         work,
         method,
         options,
-        |t, y, stored| {
-            let (q, p) = y.split_at_mut(ndof);
-            potential.set(stepper.step_with_potential(sys, t, q, p, dt, stored)?);
-            Ok(())
-        },
-        StoreWithPotential {
-            system: sys,
-            potential: &potential,
-        },
+        sys,
+        &mut stepper,
+        StoreWithPotential(sys),
     )?;
-    finish(system, result, &y, |extra| {
-        extra.insert(
-            "force_evaluations".into(),
-            ExtraValue::Scalar(stepper.force_evaluations() as f64),
-        );
-    })
+    finish(system, result, &y, &stepper)
 }
 
-/// `rk4` or `implicit_midpoint` on the system's own first-order form.
-fn integrate_first_order<S: DynamicalSystem>(
-    system: &mut S,
-    setup: Setup,
+/// A method on the system's own first-order form, `derivatives(t, y)`, stepped by `St`.
+fn integrate_first_order<St: FieldStepper, S: DynamicalSystem>(
+    run: Run<'_, '_, S>,
     method: Method,
-    options: IntegrateOptions<'_>,
 ) -> Result<SimulationResult> {
+    let Run {
+        system,
+        setup,
+        options,
+    } = run;
     let sys = &*system;
     let field = FirstOrder(sys);
-    let dt = setup.grid.dt();
-    if method == Method::Rk4 {
-        let mut stepper = Rk4::new(field.dim());
-        let (result, y) = setup.run(
-            method,
-            options,
-            |t, y, _| stepper.step(&field, t, y, dt),
-            StoreAsIs(sys),
-        )?;
-        let evaluations = stepper.evaluations();
-        finish(system, result, &y, |extra| {
-            extra.insert(
-                "rhs_evaluations".into(),
-                ExtraValue::Scalar(evaluations as f64),
-            );
-        })
-    } else {
-        let mut stepper = ImplicitMidpoint::new(field.dim());
-        let (result, y) = setup.run(
-            method,
-            options,
-            |t, y, _| stepper.step(&field, t, y, dt),
-            StoreAsIs(sys),
-        )?;
-        let stats = stepper.stats();
-        finish(system, result, &y, |extra| solver_extras(extra, &stats))
-    }
+    let mut stepper = St::new(field.dim());
+    let (result, y) = setup.run(method, options, &field, &mut stepper, StoreAsIs(sys))?;
+    finish(system, result, &y, &stepper)
 }
 
-/// How the loop stores a sample of the working state: `store(recorder, t, y)` appends the
-/// stored form of `y` and returns its stored energy (0 when energies are not stored).
+/// A method on a Lagrangian system's canonical form `[q, p]`, stepped by `St`; each stored
+/// sample is converted back to `[q, qdot]`.
+fn integrate_canonical<St: FieldStepper, S: LagrangianSystem>(
+    run: Run<'_, '_, S>,
+    method: Method,
+) -> Result<SimulationResult> {
+    let Run {
+        system,
+        setup,
+        options,
+    } = run;
+    let sys = &*system;
+    let ndof = sys.ndof();
+    // Canonical start: p = dL/dqdot at (q0, qdot0).
+    let initial = setup.start.clone();
+    let mut work = initial.clone();
+    sys.momentum(
+        &initial[..ndof],
+        &initial[ndof..],
+        setup.grid.t0(),
+        &mut work[ndof..],
+    )?;
+    // The first sample is the initial state as given: converting qdot -> p -> qdot
+    // would change its last bits.
+    let mut first = Some(initial);
+    let field = Canonical(sys);
+    let mut stepper = St::new(2 * ndof);
+    let (result, y) = setup.run_from(
+        work,
+        method,
+        options,
+        &field,
+        &mut stepper,
+        |recorder: &mut Recorder, t: f64, y: &[f64], _potential: Option<f64>| {
+            let energy = recorder.stores_energy();
+            recorder.push_with(t, |out| {
+                if let Some(initial) = first.take() {
+                    out.copy_from_slice(&initial);
+                } else {
+                    let (q, p) = y.split_at(ndof);
+                    out[..ndof].copy_from_slice(q);
+                    sys.velocity(q, p, t, &mut out[ndof..])?;
+                }
+                Ok(if energy { sys.energy(out) } else { 0.0 })
+            })
+        },
+    )?;
+    finish(system, result, &y, &stepper)
+}
+
+/// How the loop stores a sample of the working state: `store(recorder, t, y, potential)`
+/// appends the stored form of `y` and returns its stored energy (0 when energies are not
+/// stored); `potential` is what the step that produced `y` returned from
+/// [`Stepper::step_sampled`].
 ///
 /// A trait rather than a closure so the common case, [`StoreAsIs`], is forced inline into the
-/// loop: as a call it cost ~40 instructions per sample of a 2-dof run. Closures (the
+/// loop (as a call it costs tens of instructions per sample of a small system). Closures (the
 /// Lagrangian conversion to `[q, qdot]`) implement it too.
 trait Sampler {
-    fn store(&mut self, recorder: &mut Recorder, t: f64, y: &[f64]) -> Result<f64>;
+    fn store(
+        &mut self,
+        recorder: &mut Recorder,
+        t: f64,
+        y: &[f64],
+        potential: Option<f64>,
+    ) -> Result<f64>;
 }
 
 /// Stores the working state as it is, with the system's energy.
@@ -274,7 +313,13 @@ struct StoreAsIs<'a, S: ?Sized>(&'a S);
 
 impl<S: DynamicalSystem + ?Sized> Sampler for StoreAsIs<'_, S> {
     #[inline(always)]
-    fn store(&mut self, recorder: &mut Recorder, t: f64, y: &[f64]) -> Result<f64> {
+    fn store(
+        &mut self,
+        recorder: &mut Recorder,
+        t: f64,
+        y: &[f64],
+        _potential: Option<f64>,
+    ) -> Result<f64> {
         let e = if recorder.stores_energy() {
             self.0.energy(y)
         } else {
@@ -288,18 +333,21 @@ impl<S: DynamicalSystem + ?Sized> Sampler for StoreAsIs<'_, S> {
 /// Stores the working state `[q, p]` of a Hamiltonian system with the energy
 /// `kinetic_energy(p) + V`, `V` the potential the step's last force evaluation returned
 /// ([`HamiltonianSystem::force_and_potential`]); with none, with `energy`.
-struct StoreWithPotential<'a, S: ?Sized> {
-    system: &'a S,
-    potential: &'a Cell<Option<f64>>,
-}
+struct StoreWithPotential<'a, S: ?Sized>(&'a S);
 
 impl<S: HamiltonianSystem + ?Sized> Sampler for StoreWithPotential<'_, S> {
     #[inline(always)]
-    fn store(&mut self, recorder: &mut Recorder, t: f64, y: &[f64]) -> Result<f64> {
+    fn store(
+        &mut self,
+        recorder: &mut Recorder,
+        t: f64,
+        y: &[f64],
+        potential: Option<f64>,
+    ) -> Result<f64> {
         let e = if recorder.stores_energy() {
-            match self.potential.take() {
-                Some(v) => self.system.kinetic_energy(&y[self.system.ndof()..]) + v,
-                None => self.system.energy(y),
+            match potential {
+                Some(v) => self.0.kinetic_energy(&y[self.0.ndof()..]) + v,
+                None => self.0.energy(y),
             }
         } else {
             0.0
@@ -309,39 +357,29 @@ impl<S: HamiltonianSystem + ?Sized> Sampler for StoreWithPotential<'_, S> {
     }
 }
 
-impl<F: FnMut(&mut Recorder, f64, &[f64]) -> Result<f64>> Sampler for F {
+impl<F: FnMut(&mut Recorder, f64, &[f64], Option<f64>) -> Result<f64>> Sampler for F {
     #[inline(always)]
-    fn store(&mut self, recorder: &mut Recorder, t: f64, y: &[f64]) -> Result<f64> {
-        self(recorder, t, y)
+    fn store(
+        &mut self,
+        recorder: &mut Recorder,
+        t: f64,
+        y: &[f64],
+        potential: Option<f64>,
+    ) -> Result<f64> {
+        self(recorder, t, y, potential)
     }
 }
 
-fn solver_extras(
-    extra: &mut BTreeMap<String, ExtraValue>,
-    stats: &super::implicit_midpoint::SolverStats,
-) {
-    let steps = stats.steps.max(1) as f64;
-    for (name, value) in [
-        ("rhs_evaluations", stats.evaluations as f64),
-        ("jacobian_evaluations", stats.jacobians as f64),
-        ("newton_steps", stats.newton_steps as f64),
-        ("solver_iterations_max", stats.max_iterations as f64),
-        ("solver_evaluations_mean", stats.evaluations as f64 / steps),
-        ("solver_residual_max", stats.max_residual),
-    ] {
-        extra.insert(name.into(), ExtraValue::Scalar(value));
-    }
-}
-
-/// Writes the final sample back into the system and adds the extras.
+/// Writes the final sample back into the system and adds the stepper's statistics to the
+/// extras.
 fn finish<S: DynamicalSystem>(
     system: &mut S,
     (mut result, t_end): (SimulationResult, f64),
     final_state: &[f64],
-    add: impl FnOnce(&mut BTreeMap<String, ExtraValue>),
+    stepper: &impl Report,
 ) -> Result<SimulationResult> {
     system.phase_mut().assign_unchecked(final_state, t_end);
-    add(&mut result.extra);
+    stepper.report(&mut result.extra);
     Ok(result)
 }
 
@@ -392,28 +430,29 @@ impl Setup {
     }
 
     /// [`run_from`](Self::run_from) the validated initial state.
-    fn run(
+    fn run<P: ?Sized, St: Stepper<P>>(
         mut self,
         method: Method,
         options: IntegrateOptions<'_>,
-        step: impl FnMut(f64, &mut [f64], bool) -> Result<()>,
+        problem: &P,
+        stepper: &mut St,
         sample: impl Sampler,
     ) -> Result<((SimulationResult, f64), Vec<f64>)> {
         let work = std::mem::take(&mut self.start);
-        self.run_from(work, method, options, step, sample)
+        self.run_from(work, method, options, problem, stepper, sample)
     }
 
-    /// The loop: `step(t, y, stored)` advances the working state `y` by one step from `t`
-    /// (`stored`: the new state is stored with its energy);
-    /// `sample(recorder, t, y)` stores the stored form of `y` and returns its stored energy (0
-    /// if energies are not stored). Returns the result, its final time and the final stored
-    /// state.
-    fn run_from<S2: Sampler, W: AsRef<[f64]> + AsMut<[f64]>>(
+    /// The loop: `stepper` advances the working state `work` on `problem` by one step of the
+    /// grid's `dt` at a time; `sample(recorder, t, y, potential)` stores the stored form of `y`
+    /// and returns its stored energy (0 if energies are not stored). Returns the result, its
+    /// final time and the final stored state.
+    fn run_from<P: ?Sized, St: Stepper<P>, S2: Sampler, W: AsRef<[f64]> + AsMut<[f64]>>(
         self,
         mut work: W,
         method: Method,
         mut options: IntegrateOptions<'_>,
-        mut step: impl FnMut(f64, &mut [f64], bool) -> Result<()>,
+        problem: &P,
+        stepper: &mut St,
         mut sample: S2,
     ) -> Result<((SimulationResult, f64), Vec<f64>)> {
         let Setup {
@@ -425,16 +464,17 @@ impl Setup {
         // Per sample only the energy is checked (a scalar); the whole state is checked every
         // `interval` steps and at the end, and a blow-up is then reported at the first stored
         // sample that holds it.
-        // A function, not a closure, so that it can be forced inline: as a call it cost ~40
-        // instructions per sample of a 2-dof run.
+        // A function, not a closure, so that it can be forced inline: as a call it costs tens
+        // of instructions per sample of a small system.
         #[inline(always)]
         fn store<S2: Sampler>(
             recorder: &mut Recorder,
             t: f64,
             work: &[f64],
+            potential: Option<f64>,
             sample: &mut S2,
         ) -> Result<()> {
-            if sample.store(recorder, t, work)?.is_finite() {
+            if sample.store(recorder, t, work, potential)?.is_finite() {
                 Ok(())
             } else {
                 Err(Error::NonFinite {
@@ -453,16 +493,19 @@ impl Setup {
                 })
             }
         };
-        store(&mut recorder, grid.t0(), work.as_ref(), &mut sample)?;
+        store(&mut recorder, grid.t0(), work.as_ref(), None, &mut sample)?;
+        let dt = grid.dt();
         let mut next_stored = sampling.next_stored(0, n);
         let mut until_observe = interval;
         let energies = recorder.stores_energy();
         for i in 0..n {
             let done = i + 1;
-            step(grid.time(i), work.as_mut(), energies && done == next_stored)?;
+            let stored = energies && done == next_stored;
+            let potential =
+                stepper.step_sampled(problem, grid.time(i), work.as_mut(), dt, stored)?;
             let t = grid.time(done);
             if done == next_stored {
-                store(&mut recorder, t, work.as_ref(), &mut sample)?;
+                store(&mut recorder, t, work.as_ref(), potential, &mut sample)?;
                 next_stored = sampling.next_stored(done, n);
             }
             until_observe -= 1;

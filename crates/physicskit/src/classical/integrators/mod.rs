@@ -1,28 +1,43 @@
-//! The fixed-step integrators, one file per method, and the drivers that run them.
+//! The integrators, one file per method, the steppers they share and the drivers that run
+//! them.
 //!
-//! | method | file | order | evaluations per step | structure kept |
-//! |---|---|---|---|---|
-//! | `verlet` | [`verlet`] | 2 | 1 force (first same as last) | symplectic, time-reversible |
-//! | `yoshida4` | [`yoshida4`] | 4 | 3 forces (first same as last) | symplectic, time-reversible |
-//! | `rk4` | [`rk4`] | 4 | 4 right-hand sides | none (energy drifts) |
-//! | `implicit_midpoint` | [`implicit_midpoint`] | 2 | 2 right-hand sides at small steps (iterated to the rounding floor) | symplectic for any `H`, reversible, every quadratic invariant |
+//! Each method's file declares its facts as `pub const INFO: MethodInfo` (name, order,
+//! symplecticity, whether it needs a separable Hamiltonian, evaluations per step, reference,
+//! and its [`Scheme`](crate::classical::core::method::Scheme)); the list below is the one
+//! registry of methods, from which [`Method`], [`Method::ALL`], [`Method::info`],
+//! [`Method::dispatch`] and [`methods`] are generated (by the macro in `registry.rs`).
 //!
-//! `verlet` and `yoshida4` share one kick–drift–kick loop ([`splitting`]) and differ only in
-//! their coefficients. The steppers are public for users who drive steps themselves (with
-//! either sign of `dt`); `integrate` goes through [`driver`], which validates inputs, allocates
-//! once and records samples.
+//! - Splitting methods (`verlet`, `yoshida4`) are a coefficient array in their file; one
+//!   kick–drift–kick loop ([`splitting`]) runs them all. Adding one is a new file with its
+//!   `DRIFTS` and `INFO` plus one line below.
+//! - Methods on a vector field name their [`FieldStepper`]: `rk4` ([`rk4`]) and the implicit
+//!   Runge–Kutta methods, which share one solve ([`implicit_solve`]): `implicit_midpoint` is
+//!   its one-stage tableau.
+//!
+//! The steppers are public for users who drive steps themselves (with either sign of `dt`);
+//! `integrate` goes through [`driver`], which validates inputs, allocates once, dispatches on
+//! the method's kind and runs one generic loop over a [`Stepper`].
+
+mod registry;
+
+registry::registry! {
+    Rk4 = rk4(Rk4),
+    Verlet = verlet,
+    Yoshida4 = yoshida4,
+    ImplicitMidpoint = implicit_midpoint(ImplicitMidpoint),
+}
 
 pub mod driver;
 pub mod ensemble;
 pub mod field;
-pub mod implicit_midpoint;
-pub mod rk4;
+pub mod implicit_solve;
 pub mod splitting;
-pub mod verlet;
-pub mod yoshida4;
+pub mod stepper;
 
 pub use ensemble::{integrate_ensemble, Ensemble, ENSEMBLE_CHUNK};
 pub use field::{Canonical, FirstOrder, VectorField};
-pub use implicit_midpoint::{ImplicitMidpoint, SolverSettings, SolverStats};
+pub use implicit_midpoint::ImplicitMidpoint;
+pub use implicit_solve::{ButcherTableau, ImplicitRk, SolverSettings, SolverStats, Tableau};
 pub use rk4::Rk4;
 pub use splitting::{SplittingStepper, VerletStepper, Yoshida4Stepper};
+pub use stepper::{Dispatch, FieldStepper, Report, Stepper};

@@ -9,8 +9,25 @@
 //! W. Kutta (1901). Order 4, four evaluations per step, not symplectic: on conservative
 //! systems the energy error grows linearly in time.
 
+use std::collections::BTreeMap;
+
 use super::field::VectorField;
-use crate::classical::core::Result;
+use super::stepper::{FieldStepper, Report};
+use crate::classical::core::method::{MethodInfo, Scheme};
+use crate::classical::core::{ExtraValue, Result};
+
+/// The facts about `rk4`.
+pub const INFO: MethodInfo = MethodInfo {
+    name: "rk4",
+    summary: "classical fourth-order Runge–Kutta; energy drifts",
+    order: 4,
+    symplectic: false,
+    separable_only: false,
+    evaluations_per_step: 4,
+    evaluations: "right-hand-side evaluations, exact",
+    reference: "W. Kutta, Z. Math. Phys. 46 (1901) 435–453",
+    scheme: Scheme::ExplicitRk,
+};
 
 /// Work buffers of the classical Runge–Kutta method, allocated once.
 #[derive(Debug, Clone)]
@@ -67,6 +84,33 @@ impl Rk4 {
             *yi += sixth * (self.k1[i] + 2.0 * (self.k2[i] + self.k3[i]) + self.k4[i]);
         }
         Ok(())
+    }
+}
+
+impl FieldStepper for Rk4 {
+    fn new(dim: usize) -> Self {
+        Rk4::new(dim)
+    }
+
+    #[inline(always)]
+    fn step_field<F: VectorField + ?Sized>(
+        &mut self,
+        f: &F,
+        t: f64,
+        y: &mut [f64],
+        h: f64,
+    ) -> Result<()> {
+        self.step(f, t, y, h)
+    }
+}
+
+impl Report for Rk4 {
+    /// `rhs_evaluations`.
+    fn report(&self, extra: &mut BTreeMap<String, ExtraValue>) {
+        extra.insert(
+            "rhs_evaluations".into(),
+            ExtraValue::Scalar(self.evaluations as f64),
+        );
     }
 }
 

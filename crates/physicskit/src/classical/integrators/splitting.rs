@@ -9,16 +9,26 @@
 //! which is `s` Verlet substeps with the touching half-kicks merged. The force after the last
 //! drift is cached and reused as the first kick of the next step (first same as last), so a
 //! step costs `s` force evaluations. As in OrdinaryDiffEq's symplectic tableaus, the methods
-//! differ only in their weights ([`verlet::DRIFTS`](super::verlet::DRIFTS),
-//! [`yoshida4::DRIFTS`](super::yoshida4::DRIFTS)).
+//! differ only in their weights, declared in each method's file as the
+//! [`Scheme::Splitting`](crate::classical::core::method::Scheme::Splitting) of its `INFO`
+//! ([`verlet::DRIFTS`](super::verlet::DRIFTS), [`yoshida4::DRIFTS`](super::yoshida4::DRIFTS)).
+//!
+//! The number of substeps is a const parameter of [`SplittingStepper`], so the substep loop
+//! unrolls and each kick fuses with the following drift into one pass over the coordinates.
+//! Short slices (up to three coordinates) run a fixed-length copy of that pass, long ones
+//! (from 64) the SSE2/AVX2/AVX-512 clone the CPU supports.
+
+use std::collections::BTreeMap;
 
 use multiversion::multiversion;
 
-use crate::classical::core::{Error, HamiltonianSystem, MassInv, Method, Result};
+use super::stepper::{Report, Stepper};
+use crate::classical::core::{Error, ExtraValue, HamiltonianSystem, MassInv, Method, Result};
 
 /// Kick–drift–kick stepper for a separable Hamiltonian system, for a composition of `S`
 /// Verlet substeps (`S = 1`: verlet, `S = 3`: yoshida4). `S` is a compile-time constant so the
-/// substep loop unrolls and each kick fuses with the following drift into one pass.
+/// substep loop unrolls and each kick fuses with the following drift into one pass. As a
+/// [`Stepper`] it advances the state `y = [q, p]`.
 ///
 /// `B` holds the cached force: a `Vec` (any size), or for small systems a fixed-length array
 /// ([`with_buffer`](Self::with_buffer)), which the compiler can keep in registers.
@@ -188,13 +198,50 @@ impl<const S: usize, B: AsRef<[f64]> + AsMut<[f64]>> SplittingStepper<S, B> {
     }
 }
 
+impl<const S: usize, B, H> Stepper<H> for SplittingStepper<S, B>
+where
+    B: AsRef<[f64]> + AsMut<[f64]>,
+    H: HamiltonianSystem + ?Sized,
+{
+    /// Advances `y = [q, p]` (see [`SplittingStepper::step`]).
+    #[inline(always)]
+    fn step(&mut self, system: &H, t: f64, y: &mut [f64], h: f64) -> Result<()> {
+        self.step_sampled(system, t, y, h, false).map(|_| ())
+    }
+
+    /// Returns the potential of the new `q` when `stored` and the system supplies it with the
+    /// force ([`step_with_potential`](SplittingStepper::step_with_potential)).
+    #[inline(always)]
+    fn step_sampled(
+        &mut self,
+        system: &H,
+        t: f64,
+        y: &mut [f64],
+        h: f64,
+        stored: bool,
+    ) -> Result<Option<f64>> {
+        let (q, p) = y.split_at_mut(y.len() / 2);
+        self.step_with_potential(system, t, q, p, h, stored)
+    }
+}
+
+impl<const S: usize, B> Report for SplittingStepper<S, B> {
+    /// `force_evaluations`.
+    fn report(&self, extra: &mut BTreeMap<String, ExtraValue>) {
+        extra.insert(
+            "force_evaluations".into(),
+            ExtraValue::Scalar(self.force_evaluations as f64),
+        );
+    }
+}
+
 /// `p += kick * F; q += drift * mass_inv * p`, fused into one pass.
 ///
 /// Systems with up to three degrees of freedom (Kepler, Hénon–Heiles, the projectile, a
 /// pendulum) take a fixed-length copy of the loop: a runtime-length loop over two elements
-/// spent more instructions on its own control than on the arithmetic (43 of ~270 per
-/// projectile step). The length test is one well-predicted branch. From [`DISPATCH_MIN`]
-/// coordinates on, the loop runs in the AVX2/AVX-512 clone this CPU supports.
+/// spends more instructions on its own control than on the arithmetic. The length test is one
+/// well-predicted branch. From [`DISPATCH_MIN`] coordinates on, the loop runs in the
+/// AVX2/AVX-512 clone this CPU supports.
 #[inline(always)]
 fn kick_drift(
     mass_inv: MassInv<'_>,
@@ -222,9 +269,9 @@ fn kick_drift(
 }
 
 /// Shortest slices worth the indirect call into the SIMD clones below (the generic integrator
-/// itself is compiled for the baseline, SSE2). Measured, Rust API, best of 5, three rounds:
-/// sine-Gordon (100 sites) 1550 -> 1411 ns/step, swarm (200) 2435 -> 2299; at a threshold of
-/// 32 the FPUT chain (32 sites) went 366 -> 459, so it stays inline.
+/// itself is compiled for the baseline, SSE2). Chosen by measurement: the 100-site sine-Gordon
+/// chain and the 200-pendulum swarm gain from the clones, while the 32-site FPUT chain lost
+/// more to the call than it gained (figures in `benchmarks/README.md`), so it stays inline.
 const DISPATCH_MIN: usize = 64;
 
 // The kick-drift loops of long slices, compiled for SSE2, AVX2 and AVX-512 and chosen at run

@@ -11,5 +11,21 @@
 //! as the next step's first kick, so a step costs one force evaluation. Needs a separable
 //! `H = T(p) + V(q)` with conservative forces.
 
+use crate::classical::core::method::{MethodInfo, Scheme};
+
 /// Drift weights: a single full drift.
 pub const DRIFTS: [f64; 1] = [1.0];
+
+/// The facts about `verlet`.
+pub const INFO: MethodInfo = MethodInfo {
+    name: "verlet",
+    summary: "Störmer–Verlet leapfrog, kick–drift–kick",
+    order: 2,
+    symplectic: true,
+    separable_only: true,
+    evaluations_per_step: 1,
+    evaluations: "force evaluations, exact (the last force is reused as the next step's first)",
+    reference: "L. Verlet, Phys. Rev. 159 (1967) 98; Hairer, Lubich, Wanner, Geometric \
+                Numerical Integration (2006), §I.3",
+    scheme: Scheme::Splitting { drifts: &DRIFTS },
+};

@@ -12,6 +12,8 @@
 //! consecutive substeps merge, so a step costs three force evaluations, and the last force is
 //! reused by the next step. Needs a separable `H = T(p) + V(q)` with conservative forces.
 
+use crate::classical::core::method::{MethodInfo, Scheme};
+
 /// `w1 = 1 / (2 - 2^(1/3))`, the outer substep weight.
 pub const W1: f64 = 1.351_207_191_959_657_6;
 
@@ -20,6 +22,19 @@ pub const W0: f64 = -1.702_414_383_919_315_3;
 
 /// Drift weights of the three substeps.
 pub const DRIFTS: [f64; 3] = [W1, W0, W1];
+
+/// The facts about `yoshida4`.
+pub const INFO: MethodInfo = MethodInfo {
+    name: "yoshida4",
+    summary: "Yoshida's fourth-order triple-jump composition of Störmer–Verlet",
+    order: 4,
+    symplectic: true,
+    separable_only: true,
+    evaluations_per_step: 3,
+    evaluations: "force evaluations, exact (touching half-kicks merged, the last force reused)",
+    reference: "H. Yoshida, Phys. Lett. A 150 (1990) 262–268",
+    scheme: Scheme::Splitting { drifts: &DRIFTS },
+};
 
 #[cfg(test)]
 mod tests {

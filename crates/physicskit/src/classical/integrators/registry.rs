@@ -1,0 +1,131 @@
+//! The macro that turns the one list of methods in [`integrators`](super) into the [`Method`]
+//! enum, [`Method::ALL`], [`Method::info`], [`Method::dispatch`] and [`methods`](super::methods).
+//!
+//! A line of the list is `Variant = module` for a splitting method and
+//! `Variant = module(Stepper)` for a method on a vector field, `module` being the method's file
+//! (its name is the method's spec name) and `Stepper` the [`FieldStepper`](super::FieldStepper)
+//! it declares. Everything else comes from the file's `INFO`: the kind of the method is
+//! `INFO.scheme`, read at compile time. A splitting line takes its drift weights (and their
+//! number, the const parameter of [`SplittingStepper`](super::SplittingStepper)) from the
+//! scheme; a vector-field line is sent to [`Dispatch::explicit_rk`](super::Dispatch) or
+//! [`Dispatch::implicit_rk`](super::Dispatch) by the scheme. A line that contradicts its
+//! `INFO` (a splitting line whose scheme is not [`Scheme::Splitting`], or a stepper given for a
+//! splitting scheme) is a compile-time error, and every match on the scheme is exhaustive.
+//!
+//! [`Method`]: super::Method
+//! [`Method::ALL`]: super::Method::ALL
+//! [`Method::info`]: super::Method::info
+//! [`Method::dispatch`]: super::Method::dispatch
+
+use crate::classical::core::method::{MethodInfo, Scheme};
+
+/// Number of substeps of a splitting method. Evaluated at compile time for each splitting line
+/// of the registry, where a scheme of another kind fails the build.
+pub(crate) const fn splitting_len(info: &MethodInfo) -> usize {
+    match info.scheme {
+        Scheme::Splitting { drifts } => drifts.len(),
+        Scheme::ExplicitRk | Scheme::ImplicitRk => {
+            panic!("a registry line without a stepper must be a splitting method")
+        }
+    }
+}
+
+/// The drift weights of a splitting method as an array of its length `N`
+/// ([`splitting_len`]), evaluated at compile time.
+pub(crate) const fn splitting_drifts<const N: usize>(info: &MethodInfo) -> [f64; N] {
+    let mut out = [0.0; N];
+    if let Scheme::Splitting { drifts } = info.scheme {
+        let mut i = 0;
+        while i < N {
+            out[i] = drifts[i];
+            i += 1;
+        }
+    }
+    out
+}
+
+/// The kinds of method that run on a vector field.
+pub(crate) enum FieldKind {
+    Explicit,
+    Implicit,
+}
+
+/// The vector-field kind of a method, evaluated at compile time for each registry line that
+/// names a stepper, where a splitting scheme fails the build.
+pub(crate) const fn field_kind(info: &MethodInfo) -> FieldKind {
+    match info.scheme {
+        Scheme::ExplicitRk => FieldKind::Explicit,
+        Scheme::ImplicitRk => FieldKind::Implicit,
+        Scheme::Splitting { .. } => {
+            panic!(
+                "a splitting method takes no stepper in the registry: it runs on SplittingStepper"
+            )
+        }
+    }
+}
+
+/// Generates the method modules, [`Method`](super::Method) and its table from the registry
+/// list (see the module docs).
+macro_rules! registry {
+    ($($variant:ident = $module:ident $(($stepper:ident))?),+ $(,)?) => {
+        $(pub mod $module;)+
+
+        /// A fixed-step integrator, named as in the spec. Generated from the registry list in
+        /// [`integrators`](crate::classical::integrators); each variant's facts are the
+        /// `INFO` of its file ([`Method::info`]).
+        #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
+        pub enum Method {
+            $(
+                #[doc = concat!("`\"", stringify!($module), "\"`: see [`", stringify!($module),
+                    "`](crate::classical::integrators::", stringify!($module), ").")]
+                $variant,
+            )+
+        }
+
+        impl Method {
+            /// Every method, in the order they are listed to users (the registry's).
+            pub const ALL: [Method; [$(stringify!($variant)),+].len()] = [$(Method::$variant),+];
+
+            /// The facts the method's file declares.
+            pub const fn info(self) -> &'static $crate::classical::core::method::MethodInfo {
+                match self {
+                    $(Method::$variant => &$module::INFO,)+
+                }
+            }
+
+            /// Calls the one method of `dispatch` that handles this method's kind, with its
+            /// drift weights or its stepper type.
+            #[inline]
+            pub fn dispatch<D: Dispatch>(self, dispatch: D) -> D::Output {
+                match self {
+                    $(Method::$variant => registry::registry!(@arm dispatch, $variant, $module $(, $stepper)?),)+
+                }
+            }
+        }
+
+        /// The facts about every method, in [`Method::ALL`]'s order: the table that
+        /// `physicskit list` and Python's `physicskit.classical.methods()` show.
+        pub fn methods() -> &'static [$crate::classical::core::method::MethodInfo] {
+            const TABLE: &[$crate::classical::core::method::MethodInfo] = &[$($module::INFO),+];
+            TABLE
+        }
+    };
+    (@arm $dispatch:ident, $variant:ident, $module:ident) => {{
+        const N: usize = registry::splitting_len(&$module::INFO);
+        const DRIFTS: [f64; N] = registry::splitting_drifts(&$module::INFO);
+        $dispatch.splitting(Method::$variant, DRIFTS)
+    }};
+    (@arm $dispatch:ident, $variant:ident, $module:ident, $stepper:ident) => {{
+        const KIND: registry::FieldKind = registry::field_kind(&$module::INFO);
+        match KIND {
+            registry::FieldKind::Explicit => {
+                $dispatch.explicit_rk::<$module::$stepper>(Method::$variant)
+            }
+            registry::FieldKind::Implicit => {
+                $dispatch.implicit_rk::<$module::$stepper>(Method::$variant)
+            }
+        }
+    }};
+}
+
+pub(crate) use registry;

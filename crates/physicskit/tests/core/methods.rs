@@ -1,0 +1,212 @@
+//! The method table: each entry's declared facts against its own data and against what a run
+//! measures, and the dispatch from a method to its loop. Everything iterates the registry, so
+//! a new method is checked here without editing this file.
+
+use super::fixtures::{LagrangianPendulum, NonSeparable, Scalar};
+use physicskit::classical::core::method::Scheme;
+use physicskit::classical::examples::Pendulum;
+use physicskit::classical::integrators::{Dispatch, FieldStepper};
+use physicskit::classical::{
+    methods, Error, HamiltonianSystem, LagrangianSystem, Method, OdeSystem, Phase, Result,
+    SimulationResult,
+};
+
+#[test]
+fn names_round_trip_through_from_str() {
+    for info in methods() {
+        let method: Method = info.name.parse().unwrap();
+        assert_eq!(method.info(), info, "{}", info.name);
+        assert_eq!(method.to_string(), info.name);
+    }
+    // The names are distinct, so each parses to one method only.
+    for (i, a) in methods().iter().enumerate() {
+        assert!(
+            methods()[..i].iter().all(|b| b.name != a.name),
+            "{}",
+            a.name
+        );
+    }
+}
+
+#[test]
+fn splitting_drifts_sum_to_one_and_are_symmetric() {
+    let mut splitting = 0;
+    for method in Method::ALL {
+        let info = method.info();
+        let Scheme::Splitting { drifts } = info.scheme else {
+            continue;
+        };
+        splitting += 1;
+        // A splitting method integrates only H = T(p) + V(q), is symplectic, and its substeps
+        // add up to one step: sum w_i = 1, each w_i rounded once, so the sum is within
+        // s roundings of 1 in the largest weight's ulp.
+        assert!(info.separable_only && info.symplectic, "{method}");
+        let sum: f64 = drifts.iter().sum();
+        let largest = drifts.iter().fold(0.0_f64, |m, w| m.max(w.abs()));
+        let tolerance = drifts.len() as f64 * f64::EPSILON * largest;
+        assert!(
+            (sum - 1.0).abs() <= tolerance,
+            "{method}: drifts sum to {sum}"
+        );
+        // The loop is written for symmetric compositions (time-reversible, even order): the
+        // weights read the same backwards, bit for bit.
+        assert!(
+            drifts
+                .iter()
+                .zip(drifts.iter().rev())
+                .all(|(a, b)| a.to_bits() == b.to_bits()),
+            "{method}: drifts not symmetric: {drifts:?}"
+        );
+    }
+    assert!(splitting > 0, "no splitting method in the table");
+}
+
+#[test]
+fn only_splitting_methods_are_separable_only() {
+    for method in Method::ALL {
+        let info = method.info();
+        let splitting = matches!(info.scheme, Scheme::Splitting { .. });
+        assert_eq!(info.separable_only, splitting, "{method}");
+    }
+}
+
+/// Where the dispatch sent a method: its kind, the method it was told, and the drift weights
+/// (bits) or the stepper type.
+#[derive(Debug, Clone, PartialEq)]
+enum Route {
+    Splitting(Method, Vec<u64>),
+    Explicit(Method, &'static str),
+    Implicit(Method, &'static str),
+}
+
+struct Probe;
+
+impl Dispatch for Probe {
+    type Output = Route;
+
+    fn splitting<const N: usize>(self, method: Method, drifts: [f64; N]) -> Route {
+        Route::Splitting(method, drifts.iter().map(|w| w.to_bits()).collect())
+    }
+
+    fn explicit_rk<St: FieldStepper>(self, method: Method) -> Route {
+        Route::Explicit(method, std::any::type_name::<St>())
+    }
+
+    fn implicit_rk<St: FieldStepper>(self, method: Method) -> Route {
+        Route::Implicit(method, std::any::type_name::<St>())
+    }
+}
+
+#[test]
+fn every_method_is_dispatched_to_its_own_path() {
+    let mut paths = Vec::new();
+    for method in Method::ALL {
+        let route = method.dispatch(Probe);
+        // The kind the registry dispatched on is the one the method's file declares, with the
+        // file's own coefficients.
+        let path = match (&route, method.info().scheme) {
+            (Route::Splitting(m, bits), Scheme::Splitting { drifts }) if *m == method => {
+                let declared: Vec<u64> = drifts.iter().map(|w| w.to_bits()).collect();
+                assert_eq!(bits, &declared, "{method}");
+                format!("splitting {bits:?}")
+            }
+            (Route::Explicit(m, stepper), Scheme::ExplicitRk) if *m == method => {
+                format!("explicit {stepper}")
+            }
+            (Route::Implicit(m, stepper), Scheme::ImplicitRk) if *m == method => {
+                format!("implicit {stepper}")
+            }
+            (route, scheme) => panic!("{method}: dispatched as {route:?}, declared {scheme:?}"),
+        };
+        // No two methods share a path (coefficients or stepper): none runs as another.
+        assert!(
+            !paths.contains(&path),
+            "{method} runs on the path of another: {path}"
+        );
+        paths.push(path);
+    }
+}
+
+/// Right-hand-side or force evaluations of a run, as its stepper reported them.
+fn evaluations(result: &SimulationResult) -> f64 {
+    result
+        .extra_scalar("force_evaluations")
+        .or_else(|| result.extra_scalar("rhs_evaluations"))
+        .expect("every stepper reports its evaluations")
+}
+
+#[test]
+fn each_method_spends_the_evaluations_it_declares() {
+    // A pendulum at a small step, where the implicit solve takes its typical count. The count
+    // tells the methods apart (1, 3, 4 and ~2 today), so a method sent down another's loop
+    // fails here even where its order would not give it away.
+    let n = 10_000;
+    let dt = 1e-3;
+    for method in Method::ALL {
+        let info = method.info();
+        let result = Pendulum::new(1.0, 0.0, 1.0)
+            .unwrap()
+            .integrate((0.0, n as f64 * dt), dt, method)
+            .unwrap();
+        assert_eq!(result.method, info.name);
+        let declared = f64::from(info.evaluations_per_step) * n as f64;
+        let spent = evaluations(&result);
+        println!("{method}: {} evaluations per step", spent / n as f64);
+        match info.scheme {
+            // The first force of the run is evaluated once more; after that, first same as last.
+            Scheme::Splitting { .. } => assert_eq!(spent, declared + 1.0, "{method}"),
+            Scheme::ExplicitRk => assert_eq!(spent, declared, "{method}"),
+            // Typical count: the solve's first step adds an explicit evaluation and a few steps
+            // may take a third sweep; 0.5% over the declared count allows 50 of those in 1e4
+            // steps (measured for implicit_midpoint: 2.0001 per step).
+            Scheme::ImplicitRk => {
+                assert!(
+                    spent >= declared && spent <= 1.005 * declared,
+                    "{method}: {} evaluations per step, declared {}",
+                    spent / n as f64,
+                    info.evaluations_per_step
+                );
+            }
+        }
+    }
+}
+
+/// `Ok` or the refusal a method not built for the family must give.
+fn accepted(result: Result<SimulationResult>, method: Method) -> bool {
+    match result {
+        Ok(r) => {
+            assert_eq!(r.method, method.name());
+            true
+        }
+        Err(Error::UnsupportedMethod { method: name, .. }) => {
+            assert_eq!(name, method.name());
+            false
+        }
+        Err(e) => panic!("{method}: unexpected error {e}"),
+    }
+}
+
+#[test]
+fn each_family_accepts_exactly_the_methods_the_table_allows() {
+    for method in Method::ALL {
+        let general = !method.info().separable_only;
+        let span = (0.0, 0.1);
+        let separable = Pendulum::new(1.0, 0.0, 1.0)
+            .unwrap()
+            .integrate(span, 0.01, method);
+        assert!(
+            accepted(separable, method),
+            "{method} on a separable system"
+        );
+        let non_separable = NonSeparable::new(0.5, 0.1).integrate(span, 0.01, method);
+        assert_eq!(accepted(non_separable, method), general, "{method}");
+        let lagrangian = LagrangianPendulum::new(0.5, 0.1).integrate(span, 0.01, method);
+        assert_eq!(accepted(lagrangian, method), general, "{method}");
+        let mut decay = Scalar {
+            phase: Phase::new(vec![1.0], 0.0).unwrap(),
+            f: |y| -y,
+        };
+        let ode = decay.integrate(span, 0.01, method);
+        assert_eq!(accepted(ode, method), general, "{method}");
+    }
+}
