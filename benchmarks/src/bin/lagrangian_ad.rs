@@ -33,11 +33,14 @@ const HEAVY_TOP: &str = "(+ (* 0.5 param0 (+ (^ qdot1 2) (* (^ qdot0 2) (^ (sin 
      (* 0.5 param1 (^ (+ qdot2 (* qdot0 (cos q1))) 2)) \
      (* -1 param2 (cos q1)))";
 
+/// The trajectory of a run and the final state `[q, qdot]`.
+type Run = Result<(SimulationResult, Vec<f64>)>;
+
 /// One case: name, time step, and a run of `steps` steps with a method.
 struct Case {
     name: &'static str,
     dt: f64,
-    run: fn(usize, f64, Method) -> Result<(SimulationResult, Vec<f64>)>,
+    run: fn(usize, f64, Method) -> Run,
 }
 
 fn run<L: Lagrangian>(
@@ -47,7 +50,7 @@ fn run<L: Lagrangian>(
     steps: usize,
     dt: f64,
     method: Method,
-) -> Result<(SimulationResult, Vec<f64>)> {
+) -> Run {
     let mut system = LagrangianModel::new(lagrangian, q0, qdot0)?;
     let result = system.integrate((0.0, steps as f64 * dt), dt, method)?;
     Ok((result, system.phase().state().to_vec()))
