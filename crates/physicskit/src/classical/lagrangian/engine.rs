@@ -33,20 +33,10 @@
 //! hides its closed forms: that engine is the independent check of them
 //! (`tests/lagrangian_closed_forms.rs`).
 //!
-//! Measured (callgrind, instructions per step including `sin`/`cos` and the integrator's own
-//! work, every sample and its energy stored), closed forms against automatic differentiation:
-//!
-//! | workload                                   | automatic | closed |
-//! |--------------------------------------------|-----------|--------|
-//! | double pendulum `implicit_midpoint`, 3e-5  | 4.8k      | 2.1k   |
-//! | double pendulum `rk4`, 3e-5                | 3.7k      | 1.6k   |
-//! | hoop `implicit_midpoint`, 2.2e-5           | 2.1k      | 1.1k   |
-//! | coupled oscillators `implicit_midpoint`, 1e-4 | 5.1k   | 2.0k   |
-//! | heavy top `implicit_midpoint`, 5e-5        | 5.1k      | 2.3k   |
-//!
-//! A closed-form evaluation costs 0.1–0.3k instructions (a third of it the branch-free
-//! [`sin_cos`](crate::classical::core::trig::sin_cos)); what remains of each implicit-midpoint
-//! step is mostly the solver itself (about 0.9k for the double pendulum).
+//! A closed form thus replaces a dual-number evaluation of `L` and a linear solve by a few
+//! dozen flops; what remains of an implicit-midpoint step is mostly the solver itself. The
+//! instruction counts per step, closed forms against automatic differentiation, are in
+//! `benchmarks/README.md`.
 //!
 //! # Cost per call of automatic differentiation, in evaluations of `L` (`n` = ndof)
 //!
@@ -64,11 +54,12 @@
 //! | [`acceleration`](LagrangianEngine::acceleration) | 1 | hyper-dual vector, `e1 = v`, `e2 = (q, v, t)`: `1 + 3n + 1 + n(2n+1)` |
 //! | [`canonical_derivatives`](LagrangianEngine::canonical_derivatives), [`velocity`](LagrangianEngine::velocity) | 2 per call for a Lagrangian quadratic in `v` | second-order dual vector in `v` (`1 + n + n^2`), then dual vector in `(q, v)` (`1 + 2n`) |
 //!
-//! Measured on the built-in systems through [`AutoDiff`] (callgrind, instructions per step
-//! including `sin`/`cos`, with every sample and its energy stored): double pendulum `rk4` 3.7k (an acceleration is about 0.8k), implicit
-//! midpoint 4.8k (about 0.45k per canonical evaluation, three of them per step, plus the
-//! solver's own work); coupled oscillators (`n = 3`) 5.1k; heavy top 5.1k; hoop 2.1k (the table above). The
-//! per-direction scheme below takes 26k for a double-pendulum implicit-midpoint step.
+//! The hand-written duals stay because they beat num-dual's vector duals on these kernels: a
+//! quarter to four fifths fewer instructions per step for a 2- or 3-dof Lagrangian written in
+//! Rust, the same for 1 dof (`benchmarks/README.md`, "Hand-written dual numbers vs
+//! num-dual"). The crate feature `num-dual-kernels` builds the three kernels on num-dual's
+//! `DualSVec64`/`Dual2SVec64`/`HyperDualSVec64` instead, for that comparison only.
+//!
 //! Larger systems, and the rarely used paths (`mass_matrix`, the Newton re-linearization of a
 //! non-quadratic `L`, `canonical_jacobian`), use one scalar (hyper-)dual evaluation per
 //! derivative direction:
@@ -96,11 +87,14 @@
 use num_dual::{Dual64, DualNum, HyperDual64};
 
 use super::buffer::{MatBuf, VecBuf};
+#[cfg(not(feature = "num-dual-kernels"))]
 use super::dual::{Dual2Arr, DualArr, HyperArr};
 use crate::classical::core::error::{check_len, check_vector};
 #[cfg(doc)]
 use crate::classical::core::linalg::negligible_pivot;
 use crate::classical::core::linalg::{lu_factor, lu_solve, Singular};
+#[cfg(feature = "num-dual-kernels")]
+use num_dual::{Dual2SVec64, DualSVec64, HyperDualSVec64};
 
 use crate::classical::core::{check_items_fit, Error, Phase, Result};
 
@@ -569,26 +563,56 @@ impl<L: Lagrangian> LagrangianEngine<L> {
         out: &mut [f64],
     ) -> Result<()> {
         debug_assert_eq!(Z, 2 * N + 1);
-        let mut qd = [HyperArr::<N, Z>::from_re(0.0); N];
-        let mut vd = qd;
-        for i in 0..N {
-            qd[i] = HyperArr::from_re(q[i]).derivative2(i);
-            vd[i] = HyperArr::from_re(v[i]).derivative1(i).derivative2(N + i);
-        }
-        let td = HyperArr::from_re(t).derivative2(2 * N);
-        let l = self.lagrangian.lagrangian(&qd, &vd, td);
         let mut m = [0.0; FIXED_NDOF * FIXED_NDOF];
         let m = &mut m[..N * N];
         let out = &mut out[..N];
-        out.copy_from_slice(&l.e2[..N]);
-        let h = &l.e12;
-        for i in 0..N {
-            let mut mixed = h[i][2 * N];
-            for (j, &vj) in v.iter().enumerate().take(N) {
-                mixed += h[i][j] * vj;
-                m[i * N + j] = h[i][N + j];
+        #[cfg(not(feature = "num-dual-kernels"))]
+        {
+            let mut qd = [HyperArr::<N, Z>::from_re(0.0); N];
+            let mut vd = qd;
+            for i in 0..N {
+                qd[i] = HyperArr::from_re(q[i]).derivative2(i);
+                vd[i] = HyperArr::from_re(v[i]).derivative1(i).derivative2(N + i);
             }
-            out[i] -= mixed;
+            let td = HyperArr::from_re(t).derivative2(2 * N);
+            let l = self.lagrangian.lagrangian(&qd, &vd, td);
+            out.copy_from_slice(&l.e2[..N]);
+            let h = &l.e12;
+            for i in 0..N {
+                let mut mixed = h[i][2 * N];
+                for (j, &vj) in v.iter().enumerate().take(N) {
+                    mixed += h[i][j] * vj;
+                    m[i * N + j] = h[i][N + j];
+                }
+                out[i] -= mixed;
+            }
+        }
+        #[cfg(feature = "num-dual-kernels")]
+        {
+            let mut qd = [HyperDualSVec64::<N, Z>::from_re(0.0); N];
+            let mut vd = qd;
+            for i in 0..N {
+                qd[i] = HyperDualSVec64::from_re(q[i]).derivative2(i);
+                vd[i] = HyperDualSVec64::from_re(v[i])
+                    .derivative1(i)
+                    .derivative2(N + i);
+            }
+            let td = HyperDualSVec64::from_re(t).derivative2(2 * N);
+            let l = self.lagrangian.lagrangian(&qd, &vd, td);
+            match &l.eps2.0 {
+                Some(g) => out.iter_mut().enumerate().for_each(|(i, o)| *o = g[i]),
+                None => out.fill(0.0),
+            }
+            if let Some(h) = &l.eps1eps2.0 {
+                for i in 0..N {
+                    let mut mixed = h[(i, 2 * N)];
+                    for (j, &vj) in v.iter().enumerate().take(N) {
+                        mixed += h[(i, j)] * vj;
+                        m[i * N + j] = h[(i, N + j)];
+                    }
+                    out[i] -= mixed;
+                }
+            }
         }
         let mut piv = [0_usize; FIXED_NDOF];
         factor::<N>(m, N, &mut piv[..N]).map_err(|_| singular_mass_matrix(t))?;
@@ -713,21 +737,53 @@ impl<L: Lagrangian> LagrangianEngine<L> {
         m: &mut [f64],
         grad: Option<&mut [f64]>,
     ) {
-        let mut qd = [Dual2Arr::<N>::from_re(0.0); N];
-        let mut vd = qd;
-        for i in 0..N {
-            qd[i] = Dual2Arr::from_re(q[i]);
-            vd[i] = Dual2Arr::seeded(v[i], i);
-        }
-        let l = self.lagrangian.lagrangian(&qd, &vd, Dual2Arr::from_re(t));
-        for i in 0..N {
-            for j in i..N {
-                m[i * N + j] = l.v2[i][j];
-                m[j * N + i] = l.v2[i][j];
+        #[cfg(not(feature = "num-dual-kernels"))]
+        {
+            let mut qd = [Dual2Arr::<N>::from_re(0.0); N];
+            let mut vd = qd;
+            for i in 0..N {
+                qd[i] = Dual2Arr::from_re(q[i]);
+                vd[i] = Dual2Arr::seeded(v[i], i);
+            }
+            let l = self.lagrangian.lagrangian(&qd, &vd, Dual2Arr::from_re(t));
+            for i in 0..N {
+                for j in i..N {
+                    m[i * N + j] = l.v2[i][j];
+                    m[j * N + i] = l.v2[i][j];
+                }
+            }
+            if let Some(g) = grad {
+                g[..N].copy_from_slice(&l.v1);
             }
         }
-        if let Some(g) = grad {
-            g[..N].copy_from_slice(&l.v1);
+        #[cfg(feature = "num-dual-kernels")]
+        {
+            let mut qd = [Dual2SVec64::<N>::from_re(0.0); N];
+            let mut vd = qd;
+            for i in 0..N {
+                qd[i] = Dual2SVec64::from_re(q[i]);
+                vd[i] = Dual2SVec64::from_re(v[i]).derivative(i);
+            }
+            let l = self
+                .lagrangian
+                .lagrangian(&qd, &vd, Dual2SVec64::from_re(t));
+            match &l.v2.0 {
+                Some(h) => {
+                    for i in 0..N {
+                        for j in i..N {
+                            m[i * N + j] = h[(i, j)];
+                            m[j * N + i] = h[(i, j)];
+                        }
+                    }
+                }
+                None => m[..N * N].fill(0.0),
+            }
+            if let Some(g) = grad {
+                match &l.v1.0 {
+                    Some(d) => g[..N].iter_mut().enumerate().for_each(|(i, gi)| *gi = d[i]),
+                    None => g[..N].fill(0.0),
+                }
+            }
         }
     }
 
@@ -839,15 +895,40 @@ impl<L: Lagrangian> LagrangianEngine<L> {
         force: &mut [f64],
     ) {
         debug_assert_eq!(N2, 2 * N);
-        let mut qd = [DualArr::<N2>::from_re(0.0); N];
-        let mut vd = qd;
-        for i in 0..N {
-            qd[i] = DualArr::seeded(q[i], i);
-            vd[i] = DualArr::seeded(v[i], N + i);
+        #[cfg(not(feature = "num-dual-kernels"))]
+        {
+            let mut qd = [DualArr::<N2>::from_re(0.0); N];
+            let mut vd = qd;
+            for i in 0..N {
+                qd[i] = DualArr::seeded(q[i], i);
+                vd[i] = DualArr::seeded(v[i], N + i);
+            }
+            let l = self.lagrangian.lagrangian(&qd, &vd, DualArr::from_re(t));
+            force[..N].copy_from_slice(&l.eps[..N]);
+            p[..N].copy_from_slice(&l.eps[N..]);
         }
-        let l = self.lagrangian.lagrangian(&qd, &vd, DualArr::from_re(t));
-        force[..N].copy_from_slice(&l.eps[..N]);
-        p[..N].copy_from_slice(&l.eps[N..]);
+        #[cfg(feature = "num-dual-kernels")]
+        {
+            let mut qd = [DualSVec64::<N2>::from_re(0.0); N];
+            let mut vd = qd;
+            for i in 0..N {
+                qd[i] = DualSVec64::from_re(q[i]).derivative(i);
+                vd[i] = DualSVec64::from_re(v[i]).derivative(N + i);
+            }
+            let l = self.lagrangian.lagrangian(&qd, &vd, DualSVec64::from_re(t));
+            match &l.eps.0 {
+                Some(d) => {
+                    for i in 0..N {
+                        force[i] = d[i];
+                        p[i] = d[N + i];
+                    }
+                }
+                None => {
+                    force[..N].fill(0.0);
+                    p[..N].fill(0.0);
+                }
+            }
+        }
     }
 
     /// `dL/dv` and `dL/dq` at `(q, v)` for any `n`: one hyper-dual evaluation

@@ -2,6 +2,7 @@
 //! or from closed forms the Lagrangian supplies.
 
 mod buffer;
+#[cfg(not(feature = "num-dual-kernels"))]
 mod dual;
 mod engine;
 mod expr;
