@@ -40,7 +40,8 @@ env)
         exit "${PIPESTATUS[0]}")
     # The pure-Rust reference program of tests/test_bit_identity.py, built now so that
     # `test` does not compile.
-    (cd "$repo" && cargo build --quiet --release -p physicskit-python --example reference_run)
+    (cd "$repo" && cargo build --quiet --release -p physicskit-python --example reference_run \
+        && cargo build --quiet --release -p physicskit-cli)
     "$py" -c "import physicskit.classical as pc; print('physicskit', pc.__version__, 'installed in', '$venv')"
     ;;
 test)

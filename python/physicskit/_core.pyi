@@ -73,8 +73,10 @@ class _MethodInfo(TypedDict):
     order: int
     symplectic: bool
     separable_only: bool
-    evaluations_per_step: int | None
-    reference: str | None
+    evaluations_per_step: int
+    evaluations: str
+    reference: str
+    summary: str
 
 class ConvergenceError(RuntimeError):
     """The implicit solver of a step did not converge; reduce dt."""

@@ -151,16 +151,18 @@ pub fn catalog(py: Python<'_>) -> PyResult<Vec<Bound<'_, PyDict>>> {
 /// Python allocation failures.
 #[pyfunction]
 pub fn methods(py: Python<'_>) -> PyResult<Vec<Bound<'_, PyDict>>> {
-    Method::ALL
-        .into_iter()
+    physicskit::classical::methods()
+        .iter()
         .map(|m| {
             let d = PyDict::new(py);
-            d.set_item("name", m.name())?;
-            d.set_item("order", m.order())?;
-            d.set_item("symplectic", m.is_symplectic())?;
-            d.set_item("separable_only", m.needs_separable())?;
-            d.set_item("evaluations_per_step", py.None())?;
-            d.set_item("reference", py.None())?;
+            d.set_item("name", m.name)?;
+            d.set_item("order", m.order)?;
+            d.set_item("symplectic", m.symplectic)?;
+            d.set_item("separable_only", m.separable_only)?;
+            d.set_item("evaluations_per_step", m.evaluations_per_step)?;
+            d.set_item("evaluations", m.evaluations)?;
+            d.set_item("reference", m.reference)?;
+            d.set_item("summary", m.summary)?;
             Ok(d)
         })
         .collect()

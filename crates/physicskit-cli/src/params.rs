@@ -175,6 +175,15 @@ fn flag_message(entry: &SystemEntry, given: &[(String, String)], err: &Error) ->
             expected,
             found,
         } => (name, format!("has {found} numbers, expected {expected}")),
+        Error::TooLarge {
+            name,
+            bytes,
+            available,
+            ..
+        } => (
+            name,
+            format!("the system would need {bytes} bytes, more than the {available} available"),
+        ),
         _ => return None,
     };
     let help = entry.param(name)?.help;

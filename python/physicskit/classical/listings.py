@@ -13,8 +13,10 @@ __all__ = ["methods", "catalog"]
 def methods() -> list[dict[str, Any]]:
     """Every integrator as a dict: ``name`` (the ``method`` argument of ``integrate``),
     ``order`` (of the global error), ``symplectic``, ``separable_only`` (needs ``H = T(p) +
-    V(q)``), ``evaluations_per_step`` (force or vector-field evaluations; ``None`` where not
-    yet recorded) and ``reference`` (the method's source; ``None`` where not yet recorded)."""
+    V(q)``), ``evaluations_per_step`` (force or vector-field evaluations per step: exact for
+    explicit methods, typical for implicit ones), ``evaluations`` (what that count counts),
+    ``reference`` (the method's source) and ``summary``. The same table as ``physicskit
+    list``."""
     return [dict(m) for m in _core.methods()]
 
 

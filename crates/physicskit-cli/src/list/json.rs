@@ -6,7 +6,8 @@
 //!               "default_method", "note", "capabilities": [..],
 //!               "params": [{"name", "kind", "length", "choices", "default",
 //!                           "default_origin", "unit", "range", "help"}, ..]}, ..],
-//!  "methods": [{"name", "order", "symplectic", "separable_only"}, ..]}
+//!  "methods": [{"name", "order", "symplectic", "separable_only", "evaluations_per_step",
+//!               "evaluations", "reference"}, ..]}
 //! ```
 //!
 //! - `kind`: `scalar`, `integer`, `vector` or `choice`; `choices` lists the words of a choice

@@ -2,16 +2,16 @@
 //! tools and the browser lab.
 //!
 //! Both are generated from [`catalog::SYSTEMS`](physicskit::classical::catalog::SYSTEMS) and
-//! [`Method::ALL`]; nothing here names a system or a default. The methods table is built by
-//! [`method_rows`] alone, so a new fact about the methods (evaluations per step, a reference)
-//! is a field of [`MethodRow`], a line there and a column in [`text`].
+//! the method table ([`physicskit::classical::methods`]); nothing here names a system, a
+//! default or a method. The methods table is built by [`method_rows`] alone, so a new fact
+//! about the methods is a field of [`MethodRow`], a line there and a column in [`text`].
 
 mod json;
 mod text;
 
 use std::io::{self, Write};
 
-use physicskit::classical::Method;
+use physicskit::classical::methods;
 use serde::Serialize;
 
 /// Writes the listing to `w`: text, or JSON if `json`.
@@ -37,17 +37,26 @@ pub struct MethodRow {
     pub symplectic: bool,
     /// Whether it applies only to separable systems `H = T(p) + V(q)`.
     pub separable_only: bool,
+    /// Force or right-hand-side evaluations per step (typical, for implicit methods).
+    pub evaluations_per_step: u32,
+    /// What `evaluations_per_step` counts.
+    pub evaluations: &'static str,
+    /// Where the method comes from.
+    pub reference: &'static str,
 }
 
-/// One row per method, in [`Method::ALL`]'s order.
+/// One row per method, in the method table's order.
 pub fn method_rows() -> Vec<MethodRow> {
-    Method::ALL
-        .into_iter()
+    methods()
+        .iter()
         .map(|m| MethodRow {
-            name: m.name(),
-            order: m.order(),
-            symplectic: m.is_symplectic(),
-            separable_only: m.needs_separable(),
+            name: m.name,
+            order: m.order,
+            symplectic: m.symplectic,
+            separable_only: m.separable_only,
+            evaluations_per_step: m.evaluations_per_step,
+            evaluations: m.evaluations,
+            reference: m.reference,
         })
         .collect()
 }

@@ -65,11 +65,13 @@ type Column = (&'static str, fn(&MethodRow) -> String);
 
 /// The methods table, one column per [`MethodRow`] field.
 fn methods(w: &mut impl Write) -> io::Result<()> {
-    let columns: [Column; 4] = [
+    let columns: [Column; 6] = [
         ("method", |r| r.name.to_string()),
         ("order", |r| r.order.to_string()),
         ("symplectic", |r| yes_no(r.symplectic)),
         ("separable only", |r| yes_no(r.separable_only)),
+        ("evaluations/step", |r| r.evaluations_per_step.to_string()),
+        ("reference", |r| r.reference.to_string()),
     ];
     let rows = method_rows();
     let cells: Vec<Vec<String>> = rows

@@ -334,30 +334,6 @@ impl Ensemble for PendulumSwarm {
     }
 }
 
-#[cfg(test)]
-mod polygon_tests {
-    use super::polygon_area;
-
-    #[test]
-    fn regular_polygon_area_matches_its_closed_form() {
-        // A regular n-gon inscribed in a circle of radius r has area (n/2) r^2 sin(2 pi / n).
-        let (n, r) = (97, 1.7);
-        let angle = |i: usize| std::f64::consts::TAU * i as f64 / n as f64;
-        let x: Vec<f64> = (0..n).map(|i| r * angle(i).cos()).collect();
-        let y: Vec<f64> = (0..n).map(|i| r * angle(i).sin()).collect();
-        let exact = 0.5 * n as f64 * r * r * (std::f64::consts::TAU / n as f64).sin();
-        // Sum of 97 products of size ~r^2 sin(2pi/n): rounding ~1e-15 relative.
-        assert!((polygon_area(&x, &y).unwrap() - exact).abs() < 1e-13 * exact);
-        // Orientation does not matter; a length mismatch is an error.
-        let (xr, yr): (Vec<f64>, Vec<f64>) = (
-            x.iter().rev().copied().collect(),
-            y.iter().rev().copied().collect(),
-        );
-        assert!((polygon_area(&xr, &yr).unwrap() - exact).abs() < 1e-13 * exact);
-        assert!(polygon_area(&x, &y[1..]).is_err());
-    }
-}
-
 impl Capabilities for PendulumSwarm {
     fn per_particle_energy(&self, q: &[f64], p: &[f64]) -> Option<Result<Vec<f64>>> {
         Some(PendulumSwarm::per_particle_energy(self, q, p))
@@ -474,3 +450,27 @@ pub static SWARM_ENTRY: SystemEntry = SystemEntry {
         )?)))
     },
 };
+
+#[cfg(test)]
+mod polygon_tests {
+    use super::polygon_area;
+
+    #[test]
+    fn regular_polygon_area_matches_its_closed_form() {
+        // A regular n-gon inscribed in a circle of radius r has area (n/2) r^2 sin(2 pi / n).
+        let (n, r) = (97, 1.7);
+        let angle = |i: usize| std::f64::consts::TAU * i as f64 / n as f64;
+        let x: Vec<f64> = (0..n).map(|i| r * angle(i).cos()).collect();
+        let y: Vec<f64> = (0..n).map(|i| r * angle(i).sin()).collect();
+        let exact = 0.5 * n as f64 * r * r * (std::f64::consts::TAU / n as f64).sin();
+        // Sum of 97 products of size ~r^2 sin(2pi/n): rounding ~1e-15 relative.
+        assert!((polygon_area(&x, &y).unwrap() - exact).abs() < 1e-13 * exact);
+        // Orientation does not matter; a length mismatch is an error.
+        let (xr, yr): (Vec<f64>, Vec<f64>) = (
+            x.iter().rev().copied().collect(),
+            y.iter().rev().copied().collect(),
+        );
+        assert!((polygon_area(&xr, &yr).unwrap() - exact).abs() < 1e-13 * exact);
+        assert!(polygon_area(&x, &y[1..]).is_err());
+    }
+}
