@@ -1,7 +1,7 @@
 //! Measured convergence orders against an exact solution (harmonic oscillator) and against a
 //! reference run at a 64x smaller step (nonlinear pendulum).
 
-use super::fixtures::loglog_slope;
+use crate::checks::loglog_slope;
 use physicskit::classical::examples::{HarmonicOscillator, Pendulum};
 use physicskit::classical::{HamiltonianSystem, Method};
 

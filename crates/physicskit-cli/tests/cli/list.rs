@@ -1,9 +1,7 @@
 //! `list` names every system the spec asks for, each with its methods and defaults, and each
 //! name it prints is accepted by `simulate`.
 
-mod common;
-
-use common::{run_in, scratch, stdout};
+use crate::common::{run_in, scratch, stdout};
 
 /// The systems the command line must offer: the spec's twelve (issue 6), their alternate
 /// constructors, and the two reference examples.

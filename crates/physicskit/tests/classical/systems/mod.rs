@@ -1,0 +1,11 @@
+//! Every built-in system against analytic solutions, conserved quantities, perturbation theory
+//! and hand-derived forces; one test per validation error.
+
+mod chains;
+mod henon_heiles;
+mod kepler;
+mod lagrangian;
+mod projectile;
+mod rigid_body;
+mod swarm;
+mod validation;
