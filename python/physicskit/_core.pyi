@@ -1,7 +1,8 @@
 """Type stubs of the native module ``physicskit._core`` (PyO3); checked against the compiled
-module by ``tests/test_stubs.py``."""
+module by mypy's stubtest (``bash python/dev.sh stubs``: names, parameters, defaults) and by
+``tests/test_stubs.py`` (parameter and return types)."""
 
-from typing import Any
+from typing import Any, final
 
 import numpy as np
 import numpy.typing as npt
@@ -12,6 +13,7 @@ ResultTuple = tuple[ArrayF64, ArrayF64, int | None, ArrayF64 | None, str, dict[s
 class ConvergenceError(RuntimeError):
     """The implicit solver of a step did not converge; reduce dt."""
 
+@final
 class NativeSystem:
     """A built-in Rust system, owned by the Python object that wraps it."""
 
@@ -50,7 +52,7 @@ class NativeSystem:
         first and last with `final_only`; `energy=False` gives `None` energy. ValueError when
         the stored samples would not fit in memory."""
 
-def bead_on_hoop(theta0: ArrayF64, thetadot0: ArrayF64, R: float, omega: float, g: float) -> NativeSystem:
+def bead_on_hoop(theta0: float, thetadot0: float, R: float, omega: float, g: float) -> NativeSystem:
     """`BeadOnRotatingHoop(theta0, thetadot0, R, omega, g)`."""
 
 def chain_modal_energies(sys: NativeSystem, q: ArrayF64, p: ArrayF64) -> ArrayF64:
@@ -134,7 +136,7 @@ def pendulum_swarm(q0: ArrayF64, p0: ArrayF64, g_over_l: float) -> NativeSystem:
 def pendulum_swarm_from_box(q_center: float, p_center: float, dq: float, dp: float, n: int, g_over_l: float, seed: int) -> NativeSystem:
     """`PendulumSwarm.from_box`."""
 
-def precession_frequency(p_phi: float, p_psi: float, I1: float, theta_eq: float | None) -> float:
+def precession_frequency(p_phi: float, p_psi: float, I1: float, theta_eq: float) -> float:
     """Steady-precession rate at `theta_eq`."""
 
 def projectile(q0: ArrayF64, p0: ArrayF64, m: float, g: float, drag_coeff: float) -> NativeSystem:
