@@ -2,9 +2,11 @@
 # Build and test the Python package `physicskit` (python/).
 #
 #   bash python/dev.sh env    create/refresh <repo>/.venv, install maturin numpy pytest sympy
-#                             hypothesis, build the extension in release mode and install it
+#                             hypothesis, mypy, build the extension in release mode and install it
 #                             (editable)
 #   bash python/dev.sh test   run pytest on python/tests (warnings are errors)
+#   bash python/dev.sh stubs  check the type stubs against the installed modules (mypy's
+#                             stubtest; python/stubtest-allowlist.txt lists what it cannot know)
 #
 # Needs only python3 (>= 3.10, with venv and pip) and cargo. Idempotent.
 set -euo pipefail
@@ -29,7 +31,8 @@ env)
     fi
     "$py" -m pip install --quiet --disable-pip-version-check --upgrade pip
     "$py" -m pip install --quiet --disable-pip-version-check \
-        "maturin>=1.7,<2" "numpy>=1.24" "pytest>=7" "sympy>=1.12" "hypothesis>=6.100,<7"
+        "maturin>=1.7,<2" "numpy>=1.24" "pytest>=7" "sympy>=1.12" "hypothesis>=6.100,<7" \
+        "mypy>=1.18,<2"
     # maturin develop builds the cdylib in release mode and installs the package in the venv
     # (the pure-Python part is linked, so edits under python/physicskit need no rebuild).
     # The grep only trims maturin's chatter; maturin's own exit status decides (a failed build
@@ -50,8 +53,20 @@ test)
     cd "$here"
     "$py" -m pytest -q "$@" tests
     ;;
+stubs)
+    need_venv
+    cd "$here"
+    # stubtest imports the module and compares every name, parameter (name, kind, default),
+    # class, property and default value with the stub. PyO3 exposes no parameter types at run
+    # time, so it cannot compare those: tests/test_stubs.py calls every function with values of
+    # the stub's parameter types instead.
+    # physicskit.classical has inline types: stubtest type-checks it (mypy) and compares them
+    # with the running code too.
+    "$py" -m mypy.stubtest --mypy-config-file pyproject.toml \
+        --allowlist stubtest-allowlist.txt physicskit._core physicskit.classical
+    ;;
 *)
-    echo "usage: bash python/dev.sh {env|test [pytest args]}" >&2
+    echo "usage: bash python/dev.sh {env|test [pytest args]|stubs}" >&2
     exit 2
     ;;
 esac

@@ -1,5 +1,6 @@
 """Type stubs of the native module ``physicskit._core`` (PyO3); checked against the compiled
-module by ``tests/test_stubs.py`` and ``python -m mypy.stubtest physicskit._core``."""
+module by mypy's stubtest (``bash python/dev.sh stubs``: names, parameters, defaults) and by
+``tests/test_stubs.py`` (parameter and return types)."""
 
 from typing import Any, Literal, TypedDict, final
 

@@ -5,9 +5,8 @@
 //! after a delay (`purge_delay`, 1 s in mimalloc 3). A result's storage, freed when Python drops
 //! the arrays, is therefore still faulted in when the next run within that second allocates
 //! its storage; with the system allocator every large trajectory came from a fresh `mmap` and
-//! the kernel zeroed each of its pages again. Measured through Python, best of 3 runs of 1e5
-//! steps: the 200-pendulum swarm (320 MB per run) 3030 -> 1845 ns/step, the sine-Gordon chain
-//! (160 MB) 2896 -> 1446 (with the vectorized energy sums of the same change).
+//! the kernel zeroed each of its pages again: a third to a half of the time per step of the
+//! swarm (320 MB per run) and the sine-Gordon chain (measurements: `benchmarks/README.md`).
 //!
 //! Memory so held counts as used for the OS, whose available-memory figure decides whether a
 //! run fits; [`release_retained`] is registered with the core to hand it back before a run

@@ -257,6 +257,7 @@ class DynamicalSystem(ABC):
         ``y`` lazily."""
         t, y, native_ndof, energy, method, extra = parts
         ndof = native_ndof if ndof is None else ndof
+        result: SimulationResult
         if ndof:
             result = _SplitOnAccess(t, y, energy=energy, method=method, extra=extra, ndof=ndof)
         else:

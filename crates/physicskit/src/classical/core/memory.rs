@@ -132,11 +132,9 @@ const PREFAULT_MIN_BYTES: usize = 64 << 10;
 /// from 64 KiB are faulted in at once, in one system call (`madvise(MADV_POPULATE_WRITE)`,
 /// Linux 5.14; a hint, ignored where unsupported).
 ///
-/// Measured, fresh process, 1e5 samples of `t`, `y` and the energy written, 5 runs each: 4
-/// values per sample 22.8 -> 18.0 ns/sample (best); 400 values per sample (the swarm)
-/// 1462-1877 -> 1328-1679 ns/sample. Transparent huge pages (`MADV_HUGEPAGE`) were tried for
-/// large blocks and dropped: 918 ns/sample at best, but 2175-10850 in 3 of 5 runs, when the
-/// kernel compacted memory to find huge pages (`defrag = madvise` here).
+/// Transparent huge pages (`MADV_HUGEPAGE`) were tried for large blocks and dropped: faster at
+/// best, but several times slower in most runs, when the kernel compacted memory to find huge
+/// pages (`defrag = madvise` here). Measurements: `benchmarks/README.md`.
 ///
 /// # Errors
 /// [`Error::TrajectoryTooLarge`] if the allocator refuses the block.

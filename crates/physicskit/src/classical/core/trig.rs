@@ -29,13 +29,9 @@
 //! limit, NaN and infinities (`dispatched_and_baseline_paths_are_bit_identical`). A result
 //! therefore does not depend on which x86-64 machine computed it.
 //!
-//! Per element, minimum of repeated runs on a shared 2-core Xeon with AVX-512, n = 200: sine
-//! 4.7 ns (SSE2) -> 2.1 ns (AVX2) -> 1.5 ns (AVX-512; criterion `sin/slice/200` 563 -> 295 ns
-//! for the slice, and the swarm's stepping 2.17 -> 1.50 us/step, same run), libm 4.8 ns (arguments in `[-1, 1.6]`,
-//! libm's fast path; 7.8 ns at n = 1e5 over `[-1, 1299]`); [`sum_cos`] 7.5 ns (SSE2, before
-//! blocking: the in-order sum kept the whole loop scalar) -> 2.8 ns (AVX2, blocked, still
-//! adding in index order; the lane sum since has not been timed per element: it took the
-//! swarm's step from 3300 to 2900 ns together with the kinetic energy's), libm 4.8 ns.
+//! The wider clones exist for speed: per element the AVX2 and AVX-512 sines take about half
+//! and a third of the SSE2 baseline's time, which is about libm's (measurements:
+//! `benchmarks/README.md`, "History moved from module docs").
 //!
 //! # Accuracy
 //!

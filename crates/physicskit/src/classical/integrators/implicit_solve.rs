@@ -34,7 +34,7 @@
 //!   `sqrt(N)` ulps of the rounding random walk, for `N` up to 10^6.
 //!
 //! The second test needs two corrections, so two sweeps is the minimum; at the small steps
-//! symplectic runs use, the predictor makes it the norm (`tests/core/solver.rs` checks it).
+//! symplectic runs use, the predictor makes it the norm (`tests/classical/integrators/implicit_midpoint.rs` checks it).
 //! Stopping at a fixed tolerance `tol` instead would leave an error of about `theta * tol`
 //! with the same sign every step, which drifts the energy linearly.
 //!

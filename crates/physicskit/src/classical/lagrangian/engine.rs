@@ -31,7 +31,7 @@
 //! `closed_canonical`, which composes their velocity and `dL/dq`); `canonical_jacobian` (the implicit-midpoint Newton fallback, used only when fixed
 //! point iteration contracts slowly) stays automatic. Wrapping a Lagrangian in [`AutoDiff`]
 //! hides its closed forms: that engine is the independent check of them
-//! (`tests/lagrangian_closed_forms.rs`).
+//! (`tests/classical/lagrangian/closed_forms.rs`).
 //!
 //! A closed form thus replaces a dual-number evaluation of `L` and a linear solve by a few
 //! dozen flops; what remains of an implicit-midpoint step is mostly the solver itself. The
@@ -136,7 +136,7 @@ pub trait Lagrangian {
     // Optional closed forms. The engine calls each of these first and differentiates `L`
     // only when it returns `None` (the default). Each receives slices already checked to
     // have length `ndof` (`n x n` for the mass matrix) and must agree with the derivatives
-    // of `L` to rounding: `tests/lagrangian_closed_forms.rs` checks the built-in systems'
+    // of `L` to rounding: `tests/classical/lagrangian/closed_forms.rs` checks the built-in systems'
     // against the engine on [`AutoDiff`]. Generic dispatch makes an absent closed form free.
 
     /// Closed form of the mass matrix `d2L/dqdot2` (row-major `n x n`), or `None`.

@@ -16,7 +16,7 @@
 //!
 //! `L` is quadratic with a constant mass matrix, so every equation of motion is linear
 //! (Goldstein §6.2); the integrators use these instead of differentiating `L` (checked against
-//! the [`LagrangianEngine`] in `tests/lagrangian_closed_forms.rs`):
+//! the [`LagrangianEngine`] in `tests/classical/lagrangian/closed_forms.rs`):
 //!
 //! ```text
 //! mass          M = m I,   p = m qdot,   qdot = p / m

@@ -17,7 +17,7 @@
 //!
 //! The [`LagrangianEngine`] can derive everything from `L` by automatic differentiation; the
 //! integrators use these hand-derived forms instead (checked against it in
-//! `tests/lagrangian_closed_forms.rs`). With `D = theta1 - theta2`, `w = qdot` and the
+//! `tests/classical/lagrangian/closed_forms.rs`). With `D = theta1 - theta2`, `w = qdot` and the
 //! constants `a = (m1 + m2) l1^2`, `b = m2 l1 l2`, `d = m2 l2^2`, `g1 = (m1 + m2) g l1`,
 //! `g2 = m2 g l2`, so that `L = a w1^2/2 + d w2^2/2 + b w1 w2 cos D + g1 cos theta1 +
 //! g2 cos theta2`:

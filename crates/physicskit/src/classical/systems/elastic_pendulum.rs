@@ -18,7 +18,7 @@
 //! # Closed forms
 //!
 //! The integrators use these hand-derived forms (checked against automatic differentiation
-//! of `L` in `tests/lagrangian_closed_forms.rs`). With `s = sin theta`, `c = cos theta` and
+//! of `L` in `tests/classical/lagrangian/closed_forms.rs`). With `s = sin theta`, `c = cos theta` and
 //! `w = (r', theta')`:
 //!
 //! ```text

@@ -19,7 +19,7 @@
 //! # Closed forms
 //!
 //! The integrators use these instead of differentiating `L` (checked against the
-//! [`LagrangianEngine`] in `tests/lagrangian_closed_forms.rs`). With `s = sin theta`,
+//! [`LagrangianEngine`] in `tests/classical/lagrangian/closed_forms.rs`). With `s = sin theta`,
 //! `c = cos theta`, `w = theta'`:
 //!
 //! ```text

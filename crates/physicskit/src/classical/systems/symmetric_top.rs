@@ -18,7 +18,7 @@
 //! # Closed forms
 //!
 //! The integrators use these instead of differentiating `L` (checked against the
-//! [`LagrangianEngine`] in `tests/lagrangian_closed_forms.rs`). With `s = sin theta`,
+//! [`LagrangianEngine`] in `tests/classical/lagrangian/closed_forms.rs`). With `s = sin theta`,
 //! `c = cos theta` and the spin `w3 = psi' + phi' c` (Goldstein §5.7, eqs. 5.59–5.62):
 //!
 //! ```text

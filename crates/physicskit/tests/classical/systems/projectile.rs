@@ -3,7 +3,7 @@
 use physicskit::classical::systems::ProjectileMotion;
 use physicskit::classical::{DynamicalSystem, Error, HamiltonianSystem, Method};
 
-use super::common::hermite_root;
+use crate::checks::hermite_root;
 
 #[test]
 fn vacuum_flight_matches_the_parabola() {

@@ -5,7 +5,7 @@ use std::f64::consts::PI;
 use physicskit::classical::systems::{convex_hull_area, polygon_area, PendulumSwarm};
 use physicskit::classical::{HamiltonianSystem, Method};
 
-use super::common::check_force_against_potential;
+use crate::checks::check_force_against_potential;
 
 #[test]
 fn force_is_minus_gradient() {

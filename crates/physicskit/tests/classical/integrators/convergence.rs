@@ -3,7 +3,7 @@
 //! (nonlinear pendulum). The steps follow each method's declared order, so a method added to
 //! the registry is measured here without editing this file.
 
-use super::fixtures::loglog_slope;
+use crate::checks::loglog_slope;
 use physicskit::classical::examples::{HarmonicOscillator, Pendulum};
 use physicskit::classical::{HamiltonianSystem, Method};
 

@@ -5,7 +5,7 @@ use std::f64::consts::PI;
 use physicskit::classical::systems::{KeplerPerturbations, KeplerSystem};
 use physicskit::classical::{HamiltonianSystem, IntegrateOptions, Method};
 
-use super::common::{check_force_against_potential, fit_slope, upward_zero_crossings};
+use crate::checks::{check_force_against_potential, fit_slope, upward_zero_crossings};
 
 #[test]
 fn force_and_jacobian_are_minus_gradient_of_every_term() {

@@ -1,6 +1,6 @@
 //! Time reversibility: N steps forward, then N steps with -dt, returns to the start.
 
-use super::fixtures::NonSeparable;
+use crate::fixtures::NonSeparable;
 use physicskit::classical::examples::Pendulum;
 use physicskit::classical::integrators::{FirstOrder, ImplicitMidpoint, SplittingStepper};
 use physicskit::classical::{DynamicalSystem, Method};

@@ -2,7 +2,7 @@
 //! measures, and the dispatch from a method to its loop. Everything iterates the registry, so
 //! a new method is checked here without editing this file.
 
-use super::fixtures::{LagrangianPendulum, NonSeparable, Scalar};
+use crate::fixtures::{LagrangianPendulum, NonSeparable, Scalar};
 use physicskit::classical::core::method::Scheme;
 use physicskit::classical::examples::Pendulum;
 use physicskit::classical::integrators::{Dispatch, FieldStepper};

@@ -1,7 +1,5 @@
 //! Helpers shared by the command-line tests: run the built binary in a scratch directory.
 
-#![allow(dead_code)]
-
 use std::path::{Path, PathBuf};
 use std::process::{Command, Output};
 

@@ -3,7 +3,7 @@
 use physicskit::classical::systems::HenonHeilesSystem;
 use physicskit::classical::{HamiltonianSystem, IntegrateOptions, Method};
 
-use super::common::check_force_against_potential;
+use crate::checks::check_force_against_potential;
 
 #[test]
 fn force_is_minus_gradient() {

@@ -1,6 +1,6 @@
 //! Parallel ensembles give the serial result, bit for bit, on any number of threads.
 
-use super::fixtures::PendulumBank;
+use crate::fixtures::PendulumBank;
 use physicskit::classical::integrators::{integrate_ensemble, ENSEMBLE_CHUNK};
 use physicskit::classical::{DynamicalSystem, HamiltonianSystem, IntegrateOptions, Method};
 

@@ -36,7 +36,7 @@
 //! The test lists every changed case. If the change is intended, regenerate the table with
 //!
 //! ```text
-//! PHYSICSKIT_PRINT_DIGESTS=1 cargo test -p physicskit --test trajectory_digests -- --nocapture
+//! PHYSICSKIT_PRINT_DIGESTS=1 cargo test -p physicskit --test classical digests -- --nocapture
 //! ```
 //!
 //! paste the printed table over [`DIGESTS`], and say in the commit message which cases changed
@@ -597,8 +597,8 @@ fn trajectories_match_the_stored_digests() {
         problems.is_empty(),
         "trajectories changed bits in these cases:\n{problems}\
          Existing trajectories must stay bit-identical. If the change is intended, regenerate \
-         the table with `{PRINT_ENV}=1 cargo test -p physicskit --test trajectory_digests -- \
-         --nocapture`, paste it over DIGESTS in tests/trajectory_digests.rs, and justify in \
+         the table with `{PRINT_ENV}=1 cargo test -p physicskit --test classical digests -- \
+         --nocapture`, paste it over DIGESTS in tests/classical/digests.rs, and justify in \
          the commit message which cases changed and why."
     );
 }

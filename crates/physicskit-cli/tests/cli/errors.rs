@@ -1,11 +1,9 @@
 //! Bad input: one line `error: ...` on stderr, exit status 2, no panic, and no file written
 //! (not even a temporary one) — one test per case the issue lists, plus the value checks.
 
-mod common;
-
 use std::path::Path;
 
-use common::{entries, run_in, scratch, stderr};
+use crate::common::{entries, run_in, scratch, stderr};
 
 /// A valid run; each case below breaks one argument of it.
 const GOOD: [&str; 8] = [

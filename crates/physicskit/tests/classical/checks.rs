@@ -1,4 +1,5 @@
-//! Helpers shared by the Hamiltonian tests.
+//! Numerical checks shared by the tests: a force against its potential by central differences,
+//! zero crossings by Hermite interpolation, least-squares slopes.
 
 use physicskit::classical::HamiltonianSystem;
 
@@ -103,4 +104,11 @@ pub fn fit_slope(x: &[f64], y: &[f64]) -> f64 {
     let sxy: f64 = x.iter().zip(y).map(|(a, b)| (a - mx) * (b - my)).sum();
     let sxx: f64 = x.iter().map(|a| (a - mx) * (a - mx)).sum();
     sxy / sxx
+}
+
+/// Slope of the least-squares line through `(ln x, ln y)`: a measured power law's exponent.
+pub fn loglog_slope(x: &[f64], y: &[f64]) -> f64 {
+    let lx: Vec<f64> = x.iter().map(|v| v.ln()).collect();
+    let ly: Vec<f64> = y.iter().map(|v| v.ln()).collect();
+    fit_slope(&lx, &ly)
 }

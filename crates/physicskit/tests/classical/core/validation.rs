@@ -2,7 +2,7 @@
 
 use std::ops::ControlFlow;
 
-use super::fixtures::{Damped, FreeRigidBody, LagrangianPendulum, NonSeparable, Scalar};
+use crate::fixtures::{Damped, FreeRigidBody, LagrangianPendulum, NonSeparable, Scalar};
 use physicskit::classical::examples::{HarmonicOscillator, Pendulum};
 use physicskit::classical::{
     DynamicalSystem, Error, HamiltonianSystem, IntegrateOptions, LagrangianSystem, Method,

@@ -7,11 +7,7 @@ use physicskit::classical::{
     DynamicalSystem, Error, HamiltonianSystem, IntegrateOptions, Method, Sampling,
 };
 
-#[path = "hamiltonian/common.rs"]
-#[allow(dead_code)]
-mod common;
-
-use common::check_force_against_potential;
+use crate::checks::check_force_against_potential;
 
 /// A fixed linear congruential sequence in `[-0.5, 0.5)`: deterministic test data.
 fn pseudo_random(n: usize, seed: u64) -> Vec<f64> {

@@ -3,8 +3,6 @@
 //! so parsing them must give back the same `f64`). The `.npz` is read with ndarray-npy's
 //! reader and the `.json` with serde_json, independent of the writers under test.
 
-mod common;
-
 use std::fs::File;
 use std::path::Path;
 
@@ -19,7 +17,7 @@ use physicskit::classical::{
     HamiltonianSystem, IntegrateOptions, LagrangianSystem, Method, OdeSystem, SimulationResult,
 };
 
-use common::{run_in, scratch, stderr};
+use crate::common::{run_in, scratch, stderr};
 
 /// Runs `simulate` and returns the output path.
 fn simulate(dir: &Path, file: &str, args: &[&str]) -> std::path::PathBuf {

@@ -1,7 +1,7 @@
 //! implicit_midpoint conserves quadratic invariants to rounding level, through both its
 //! fixed-point and its Newton solve.
 
-use super::fixtures::FreeRigidBody;
+use crate::fixtures::FreeRigidBody;
 use physicskit::classical::examples::HarmonicOscillator;
 use physicskit::classical::{HamiltonianSystem, Method, OdeSystem, Phase};
 

@@ -6,7 +6,7 @@ use physicskit::classical::analysis::{ellipe, ellipk, ellipke, pendulum_action_a
 use physicskit::classical::examples::Pendulum;
 use physicskit::classical::{HamiltonianSystem, Method};
 
-use super::common::upward_zero_crossings;
+use crate::checks::upward_zero_crossings;
 
 /// Trapezoid rule on `[0, pi/2]` of an even, pi-periodic integrand: spectrally accurate, an
 /// independent quadrature of the defining integrals.

@@ -1,7 +1,7 @@
 //! The Lagrangian integration path: canonical implicit midpoint and direct rk4 on a
 //! hand-written Lagrangian pendulum, against the Hamiltonian pendulum.
 
-use super::fixtures::LagrangianPendulum;
+use crate::fixtures::LagrangianPendulum;
 use physicskit::classical::examples::Pendulum;
 use physicskit::classical::{HamiltonianSystem, LagrangianSystem, Method};
 

@@ -3,9 +3,7 @@
 //! content is read from the catalogue itself, so a new entry is checked without editing this
 //! file.
 
-mod common;
-
-use common::{run_in, scratch, stdout};
+use crate::common::{run_in, scratch, stdout};
 use physicskit::classical::catalog::SYSTEMS;
 use physicskit::classical::core::catalog::{Default, Literal, ParamKind};
 use physicskit::classical::Method;

@@ -5,7 +5,7 @@ use std::f64::consts::PI;
 use physicskit::classical::systems::{FPUTChain, HarmonicChain, NormalModes, SineGordonChain};
 use physicskit::classical::{DynamicalSystem, HamiltonianSystem, IntegrateOptions, Method};
 
-use super::common::{check_force_against_potential, fit_slope};
+use crate::checks::{check_force_against_potential, fit_slope};
 
 fn pseudo_random(n: usize, seed: u64) -> Vec<f64> {
     // A fixed linear congruential sequence in [-0.5, 0.5): deterministic test data.

@@ -1,0 +1,14 @@
+//! Every built-in system against analytic solutions, conserved quantities, perturbation theory
+//! and hand-derived forces; one test per validation error.
+
+mod chains;
+mod elastic_pendulum;
+mod henon_heiles;
+mod kepler;
+mod lagrangian;
+mod projectile;
+mod rigid_body;
+mod sizes;
+mod swarm;
+mod toda;
+mod validation;
