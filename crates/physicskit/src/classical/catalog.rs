@@ -4,8 +4,8 @@
 //! and names the system, its typed parameters with defaults, units and ranges, the methods
 //! that apply and a builder into the type-erased [`DynSystem`]. The command line (`list`,
 //! `simulate`, `--help`, `list --json`), the Python extension (`_core.build`,
-//! `_core.catalog`) and the lab iterate over [`SYSTEMS`]; none of them lists systems or
-//! defaults of its own. See [`core::catalog`](crate::classical::core::catalog) for the
+//! `_core.catalog`) and the lab iterate over [`SYSTEMS`] (kept in `systems/mod.rs`, next to the
+//! `mod` line of each system's file); none of them lists systems or defaults of its own. See [`core::catalog`](crate::classical::core::catalog) for the
 //! vocabulary and where values are checked.
 //!
 //! # Example
@@ -21,31 +21,8 @@
 //! ```
 
 use crate::classical::core::{DynSystem, Error, Result, SystemEntry};
-use crate::classical::{examples, systems};
 
-/// Every built-in system, in the order listings show them.
-pub static SYSTEMS: &[&SystemEntry] = &[
-    &examples::PENDULUM_ENTRY,
-    &examples::HARMONIC_OSCILLATOR_ENTRY,
-    &systems::KEPLER_ENTRY,
-    &systems::KEPLER_STATE_ENTRY,
-    &systems::HENON_HEILES_ENTRY,
-    &systems::SWARM_ENTRY,
-    &systems::SWARM_STATE_ENTRY,
-    &systems::PROJECTILE_ENTRY,
-    &systems::PROJECTILE_STATE_ENTRY,
-    &systems::HARMONIC_CHAIN_ENTRY,
-    &systems::FPUT_ENTRY,
-    &systems::SINE_GORDON_KINK_ENTRY,
-    &systems::SINE_GORDON_STATE_ENTRY,
-    &systems::DOUBLE_PENDULUM_ENTRY,
-    &systems::HOOP_ENTRY,
-    &systems::COUPLED_OSCILLATORS_ENTRY,
-    &systems::HEAVY_TOP_ENTRY,
-    &systems::EULER_TOP_ENTRY,
-    &systems::TODA_ENTRY,
-    &systems::ELASTIC_PENDULUM_ENTRY,
-];
+pub use crate::classical::systems::SYSTEMS;
 
 /// The entry called `name`.
 ///

@@ -5,6 +5,8 @@
 //! Lagrangian and rigid bodies (issue 4): `double_pendulum`, `hoop`, `coupled_oscillators`,
 //! `symmetric_top`, `rigid_body`; and the `elastic_pendulum`.
 
+use crate::classical::core::SystemEntry;
+
 mod kepler;
 pub use kepler::*;
 mod henon_heiles;
@@ -29,3 +31,28 @@ mod rigid_body;
 pub use rigid_body::*;
 mod elastic_pendulum;
 pub use elastic_pendulum::*;
+
+/// Every built-in system of the catalogue, in the order listings show them: one line per
+/// entry, each written next to its system.
+pub static SYSTEMS: &[&SystemEntry] = &[
+    &crate::classical::examples::PENDULUM_ENTRY,
+    &crate::classical::examples::HARMONIC_OSCILLATOR_ENTRY,
+    &KEPLER_ENTRY,
+    &KEPLER_STATE_ENTRY,
+    &HENON_HEILES_ENTRY,
+    &SWARM_ENTRY,
+    &SWARM_STATE_ENTRY,
+    &PROJECTILE_ENTRY,
+    &PROJECTILE_STATE_ENTRY,
+    &HARMONIC_CHAIN_ENTRY,
+    &FPUT_ENTRY,
+    &SINE_GORDON_KINK_ENTRY,
+    &SINE_GORDON_STATE_ENTRY,
+    &DOUBLE_PENDULUM_ENTRY,
+    &HOOP_ENTRY,
+    &COUPLED_OSCILLATORS_ENTRY,
+    &HEAVY_TOP_ENTRY,
+    &EULER_TOP_ENTRY,
+    &TODA_ENTRY,
+    &ELASTIC_PENDULUM_ENTRY,
+];
