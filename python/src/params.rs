@@ -16,14 +16,14 @@
 //! | integer | objects with `__index__` (int, numpy integers) that fit in 64 bits | bools, floats even when integral (`5.4e16`, `1.5`), ints outside 64 bits |
 //! | vector | array-likes of reals in at most one dimension (lists, tuples, numpy arrays of integer or float dtype; object arrays whose items are real numbers); a single real number is a vector of length 1 | complex dtypes or items, bool dtypes or items, strings, ragged or 2-D input, ints too large for a float |
 //! | choice | `str` | everything else |
-//! | any | `None`: the parameter is left out, and the catalogue decides (its default, or "is required") | |
+//! | any | `None` where the spec's default is `None` (`quat0`, `q0` of `SineGordonChain`): the parameter is left out and the constructor decides | `None` elsewhere |
 //!
 //! Bools are refused where a number belongs: `True` is an `int` in Python, but a flag passed
 //! as a mass or a count is a mistake, not a 1. NaN and infinities are numbers here; the
 //! catalogue refuses them with its own message.
 
 use numpy::{PyArray1, PyArrayMethods};
-use physicskit::classical::core::catalog::{ParamKind, ParamSpec, Value, Values};
+use physicskit::classical::core::catalog::{Default, ParamKind, ParamSpec, Value, Values};
 use physicskit::classical::Error;
 use pyo3::exceptions::{PyOverflowError, PyTypeError};
 use pyo3::prelude::*;
@@ -243,13 +243,22 @@ pub fn choice(name: &str, obj: &Bound<'_, PyAny>) -> PyResult<Value> {
         .map_err(|_| refuse(name, format!("must be a string, got {}", show(obj))))
 }
 
-/// Converts `obj` by the kind of `spec`; `None` leaves the parameter out.
+/// Converts `obj` by the kind of `spec`; `None` leaves the parameter out where the spec's
+/// default is `None` (and is refused elsewhere: `m=None` is a mistake, not "the default").
 ///
 /// # Errors
-/// As the function of the parameter's kind.
+/// As the function of the parameter's kind; `None` for a parameter whose spec default is not
+/// `None`.
 pub fn to_value(spec: &ParamSpec, obj: &Bound<'_, PyAny>) -> PyResult<Option<Value>> {
     if obj.is_none() {
-        return Ok(None);
+        return if spec.default == Default::Absent {
+            Ok(None)
+        } else {
+            Err(refuse(
+                spec.name,
+                format!("must be {}, got None", spec.expectation()),
+            ))
+        };
     }
     let value = match spec.kind {
         ParamKind::Scalar => scalar(spec.name, obj)?,

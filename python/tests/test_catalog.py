@@ -72,7 +72,13 @@ def test_python_signature_matches_catalogue(entry):
     check_against_catalogue(params_of(resolve(entry["python"])), entry)
 
 
-@pytest.mark.parametrize("entry", ENTRIES, ids=lambda e: e["python"])
+#: Systems the package offers beyond the spec (issue 12's proof of the catalogue); the spec
+#: table has no row for them, everything else about them is checked like the spec's.
+BEYOND_SPEC = {"TodaLattice", "ElasticPendulum"}
+SPEC_ENTRIES = [e for e in ENTRIES if e["python"].split(".")[0] not in BEYOND_SPEC]
+
+
+@pytest.mark.parametrize("entry", SPEC_ENTRIES, ids=lambda e: e["python"])
 def test_spec_table_matches_catalogue(entry):
     check_against_catalogue(spec_signature(entry["python"]), entry)
 
@@ -96,8 +102,10 @@ def test_every_spec_constructor_has_a_catalogue_entry():
         if name in pc.systems.__all__:
             constructors.add(name)
             constructors.update(f"{name}.{m}" for m in spec.get("classmethods", {}))
-    paths = [e["python"] for e in ENTRIES]
+    paths = [e["python"] for e in SPEC_ENTRIES]
     assert sorted(paths) == sorted(constructors)
+    beyond = {e["python"] for e in ENTRIES} - set(paths)
+    assert beyond == BEYOND_SPEC and not beyond & set(CLASSES)
 
 
 def test_catalogue_listing_shape():

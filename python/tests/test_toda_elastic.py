@@ -72,13 +72,13 @@ def test_toda_refuses_bad_input():
 def test_elastic_pendulum_equations_and_positions():
     m, k, l0, g = 1.3, 25.0, 0.8, 9.81
     bob = pc.ElasticPendulum([1.1, 0.4], [0.2, -0.5], m=m, k=k, l0=l0, g=g)
-    (r, th), (rd, thd) = bob.q, bob.p
+    (r, th), (rd, thd) = bob.q, bob.qdot
     # Hand-derived Euler-Lagrange equations of L = m (rd^2 + r^2 thd^2)/2 + m g r cos th
     # - k (r - l0)^2/2.
     r_dd = r * thd**2 + g * np.cos(th) - k / m * (r - l0)
     th_dd = -(2 * rd * thd + g * np.sin(th)) / r
     # Closed forms evaluate the same expressions in another order: rounding, 1e-13 relative.
-    np.testing.assert_allclose(bob.acceleration(bob.q, bob.p, 0.0), [r_dd, th_dd], rtol=1e-13)
+    np.testing.assert_allclose(bob.acceleration(bob.q, bob.qdot, 0.0), [r_dd, th_dd], rtol=1e-13)
     np.testing.assert_allclose(bob.positions(), [r * np.sin(th), -r * np.cos(th)], rtol=1e-15)
     expected_e = 0.5 * m * (rd**2 + r**2 * thd**2) - m * g * r * np.cos(th) + 0.5 * k * (r - l0) ** 2
     assert bob.energy() == pytest.approx(expected_e, rel=1e-14)
@@ -89,12 +89,15 @@ def test_elastic_pendulum_equations_and_positions():
 
 def test_elastic_pendulum_energy_bounded_under_implicit_midpoint():
     bob = pc.ElasticPendulum([1.3, 0.3], [0.0, 0.0], k=29.43)
-    res = bob.integrate((0.0, 20.0), dt=1e-3)
+    res = bob.integrate((0.0, 200.0), dt=1e-3)
     assert res.method == "implicit_midpoint"
     err = np.abs(res.energy - res.energy[0]) / abs(res.energy[0])
-    tenth = len(err) // 10
-    # Symplectic: the error oscillates at O(dt^2) (~1e-5 here) without drifting, so the last
-    # tenth's maximum stays within 1.5x the first tenth's.
-    assert err[-tenth:].max() <= 1.5 * err[:tenth].max() + 1e-14
+    half = len(err) // 2
+    # Symplectic: the error oscillates at O(dt^2) (~1e-7 here) with the slow bounce-swing
+    # exchange (period ~40 s, so each half of the run holds several), without drifting: the
+    # second half's maximum stays within 1.5x the first half's (a linear drift would double
+    # it), and at the O(dt^2) level.
+    assert err[half:].max() <= 1.5 * err[:half].max()
+    assert err.max() < 1e-6
     with pytest.raises(ValueError, match="r0"):
         pc.ElasticPendulum([0.0, 0.3], [0.0, 0.0])

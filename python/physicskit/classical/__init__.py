@@ -16,7 +16,11 @@ from .core import (
     ODESystem,
     SimulationResult,
 )
-from .systems import *  # noqa: F401,F403
+from .systems.newtonian import *  # noqa: F401,F403
+from .systems.lagrangian import *  # noqa: F401,F403
+from .systems.hamiltonian import *  # noqa: F401,F403
+from .systems.chains import *  # noqa: F401,F403
+from .systems.rotations import *  # noqa: F401,F403
 from .listings import catalog, methods
 from . import core, systems, utils  # noqa: E402  (sub-packages importable as attributes)
 
@@ -27,8 +31,6 @@ __all__ = [
     "HamiltonianSystem",
     "LagrangianSystem",
     "SimulationResult",
-    *systems.__all__,
-    "ConvergenceError",
-    "methods",
-    "catalog",
 ]
+__all__ += systems.__all__
+__all__ += ["ConvergenceError", "methods", "catalog"]

@@ -11,10 +11,11 @@ from .lagrangian import *  # noqa: F401,F403
 from .newtonian import *  # noqa: F401,F403
 from .rotations import *  # noqa: F401,F403
 
-__all__ = [
-    *newtonian.__all__,
-    *lagrangian.__all__,
-    *hamiltonian.__all__,
-    *chains.__all__,
-    *rotations.__all__,
-]
+# `+=` of each submodule's list (not one literal list of names) so that type checkers expand
+# it as the interpreter does.
+__all__: list[str] = []
+__all__ += newtonian.__all__
+__all__ += lagrangian.__all__
+__all__ += hamiltonian.__all__
+__all__ += chains.__all__
+__all__ += rotations.__all__
