@@ -286,19 +286,21 @@ def test_coupled_oscillators_refuse_matrices_that_cannot_fit():
 def test_integers_beyond_the_native_range_are_value_errors(n):
     for make in (lambda: pc.FPUTChain(n=n), lambda: pc.SineGordonChain.kink(n, 1.0),
                  lambda: pc.PendulumSwarm.from_box(1.0, 0.0, 0.1, 0.1, n=20, seed=n)):
-        with pytest.raises(ValueError, match="must be <="):
+        # "does not fit in a 64-bit integer" (constructors, through the catalogue) or "must be
+        # <= 2**64 - 1" (the static helpers' as_int): either way the argument is named.
+        with pytest.raises(ValueError, match=r"(must be <=|does not fit in a 64-bit integer)"):
             make()
 
 
 @pytest.mark.parametrize("bad", [5.4e16, 1.5, 32.0, np.float64(8.0), True, "8", 8 + 0j])
 def test_integer_parameters_take_only_integers(bad):
-    with pytest.raises(ValueError, match="^n "):
+    with pytest.raises(ValueError, match=r"(^n |`n`)"):
         pc.FPUTChain(n=bad)
-    with pytest.raises(ValueError, match="^mode "):
+    with pytest.raises(ValueError, match=r"(^mode |`mode`)"):
         pc.FPUTChain(n=8, mode=bad)
-    with pytest.raises(ValueError, match="^polarity "):
+    with pytest.raises(ValueError, match=r"(^polarity |`polarity`)"):
         pc.SineGordonChain.kink(20, 10.0, polarity=bad)
-    with pytest.raises(ValueError, match="^seed "):
+    with pytest.raises(ValueError, match=r"(^seed |`seed`)"):
         pc.PendulumSwarm.from_box(1.0, 0.0, 0.1, 0.1, n=20, seed=bad)
 
 
