@@ -309,3 +309,16 @@ impl physicskit::classical::integrators::Ensemble for PendulumBank {
         Ok(sub)
     }
 }
+
+/// A fixed linear congruential sequence in `[-0.5, 0.5)`: deterministic test data.
+pub fn pseudo_random(n: usize, seed: u64) -> Vec<f64> {
+    let mut s = seed;
+    (0..n)
+        .map(|_| {
+            s = s
+                .wrapping_mul(6364136223846793005)
+                .wrapping_add(1442695040888963407);
+            (s >> 11) as f64 / (1u64 << 53) as f64 - 0.5
+        })
+        .collect()
+}

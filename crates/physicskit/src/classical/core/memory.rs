@@ -66,7 +66,7 @@ pub(crate) fn check_fits(samples: usize, values_per_sample: usize) -> Result<()>
 const ALWAYS_FITS_BYTES: u128 = 16 << 20;
 
 /// Checks, before anything is allocated, that `n` items of `item_bytes` bytes each fit in
-/// memory, by the budget [`check_fits`] applies to trajectories (the same fraction of the
+/// memory, by the budget `check_fits` applies to trajectories (the same fraction of the
 /// available memory, after the same release hook).
 ///
 /// For constructors whose allocations a user's size parameter `name` (a chain's `n`, a

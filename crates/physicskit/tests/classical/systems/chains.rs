@@ -6,19 +6,7 @@ use physicskit::classical::systems::{FPUTChain, HarmonicChain, NormalModes, Sine
 use physicskit::classical::{DynamicalSystem, HamiltonianSystem, IntegrateOptions, Method};
 
 use crate::checks::{check_force_against_potential, fit_slope};
-
-fn pseudo_random(n: usize, seed: u64) -> Vec<f64> {
-    // A fixed linear congruential sequence in [-0.5, 0.5): deterministic test data.
-    let mut s = seed;
-    (0..n)
-        .map(|_| {
-            s = s
-                .wrapping_mul(6364136223846793005)
-                .wrapping_add(1442695040888963407);
-            (s >> 11) as f64 / (1u64 << 53) as f64 - 0.5
-        })
-        .collect()
-}
+use crate::fixtures::pseudo_random;
 
 #[test]
 fn forces_are_minus_gradients() {
