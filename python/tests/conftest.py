@@ -20,6 +20,8 @@ def make_systems():
         "CoupledOscillators": lambda: pc.CoupledOscillators([0.1, 0.0, -0.1], [0.0, 0.2, 0.0]),
         "EulerTop": lambda: pc.EulerTop([0.01, 1.0, 0.01]),
         "HeavySymmetricTop": lambda: pc.HeavySymmetricTop([0.0, 0.5, 0.0], [0.0, 0.0, 20.0]),
+        "TodaLattice": lambda: pc.TodaLattice([0.0, 0.3, -0.2, 0.1], [0.5, 0.0, -0.5, 0.2]),
+        "ElasticPendulum": lambda: pc.ElasticPendulum([1.2, 0.3], [0.0, 0.1]),
     }
 
 

@@ -352,6 +352,10 @@ def _method_calls(system):
             calls += [(meth, "q", lambda v, f=f: f(v, p)), (meth, "p", lambda v, f=f: f(q, v))]
     if hasattr(system, "positions"):
         calls.append(("positions", "q", lambda v: system.positions(v)))
+    for meth in ("conserved_quantities", "mode_energies"):
+        if hasattr(system, meth):
+            f = getattr(system, meth)
+            calls.append((meth, "state", lambda v, f=f: f(v)))
     if hasattr(system, "precession_nutation_rate"):
         calls.append(("precession_nutation_rate", "state",
                       lambda v: system.precession_nutation_rate(v)))

@@ -27,8 +27,9 @@ def test_toda_lax_eigenvalues_match_numpy(n, a, b):
     q0, p0 = rng.normal(0, 0.5, n), rng.normal(0, 0.8, n)
     toda = pc.TodaLattice(q0, p0, a=a, b=b)
     expected = np.linalg.eigvalsh(lax_matrix(q0, p0, a, b))
-    # Both are LAPACK-class symmetric eigensolvers on the same 8x8 matrix: agreement to a few
-    # ulps of the largest eigenvalue (1e-13 absolute on eigenvalues of order 1).
+    # Two backward-stable symmetric eigensolvers (nalgebra's, LAPACK's) on the same n x n
+    # matrix (n <= 8, entries O(1)): each errs by O(n eps |L|) ~ 1e-15, so 1e-13 absolute is
+    # 100x margin and still fails on any wrong matrix entry.
     np.testing.assert_allclose(toda.conserved_quantities(), expected, rtol=0, atol=1e-13)
     # tr L^2 = 2 H (+ 4 a/b for n = 2, where the corner and the off-diagonal coincide).
     extra = 4 * a / b if n == 2 else 0.0
@@ -82,6 +83,8 @@ def test_elastic_pendulum_equations_and_positions():
     np.testing.assert_allclose(bob.positions(), [r * np.sin(th), -r * np.cos(th)], rtol=1e-15)
     expected_e = 0.5 * m * (rd**2 + r**2 * thd**2) - m * g * r * np.cos(th) + 0.5 * k * (r - l0) ** 2
     assert bob.energy() == pytest.approx(expected_e, rel=1e-14)
+    # E_bounce + E_swing = E - E_eq exactly in real arithmetic; the two sides differ only by
+    # the rounding of O(10) terms of size O(10) against a difference of O(1): 1e-12 relative.
     assert bob.mode_energies().sum() == pytest.approx(
         expected_e - (-m * g * (l0 + m * g / k) + 0.5 * k * (m * g / k) ** 2), rel=1e-12
     )
