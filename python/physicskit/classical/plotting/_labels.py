@@ -6,7 +6,6 @@ class's entry's ``q0``/``theta0``/``angles0`` and ``p0``/``thetadot0``/...); the
 
 from __future__ import annotations
 
-from functools import lru_cache
 from typing import Any, Optional
 
 from ..listings import catalog
@@ -32,15 +31,18 @@ _P_PARAMS = ("p0", "thetadot0", "qdot0", "angledots0")
 _STATE_ENTRY_OF = {"FPUTChain": "HarmonicChain"}
 
 
-@lru_cache(maxsize=None)
+_ENTRIES: dict[str, dict[str, Any]] = {}
+
+
 def _entries() -> dict[str, dict[str, Any]]:
-    """Catalogue entries by Python class name (the state-taking entry of each class)."""
-    out: dict[str, dict[str, Any]] = {}
-    for entry in catalog():
-        name = entry["python"]
-        if name and "." not in name:
-            out[name] = entry
-    return out
+    """Catalogue entries by Python class name (the state-taking entry of each class), read
+    once."""
+    if not _ENTRIES:
+        for entry in catalog():
+            name = entry["python"]
+            if name and "." not in name:
+                _ENTRIES[name] = entry
+    return _ENTRIES
 
 
 def _entry(system: Any) -> Optional[dict[str, Any]]:
@@ -90,6 +92,11 @@ class Labels:
         if self._symbols is not None and len(self._symbols) == 1:
             return f"{self._symbols[0]}_{{{i + 1}}}"
         return f"q_{{{i + 1}}}" if self.ndof > 1 else "q"
+
+    @property
+    def q_unit(self) -> str:
+        """Unit of the first coordinate."""
+        return _unit_words(self._q_unit, 0) if self._q_unit is not None else "state units"
 
     def q(self, i: int) -> str:
         """Label of coordinate ``i``."""

@@ -27,7 +27,8 @@ def new_axes(ax: Any = None, projection: str | None = None) -> Any:
         if projection == "3d" and getattr(ax, "name", "") != "3d":
             raise ValueError("ax must be a 3-D axes (fig.add_subplot(projection='3d'))")
         return ax
-    fig = pyplot().figure(figsize=(6.0, 5.0) if projection == "3d" else (6.4, 4.2))
+    fig = pyplot().figure(figsize=(6.0, 5.0) if projection == "3d" else (6.4, 4.2),
+                          layout=None if projection == "3d" else "constrained")
     return fig.add_subplot(projection=projection)
 
 

@@ -114,7 +114,7 @@ def _chain(system: Any, result: Any, idx: np.ndarray, ax: Any) -> _Update:
     (springs,) = ax.plot([], [], "-", color="0.4", lw=1)
     (masses,) = ax.plot([], [], "o", color="C0", ms=max(2.0, min(8.0, 240.0 / n)))
     ax.set_xlabel("site $i$")
-    ax.set_ylabel(f"displacement {lab.q(0)}".replace(f"${lab._symbol(0)}$", "$q_i$"))
+    ax.set_ylabel(f"displacement $q_i$ ({lab.q_unit})")
 
     def update(k: int) -> list[Any]:
         xs = np.concatenate([[0], sites, [n + 1]]) if walls else sites
@@ -288,10 +288,11 @@ def animate(system: Any, result: Any, *, stride: int = 1, frames: int | None = N
         )
     title = ax.set_title("")
     t = result.t[idx]
-    label = Labels(system).t
+    unit = Labels(system).time_unit
+    unit = " s" if unit == "s" else ""
 
     def frame(k: int) -> list[Any]:
-        title.set_text(f"{label.split(' ')[0]} = {t[k]:.2f} {label.split('(')[-1].rstrip(')')}")
+        title.set_text(f"$t$ = {t[k]:.2f}{unit}")
         return update(k) + [title]
 
     frame(0)

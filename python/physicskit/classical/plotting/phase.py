@@ -10,8 +10,10 @@ from ._data import as_results, has_qp, labels_for
 from ._labels import Labels
 from ._mpl import new_axes, orbit_colours
 
-#: Grid of the separatrix contour (its level set is drawn by matplotlib's contouring).
+#: Grid of the separatrix contour (its level set is drawn by matplotlib's contouring): fine
+#: where the energy is one vectorized call (the swarm), coarser where it is one call per point.
 _GRID = (241, 161)
+_GRID_PER_POINT = (121, 81)
 
 
 def _pendulum_energy_grid(system: Any, qq: np.ndarray, pp: np.ndarray) -> np.ndarray | None:
@@ -51,7 +53,10 @@ def draw_separatrix(ax: Any, system: Any, linewidth: float = 1.0) -> Any:
         return None
     x0, x1 = ax.get_xlim()
     y0, y1 = ax.get_ylim()
-    qq, pp = np.meshgrid(np.linspace(x0, x1, _GRID[0]), np.linspace(y0, y1, _GRID[1]))
+    from ..systems.hamiltonian import PendulumSwarm
+
+    nx, ny = _GRID if isinstance(system, PendulumSwarm) else _GRID_PER_POINT
+    qq, pp = np.meshgrid(np.linspace(x0, x1, nx), np.linspace(y0, y1, ny))
     e = _pendulum_energy_grid(system, qq, pp)
     assert e is not None  # levels exist only for the pendulum family
     inside = [v for v in levels if e.min() < v < e.max()]
@@ -108,7 +113,7 @@ def phase_portrait(results: Any, system: Any = None, *, dof: int | Sequence[int]
             raise ValueError(f"dof = {d} is out of range for {ndof} degrees of freedom")
     ax = new_axes(ax)
     lab = Labels(system, ndof)
-    names = labels_for(runs, labels) if labels is not None or len(runs) > 1 else None
+    names = labels_for(runs, labels) if labels is not None else None
     artists: list[Any] = []
     many = len(runs) * len(dofs) > 12
     for k, r in enumerate(runs):
