@@ -93,7 +93,8 @@ def test_result_plot_of_an_ode_run_has_state_and_energy():
     top = pc.EulerTop([0.01, 1.0, 0.01])
     fig = top.integrate((0, 1), 0.01).plot(top)
     assert_drawn(fig)
-    assert [len(a.lines) for a in fig.axes] == [7, 1]
+    assert [len(a.lines) for a in fig.axes] == [3, 1]  # the body rates, not the quaternion
+    assert fig.axes[0].get_ylabel() == r"body $\omega$ (rad/s)"
 
 
 def test_result_plot_without_system_and_in_given_axes(double):

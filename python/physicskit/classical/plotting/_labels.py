@@ -74,6 +74,8 @@ class Labels:
         self._p_unit = next((params[n] for n in _P_PARAMS if n in params), None)
         symbols = next((_Q_SYMBOLS[n] for n in cls_names if n in _Q_SYMBOLS), None)
         self._symbols = symbols
+        #: An Euler top (state = body rates, then the orientation quaternion).
+        self.rigid_body = "EulerTop" in cls_names
         self._dot = lagrangian
         self.ndof = ndof
         units = " ".join(p["unit"] for p in entry["params"]) if entry else ""

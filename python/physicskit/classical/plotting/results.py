@@ -24,7 +24,8 @@ def plot_result(result: Any, system: Any = None, *, ax: Any = None, max_lines: i
         The system that produced it; gives the axes their symbols and units (from the
         catalogue). Without it the labels are generic.
     ax : sequence of 3 Axes, optional
-        Where to draw (2 for a run without ``q``/``p``, e.g. the Euler top: state and energy).
+        Where to draw (2 for a run without ``q``/``p``: the state, or the Euler top's body
+        rates ``omega``, and the energy error).
     max_lines : int
         At most this many coordinates are drawn per panel (a 1000-pendulum swarm is not drawn
         as 1000 lines).
@@ -58,9 +59,15 @@ def plot_result(result: Any, system: Any = None, *, ax: Any = None, max_lines: i
             axes[0].legend(loc="upper right", fontsize="small", ncol=min(ndof, 4))
     else:
         lab = Labels(system, 1)
-        for i in range(min(result.y.shape[1], max_lines)):
-            axes[0].plot(t, result.y[:, i], lw=1.0, label=f"$y_{{{i}}}$")
-        axes[0].set_ylabel("state (state units)")
+        if lab.rigid_body:
+            # The Euler top's state is [w1, w2, w3, quaternion]: the body rates are the story.
+            for i in range(3):
+                axes[0].plot(t, result.y[:, i], lw=1.0, label=rf"$\omega_{i + 1}$")
+            axes[0].set_ylabel(rf"body $\omega$ ({lab.q_unit})")
+        else:
+            for i in range(min(result.y.shape[1], max_lines)):
+                axes[0].plot(t, result.y[:, i], lw=1.0, label=f"$y_{{{i}}}$")
+            axes[0].set_ylabel("state (state units)")
         axes[0].legend(loc="upper right", fontsize="small", ncol=4)
     if getattr(result, "energy", None) is not None:
         err, relative = relative_energy_error(result)
