@@ -277,3 +277,20 @@ def test_animate_refuses_what_it_cannot_draw(double, tmp_path):
     pl.save_animation(anim, str(tmp_path / "x.gif"), dpi=20)
     with pytest.raises(ValueError, match="cannot draw"):
         pl.animate(object(), result)
+
+
+@pytest.mark.parametrize("bad", [float("nan"), float("inf"), 1j, True, 2.0, "3", None, 10**30, 0])
+def test_integer_options_refuse_what_is_not_a_positive_integer(double, bad):
+    # The package's own converter: ValueError naming the argument, never OverflowError /
+    # TypeError from int(), never a float silently truncated. (None is refused: stride has no
+    # None default; frames=None is the documented "use stride".)
+    system, result = double
+    calls = {
+        "stride": lambda: pl.animate(system, result, stride=bad),
+        "fps": lambda: pl.animate(system, result, frames=2, fps=bad),
+    }
+    if bad is not None:
+        calls["frames"] = lambda: pl.animate(system, result, frames=bad)
+    for name, call in calls.items():
+        with pytest.raises(ValueError, match=name):
+            call()

@@ -6,6 +6,8 @@ from typing import Any, Sequence
 
 import numpy as np
 
+from .._native import as_int
+
 
 def as_results(results: Any) -> list[Any]:
     """One result or a sequence of them, as a list (ValueError if empty)."""
@@ -46,16 +48,17 @@ def relative_energy_error(result: Any) -> tuple[np.ndarray, bool]:
     return err, relative
 
 
+#: More frames than any animation should hold (a 10^5-frame GIF is gigabytes).
+_MAX_FRAMES = 100_000
+
+
 def frame_indices(n_samples: int, stride: int, frames: int | None) -> np.ndarray:
     """Sample indices of an animation: every ``stride``-th sample, or ``frames`` evenly spaced
     ones."""
     if frames is not None:
-        if int(frames) != frames or frames < 1:
-            raise ValueError(f"frames must be an integer >= 1, got {frames!r}")
-        return np.unique(np.linspace(0, n_samples - 1, int(frames)).round().astype(int))
-    if int(stride) != stride or stride < 1:
-        raise ValueError(f"stride must be an integer >= 1, got {stride!r}")
-    return np.arange(0, n_samples, int(stride))
+        count = as_int("frames", frames, minimum=1, maximum=_MAX_FRAMES)
+        return np.unique(np.linspace(0, n_samples - 1, count).round().astype(int))
+    return np.arange(0, n_samples, as_int("stride", stride, minimum=1))
 
 
 def labels_for(results: Sequence[Any], labels: Sequence[str] | None) -> list[str]:

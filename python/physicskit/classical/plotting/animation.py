@@ -15,6 +15,7 @@ from typing import Any, Callable
 
 import numpy as np
 
+from .._native import as_int
 from ._data import frame_indices, has_qp
 from ._labels import Labels
 from ._mpl import new_axes
@@ -253,12 +254,9 @@ def animate(system: Any, result: Any, *, stride: int = 1, frames: int | None = N
 
     from ..systems import chains, hamiltonian, lagrangian, newtonian, rotations
 
-    if int(fps) != fps or fps < 1:
-        raise ValueError(f"fps must be an integer >= 1, got {fps!r}")
-    if int(trail) != trail or trail < 0:
-        raise ValueError(f"trail must be an integer >= 0, got {trail!r}")
+    fps = as_int("fps", fps, minimum=1, maximum=1000)
+    trail = as_int("trail", trail, minimum=0)
     idx = frame_indices(len(result.t), stride, frames)
-    trail = int(trail)
     three_d = isinstance(system, (rotations.EulerTop, rotations.HeavySymmetricTop))
     if not three_d and not has_qp(result):
         raise ValueError("the result has no q and p to animate")
@@ -307,7 +305,9 @@ def save_animation(anim: Any, path: str, *, fps: int | None = None, dpi: int = 8
     what to install when the writer is missing)."""
     from matplotlib import animation as mpl_animation
 
-    fps = int(fps if fps is not None else getattr(anim, "fps", 30))
+    fps = as_int("fps", fps if fps is not None else getattr(anim, "fps", 30), minimum=1,
+                 maximum=1000)
+    dpi = as_int("dpi", dpi, minimum=1, maximum=1000)
     lower = str(path).lower()
     if lower.endswith(".gif"):
         try:

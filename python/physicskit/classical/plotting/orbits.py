@@ -7,6 +7,7 @@ from typing import Any
 
 import numpy as np
 
+from .._native import as_int
 from ._labels import Labels
 from ._mpl import new_axes, pyplot
 
@@ -31,14 +32,13 @@ def kepler_orbit(system: Any, result: Any, *, arrows: int = 6, ax: Any = None,
     -------
     (orbit Line2D, arrows Quiver, precession Line2D or None)
     """
-    if int(arrows) != arrows or arrows < 1:
-        raise ValueError(f"arrows must be an integer >= 1, got {arrows!r}")
+    arrows = as_int("arrows", arrows, minimum=1, maximum=1000)
     a_vec = lrl_history(system, result)
     ax = new_axes(ax)
     lab = Labels(system, 2)
     (orbit,) = ax.plot(result.q[:, 0], result.q[:, 1], lw=0.7, color="C0", label="orbit")
     ax.plot([0.0], [0.0], marker="*", color="orange", ms=12, ls="", label="force centre")
-    idx = np.unique(np.linspace(0, len(result.t) - 1, int(arrows)).round().astype(int))
+    idx = np.unique(np.linspace(0, len(result.t) - 1, arrows).round().astype(int))
     size = np.abs(result.q).max()
     norm = np.linalg.norm(a_vec[idx], axis=1)
     scale = np.where(norm > 0, 0.9 * size / np.where(norm > 0, norm, 1.0), 0.0)

@@ -6,6 +6,7 @@ from typing import Any
 
 import numpy as np
 
+from .._native import as_int
 from ._labels import Labels
 from ._mpl import pyplot
 from .phase import draw_separatrix
@@ -35,13 +36,12 @@ def swarm_patch(system: Any, result: Any, *, times: int = 4, ax: Any = None,
     """
     if not hasattr(system, "phase_space_area"):
         raise ValueError(f"{type(system).__name__} has no phase_space_area (use a PendulumSwarm)")
-    if int(times) != times or times < 1:
-        raise ValueError(f"times must be an integer >= 1, got {times!r}")
+    times = as_int("times", times, minimum=1, maximum=1000)
     if ax is None and area_ax is None:
         _, (ax, area_ax) = pyplot().subplots(1, 2, figsize=(11.0, 4.2))
     elif ax is None:
         ax = pyplot().figure().add_subplot()
-    idx = np.unique(np.linspace(0, len(result.t) - 1, int(times)).round().astype(int))
+    idx = np.unique(np.linspace(0, len(result.t) - 1, times).round().astype(int))
     lab = Labels(system, 1)
     colours = pyplot().get_cmap("viridis")(np.linspace(0.0, 0.9, len(idx)))
     snaps = []
