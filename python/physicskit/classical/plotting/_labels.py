@@ -1,7 +1,8 @@
 """Axis labels with units, from the system catalogue (``physicskit.classical.catalog()``).
 
-A system's state units are those the catalogue gives its initial-condition parameters (the
-class's entry's ``q0``/``theta0``/``angles0`` and ``p0``/``thetadot0``/...); the symbols are presentation only and live here.
+A system's state units are those the catalogue gives its initial-condition parameters (its
+class's entry's ``q0``/``theta0``/``angles0`` and ``p0``/``thetadot0``/...); the symbols are
+presentation only and live here.
 """
 
 from __future__ import annotations
@@ -88,7 +89,8 @@ class Labels:
         else:
             self.time_unit = "time units"
 
-    def _symbol(self, i: int) -> str:
+    def symbol(self, i: int) -> str:
+        """Mathtext symbol (no dollars) of coordinate ``i``."""
         if self._symbols is not None and self.ndof <= len(self._symbols):
             return self._symbols[i]
         if self._symbols is not None and len(self._symbols) == 1:
@@ -103,12 +105,12 @@ class Labels:
     def q(self, i: int) -> str:
         """Label of coordinate ``i``."""
         unit = _unit_words(self._q_unit, i) if self._q_unit is not None else "state units"
-        return f"${self._symbol(i)}$ ({unit})"
+        return f"${self.symbol(i)}$ ({unit})"
 
     def p(self, i: int) -> str:
         """Label of momentum (Hamiltonian) or velocity (Lagrangian) ``i``."""
         unit = _unit_words(self._p_unit, i) if self._p_unit is not None else "state units"
-        sym = self._symbol(i)
+        sym = self.symbol(i)
         if self._dot:
             return rf"$\dot{{{sym}}}$ ({unit})"
         if sym in ("x", "y"):

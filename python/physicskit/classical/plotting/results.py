@@ -51,7 +51,7 @@ def plot_result(result: Any, system: Any = None, *, ax: Any = None, max_lines: i
         lab = Labels(system, ndof)
         shown = range(min(ndof, max_lines))
         for i in shown:
-            axes[0].plot(t, result.q[:, i], lw=1.0, label=f"${lab._symbol(i)}$")
+            axes[0].plot(t, result.q[:, i], lw=1.0, label=f"${lab.symbol(i)}$")
             axes[1].plot(t, result.p[:, i], lw=1.0)
         axes[0].set_ylabel(lab.q(0) if ndof == 1 else lab.q_all())
         axes[1].set_ylabel(lab.p(0) if ndof == 1 else lab.p_all())
