@@ -61,6 +61,15 @@ class SimulationResult:
     """Additional diagnostics (``n_steps``, ``dt``, force or solver evaluation counts ...;
     ``stride`` after ``integrate_sampled``)."""
 
+    def plot(self, system: Any = None, **kwargs: Any) -> Any:
+        """``q(t)``, ``p(t)`` (or ``qdot``) and the relative energy error on a log scale, one
+        figure; ``system`` labels the axes with its units. Needs matplotlib
+        (``pip install physicskit[plot]``); see ``physicskit.classical.plotting.plot_result``.
+        """
+        from ..plotting import plot_result
+
+        return plot_result(self, system, **kwargs)
+
 
 class _SplitOnAccess(SimulationResult):
     """A :class:`SimulationResult` whose ``q`` and ``p`` are split off ``y`` on first access.

@@ -1,0 +1,323 @@
+"""Animations of a run: ``animate(system, result)`` returns a matplotlib ``FuncAnimation``.
+
+What is drawn depends on the system: the pendulum family as bobs on rods (the double
+pendulum's lower bob with a fading trail), chains as moving masses, the pendulum swarm as a
+cloud in phase space, orbits with a trail, the Euler top as a tumbling box (its orientation
+from the system's ``rotation_matrix``), the heavy top as its axis on the unit sphere.
+
+In Jupyter: ``HTML(anim.to_jshtml())`` (or ``%matplotlib`` widget backends play it directly);
+``save_animation(anim, "run.gif")`` writes a GIF with pillow (``.mp4`` with ffmpeg).
+"""
+
+from __future__ import annotations
+
+from typing import Any, Callable
+
+import numpy as np
+
+from .._native import as_int
+from ._data import frame_indices, has_qp
+from ._labels import Labels
+from ._mpl import new_axes
+
+#: Update function of a frame (its position in the frame list) -> artists changed.
+_Update = Callable[[int], list[Any]]
+
+
+def _fading_trail(ax: Any, colour: str) -> Any:
+    from matplotlib.collections import LineCollection
+
+    trail = LineCollection([], colors=colour, linewidths=1.5)
+    ax.add_collection(trail)
+    return trail
+
+
+def _set_trail(trail: Any, xy: np.ndarray, base: Any) -> None:
+    """Segments of ``xy`` (oldest first), alpha rising from 0 to 1 toward the newest."""
+    from matplotlib.colors import to_rgba
+
+    if len(xy) < 2:
+        trail.set_segments([])
+        return
+    segs = np.stack([xy[:-1], xy[1:]], axis=1)
+    rgba = np.tile(to_rgba(base), (len(segs), 1))
+    rgba[:, 3] = np.linspace(0.0, 1.0, len(segs)) ** 1.5
+    trail.set_segments(segs)
+    trail.set_color(rgba)
+
+
+def _bobs(system: Any, result: Any, idx: np.ndarray, ax: Any, trail: int) -> _Update:
+    """Pendulums drawn from the system's ``positions(q)``: rods from the pivot through each bob."""
+    pos = np.array([system.positions(result.q[i]) for i in idx]).reshape(len(idx), -1, 2)
+    reach = 1.1 * np.abs(pos).max()
+    ax.set_xlim(-reach, reach)
+    ax.set_ylim(-reach, reach)
+    ax.set_aspect("equal")
+    ax.plot([0.0], [0.0], "ks", ms=5)
+    (rods,) = ax.plot([], [], "-", color="0.3", lw=2)
+    (bobs,) = ax.plot([], [], "o", color="C0", ms=10)
+    fade = _fading_trail(ax, "C3")
+    ax.set_xlabel("$x$ (m)")
+    ax.set_ylabel("$y$ (m)")
+
+    def update(k: int) -> list[Any]:
+        pts = np.vstack([[0.0, 0.0], pos[k]])
+        rods.set_data(pts[:, 0], pts[:, 1])
+        bobs.set_data(pos[k, :, 0], pos[k, :, 1])
+        _set_trail(fade, pos[max(0, k - trail) : k + 1, -1], "C3")
+        return [rods, bobs, fade]
+
+    return update
+
+
+def _hoop(system: Any, result: Any, idx: np.ndarray, ax: Any, trail: int) -> _Update:
+    """The bead on its hoop, seen in the hoop's rotating frame: ``(R sin theta, -R cos theta)``."""
+    radius = system.R
+    th = result.q[idx, 0]
+    xy = np.column_stack([radius * np.sin(th), -radius * np.cos(th)])
+    ring = np.linspace(0.0, 2.0 * np.pi, 200)
+    ax.plot(radius * np.cos(ring), radius * np.sin(ring), color="0.5", lw=2)
+    ax.plot([0, 0], [-1.2 * radius, 1.2 * radius], "k:", lw=0.8)
+    ax.set_aspect("equal")
+    ax.set_xlim(-1.3 * radius, 1.3 * radius)
+    ax.set_ylim(-1.3 * radius, 1.3 * radius)
+    (bead,) = ax.plot([], [], "o", color="C0", ms=10)
+    fade = _fading_trail(ax, "C3")
+    ax.set_xlabel("$x$ in the hoop's rotating frame (m)")
+    ax.set_ylabel("$y$ (m)")
+
+    def update(k: int) -> list[Any]:
+        bead.set_data(xy[k : k + 1, 0], xy[k : k + 1, 1])
+        _set_trail(fade, xy[max(0, k - trail) : k + 1], "C3")
+        return [bead, fade]
+
+    return update
+
+
+def _chain(system: Any, result: Any, idx: np.ndarray, ax: Any) -> _Update:
+    """Masses at their sites ``i``, displaced by ``q_i`` (drawn across the chain), joined by
+    the springs; fixed walls at both ends where the chain has them."""
+    q = result.q[idx]
+    n = q.shape[1]
+    sites = np.arange(1, n + 1)
+    lab = Labels(system, n)
+    top = 1.15 * max(np.abs(q).max(), 1e-12)
+    ax.set_xlim(0, n + 1)
+    ax.set_ylim(-top, top)
+    ax.axhline(0.0, color="0.8", lw=0.8)
+    from ..systems.chains import HarmonicChain, FPUTChain
+
+    walls = isinstance(system, (HarmonicChain, FPUTChain)) or type(system).__name__ == \
+        "CoupledOscillators"
+    if walls:
+        ax.axvline(0, color="k", lw=3)
+        ax.axvline(n + 1, color="k", lw=3)
+    (springs,) = ax.plot([], [], "-", color="0.4", lw=1)
+    (masses,) = ax.plot([], [], "o", color="C0", ms=max(2.0, min(8.0, 240.0 / n)))
+    ax.set_xlabel("site $i$")
+    ax.set_ylabel(f"displacement $q_i$ ({lab.q_unit})")
+
+    def update(k: int) -> list[Any]:
+        xs = np.concatenate([[0], sites, [n + 1]]) if walls else sites
+        ys = np.concatenate([[0.0], q[k], [0.0]]) if walls else q[k]
+        springs.set_data(xs, ys)
+        masses.set_data(sites, q[k])
+        return [springs, masses]
+
+    return update
+
+
+def _cloud(system: Any, result: Any, idx: np.ndarray, ax: Any) -> _Update:
+    """The swarm's points in phase space."""
+    from .phase import draw_separatrix
+
+    q, p = result.q[idx], result.p[idx]
+    ax.set_xlim(q.min() - 0.2, q.max() + 0.2)
+    ax.set_ylim(p.min() - 0.2, p.max() + 0.2)
+    lab = Labels(system, 1)
+    draw_separatrix(ax, system, linewidth=0.8)
+    pts = ax.scatter(q[0], p[0], s=3, color="C0", linewidths=0)
+    ax.set_xlabel(lab.q(0))
+    ax.set_ylabel(lab.p(0))
+
+    def update(k: int) -> list[Any]:
+        pts.set_offsets(np.column_stack([q[k], p[k]]))
+        return [pts]
+
+    return update
+
+
+def _orbit(system: Any, result: Any, idx: np.ndarray, ax: Any, trail: int) -> _Update:
+    """A point moving in the ``(q_1, q_2)`` plane with a fading trail."""
+    xy = result.q[idx][:, :2]
+    lab = Labels(system, 2)
+    ax.plot(result.q[:, 0], result.q[:, 1], color="0.85", lw=0.6)
+    if type(system).__name__ == "KeplerSystem":
+        ax.plot([0.0], [0.0], marker="*", color="orange", ms=12)
+        ax.set_aspect("equal", adjustable="datalim")
+    (body,) = ax.plot([], [], "o", color="C0", ms=7)
+    fade = _fading_trail(ax, "C0")
+    ax.set_xlabel(lab.q(0))
+    ax.set_ylabel(lab.q(1))
+
+    def update(k: int) -> list[Any]:
+        body.set_data(xy[k : k + 1, 0], xy[k : k + 1, 1])
+        _set_trail(fade, xy[max(0, k - trail) : k + 1], "C0")
+        return [body, fade]
+
+    return update
+
+
+#: The 12 edges of a box, as pairs of corner indices (corners = sign patterns of 3 bits).
+_EDGES = [(a, b) for a in range(8) for b in range(a + 1, 8) if bin(a ^ b).count("1") == 1]
+
+
+def _box(system: Any, result: Any, idx: np.ndarray, ax: Any) -> _Update:
+    """A uniform box with the top's principal moments (half-sides ``a_1^2 ∝ I2 + I3 - I1``
+    ...), turned by the system's ``rotation_matrix`` of each state."""
+    inertia = np.array([system.I1, system.I2, system.I3])
+    half_sq = np.maximum(inertia.sum() - 2.0 * inertia, 1e-3 * inertia.sum())
+    half = np.sqrt(half_sq / half_sq.max())
+    corners = np.array([[(c >> k & 1) * 2 - 1 for k in range(3)] for c in range(8)]) * half
+    rots = np.array([system.rotation_matrix(result.y[i]) for i in idx])
+    lines = [ax.plot([], [], [], color="C0", lw=1.5)[0] for _ in _EDGES]
+    ax.set_xlim(-1.2, 1.2)
+    ax.set_ylim(-1.2, 1.2)
+    ax.set_zlim(-1.2, 1.2)
+    ax.set_box_aspect((1, 1, 1))
+    ax.set_xlabel("$x$ (space frame)")
+    ax.set_ylabel("$y$ (space frame)")
+    ax.set_zlabel("$z$ (space frame)")
+
+    def update(k: int) -> list[Any]:
+        world = corners @ rots[k].T
+        for line, (a, b) in zip(lines, _EDGES):
+            seg = world[[a, b]]
+            line.set_data_3d(seg[:, 0], seg[:, 1], seg[:, 2])
+        return lines
+
+    return update
+
+
+def _top(system: Any, result: Any, idx: np.ndarray, ax: Any, trail: int) -> _Update:
+    """The heavy top's symmetry axis from the pivot, its tip tracing the unit sphere."""
+    from .rigid import _sphere, axis_tip
+
+    tip = axis_tip(result)[idx]
+    _sphere(ax, 1.0)
+    (stick,) = ax.plot([], [], [], color="C0", lw=3)
+    (path,) = ax.plot([], [], [], color="C3", lw=1)
+    ax.set_box_aspect((1, 1, 1))
+    ax.set_xlabel("$x$ (unit sphere)")
+    ax.set_ylabel("$y$ (unit sphere)")
+    ax.set_zlabel("$z$, up (unit sphere)")
+
+    def update(k: int) -> list[Any]:
+        stick.set_data_3d([0.0, tip[k, 0]], [0.0, tip[k, 1]], [0.0, tip[k, 2]])
+        old = tip[max(0, k - trail) : k + 1]
+        path.set_data_3d(old[:, 0], old[:, 1], old[:, 2])
+        return [stick, path]
+
+    return update
+
+
+def animate(system: Any, result: Any, *, stride: int = 1, frames: int | None = None,
+            fps: int = 30, trail: int = 40, ax: Any = None) -> Any:
+    """Animate a run of a built-in system.
+
+    Parameters
+    ----------
+    system : the system that produced ``result``
+    result : SimulationResult
+    stride : int
+        Draw every ``stride``-th stored sample.
+    frames : int, optional
+        Instead of ``stride``: this many evenly spaced samples.
+    fps : int
+        Frames per second of playback (and of a saved file).
+    trail : int
+        Length of the fading trail, in frames (pendulums, orbits, the top's tip).
+    ax : Axes, optional
+        Where to draw (a 3-D axes for the rigid bodies).
+
+    Returns
+    -------
+    matplotlib.animation.FuncAnimation, with ``len(frame_indices)`` frames; its
+    ``frame_indices`` attribute holds the sample index of each frame.
+
+    Raises
+    ------
+    ValueError
+        For a system it cannot draw, or a bad ``stride`` / ``frames`` / ``fps``.
+    """
+    from matplotlib.animation import FuncAnimation
+
+    from ..systems import chains, hamiltonian, lagrangian, newtonian, rotations
+
+    fps = as_int("fps", fps, minimum=1, maximum=1000)
+    trail = as_int("trail", trail, minimum=0)
+    idx = frame_indices(len(result.t), stride, frames)
+    three_d = isinstance(system, (rotations.EulerTop, rotations.HeavySymmetricTop))
+    if not three_d and not has_qp(result):
+        raise ValueError("the result has no q and p to animate")
+    ax = new_axes(ax, projection="3d" if three_d else None)
+    update: _Update
+    if isinstance(system, (lagrangian.DoublePendulum, lagrangian.ElasticPendulum)):
+        update = _bobs(system, result, idx, ax, trail)
+    elif isinstance(system, lagrangian.BeadOnRotatingHoop):
+        update = _hoop(system, result, idx, ax, trail)
+    elif isinstance(system, hamiltonian.PendulumSwarm):
+        update = _cloud(system, result, idx, ax)
+    elif isinstance(system, (chains._ChainBase, chains.TodaLattice,
+                             lagrangian.CoupledOscillators)):
+        update = _chain(system, result, idx, ax)
+    elif isinstance(system, (newtonian.KeplerSystem, newtonian.ProjectileMotion,
+                             hamiltonian.HenonHeilesSystem)):
+        update = _orbit(system, result, idx, ax, trail)
+    elif isinstance(system, rotations.EulerTop):
+        update = _box(system, result, idx, ax)
+    elif isinstance(system, rotations.HeavySymmetricTop):
+        update = _top(system, result, idx, ax, trail)
+    else:
+        raise ValueError(
+            f"animate cannot draw a {type(system).__name__}; it draws the pendulum family, "
+            "chains, the pendulum swarm, orbits (Kepler, projectile, Hénon–Heiles) and the "
+            "two tops"
+        )
+    title = ax.set_title("")
+    t = result.t[idx]
+    unit = Labels(system).time_unit
+    unit = " s" if unit == "s" else ""
+
+    def frame(k: int) -> list[Any]:
+        title.set_text(f"$t$ = {t[k]:.2f}{unit}")
+        return update(k) + [title]
+
+    frame(0)
+    anim = FuncAnimation(ax.figure, frame, frames=len(idx), interval=1000.0 / fps, blit=False)
+    anim.frame_indices = idx  # type: ignore[attr-defined]
+    anim.fps = int(fps)  # type: ignore[attr-defined]
+    return anim
+
+
+def save_animation(anim: Any, path: str, *, fps: int | None = None, dpi: int = 80) -> None:
+    """Write ``anim`` to ``path``: ``.gif`` with pillow, ``.mp4`` with ffmpeg (ValueError naming
+    what to install when the writer is missing)."""
+    from matplotlib import animation as mpl_animation
+
+    fps = as_int("fps", fps if fps is not None else getattr(anim, "fps", 30), minimum=1,
+                 maximum=1000)
+    dpi = as_int("dpi", dpi, minimum=1, maximum=1000)
+    lower = str(path).lower()
+    if lower.endswith(".gif"):
+        try:
+            import PIL  # noqa: F401
+        except ImportError:
+            raise ValueError("saving a GIF needs pillow: pip install physicskit[plot]") from None
+        anim.save(path, writer=mpl_animation.PillowWriter(fps=fps), dpi=dpi)
+    elif lower.endswith(".mp4"):
+        if not mpl_animation.FFMpegWriter.isAvailable():
+            raise ValueError("saving an MP4 needs ffmpeg on PATH; save a .gif instead")
+        anim.save(path, writer=mpl_animation.FFMpegWriter(fps=fps), dpi=dpi)
+    else:
+        raise ValueError(f"path must end in .gif or .mp4, got {path!r}")
