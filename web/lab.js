@@ -147,10 +147,14 @@ function rebuild(state0 = null) {
   app.lab = lab;
   try { lab.setMethod($("method").value); } catch (e) { message(e.message); }
   const labels = stateLabels();
+  // The phase panel starts at (q1, p1) for each new system and keeps the reader's choice
+  // while the same system is rebuilt.
+  const same = app.phaseSystem === app.entry.name;
+  app.phaseSystem = app.entry.name;
   for (const [id, def] of [["phase-x", 0], ["phase-y", family() === "ode" ? 1 : labels.length / 2]]) {
     const sel = $(id), old = sel.value;
     sel.replaceChildren(...labels.map((l, i) => new Option(l, i)));
-    sel.value = old !== "" && Number(old) < labels.length ? old : Math.min(def, labels.length - 1);
+    sel.value = same && old !== "" && Number(old) < labels.length ? old : Math.min(def, labels.length - 1);
   }
   $("section-figure").hidden = !hasSection();
   if (hasSection()) {
@@ -195,6 +199,7 @@ function frame() {
     return false;
   }
   app.frames++;
+  app.sceneFrozen = false;
   record();
   return true;
 }
@@ -259,15 +264,23 @@ function drawScene() {
   if (pos.length) {
     const bodies = project(pos), linked = family() === "lagrangian";
     let box = grow(app.sceneBox, 0, 0);
-    for (const [x, y] of bodies) box = grow(box, x, y);
+    // While a body is dragged, and until the next frame, the view does not move under it.
+    if (!app.sceneFrozen || !app.sceneBox) for (const [x, y] of bodies) box = grow(box, x, y);
     app.sceneBox = box;
     const v = view(c, box, true);
     app.sceneView = v;
     // Trails: every body's path, fading with age.
-    app.trails.forEach((p, k) => {
-      ctx.fillStyle = `rgba(40, 90, 200, ${0.1 + 0.6 * k / app.trails.length})`;
-      for (const [x, y] of project(p)) ctx.fillRect(v.X(x) - 1, v.Y(y) - 1, 2, 2);
-    });
+    const paths = app.trails.map(project);
+    ctx.lineWidth = 1.5;
+    for (let k = 1; k < paths.length; k++) {
+      ctx.strokeStyle = `rgba(40, 90, 200, ${0.1 + 0.7 * k / paths.length})`;
+      ctx.beginPath();
+      paths[k].forEach(([x, y], b) => {
+        const [x0, y0] = paths[k - 1][b] ?? [x, y];
+        ctx.moveTo(v.X(x0), v.Y(y0)); ctx.lineTo(v.X(x), v.Y(y));
+      });
+      ctx.stroke();
+    }
     ctx.strokeStyle = "#333"; ctx.lineWidth = 3;
     if (linked) {
       ctx.beginPath(); ctx.moveTo(v.X(0), v.Y(0));
@@ -389,6 +402,10 @@ function drawSection() {
   ctx.beginPath(); ctx.moveTo(v.X(0), 0); ctx.lineTo(v.X(0), c.height); ctx.moveTo(0, v.Y(0)); ctx.lineTo(c.width, v.Y(0)); ctx.stroke();
   ctx.fillStyle = "#1b4fa0";
   for (let i = 0; i < x.length; i += n) ctx.fillRect(v.X(x[i]) - 1.5, v.Y(x[i + 2]) - 1.5, 3, 3);
+  const labels = stateLabels();
+  ctx.fillStyle = "#333";
+  ctx.fillText(labels[0], c.width - ctx.measureText(labels[0]).width - 8, c.height - 8);
+  ctx.fillText(labels[2], 8, 20);
   $("section-energy").textContent = app.lab.energy0().toPrecision(6);
 }
 
@@ -405,18 +422,15 @@ function canvasPoint(c, ev) {
   return [((ev.clientX - r.left) * c.width) / r.width, ((ev.clientY - r.top) * c.height) / r.height];
 }
 
-// Solves positions(q)[body] = target for q by Gauss–Newton with finite differences, holding
-// the other bodies near where they are (weight 0.3), so that dragging the lower bob of a
-// double pendulum swings the lower rod.
-function solveConfiguration(q0, body, target, hold) {
+// Solves positions(q)[body] = target for q by Gauss–Newton with finite differences, from
+// the current configuration: a small Levenberg term keeps coordinates the dragged body does
+// not depend on where they are (dragging the upper bob leaves the lower rod's angle), and a
+// target out of reach ends at the nearest reachable point.
+function solveConfiguration(q0, body, target) {
   const q = Array.from(q0), n = q.length;
   const residual = (qq) => {
-    const b = project(app.lab.positionsOf(qq)), r = [];
-    b.forEach(([x, y], i) => {
-      if (i === body) r.push(x - target[0], y - target[1]);
-      else r.push(0.3 * (x - hold[i][0]), 0.3 * (y - hold[i][1]));
-    });
-    return r;
+    const [x, y] = project(app.lab.positionsOf(qq))[body];
+    return [x - target[0], y - target[1]];
   };
   for (let it = 0; it < 20; it++) {
     const r = residual(q), J = [];
@@ -463,18 +477,24 @@ function onScenePointer(ev) {
     });
     if (best < 0) return;
     c.setPointerCapture(ev.pointerId);
-    app.drag = { body: best, hold: bodies };
+    app.drag = { body: best };
+    app.sceneFrozen = true;
   } else if (ev.type === "pointermove" && app.drag) {
     const s = app.lab.state(), n = ndof();
-    const q = solveConfiguration(s.slice(0, n), app.drag.body, v.inv(px, py), app.drag.hold);
+    const q = solveConfiguration(s.slice(0, n), app.drag.body, v.inv(px, py));
     // A pendulum is let go from rest; an orbiting body keeps its momentum.
     const rest = family() === "lagrangian" ? new Array(n).fill(0) : Array.from(s.slice(n));
     try { app.lab.setState([...q, ...rest]); message(""); } catch (e) { message(e.message); }
-    clearViews(); app.sceneBox = null;
+    // The view stays put while dragging, so the body stays under the pointer.
+    const box = app.sceneBox;
+    clearViews();
+    app.sceneBox = box;
     draw();
   } else if ((ev.type === "pointerup" || ev.type === "pointercancel") && app.drag) {
     app.drag = null;
+    const box = app.sceneBox;
     clearViews();
+    app.sceneBox = box;
     draw();
   }
 }
@@ -550,7 +570,8 @@ function selectSystem(name, params = {}, build = true) {
   $("caption").textContent = `${app.entry.summary}.${note}`;
   fillParams();
   setControlValues();
-  fillMethods($("method").value);
+  // A new system starts from its own default method (the catalogue's).
+  fillMethods(null);
   if (build) rebuild();
 }
 
