@@ -153,6 +153,17 @@ if (crossings < 5) fail(`section: ${crossings} crossings after 80 time units`);
 console.log(`ok section click: launched at x = ${s[0].toFixed(4)}, px = ${s[2].toFixed(4)}, ${crossings} crossings`);
 await page.screenshot({ path: join(shots, "henon-heiles-section.png"), fullPage: true });
 
+// A phone-sized screen with the large-text option: one column, nothing wider than the screen.
+const phone = await browser.newPage({ viewport: { width: 390, height: 844 } });
+phone.on("pageerror", (e) => errors.push(String(e)));
+await phone.goto(`${url}#system=double-pendulum`);
+await phone.evaluate(() => window.physicskitLab.ready);
+await phone.evaluate(() => { document.getElementById("large").click(); window.physicskitLab.runFrames(60); });
+const overflow = await phone.evaluate(() => document.documentElement.scrollWidth - window.innerWidth);
+if (overflow > 0) fail(`phone: the page is ${overflow} px wider than the screen`);
+await phone.screenshot({ path: join(shots, "phone-double-pendulum.png"), fullPage: true });
+console.log(`ok phone layout (${overflow} px overflow)`);
+
 if (errors.length) fail(`console errors: ${errors.join(" | ")}`);
 await browser.close();
 server.close();
