@@ -10,10 +10,9 @@
 // and no console errors. Screenshots of three systems go to the given directory.
 //
 //   node web/test/browser.mjs SITE_DIR NATIVE_OUTPUT SCREENSHOT_DIR
-import { createServer } from "node:http";
 import { readFileSync, mkdirSync } from "node:fs";
-import { extname, join } from "node:path";
-import { chromium } from "playwright-core";
+import { join } from "node:path";
+import { serve, launch } from "./harness.mjs";
 
 const [site, nativeFile, shots] = process.argv.slice(2);
 mkdirSync(shots, { recursive: true });
@@ -21,25 +20,8 @@ const native = new Map(readFileSync(nativeFile, "utf8").trim().split("\n")
   .map((l) => JSON.parse(l)).map((r) => [`${r.system} ${r.method}`, r]));
 const num = (hex) => new DataView(new BigUint64Array([BigInt(`0x${hex}`)]).buffer).getFloat64(0, true);
 
-const types = { ".html": "text/html", ".js": "text/javascript", ".css": "text/css", ".wasm": "application/wasm" };
-const server = createServer((req, res) => {
-  const path = join(site, decodeURIComponent(new URL(req.url, "http://x").pathname).replace(/\/$/, "/index.html"));
-  try {
-    const body = readFileSync(path);
-    res.writeHead(200, { "content-type": types[extname(path)] ?? "application/octet-stream" });
-    res.end(body);
-  } catch {
-    res.writeHead(404); res.end();
-  }
-});
-await new Promise((ok) => server.listen(0, "127.0.0.1", ok));
-const url = `http://127.0.0.1:${server.address().port}/index.html`;
-
-const browser = await chromium.launch({
-  executablePath: "/usr/bin/chromium",
-  args: ["--headless", "--no-sandbox", "--disable-gpu", "--disable-quic", "--no-first-run",
-    "--disable-background-networking", "--disable-component-update", "--disable-sync"],
-});
+const { server, url } = await serve(site);
+const browser = await launch();
 const failures = [];
 const fail = (what) => { failures.push(what); console.log(`FAIL ${what}`); };
 const errors = [];
