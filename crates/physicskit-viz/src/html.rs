@@ -42,6 +42,13 @@ pub(crate) fn index_html(demos: &[Demo], quick: bool) -> String {
             ""
         }
     );
+    // The interactive lab (web/, built beside the gallery by scripts/demo).
+    h.push_str(
+        "<p><strong><a href=\"lab/index.html\">Open the interactive lab</a></strong>: every \
+         system live in the browser on the same integrators (WebAssembly); drag the bodies, \
+         switch the method, watch the energy error. It needs a local server: \
+         <code>scripts/lab serve</code>, then http://localhost:8000/.</p>\n",
+    );
     h.push_str("<nav><ol>\n");
     for d in demos {
         let _ = writeln!(

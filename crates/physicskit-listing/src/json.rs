@@ -34,7 +34,7 @@ use physicskit::classical::core::erased::offered;
 use physicskit::classical::core::{ParamSpec, SystemEntry};
 use serde::Serialize;
 
-use super::{method_rows, MethodRow};
+use crate::{method_rows, MethodRow};
 
 #[derive(Serialize)]
 struct Catalogue {
@@ -100,15 +100,29 @@ struct BoundJson {
     inclusive: bool,
 }
 
-/// Writes the catalogue to `w`, pretty-printed, with a final newline.
-pub(super) fn write(w: &mut impl Write) -> io::Result<()> {
-    let catalogue = Catalogue {
+/// Writes the catalogue to `w`, pretty-printed, with a final newline (`physicskit list
+/// --json`).
+///
+/// # Errors
+/// I/O errors of `w` (a closed pipe).
+pub fn write_json(w: &mut impl Write) -> io::Result<()> {
+    serde_json::to_writer_pretty(&mut *w, &catalogue())?;
+    writeln!(w)
+}
+
+/// The catalogue as the string [`write_json`] writes.
+pub fn catalogue_json() -> String {
+    let mut text = serde_json::to_string_pretty(&catalogue()).unwrap_or_default();
+    text.push('\n');
+    text
+}
+
+fn catalogue() -> Catalogue {
+    Catalogue {
         version: env!("CARGO_PKG_VERSION"),
         systems: SYSTEMS.iter().map(|e| system(e)).collect(),
         methods: method_rows(),
-    };
-    serde_json::to_writer_pretty(&mut *w, &catalogue)?;
-    writeln!(w)
+    }
 }
 
 fn system(entry: &SystemEntry) -> System {
