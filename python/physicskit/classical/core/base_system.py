@@ -25,8 +25,6 @@ from typing import Any, NamedTuple, Optional
 import numpy as np
 
 from .._native import _core, as_array, as_int, as_scalar, as_t_span, as_vector
-from . import display
-from .progress import progress_reporter
 
 __all__ = [
     "SimulationResult",
@@ -67,13 +65,19 @@ class SimulationResult:
     """Additional diagnostics (``n_steps``, ``dt``, force or solver evaluation counts ...;
     ``stride`` after ``integrate_sampled``)."""
 
+    # The display and progress modules are imported on first use: `import physicskit.classical`
+    # stays as fast as it was (tests/test_sampling.py times the first call).
     def __repr__(self) -> str:
+        from . import display
+
         return display.result_repr(self)
 
     def _repr_html_(self) -> str:
         """The notebook display: method, steps, span, shapes, the largest energy error
         (relative to the first sample's energy; absolute if that is zero) and an SVG
         sparkline of the error over the run."""
+        from . import display
+
         return display.result_html(self)
 
 
@@ -234,7 +238,11 @@ class DynamicalSystem(ABC):
             )
         if method is None:
             method = self._default_method()
-        reporter = progress_reporter() if progress else None
+        reporter = None
+        if progress:
+            from .progress import progress_reporter
+
+            reporter = progress_reporter()
         sampling = _Sampling(stride, final_only, energy, reporter)
         try:
             result = self._integrate(t_span, dt, method, sampling)
@@ -255,6 +263,8 @@ class DynamicalSystem(ABC):
         """``ClassName(parameter=value, ...)``: a built-in system's catalogue parameters as
         its constructor takes them (with ``t`` and ``state`` once it has moved on), other
         systems' ``ndof``, ``t`` and ``state``."""
+        from . import display
+
         try:
             return display.format_call(type(self).__name__, self._repr_fields())
         except Exception:  # noqa: BLE001  (a repr must not raise)
@@ -269,7 +279,7 @@ class DynamicalSystem(ABC):
             if self.t == 0.0:
                 return fields
         elif getattr(self, "ndof", 0):
-            fields.append(("ndof", self.ndof))
+            fields.append(("ndof", getattr(self, "ndof")))
         return fields + [("t", self.t), ("state", self.state)]
 
     def reset(self, state0=None, t0: float = 0.0):

@@ -89,6 +89,8 @@ def _facts(result) -> dict[str, Any]:
     t = np.asarray(result.t)
     y_shape = _shape(result.y)
     ndof = getattr(result, "_ndof", None)
+    q_shape: Optional[tuple]
+    p_shape: Optional[tuple]
     if ndof is not None and y_shape is not None:
         q_shape = p_shape = (y_shape[0], ndof)
     else:
