@@ -3,8 +3,12 @@ install it into a fresh virtual environment and use it there.
 
 The wheel is built exactly as ``python/dev.sh env`` builds the editable install (same cargo
 target directory, release profile, features and interpreter, which pyo3's build script keys
-on), so it reuses that build: after ``dev.sh env`` nothing is compiled again, only packaged.
-The test checks that, so CI never compiles the extension twice.
+on), so it reuses that build: no dependency (pyo3, numpy, the physicskit core ...) is compiled
+again. The test checks that, so CI never compiles them twice. The extension crate itself may
+be recompiled (about 30 s of one core): ``cargo build --example reference_run`` (``dev.sh
+env``, ``test_bit_identity.py``) builds the same library unit with another crate-type
+configuration, and cargo keeps one (``TargetConfigurationChanged``). Straight after ``maturin
+develop`` nothing at all is compiled (second build measured at 0.4 s of cargo, 6.7 s in all).
 """
 
 from __future__ import annotations
@@ -40,9 +44,9 @@ def test_wheel_builds_from_the_dev_build_installs_and_runs(tmp_path):
         [str(VENV / "bin" / "maturin"), "build", "--release", "--out", str(dist)],
         cwd=PYTHON_DIR, env=_env(), capture_output=True, text=True, timeout=BUILD_TIMEOUT)
     assert build.returncode == 0, build.stderr
-    compiled = re.findall(r"^\s*Compiling (\S+)", build.stderr, re.M)
-    assert not compiled, (
-        f"the wheel build compiled {compiled}: it did not reuse the cargo build of "
+    compiled = set(re.findall(r"^\s*Compiling (\S+)", build.stderr, re.M))
+    assert compiled <= {"physicskit-python"}, (
+        f"the wheel build compiled {sorted(compiled)}: it did not reuse the cargo build of "
         "'bash python/dev.sh env' (run that first; if it was run, the two builds differ in "
         "profile, features, target directory or interpreter)")
     (wheel,) = dist.glob("physicskit-*.whl")
