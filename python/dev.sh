@@ -2,8 +2,8 @@
 # Build and test the Python package `physicskit` (python/).
 #
 #   bash python/dev.sh env    create/refresh <repo>/.venv, install maturin numpy pytest sympy
-#                             hypothesis, mypy, matplotlib, pillow, build the extension in release
-#                             mode and install it (editable)
+#                             hypothesis, mypy, matplotlib, pillow, nbclient nbformat ipykernel,
+#                             build the extension in release mode and install it (editable)
 #   bash python/dev.sh test   run pytest on python/tests (warnings are errors)
 #   bash python/dev.sh stubs  check the type stubs against the installed modules (mypy's
 #                             stubtest; python/stubtest-allowlist.txt lists what it cannot know)
@@ -36,6 +36,9 @@ env)
     # The optional plotting extra (physicskit[plot]), which tests/test_plotting.py exercises.
     "$py" -m pip install --quiet --disable-pip-version-check \
         "matplotlib>=3.7,<4" "pillow>=9.5,<13"
+    # What tests/test_notebooks.py runs the example notebooks with.
+    "$py" -m pip install --quiet --disable-pip-version-check \
+        "nbclient>=0.10,<0.12" "nbformat>=5.9,<6" "ipykernel>=6.29,<8"
     # maturin develop builds the cdylib in release mode and installs the package in the venv
     # (the pure-Python part is linked, so edits under python/physicskit need no rebuild).
     # The grep only trims maturin's chatter; maturin's own exit status decides (a failed build

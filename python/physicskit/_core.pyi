@@ -2,7 +2,7 @@
 module by mypy's stubtest (``bash python/dev.sh stubs``: names, parameters, defaults) and by
 ``tests/test_stubs.py`` (parameter and return types)."""
 
-from typing import Any, Literal, TypedDict, final
+from typing import Any, Callable, Literal, TypedDict, final
 
 import numpy as np
 import numpy.typing as npt
@@ -114,6 +114,8 @@ class NativeSystem:
     def force(self, q: _ArrayF64, t: float) -> _ArrayF64: ...
     def acceleration(self, q: _ArrayF64, qdot: _ArrayF64, t: float) -> _ArrayF64: ...
     def momentum(self, q: _ArrayF64, qdot: _ArrayF64, t: float) -> _ArrayF64: ...
+    def velocity(self, q: _ArrayF64, p: _ArrayF64, t: float) -> _ArrayF64: ...
+    def canonical_derivatives(self, t: float, state: _ArrayF64) -> _ArrayF64: ...
     def integrate(
         self,
         state: _ArrayF64,
@@ -124,10 +126,12 @@ class NativeSystem:
         stride: int = 1,
         final_only: bool = False,
         energy: bool = True,
+        progress: Callable[[int, int], object] | None = None,
     ) -> _ResultTuple:
         """Integrate from `(state, t0)`; keep every `stride`-th step (and the last), or only the
-        first and last with `final_only`; `energy=False` gives `None` energy. ValueError when
-        the stored samples would not fit in memory."""
+        first and last with `final_only`; `energy=False` gives `None` energy; `progress(step,
+        n_steps)` is called every few thousand steps. ValueError when the stored samples would
+        not fit in memory."""
     def positions(self, q: _ArrayF64) -> _ArrayF64: ...
     def lrl_vector(self, q: _ArrayF64, p: _ArrayF64) -> _ArrayF64: ...
     def angular_momentum(self, q: _ArrayF64, p: _ArrayF64) -> float: ...
@@ -164,10 +168,10 @@ def expr_validate(sexpr: str, ndof: int, nparams: int) -> None:
 def find_theta_equilibrium(p_phi: float, p_psi: float, I1: float, I3: float, Mgl: float, bracket: tuple[float, float]) -> float:
     """Minimum of `V_eff` in `bracket`."""
 
-def integrate_hamiltonian(obj: Any, state: _ArrayF64, t0: float, t_span: tuple[float, float], dt: float, method: str, ndof: int, separable: bool, mass_inv: _ArrayF64, stride: int = 1, final_only: bool = False, energy: bool = True) -> _ResultTuple:
+def integrate_hamiltonian(obj: Any, state: _ArrayF64, t0: float, t_span: tuple[float, float], dt: float, method: str, ndof: int, separable: bool, mass_inv: _ArrayF64, stride: int = 1, final_only: bool = False, energy: bool = True, progress: Callable[[int, int], object] | None = None) -> _ResultTuple:
     """Integrates a Python `HamiltonianSystem` subclass `obj` from `(state, t0)` with the Rust"""
 
-def integrate_ode(obj: Any, state: _ArrayF64, t0: float, t_span: tuple[float, float], dt: float, method: str, stride: int = 1, final_only: bool = False, energy: bool = True) -> _ResultTuple:
+def integrate_ode(obj: Any, state: _ArrayF64, t0: float, t_span: tuple[float, float], dt: float, method: str, stride: int = 1, final_only: bool = False, energy: bool = True, progress: Callable[[int, int], object] | None = None) -> _ResultTuple:
     """Integrates a Python `ODESystem` (or engine-less `LagrangianSystem`) `obj` from"""
 
 def nutation_frequency(p_phi: float, p_psi: float, I1: float, I3: float, Mgl: float, theta_eq: float | None, dtheta: float) -> float:

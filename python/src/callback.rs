@@ -287,9 +287,9 @@ fn options(
 
 /// Integrates a Python `HamiltonianSystem` subclass `obj` from `(state, t0)` with the Rust
 /// integrators; returns the result tuple `(t, y, energy, method, extra)`. `stride`,
-/// `final_only` and `energy` select what is stored, as for `NativeSystem.integrate`.
+/// `final_only`, `energy` and `progress` as for `NativeSystem.integrate`.
 #[pyfunction]
-#[pyo3(signature = (obj, state, t0, t_span, dt, method, ndof, separable, mass_inv, stride=1, final_only=false, energy=true))]
+#[pyo3(signature = (obj, state, t0, t_span, dt, method, ndof, separable, mass_inv, stride=1, final_only=false, energy=true, progress=None))]
 #[allow(clippy::too_many_arguments)]
 pub fn integrate_hamiltonian<'py>(
     py: Python<'py>,
@@ -305,6 +305,7 @@ pub fn integrate_hamiltonian<'py>(
     stride: usize,
     final_only: bool,
     energy: bool,
+    progress: Option<Py<PyAny>>,
 ) -> PyResult<Bound<'py, PyTuple>> {
     let method = parse_method(Some(method), Method::Yoshida4).py()?;
     let state = to_vec(&state);
@@ -318,7 +319,7 @@ pub fn integrate_hamiltonian<'py>(
         separable,
         mass_inv,
     };
-    let mut observer = SignalObserver::default();
+    let mut observer = SignalObserver::new(progress);
     let options = options(&mut observer, stride, final_only, energy).py()?;
     let outcome = sys.integrate_with(t_span, dt, method, options);
     let r = sys.cb.finish(outcome, observer.raised)?;
@@ -327,9 +328,9 @@ pub fn integrate_hamiltonian<'py>(
 
 /// Integrates a Python `ODESystem` (or engine-less `LagrangianSystem`) `obj` from
 /// `(state, t0)`; returns the result tuple `(t, y, energy, method, extra)`.
-/// `stride`, `final_only` and `energy` select what is stored.
+/// `stride`, `final_only`, `energy` and `progress` as for `NativeSystem.integrate`.
 #[pyfunction]
-#[pyo3(signature = (obj, state, t0, t_span, dt, method, stride=1, final_only=false, energy=true))]
+#[pyo3(signature = (obj, state, t0, t_span, dt, method, stride=1, final_only=false, energy=true, progress=None))]
 #[allow(clippy::too_many_arguments)]
 pub fn integrate_ode<'py>(
     py: Python<'py>,
@@ -342,13 +343,14 @@ pub fn integrate_ode<'py>(
     stride: usize,
     final_only: bool,
     energy: bool,
+    progress: Option<Py<PyAny>>,
 ) -> PyResult<Bound<'py, PyTuple>> {
     let method = parse_method(Some(method), Method::ImplicitMidpoint).py()?;
     let mut sys = PyOde {
         cb: Callbacks::new(obj),
         phase: Phase::new(to_vec(&state), t0).py()?,
     };
-    let mut observer = SignalObserver::default();
+    let mut observer = SignalObserver::new(progress);
     let options = options(&mut observer, stride, final_only, energy).py()?;
     let outcome = sys.integrate_with(t_span, dt, method, options);
     let r = sys.cb.finish(outcome, observer.raised)?;

@@ -279,12 +279,45 @@ impl NativeSystem {
         Ok(PyArray1::from_vec(py, out))
     }
 
+    /// The velocity `qdot(q, p, t)` inverting `p = dL/dqdot` (Lagrangian systems).
+    fn velocity<'py>(
+        &self,
+        py: Python<'py>,
+        q: Arr<'_>,
+        p: Arr<'_>,
+        t: f64,
+    ) -> PyResult<Array<'py>> {
+        let l = self.lagrangian("velocity").py()?;
+        let (q, p) = (to_vec(&q), to_vec(&p));
+        check_len("q", &q, l.ndof()).py()?;
+        check_len("p", &p, l.ndof()).py()?;
+        let mut out = vec![0.0; q.len()];
+        l.velocity(&q, &p, t, &mut out).py()?;
+        Ok(PyArray1::from_vec(py, out))
+    }
+
+    /// `d[q, p]/dt` of the canonical form at `(t, [q, p])` (Lagrangian systems).
+    fn canonical_derivatives<'py>(
+        &self,
+        py: Python<'py>,
+        t: f64,
+        state: Arr<'_>,
+    ) -> PyResult<Array<'py>> {
+        let l = self.lagrangian("canonical_derivatives").py()?;
+        let s = to_vec(&state);
+        check_len("state", &s, 2 * l.ndof()).py()?;
+        let mut out = vec![0.0; s.len()];
+        l.canonical_derivatives(t, &s, &mut out).py()?;
+        Ok(PyArray1::from_vec(py, out))
+    }
+
     /// Starts from `(state, t0)`, integrates over `t_span` with step `dt`, and returns the result
     /// tuple `(t, y, ndof, energy, method, extra)`. `stride` keeps every `stride`-th step (and
     /// the last), `final_only` only the first and last, `energy=False` skips the energy
-    /// diagnostic (`None` in the tuple). The GIL is released during the run; Ctrl-C stops it
-    /// with `KeyboardInterrupt`.
-    #[pyo3(signature = (state, t0, t_span, dt, method=None, stride=1, final_only=false, energy=true))]
+    /// diagnostic (`None` in the tuple), and `progress(step, n_steps)`, if given, is called every
+    /// few thousand steps. The GIL is released during the run; Ctrl-C stops it with
+    /// `KeyboardInterrupt`.
+    #[pyo3(signature = (state, t0, t_span, dt, method=None, stride=1, final_only=false, energy=true, progress=None))]
     #[allow(clippy::too_many_arguments)]
     fn integrate<'py>(
         &mut self,
@@ -297,13 +330,14 @@ impl NativeSystem {
         stride: usize,
         final_only: bool,
         energy: bool,
+        progress: Option<Py<PyAny>>,
     ) -> PyResult<Bound<'py, PyTuple>> {
         let state = to_vec(&state);
         let method = parse_method(method, self.inner.default_method()).py()?;
         let sampling = sampling(stride, final_only).py()?;
         let inner = &mut self.inner;
         let (outcome, raised) = py.detach(move || {
-            let mut observer = SignalObserver::default();
+            let mut observer = SignalObserver::new(progress);
             let outcome = inner.reset(Some(&state), t0).and_then(|()| {
                 inner.integrate(
                     t_span,

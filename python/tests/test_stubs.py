@@ -43,6 +43,7 @@ def values_of(annotation):
         "dict[str, Any]": lambda: {},
         "tuple[float, float]": lambda: (0.0, 1.0),
         "NativeSystem": a_system,
+        "Callable[[int, int], object]": lambda: (lambda step, n_steps: None),
     }
     alternatives = annotation.split(" | ")
     unknown = [a for a in alternatives if a not in samples]

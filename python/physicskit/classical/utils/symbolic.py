@@ -5,6 +5,21 @@ the Rust expression tree ``physicskit::classical::lagrangian::Expr`` (through it
 S-expression form). From then on the Rust Lagrangian engine differentiates it by automatic
 differentiation: accelerations, canonical momenta, the inverse Legendre map and the
 canonical vector field never call back into Python. SymPy is only needed to build the engine.
+
+What the engine evaluates, with ``M = d2L/dqdot2`` the mass matrix:
+
+* ``acceleration(q, qdot, t)``: ``qddot = M^-1 (dL/dq - d2L/(dqdot dq) qdot - d2L/(dqdot dt))``
+  (the Euler-Lagrange equations solved for ``qddot``);
+* ``momentum(q, qdot, t)``: ``p = dL/dqdot``;
+* ``velocity(q, p, t)``: the ``qdot`` with ``dL/dqdot(q, qdot, t) = p`` (the inverse Legendre
+  map; Newton's method when ``L`` is not quadratic in ``qdot``);
+* ``hamiltonian(q, p, t)``: ``H = p . qdot - L`` at ``qdot = velocity(q, p, t)``;
+* ``canonical_derivatives(t, [q, p])``: Hamilton's equations ``dq/dt = dH/dp = qdot(q, p, t)``,
+  ``dp/dt = -dH/dq = dL/dq(q, qdot(q, p, t), t)``.
+
+The Numba peer's names ``acceleration_njit``, ``momentum_njit``, ``hamiltonian_njit`` and
+``canonical_deriv_njit`` are aliases of these (same arguments as the peer's), so code
+written against it runs unchanged.
 """
 
 from __future__ import annotations
@@ -146,6 +161,16 @@ class LagrangianEngine:
         self._param_values = np.array(list(self.params.values()), dtype=np.float64)
         self.sexpr = _Translator(sp, names)(self.L)
         native("expr_validate")(self.sexpr, self.n, len(self._param_values))
+        self._probe: Any = None
+
+    def __repr__(self) -> str:
+        fields = [("q", self.q), ("qdot", self.qdot), ("L", self.L)]
+        if self.t is not None:
+            fields.append(("t", self.t))
+        if self.params:
+            fields.append(("params", self.params))
+        return "LagrangianEngine(" + ", ".join(f"{k}={v!r}" for k, v in fields) + ")"
+
     def _system(self, state):
         """A native Lagrangian system (``physicskit._core.NativeSystem``) at ``state``."""
         state = as_vector("state", state, 2 * self.n)
@@ -165,17 +190,96 @@ class LagrangianEngine:
         ``(q0, qdot0)``; it integrates fully natively."""
         return SymbolicLagrangianSystem(self, q0, qdot0)
 
+    def _evaluator(self, q: np.ndarray, qdot: np.ndarray):
+        """The native system the pointwise methods evaluate with (its state is never used):
+        built at the first query, where the mass matrix must be regular, then kept."""
+        if self._probe is None:
+            self._probe = self._system(np.concatenate([q, qdot]))
+        return self._probe
+
+    def _args(self, a: str, av, b: str, bv, t) -> tuple[np.ndarray, np.ndarray, float]:
+        """Two vectors of length ``n`` named ``a`` and ``b`` and the time, converted."""
+        return as_vector(a, av, self.n), as_vector(b, bv, self.n), as_scalar("t", t)
+
     def acceleration(self, q, qdot, t: float = 0.0) -> np.ndarray:
-        """``qddot`` from the Euler-Lagrange equations at ``(q, qdot, t)``."""
-        q = as_vector("q", q, self.n)
-        qdot = as_vector("qdot", qdot, self.n)
-        return self._system(np.concatenate([q, qdot])).acceleration(q, qdot, as_scalar("t", t))
+        """``qddot`` from the Euler-Lagrange equations at ``(q, qdot, t)``.
+
+        Raises
+        ------
+        ValueError
+            Wrong lengths, non-finite values, or a singular mass matrix ``d2L/dqdot2``.
+        """
+        q, qdot, t = self._args("q", q, "qdot", qdot, t)
+        return self._evaluator(q, qdot).acceleration(q, qdot, t)
 
     def momentum(self, q, qdot, t: float = 0.0) -> np.ndarray:
         """Canonical momentum ``p = dL/dqdot`` at ``(q, qdot, t)``."""
-        q = as_vector("q", q, self.n)
-        qdot = as_vector("qdot", qdot, self.n)
-        return self._system(np.concatenate([q, qdot])).momentum(q, qdot, as_scalar("t", t))
+        q, qdot, t = self._args("q", q, "qdot", qdot, t)
+        return self._evaluator(q, qdot).momentum(q, qdot, t)
+
+    def velocity(self, q, p, t: float = 0.0) -> np.ndarray:
+        """The velocity ``qdot`` with ``dL/dqdot(q, qdot, t) = p``: the inverse Legendre map.
+
+        Exact (one linear solve) when ``L`` is quadratic in ``qdot``; Newton's method
+        otherwise.
+
+        Raises
+        ------
+        ValueError
+            Wrong lengths, non-finite values, or a singular mass matrix.
+        ConvergenceError
+            If Newton's method does not converge (``L`` not quadratic in ``qdot``).
+        """
+        q, p, t = self._args("q", q, "p", p, t)
+        return self._evaluator(q, np.zeros(self.n)).velocity(q, p, t)
+
+    def hamiltonian(self, q, p, t: float = 0.0) -> float:
+        """The Hamiltonian ``H(q, p, t) = p . qdot - L(q, qdot, t)`` at ``qdot =
+        velocity(q, p, t)``.
+
+        Raises
+        ------
+        ValueError, ConvergenceError
+            As :meth:`velocity`.
+        """
+        q, p, t = self._args("q", q, "p", p, t)
+        qdot = self._evaluator(q, np.zeros(self.n)).velocity(q, p, t)
+        state = np.concatenate([q, qdot])
+        # The native energy is p . qdot - L at the system's clock: a system of its own, so
+        # that setting the clock changes nothing shared.
+        at_t = self._system(state)
+        at_t.reset(state, t)
+        return at_t.energy(state)
+
+    def canonical_derivatives(self, t: float, y) -> np.ndarray:
+        """Hamilton's equations at the canonical state ``y = [q, p]``: ``[dq/dt, dp/dt] =
+        [qdot(q, p, t), dL/dq(q, qdot(q, p, t), t)]`` (what ``implicit_midpoint`` integrates).
+
+        Raises
+        ------
+        ValueError, ConvergenceError
+            As :meth:`velocity`; ``y`` not of length ``2 n``.
+        """
+        t = as_scalar("t", t)
+        y = as_vector("y", y, 2 * self.n)
+        return self._evaluator(y[: self.n], np.zeros(self.n)).canonical_derivatives(t, y)
+
+    # -- the Numba peer's names --------------------------------------------------------
+    def acceleration_njit(self, q, qdot, t) -> np.ndarray:
+        """Alias of :meth:`acceleration` under the Numba peer's name (``t`` required)."""
+        return self.acceleration(q, qdot, t)
+
+    def momentum_njit(self, q, qdot) -> np.ndarray:
+        """Alias of :meth:`momentum` at ``t = 0`` under the Numba peer's name."""
+        return self.momentum(q, qdot)
+
+    def hamiltonian_njit(self, q, p, t) -> float:
+        """Alias of :meth:`hamiltonian` under the Numba peer's name (``t`` required)."""
+        return self.hamiltonian(q, p, t)
+
+    def canonical_deriv_njit(self, t, y) -> np.ndarray:
+        """Alias of :meth:`canonical_derivatives` under the Numba peer's name."""
+        return self.canonical_derivatives(t, y)
 
 
 class SymbolicLagrangianSystem(LagrangianSystem):
@@ -197,3 +301,6 @@ class SymbolicLagrangianSystem(LagrangianSystem):
     def energy(self, state: Optional[np.ndarray] = None) -> float:
         """Energy ``sum qdot_i dL/dqdot_i - L`` of ``state`` (default: ``self.state``)."""
         return self._native.energy(self._state_arg(state))
+
+    def _repr_fields(self) -> list[tuple[str, Any]]:
+        return [("L", str(self.engine.L))] + super()._repr_fields()
