@@ -30,8 +30,8 @@
 //! the flow, or inside an invariant subspace).
 
 use super::section::Continuation;
-use crate::classical::core::error::check_finite;
 use crate::classical::core::erased::DynSystem;
+use crate::classical::core::error::check_finite;
 use crate::classical::core::{Error, Method, Result, TimeGrid};
 use crate::classical::integrators::Flow;
 

@@ -21,8 +21,8 @@
 
 use super::lyapunov::{check_vectors, gram_schmidt, initial_vectors};
 use super::section::Continuation;
-use crate::classical::core::error::check_finite;
 use crate::classical::core::erased::DynSystem;
+use crate::classical::core::error::check_finite;
 use crate::classical::core::{Method, Result, TimeGrid};
 use crate::classical::integrators::Flow;
 
@@ -93,7 +93,14 @@ impl AlignmentIndex {
 }
 
 /// The unit vectors' index; `w` is normalized in place, `q` and `r` are scratch.
-fn index_of(which: Alignment, w: &mut [f64], dim: usize, q: &mut [f64], r: &mut [f64], t: f64) -> Result<f64> {
+fn index_of(
+    which: Alignment,
+    w: &mut [f64],
+    dim: usize,
+    q: &mut [f64],
+    r: &mut [f64],
+    t: f64,
+) -> Result<f64> {
     for v in w.chunks_exact_mut(dim) {
         let norm = v.iter().map(|x| x * x).sum::<f64>().sqrt();
         if !(norm.is_finite() && norm > 0.0) {
@@ -166,7 +173,8 @@ pub fn alignment_on_flow(
         index: Vec::with_capacity(steps / renormalize_every + 2),
     };
     out.t.push(grid.t0());
-    out.index.push(index_of(which, &mut w, n, &mut q, &mut r, grid.t0())?);
+    out.index
+        .push(index_of(which, &mut w, n, &mut q, &mut r, grid.t0())?);
     let dt = grid.dt();
     let mut t_end = grid.t0();
     for i in 0..steps {

@@ -25,8 +25,8 @@
 //! method runs on `[q, p]`).
 
 use super::poincare::{Direction, PoincareSection};
-use crate::classical::core::error::{check_finite, check_finite_scalar};
 use crate::classical::core::erased::DynSystem;
+use crate::classical::core::error::{check_finite, check_finite_scalar};
 use crate::classical::core::{Error, Method, Result, TimeGrid};
 use crate::classical::integrators::Flow;
 
@@ -103,7 +103,9 @@ impl SurfaceOfSection {
     /// `a·y - c`, and the scale `|a|·|y| + |c|` of its rounding.
     fn eval(&self, y: &[f64]) -> (f64, f64) {
         match &self.plane {
-            Plane::Coordinate { index, value } => (y[*index] - value, y[*index].abs() + value.abs()),
+            Plane::Coordinate { index, value } => {
+                (y[*index] - value, y[*index].abs() + value.abs())
+            }
             Plane::Linear { a, c } => {
                 let (mut s, mut scale) = (-c, c.abs());
                 for (ai, yi) in a.iter().zip(y) {
@@ -125,7 +127,9 @@ impl SurfaceOfSection {
             Plane::Coordinate { index, .. } if *index >= dim => {
                 (dim, *index, "coordinate (an index into the state)")
             }
-            Plane::Linear { a, .. } if a.len() != dim => (dim, a.len(), "a (one per state component)"),
+            Plane::Linear { a, .. } if a.len() != dim => {
+                (dim, a.len(), "a (one per state component)")
+            }
             _ => return Ok(()),
         };
         Err(Error::DimensionMismatch {

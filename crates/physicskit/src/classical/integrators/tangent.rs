@@ -42,8 +42,7 @@ use super::field::{Canonical, FirstOrder, VectorField};
 use super::splitting::{check_system, SplittingStepper};
 use super::stepper::{Dispatch, FieldStepper};
 use crate::classical::core::{
-    Error, HamiltonianSystem, LagrangianSystem, MassInv, Method, OdeSystem,
-    Result,
+    Error, HamiltonianSystem, LagrangianSystem, MassInv, Method, OdeSystem, Result,
 };
 
 /// The relative step of the central differences: `ε^(1/3)` (see the module docs).
