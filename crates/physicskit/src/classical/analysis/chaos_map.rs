@@ -149,7 +149,7 @@ where
 /// ```
 pub fn chaos_map<S: DynSystem>(system: &S, states: &[f64], run: &MapRun) -> Result<Vec<f64>> {
     let dim = system.dynamical().state().len();
-    if dim == 0 || states.len() % dim != 0 {
+    if dim == 0 || !states.len().is_multiple_of(dim) {
         return Err(Error::DimensionMismatch {
             name: "states (rows of the state length)".into(),
             expected: dim,

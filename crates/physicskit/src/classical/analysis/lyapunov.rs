@@ -94,7 +94,7 @@ pub(crate) fn initial_vectors(k: usize, dim: usize) -> Result<Vec<f64>> {
 /// [`Error::NonFinite`] at `t` if a vector is zero or not finite.
 pub(crate) fn gram_schmidt(w: &mut [f64], dim: usize, r: &mut [f64], t: f64) -> Result<()> {
     let k = w.len() / dim;
-    for i in 0..k {
+    for (i, ri) in r.iter_mut().enumerate().take(k) {
         let (done, rest) = w.split_at_mut(i * dim);
         let v = &mut rest[..dim];
         for _ in 0..2 {
@@ -112,7 +112,7 @@ pub(crate) fn gram_schmidt(w: &mut [f64], dim: usize, r: &mut [f64], t: f64) -> 
         }
         let inv = 1.0 / norm;
         v.iter_mut().for_each(|x| *x *= inv);
-        r[i] = norm;
+        *ri = norm;
     }
     Ok(())
 }

@@ -230,11 +230,9 @@ fn locate(
     let mut side = 0i8;
     let mut tau = dt;
     for _ in 0..MAX_ITERATIONS {
-        tau = if fb == fa {
-            0.5 * (a + b)
-        } else {
-            (a * fb - b * fa) / (fb - fa)
-        };
+        // Regula falsi; bisection where it leaves the bracket (fa = fb gives a non-finite or
+        // outside point, caught by the same test).
+        tau = (a * fb - b * fa) / (fb - fa);
         if !(tau > a && tau <= b) {
             tau = 0.5 * (a + b);
         }

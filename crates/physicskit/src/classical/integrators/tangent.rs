@@ -94,7 +94,7 @@ pub trait Flow {
 }
 
 fn check_vectors(w: &[f64], dim: usize, max: usize) -> Result<usize> {
-    if dim == 0 || w.len() % dim != 0 || w.len() / dim > max {
+    if dim == 0 || !w.len().is_multiple_of(dim) || w.len() / dim > max {
         return Err(Error::DimensionMismatch {
             name: "deviation vectors (k x dim, k at most the flow's)".into(),
             expected: max * dim,
@@ -492,6 +492,15 @@ pub fn ode_flow<'a, S: OdeSystem + ?Sized>(
     })
 }
 
+/// A field flow, boxed.
+fn boxed_field<'a, St: FieldStepper, F: VectorField + 'a>(
+    field: F,
+    coordinates: Coordinates<'a>,
+    max_vectors: usize,
+) -> Box<dyn Flow + 'a> {
+    Box::new(FieldFlow::<F, St>::new(field, coordinates, max_vectors))
+}
+
 fn no_splitting(method: Method, family: &str) -> Error {
     Error::UnsupportedMethod {
         method: method.name().into(),
@@ -520,11 +529,11 @@ impl<'a, S: HamiltonianSystem + ?Sized> Dispatch for HamiltonianFlow<'a, S> {
     }
 
     fn explicit_rk<St: FieldStepper>(self, _method: Method) -> Self::Output {
-        Ok(Box::new(FieldFlow::<_, St>::new(
+        Ok(boxed_field::<St, _>(
             FirstOrder(self.system),
             Coordinates::Same,
             self.max_vectors,
-        )))
+        ))
     }
 
     fn implicit_rk<St: FieldStepper>(self, method: Method) -> Self::Output {
@@ -545,19 +554,19 @@ impl<'a, S: LagrangianSystem> Dispatch for LagrangianFlow<'a, S> {
     }
 
     fn explicit_rk<St: FieldStepper>(self, _method: Method) -> Self::Output {
-        Ok(Box::new(FieldFlow::<_, St>::new(
+        Ok(boxed_field::<St, _>(
             FirstOrder(self.system),
             Coordinates::Same,
             self.max_vectors,
-        )))
+        ))
     }
 
     fn implicit_rk<St: FieldStepper>(self, _method: Method) -> Self::Output {
-        Ok(Box::new(FieldFlow::<_, St>::new(
+        Ok(boxed_field::<St, _>(
             Canonical(self.system),
             Coordinates::Canonical(self.system),
             self.max_vectors,
-        )))
+        ))
     }
 }
 
@@ -574,11 +583,11 @@ impl<'a, S: OdeSystem + ?Sized> Dispatch for OdeFlow<'a, S> {
     }
 
     fn explicit_rk<St: FieldStepper>(self, _method: Method) -> Self::Output {
-        Ok(Box::new(FieldFlow::<_, St>::new(
+        Ok(boxed_field::<St, _>(
             FirstOrder(self.system),
             Coordinates::Same,
             self.max_vectors,
-        )))
+        ))
     }
 
     fn implicit_rk<St: FieldStepper>(self, method: Method) -> Self::Output {
