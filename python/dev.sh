@@ -32,7 +32,7 @@ env)
     "$py" -m pip install --quiet --disable-pip-version-check --upgrade pip
     "$py" -m pip install --quiet --disable-pip-version-check \
         "maturin>=1.7,<2" "numpy>=1.24" "pytest>=7" "sympy>=1.12" "hypothesis>=6.100,<7" \
-        "mypy>=1.18,<2"
+        "mypy>=1.18,<2" "scipy>=1.10"
     # maturin develop builds the cdylib in release mode and installs the package in the venv
     # (the pure-Python part is linked, so edits under python/physicskit need no rebuild).
     # The grep only trims maturin's chatter; maturin's own exit status decides (a failed build
