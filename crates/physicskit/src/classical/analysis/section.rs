@@ -286,7 +286,8 @@ fn locate(
 /// let cut = poincare_section(&mut osc, (0.0, 20.0), 0.01, Some(Method::Yoshida4), &plane, usize::MAX)
 ///     .unwrap();
 /// assert_eq!(cut.len(), 3);
-/// assert!((cut.t[0] - 1.5 * std::f64::consts::PI).abs() < 1e-9);
+/// // yoshida4's phase error at dt = 0.01 is ~5e-9 by t = 3π/2.
+/// assert!((cut.t[0] - 1.5 * std::f64::consts::PI).abs() < 1e-7);
 /// ```
 pub fn poincare_section<S: DynSystem + ?Sized>(
     system: &mut S,
