@@ -32,7 +32,7 @@ env)
     "$py" -m pip install --quiet --disable-pip-version-check --upgrade pip
     "$py" -m pip install --quiet --disable-pip-version-check \
         "maturin>=1.7,<2" "numpy>=1.24" "pytest>=7" "sympy>=1.12" "hypothesis>=6.100,<7" \
-        "mypy>=1.18,<2"
+        "mypy>=1.18,<2" "scipy>=1.10"
     # The optional plotting extra (physicskit[plot]), which tests/test_plotting.py exercises.
     "$py" -m pip install --quiet --disable-pip-version-check \
         "matplotlib>=3.7,<4" "pillow>=9.5,<13"

@@ -12,6 +12,10 @@ __all__ = [
     "NativeSystem",
     "build",
     "catalog",
+    "chaos_hamiltonian",
+    "chaos_map",
+    "chaos_native",
+    "chaos_ode",
     "effective_potential_symmetric_top",
     "expr_lagrangian",
     "expr_validate",
@@ -28,6 +32,8 @@ __all__ = [
 ]
 
 _ArrayF64 = npt.NDArray[np.float64]
+_MatrixF64 = npt.NDArray[np.float64]
+"""A two-dimensional float64 array (rows of states)."""
 _ResultTuple = tuple[_ArrayF64, _ArrayF64, int | None, _ArrayF64 | None, str, dict[str, Any]]
 _ParamValue = float | int | _ArrayF64 | str | None
 """A checked parameter value: float (scalar), int (integer), float64 array (vector), str
@@ -167,6 +173,18 @@ def expr_validate(sexpr: str, ndof: int, nparams: int) -> None:
 
 def find_theta_equilibrium(p_phi: float, p_psi: float, I1: float, I3: float, Mgl: float, bracket: tuple[float, float]) -> float:
     """Minimum of `V_eff` in `bracket`."""
+
+def chaos_native(native: NativeSystem, state: _ArrayF64, t0: float, t_span: tuple[float, float], dt: float, method: str | None, kind: str, **options: Any) -> dict[str, Any]:
+    """Runs an analysis on a built-in system from `(state, t0)` over `t_span` with `dt` and"""
+
+def chaos_map(systems: list[NativeSystem], states: _MatrixF64, t_span: tuple[float, float], dt: float, method: str | None, indicator_name: str, **options: Any) -> _ArrayF64:
+    """One indicator per point: point `i` is the orbit of `systems[i]` (or of `systems[0]` for"""
+
+def chaos_hamiltonian(obj: Any, state: _ArrayF64, t0: float, t_span: tuple[float, float], dt: float, method: str, ndof: int, separable: bool, mass_inv: _ArrayF64, kind: str, **options: Any) -> dict[str, Any]:
+    """Runs a chaos analysis (`kind` and options as `chaos.chaos_native`) on a Python"""
+
+def chaos_ode(obj: Any, state: _ArrayF64, t0: float, t_span: tuple[float, float], dt: float, method: str, kind: str, **options: Any) -> dict[str, Any]:
+    """Runs a chaos analysis on a Python `ODESystem` (or engine-less `LagrangianSystem`) `obj`"""
 
 def integrate_hamiltonian(obj: Any, state: _ArrayF64, t0: float, t_span: tuple[float, float], dt: float, method: str, ndof: int, separable: bool, mass_inv: _ArrayF64, stride: int = 1, final_only: bool = False, energy: bool = True, progress: Callable[[int, int], object] | None = None) -> _ResultTuple:
     """Integrates a Python `HamiltonianSystem` subclass `obj` from `(state, t0)` with the Rust"""

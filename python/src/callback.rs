@@ -24,6 +24,11 @@ use pyo3::intern;
 use pyo3::prelude::*;
 use pyo3::types::{PyFloat, PyTuple};
 
+use physicskit::classical::integrators::{hamiltonian_flow, ode_flow, Flow};
+use physicskit::classical::TimeGrid;
+use pyo3::types::PyDict;
+
+use crate::chaos;
 use crate::convert::{result_tuple, to_vec};
 use crate::errors::IntoPyResult;
 use crate::interrupt::{SignalObserver, CHECK_EVERY};
@@ -92,6 +97,37 @@ impl<'py> Callbacks<'py> {
                 Err(e) => Err(self.stash(e, &name.to_string())),
             },
         }
+    }
+
+    /// Calls `name(*args)` and copies the returned square matrix (any array-like of shape
+    /// `(n, n)`, `n * n = out.len()`) into `out`, row-major. Used for the optional Jacobians,
+    /// once per step of a tangent run.
+    fn matrix(
+        &self,
+        name: &Bound<'py, pyo3::types::PyString>,
+        args: impl pyo3::call::PyCallArgs<'py>,
+        out: &mut [f64],
+    ) -> Result<()> {
+        let fail = |e: PyErr| self.stash(e, &name.to_string());
+        let r = self.call(name, args).map_err(fail)?;
+        let a = self.convert("as_array", name, &r).map_err(fail)?;
+        let a = a
+            .call_method0(intern!(self.obj.py(), "ravel"))
+            .and_then(|a| a.extract::<PyReadonlyArray1<'_, f64>>())
+            .map_err(fail)?;
+        let n = out.len().isqrt();
+        let square = r
+            .getattr(intern!(self.obj.py(), "shape"))
+            .and_then(|s| s.extract::<Vec<usize>>())
+            .is_ok_and(|s| s == [n, n]);
+        if !square {
+            return Err(Error::DimensionMismatch {
+                name: format!("value returned by {name} (an ndof x ndof matrix)"),
+                expected: out.len(),
+                found: a.len().unwrap_or(0),
+            });
+        }
+        fill(out, &to_vec(&a), name)
     }
 
     /// Calls `name(*args)` and converts the result to a float; NaN (and a stashed exception)
@@ -165,7 +201,12 @@ impl<'py> Callbacks<'py> {
         outcome: Result<SimulationResult>,
         signal: Option<PyErr>,
     ) -> PyResult<SimulationResult> {
-        if let Some(e) = self.raised.into_inner() {
+        self.finish_with(outcome, signal)
+    }
+
+    /// [`finish`](Self::finish) for any outcome.
+    fn finish_with<T>(&self, outcome: Result<T>, signal: Option<PyErr>) -> PyResult<T> {
+        if let Some(e) = self.raised.borrow_mut().take() {
             return Err(e);
         }
         match (outcome, signal) {
@@ -194,6 +235,8 @@ struct PyHamiltonian<'py> {
     ndof: usize,
     separable: bool,
     mass_inv: Vec<f64>,
+    /// The object defines `force_jacobian(q, t)`.
+    has_jacobian: bool,
 }
 
 impl DynamicalSystem for PyHamiltonian<'_> {
@@ -241,12 +284,21 @@ impl HamiltonianSystem for PyHamiltonian<'_> {
         self.cb
             .vector(intern!(py, "force"), (self.cb.array(q), t), out)
     }
+    fn force_jacobian(&self, q: &[f64], t: f64, out: &mut [f64]) -> Option<Result<()>> {
+        let py = self.cb.obj.py();
+        self.has_jacobian.then(|| {
+            self.cb
+                .matrix(intern!(py, "force_jacobian"), (self.cb.array(q), t), out)
+        })
+    }
 }
 
 /// A Python `ODESystem` (or engine-less `LagrangianSystem`) seen as a Rust [`OdeSystem`].
 struct PyOde<'py> {
     cb: Callbacks<'py>,
     phase: Phase,
+    /// The object defines `jacobian(t, state)`.
+    has_jacobian: bool,
 }
 
 impl DynamicalSystem for PyOde<'_> {
@@ -265,9 +317,50 @@ impl DynamicalSystem for PyOde<'_> {
     fn default_method(&self) -> Method {
         Method::ImplicitMidpoint
     }
+    fn jacobian(&self, t: f64, state: &[f64], out: &mut [f64]) -> Option<Result<()>> {
+        let py = self.cb.obj.py();
+        self.has_jacobian.then(|| {
+            self.cb
+                .matrix(intern!(py, "jacobian"), (t, self.cb.array(state)), out)
+        })
+    }
 }
 
 impl OdeSystem for PyOde<'_> {}
+
+impl<'py> PyHamiltonian<'py> {
+    fn new(
+        obj: Bound<'py, PyAny>,
+        state: Vec<f64>,
+        t0: f64,
+        ndof: usize,
+        separable: bool,
+        mass_inv: Vec<f64>,
+    ) -> Result<Self> {
+        crate::native::check_len("state", &state, 2 * ndof)?;
+        crate::native::check_len("mass_inv", &mass_inv, ndof)?;
+        let has_jacobian = obj.hasattr("force_jacobian").unwrap_or(false);
+        Ok(Self {
+            cb: Callbacks::new(obj),
+            phase: Phase::new(state, t0)?,
+            ndof,
+            separable,
+            mass_inv,
+            has_jacobian,
+        })
+    }
+}
+
+impl<'py> PyOde<'py> {
+    fn new(obj: Bound<'py, PyAny>, state: Vec<f64>, t0: f64) -> Result<Self> {
+        let has_jacobian = obj.hasattr("jacobian").unwrap_or(false);
+        Ok(Self {
+            cb: Callbacks::new(obj),
+            phase: Phase::new(state, t0)?,
+            has_jacobian,
+        })
+    }
+}
 
 /// The options of a callback run: the requested sampling, and Ctrl-C checks.
 fn options(
@@ -308,17 +401,8 @@ pub fn integrate_hamiltonian<'py>(
     progress: Option<Py<PyAny>>,
 ) -> PyResult<Bound<'py, PyTuple>> {
     let method = parse_method(Some(method), Method::Yoshida4).py()?;
-    let state = to_vec(&state);
-    crate::native::check_len("state", &state, 2 * ndof).py()?;
-    let mass_inv = to_vec(&mass_inv);
-    crate::native::check_len("mass_inv", &mass_inv, ndof).py()?;
-    let mut sys = PyHamiltonian {
-        cb: Callbacks::new(obj),
-        phase: Phase::new(state, t0).py()?,
-        ndof,
-        separable,
-        mass_inv,
-    };
+    let mut sys =
+        PyHamiltonian::new(obj, to_vec(&state), t0, ndof, separable, to_vec(&mass_inv)).py()?;
     let mut observer = SignalObserver::new(progress);
     let options = options(&mut observer, stride, final_only, energy).py()?;
     let outcome = sys.integrate_with(t_span, dt, method, options);
@@ -346,15 +430,81 @@ pub fn integrate_ode<'py>(
     progress: Option<Py<PyAny>>,
 ) -> PyResult<Bound<'py, PyTuple>> {
     let method = parse_method(Some(method), Method::ImplicitMidpoint).py()?;
-    let mut sys = PyOde {
-        cb: Callbacks::new(obj),
-        phase: Phase::new(to_vec(&state), t0).py()?,
-    };
+    let mut sys = PyOde::new(obj, to_vec(&state), t0).py()?;
     let mut observer = SignalObserver::new(progress);
     let options = options(&mut observer, stride, final_only, energy).py()?;
     let outcome = sys.integrate_with(t_span, dt, method, options);
     let r = sys.cb.finish(outcome, observer.raised)?;
     result_tuple(py, r)
+}
+
+/// Runs a chaos analysis (`kind` and options as `chaos.chaos_native`) on a Python
+/// `HamiltonianSystem` subclass from `(state, t0)`; returns the dict of results with `state`
+/// and `t_end`.
+#[pyfunction]
+#[pyo3(signature = (obj, state, t0, t_span, dt, method, ndof, separable, mass_inv, kind, **options))]
+#[allow(clippy::too_many_arguments)]
+pub fn chaos_hamiltonian<'py>(
+    py: Python<'py>,
+    obj: Bound<'py, PyAny>,
+    state: PyReadonlyArray1<'_, f64>,
+    t0: f64,
+    t_span: (f64, f64),
+    dt: f64,
+    method: &str,
+    ndof: usize,
+    separable: bool,
+    mass_inv: PyReadonlyArray1<'_, f64>,
+    kind: &str,
+    options: Option<&Bound<'_, PyDict>>,
+) -> PyResult<Bound<'py, PyDict>> {
+    let job = chaos::job_from_py(kind, options)?;
+    let method = parse_method(Some(method), Method::Yoshida4).py()?;
+    let sys =
+        PyHamiltonian::new(obj, to_vec(&state), t0, ndof, separable, to_vec(&mass_inv)).py()?;
+    let outcome = chaos_run(&sys, t_span, dt, &job, |s, k| {
+        hamiltonian_flow(s, method, k)
+    });
+    let out = sys.cb.finish_with(outcome, None)?;
+    chaos::to_dict(py, out)
+}
+
+/// Runs a chaos analysis on a Python `ODESystem` (or engine-less `LagrangianSystem`) `obj`
+/// from `(state, t0)`; as [`chaos_hamiltonian`].
+#[pyfunction]
+#[pyo3(signature = (obj, state, t0, t_span, dt, method, kind, **options))]
+#[allow(clippy::too_many_arguments)]
+pub fn chaos_ode<'py>(
+    py: Python<'py>,
+    obj: Bound<'py, PyAny>,
+    state: PyReadonlyArray1<'_, f64>,
+    t0: f64,
+    t_span: (f64, f64),
+    dt: f64,
+    method: &str,
+    kind: &str,
+    options: Option<&Bound<'_, PyDict>>,
+) -> PyResult<Bound<'py, PyDict>> {
+    let job = chaos::job_from_py(kind, options)?;
+    let method = parse_method(Some(method), Method::ImplicitMidpoint).py()?;
+    let sys = PyOde::new(obj, to_vec(&state), t0).py()?;
+    let outcome = chaos_run(&sys, t_span, dt, &job, |s, k| ode_flow(s, method, k));
+    let out = sys.cb.finish_with(outcome, None)?;
+    chaos::to_dict(py, out)
+}
+
+/// The job on the flow `make(system, vectors)` from the system's state and clock.
+fn chaos_run<'s, S: DynamicalSystem>(
+    sys: &'s S,
+    t_span: (f64, f64),
+    dt: f64,
+    job: &chaos::Job,
+    make: impl FnOnce(&'s S, usize) -> Result<Box<dyn Flow + 's>>,
+) -> Result<chaos::JobResult> {
+    let grid = TimeGrid::new(t_span, dt)?;
+    let state = sys.state().to_vec();
+    let mut flow = make(sys, job.vectors(state.len()))?;
+    chaos::run(flow.as_mut(), &state, &grid, job)
 }
 
 /// Registers the callback integrators.
@@ -364,5 +514,7 @@ pub fn integrate_ode<'py>(
 pub fn register(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(integrate_hamiltonian, m)?)?;
     m.add_function(wrap_pyfunction!(integrate_ode, m)?)?;
+    m.add_function(wrap_pyfunction!(chaos_hamiltonian, m)?)?;
+    m.add_function(wrap_pyfunction!(chaos_ode, m)?)?;
     Ok(())
 }

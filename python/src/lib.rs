@@ -11,12 +11,14 @@
 //! * [`functions`]: closed forms and analyses that take no system;
 //! * [`expr`]: Lagrangians from the SymPy engine's expressions;
 //! * [`callback`]: Rust integrators running systems written in Python;
+//! * [`chaos`]: Poincaré sections, Lyapunov spectra, SALI/GALI and chaos maps;
 //! * [`errors`]: the mapping of core errors onto Python exceptions;
 //! * [`convert`]: zero-copy hand-over of result arrays to numpy;
 //! * [`memory`]: the allocator (mimalloc) and its hook into the core's memory check.
 
 pub mod callback;
 pub mod catalog;
+pub mod chaos;
 pub mod convert;
 pub mod errors;
 pub mod expr;
@@ -41,5 +43,6 @@ fn _core(m: &Bound<'_, PyModule>) -> PyResult<()> {
     functions::register(m)?;
     expr::register(m)?;
     callback::register(m)?;
+    chaos::register(m)?;
     Ok(())
 }

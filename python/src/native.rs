@@ -96,6 +96,16 @@ impl NativeSystem {
         self.inner.dynamical().state().len()
     }
 
+    /// The wrapped system (the chaos analyses run on it).
+    pub fn inner(&self) -> &dyn DynSystem {
+        self.inner.as_ref()
+    }
+
+    /// The wrapped system, to run and continue.
+    pub fn inner_mut(&mut self) -> &mut Box<dyn DynSystem> {
+        &mut self.inner
+    }
+
     fn hamiltonian(&self, operation: &str) -> Result<&dyn HamiltonianSystem> {
         self.inner
             .hamiltonian()

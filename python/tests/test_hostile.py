@@ -60,6 +60,9 @@ def _available_bytes() -> int:
 # -- valid calls --------------------------------------------------------------------------
 
 #: name in ``pc.__all__`` -> (callable, positional args, keyword args) of a valid call.
+#: The system the chaos functions' good calls run on (they move its state a little each time).
+_HH = pc.HenonHeilesSystem([0.1, 0.0], [0.0, 0.3])
+
 GOOD_CALLS = {
     "KeplerSystem": (pc.KeplerSystem, ([1.0, 0.0], [0.0, 1.0]), dict(k=1.0, mu=1.0, eps=0.01)),
     "HenonHeilesSystem": (pc.HenonHeilesSystem, ([0.1, 0.0], [0.0, 0.3]), {}),
@@ -99,10 +102,24 @@ GOOD_CALLS = {
                                               (20.0, 45.0, 9.81), {}),
     "SineGordonChain.kink": (pc.SineGordonChain.kink, (20, 10.0),
                              dict(width=1.0, velocity=0.3, polarity=1)),
+    # The chaos toolkit (physicskit.classical.chaos), on short runs.
+    "poincare_section": (pc.poincare_section, (_HH, (0.0, 2.0), 0.1),
+                         dict(coordinate=1, value=0.0, direction=1, method=None, normal=None)),
+    "lyapunov_spectrum": (pc.lyapunov_spectrum, (_HH, (0.0, 1.0), 0.1),
+                          dict(n_exponents=None, renormalize_every=5, method=None)),
+    "max_lyapunov": (pc.max_lyapunov, (_HH, (0.0, 1.0), 0.1),
+                     dict(renormalize_every=5, method=None)),
+    "sali": (pc.sali, (_HH, (0.0, 1.0), 0.1), dict(renormalize_every=5, method=None)),
+    "gali": (pc.gali, (_HH, (0.0, 1.0), 0.1, 3), dict(renormalize_every=5, method=None)),
+    "chaos_verdict": (pc.chaos_verdict, ([0.5, 1e-9],), {}),
+    "chaos_map": (pc.chaos_map, (_HH, [[0.1, 0.0, 0.0, 0.3]], (0.0, 1.0), 0.1),
+                  dict(indicator="lyapunov", method=None, renormalize_every=5, coordinate=None,
+                       value=0.0, direction=1, normal=None)),
 }
 
 #: Parameters that take an integer (sizes, indices, seeds, signs).
-INT_PARAMS = {"n", "mode", "seed", "polarity", "stride"}
+INT_PARAMS = {"n", "mode", "seed", "polarity", "stride", "coordinate", "direction", "n_exponents",
+              "renormalize_every"}
 
 #: Parameters that take an array; the rest take a real number.
 ARRAY_PARAMS = {"q0", "p0", "qdot0", "theta0", "thetadot0", "omega0", "quat0", "state0",

@@ -44,6 +44,8 @@ def values_of(annotation):
         "tuple[float, float]": lambda: (0.0, 1.0),
         "NativeSystem": a_system,
         "Callable[[int, int], object]": lambda: (lambda step, n_steps: None),
+        "list[NativeSystem]": lambda: [a_system()],
+        "_MatrixF64": lambda: np.zeros((1, 4)),
     }
     alternatives = annotation.split(" | ")
     unknown = [a for a in alternatives if a not in samples]
@@ -68,6 +70,7 @@ def has_type(value, annotation):
         and len(v) == 2
         and all(isinstance(x, np.ndarray) and x.dtype == np.float64 for x in v),
         "_ResultTuple": lambda v: isinstance(v, tuple) and len(v) == 6,
+        "dict[str, Any]": lambda v: isinstance(v, dict),
     }
     assert annotation in checks, f"no check for stub return type {annotation}: add one"
     return checks[annotation](value)

@@ -5,9 +5,11 @@
 // comparison is intended.
 #![allow(clippy::float_cmp)]
 
+use physicskit::classical::core::erased::Capabilities;
 use physicskit::classical::core::{
     hamiltonian_energy, lagrangian_derivatives, separable_derivatives,
 };
+use physicskit::classical::systems::HenonHeilesSystem;
 use physicskit::classical::{
     DynamicalSystem, Error, HamiltonianSystem, LagrangianSystem, Method, OdeSystem, Phase, Result,
 };
@@ -322,3 +324,53 @@ pub fn pseudo_random(n: usize, seed: u64) -> Vec<f64> {
         })
         .collect()
 }
+
+/// A Hénon–Heiles system at energy `e` from `(x, y, p_x)`, with `p_y >= 0` from the energy.
+pub fn henon_heiles_at(e: f64, x: f64, y: f64, px: f64) -> HenonHeilesSystem {
+    let v = 0.5 * (x * x + y * y) + x * x * y - y * y * y / 3.0;
+    let py = (2.0 * (e - v) - px * px).sqrt();
+    HenonHeilesSystem::new(&[x, y], &[px, py]).unwrap()
+}
+
+/// The Lorenz system `x' = σ (y - x)`, `y' = x (ρ - z) - y`, `z' = x y - β z` at the classic
+/// σ = 10, ρ = 28, β = 8/3, with no analytic Jacobian (the tangent dynamics use central
+/// differences). Its divergence is the constant `-(σ + 1 + β)`.
+pub struct Lorenz {
+    pub phase: Phase,
+}
+
+impl Lorenz {
+    pub const SIGMA: f64 = 10.0;
+    pub const RHO: f64 = 28.0;
+    pub const BETA: f64 = 8.0 / 3.0;
+
+    pub fn new(state: [f64; 3]) -> Self {
+        Self {
+            phase: Phase::new(state.to_vec(), 0.0).unwrap(),
+        }
+    }
+}
+
+impl DynamicalSystem for Lorenz {
+    fn phase(&self) -> &Phase {
+        &self.phase
+    }
+    fn phase_mut(&mut self) -> &mut Phase {
+        &mut self.phase
+    }
+    fn derivatives(&self, _t: f64, s: &[f64], out: &mut [f64]) -> Result<()> {
+        out[0] = Self::SIGMA * (s[1] - s[0]);
+        out[1] = s[0] * (Self::RHO - s[2]) - s[1];
+        out[2] = s[0] * s[1] - Self::BETA * s[2];
+        Ok(())
+    }
+    fn energy(&self, _state: &[f64]) -> f64 {
+        0.0
+    }
+    fn default_method(&self) -> Method {
+        Method::Rk4
+    }
+}
+
+impl OdeSystem for Lorenz {}
+impl Capabilities for Lorenz {}

@@ -37,6 +37,21 @@ pub enum Direction {
     Both,
 }
 
+impl Direction {
+    /// Whether a step from `before` to `after` (values of `g(y) - c` on either side of the
+    /// section) crosses in this direction. A start exactly on the section does not count, so a
+    /// crossing landing exactly on a step end is counted once, by the step that arrives there.
+    pub fn crossed(self, before: f64, after: f64) -> bool {
+        let up = before < 0.0 && after >= 0.0;
+        let down = before > 0.0 && after <= 0.0;
+        match self {
+            Direction::Increasing => up,
+            Direction::Decreasing => down,
+            Direction::Both => up || down,
+        }
+    }
+}
+
 /// The hyperplane `y[coordinate] = value`, crossed in `direction`.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct Section {
@@ -77,13 +92,7 @@ impl Section {
     /// direction. A start exactly on the plane does not count, so a crossing landing exactly
     /// on a step end is counted once, by the step that arrives there.
     fn crossed(&self, before: f64, after: f64) -> bool {
-        let up = before < 0.0 && after >= 0.0;
-        let down = before > 0.0 && after <= 0.0;
-        match self.direction {
-            Direction::Increasing => up,
-            Direction::Decreasing => down,
-            Direction::Both => up || down,
-        }
+        self.direction.crossed(before, after)
     }
 }
 

@@ -20,6 +20,7 @@ use super::method::Method;
 use super::options::IntegrateOptions;
 use super::result::SimulationResult;
 use super::system::{DynamicalSystem, HamiltonianSystem, LagrangianSystem, OdeSystem};
+use crate::classical::integrators::tangent::{self, Flow};
 
 /// What only some systems offer. Every method returns `None` unless the system overrides it;
 /// `Some(Err(..))` reports bad arguments (wrong lengths).
@@ -194,6 +195,13 @@ pub trait DynSystem: Send + Sync {
     /// What only some systems offer.
     fn capabilities(&self) -> &dyn Capabilities;
 
+    /// `method`'s step on this system, able to carry up to `max_vectors` deviation vectors
+    /// (the chaos indicators and Poincaré sections run on it; monomorphized for the system).
+    ///
+    /// # Errors
+    /// [`Error::UnsupportedMethod`] for a method the system cannot run.
+    fn flow(&self, method: Method, max_vectors: usize) -> Result<Box<dyn Flow + '_>>;
+
     /// The method `integrate` uses when none is given.
     fn default_method(&self) -> Method {
         self.dynamical().default_method()
@@ -213,7 +221,7 @@ pub struct Lagrangian<S>(pub S);
 pub struct Ode<S>(pub S);
 
 macro_rules! impl_dyn_system {
-    ($wrapper:ident, $family:ident, $tag:expr, $ndof:expr, $view:ident) => {
+    ($wrapper:ident, $family:ident, $tag:expr, $ndof:expr, $view:ident, $flow:ident) => {
         impl<S> Deref for $wrapper<S> {
             type Target = S;
             fn deref(&self) -> &S {
@@ -248,6 +256,9 @@ macro_rules! impl_dyn_system {
             fn capabilities(&self) -> &dyn Capabilities {
                 &self.0
             }
+            fn flow(&self, method: Method, max_vectors: usize) -> Result<Box<dyn Flow + '_>> {
+                tangent::$flow(&self.0, method, max_vectors)
+            }
         }
     };
     (@view hamiltonian) => {
@@ -268,16 +279,18 @@ impl_dyn_system!(
     HamiltonianSystem,
     Family::Hamiltonian,
     |s: &S| Some(HamiltonianSystem::ndof(s)),
-    hamiltonian
+    hamiltonian,
+    hamiltonian_flow
 );
 impl_dyn_system!(
     Lagrangian,
     LagrangianSystem,
     Family::Lagrangian,
     |s: &S| Some(LagrangianSystem::ndof(s)),
-    lagrangian
+    lagrangian,
+    lagrangian_flow
 );
-impl_dyn_system!(Ode, OdeSystem, Family::Ode, |_: &S| None, none);
+impl_dyn_system!(Ode, OdeSystem, Family::Ode, |_: &S| None, none, ode_flow);
 
 /// An [`Error::Unsupported`] for a capability `system` lacks, for front ends.
 pub fn missing(capability: &str, system: &str) -> Error {

@@ -33,6 +33,7 @@ pub mod field;
 pub mod implicit_solve;
 pub mod splitting;
 pub mod stepper;
+pub mod tangent;
 
 pub use ensemble::{integrate_ensemble, Ensemble, ENSEMBLE_CHUNK};
 pub use field::{Canonical, FirstOrder, VectorField};
@@ -41,3 +42,4 @@ pub use implicit_solve::{ButcherTableau, ImplicitRk, SolverSettings, SolverStats
 pub use rk4::Rk4;
 pub use splitting::{SplittingStepper, VerletStepper, Yoshida4Stepper};
 pub use stepper::{Dispatch, FieldStepper, Report, Stepper};
+pub use tangent::{hamiltonian_flow, lagrangian_flow, ode_flow, Flow};

@@ -2,4 +2,8 @@
 //! heavy symmetric top's reduced dynamics.
 
 mod action_angle;
+mod chaos_map;
+mod lyapunov;
+mod sali;
+mod section;
 mod symmetric_top;
