@@ -13,9 +13,12 @@ __all__ = [
     "build",
     "catalog",
     "effective_potential_symmetric_top",
+    "expr_hamiltonian",
     "expr_lagrangian",
+    "expr_ode",
     "expr_validate",
     "find_theta_equilibrium",
+    "force_jacobian",
     "integrate_hamiltonian",
     "integrate_ode",
     "methods",
@@ -25,6 +28,7 @@ __all__ = [
     "projectile_analytic_trajectory",
     "projectile_range_and_max_height",
     "sine_gordon_kink",
+    "system_jacobian",
 ]
 
 _ArrayF64 = npt.NDArray[np.float64]
@@ -155,6 +159,18 @@ def methods() -> list[_MethodInfo]:
 def effective_potential_symmetric_top(theta: _ArrayF64, p_phi: float, p_psi: float, I1: float, I3: float, Mgl: float) -> _ArrayF64:
     """`V_eff(theta)` of the heavy symmetric top at each angle."""
 
+def expr_hamiltonian(sexpr: str, ndof: int, params: _ArrayF64, q0: _ArrayF64, p0: _ArrayF64) -> NativeSystem:
+    """A Hamiltonian system from a prefix S-expression of `H(q, p, t)` with `ndof` degrees of"""
+
+def expr_ode(components: list[str], params: _ArrayF64, y0: _ArrayF64, energy: str | None = None) -> NativeSystem:
+    """A first-order system from prefix S-expressions of the components of `f(t, y)` and"""
+
+def system_jacobian(system: NativeSystem, t: float, state: _ArrayF64) -> _ArrayF64:
+    """The Jacobian `d(derivatives)/d(state)` of `system` at `(t, state)`, row-major as a square"""
+
+def force_jacobian(system: NativeSystem, q: _ArrayF64, t: float) -> _ArrayF64:
+    """The force Jacobian `dF/dq` of a separable Hamiltonian `system` at `(q, t)`."""
+
 def expr_lagrangian(sexpr: str, ndof: int, params: _ArrayF64, q0: _ArrayF64, qdot0: _ArrayF64) -> NativeSystem:
     """A Lagrangian system from a prefix S-expression (see `physicskit::classical::lagrangian::Expr`)"""
 
@@ -162,7 +178,7 @@ def expr_validate(sexpr: str, ndof: int, nparams: int) -> None:
     """Parses `sexpr` and checks its variable and parameter indices against `ndof` and `nparams`."""
 
 def find_theta_equilibrium(p_phi: float, p_psi: float, I1: float, I3: float, Mgl: float, bracket: tuple[float, float]) -> float:
-    """Minimum of `V_eff` in `bracket`."""
+    """Minimum of `V_eff` in `bracket`: the root of its analytic slope, to a few ulps."""
 
 def integrate_hamiltonian(obj: Any, state: _ArrayF64, t0: float, t_span: tuple[float, float], dt: float, method: str, ndof: int, separable: bool, mass_inv: _ArrayF64, stride: int = 1, final_only: bool = False, energy: bool = True) -> _ResultTuple:
     """Integrates a Python `HamiltonianSystem` subclass `obj` from `(state, t0)` with the Rust"""

@@ -174,7 +174,7 @@ pub fn find_theta_equilibrium(
         let s = slope(x);
         if previous.1 < 0.0 && s > 0.0 {
             let root = bisect_sign_change(slope, previous.0, x);
-            if best.map_or(true, |r| v(root) < v(r)) {
+            if best.is_none_or(|r| v(root) < v(r)) {
                 best = Some(root);
             }
         }

@@ -26,6 +26,8 @@ pub enum Var {
     Time,
 }
 
+// Exact comparisons: recognizing the literal constants 0, 1 and -1 of a tree.
+#[allow(clippy::float_cmp)]
 fn is_const(e: &Expr, c: f64) -> bool {
     matches!(e, Expr::Const(x) if *x == c)
 }
@@ -56,6 +58,7 @@ pub fn sum(terms: impl IntoIterator<Item = Expr>) -> Expr {
 
 /// `a_1 a_2 ...`, flattened, constants multiplied into one leading factor, ones dropped; `0`
 /// if a constant factor is zero.
+#[allow(clippy::float_cmp)] // exact: a factor of exactly 1 is dropped
 pub fn product(factors: impl IntoIterator<Item = Expr>) -> Expr {
     let mut out = Vec::new();
     let mut constant = 1.0;
@@ -83,6 +86,7 @@ pub fn product(factors: impl IntoIterator<Item = Expr>) -> Expr {
 }
 
 /// `-a`: a constant or a product's constant factor changes sign; otherwise `Neg(a)`.
+#[allow(clippy::float_cmp)] // exact: a factor of exactly 1 is dropped
 pub fn negate(a: Expr) -> Expr {
     match a {
         Expr::Const(c) => Expr::Const(-c),

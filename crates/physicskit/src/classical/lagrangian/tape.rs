@@ -192,6 +192,8 @@ impl Builder<'_> {
         }
     }
 
+    // Exact comparison: recognizing the literal factor -1.
+    #[allow(clippy::float_cmp)]
     fn chain(&mut self, items: &[Expr], empty: f64, kind: u8) -> Result<Val> {
         let Some((first, rest)) = items.split_first() else {
             return Ok(Val::Const(empty));
