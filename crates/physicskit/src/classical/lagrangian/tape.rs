@@ -401,11 +401,9 @@ impl Tape {
         let n_in = self.n_inputs();
         let mask = r.as_ref().len() - 1;
         fill(&mut r.as_mut()[..n_in]);
-        let mut dst = n_in;
-        for op in &self.ops {
+        for (dst, op) in (n_in..).zip(&self.ops) {
             let v = op.apply(r.as_ref(), mask);
             r.as_mut()[dst & mask] = v;
-            dst += 1;
         }
         for (i, &Out(v, negate)) in self.outputs.iter().enumerate() {
             let v = match v {

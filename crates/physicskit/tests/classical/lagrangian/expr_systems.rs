@@ -424,7 +424,7 @@ fn invalid_expressions_and_inputs_are_refused() {
     // The tape itself answers short slices with NaN rather than an index panic.
     let tape = Tape::new(&[Expr::parse("(* q0 qdot1)").unwrap()], 1, 2, &[]).unwrap();
     assert!(tape.eval_scalar(&[1.0], &[1.0], 0.0).is_nan());
-    let mut out = [0.0];
+    let mut out = [0.0_f64];
     tape.eval(&[1.0], &[1.0], 0.0, &mut out);
     assert!(out[0].is_nan());
     let mut jac = [0.0; 2];
