@@ -24,13 +24,8 @@ cases=("$@")
 if [ ${#cases[@]} -eq 0 ]; then
     mapfile -t cases < <("$target/release/lagrangian_ad-custom" list)
 fi
-instructions() {
-    local out
-    out=$(mktemp)
-    valgrind --tool=callgrind --callgrind-out-file="$out" "$@" >/dev/null 2>&1
-    callgrind_annotate "$out" 2>/dev/null | awk '/PROGRAM TOTALS/ {gsub(",", "", $1); print $1}'
-    rm -f "$out"
-}
+# shellcheck source=benchmarks/instructions.sh
+source benchmarks/instructions.sh
 per_step() {
     local a b
     a=$(instructions "$@" "$n")

@@ -17,9 +17,12 @@ __all__ = [
     "chaos_native",
     "chaos_ode",
     "effective_potential_symmetric_top",
+    "expr_hamiltonian",
     "expr_lagrangian",
+    "expr_ode",
     "expr_validate",
     "find_theta_equilibrium",
+    "force_jacobian",
     "integrate_hamiltonian",
     "integrate_ode",
     "methods",
@@ -29,6 +32,7 @@ __all__ = [
     "projectile_analytic_trajectory",
     "projectile_range_and_max_height",
     "sine_gordon_kink",
+    "system_jacobian",
 ]
 
 _ArrayF64 = npt.NDArray[np.float64]
@@ -165,6 +169,18 @@ def methods() -> list[_MethodInfo]:
 def effective_potential_symmetric_top(theta: _ArrayF64, p_phi: float, p_psi: float, I1: float, I3: float, Mgl: float) -> _ArrayF64:
     """`V_eff(theta)` of the heavy symmetric top at each angle."""
 
+def expr_hamiltonian(sexpr: str, ndof: int, params: _ArrayF64, q0: _ArrayF64, p0: _ArrayF64) -> NativeSystem:
+    """A Hamiltonian system from a prefix S-expression of `H(q, p, t)` with `ndof` degrees of"""
+
+def expr_ode(components: list[str], params: _ArrayF64, y0: _ArrayF64, energy: str | None = None) -> NativeSystem:
+    """A first-order system from prefix S-expressions of the components of `f(t, y)` and"""
+
+def system_jacobian(system: NativeSystem, t: float, state: _ArrayF64) -> _ArrayF64:
+    """The Jacobian `d(derivatives)/d(state)` of `system` at `(t, state)`, row-major as a square"""
+
+def force_jacobian(system: NativeSystem, q: _ArrayF64, t: float) -> _ArrayF64:
+    """The force Jacobian `dF/dq` of a separable Hamiltonian `system` at `(q, t)`."""
+
 def expr_lagrangian(sexpr: str, ndof: int, params: _ArrayF64, q0: _ArrayF64, qdot0: _ArrayF64) -> NativeSystem:
     """A Lagrangian system from a prefix S-expression (see `physicskit::classical::lagrangian::Expr`)"""
 
@@ -172,7 +188,7 @@ def expr_validate(sexpr: str, ndof: int, nparams: int) -> None:
     """Parses `sexpr` and checks its variable and parameter indices against `ndof` and `nparams`."""
 
 def find_theta_equilibrium(p_phi: float, p_psi: float, I1: float, I3: float, Mgl: float, bracket: tuple[float, float]) -> float:
-    """Minimum of `V_eff` in `bracket`."""
+    """Minimum of `V_eff` in `bracket`: the root of its analytic slope, to a few ulps."""
 
 def chaos_native(native: NativeSystem, state: _ArrayF64, t0: float, t_span: tuple[float, float], dt: float, method: str | None, kind: str, **options: Any) -> dict[str, Any]:
     """Runs an analysis on a built-in system from `(state, t0)` over `t_span` with `dt` and"""

@@ -86,7 +86,7 @@ pub fn effective_potential_symmetric_top<'py>(
     Ok(PyArray1::from_vec(py, v))
 }
 
-/// Minimum of `V_eff` in `bracket`.
+/// Minimum of `V_eff` in `bracket`: the root of its analytic slope, to a few ulps.
 #[pyfunction]
 #[allow(non_snake_case)]
 pub fn find_theta_equilibrium(

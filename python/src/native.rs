@@ -92,6 +92,17 @@ impl NativeSystem {
         }
     }
 
+    /// The wrapped system (for functions of other modules, such as the expression engines'
+    /// Jacobians).
+    pub fn inner(&self) -> &dyn DynSystem {
+        &*self.inner
+    }
+
+    /// The name the system reports.
+    pub fn system_name(&self) -> &'static str {
+        self.name
+    }
+
     fn dim(&self) -> usize {
         self.inner.dynamical().state().len()
     }

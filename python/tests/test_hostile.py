@@ -117,13 +117,35 @@ GOOD_CALLS = {
                        value=0.0, direction=1, normal=None)),
 }
 
+# The SymPy engines (physicskit.classical.utils), when SymPy is installed: their constructors
+# (symbols, expressions and params dict) and the systems they build (initial states).
+try:
+    import sympy as _sp
+except ImportError:  # pragma: no cover - sympy is a test dependency of dev.sh env
+    _sp = None
+if _sp is not None:
+    from physicskit.classical.utils import HamiltonianEngine, ODEEngine
+
+    _q, _p, _k = _sp.symbols("q p k")
+    _H = _p**2 / 2 + _k * _q**4 / 4
+    GOOD_CALLS.update({
+        "HamiltonianEngine": (HamiltonianEngine, ([_q], [_p], _H), dict(params={"k": 1.0})),
+        "HamiltonianEngine.system": (HamiltonianEngine([_q], [_p], _H, params={"k": 1.0}).system,
+                                     ([0.5], [0.1]), {}),
+        "ODEEngine": (ODEEngine, ([_q, _p], [_p, -_k * _q]), dict(params={"k": 1.0})),
+        "ODEEngine.system": (ODEEngine([_q, _p], [_p, -_k * _q], params={"k": 1.0}).system,
+                             ([0.5, 0.1],), {}),
+        "ODEEngine.jacobian": (ODEEngine([_q, _p], [_p, -_k * _q], params={"k": 1.0}).jacobian,
+                               (0.0, [0.5, 0.1]), {}),
+    })
+
 #: Parameters that take an integer (sizes, indices, seeds, signs).
 INT_PARAMS = {"n", "mode", "seed", "polarity", "stride", "coordinate", "direction", "n_exponents",
               "renormalize_every"}
 
 #: Parameters that take an array; the rest take a real number.
 ARRAY_PARAMS = {"q0", "p0", "qdot0", "theta0", "thetadot0", "omega0", "quat0", "state0",
-                "state", "q", "p", "qdot", "theta", "t"}
+                "state", "q", "p", "qdot", "theta", "t", "y0"}
 
 
 def _is_public_callable(name: str, obj) -> bool:
@@ -181,9 +203,16 @@ NONFINITE = [math.nan, math.inf, -math.inf, np.float64("nan"), np.float32("inf")
 NONINT_NUMBERS = [1.5, 5.4e16, 32.0, np.float64(2.0), Fraction(3, 2)]
 
 
+def _length(good) -> int:
+    """The good value's length (a list of SymPy symbols has one too, but no float array)."""
+    if isinstance(good, (list, tuple)):
+        return max(len(good), 1)
+    return max(len(np.atleast_1d(np.asarray(good, dtype=float))), 1)
+
+
 def _nonreal_vectors(good):
     """Arrays with the good one's length that hold something other than real numbers."""
-    n = max(len(np.atleast_1d(np.asarray(good, dtype=float))), 1)
+    n = _length(good)
     base = [0.1] * n
     out = [
         np.array(base, dtype=complex),
@@ -201,7 +230,7 @@ def _nonreal_vectors(good):
 
 
 def _wrong_shape_vectors(good):
-    n = max(len(np.atleast_1d(np.asarray(good, dtype=float))), 1)
+    n = _length(good)
     return [np.zeros((n, 2)), np.zeros(n + 1), [], [[0.1] * n, [0.2]], np.zeros((0, n))]
 
 

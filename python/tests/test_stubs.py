@@ -42,6 +42,7 @@ def values_of(annotation):
         "_ArrayF64": lambda: np.array([0.1, 0.2, 0.3]),
         "dict[str, Any]": lambda: {},
         "tuple[float, float]": lambda: (0.0, 1.0),
+        "list[str]": lambda: ["(* -1 y0)"],
         "NativeSystem": a_system,
         "Callable[[int, int], object]": lambda: (lambda step, n_steps: None),
         "list[NativeSystem]": lambda: [a_system()],

@@ -111,7 +111,10 @@ def effective_potential_symmetric_top(theta, p_phi: float, p_psi: float, I1: flo
 
 def find_theta_equilibrium(p_phi: float, p_psi: float, I1: float, I3: float, Mgl: float,
                            bracket=(0.001, 3.1405926535897932)) -> float:
-    """The angle minimizing ``V_eff`` inside ``bracket``: steady precession's nutation angle."""
+    """The angle minimizing ``V_eff`` inside ``bracket``: steady precession's nutation angle.
+
+    Found as the root of the analytic ``V_eff'(theta)``, bisected to adjacent floats (a few
+    ulps); ``ValueError`` naming ``bracket`` if ``V_eff`` has no interior minimum there."""
     try:
         lo, hi = bracket
     except (TypeError, ValueError):

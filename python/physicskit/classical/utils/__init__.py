@@ -1,5 +1,6 @@
-"""Utilities: :mod:`physicskit.classical.utils.symbolic` (``LagrangianEngine``)."""
+"""Utilities: :mod:`physicskit.classical.utils.symbolic` (``LagrangianEngine``,
+``HamiltonianEngine``, ``ODEEngine``)."""
 
-from .symbolic import LagrangianEngine
+from .symbolic import HamiltonianEngine, LagrangianEngine, ODEEngine
 
-__all__ = ["LagrangianEngine"]
+__all__ = ["LagrangianEngine", "HamiltonianEngine", "ODEEngine"]

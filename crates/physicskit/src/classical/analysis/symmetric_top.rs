@@ -11,8 +11,18 @@
 //! Its minimum `theta_eq` is the angle of steady precession and the centre of nutation; the
 //! small-oscillation (nutation) frequency is `sqrt(V_eff''(theta_eq) / I1)` and the mean
 //! precession rate `phi' = (p_phi - p_psi cos theta_eq) / (I1 sin^2 theta_eq)`.
-
-use super::brent::brent_minimize;
+//!
+//! `theta_eq` is the root of the analytic slope, with `a = p_phi - p_psi cos theta`,
+//!
+//! ```text
+//! V_eff'(theta) = a (p_psi sin^2 theta - a cos theta) / (I1 sin^3 theta) - M g l sin theta
+//!               = -sin theta (I1 phi'^2 cos theta - p_psi phi' + M g l),  phi' = a / (I1 sin^2)
+//! ```
+//!
+//! (the second form is Goldstein's steady-precession condition, eq. 5.75), found by bisection
+//! down to adjacent floating-point numbers: `theta_eq` is where the computed slope changes
+//! sign, to a few ulps. Minimizing `V_eff` instead could not locate it better than
+//! `sqrt(eps) ~ 1e-8` relative, because `V_eff` is flat to rounding that close to a minimum.
 use crate::classical::core::error::{check_finite_scalar, check_positive};
 use crate::classical::core::{Error, Result};
 
@@ -79,12 +89,54 @@ pub fn effective_potential_symmetric_top_many(
         .collect()
 }
 
-/// The nutation angle `theta_eq` minimizing `V_eff` on `bracket` (Brent's method, location
-/// accurate to about `3e-8` relative, the limit for a minimum of a smooth function).
+/// `V_eff'(theta)` (see the module documentation).
+fn veff_slope(theta: f64, p_phi: f64, p_psi: f64, i1: f64, mgl: f64) -> f64 {
+    let (s, c) = theta.sin_cos();
+    let a = p_phi - p_psi * c;
+    a * (p_psi * s * s - a * c) / (i1 * s * s * s) - mgl * s
+}
+
+/// Subintervals of the scan for a sign change of `V_eff'` when the bracket's ends do not
+/// already show one (`V_eff` of a top has one minimum on `(0, pi)`, so the ends normally do;
+/// the scan serves brackets that also hold a maximum, as with `Mgl < 0`).
+const SCAN_INTERVALS: usize = 64;
+
+/// Bisects `f`, negative at `lo` and positive at `hi`, until the two are adjacent floats;
+/// returns the one where `|f|` is smaller (or a point where `f` is exactly zero).
+fn bisect_sign_change(f: impl Fn(f64) -> f64, mut lo: f64, mut hi: f64) -> f64 {
+    // Each halving removes one bit of the gap: 64 bisections cover any gap in (0, pi), and
+    // the loop also stops once the midpoint is an end.
+    for _ in 0..128 {
+        let mid = lo + 0.5 * (hi - lo);
+        if mid <= lo || mid >= hi {
+            break;
+        }
+        let v = f(mid);
+        if v < 0.0 {
+            lo = mid;
+        } else if v > 0.0 {
+            hi = mid;
+        } else {
+            return mid;
+        }
+    }
+    if f(lo).abs() <= f(hi).abs() {
+        lo
+    } else {
+        hi
+    }
+}
+
+/// The nutation angle `theta_eq` of the minimum of `V_eff` on `bracket`: the root of the
+/// analytic `V_eff'` where it changes sign from negative to positive, bisected to adjacent
+/// floats (a few ulps; see the module documentation). If the bracket holds several minima,
+/// the lowest.
 ///
 /// # Errors
 /// Invalid top parameters; a bracket not inside `(0, pi)` with `a < b`; an
-/// [`Error::InvalidParameter`] naming `bracket` if `V_eff` has no interior minimum in it.
+/// [`Error::InvalidParameter`] naming `bracket` if `V_eff` has no interior minimum in it
+/// (its slope does not go from negative to positive at the ends nor at any of 64 evenly
+/// spaced points between them).
 pub fn find_theta_equilibrium(
     p_phi: f64,
     p_psi: f64,
@@ -102,14 +154,42 @@ pub fn find_theta_equilibrium(
             "must satisfy 0 < a < b < pi",
         ));
     }
-    let min = brent_minimize(
-        |th| veff(th, p_phi, p_psi, i1, i3, mgl),
-        bracket,
-        3e-8,
-        1e-12,
-        500,
-    )?;
-    Ok(min.x)
+    let slope = |th: f64| veff_slope(th, p_phi, p_psi, i1, mgl);
+    let v = |th: f64| veff(th, p_phi, p_psi, i1, i3, mgl);
+    let (sa, sb) = (slope(a), slope(b));
+    if sa < 0.0 && sb > 0.0 {
+        return Ok(bisect_sign_change(slope, a, b));
+    }
+    let at = |k: usize| {
+        if k == SCAN_INTERVALS {
+            b
+        } else {
+            a + (b - a) * k as f64 / SCAN_INTERVALS as f64
+        }
+    };
+    let mut best: Option<f64> = None;
+    let mut previous = (a, sa);
+    for k in 1..=SCAN_INTERVALS {
+        let x = at(k);
+        let s = slope(x);
+        if previous.1 < 0.0 && s > 0.0 {
+            let root = bisect_sign_change(slope, previous.0, x);
+            if best.is_none_or(|r| v(root) < v(r)) {
+                best = Some(root);
+            }
+        }
+        previous = (x, s);
+    }
+    best.ok_or_else(|| {
+        Error::invalid(
+            "bracket",
+            a,
+            format!(
+                "({a}, {b}) holds no interior minimum of V_eff: its slope does not change \
+                 sign from negative to positive there ({sa} and {sb} at the ends)"
+            ),
+        )
+    })
 }
 
 /// Small-oscillation nutation frequency `sqrt(V_eff''(theta_eq) / I1)` (rad per unit time),

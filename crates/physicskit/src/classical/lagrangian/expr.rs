@@ -13,10 +13,14 @@
 //! [`Expr::parse`] reads, and `Display` writes, a prefix S-expression:
 //!
 //! ```text
-//! expr  := number | q<i> | qdot<i> | t | param<i> | pi | ( op expr... )
+//! expr  := number | q<i> | qdot<i> | p<i> | y<i> | t | param<i> | pi | ( op expr... )
 //! op    := + | * | - | / | ^ | neg | sin | cos | tan | exp | ln | sqrt | sinh | cosh | tanh
 //!          | asin | acos | atan | abs
 //! ```
+//!
+//! `p<i>` (a momentum, for [`ExprHamiltonian`](super::ExprHamiltonian)) reads as `qdot<i>`
+//! and `y<i>` (a state component, for [`ExprOde`](super::ExprOde)) as `q<i>`: the tree
+//! stores the slot (first or second vector), and `Display` writes `q`/`qdot`.
 //!
 //! `(+ a b ...)` and `(* a b ...)` take any number of operands, `(- a b)` subtracts,
 //! `(- a)` and `(neg a)` negate, and `(^ a n)` is an integer power when `n` is an integer
@@ -117,7 +121,7 @@ impl Func {
     }
 
     #[inline]
-    fn apply<D: Scalar>(self, x: D) -> D {
+    pub(crate) fn apply<D: Scalar>(self, x: D) -> D {
         match self {
             Func::Sin => x.sin(),
             Func::Cos => x.cos(),
@@ -248,7 +252,7 @@ impl Expr {
         }
     }
 
-    fn children(&self) -> impl Iterator<Item = &Expr> {
+    pub(crate) fn children(&self) -> impl Iterator<Item = &Expr> {
         let (slice, pair): (&[Expr], [Option<&Expr>; 2]) = match self {
             Expr::Add(v) | Expr::Mul(v) => (v, [None, None]),
             Expr::Sub(a, b) | Expr::Div(a, b) | Expr::Pow(a, b) => (&[], [Some(a), Some(b)]),
@@ -381,6 +385,8 @@ fn parse_atom(tok: &str) -> Option<Expr> {
     index_after(tok, "qdot")
         .map(Expr::Qdot)
         .or_else(|| index_after(tok, "q").map(Expr::Q))
+        .or_else(|| index_after(tok, "p").map(Expr::Qdot))
+        .or_else(|| index_after(tok, "y").map(Expr::Q))
         .or_else(|| index_after(tok, "param").map(Expr::Param))
 }
 
@@ -399,8 +405,8 @@ fn parse_expr(tokens: &[(usize, &str)], pos: &mut usize, depth: usize) -> Result
             syntax(
                 tokens,
                 *pos,
-                "unknown name or non-finite number (expected a number, q<i>, qdot<i>, t, \
-                 param<i> or pi)",
+                "unknown name or non-finite number (expected a number, q<i>, qdot<i>, p<i>, \
+                 y<i>, t, param<i> or pi)",
             )
         })?;
         *pos += 1;

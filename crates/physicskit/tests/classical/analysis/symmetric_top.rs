@@ -51,19 +51,42 @@ fn rates_for(p_phi: f64, p_psi: f64, theta: f64) -> [f64; 3] {
     [phid, 0.0, p_psi / I3 - phid * c]
 }
 
+/// Goldstein's steady-precession condition (eq. 5.75), `I1 phi'^2 cos(theta) - p_psi phi' +
+/// M g l`, with `phi' = (p_phi - p_psi cos theta) / (I1 sin^2 theta)`: `-V_eff'(theta) /
+/// sin(theta)`, written independently of the library's slope.
+fn steady_precession_residual(p_phi: f64, p_psi: f64, mgl: f64, theta: f64) -> f64 {
+    let phid = rates_for(p_phi, p_psi, theta)[0];
+    I1 * phid * phid * theta.cos() - p_psi * phid + mgl
+}
+
+/// `x` moved by `k` units in the last place.
+fn ulps_away(x: f64, k: i64) -> f64 {
+    f64::from_bits((x.to_bits() as i64 + k) as u64)
+}
+
 #[test]
 fn equilibrium_angle_gives_steady_precession() {
-    // At theta_eq a top started with theta' = 0 precesses steadily: theta'' = 0 there, i.e.
-    // I1 phi'^2 cos(theta) - I3 w3 phi' + M g l = 0 (Goldstein eq. 5.75). Brent locates
-    // theta_eq to ~3e-8, so the residual is ~1e-6 of its terms (I3 w3 phi' ~ 10).
+    // At theta_eq a top started with theta' = 0 precesses steadily: theta'' = 0 there, the
+    // root of Goldstein's condition (eq. 5.75), a hand-written form of -V_eff'/sin(theta).
     let (p_phi, p_psi) = (8.775_825_618_903_728, 10.0);
     let mgl = params().mgl();
     let th = find_theta_equilibrium(p_phi, p_psi, I1, I3, mgl, DEFAULT_THETA_BRACKET).unwrap();
+    // The condition changes sign (+ to -) within 4 ulps either side of theta_eq: its terms
+    // (~30) carry rounding ~1e-14, and its slope (~50 per radian) moves it by more than that
+    // over 4 ulps of theta (~4.4e-16 rad): found to a few ulps, not to Brent's 3e-8.
+    let (below, above) = (ulps_away(th, -4), ulps_away(th, 4));
+    let (rb, ra) = (
+        steady_precession_residual(p_phi, p_psi, mgl, below),
+        steady_precession_residual(p_phi, p_psi, mgl, above),
+    );
+    assert!(
+        rb > 0.0 && ra < 0.0,
+        "residual {rb} at -4 ulps, {ra} at +4 ulps"
+    );
+    // And the integrated top holds theta: with theta_eq exact to rounding, the wander is the
+    // integrator's (implicit midpoint, h = 1e-3, 5e3 steps), far below the 1e-6 that a
+    // 3e-8 error in theta_eq gave.
     let r = rates_for(p_phi, p_psi, th);
-    let w3 = r[2] + r[0] * th.cos();
-    let residual = I1 * r[0] * r[0] * th.cos() - I3 * w3 * r[0] + mgl;
-    assert!(residual.abs() < 1e-5 * (I3 * w3 * r[0]).abs(), "{residual}");
-    // And the integrated top holds theta (amplitude set by that 3e-8 offset, times ~2).
     let mut top = HeavySymmetricTop::new(&[0.0, th, 0.0], &r, params()).unwrap();
     let result = top
         .integrate((0.0, 5.0), 1e-3, Method::ImplicitMidpoint)
@@ -73,7 +96,41 @@ fn equilibrium_angle_gives_steady_precession() {
         .column(1)
         .iter()
         .fold(0.0_f64, |m, v| m.max((v - th).abs()));
-    assert!(wander < 1e-6, "{wander}");
+    assert!(wander < 1e-9, "{wander}");
+}
+
+#[test]
+fn equilibrium_is_found_to_a_few_ulps_over_many_tops() {
+    // Tops across regimes (fast and slow, p_phi above and below p_psi, inverted Mgl < 0 with
+    // the default bracket, where V_eff also has a single minimum): the independent condition
+    // changes sign within 8 ulps of theta_eq (condition-number headroom for the slow tops,
+    // whose terms are larger relative to the slope).
+    for (p_phi, p_psi, i3, mgl) in [
+        (8.0, 10.0, 0.5, 9.81),
+        (3.0, 4.0, 0.5, 9.81),
+        (1.0, 20.0, 2.0, 1.0),
+        (-2.0, 5.0, 0.3, 4.0),
+        (5.0, 1.0, 0.5, -3.0),
+        (0.5, 0.7, 1.0, 0.2),
+    ] {
+        let th = find_theta_equilibrium(p_phi, p_psi, I1, i3, mgl, DEFAULT_THETA_BRACKET).unwrap();
+        let g = |x: f64| steady_precession_residual(p_phi, p_psi, mgl, x);
+        let (rb, ra) = (g(ulps_away(th, -8)), g(ulps_away(th, 8)));
+        assert!(
+            rb > 0.0 && ra < 0.0,
+            "({p_phi}, {p_psi}, {i3}, {mgl}): theta_eq = {th}, residual {rb} / {ra}"
+        );
+        // It is the minimum the old minimizer found, to its 3e-8.
+        let brent = brent_minimize(
+            |x| effective_potential_symmetric_top(x, p_phi, p_psi, I1, i3, mgl).unwrap(),
+            DEFAULT_THETA_BRACKET,
+            3e-8,
+            1e-12,
+            500,
+        )
+        .unwrap();
+        assert!((brent.x - th).abs() < 1e-7, "{} vs {th}", brent.x);
+    }
 }
 
 /// Mean spacing of the upward zero crossings of `x`, and the first and last crossing index.
