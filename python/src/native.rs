@@ -92,12 +92,6 @@ impl NativeSystem {
         }
     }
 
-    /// The wrapped system (for functions of other modules, such as the expression engines'
-    /// Jacobians).
-    pub fn inner(&self) -> &dyn DynSystem {
-        &*self.inner
-    }
-
     /// The name the system reports.
     pub fn system_name(&self) -> &'static str {
         self.name
@@ -107,7 +101,7 @@ impl NativeSystem {
         self.inner.dynamical().state().len()
     }
 
-    /// The wrapped system (the chaos analyses run on it).
+    /// The wrapped system (the chaos analyses run on it; the expression engines' Jacobians).
     pub fn inner(&self) -> &dyn DynSystem {
         self.inner.as_ref()
     }
