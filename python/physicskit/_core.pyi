@@ -124,9 +124,12 @@ class NativeSystem:
         stride: int = 1,
         final_only: bool = False,
         energy: bool = True,
+        rtol: float | None = None,
+        atol: float | None = None,
     ) -> _ResultTuple:
         """Integrate from `(state, t0)`; keep every `stride`-th step (and the last), or only the
-        first and last with `final_only`; `energy=False` gives `None` energy. ValueError when
+        first and last with `final_only`; `energy=False` gives `None` energy; `rtol`, `atol`:
+        an adaptive method's tolerances (ValueError for a fixed-step method). ValueError when
         the stored samples would not fit in memory."""
     def positions(self, q: _ArrayF64) -> _ArrayF64: ...
     def lrl_vector(self, q: _ArrayF64, p: _ArrayF64) -> _ArrayF64: ...
@@ -164,10 +167,10 @@ def expr_validate(sexpr: str, ndof: int, nparams: int) -> None:
 def find_theta_equilibrium(p_phi: float, p_psi: float, I1: float, I3: float, Mgl: float, bracket: tuple[float, float]) -> float:
     """Minimum of `V_eff` in `bracket`."""
 
-def integrate_hamiltonian(obj: Any, state: _ArrayF64, t0: float, t_span: tuple[float, float], dt: float, method: str, ndof: int, separable: bool, mass_inv: _ArrayF64, stride: int = 1, final_only: bool = False, energy: bool = True) -> _ResultTuple:
+def integrate_hamiltonian(obj: Any, state: _ArrayF64, t0: float, t_span: tuple[float, float], dt: float, method: str, ndof: int, separable: bool, mass_inv: _ArrayF64, stride: int = 1, final_only: bool = False, energy: bool = True, rtol: float | None = None, atol: float | None = None) -> _ResultTuple:
     """Integrates a Python `HamiltonianSystem` subclass `obj` from `(state, t0)` with the Rust"""
 
-def integrate_ode(obj: Any, state: _ArrayF64, t0: float, t_span: tuple[float, float], dt: float, method: str, stride: int = 1, final_only: bool = False, energy: bool = True) -> _ResultTuple:
+def integrate_ode(obj: Any, state: _ArrayF64, t0: float, t_span: tuple[float, float], dt: float, method: str, stride: int = 1, final_only: bool = False, energy: bool = True, rtol: float | None = None, atol: float | None = None) -> _ResultTuple:
     """Integrates a Python `ODESystem` (or engine-less `LagrangianSystem`) `obj` from"""
 
 def nutation_frequency(p_phi: float, p_psi: float, I1: float, I3: float, Mgl: float, theta_eq: float | None, dtheta: float) -> float:

@@ -14,6 +14,7 @@ use physicskit::classical::core::catalog::{SystemEntry, Values};
 use physicskit::classical::core::erased::{missing, offered, Capabilities, DynSystem};
 use physicskit::classical::{
     Error, HamiltonianSystem, IntegrateOptions, LagrangianSystem, Method, Result, Sampling,
+    Tolerances,
 };
 use pyo3::prelude::*;
 use pyo3::types::{PyDict, PyTuple};
@@ -282,9 +283,10 @@ impl NativeSystem {
     /// Starts from `(state, t0)`, integrates over `t_span` with step `dt`, and returns the result
     /// tuple `(t, y, ndof, energy, method, extra)`. `stride` keeps every `stride`-th step (and
     /// the last), `final_only` only the first and last, `energy=False` skips the energy
-    /// diagnostic (`None` in the tuple). The GIL is released during the run; Ctrl-C stops it
+    /// diagnostic (`None` in the tuple); `rtol` and `atol` are an adaptive method's tolerances
+    /// (refused for a fixed-step method). The GIL is released during the run; Ctrl-C stops it
     /// with `KeyboardInterrupt`.
-    #[pyo3(signature = (state, t0, t_span, dt, method=None, stride=1, final_only=false, energy=true))]
+    #[pyo3(signature = (state, t0, t_span, dt, method=None, stride=1, final_only=false, energy=true, rtol=None, atol=None))]
     #[allow(clippy::too_many_arguments)]
     fn integrate<'py>(
         &mut self,
@@ -297,10 +299,13 @@ impl NativeSystem {
         stride: usize,
         final_only: bool,
         energy: bool,
+        rtol: Option<f64>,
+        atol: Option<f64>,
     ) -> PyResult<Bound<'py, PyTuple>> {
         let state = to_vec(&state);
         let method = parse_method(method, self.inner.default_method()).py()?;
         let sampling = sampling(stride, final_only).py()?;
+        let tolerances = Tolerances::for_method(rtol, atol, method).py()?;
         let inner = &mut self.inner;
         let (outcome, raised) = py.detach(move || {
             let mut observer = SignalObserver::default();
@@ -314,6 +319,7 @@ impl NativeSystem {
                         skip_energy: !energy,
                         observer: Some(&mut observer),
                         observe_every: CHECK_EVERY,
+                        tolerances,
                     },
                 )
             });

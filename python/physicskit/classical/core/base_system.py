@@ -102,11 +102,14 @@ class _SplitOnAccess(SimulationResult):
 
 
 class _Sampling(NamedTuple):
-    """What a run stores (the keyword arguments of the native integrators)."""
+    """What a run stores, and an adaptive method's tolerances (the keyword arguments of the
+    native integrators)."""
 
     stride: int = 1
     final_only: bool = False
     energy: bool = True
+    rtol: Optional[float] = None
+    atol: Optional[float] = None
 
 
 _EVERY_SAMPLE = _Sampling()
@@ -155,7 +158,8 @@ class DynamicalSystem(ABC):
 
     def integrate_sampled(
         self, t_span, dt: float, method: Optional[str] = None, *, stride: int = 1,
-        final_only: bool = False, energy: bool = True,
+        final_only: bool = False, energy: bool = True, rtol: Optional[float] = None,
+        atol: Optional[float] = None,
     ) -> SimulationResult:
         """Integrate like :meth:`integrate`, storing only some samples (not in the spec).
 
@@ -181,6 +185,14 @@ class DynamicalSystem(ABC):
         energy : bool, keyword-only
             Compute the energy of each stored sample (default). ``False`` leaves
             ``result.energy`` as ``None`` and saves one energy evaluation per stored sample.
+        rtol, atol : float, keyword-only, optional
+            Relative and absolute error tolerances of an adaptive method (``"dop853"``), finite
+            and > 0; ``None`` (default) means ``1e-10`` and ``1e-12``. An adaptive method
+            chooses its own steps to meet them and ``dt`` is the spacing of the stored samples,
+            which it interpolates from its steps (the final sample is a step's result, exactly
+            at ``t1``); ``result.extra`` then also holds ``accepted_steps`` and
+            ``rejected_steps``. A fixed-step method has no tolerances: giving either with one
+            is a ``ValueError``.
 
         Returns
         -------
@@ -194,8 +206,12 @@ class DynamicalSystem(ABC):
         ------
         ValueError
             ``stride`` not an integer >= 1, ``stride > 1`` with ``final_only=True``, a
-            non-boolean flag, every ``ValueError`` of ``integrate``, and a run whose stored
+            non-boolean flag, ``rtol`` or ``atol`` not a finite number > 0 or given with a
+            fixed-step method, every ``ValueError`` of ``integrate``, and a run whose stored
             samples would not fit in memory (checked before anything is allocated).
+        ConvergenceError
+            An adaptive method found no step meeting its tolerances (the step size fell to the
+            rounding of ``t``, or the right-hand side returned NaN), naming ``t``.
         NotImplementedError
             For a Python subclass of ``DynamicalSystem`` itself that implements its own
             ``integrate`` (there is no integrator to pass the sampling to). Subclasses of
@@ -205,13 +221,17 @@ class DynamicalSystem(ABC):
         stride = _as_stride(stride)
         final_only = _as_flag("final_only", final_only)
         energy = _as_flag("energy", energy)
+        rtol = None if rtol is None else as_scalar("rtol", rtol)
+        atol = None if atol is None else as_scalar("atol", atol)
         if final_only and stride > 1:
             raise ValueError(
                 f"stride={stride} and final_only=True cannot be combined: pass one or the other"
             )
         if method is None:
             method = self._default_method()
-        result = self._integrate(t_span, dt, method, _Sampling(stride, final_only, energy))
+        result = self._integrate(
+            t_span, dt, method, _Sampling(stride, final_only, energy, rtol, atol)
+        )
         if final_only:
             n_steps = int(result.extra.get("n_steps", len(result.t) - 1))
             result.extra["stride"] = max(n_steps, 1)
@@ -536,8 +556,8 @@ class LagrangianSystem(DynamicalSystem):
 class ODESystem(DynamicalSystem):
     """General first-order system ``dy/dt = f(t, y)``, possibly non-conservative.
 
-    Integrated with ``"implicit_midpoint"`` (default; conserves every quadratic invariant) or
-    ``"rk4"``. A Python subclass implements ``derivatives(t, state)`` and ``energy(state)``.
+    Integrated with ``"implicit_midpoint"`` (default; conserves every quadratic invariant),
+    ``"rk4"`` or the adaptive ``"dop853"`` (see ``integrate_sampled``). A Python subclass implements ``derivatives(t, state)`` and ``energy(state)``.
 
     Parameters
     ----------
