@@ -32,7 +32,7 @@ pub enum Action {
     #[command(
         override_usage = "physicskit simulate SYSTEM [--PARAM VALUE ...] [--method M] [--rtol R --atol A] --dt DT --t1 T1 [--t0 T0] --out FILE"
     )]
-    Simulate(SimulateArgs),
+    Simulate(Box<SimulateArgs>),
     /// Render every demonstration (figures, animations, index.html) into a directory.
     Gallery(GalleryArgs),
 }

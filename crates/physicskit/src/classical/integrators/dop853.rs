@@ -453,7 +453,7 @@ impl Dop853 {
         }
         let direction = h.signum();
         let continuing = self.started
-            && direction == self.direction
+            && (direction > 0.0) == (self.direction > 0.0)
             && same_time(t, self.out_t)
             && y.iter().zip(&self.out).all(|(a, b)| a.to_bits() == b.to_bits());
         if !continuing {
@@ -475,7 +475,8 @@ impl Dop853 {
         while (target - self.t) * direction > 0.0 {
             self.step(f)?;
         }
-        if target == self.t {
+        // Exactly on the last step's end (the bound): the step's own state.
+        if target.to_bits() == self.t.to_bits() {
             y.copy_from_slice(&self.y);
         } else {
             self.interpolate(f, target, y)?;
