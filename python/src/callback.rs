@@ -18,7 +18,7 @@ use numpy::{PyArray1, PyReadonlyArray1};
 use physicskit::classical::core::separable_derivatives;
 use physicskit::classical::{
     DynamicalSystem, Error, HamiltonianSystem, IntegrateOptions, MassInv, Method, OdeSystem, Phase,
-    Result, SimulationResult,
+    Result, SimulationResult, Tolerances,
 };
 use pyo3::intern;
 use pyo3::prelude::*;
@@ -368,6 +368,7 @@ fn options(
     stride: usize,
     final_only: bool,
     energy: bool,
+    (rtol, atol, method): (Option<f64>, Option<f64>, Method),
 ) -> Result<IntegrateOptions<'_>> {
     Ok(IntegrateOptions {
         sampling: sampling(stride, final_only)?,
@@ -375,14 +376,15 @@ fn options(
         observer: Some(observer),
         // A Python right-hand side is ~100x slower than a native one: check more often.
         observe_every: CHECK_EVERY / 16,
+        tolerances: Tolerances::for_method(rtol, atol, method)?,
     })
 }
 
 /// Integrates a Python `HamiltonianSystem` subclass `obj` from `(state, t0)` with the Rust
 /// integrators; returns the result tuple `(t, y, energy, method, extra)`. `stride`,
-/// `final_only`, `energy` and `progress` as for `NativeSystem.integrate`.
+/// `final_only`, `energy`, `progress`, `rtol` and `atol` as for `NativeSystem.integrate`.
 #[pyfunction]
-#[pyo3(signature = (obj, state, t0, t_span, dt, method, ndof, separable, mass_inv, stride=1, final_only=false, energy=true, progress=None))]
+#[pyo3(signature = (obj, state, t0, t_span, dt, method, ndof, separable, mass_inv, stride=1, final_only=false, energy=true, progress=None, rtol=None, atol=None))]
 #[allow(clippy::too_many_arguments)]
 pub fn integrate_hamiltonian<'py>(
     py: Python<'py>,
@@ -399,12 +401,21 @@ pub fn integrate_hamiltonian<'py>(
     final_only: bool,
     energy: bool,
     progress: Option<Py<PyAny>>,
+    rtol: Option<f64>,
+    atol: Option<f64>,
 ) -> PyResult<Bound<'py, PyTuple>> {
     let method = parse_method(Some(method), Method::Yoshida4).py()?;
     let mut sys =
         PyHamiltonian::new(obj, to_vec(&state), t0, ndof, separable, to_vec(&mass_inv)).py()?;
     let mut observer = SignalObserver::new(progress);
-    let options = options(&mut observer, stride, final_only, energy).py()?;
+    let options = options(
+        &mut observer,
+        stride,
+        final_only,
+        energy,
+        (rtol, atol, method),
+    )
+    .py()?;
     let outcome = sys.integrate_with(t_span, dt, method, options);
     let r = sys.cb.finish(outcome, observer.raised)?;
     result_tuple(py, r)
@@ -412,9 +423,9 @@ pub fn integrate_hamiltonian<'py>(
 
 /// Integrates a Python `ODESystem` (or engine-less `LagrangianSystem`) `obj` from
 /// `(state, t0)`; returns the result tuple `(t, y, energy, method, extra)`.
-/// `stride`, `final_only`, `energy` and `progress` as for `NativeSystem.integrate`.
+/// `stride`, `final_only`, `energy`, `progress`, `rtol` and `atol` as for `NativeSystem.integrate`.
 #[pyfunction]
-#[pyo3(signature = (obj, state, t0, t_span, dt, method, stride=1, final_only=false, energy=true, progress=None))]
+#[pyo3(signature = (obj, state, t0, t_span, dt, method, stride=1, final_only=false, energy=true, progress=None, rtol=None, atol=None))]
 #[allow(clippy::too_many_arguments)]
 pub fn integrate_ode<'py>(
     py: Python<'py>,
@@ -428,11 +439,20 @@ pub fn integrate_ode<'py>(
     final_only: bool,
     energy: bool,
     progress: Option<Py<PyAny>>,
+    rtol: Option<f64>,
+    atol: Option<f64>,
 ) -> PyResult<Bound<'py, PyTuple>> {
     let method = parse_method(Some(method), Method::ImplicitMidpoint).py()?;
     let mut sys = PyOde::new(obj, to_vec(&state), t0).py()?;
     let mut observer = SignalObserver::new(progress);
-    let options = options(&mut observer, stride, final_only, energy).py()?;
+    let options = options(
+        &mut observer,
+        stride,
+        final_only,
+        energy,
+        (rtol, atol, method),
+    )
+    .py()?;
     let outcome = sys.integrate_with(t_span, dt, method, options);
     let r = sys.cb.finish(outcome, observer.raised)?;
     result_tuple(py, r)

@@ -4,7 +4,7 @@
 //! |---|---|
 //! | `InvalidParameter`, `InvalidArgument` (a value of the wrong kind, an unknown or missing parameter), `UnknownSystem`, `DimensionMismatch`, `NonFinite`, `InvalidTimeSpan`, `UnknownMethod`, `UnsupportedMethod`, `SingularMatrix`, `TrajectoryTooLarge`, `TooLarge` | `ValueError` |
 //! | `Unsupported` (e.g. `force` of a non-separable system) | `NotImplementedError` (as the spec says) |
-//! | `SolverDidNotConverge` | [`ConvergenceError`], a `RuntimeError` subclass: the input was valid, the step too large |
+//! | `SolverDidNotConverge`, `StepSizeTooSmall` | [`ConvergenceError`], a `RuntimeError` subclass: the input was valid, the step too large (or, for an adaptive method, no step small enough met the tolerances) |
 //! | `Interrupted` | `KeyboardInterrupt` (the pending signal's own exception when there is one) |
 //!
 //! Every message is the Rust error's `Display`, which names the offending value and says what
@@ -19,7 +19,8 @@ create_exception!(
     _core,
     ConvergenceError,
     PyRuntimeError,
-    "The implicit solver of a step did not converge; reduce dt."
+    "The implicit solver of a step did not converge (reduce dt), or an adaptive method found no \
+     step meeting its tolerances."
 );
 
 /// Converts a core error into the Python exception the spec names.
@@ -27,7 +28,9 @@ pub fn to_py(err: Error) -> PyErr {
     let msg = err.to_string();
     match err {
         Error::Unsupported { .. } => PyNotImplementedError::new_err(msg),
-        Error::SolverDidNotConverge { .. } => ConvergenceError::new_err(msg),
+        Error::SolverDidNotConverge { .. } | Error::StepSizeTooSmall { .. } => {
+            ConvergenceError::new_err(msg)
+        }
         Error::Interrupted { .. } => PyKeyboardInterrupt::new_err(msg),
         _ => PyValueError::new_err(msg),
     }

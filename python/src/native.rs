@@ -14,6 +14,7 @@ use physicskit::classical::core::catalog::{SystemEntry, Values};
 use physicskit::classical::core::erased::{missing, offered, Capabilities, DynSystem};
 use physicskit::classical::{
     Error, HamiltonianSystem, IntegrateOptions, LagrangianSystem, Method, Result, Sampling,
+    Tolerances,
 };
 use pyo3::prelude::*;
 use pyo3::types::{PyDict, PyTuple};
@@ -330,9 +331,10 @@ impl NativeSystem {
     /// tuple `(t, y, ndof, energy, method, extra)`. `stride` keeps every `stride`-th step (and
     /// the last), `final_only` only the first and last, `energy=False` skips the energy
     /// diagnostic (`None` in the tuple), and `progress(step, n_steps)`, if given, is called every
-    /// few thousand steps. The GIL is released during the run; Ctrl-C stops it with
+    /// few thousand steps; `rtol` and `atol` are an adaptive method's tolerances (refused for a
+    /// fixed-step method). The GIL is released during the run; Ctrl-C stops it with
     /// `KeyboardInterrupt`.
-    #[pyo3(signature = (state, t0, t_span, dt, method=None, stride=1, final_only=false, energy=true, progress=None))]
+    #[pyo3(signature = (state, t0, t_span, dt, method=None, stride=1, final_only=false, energy=true, progress=None, rtol=None, atol=None))]
     #[allow(clippy::too_many_arguments)]
     fn integrate<'py>(
         &mut self,
@@ -346,10 +348,13 @@ impl NativeSystem {
         final_only: bool,
         energy: bool,
         progress: Option<Py<PyAny>>,
+        rtol: Option<f64>,
+        atol: Option<f64>,
     ) -> PyResult<Bound<'py, PyTuple>> {
         let state = to_vec(&state);
         let method = parse_method(method, self.inner.default_method()).py()?;
         let sampling = sampling(stride, final_only).py()?;
+        let tolerances = Tolerances::for_method(rtol, atol, method).py()?;
         let inner = &mut self.inner;
         let (outcome, raised) = py.detach(move || {
             let mut observer = SignalObserver::new(progress);
@@ -363,6 +368,7 @@ impl NativeSystem {
                         skip_energy: !energy,
                         observer: Some(&mut observer),
                         observe_every: CHECK_EVERY,
+                        tolerances,
                     },
                 )
             });

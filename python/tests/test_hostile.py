@@ -374,6 +374,10 @@ def _method_calls(system):
         ("integrate", "t_span", lambda v: system.integrate(v, 0.05)),
         ("integrate_sampled", "stride", lambda v: system.integrate_sampled((0.0, 0.1), 0.05,
                                                                           stride=v)),
+        ("integrate_sampled", "rtol", lambda v: system.integrate_sampled((0.0, 0.1), 0.05,
+                                                                        "dop853", rtol=v)),
+        ("integrate_sampled", "atol", lambda v: system.integrate_sampled((0.0, 0.1), 0.05,
+                                                                        "dop853", atol=v)),
         ("reset", "state0", lambda v: system.reset(v)),
         ("reset", "t0", lambda v: system.reset(None, v)),
     ]
@@ -419,12 +423,14 @@ def test_hostile_method_arguments(system_name, data):
     calls, state = _method_calls(system)
     label, pname, call = data.draw(st.sampled_from(calls), label="method")
     before = (np.array(system.state, copy=True), system.t)
-    if pname in ("dt", "t", "t0", "t_span", "stride"):
+    if pname in ("dt", "t", "t0", "t_span", "stride", "rtol", "atol"):
         pool = NONREAL_SCALARS + HUGE_REALS
         if pname == "stride":
             pool = pool + HUGE_INTS + NONINT_NUMBERS + [0, -1]
+        if pname in ("rtol", "atol"):
+            pool = pool + NONFINITE + [0.0, -1e-8]
         value = data.draw(st.sampled_from(pool), label="value")
-        if value is None and pname in ("t0",):
+        if value is None and pname in ("t0", "rtol", "atol"):
             return
         if label == "integrate" and pname == "t_span" and isinstance(value, list):
             return  # the empty list is not a pair: refused, checked elsewhere

@@ -30,9 +30,9 @@ pub enum Action {
     /// The output format follows the extension of --out: .npz (numpy.load), .csv or .json.
     /// Run `physicskit simulate SYSTEM --help` for a system's parameters.
     #[command(
-        override_usage = "physicskit simulate SYSTEM [--PARAM VALUE ...] [--method M] --dt DT --t1 T1 [--t0 T0] --out FILE"
+        override_usage = "physicskit simulate SYSTEM [--PARAM VALUE ...] [--method M] [--rtol R --atol A] --dt DT --t1 T1 [--t0 T0] --out FILE"
     )]
-    Simulate(SimulateArgs),
+    Simulate(Box<SimulateArgs>),
     /// Render every demonstration (figures, animations, index.html) into a directory.
     Gallery(GalleryArgs),
 }
@@ -84,6 +84,10 @@ pub struct SystemCall {
     pub out: PathBuf,
     /// `--stride`.
     pub stride: String,
+    /// `--rtol` (adaptive methods only).
+    pub rtol: Option<String>,
+    /// `--atol` (adaptive methods only).
+    pub atol: Option<String>,
 }
 
 fn system_command(entry: &SystemEntry) -> Command {
@@ -137,6 +141,20 @@ fn system_command(entry: &SystemEntry) -> Command {
                 .value_name("K")
                 .default_value("1")
                 .help("store every K-th step (and the last)"),
+        )
+        .arg(
+            Arg::new("rtol")
+                .long("rtol")
+                .value_name("RTOL")
+                .allow_negative_numbers(true)
+                .help("relative tolerance of an adaptive method (dop853), > 0; default 1e-10"),
+        )
+        .arg(
+            Arg::new("atol")
+                .long("atol")
+                .value_name("ATOL")
+                .allow_negative_numbers(true)
+                .help("absolute tolerance of an adaptive method (dop853), > 0; default 1e-12"),
         );
     for p in entry.params {
         cmd = cmd.arg(
@@ -180,6 +198,8 @@ impl FromArgMatches for SystemCall {
                 t1: String::new(),
                 out: PathBuf::new(),
                 stride: String::new(),
+                rtol: None,
+                atol: None,
             });
         };
         let mut params: Vec<(usize, String, String)> = Vec::new();
@@ -205,6 +225,8 @@ impl FromArgMatches for SystemCall {
                 .cloned()
                 .ok_or_else(|| clap::Error::new(clap::error::ErrorKind::MissingRequiredArgument))?,
             stride: required("stride")?,
+            rtol: text(m, "rtol"),
+            atol: text(m, "atol"),
         })
     }
 

@@ -89,7 +89,7 @@ fn unknown_parameter(err: &clap::Error) -> Option<String> {
     let names: Vec<&str> = spec.params.iter().map(|p| p.name).collect();
     Some(format!(
         "unknown parameter `{arg}` for `{}`; its parameters are: {} (and --method, --dt, --t0, \
-         --t1, --stride, --out)",
+         --t1, --stride, --out, --rtol, --atol)",
         spec.name,
         names.join(", ")
     ))

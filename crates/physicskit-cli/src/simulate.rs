@@ -10,7 +10,9 @@ use std::ops::ControlFlow;
 
 use anyhow::{anyhow, Result};
 use physicskit::classical::catalog;
-use physicskit::classical::{IntegrateOptions, Observer, Sampling, TimeGrid};
+use physicskit::classical::{
+    Error, IntegrateOptions, Method, Observer, Sampling, TimeGrid, Tolerances,
+};
 
 use crate::cli::SystemCall;
 use crate::output::{Pending, Record};
@@ -24,6 +26,35 @@ fn number(flag: &str, text: &str) -> Result<f64> {
         .parse()
         .map_err(|_| anyhow!("invalid value `{text}` for `--{flag}`: expected a number"))?;
     Ok(v)
+}
+
+/// The tolerances of `--rtol` and `--atol`, checked for `method` (an error naming the flag for
+/// a value that is not a number > 0, or for a fixed-step method).
+fn tolerances(call: &SystemCall, method: Method) -> Result<Option<Tolerances>> {
+    let rtol = call
+        .rtol
+        .as_deref()
+        .map(|t| number("rtol", t))
+        .transpose()?;
+    let atol = call
+        .atol
+        .as_deref()
+        .map(|t| number("atol", t))
+        .transpose()?;
+    Tolerances::for_method(rtol, atol, method).map_err(|e| match e {
+        Error::InvalidParameter { name, reason, .. } | Error::InvalidArgument { name, reason } => {
+            let text = if name == "rtol" {
+                &call.rtol
+            } else {
+                &call.atol
+            };
+            anyhow!(
+                "invalid value `{}` for `--{name}`: {reason}",
+                text.as_deref().unwrap_or_default()
+            )
+        }
+        other => other.into(),
+    })
 }
 
 /// Runs `simulate` for one parsed invocation.
@@ -59,6 +90,7 @@ pub fn run(call: &SystemCall, stop: &Stop) -> Result<()> {
     // The built system has the last word on its default (a projectile with drag: rk4).
     let mut system = params::build(entry, &call.params, &values)?;
     let method = method.unwrap_or_else(|| system.default_method());
+    let tolerances = tolerances(call, method)?;
     let pending = Pending::create(&call.out)?;
 
     let mut observer = RunObserver {
@@ -73,6 +105,7 @@ pub fn run(call: &SystemCall, stop: &Stop) -> Result<()> {
         },
         observer: Some(&mut observer),
         observe_every: OBSERVE_EVERY,
+        tolerances,
         ..IntegrateOptions::default()
     };
     let result = system.integrate((t0, t1), dt, method, options);

@@ -379,3 +379,30 @@ fn sizes_that_cannot_fit_in_memory_are_refused() {
     let err = system_fails("fput", &["--n", "18446744073709551616"], "o.npz");
     assert!(err.contains("--n"), "{err}");
 }
+
+#[test]
+fn tolerances_with_a_fixed_step_method() {
+    let err = pendulum("0.1", "1", "a.csv", &["--method", "rk4", "--rtol", "1e-8"]);
+    assert!(err.contains("`--rtol`") && err.contains("dop853"), "{err}");
+    let err = pendulum("0.1", "1", "a.csv", &["--atol", "1e-8"]);
+    assert!(
+        err.contains("`--atol`") && err.contains("fixed-step"),
+        "{err}"
+    );
+}
+
+#[test]
+fn tolerances_that_are_not_positive_numbers() {
+    for (flag, value) in [
+        ("--rtol", "0"),
+        ("--rtol", "-0.001"),
+        ("--atol", "nan"),
+        ("--atol", "x"),
+    ] {
+        let err = pendulum("0.1", "1", "a.csv", &["--method", "dop853", flag, value]);
+        assert!(
+            err.contains(&format!("`{flag}`")) && err.contains(value),
+            "{err}"
+        );
+    }
+}

@@ -22,6 +22,6 @@ pub mod systems;
 pub use self::core::{
     split, DynSystem, DynamicalSystem, Error, ExtraValue, HamiltonianSystem, IntegrateOptions,
     LagrangianSystem, MassInv, Method, MethodInfo, Observer, OdeSystem, Phase, Result, Sampling,
-    SimulationResult, TimeGrid,
+    SimulationResult, TimeGrid, Tolerances,
 };
 pub use self::integrators::methods;

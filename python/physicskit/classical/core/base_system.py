@@ -130,13 +130,16 @@ class _SplitOnAccess(SimulationResult):
 
 
 class _Sampling(NamedTuple):
-    """What a run stores (the keyword arguments of the native integrators)."""
+    """What a run stores, and an adaptive method's tolerances (the keyword arguments of the
+    native integrators)."""
 
     stride: int = 1
     final_only: bool = False
     energy: bool = True
     progress: Any = None
     """``progress(step, n_steps)``, called every few thousand steps, or None."""
+    rtol: Optional[float] = None
+    atol: Optional[float] = None
 
 
 _EVERY_SAMPLE = _Sampling()
@@ -186,6 +189,7 @@ class DynamicalSystem(ABC):
     def integrate_sampled(
         self, t_span, dt: float, method: Optional[str] = None, *, stride: int = 1,
         final_only: bool = False, energy: bool = True, progress: bool = False,
+        rtol: Optional[float] = None, atol: Optional[float] = None,
     ) -> SimulationResult:
         """Integrate like :meth:`integrate`, storing only some samples (not in the spec).
 
@@ -216,6 +220,14 @@ class DynamicalSystem(ABC):
             installed, otherwise a one-line text bar on standard error. Updated every few
             thousand steps (every 128 for systems written in Python); costs nothing
             measurable. Default ``False``.
+        rtol, atol : float, keyword-only, optional
+            Relative and absolute error tolerances of an adaptive method (``"dop853"``), finite
+            and > 0; ``None`` (default) means ``1e-10`` and ``1e-12``. An adaptive method
+            chooses its own steps to meet them and ``dt`` is the spacing of the stored samples,
+            which it interpolates from its steps (the final sample is a step's result, exactly
+            at ``t1``); ``result.extra`` then also holds ``accepted_steps`` and
+            ``rejected_steps``. A fixed-step method has no tolerances: giving either with one
+            is a ``ValueError``.
 
         Returns
         -------
@@ -229,8 +241,12 @@ class DynamicalSystem(ABC):
         ------
         ValueError
             ``stride`` not an integer >= 1, ``stride > 1`` with ``final_only=True``, a
-            non-boolean flag, every ``ValueError`` of ``integrate``, and a run whose stored
+            non-boolean flag, ``rtol`` or ``atol`` not a finite number > 0 or given with a
+            fixed-step method, every ``ValueError`` of ``integrate``, and a run whose stored
             samples would not fit in memory (checked before anything is allocated).
+        ConvergenceError
+            An adaptive method found no step meeting its tolerances (the step size fell to the
+            rounding of ``t``, or the right-hand side returned NaN), naming ``t``.
         NotImplementedError
             For a Python subclass of ``DynamicalSystem`` itself that implements its own
             ``integrate`` (there is no integrator to pass the sampling to). Subclasses of
@@ -241,6 +257,8 @@ class DynamicalSystem(ABC):
         final_only = _as_flag("final_only", final_only)
         energy = _as_flag("energy", energy)
         progress = _as_flag("progress", progress)
+        rtol = None if rtol is None else as_scalar("rtol", rtol)
+        atol = None if atol is None else as_scalar("atol", atol)
         if final_only and stride > 1:
             raise ValueError(
                 f"stride={stride} and final_only=True cannot be combined: pass one or the other"
@@ -252,7 +270,7 @@ class DynamicalSystem(ABC):
             from .progress import progress_reporter
 
             reporter = progress_reporter()
-        sampling = _Sampling(stride, final_only, energy, reporter)
+        sampling = _Sampling(stride, final_only, energy, reporter, rtol, atol)
         try:
             result = self._integrate(t_span, dt, method, sampling)
         except BaseException:
@@ -608,8 +626,8 @@ class LagrangianSystem(DynamicalSystem):
 class ODESystem(DynamicalSystem):
     """General first-order system ``dy/dt = f(t, y)``, possibly non-conservative.
 
-    Integrated with ``"implicit_midpoint"`` (default; conserves every quadratic invariant) or
-    ``"rk4"``. A Python subclass implements ``derivatives(t, state)`` and ``energy(state)``.
+    Integrated with ``"implicit_midpoint"`` (default; conserves every quadratic invariant),
+    ``"rk4"`` or the adaptive ``"dop853"`` (see ``integrate_sampled``). A Python subclass implements ``derivatives(t, state)`` and ``energy(state)``.
 
     Parameters
     ----------

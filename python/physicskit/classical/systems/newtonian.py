@@ -71,7 +71,8 @@ class ProjectileMotion(HamiltonianSystem):
     """Projectile under constant gravity, ``H = |p|^2/(2m) + m g y``, optionally with quadratic
     air drag ``F = -drag_coeff |v| v``.
 
-    With drag the system is dissipative: only ``rk4`` and ``implicit_midpoint`` are offered
+    With drag the system is dissipative: only ``rk4``, ``implicit_midpoint`` and ``dop853``
+    (adaptive) are offered
     (``verlet``/``yoshida4`` would drop the drag and raise ValueError).
 
     Parameters

@@ -23,7 +23,8 @@
 use crate::classical::core::error::{check_finite, check_finite_scalar};
 use crate::classical::core::{Error, HamiltonianSystem, Method, Result};
 use crate::classical::integrators::{
-    splitting, Dispatch, FieldStepper, FirstOrder, Rk4, SplittingStepper, VectorField,
+    splitting, AdaptiveStepper, Dispatch, FieldStepper, FirstOrder, Rk4, SplittingStepper,
+    VectorField,
 };
 
 /// Which way through the section a crossing must go to count.
@@ -437,6 +438,10 @@ impl<S: HamiltonianSystem> Dispatch for SeparableSection<'_, S> {
     }
 
     fn implicit_rk<St: FieldStepper>(self, method: Method) -> Self::Output {
+        Self::not_splitting(method)
+    }
+
+    fn adaptive<St: AdaptiveStepper>(self, method: Method) -> Self::Output {
         Self::not_splitting(method)
     }
 }

@@ -106,6 +106,17 @@ pub enum Error {
         /// Relative size of the last correction.
         residual: f64,
     },
+    /// An adaptive method could not take a step that meets its tolerances (the step size
+    /// underflowed, the error estimate was not finite) or exceeded its step budget.
+    #[error("adaptive step failed at t = {t} (step size {step:e}): {reason}")]
+    StepSizeTooSmall {
+        /// Time at the start of the failing step.
+        t: f64,
+        /// The last step size tried.
+        step: f64,
+        /// What failed and what to change.
+        reason: String,
+    },
     /// A matrix that must be inverted is singular (a degenerate Lagrangian, a collapsed
     /// configuration).
     #[error("singular {what} at t = {t}")]

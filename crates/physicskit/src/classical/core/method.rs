@@ -64,6 +64,12 @@ pub enum Scheme {
     /// implicit solve ([`implicit_solve`](crate::classical::integrators::implicit_solve)).
     /// Lagrangian systems run it on their canonical form `[q, p]`, where it is symplectic.
     ImplicitRk,
+    /// An adaptive explicit method with error control and dense output on a vector field
+    /// ([`AdaptiveStepper`](crate::classical::integrators::AdaptiveStepper)): on the
+    /// fixed-step API `dt` is the spacing of the output samples, which are interpolated from
+    /// the adaptive steps; tolerances from
+    /// [`IntegrateOptions::tolerances`](crate::classical::IntegrateOptions::tolerances).
+    Adaptive,
 }
 
 impl Method {

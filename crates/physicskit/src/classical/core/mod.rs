@@ -20,7 +20,7 @@ pub use catalog::{Family, ParamSpec, SystemEntry, Value, Values};
 pub use erased::{Capabilities, DynSystem};
 pub use error::{Error, Result};
 pub use method::{Method, MethodInfo, Scheme};
-pub use options::{IntegrateOptions, Observer, Sampling};
+pub use options::{IntegrateOptions, Observer, Sampling, Tolerances};
 pub use phase::Phase;
 pub(crate) use result::Recorder;
 pub use result::{ExtraValue, SimulationResult};

@@ -1,8 +1,10 @@
-//! [`IntegrateOptions`]: what to store and whom to tell while integrating.
+//! [`IntegrateOptions`]: what to store and whom to tell while integrating, and the
+//! [`Tolerances`] of the adaptive methods.
 
 use std::ops::ControlFlow;
 
 use super::error::{Error, Result};
+use super::method::{Method, Scheme};
 
 /// Which steps of the grid are stored in the [`SimulationResult`](super::SimulationResult).
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
@@ -56,6 +58,122 @@ pub trait Observer {
     fn observe(&mut self, step: usize, n_steps: usize, t: f64) -> ControlFlow<()>;
 }
 
+/// Error tolerances of an adaptive method (`dop853`), and its guard against runs that would not
+/// end.
+///
+/// A step is accepted when its weighted error estimate `err` satisfies
+/// `sqrt(mean_i (e_i / (atol + rtol max(|y_i|, |y_new,i|)))^2) <= 1` (Hairer, Nørsett & Wanner,
+/// *Solving ODEs I*, 2nd ed., II.4 and II.10), so each accepted step's local error is about
+/// `atol + rtol |y|` per component; the global error over a run is typically a modest
+/// multiple of that, growing with the span.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Tolerances {
+    /// Relative tolerance (default `1e-10`).
+    pub rtol: f64,
+    /// Absolute tolerance (default `1e-12`), in the units of each state component.
+    pub atol: f64,
+    /// Most steps (accepted and rejected) one `integrate` call may attempt before it stops with
+    /// [`Error::StepSizeTooSmall`] (default `10_000_000`): a guard against runs that would
+    /// not end (tolerances far below what the problem allows, a near-singular field).
+    pub max_steps: u64,
+}
+
+impl Default for Tolerances {
+    fn default() -> Self {
+        Self {
+            rtol: 1e-10,
+            atol: 1e-12,
+            max_steps: 10_000_000,
+        }
+    }
+}
+
+impl Tolerances {
+    /// Tolerances `rtol` and `atol` with the default step budget.
+    ///
+    /// # Errors
+    /// [`Error::InvalidParameter`] naming `rtol` or `atol` when it is not finite and `> 0`.
+    ///
+    /// # Example
+    /// ```
+    /// use physicskit::classical::Tolerances;
+    /// let tol = Tolerances::new(1e-8, 1e-10).unwrap();
+    /// assert_eq!(tol.rtol, 1e-8);
+    /// assert!(Tolerances::new(0.0, 1e-10).is_err());
+    /// ```
+    pub fn new(rtol: f64, atol: f64) -> Result<Self> {
+        let tol = Self {
+            rtol,
+            atol,
+            ..Self::default()
+        };
+        tol.validate()?;
+        Ok(tol)
+    }
+
+    /// The tolerances of a front end's optional `rtol` and `atol` arguments for `method`:
+    /// `None` when neither is given, otherwise the given ones with the defaults for the other,
+    /// validated.
+    ///
+    /// # Errors
+    /// [`Error::InvalidArgument`] naming `rtol` (or `atol` when only it is given) for a
+    /// fixed-step method, which takes no tolerances; [`Error::InvalidParameter`] naming an
+    /// invalid one.
+    pub fn for_method(
+        rtol: Option<f64>,
+        atol: Option<f64>,
+        method: Method,
+    ) -> Result<Option<Self>> {
+        if rtol.is_none() && atol.is_none() {
+            return Ok(None);
+        }
+        let name = if rtol.is_some() { "rtol" } else { "atol" };
+        check_adaptive(name, method)?;
+        let default = Self::default();
+        let tol = Self {
+            rtol: rtol.unwrap_or(default.rtol),
+            atol: atol.unwrap_or(default.atol),
+            ..default
+        };
+        tol.validate()?;
+        Ok(Some(tol))
+    }
+
+    /// Checks both tolerances (finite, `> 0`) and the step budget (`>= 1`).
+    ///
+    /// # Errors
+    /// [`Error::InvalidParameter`] naming the offending field.
+    pub fn validate(&self) -> Result<()> {
+        super::error::check_positive("rtol", self.rtol)?;
+        super::error::check_positive("atol", self.atol)?;
+        if self.max_steps == 0 {
+            return Err(Error::invalid("max_steps", 0.0, "must be >= 1"));
+        }
+        Ok(())
+    }
+}
+
+/// `Ok` for an adaptive method; for a fixed-step one, [`Error::InvalidArgument`] naming `name`
+/// (the argument that carried tolerances) and listing the adaptive methods.
+pub(crate) fn check_adaptive(name: &str, method: Method) -> Result<()> {
+    if matches!(method.info().scheme, Scheme::Adaptive) {
+        return Ok(());
+    }
+    let adaptive: Vec<&str> = Method::ALL
+        .into_iter()
+        .filter(|m| matches!(m.info().scheme, Scheme::Adaptive))
+        .map(Method::name)
+        .collect();
+    Err(Error::InvalidArgument {
+        name: name.into(),
+        reason: format!(
+            "`{method}` is a fixed-step method (dt is its step) and takes no tolerances; only \
+             the adaptive methods do: {}",
+            adaptive.join(", ")
+        ),
+    })
+}
+
 /// Options of `integrate_with`. `IntegrateOptions::default()` is what `integrate` uses: every
 /// sample and the energy stored, no observer.
 #[derive(Default)]
@@ -68,6 +186,10 @@ pub struct IntegrateOptions<'a> {
     pub observer: Option<&'a mut dyn Observer>,
     /// Steps between observer calls; 0 means the default of 4096.
     pub observe_every: usize,
+    /// Tolerances of an adaptive method; `None` means [`Tolerances::default`]. Refused with
+    /// [`Error::InvalidArgument`] (naming `tolerances`) for a fixed-step method, which has
+    /// none: a tolerance silently ignored would mislead.
+    pub tolerances: Option<Tolerances>,
 }
 
 impl IntegrateOptions<'_> {

@@ -3,7 +3,7 @@
 //! Each system family has a driver ([`integrate_hamiltonian`], [`integrate_lagrangian`],
 //! [`integrate_ode`]) that validates the inputs and hands a [`Dispatch`] to
 //! [`Method::dispatch`], which calls the family's handler for the method's kind: a splitting
-//! method, an explicit or an implicit method on a vector field. Each handler builds the
+//! method, an explicit, an implicit or an adaptive method on a vector field. Each handler builds the
 //! stepper and runs one generic loop (`Setup::run_from`) over a [`Stepper`]. The loop is
 //! monomorphized for each system and stepper, so no trait object is called in a step (the SIMD
 //! clones of long slice loops and of the trig are reached through one cached function pointer
@@ -15,7 +15,8 @@ use std::ops::ControlFlow;
 
 use super::field::{Canonical, FirstOrder, VectorField};
 use super::splitting::{check_system, SplittingStepper};
-use super::stepper::{Dispatch, FieldStepper, Report, Stepper};
+use super::stepper::{AdaptiveStepper, Dispatch, FieldStepper, Report, Stepper};
+use crate::classical::core::options::check_adaptive;
 use crate::classical::core::{
     error::check_finite, DynamicalSystem, Error, ExtraValue, HamiltonianSystem, IntegrateOptions,
     LagrangianSystem, Method, OdeSystem, Recorder, Result, SimulationResult, TimeGrid,
@@ -36,7 +37,7 @@ pub fn integrate_hamiltonian<S: HamiltonianSystem>(
     options: IntegrateOptions<'_>,
 ) -> Result<SimulationResult> {
     let ndof = system.ndof();
-    let setup = Setup::new(&*system, t_span, dt, Some(ndof), &options)?;
+    let setup = Setup::new(&*system, t_span, dt, Some(ndof), method, &options)?;
     method.dispatch(Hamiltonian(Run {
         system,
         setup,
@@ -60,7 +61,7 @@ pub fn integrate_lagrangian<S: LagrangianSystem>(
     options: IntegrateOptions<'_>,
 ) -> Result<SimulationResult> {
     let ndof = system.ndof();
-    let setup = Setup::new(&*system, t_span, dt, Some(ndof), &options)?;
+    let setup = Setup::new(&*system, t_span, dt, Some(ndof), method, &options)?;
     method.dispatch(Lagrangian(Run {
         system,
         setup,
@@ -79,7 +80,7 @@ pub fn integrate_ode<S: OdeSystem>(
     method: Method,
     options: IntegrateOptions<'_>,
 ) -> Result<SimulationResult> {
-    let setup = Setup::new(&*system, t_span, dt, None, &options)?;
+    let setup = Setup::new(&*system, t_span, dt, None, method, &options)?;
     method.dispatch(Ode(Run {
         system,
         setup,
@@ -105,11 +106,15 @@ impl<S: HamiltonianSystem> Dispatch for Hamiltonian<'_, '_, S> {
     }
 
     fn explicit_rk<St: FieldStepper>(self, method: Method) -> Self::Output {
-        integrate_first_order::<St, S>(self.0, method)
+        integrate_first_order(self.0, method, St::new)
     }
 
     fn implicit_rk<St: FieldStepper>(self, method: Method) -> Self::Output {
-        integrate_first_order::<St, S>(self.0, method)
+        integrate_first_order(self.0, method, St::new)
+    }
+
+    fn adaptive<St: AdaptiveStepper>(self, method: Method) -> Self::Output {
+        integrate_adaptive::<St, S>(self.0, method)
     }
 }
 
@@ -129,11 +134,16 @@ impl<S: LagrangianSystem> Dispatch for Lagrangian<'_, '_, S> {
     }
 
     fn explicit_rk<St: FieldStepper>(self, method: Method) -> Self::Output {
-        integrate_first_order::<St, S>(self.0, method)
+        integrate_first_order(self.0, method, St::new)
     }
 
     fn implicit_rk<St: FieldStepper>(self, method: Method) -> Self::Output {
         integrate_canonical::<St, S>(self.0, method)
+    }
+
+    /// On `[q, qdot]`, as the explicit methods.
+    fn adaptive<St: AdaptiveStepper>(self, method: Method) -> Self::Output {
+        integrate_adaptive::<St, S>(self.0, method)
     }
 }
 
@@ -153,11 +163,15 @@ impl<S: OdeSystem> Dispatch for Ode<'_, '_, S> {
     }
 
     fn explicit_rk<St: FieldStepper>(self, method: Method) -> Self::Output {
-        integrate_first_order::<St, S>(self.0, method)
+        integrate_first_order(self.0, method, St::new)
     }
 
     fn implicit_rk<St: FieldStepper>(self, method: Method) -> Self::Output {
-        integrate_first_order::<St, S>(self.0, method)
+        integrate_first_order(self.0, method, St::new)
+    }
+
+    fn adaptive<St: AdaptiveStepper>(self, method: Method) -> Self::Output {
+        integrate_adaptive::<St, S>(self.0, method)
     }
 }
 
@@ -223,10 +237,24 @@ where
     finish(system, result, &y, &stepper)
 }
 
-/// A method on the system's own first-order form, `derivatives(t, y)`, stepped by `St`.
+/// An adaptive method on the system's own first-order form (`[q, p]` of a Hamiltonian,
+/// `[q, qdot]` of a Lagrangian system), with the run's tolerances, stepping onto the grid's
+/// end exactly.
+fn integrate_adaptive<St: AdaptiveStepper, S: DynamicalSystem>(
+    run: Run<'_, '_, S>,
+    method: Method,
+) -> Result<SimulationResult> {
+    let tolerances = run.options.tolerances.unwrap_or_default();
+    let t_end = run.setup.grid.t_end();
+    integrate_first_order(run, method, |dim| St::adaptive(dim, tolerances, t_end))
+}
+
+/// A method on the system's own first-order form, `derivatives(t, y)`, stepped by the
+/// stepper `new_stepper(dim)` builds.
 fn integrate_first_order<St: FieldStepper, S: DynamicalSystem>(
     run: Run<'_, '_, S>,
     method: Method,
+    new_stepper: impl FnOnce(usize) -> St,
 ) -> Result<SimulationResult> {
     let Run {
         system,
@@ -235,7 +263,7 @@ fn integrate_first_order<St: FieldStepper, S: DynamicalSystem>(
     } = run;
     let sys = &*system;
     let field = FirstOrder(sys);
-    let mut stepper = St::new(field.dim());
+    let mut stepper = new_stepper(field.dim());
     let (result, y) = setup.run(method, options, &field, &mut stepper, StoreAsIs(sys))?;
     finish(system, result, &y, &stepper)
 }
@@ -383,6 +411,17 @@ fn finish<S: DynamicalSystem>(
     Ok(result)
 }
 
+/// Tolerances are valid, and given only to an adaptive method.
+fn check_tolerances(method: Method, options: &IntegrateOptions<'_>) -> Result<()> {
+    match options.tolerances {
+        Some(tolerances) => {
+            check_adaptive("tolerances", method)?;
+            tolerances.validate()
+        }
+        None => Ok(()),
+    }
+}
+
 /// Validated inputs and preallocated storage of one call.
 struct Setup {
     grid: TimeGrid,
@@ -396,10 +435,12 @@ impl Setup {
         t_span: (f64, f64),
         dt: f64,
         ndof: Option<usize>,
+        method: Method,
         options: &IntegrateOptions<'_>,
     ) -> Result<Self> {
         let grid = TimeGrid::new(t_span, dt)?;
         options.sampling.validate()?;
+        check_tolerances(method, options)?;
         let start = system.state().to_vec();
         match ndof {
             // [q, p] or [q, qdot]: a system whose state and `ndof` disagree is refused here,

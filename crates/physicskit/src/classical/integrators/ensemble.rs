@@ -90,6 +90,7 @@ pub fn integrate_ensemble<S: Ensemble>(
                         skip_energy: true,
                         observer: Some(&mut flag),
                         observe_every: 1024,
+                        tolerances: options.tolerances,
                     },
                 )
             })

@@ -13,6 +13,8 @@
 //! - Methods on a vector field name their [`FieldStepper`]: `rk4` ([`rk4`]) and the implicit
 //!   Runge–Kutta methods, which share one solve ([`implicit_solve`]): `implicit_midpoint` is
 //!   its one-stage tableau.
+//! - Adaptive methods (`dop853`) name their [`AdaptiveStepper`], which steps with its own
+//!   step sizes and interpolates the output grid from its dense output.
 //!
 //! The steppers are public for users who drive steps themselves (with either sign of `dt`);
 //! `integrate` goes through [`driver`], which validates inputs, allocates once, dispatches on
@@ -25,6 +27,7 @@ registry::registry! {
     Verlet = verlet,
     Yoshida4 = yoshida4,
     ImplicitMidpoint = implicit_midpoint(ImplicitMidpoint),
+    Dop853 = dop853(adaptive: Dop853),
 }
 
 pub mod driver;
@@ -35,11 +38,12 @@ pub mod splitting;
 pub mod stepper;
 pub mod tangent;
 
+pub use dop853::Dop853;
 pub use ensemble::{integrate_ensemble, Ensemble, ENSEMBLE_CHUNK};
 pub use field::{Canonical, FirstOrder, VectorField};
 pub use implicit_midpoint::ImplicitMidpoint;
 pub use implicit_solve::{ButcherTableau, ImplicitRk, SolverSettings, SolverStats, Tableau};
 pub use rk4::Rk4;
 pub use splitting::{SplittingStepper, VerletStepper, Yoshida4Stepper};
-pub use stepper::{Dispatch, FieldStepper, Report, Stepper};
+pub use stepper::{AdaptiveStepper, Dispatch, FieldStepper, Report, Stepper};
 pub use tangent::{hamiltonian_flow, lagrangian_flow, ode_flow, Flow};

@@ -4,11 +4,13 @@
 //! A line of the list is `Variant = module` for a splitting method and
 //! `Variant = module(Stepper)` for a method on a vector field, `module` being the method's file
 //! (its name is the method's spec name) and `Stepper` the [`FieldStepper`](super::FieldStepper)
-//! it declares. Everything else comes from the file's `INFO`: the kind of the method is
+//! it declares, or `Variant = module(adaptive: Stepper)` for an adaptive method and its
+//! [`AdaptiveStepper`](super::AdaptiveStepper). Everything else comes from the file's `INFO`: the kind of the method is
 //! `INFO.scheme`, read at compile time. A splitting line takes its drift weights (and their
 //! number, the const parameter of [`SplittingStepper`](super::SplittingStepper)) from the
 //! scheme; a vector-field line is sent to [`Dispatch::explicit_rk`](super::Dispatch) or
-//! [`Dispatch::implicit_rk`](super::Dispatch) by the scheme. A line that contradicts its
+//! [`Dispatch::implicit_rk`](super::Dispatch) by the scheme; an adaptive line to
+//! [`Dispatch::adaptive`](super::Dispatch). A line that contradicts its
 //! `INFO` (a splitting line whose scheme is not [`Scheme::Splitting`], or a stepper given for a
 //! splitting scheme) is a compile-time error, and every match on the scheme is exhaustive.
 //!
@@ -24,7 +26,7 @@ use crate::classical::core::method::{MethodInfo, Scheme};
 pub(crate) const fn splitting_len(info: &MethodInfo) -> usize {
     match info.scheme {
         Scheme::Splitting { drifts } => drifts.len(),
-        Scheme::ExplicitRk | Scheme::ImplicitRk => {
+        Scheme::ExplicitRk | Scheme::ImplicitRk | Scheme::Adaptive => {
             panic!("a registry line without a stepper must be a splitting method")
         }
     }
@@ -61,13 +63,24 @@ pub(crate) const fn field_kind(info: &MethodInfo) -> FieldKind {
                 "a splitting method takes no stepper in the registry: it runs on SplittingStepper"
             )
         }
+        Scheme::Adaptive => {
+            panic!("an adaptive method's registry line is `Name = file(adaptive: Stepper)`")
+        }
+    }
+}
+
+/// Evaluated at compile time for each `(adaptive: Stepper)` line of the registry, where a
+/// method whose scheme is not [`Scheme::Adaptive`] fails the build.
+pub(crate) const fn check_adaptive(info: &MethodInfo) {
+    if !matches!(info.scheme, Scheme::Adaptive) {
+        panic!("a registry line `(adaptive: Stepper)` must declare Scheme::Adaptive");
     }
 }
 
 /// Generates the method modules, [`Method`](super::Method) and its table from the registry
 /// list (see the module docs).
 macro_rules! registry {
-    ($($variant:ident = $module:ident $(($stepper:ident))?),+ $(,)?) => {
+    ($($variant:ident = $module:ident $(($($stepper:tt)+))?),+ $(,)?) => {
         $(pub mod $module;)+
 
         /// A fixed-step integrator, named as in the spec. Generated from the registry list in
@@ -98,7 +111,7 @@ macro_rules! registry {
             #[inline]
             pub fn dispatch<D: Dispatch>(self, dispatch: D) -> D::Output {
                 match self {
-                    $(Method::$variant => registry::registry!(@arm dispatch, $variant, $module $(, $stepper)?),)+
+                    $(Method::$variant => registry::registry!(@arm dispatch, $variant, $module $(, $($stepper)+)?),)+
                 }
             }
         }
@@ -114,6 +127,10 @@ macro_rules! registry {
         const N: usize = registry::splitting_len(&$module::INFO);
         const DRIFTS: [f64; N] = registry::splitting_drifts(&$module::INFO);
         $dispatch.splitting(Method::$variant, DRIFTS)
+    }};
+    (@arm $dispatch:ident, $variant:ident, $module:ident, adaptive: $stepper:ident) => {{
+        const _: () = registry::check_adaptive(&$module::INFO);
+        $dispatch.adaptive::<$module::$stepper>(Method::$variant)
     }};
     (@arm $dispatch:ident, $variant:ident, $module:ident, $stepper:ident) => {{
         const KIND: registry::FieldKind = registry::field_kind(&$module::INFO);

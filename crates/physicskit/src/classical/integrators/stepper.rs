@@ -23,7 +23,7 @@
 use std::collections::BTreeMap;
 
 use super::field::VectorField;
-use crate::classical::core::{ExtraValue, Method, Result};
+use crate::classical::core::{ExtraValue, Method, Result, Tolerances};
 
 /// A stepper's statistics over the steps so far (evaluations, solver iterations), reported
 /// into `result.extra`.
@@ -93,6 +93,19 @@ impl<F: VectorField + ?Sized, St: FieldStepper> Stepper<F> for St {
     }
 }
 
+/// An adaptive method with dense output on any [`VectorField`]: the steppers the registry
+/// names for the [`Adaptive`](crate::classical::core::method::Scheme::Adaptive) kind.
+///
+/// As a [`FieldStepper`], its `step_field` from `t` to `t + h` takes as many internal steps as
+/// its error control needs and interpolates at `t + h`, so the drivers' fixed-grid loop runs
+/// it unchanged, with `h` the output spacing.
+pub trait AdaptiveStepper: FieldStepper {
+    /// A stepper for states of `dim` components with these tolerances, which never steps past
+    /// `t_bound`: it steps onto `t_bound` exactly, so a run's final state is a step's result,
+    /// not an interpolation.
+    fn adaptive(dim: usize, tolerances: Tolerances, t_bound: f64) -> Self;
+}
+
 /// What a caller (a driver of one system family, a Poincaré section) does with each kind of
 /// method. [`Method::dispatch`] calls exactly one of these, with the stepper or coefficients
 /// the registry declares for the method.
@@ -111,4 +124,7 @@ pub trait Dispatch {
     /// An implicit Runge–Kutta method on a vector field, stepped by `St` (the shared implicit
     /// solve).
     fn implicit_rk<St: FieldStepper>(self, method: Method) -> Self::Output;
+
+    /// An adaptive method with dense output on a vector field, stepped by `St`.
+    fn adaptive<St: AdaptiveStepper>(self, method: Method) -> Self::Output;
 }

@@ -273,7 +273,7 @@ const PROJECTILE_PARAMS: [P; 3] = [
 ];
 
 const DRAG_NOTE: &str =
-    "with drag_coeff > 0 only rk4 (then the default) and implicit_midpoint apply";
+    "with drag_coeff > 0 only rk4 (then the default), implicit_midpoint and dop853 apply";
 
 /// The catalogue entry of [`ProjectileMotion::new`].
 pub static PROJECTILE_STATE_ENTRY: SystemEntry = SystemEntry {

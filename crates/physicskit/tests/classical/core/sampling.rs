@@ -97,7 +97,9 @@ fn identical_inputs_give_bit_identical_outputs() {
 /// for bit, every row, for every splitting method of the table.
 #[test]
 fn the_driver_takes_the_steps_of_the_public_stepper() {
-    use physicskit::classical::integrators::{Dispatch, FieldStepper, SplittingStepper};
+    use physicskit::classical::integrators::{
+        AdaptiveStepper, Dispatch, FieldStepper, SplittingStepper,
+    };
     use physicskit::classical::systems::{
         HenonHeilesSystem, KeplerSystem, PendulumSwarm, ProjectileMotion,
     };
@@ -134,6 +136,8 @@ fn the_driver_takes_the_steps_of_the_public_stepper() {
         fn explicit_rk<St: FieldStepper>(self, _method: Method) {}
 
         fn implicit_rk<St: FieldStepper>(self, _method: Method) {}
+
+        fn adaptive<St: AdaptiveStepper>(self, _method: Method) {}
     }
 
     fn check<S: HamiltonianSystem + Clone>(name: &str, system: &S) {

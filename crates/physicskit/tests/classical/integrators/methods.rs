@@ -5,7 +5,7 @@
 use crate::fixtures::{LagrangianPendulum, NonSeparable, Scalar};
 use physicskit::classical::core::method::Scheme;
 use physicskit::classical::examples::Pendulum;
-use physicskit::classical::integrators::{Dispatch, FieldStepper};
+use physicskit::classical::integrators::{AdaptiveStepper, Dispatch, FieldStepper};
 use physicskit::classical::{
     methods, Error, HamiltonianSystem, LagrangianSystem, Method, OdeSystem, Phase, Result,
     SimulationResult,
@@ -77,6 +77,7 @@ enum Route {
     Splitting(Method, Vec<u64>),
     Explicit(Method, &'static str),
     Implicit(Method, &'static str),
+    Adaptive(Method, &'static str),
 }
 
 struct Probe;
@@ -94,6 +95,10 @@ impl Dispatch for Probe {
 
     fn implicit_rk<St: FieldStepper>(self, method: Method) -> Route {
         Route::Implicit(method, std::any::type_name::<St>())
+    }
+
+    fn adaptive<St: AdaptiveStepper>(self, method: Method) -> Route {
+        Route::Adaptive(method, std::any::type_name::<St>())
     }
 }
 
@@ -115,6 +120,9 @@ fn every_method_is_dispatched_to_its_own_path() {
             }
             (Route::Implicit(m, stepper), Scheme::ImplicitRk) if *m == method => {
                 format!("implicit {stepper}")
+            }
+            (Route::Adaptive(m, stepper), Scheme::Adaptive) if *m == method => {
+                format!("adaptive {stepper}")
             }
             (route, scheme) => panic!("{method}: dispatched as {route:?}, declared {scheme:?}"),
         };
@@ -165,6 +173,20 @@ fn each_method_spends_the_evaluations_it_declares() {
                     "{method}: {} evaluations per step, declared {}",
                     spent / n as f64,
                     info.evaluations_per_step
+                );
+            }
+            // Per accepted step the declared 12, per rejected step 11, 2 to start; every
+            // accepted step holds samples here (its steps are far longer than dt), so each
+            // also pays the 3 evaluations of its dense output. Counted exactly.
+            Scheme::Adaptive => {
+                let accepted = result.extra_scalar("accepted_steps").unwrap();
+                let rejected = result.extra_scalar("rejected_steps").unwrap();
+                let per_step = f64::from(info.evaluations_per_step);
+                assert!(accepted > 0.0 && accepted < n as f64 / 10.0, "{method}");
+                assert_eq!(
+                    spent,
+                    2.0 + (per_step + 3.0) * accepted + (per_step - 1.0) * rejected,
+                    "{method}"
                 );
             }
         }
