@@ -2,7 +2,7 @@
 # Build and test the Python package `physicskit` (python/).
 #
 #   bash python/dev.sh env    create/refresh <repo>/.venv, install maturin numpy pytest sympy
-#                             hypothesis, mypy, build the extension in release mode and install it
+#                             hypothesis, mypy, distributed (Dask, for the ensemble tests), build the extension in release mode and install it
 #                             (editable)
 #   bash python/dev.sh test   run pytest on python/tests (warnings are errors)
 #   bash python/dev.sh stubs  check the type stubs against the installed modules (mypy's
@@ -32,7 +32,7 @@ env)
     "$py" -m pip install --quiet --disable-pip-version-check --upgrade pip
     "$py" -m pip install --quiet --disable-pip-version-check \
         "maturin>=1.7,<2" "numpy>=1.24" "pytest>=7" "sympy>=1.12" "hypothesis>=6.100,<7" \
-        "mypy>=1.18,<2"
+        "mypy>=1.18,<2" "distributed>=2024.1"
     # maturin develop builds the cdylib in release mode and installs the package in the venv
     # (the pure-Python part is linked, so edits under python/physicskit need no rebuild).
     # The grep only trims maturin's chatter; maturin's own exit status decides (a failed build

@@ -2,7 +2,7 @@
 module by mypy's stubtest (``bash python/dev.sh stubs``: names, parameters, defaults) and by
 ``tests/test_stubs.py`` (parameter and return types)."""
 
-from typing import Any, Literal, TypedDict, final
+from typing import Any, Callable, Literal, TypedDict, final
 
 import numpy as np
 import numpy.typing as npt
@@ -13,6 +13,7 @@ __all__ = [
     "build",
     "catalog",
     "effective_potential_symmetric_top",
+    "ensemble",
     "expr_lagrangian",
     "expr_validate",
     "find_theta_equilibrium",
@@ -28,6 +29,8 @@ __all__ = [
 ]
 
 _ArrayF64 = npt.NDArray[np.float64]
+_Array2F64 = npt.NDArray[np.float64]
+"""A two-dimensional float64 array."""
 _ResultTuple = tuple[_ArrayF64, _ArrayF64, int | None, _ArrayF64 | None, str, dict[str, Any]]
 _ParamValue = float | int | _ArrayF64 | str | None
 """A checked parameter value: float (scalar), int (integer), float64 array (vector), str
@@ -154,6 +157,14 @@ def methods() -> list[_MethodInfo]:
 
 def effective_potential_symmetric_top(theta: _ArrayF64, p_phi: float, p_psi: float, I1: float, I3: float, Mgl: float) -> _ArrayF64:
     """`V_eff(theta)` of the heavy symmetric top at each angle."""
+
+def ensemble(name: str, common: dict[str, Any], sweeps: list[tuple[str, _ArrayF64]], states: _Array2F64 | None, n: int, t_span: tuple[float, float], dt: float, method: str | None = None, stride: int | None = None, energy_error: bool = False, events: list[tuple[int, str, float]] = ..., threads: int | None = None, progress: Callable[[int, int], Any] | None = None, check_only: bool = False) -> dict[str, Any]:
+    """Integrates `n` members of the catalogue system `name` on all cores (GIL released):
+    `common` values, `sweeps` of (parameter or "name[i]", n values), optional `states`
+    (n x state length). Returns method, ndof, final_state, t, trajectory (with `stride`) and
+    reductions (the energy error first if asked, then each event `(index, kind, value)`, kind
+    crosses/rising/falling/abs_above). ValueError naming a bad member's index before any
+    integration."""
 
 def expr_lagrangian(sexpr: str, ndof: int, params: _ArrayF64, q0: _ArrayF64, qdot0: _ArrayF64) -> NativeSystem:
     """A Lagrangian system from a prefix S-expression (see `physicskit::classical::lagrangian::Expr`)"""

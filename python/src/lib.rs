@@ -18,6 +18,7 @@
 pub mod callback;
 pub mod catalog;
 pub mod convert;
+pub mod ensemble;
 pub mod errors;
 pub mod expr;
 pub mod functions;
@@ -41,5 +42,6 @@ fn _core(m: &Bound<'_, PyModule>) -> PyResult<()> {
     functions::register(m)?;
     expr::register(m)?;
     callback::register(m)?;
+    ensemble::register(m)?;
     Ok(())
 }

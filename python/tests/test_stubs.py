@@ -43,6 +43,10 @@ def values_of(annotation):
         "dict[str, Any]": lambda: {},
         "tuple[float, float]": lambda: (0.0, 1.0),
         "NativeSystem": a_system,
+        "_Array2F64": lambda: np.zeros((2, 4)),
+        "list[tuple[str, _ArrayF64]]": lambda: [("q0", np.array([0.1, 0.2]))],
+        "list[tuple[int, str, float]]": lambda: [(0, "crosses", 0.0)],
+        "Callable[[int, int], Any]": lambda: (lambda done, total: None),
     }
     alternatives = annotation.split(" | ")
     unknown = [a for a in alternatives if a not in samples]
@@ -67,6 +71,7 @@ def has_type(value, annotation):
         and len(v) == 2
         and all(isinstance(x, np.ndarray) and x.dtype == np.float64 for x in v),
         "_ResultTuple": lambda v: isinstance(v, tuple) and len(v) == 6,
+        "dict[str, Any]": lambda v: isinstance(v, dict),
     }
     assert annotation in checks, f"no check for stub return type {annotation}: add one"
     return checks[annotation](value)

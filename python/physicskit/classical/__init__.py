@@ -22,6 +22,7 @@ from .systems.hamiltonian import *  # noqa: F401,F403
 from .systems.chains import *  # noqa: F401,F403
 from .systems.rotations import *  # noqa: F401,F403
 from .listings import catalog, methods
+from .ensembles import EnsembleResult, abs_above, crossing, ensemble
 from . import core, systems, utils  # noqa: E402  (sub-packages importable as attributes)
 
 __all__ = [
@@ -34,3 +35,4 @@ __all__ = [
 ]
 __all__ += systems.__all__
 __all__ += ["ConvergenceError", "methods", "catalog"]
+__all__ += ["ensemble", "EnsembleResult", "crossing", "abs_above"]
