@@ -3,8 +3,9 @@
 #
 #   bash python/dev.sh env    create/refresh <repo>/.venv, install maturin numpy pytest sympy
 #                             hypothesis, mypy, scipy (reference integrations in tests), matplotlib,
-#                             pillow, nbclient nbformat ipykernel, build the extension in release
-#                             mode and install it (editable)
+#                             pillow, nbclient nbformat ipykernel, distributed (Dask, for the
+#                             ensemble tests), build the extension in release mode and install it
+#                             (editable)
 #   bash python/dev.sh test   run pytest on python/tests (warnings are errors)
 #   bash python/dev.sh stubs  check the type stubs against the installed modules (mypy's
 #                             stubtest; python/stubtest-allowlist.txt lists what it cannot know)
@@ -33,7 +34,7 @@ env)
     "$py" -m pip install --quiet --disable-pip-version-check --upgrade pip
     "$py" -m pip install --quiet --disable-pip-version-check \
         "maturin>=1.7,<2" "numpy>=1.24" "pytest>=7" "sympy>=1.12" "hypothesis>=6.100,<7" \
-        "mypy>=1.18,<2" "scipy>=1.10,<2"
+        "mypy>=1.18,<2" "scipy>=1.10,<2" "distributed>=2024.1"
     # The optional plotting extra (physicskit[plot]), which tests/test_plotting.py exercises.
     "$py" -m pip install --quiet --disable-pip-version-check \
         "matplotlib>=3.7,<4" "pillow>=9.5,<13"

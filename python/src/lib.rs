@@ -20,6 +20,7 @@ pub mod callback;
 pub mod catalog;
 pub mod chaos;
 pub mod convert;
+pub mod ensemble;
 pub mod errors;
 pub mod expr;
 pub mod functions;
@@ -44,5 +45,6 @@ fn _core(m: &Bound<'_, PyModule>) -> PyResult<()> {
     expr::register(m)?;
     callback::register(m)?;
     chaos::register(m)?;
+    ensemble::register(m)?;
     Ok(())
 }

@@ -115,6 +115,10 @@ GOOD_CALLS = {
     "chaos_map": (pc.chaos_map, (_HH, [[0.1, 0.0, 0.0, 0.3]], (0.0, 1.0), 0.1),
                   dict(indicator="lyapunov", method=None, renormalize_every=5, coordinate=None,
                        value=0.0, direction=1, normal=None)),
+    "ensemble": (pc.ensemble, ("harmonic-oscillator", (0.0, 1.0), 0.1),
+                 dict(sweep={"q0": [0.1, 0.2]}, energy_error=True, stride=None)),
+    "crossing": (pc.crossing, (0,), dict(value=0.0, direction="falling")),
+    "abs_above": (pc.abs_above, (0, 1.0), {}),
 }
 
 # The SymPy engines (physicskit.classical.utils), when SymPy is installed: their constructors
@@ -142,6 +146,9 @@ if _sp is not None:
 #: Parameters that take an integer (sizes, indices, seeds, signs).
 INT_PARAMS = {"n", "mode", "seed", "polarity", "stride", "coordinate", "direction", "n_exponents",
               "renormalize_every"}
+
+#: Parameters that take True or False (``progress`` also a callable): bools are good there.
+BOOL_PARAMS = {"energy_error", "progress"}
 
 #: Parameters that take an array; the rest take a real number.
 ARRAY_PARAMS = {"q0", "p0", "qdot0", "theta0", "thetadot0", "omega0", "quat0", "state0",
@@ -276,7 +283,13 @@ def test_hostile_argument_is_refused_or_handled(name, pname, where, data):
     fn, args, kwargs = GOOD_CALLS[name]
     kind, key = where
     good = args[key] if kind == "pos" else kwargs.get(key)
-    if pname in INT_PARAMS:
+    if pname in BOOL_PARAMS:
+        value = data.draw(st.sampled_from([v for v in NONREAL_SCALARS + HUGE_REALS + NONFINITE
+                                           if not isinstance(v, (bool, np.bool_))]))
+        if value is None and good is None:
+            return
+        _must_refuse(lambda: _call_with(name, where, value), pname, value)
+    elif pname in INT_PARAMS:
         value = data.draw(st.sampled_from(NONREAL_SCALARS + HUGE_INTS + NONFINITE
                                           + NONINT_NUMBERS))
         if value is None and pname in kwargs and good is None:

@@ -47,6 +47,9 @@ def values_of(annotation):
         "Callable[[int, int], object]": lambda: (lambda step, n_steps: None),
         "list[NativeSystem]": lambda: [a_system()],
         "_MatrixF64": lambda: np.zeros((1, 4)),
+        "list[tuple[str, _ArrayF64]]": lambda: [("q0", np.array([0.1, 0.2]))],
+        "list[tuple[int, str, float]]": lambda: [(0, "crosses", 0.0)],
+        "Callable[[int, int], Any]": lambda: (lambda done, total: None),
     }
     alternatives = annotation.split(" | ")
     unknown = [a for a in alternatives if a not in samples]

@@ -35,6 +35,66 @@ pub enum Action {
     Simulate(Box<SimulateArgs>),
     /// Render every demonstration (figures, animations, index.html) into a directory.
     Gallery(GalleryArgs),
+    /// Integrate an ensemble (a parameter grid) of one system on all cores; write an .npz.
+    ///
+    /// Outputs are shaped by the grid: `final_state` (grid shape + state length),
+    /// `trajectory` with --stride, `max_energy_error` with --energy-error, `event_<name>` per
+    /// --event, and `grid_<k>` the values of each axis.
+    #[command(
+        override_usage = "physicskit ensemble SYSTEM --grid NAME=A:B:N [--grid ...] [--set NAME=VALUE ...] --dt DT --t1 T1 --out FILE.npz"
+    )]
+    Ensemble(EnsembleArgs),
+}
+
+/// Arguments of `ensemble`.
+#[derive(Debug, Args)]
+pub struct EnsembleArgs {
+    /// The catalogue system (see `physicskit list`).
+    pub system: String,
+    /// A grid axis: N values from A to B (both included) of a real or integer parameter, or
+    /// of one entry `name[i]` of a vector parameter. Repeat for more axes (the product).
+    #[arg(long = "grid", value_name = "NAME=A:B:N", allow_hyphen_values = true)]
+    pub grid: Vec<String>,
+    /// A value shared by every member, as `simulate --NAME VALUE` takes it.
+    #[arg(long = "set", value_name = "NAME=VALUE", allow_hyphen_values = true)]
+    pub set: Vec<String>,
+    /// Integrator (default: the system's).
+    #[arg(long, value_name = "M")]
+    pub method: Option<String>,
+    /// Time step, > 0.
+    #[arg(long, value_name = "DT", allow_negative_numbers = true)]
+    pub dt: String,
+    /// Start time.
+    #[arg(
+        long,
+        value_name = "T0",
+        default_value = "0",
+        allow_negative_numbers = true
+    )]
+    pub t0: String,
+    /// End time.
+    #[arg(long, value_name = "T1", allow_negative_numbers = true)]
+    pub t1: String,
+    /// Keep each member's trajectory every K steps.
+    #[arg(long, value_name = "K")]
+    pub stride: Option<usize>,
+    /// Keep each member's maximum relative energy error.
+    #[arg(long)]
+    pub energy_error: bool,
+    /// The first time of an event per member: KIND is crosses, rising, falling or abs_above,
+    /// INDEX an entry of the state ([q, p]; [q, qdot] for Lagrangian systems).
+    #[arg(
+        long = "event",
+        value_name = "NAME=KIND:INDEX:VALUE",
+        allow_hyphen_values = true
+    )]
+    pub events: Vec<String>,
+    /// Worker threads (default: one per core); the results do not depend on it.
+    #[arg(long, value_name = "N")]
+    pub threads: Option<usize>,
+    /// Output file (.npz).
+    #[arg(long, value_name = "FILE")]
+    pub out: PathBuf,
 }
 
 /// Arguments of `simulate`.

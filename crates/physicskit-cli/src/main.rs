@@ -1,4 +1,4 @@
-//! `physicskit`: list the systems, export a trajectory, render the gallery.
+//! `physicskit`: list the systems, export a trajectory or an ensemble, render the gallery.
 //!
 //! Exit status: 0 on success; 2 on any error, printed as one line `error: ...` on stderr
 //! (bad input, a run the library refuses, an unwritable output); `128 + signal` after a run
@@ -7,6 +7,7 @@
 //! library's catalogue (`physicskit::classical::catalog`).
 
 mod cli;
+mod ensemble;
 mod gallery;
 mod list;
 mod output;
@@ -39,6 +40,7 @@ fn main() -> ExitCode {
         },
         Action::Simulate(args) => simulate::run(&args.system, &stop),
         Action::Gallery(args) => gallery::render(&args.out, args.quick),
+        Action::Ensemble(args) => ensemble::run(args, &stop),
     };
     match outcome {
         Ok(()) => ExitCode::SUCCESS,

@@ -22,6 +22,7 @@ from .systems.hamiltonian import *  # noqa: F401,F403
 from .systems.chains import *  # noqa: F401,F403
 from .systems.rotations import *  # noqa: F401,F403
 from .listings import catalog, methods
+from .ensembles import EnsembleResult, abs_above, crossing, ensemble
 from .chaos import *  # noqa: F401,F403
 from . import chaos, core, systems, utils  # noqa: E402  (sub-packages importable as attributes)
 
@@ -36,3 +37,4 @@ __all__ = [
 __all__ += systems.__all__
 __all__ += ["ConvergenceError", "methods", "catalog"]
 __all__ += chaos.__all__
+__all__ += ["ensemble", "EnsembleResult", "crossing", "abs_above"]

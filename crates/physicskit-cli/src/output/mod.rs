@@ -11,6 +11,7 @@
 //! early, and [`Pending::commit`] renames it over the destination only after everything is
 //! written and flushed. If anything fails, the temporary file is deleted when dropped.
 
+pub mod arrays;
 mod csv;
 mod json;
 mod npy;
@@ -155,14 +156,27 @@ impl Pending {
     /// # Errors
     /// I/O failures; the temporary file is then removed and the destination left untouched.
     pub fn commit(self, record: &Record<'_>) -> Result<()> {
-        let context = || format!("cannot write `{}`", self.path.display());
-        let file: &File = self.temp.as_file();
-        match self.format {
+        let format = self.format;
+        self.commit_with(|file| match format {
             Format::Npz => npz::write(file, record),
             Format::Csv => write_buffered(file, |w| csv::write(w, record)),
             Format::Json => write_buffered(file, |w| json::write(w, record)),
-        }
-        .with_context(context)?;
+        })
+    }
+
+    /// The output format, from the destination's extension.
+    pub fn is_npz(&self) -> bool {
+        self.format == Format::Npz
+    }
+
+    /// Writes the file with `write`, flushes it to disk and renames it into place.
+    ///
+    /// # Errors
+    /// As [`commit`](Self::commit).
+    pub fn commit_with(self, write: impl FnOnce(&File) -> std::io::Result<()>) -> Result<()> {
+        let context = || format!("cannot write `{}`", self.path.display());
+        let file: &File = self.temp.as_file();
+        write(file).with_context(context)?;
         file.sync_all().with_context(context)?;
         make_readable(file);
         self.temp

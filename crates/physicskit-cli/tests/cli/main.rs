@@ -4,6 +4,7 @@
 
 mod common;
 
+mod ensemble;
 mod errors;
 mod list;
 mod roundtrip;

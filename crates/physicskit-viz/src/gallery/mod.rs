@@ -1,4 +1,4 @@
-//! The gallery: the demonstrations (fourteen; [`demo_count`]), each a set of figures and a
+//! The gallery: the demonstrations (sixteen; [`demo_count`]), each a set of figures and a
 //! one-paragraph explanation of the physics, and [`render_gallery`], which renders them all and
 //! writes `index.html`.
 //!
@@ -16,12 +16,14 @@ mod common;
 mod double_pendulum;
 mod elastic_pendulum;
 mod euler_top;
+mod flip_fractal;
 mod fput;
 mod heavy_top;
 mod henon_heiles;
 mod hoop;
 mod integrators;
 mod kepler;
+mod kepler_precession;
 mod projectile;
 mod sine_gordon;
 mod swarm;
@@ -125,6 +127,8 @@ fn demos() -> Vec<(&'static str, Render)> {
         ("integrators compared", integrators::render),
         ("Toda lattice", toda::render),
         ("elastic pendulum", elastic_pendulum::render),
+        ("flip-time fractal", flip_fractal::render),
+        ("Kepler precession against c_pn", kepler_precession::render),
     ]
 }
 

@@ -14,6 +14,7 @@
 pub mod analysis;
 pub mod catalog;
 pub mod core;
+pub mod ensemble;
 pub mod examples;
 pub mod integrators;
 pub mod lagrangian;

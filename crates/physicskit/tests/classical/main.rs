@@ -8,6 +8,7 @@ mod fixtures;
 mod analysis;
 mod core;
 mod digests;
+mod ensemble;
 mod integrators;
 mod lagrangian;
 mod systems;

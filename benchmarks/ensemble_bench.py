@@ -1,0 +1,94 @@
+"""Ensemble throughput (issue 17): members per second for the double pendulum and Hénon–Heiles
+on 1 and 2 threads, the Dask LocalCluster overhead against the local engine, and the wall time
+of the flip-time fractal, from which the 1000 x 1000 map is extrapolated.
+
+    .venv/bin/python benchmarks/ensemble_bench.py [--quick]
+
+Wall times are the best of `REPEAT` runs (a shared machine only ever slows a run down); the
+process CPU time is printed beside each, so a loaded machine shows as wall >> CPU / threads.
+"""
+
+import os
+import sys
+import time
+
+import numpy as np
+
+import physicskit.classical as pc
+
+QUICK = "--quick" in sys.argv
+REPEAT = 2 if QUICK else 3
+
+
+def best(fn):
+    walls, cpus = [], []
+    for _ in range(REPEAT):
+        c0, t0 = time.process_time(), time.perf_counter()
+        fn()
+        walls.append(time.perf_counter() - t0)
+        cpus.append(time.process_time() - c0)
+    i = int(np.argmin(walls))
+    return walls[i], cpus[i]
+
+
+def double_pendulum(n, t1, threads=None, client=None, events=False):
+    theta = np.linspace(-3.0, 3.0, n)
+    kw = dict(events={"flip": pc.abs_above(1, np.pi)}) if events else {}
+    return pc.ensemble(pc.DoublePendulum([0.0, 0.0], [0.0, 0.0]), (0.0, t1), 0.01, "rk4",
+                       grid={"theta0[0]": theta, "theta0[1]": theta}, threads=threads,
+                       client=client, **kw)
+
+
+def henon_heiles(n, t1, threads=None, client=None):
+    y = np.linspace(-0.3, 0.3, n)
+    states = np.zeros((n, 4))
+    states[:, 1] = y
+    states[:, 2] = np.sqrt(np.maximum(2 * 0.1 - y**2 + 2 * y**3 / 3, 0.0))  # E = 0.1
+    return pc.ensemble(pc.HenonHeilesSystem([0.0, 0.0], [0.0, 0.0]), (0.0, t1), 0.01,
+                       "yoshida4", states=states, threads=threads, client=client)
+
+
+def report(label, members, fn):
+    wall, cpu = best(fn)
+    print(f"{label}: {members} members, best wall {wall:.3f} s, cpu {cpu:.3f} s, "
+          f"{members / wall:,.0f} members/s", flush=True)
+    return wall
+
+
+def main():
+    print(f"cores: {os.cpu_count()}, load average: {os.getloadavg()}")
+    side = 50 if QUICK else 100
+    dp = {}
+    for threads in (1, 2):
+        dp[threads] = report(f"double pendulum rk4 1000 steps, {threads} thread(s)", side * side,
+                             lambda: double_pendulum(side, 10.0, threads))
+    print(f"double pendulum parallel efficiency on 2 threads: {dp[1] / dp[2] / 2:.0%}")
+    hh_n = 2000 if QUICK else 10000
+    hh = {}
+    for threads in (1, 2):
+        hh[threads] = report(f"Hénon–Heiles yoshida4 1000 steps, {threads} thread(s)", hh_n,
+                             lambda: henon_heiles(hh_n, 10.0, threads))
+    print(f"Hénon–Heiles parallel efficiency on 2 threads: {hh[1] / hh[2] / 2:.0%}")
+
+    flip = report(f"flip fractal {side} x {side}, 10 s, events", side * side,
+                  lambda: double_pendulum(side, 10.0, events=True))
+    print(f"  -> 1000 x 1000 at the same settings: about {flip * (1000 / side) ** 2 / 60:.0f} min "
+          "on this machine (linear in members)")
+
+    try:
+        import distributed
+    except ImportError:
+        return
+    n = 20000 if QUICK else 100000
+    local = report(f"Hénon–Heiles {n} members, 100 steps, local engine (2 threads)", n,
+                   lambda: henon_heiles(n, 1.0))
+    with distributed.LocalCluster(n_workers=2, threads_per_worker=1, dashboard_address=None,
+                                  silence_logs=50) as cluster, distributed.Client(cluster) as client:
+        henon_heiles(1000, 1.0, client=client)  # warm the workers (import, first task)
+        dask = report(f"Hénon–Heiles {n} members, 100 steps, LocalCluster 2 workers", n,
+                      lambda: henon_heiles(n, 1.0, client=client))
+    print(f"Dask overhead against the local engine: {dask / local - 1:+.0%}")
+
+
+if __name__ == "__main__":  # Dask's worker processes import this file
+    main()

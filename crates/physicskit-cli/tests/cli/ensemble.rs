@@ -1,0 +1,120 @@
+//! `ensemble`: the npz read back (ndarray-npy's reader) equals the library's ensemble bit for
+//! bit and is shaped by the grid; bad members are refused by index with no file left.
+
+use std::fs::File;
+
+use ndarray::{Array1, Array2, Array3, ArrayD};
+use ndarray_npy::NpzReader;
+use physicskit::classical::catalog;
+use physicskit::classical::ensemble::{
+    self, Condition, Direction, Event, Members, Plan, Reduction, Sweep,
+};
+
+use crate::common::{entries, run_in, scratch, stderr};
+
+/// Runs `ensemble harmonic-oscillator ARGS --dt 0.01 --out e.npz` in `dir`.
+fn oscillator(dir: &std::path::Path, args: &[&str]) -> std::process::Output {
+    let mut all = vec!["ensemble", "harmonic-oscillator"];
+    all.extend_from_slice(args);
+    all.extend_from_slice(&["--dt", "0.01", "--out", "e.npz"]);
+    run_in(dir, &all)
+}
+
+#[test]
+fn the_npz_is_the_library_ensemble_shaped_by_the_grid() {
+    let dir = scratch();
+    let out = oscillator(
+        dir.path(),
+        &[
+            "--grid",
+            "q0=0.5:1.5:3",
+            "--grid",
+            "k=1:4:2",
+            "--set",
+            "p0=0",
+            "--event",
+            "x=falling:0:0",
+            "--energy-error",
+            "--stride",
+            "50",
+            "--t1",
+            "3",
+        ],
+    );
+    assert_eq!(out.status.code(), Some(0), "{}", stderr(&out));
+    let mut npz = NpzReader::new(File::open(dir.path().join("e.npz")).unwrap()).unwrap();
+    let final_state: ArrayD<f64> = npz.by_name("final_state.npy").unwrap();
+    let trajectory: ArrayD<f64> = npz.by_name("trajectory.npy").unwrap();
+    let event: Array2<f64> = npz.by_name("event_x.npy").unwrap();
+    let energy: Array2<f64> = npz.by_name("max_energy_error.npy").unwrap();
+    let grid_1: Array1<f64> = npz.by_name("grid_1.npy").unwrap();
+    assert_eq!(final_state.shape(), &[3, 2, 2]);
+    assert_eq!(trajectory.shape(), &[3, 2, 7, 2]);
+    assert_eq!(grid_1.to_vec(), vec![1.0, 4.0]);
+    // The same members through the library: q0 slowest, k fastest (C order).
+    let members = Members {
+        common: vec![],
+        sweeps: vec![
+            Sweep::new("q0", vec![0.5, 0.5, 1.0, 1.0, 1.5, 1.5]),
+            Sweep::new("k", vec![1.0, 4.0, 1.0, 4.0, 1.0, 4.0]),
+        ],
+        states: None,
+        n: 6,
+    };
+    let plan = Plan {
+        t_span: (0.0, 3.0),
+        dt: 0.01,
+        method: None,
+        stride: Some(50),
+        reductions: vec![
+            Reduction::MaxEnergyError,
+            Reduction::FirstEvent(Event {
+                index: 0,
+                condition: Condition::Crosses {
+                    value: 0.0,
+                    direction: Direction::Falling,
+                },
+            }),
+        ],
+        threads: None,
+    };
+    let entry = catalog::find("harmonic-oscillator").unwrap();
+    let lib = ensemble::run(entry, &members, &plan, None).unwrap();
+    let bits = |v: &[f64]| v.iter().map(|x| x.to_bits()).collect::<Vec<_>>();
+    let lib_traj: &Array3<f64> = lib.trajectory.as_ref().unwrap();
+    assert_eq!(
+        bits(final_state.as_slice().unwrap()),
+        bits(lib.final_state.as_slice().unwrap())
+    );
+    assert_eq!(
+        bits(trajectory.as_slice().unwrap()),
+        bits(lib_traj.as_slice().unwrap())
+    );
+    assert_eq!(
+        bits(energy.as_slice().unwrap()),
+        bits(lib.reductions[0].1.as_slice().unwrap())
+    );
+    assert_eq!(
+        bits(event.as_slice().unwrap()),
+        bits(lib.reductions[1].1.as_slice().unwrap())
+    );
+}
+
+/// Runs the oscillator's ensemble over `grid` for 1 s, which must fail with status 2 and
+/// leave no file; returns stderr.
+fn oscillator_fails(grid: &str) -> String {
+    let dir = scratch();
+    let out = oscillator(dir.path(), &["--grid", grid, "--t1", "1"]);
+    assert_eq!(out.status.code(), Some(2));
+    assert!(entries(dir.path()).is_empty());
+    stderr(&out)
+}
+
+#[test]
+fn a_bad_member_is_named_and_no_file_is_left() {
+    // m = 0 for the first member: out of range.
+    let message = oscillator_fails("m=0:1:3");
+    assert!(message.contains("member 0: m"), "{message}");
+    let message = oscillator_fails("q0=0:1:x");
+    assert!(message.contains("NAME=A:B:N"), "{message}");
+}

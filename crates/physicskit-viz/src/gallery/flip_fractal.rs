@@ -1,0 +1,99 @@
+//! Demonstration 15, the double pendulum's flip-time fractal (Heyl 2008): over the plane of
+//! initial angles `(theta1, theta2)`, released from rest, the time until either arm first
+//! flips over the top (`|theta| > pi`), one ensemble member per pixel.
+
+use std::f64::consts::PI;
+
+use physicskit::classical::catalog;
+use physicskit::classical::core::Value;
+use physicskit::classical::ensemble::{self, Condition, Event, Members, Plan, Reduction, Sweep};
+use physicskit::classical::Method;
+
+use super::{demo, Ctx, Demo};
+use crate::error::Result;
+use crate::figure::save_png;
+use crate::heatmap::HeatMap;
+
+/// `n` values from `-pi` to `pi`, cell centres (the edges, where the pendulum stands
+/// inverted, are left out).
+fn axis(n: usize) -> Vec<f64> {
+    (0..n)
+        .map(|i| -PI + (i as f64 + 0.5) * 2.0 * PI / n as f64)
+        .collect()
+}
+
+pub(crate) fn render(ctx: &Ctx) -> Result<Demo> {
+    let mut d = demo(
+        "flip-fractal",
+        "15. Double pendulum: the flip-time fractal",
+        "Each pixel is one double pendulum (equal masses and arms, g = 9.81 m/s²) released \
+         from rest at the angles (θ₁, θ₂); its colour is the time until either arm first \
+         swings over the top (|θ| > π), located inside the integration step. Members that \
+         cannot flip for lack of energy (3 cos θ₁ + cos θ₂ > 2) and those that did not flip \
+         within the run are drawn at the top of the scale. The boundaries between flip times \
+         are fractal (Heyl 2008): nearby starts that straddle them flip at very different \
+         times, the fingerprint of chaos. Computed as one ensemble on all cores \
+         (physicskit::classical::ensemble), bit-identical for any number of threads.",
+    );
+    let n = ctx.pick(64, 240);
+    let t_max = ctx.pick(10.0, 30.0);
+    let theta = axis(n);
+    let (mut t1, mut t2) = (Vec::with_capacity(n * n), Vec::with_capacity(n * n));
+    for &a in &theta {
+        for &b in &theta {
+            t1.push(a);
+            t2.push(b);
+        }
+    }
+    let members = Members {
+        common: vec![("thetadot0".into(), Value::Vector(vec![0.0, 0.0]))],
+        sweeps: vec![Sweep::new("theta0[0]", t1), Sweep::new("theta0[1]", t2)],
+        states: None,
+        n: n * n,
+    };
+    let flip = |index| {
+        Reduction::FirstEvent(Event {
+            index,
+            condition: Condition::AbsExceeds(PI),
+        })
+    };
+    let plan = Plan {
+        t_span: (0.0, t_max),
+        dt: 0.01,
+        method: Some(Method::Rk4),
+        stride: None,
+        reductions: vec![flip(0), flip(1)],
+        threads: None,
+    };
+    let out = ensemble::run(catalog::find("double-pendulum")?, &members, &plan, None)?;
+    let (first, second) = (&out.reductions[0].1, &out.reductions[1].1);
+    let l_over_g: f64 = 1.0 / 9.81;
+    let scale = l_over_g.sqrt();
+    // Member (i, j) is theta1 = theta[i], theta2 = theta[j]; the map's row j holds x = theta1.
+    let mut values = vec![0.0; n * n];
+    for i in 0..n {
+        for j in 0..n {
+            let m = i * n + j;
+            let t = first[m].min(second[m]);
+            let t = if t.is_finite() { t } else { t_max };
+            values[j * n + i] = (t / scale).max(1e-3).log10();
+        }
+    }
+    let map = HeatMap {
+        title: format!("Time to first flip, {n} × {n} members, run to t = {t_max} s"),
+        x_label: "θ₁ (rad)".into(),
+        y_label: "θ₂ (rad)".into(),
+        value_label: "log₁₀ (t_flip / √(l/g))".into(),
+        x_range: (theta[0], theta[n - 1]),
+        y_range: (theta[0], theta[n - 1]),
+        nx: n,
+        ny: n,
+        values,
+    };
+    let path = ctx.path("15_flip_fractal.png");
+    save_png(&path, (860, 720), None, (1, 1), |_, area| {
+        map.draw(area, &path)
+    })?;
+    d.add(path, "time to first flip over the plane of initial angles: fractal boundaries between flip times");
+    Ok(d)
+}

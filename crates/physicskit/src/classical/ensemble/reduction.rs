@@ -1,0 +1,230 @@
+//! Per-member reductions: one number per member, computed from its run as soon as the member
+//! is done, so that only the numbers are kept.
+//!
+//! * [`Reduction::MaxEnergyError`]: `max_i |E_i - E_0| / |E_0|` (absolute if `E_0 = 0`) over
+//!   every step, with the energies `integrate` itself reports, so it equals
+//!   [`SimulationResult::max_relative_energy_error`] of the member's own run bit for bit.
+//! * [`Reduction::FirstEvent`]: the first time a coordinate of the stored state crosses a
+//!   value (in a given direction), or its magnitude exceeds a value (a double pendulum flips
+//!   when `|theta2| > pi`); `NaN` if it never happens, `t0` if the initial state is already
+//!   beyond.
+//!
+//! # Locating an event inside a step
+//! The step `[t_k, t_{k+1}]` whose end states bracket the event is interpolated by the cubic
+//! Hermite polynomial through the two states and their time derivatives (the system's own
+//! `derivatives`, evaluated only for that step), and the crossing of the cubic is found by
+//! bisection to rounding. The interpolant's error is `O(dt^4)` (Hairer, Nørsett & Wanner,
+//! *Solving ODEs I*, §II.6), so the event time carries the method's global error `O(dt^p)` for
+//! the methods of order `p <= 4` (all of physicskit's), not the `O(dt)` of taking the step's
+//! end. A grazing event that enters and leaves within one step is missed, as by any method
+//! that looks at step ends.
+//!
+//! # Adding a reduction
+//! One variant, its [`name`](Reduction::name) and its arm in [`Reduction::reduce`], which sees
+//! the member's whole run ([`MemberRun`]): its system at the initial state, the time grid and
+//! method, and every stored step. Reductions that integrate something of their own (the chaos
+//! toolkit's max Lyapunov exponent and SALI, which follow deviation vectors) get the system and
+//! grid from there and run their own integration.
+
+use crate::classical::core::{DynSystem, Error, Method, Result, SimulationResult};
+
+/// Which way a [`Condition::Crosses`] event must cross.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+pub enum Direction {
+    /// Either way.
+    #[default]
+    Either,
+    /// From below the value to above it.
+    Rising,
+    /// From above the value to below it.
+    Falling,
+}
+
+/// What happens to the coordinate.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub enum Condition {
+    /// `y[index]` crosses `value` in `direction` (touching it from one side counts).
+    Crosses {
+        /// The level.
+        value: f64,
+        /// Which way.
+        direction: Direction,
+    },
+    /// `|y[index]| > value`.
+    AbsExceeds(f64),
+}
+
+/// An event on entry `index` of the stored state (`[q, p]`; `[q, qdot]` for Lagrangian
+/// systems; an ODE system's own layout).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Event {
+    /// Which entry of the state.
+    pub index: usize,
+    /// What must happen to it.
+    pub condition: Condition,
+}
+
+/// One number per member.
+#[derive(Debug, Clone, Copy, PartialEq)]
+#[non_exhaustive]
+pub enum Reduction {
+    /// The largest relative energy error over every step.
+    MaxEnergyError,
+    /// The time of the first event (`NaN` if none).
+    FirstEvent(Event),
+}
+
+/// What a reduction sees of one member's run.
+pub struct MemberRun<'a> {
+    /// The member's system after the run (its parameters; its initial state is the run's
+    /// first row).
+    pub system: &'a dyn DynSystem,
+    /// The method.
+    pub method: Method,
+    /// The run, storing every step (energies when a reduction asked for them).
+    pub result: &'a SimulationResult,
+}
+
+impl Reduction {
+    /// The output's name: `max_energy_error`, `event_time`.
+    pub fn name(&self) -> &'static str {
+        match self {
+            Reduction::MaxEnergyError => "max_energy_error",
+            Reduction::FirstEvent(_) => "event_time",
+        }
+    }
+
+    /// Whether the run must store energies.
+    pub(crate) fn needs_energy(&self) -> bool {
+        matches!(self, Reduction::MaxEnergyError)
+    }
+
+    /// Checks the reduction against a state of `dim` entries.
+    ///
+    /// # Errors
+    /// [`Error::InvalidArgument`] for an index beyond the state or a non-finite level.
+    pub fn check(&self, dim: usize) -> Result<()> {
+        match self {
+            Reduction::MaxEnergyError => Ok(()),
+            Reduction::FirstEvent(Event { index, condition }) => {
+                if *index >= dim {
+                    return Err(Error::InvalidArgument {
+                        name: "event".into(),
+                        reason: format!(
+                            "index {index} is beyond the state, which has {dim} entries"
+                        ),
+                    });
+                }
+                let level = match condition {
+                    Condition::Crosses { value, .. } => *value,
+                    Condition::AbsExceeds(v) => *v,
+                };
+                if level.is_finite() {
+                    Ok(())
+                } else {
+                    Err(Error::invalid("event value", level, "must be finite"))
+                }
+            }
+        }
+    }
+
+    /// The reduction of one member's run.
+    ///
+    /// # Errors
+    /// Whatever the system's `derivatives` returns at an event.
+    pub fn reduce(&self, run: &MemberRun<'_>) -> Result<f64> {
+        match self {
+            Reduction::MaxEnergyError => {
+                Ok(run.result.max_relative_energy_error().unwrap_or(f64::NAN))
+            }
+            Reduction::FirstEvent(event) => first_event(event, run),
+        }
+    }
+}
+
+/// The time of the first `event` in `run`, located inside its step (see the module docs).
+fn first_event(event: &Event, run: &MemberRun<'_>) -> Result<f64> {
+    let y = &run.result.y;
+    let t = &run.result.t;
+    let c = event.index;
+    if let Condition::AbsExceeds(v) = event.condition {
+        if y[[0, c]].abs() > v {
+            return Ok(t[0]);
+        }
+    }
+    for k in 1..y.nrows() {
+        let (a, b) = (y[[k - 1, c]], y[[k, c]]);
+        let target = match event.condition {
+            Condition::Crosses { value, direction } => {
+                let rising = a < value && b >= value;
+                let falling = a > value && b <= value;
+                let hit = match direction {
+                    Direction::Either => rising || falling,
+                    Direction::Rising => rising,
+                    Direction::Falling => falling,
+                };
+                if !hit {
+                    continue;
+                }
+                value
+            }
+            Condition::AbsExceeds(v) => {
+                if b.abs() <= v {
+                    continue;
+                }
+                v.copysign(b)
+            }
+        };
+        return locate(run, k, c, target);
+    }
+    Ok(f64::NAN)
+}
+
+/// Where entry `c` of the cubic Hermite interpolant of step `k - 1 -> k` equals `target`,
+/// the step's end values bracketing it.
+fn locate(run: &MemberRun<'_>, k: usize, c: usize, target: f64) -> Result<f64> {
+    let (y, t) = (&run.result.y, &run.result.t);
+    let (t0, t1) = (t[k - 1], t[k]);
+    let h = t1 - t0;
+    let dynamics = run.system.dynamical();
+    let (start, end) = (y.row(k - 1).to_vec(), y.row(k).to_vec());
+    let mut d0 = vec![0.0; start.len()];
+    let mut d1 = vec![0.0; start.len()];
+    dynamics.derivatives(t0, &start, &mut d0)?;
+    dynamics.derivatives(t1, &end, &mut d1)?;
+    let s = hermite_crossing(start[c], end[c], h * d0[c], h * d1[c], target);
+    Ok(t0 + h * s)
+}
+
+/// The `s` in `[0, 1]` where the cubic Hermite polynomial with values `y0`, `y1` and scaled
+/// slopes `m0 = h y0'`, `m1 = h y1'` at `s = 0, 1` equals `target`, by bisection (the ends
+/// bracket it: `y0 - target` and `y1 - target` differ in sign or `y1 = target`).
+///
+/// The cubic may cross more than once inside the step when the slopes disagree with the
+/// secant; bisection then returns one of the crossings, all within the step.
+pub(crate) fn hermite_crossing(y0: f64, y1: f64, m0: f64, m1: f64, target: f64) -> f64 {
+    let p = |s: f64| {
+        let s2 = s * s;
+        let s3 = s2 * s;
+        (2.0 * s3 - 3.0 * s2 + 1.0) * y0
+            + (s3 - 2.0 * s2 + s) * m0
+            + (-2.0 * s3 + 3.0 * s2) * y1
+            + (s3 - s2) * m1
+            - target
+    };
+    let below_at_start = y0 - target < 0.0;
+    let (mut lo, mut hi) = (0.0_f64, 1.0_f64);
+    // 60 halvings take the bracket below 1e-18 of the step: rounding, for any step.
+    for _ in 0..60 {
+        let mid = 0.5 * (lo + hi);
+        if mid <= lo || mid >= hi {
+            break;
+        }
+        if (p(mid) < 0.0) == below_at_start && p(mid) != 0.0 {
+            lo = mid;
+        } else {
+            hi = mid;
+        }
+    }
+    hi
+}

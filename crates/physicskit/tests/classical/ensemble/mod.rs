@@ -1,0 +1,8 @@
+//! Ensembles of catalogue systems: bit-identity (threads, members vs single runs), events,
+//! validation of members before any work.
+
+// Bit-identical reproducibility is the claim here, so exact float comparisons are intended.
+#![allow(clippy::float_cmp)]
+
+mod engine;
+mod events;

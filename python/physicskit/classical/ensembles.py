@@ -1,0 +1,337 @@
+"""Ensembles and parameter sweeps of a built-in system, on all cores or on a Dask cluster.
+
+>>> import numpy as np
+>>> from physicskit.classical import DoublePendulum, ensemble, abs_above
+>>> theta = np.linspace(-3, 3, 5)
+>>> out = ensemble(DoublePendulum(theta0=[0, 0], thetadot0=[0, 0]), (0, 2), 0.01,
+...                grid={"theta0[0]": theta, "theta0[1]": theta},
+...                events={"flip": abs_above(1, np.pi)})
+>>> out.events["flip"].shape
+(5, 5)
+
+Every member is built through the catalogue from the system's constructor arguments, with the
+swept values in place, and checked before any integration (a bad member raises ``ValueError``
+naming its index in the flattened member list). The Rust engine integrates each member with
+its own ``integrate`` loop, so a member's results equal a single ``integrate`` of it bit for
+bit, on any number of threads and any split of the members over Dask workers.
+
+``client=distributed.Client(...)`` splits the members into chunks that the workers run with
+the same engine; a worker lost mid-run costs only its chunks, which Dask runs again. Dask is
+optional (``pip install physicskit[distributed]``) and imported only when a client is given.
+"""
+
+from __future__ import annotations
+
+import math
+import sys
+from dataclasses import dataclass, field
+from typing import Any, Callable, Mapping, Sequence
+
+import numpy as np
+
+from ._native import _core, as_array, as_int, as_scalar, as_t_span
+
+__all__ = ["ensemble", "EnsembleResult", "crossing", "abs_above"]
+
+EventSpec = tuple[int, str, float]
+
+
+def crossing(index: int, value: float = 0.0, direction: str = "either") -> EventSpec:
+    """Event: entry ``index`` of the state (``[q, p]``; ``[q, qdot]`` for Lagrangian systems)
+    crosses ``value``; ``direction`` is ``"either"``, ``"rising"`` or ``"falling"``."""
+    kinds = {"either": "crosses", "rising": "rising", "falling": "falling"}
+    if not isinstance(direction, str) or direction not in kinds:
+        raise ValueError(f"direction must be one of {sorted(kinds)}, got {direction!r}")
+    return (as_int("index", index), kinds[direction], as_scalar("value", value))
+
+
+def abs_above(index: int, value: float) -> EventSpec:
+    """Event: ``|state[index]| > value`` (a double pendulum flips when ``|theta2| > pi``:
+    ``abs_above(1, np.pi)``)."""
+    return (as_int("index", index), "abs_above", as_scalar("value", value))
+
+
+@dataclass
+class EnsembleResult:
+    """Outputs of :func:`ensemble`, shaped by the member grid ``shape``.
+
+    ``final_state``: ``shape + (state length,)``; ``trajectory`` (with ``stride``):
+    ``shape + (samples, state length)`` at times ``t``; ``energy_error`` (with
+    ``energy_error=True``): ``max |E - E0| / |E0|`` per member; ``events``: the first time of
+    each named event per member (``NaN``: never, ``t0``: already at the start).
+    """
+
+    shape: tuple[int, ...]
+    method: str
+    final_state: np.ndarray
+    t: np.ndarray | None = None
+    trajectory: np.ndarray | None = None
+    energy_error: np.ndarray | None = None
+    events: dict[str, np.ndarray] = field(default_factory=dict)
+
+
+def _system_spec(system: Any) -> tuple[str, dict[str, Any]]:
+    """The catalogue name and the constructor values of ``system`` (an instance of a built-in
+    class, or a catalogue name for its defaults)."""
+    if isinstance(system, str):
+        return system, {}
+    from .core import DynamicalSystem
+
+    if not isinstance(system, DynamicalSystem):
+        raise TypeError(
+            f"system must be a built-in system or a catalogue name, got {system!r}"
+        )
+    native = getattr(system, "_native", None)
+    module = type(system).__module__ or ""
+    if native is None or not module.startswith("physicskit."):
+        raise TypeError(
+            f"ensemble runs built-in systems only; {type(system).__name__} is a Python "
+            "subclass, whose methods are Python callbacks that hold the GIL and cannot run on "
+            "the engine's threads or workers. Integrate it member by member with .integrate()"
+        )
+    params = native.params
+    if params is None:
+        raise TypeError(f"{type(system).__name__} has no catalogue entry to build members from")
+    return native.name, dict(params)
+
+
+def _members(
+    grid: Mapping[str, Sequence[float]] | None,
+    sweep: Mapping[str, Any] | None,
+    states: Any,
+) -> tuple[tuple[int, ...], list[tuple[str, np.ndarray]], np.ndarray | None]:
+    """The member shape, flattened sweeps and flattened states."""
+    if grid is not None and sweep is not None:
+        raise ValueError("give either grid (a Cartesian product) or sweep (zipped arrays)")
+    for arg, value in (("grid", grid), ("sweep", sweep)):
+        if value is not None and not isinstance(value, Mapping):
+            raise TypeError(f"{arg} must be a dict of parameter name -> values, got {value!r}")
+    columns: list[tuple[str, np.ndarray]] = []
+    shape: tuple[int, ...] | None = None
+    if grid is not None:
+        axes = []
+        for name, values in grid.items():
+            a = as_array(f"grid[{name!r}]", values)
+            if a.ndim != 1 or a.size == 0:
+                raise ValueError(f"grid[{name!r}] must be a non-empty 1-D sequence")
+            axes.append(a)
+        shape = tuple(a.size for a in axes)
+        meshes = np.meshgrid(*axes, indexing="ij")
+        columns = [(name, m.ravel()) for name, m in zip(grid, meshes)]
+    if sweep is not None:
+        for name, values in sweep.items():
+            a = as_array(f"sweep[{name!r}]", values)
+            if shape is None:
+                shape = a.shape
+            if a.shape != shape:
+                raise ValueError(f"sweep[{name!r}] has shape {a.shape}, expected {shape}")
+            columns.append((name, np.ascontiguousarray(a.ravel())))
+    flat_states = None
+    if states is not None:
+        s = as_array("states", states)
+        if s.ndim < 2:
+            raise ValueError("states must have shape members_shape + (state length,)")
+        if shape is None:
+            shape = s.shape[:-1]
+        if s.shape[:-1] != shape:
+            raise ValueError(f"states has shape {s.shape}, expected {shape} + (state length,)")
+        flat_states = np.ascontiguousarray(s.reshape(-1, s.shape[-1]))
+    if shape is None:
+        raise ValueError("no members: give grid, sweep or states")
+    return shape, columns, flat_states
+
+
+@dataclass
+class _Job:
+    """Members and run settings, as ``_core.ensemble`` takes them."""
+
+    name: str
+    common: dict[str, Any]
+    sweeps: list[tuple[str, np.ndarray]]
+    states: np.ndarray | None
+    n: int
+    run: dict[str, Any]
+
+    def part(self, start: int, stop: int) -> _Job:
+        """Members ``start:stop``."""
+        return _Job(
+            self.name,
+            self.common,
+            [(k, v[start:stop]) for k, v in self.sweeps],
+            None if self.states is None else self.states[start:stop],
+            stop - start,
+            self.run,
+        )
+
+    def __call__(self, **extra: Any) -> dict[str, Any]:
+        """Runs the members on the local engine (what a Dask worker does with a part)."""
+        return dict(
+            _core.ensemble(self.name, self.common, self.sweeps, self.states, self.n,
+                           **self.run, **extra)
+        )
+
+
+class _Bar:
+    """A progress bar on stderr."""
+
+    def __init__(self) -> None:
+        self.shown = -1
+
+    def __call__(self, done: int, total: int) -> None:
+        percent = 100 * done // max(total, 1)
+        if percent != self.shown:
+            self.shown = percent
+            filled = percent // 4
+            sys.stderr.write(f"\r[{'#' * filled}{'.' * (25 - filled)}] {done}/{total} members")
+            sys.stderr.flush()
+
+    def close(self) -> None:
+        sys.stderr.write("\n")
+        sys.stderr.flush()
+
+
+def ensemble(
+    system: Any,
+    t_span: tuple[float, float],
+    dt: float,
+    method: str | None = None,
+    *,
+    grid: Mapping[str, Sequence[float]] | None = None,
+    sweep: Mapping[str, Any] | None = None,
+    states: Any = None,
+    stride: int | None = None,
+    energy_error: bool = False,
+    events: Mapping[str, EventSpec] | None = None,
+    progress: bool | Callable[[int, int], None] = False,
+    threads: int | None = None,
+    client: Any = None,
+    chunk_size: int | None = None,
+) -> EnsembleResult:
+    """Integrates an ensemble of ``system`` (a built-in system, whose constructor arguments all
+    members share, or a catalogue name for its defaults).
+
+    Members: ``grid`` (name -> 1-D values, the Cartesian product in ``indexing="ij"`` order:
+    the outputs have shape ``(len, len, ...)``), or ``sweep`` (name -> arrays of one shape,
+    zipped), and/or ``states`` (``shape + (state length,)`` initial states). A name is a real or
+    integer parameter (``"c_pn"``) or one entry of a vector parameter (``"theta0[1]"``).
+
+    Keeps per member the final state, the trajectory every ``stride`` steps, the maximum
+    relative energy error (``energy_error=True``) and the first time of each event in
+    ``events`` (name -> :func:`crossing` or :func:`abs_above`), located inside its step to the
+    method's order.
+
+    ``progress``: ``True`` for a bar on stderr, or a callable ``(done, total)``. ``threads``:
+    worker threads (default: one per core). ``client``: a ``distributed.Client``; the members
+    are split into chunks of ``chunk_size`` (default: about four per worker core) run by its
+    workers. Results are bit-identical whatever ``threads``, ``client`` and ``chunk_size``.
+
+    Raises ``ValueError`` for a bad argument or member (named by its flattened index) before
+    any integration, ``TypeError`` for Python subclasses (their callbacks hold the GIL).
+    """
+    name, common = _system_spec(system)
+    shape, sweeps, flat_states = _members(grid, sweep, states)
+    n = math.prod(shape)
+    if n == 0:
+        raise ValueError("the member grid is empty")
+    run: dict[str, Any] = {
+        "t_span": as_t_span(t_span),
+        "dt": as_scalar("dt", dt),
+        "method": _method(method),
+        "stride": None if stride is None else as_int("stride", stride, minimum=1),
+        "energy_error": _flag("energy_error", energy_error),
+        "events": _events(events),
+    }
+    if threads is not None:
+        threads = as_int("threads", threads, minimum=1, maximum=4096)
+    if chunk_size is not None:
+        chunk_size = as_int("chunk_size", chunk_size, minimum=1)
+    if not (isinstance(progress, (bool, np.bool_)) or callable(progress)):
+        raise TypeError(f"progress must be True, False or a callable (done, total), got {progress!r}")
+    if client is not None and not hasattr(client, "submit"):
+        raise TypeError(f"client must be a distributed.Client, got {client!r}")
+    event_names = list(events or {})
+    job = _Job(name, common, sweeps, flat_states, n, run)
+    if client is None:
+        bar = _Bar() if progress is True else None
+        callback = bar if bar is not None else (progress if callable(progress) else None)
+        try:
+            out = job(threads=threads, progress=callback)
+        finally:
+            if bar is not None:
+                bar.close()
+    else:
+        out = _distributed(client, job, chunk_size)
+    return _shape(out, shape, run["energy_error"], event_names)
+
+
+def _method(method: Any) -> str | None:
+    if method is None or isinstance(method, str):
+        return method
+    raise ValueError(f"method must be a method name (a str) or None, got {method!r}")
+
+
+def _flag(name: str, value: Any) -> bool:
+    if isinstance(value, (bool, np.bool_)):
+        return bool(value)
+    raise ValueError(f"{name} must be True or False, got {value!r}")
+
+
+def _events(events: Any) -> list[EventSpec]:
+    """The events' ``(index, kind, value)`` in order, checked."""
+    if events is None:
+        return []
+    if not isinstance(events, Mapping):
+        raise TypeError(f"events must be a dict of name -> crossing(...)/abs_above(...), got {events!r}")
+    out = []
+    for key, e in events.items():
+        if not (isinstance(e, tuple) and len(e) == 3 and isinstance(e[1], str)):
+            raise ValueError(f"events[{key!r}] must be made by crossing(...) or abs_above(...), got {e!r}")
+        out.append((as_int(f"events[{key!r}] index", e[0]), e[1], as_scalar(f"events[{key!r}] value", e[2])))
+    return out
+
+
+def _distributed(client: Any, job: _Job, chunk_size: int | None) -> dict[str, Any]:
+    """Runs the members in chunks on ``client``'s workers and concatenates the chunks."""
+    # Every member is built and checked here before anything is shipped.
+    job(check_only=True)
+    if chunk_size is None:
+        cores = sum(client.ncores().values()) or 1
+        chunk_size = max(1, math.ceil(job.n / (4 * cores)))
+    futures = [
+        client.submit(job.part(start, min(job.n, start + chunk_size)), pure=False)
+        for start in range(0, job.n, chunk_size)
+    ]
+    parts = client.gather(futures)
+    first = parts[0]
+    out: dict[str, Any] = {
+        "method": first["method"],
+        "t": first["t"],
+        "final_state": np.concatenate([p["final_state"] for p in parts]),
+        "trajectory": None
+        if first["trajectory"] is None
+        else np.concatenate([p["trajectory"] for p in parts]),
+        "reductions": [
+            np.concatenate([p["reductions"][k] for p in parts])
+            for k in range(len(first["reductions"]))
+        ],
+    }
+    return out
+
+
+def _shape(
+    out: Mapping[str, Any], shape: tuple[int, ...], energy_error: bool, event_names: list[str]
+) -> EnsembleResult:
+    """The engine's member-major outputs reshaped to the member grid."""
+    final = np.asarray(out["final_state"])
+    reductions = list(out["reductions"])
+    energy = reductions.pop(0).reshape(shape) if energy_error else None
+    trajectory = out["trajectory"]
+    return EnsembleResult(
+        shape=shape,
+        method=out["method"],
+        final_state=final.reshape(shape + final.shape[1:]),
+        t=out["t"],
+        trajectory=None if trajectory is None else trajectory.reshape(shape + trajectory.shape[1:]),
+        energy_error=energy,
+        events={k: r.reshape(shape) for k, r in zip(event_names, reductions)},
+    )

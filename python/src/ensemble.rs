@@ -1,0 +1,167 @@
+//! `_core.ensemble`: a whole ensemble of a catalogue system in one call, on all cores with the
+//! GIL released ([`physicskit::classical::ensemble::run`]). The Python function
+//! `physicskit.classical.ensemble` shapes the arguments and the outputs (grids, Dask).
+
+use std::ops::ControlFlow;
+
+use numpy::{IntoPyArray, PyReadonlyArray1, PyReadonlyArray2};
+use physicskit::classical::catalog as core_catalog;
+use physicskit::classical::ensemble::{
+    self as core_ensemble, Condition, Direction, Event, Members, Plan, Reduction, Sweep,
+};
+use physicskit::classical::{Error, Observer};
+use pyo3::exceptions::PyValueError;
+use pyo3::prelude::*;
+use pyo3::types::{PyDict, PyList};
+
+use crate::errors::IntoPyResult;
+use crate::params::{key, to_value};
+
+/// Calls the Python `progress(done, total)` callback, if any, and checks for Ctrl-C, from the
+/// thread that waits for the ensemble (every 20 ms).
+struct Progress {
+    callback: Option<Py<PyAny>>,
+    raised: Option<PyErr>,
+}
+
+impl Observer for Progress {
+    fn observe(&mut self, done: usize, total: usize, _t: f64) -> ControlFlow<()> {
+        let outcome = Python::attach(|py| {
+            py.check_signals()?;
+            if let Some(cb) = &self.callback {
+                cb.call1(py, (done, total))?;
+            }
+            Ok::<(), PyErr>(())
+        });
+        match outcome {
+            Ok(()) => ControlFlow::Continue(()),
+            Err(e) => {
+                self.raised = Some(e);
+                ControlFlow::Break(())
+            }
+        }
+    }
+}
+
+/// One event as `(index, kind, value)`, `kind` one of `crosses`, `rising`, `falling`,
+/// `abs_above`.
+fn event(index: usize, kind: &str, value: f64) -> PyResult<Reduction> {
+    let crosses = |direction| Condition::Crosses { value, direction };
+    let condition = match kind {
+        "crosses" => crosses(Direction::Either),
+        "rising" => crosses(Direction::Rising),
+        "falling" => crosses(Direction::Falling),
+        "abs_above" => Condition::AbsExceeds(value),
+        other => {
+            return Err(PyValueError::new_err(format!(
+                "event kind must be one of crosses, rising, falling, abs_above, got {other:?}"
+            )))
+        }
+    };
+    Ok(Reduction::FirstEvent(Event { index, condition }))
+}
+
+/// Integrates `n` members of the catalogue system `name`: `common` values (as `build` takes
+/// them), `sweeps` of `(parameter or "name[i]", values)`, optional initial `states`
+/// (`n x state length`). Returns a dict: `method`, `ndof`, `final_state` (`n x dim`), `t` and
+/// `trajectory` (`n x samples x dim`) when `stride` is given, `reductions` (one array of `n`
+/// per reduction: the energy error first if asked, then the events in order).
+///
+/// # Errors
+/// `ValueError` for anything the engine refuses (a bad member named by index, before any
+/// integration; with `check_only` nothing else is done and an empty dict returned),
+/// `KeyboardInterrupt` on Ctrl-C, and what `progress` raises.
+#[pyfunction]
+#[pyo3(signature = (name, common, sweeps, states, n, t_span, dt, method=None, stride=None,
+                    energy_error=false, events=Vec::new(), threads=None, progress=None,
+                    check_only=false))]
+#[allow(clippy::too_many_arguments)]
+pub fn ensemble<'py>(
+    py: Python<'py>,
+    name: &str,
+    common: &Bound<'py, PyDict>,
+    sweeps: Vec<(String, PyReadonlyArray1<'py, f64>)>,
+    states: Option<PyReadonlyArray2<'py, f64>>,
+    n: usize,
+    t_span: (f64, f64),
+    dt: f64,
+    method: Option<&str>,
+    stride: Option<usize>,
+    energy_error: bool,
+    events: Vec<(usize, String, f64)>,
+    threads: Option<usize>,
+    progress: Option<Py<PyAny>>,
+    check_only: bool,
+) -> PyResult<Bound<'py, PyDict>> {
+    let entry = core_catalog::find(name).py()?;
+    let mut given = Vec::with_capacity(common.len());
+    for (k, v) in common.iter() {
+        let k = key(&k)?;
+        let spec = entry.lookup(&k).py()?;
+        if let Some(value) = to_value(spec, &v)? {
+            given.push((k, value));
+        }
+    }
+    let members = Members {
+        common: given,
+        sweeps: sweeps
+            .iter()
+            .map(|(target, values)| Sweep::new(target.clone(), values.as_array().to_vec()))
+            .collect(),
+        states: states.map(|s| s.as_array().iter().copied().collect()),
+        n,
+    };
+    let mut reductions = Vec::new();
+    if energy_error {
+        reductions.push(Reduction::MaxEnergyError);
+    }
+    for (index, kind, value) in &events {
+        reductions.push(event(*index, kind, *value)?);
+    }
+    let plan = Plan {
+        t_span,
+        dt,
+        method: method.map(str::parse).transpose().py()?,
+        stride,
+        reductions,
+        threads,
+    };
+    if check_only {
+        py.detach(|| core_ensemble::check(entry, &members, &plan))
+            .py()?;
+        return Ok(PyDict::new(py));
+    }
+    let (outcome, raised) = py.detach(|| {
+        let mut observer = Progress {
+            callback: progress,
+            raised: None,
+        };
+        let outcome = core_ensemble::run(entry, &members, &plan, Some(&mut observer));
+        (outcome, observer.raised)
+    });
+    let out = match (outcome, raised) {
+        (Ok(r), _) => r,
+        (Err(Error::Interrupted { .. }), Some(e)) => return Err(e),
+        (Err(e), _) => return Err(crate::errors::to_py(e)),
+    };
+    let d = PyDict::new(py);
+    d.set_item("method", out.method.name())?;
+    d.set_item("ndof", out.ndof)?;
+    d.set_item("final_state", out.final_state.into_pyarray(py))?;
+    d.set_item("t", out.t.map(|t| t.into_pyarray(py)))?;
+    d.set_item("trajectory", out.trajectory.map(|a| a.into_pyarray(py)))?;
+    let reductions = PyList::empty(py);
+    for (_, values) in out.reductions {
+        reductions.append(values.into_pyarray(py))?;
+    }
+    d.set_item("reductions", reductions)?;
+    Ok(d)
+}
+
+/// Adds `ensemble` to the module.
+///
+/// # Errors
+/// Python errors while registering.
+pub fn register(m: &Bound<'_, PyModule>) -> PyResult<()> {
+    m.add_function(wrap_pyfunction!(ensemble, m)?)
+}
