@@ -43,7 +43,7 @@ pub enum Action {
     #[command(
         override_usage = "physicskit ensemble SYSTEM --grid NAME=A:B:N [--grid ...] [--set NAME=VALUE ...] --dt DT --t1 T1 --out FILE.npz"
     )]
-    Ensemble(EnsembleArgs),
+    Ensemble(Box<EnsembleArgs>),
 }
 
 /// Arguments of `ensemble`.

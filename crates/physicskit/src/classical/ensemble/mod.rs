@@ -325,6 +325,7 @@ fn run_member(
             skip_energy: p.skip_energy,
             observer: Some(&mut flag),
             observe_every: 1024,
+            ..IntegrateOptions::default()
         },
     )?;
     debug_assert_eq!(result.y.nrows(), p.run_rows);

@@ -40,7 +40,7 @@ use std::cell::RefCell;
 
 use super::field::{Canonical, FirstOrder, VectorField};
 use super::splitting::{check_system, SplittingStepper};
-use super::stepper::{Dispatch, FieldStepper};
+use super::stepper::{AdaptiveStepper, Dispatch, FieldStepper};
 use crate::classical::core::{
     Error, HamiltonianSystem, LagrangianSystem, MassInv, Method, OdeSystem, Result,
 };
@@ -511,6 +511,18 @@ fn no_splitting(method: Method, family: &str) -> Error {
     }
 }
 
+/// An adaptive method has no flow here: a section or tangent run steps the orbit on a fixed
+/// grid of `dt` (the crossing search re-runs a step of chosen length), while an adaptive
+/// method picks its own steps, and its error control would act on the tangent vectors too.
+fn no_adaptive(method: Method) -> Error {
+    Error::UnsupportedMethod {
+        method: method.name().into(),
+        reason: "an adaptive method has no fixed-step flow for sections and tangent dynamics; \
+                 use rk4, implicit_midpoint or a splitting method"
+            .into(),
+    }
+}
+
 struct HamiltonianFlow<'a, S: ?Sized> {
     system: &'a S,
     max_vectors: usize,
@@ -538,6 +550,10 @@ impl<'a, S: HamiltonianSystem + ?Sized> Dispatch for HamiltonianFlow<'a, S> {
 
     fn implicit_rk<St: FieldStepper>(self, method: Method) -> Self::Output {
         self.explicit_rk::<St>(method)
+    }
+
+    fn adaptive<St: AdaptiveStepper>(self, method: Method) -> Self::Output {
+        Err(no_adaptive(method))
     }
 }
 
@@ -568,6 +584,10 @@ impl<'a, S: LagrangianSystem> Dispatch for LagrangianFlow<'a, S> {
             self.max_vectors,
         ))
     }
+
+    fn adaptive<St: AdaptiveStepper>(self, method: Method) -> Self::Output {
+        Err(no_adaptive(method))
+    }
 }
 
 struct OdeFlow<'a, S: ?Sized> {
@@ -592,5 +612,9 @@ impl<'a, S: OdeSystem + ?Sized> Dispatch for OdeFlow<'a, S> {
 
     fn implicit_rk<St: FieldStepper>(self, method: Method) -> Self::Output {
         self.explicit_rk::<St>(method)
+    }
+
+    fn adaptive<St: AdaptiveStepper>(self, method: Method) -> Self::Output {
+        Err(no_adaptive(method))
     }
 }
