@@ -306,7 +306,7 @@ pub fn integrate_hamiltonian<'py>(
     final_only: bool,
     energy: bool,
 ) -> PyResult<Bound<'py, PyTuple>> {
-    let method = parse_method(Some(method), Method::Yoshida4).py()?;
+    let method = parse_method(Some(method), Method::Yoshida4, separable).py()?;
     let state = to_vec(&state);
     crate::native::check_len("state", &state, 2 * ndof).py()?;
     let mass_inv = to_vec(&mass_inv);
@@ -343,7 +343,7 @@ pub fn integrate_ode<'py>(
     final_only: bool,
     energy: bool,
 ) -> PyResult<Bound<'py, PyTuple>> {
-    let method = parse_method(Some(method), Method::ImplicitMidpoint).py()?;
+    let method = parse_method(Some(method), Method::ImplicitMidpoint, false).py()?;
     let mut sys = PyOde {
         cb: Callbacks::new(obj),
         phase: Phase::new(to_vec(&state), t0).py()?,

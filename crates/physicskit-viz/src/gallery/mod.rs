@@ -1,4 +1,4 @@
-//! The gallery: the demonstrations (fourteen; [`demo_count`]), each a set of figures and a
+//! The gallery: the demonstrations (fifteen; [`demo_count`]), each a set of figures and a
 //! one-paragraph explanation of the physics, and [`render_gallery`], which renders them all and
 //! writes `index.html`.
 //!
@@ -26,6 +26,7 @@ mod projectile;
 mod sine_gordon;
 mod swarm;
 mod toda;
+mod work_precision;
 
 /// One file written by the gallery.
 #[derive(Debug, Clone, PartialEq, Eq)]
@@ -125,6 +126,7 @@ fn demos() -> Vec<(&'static str, Render)> {
         ("integrators compared", integrators::render),
         ("Toda lattice", toda::render),
         ("elastic pendulum", elastic_pendulum::render),
+        ("work–precision", work_precision::render),
     ]
 }
 

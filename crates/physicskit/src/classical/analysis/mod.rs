@@ -10,3 +10,4 @@ mod symmetric_top;
 pub use symmetric_top::*;
 pub mod convergence;
 pub mod poincare;
+pub mod work_precision;
