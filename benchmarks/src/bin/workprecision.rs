@@ -51,7 +51,10 @@ fn work_precision(quick: bool) -> Result<()> {
         };
         for method in problem.methods() {
             for dt in problem.steps(method, if quick { 4 } else { 7 }) {
-                let (seconds, result) = best_of(3, || problem.run(method, dt))?;
+                let Ok((seconds, result)) = best_of(3, || problem.run(method, dt)) else {
+                    println!("{} {method} {dt:e} failed", problem.name());
+                    continue;
+                };
                 let error = problem.error(&result, &reference);
                 println!(
                     "{} {method} {dt:e} {error:.3e} {seconds:.4e}",

@@ -13,6 +13,9 @@ use super::splitting::{composition_kicks, mirrored};
 use crate::classical::core::method::{MethodInfo, Scheme};
 
 /// The published weights `g1..g5` of s9odr6a, the last one the middle substep.
+// The published digits, verbatim, so that they can be checked against the source; the
+// compiler rounds each once to the nearest double.
+#[allow(clippy::excessive_precision)]
 pub const HALF: [f64; 5] = [
     0.392_161_444_007_314_139_279_250_56,
     0.332_599_136_789_359_438_599_748_64,

@@ -16,6 +16,9 @@ use super::splitting::{composition_kicks, mirrored};
 use crate::classical::core::method::{MethodInfo, Scheme};
 
 /// The published weights `g1..g9` of s17odr8a, the last one the middle substep.
+// The published digits, verbatim, so that they can be checked against the source; the
+// compiler rounds each once to the nearest double.
+#[allow(clippy::excessive_precision)]
 pub const HALF: [f64; 9] = [
     0.130_202_483_088_890_080_878_817_63,
     0.561_162_981_775_108_384_561_964_41,

@@ -15,6 +15,9 @@ use super::splitting::{composition_kicks, mirrored};
 use crate::classical::core::method::{MethodInfo, Scheme};
 
 /// The published weights `g1..g18` of s35odr10, the last one the middle substep.
+// The published digits, verbatim, so that they can be checked against the source; the
+// compiler rounds each once to the nearest double.
+#[allow(clippy::excessive_precision)]
 pub const HALF: [f64; 18] = [
     0.078_795_722_521_686_419_263_907_68,
     0.313_096_103_415_108_527_764_812_47,
