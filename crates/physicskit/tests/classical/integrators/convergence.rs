@@ -42,9 +42,9 @@ const ERROR_FLOOR: f64 = 1e-12;
 /// [`ERROR_FLOOR`], and the fit uses the three finest steps above it, where the error is
 /// smallest but still clear of rounding (the asymptotic regime, when any step is). Orders 8
 /// and 10 fall from ~1e-7 to the floor within two or three halvings, so their steps shrink by
-/// sqrt(2) instead: the three points then lie between ~1e-9 and 1e-12 (measured: h from 0.31
-/// down to 0.16 for kahan_li8 on the pendulum, where one halving from 0.625 gave a
-/// pre-asymptotic 8.3), never below `T_END / 2^13`.
+/// about sqrt(2) instead (`T_END / n` for whole `n`), never below `T_END / 2^13`: the three
+/// points then lie between ~1e-9 and 1e-12, h from ~0.31 to ~0.16 for kahan_li8 on the
+/// pendulum, where halving from 0.625 to 0.156 measured a pre-asymptotic 8.3.
 fn errors(base: &[f64], order: u32, error_at: impl Fn(f64) -> f64) -> (Vec<f64>, Vec<f64>) {
     if order <= 4 {
         return (base.to_vec(), base.iter().map(|&h| error_at(h)).collect());
@@ -52,7 +52,9 @@ fn errors(base: &[f64], order: u32, error_at: impl Fn(f64) -> f64) -> (Vec<f64>,
     let per_halving = if order >= 8 { 2 } else { 1 };
     let mut points: Vec<(f64, f64)> = Vec::new();
     for k in 3 * per_halving..=13 * per_halving {
-        let h = T_END / 2f64.powf(f64::from(k) / f64::from(per_halving));
+        // A whole number of steps in T_END (the driver refuses others): 8, 11, 16, 23, ...
+        let n = 2f64.powf(f64::from(k) / f64::from(per_halving)).round();
+        let h = T_END / n;
         let e = error_at(h);
         if e < ERROR_FLOOR {
             break;
