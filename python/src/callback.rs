@@ -404,7 +404,7 @@ pub fn integrate_hamiltonian<'py>(
     rtol: Option<f64>,
     atol: Option<f64>,
 ) -> PyResult<Bound<'py, PyTuple>> {
-    let method = parse_method(Some(method), Method::Yoshida4).py()?;
+    let method = parse_method(Some(method), Method::Yoshida4, separable).py()?;
     let mut sys =
         PyHamiltonian::new(obj, to_vec(&state), t0, ndof, separable, to_vec(&mass_inv)).py()?;
     let mut observer = SignalObserver::new(progress);
@@ -442,7 +442,7 @@ pub fn integrate_ode<'py>(
     rtol: Option<f64>,
     atol: Option<f64>,
 ) -> PyResult<Bound<'py, PyTuple>> {
-    let method = parse_method(Some(method), Method::ImplicitMidpoint).py()?;
+    let method = parse_method(Some(method), Method::ImplicitMidpoint, false).py()?;
     let mut sys = PyOde::new(obj, to_vec(&state), t0).py()?;
     let mut observer = SignalObserver::new(progress);
     let options = options(
@@ -479,7 +479,7 @@ pub fn chaos_hamiltonian<'py>(
     options: Option<&Bound<'_, PyDict>>,
 ) -> PyResult<Bound<'py, PyDict>> {
     let job = chaos::job_from_py(kind, options)?;
-    let method = parse_method(Some(method), Method::Yoshida4).py()?;
+    let method = parse_method(Some(method), Method::Yoshida4, separable).py()?;
     let sys =
         PyHamiltonian::new(obj, to_vec(&state), t0, ndof, separable, to_vec(&mass_inv)).py()?;
     let outcome = chaos_run(&sys, t_span, dt, &job, |s, k| {
@@ -506,7 +506,7 @@ pub fn chaos_ode<'py>(
     options: Option<&Bound<'_, PyDict>>,
 ) -> PyResult<Bound<'py, PyDict>> {
     let job = chaos::job_from_py(kind, options)?;
-    let method = parse_method(Some(method), Method::ImplicitMidpoint).py()?;
+    let method = parse_method(Some(method), Method::ImplicitMidpoint, false).py()?;
     let sys = PyOde::new(obj, to_vec(&state), t0).py()?;
     let outcome = chaos_run(&sys, t_span, dt, &job, |s, k| ode_flow(s, method, k));
     let out = sys.cb.finish_with(outcome, None)?;

@@ -32,12 +32,24 @@ pub fn check_len(name: &str, v: &[f64], n: usize) -> Result<()> {
     physicskit::classical::core::error::check_vector(name, v, n)
 }
 
-/// Parses a method name, or takes the system's default for `None`.
+/// Parses a method name, or takes the system's default for `None`, for a system that accepts
+/// the splitting methods when `splitting` (a separable, conservative Hamiltonian).
 ///
 /// # Errors
-/// [`Error::UnknownMethod`] listing the valid names.
-pub fn parse_method(name: Option<&str>, default: Method) -> Result<Method> {
-    name.map_or(Ok(default), str::parse)
+/// [`Error::UnknownMethod`] listing the names of the methods the system accepts.
+pub fn parse_method(name: Option<&str>, default: Method, splitting: bool) -> Result<Method> {
+    let Some(name) = name else {
+        return Ok(default);
+    };
+    name.parse().map_err(|_| Error::UnknownMethod {
+        name: name.into(),
+        valid: Method::ALL
+            .into_iter()
+            .filter(|m| splitting || !m.needs_separable())
+            .map(Method::name)
+            .collect::<Vec<_>>()
+            .join(", "),
+    })
 }
 
 /// What `integrate_sampled` stores: the sampling and whether the energy is skipped, from the
@@ -352,7 +364,11 @@ impl NativeSystem {
         atol: Option<f64>,
     ) -> PyResult<Bound<'py, PyTuple>> {
         let state = to_vec(&state);
-        let method = parse_method(method, self.inner.default_method()).py()?;
+        let splitting = self
+            .inner
+            .hamiltonian()
+            .is_some_and(|h| h.separable() && h.conservative());
+        let method = parse_method(method, self.inner.default_method(), splitting).py()?;
         let sampling = sampling(stride, final_only).py()?;
         let tolerances = Tolerances::for_method(rtol, atol, method).py()?;
         let inner = &mut self.inner;

@@ -68,8 +68,17 @@ def test_integrate_time_span_errors(system_name, t_span, dt, match):
 
 def test_unknown_and_unsupported_methods(system_name):
     s = make_systems()[system_name]()
-    with pytest.raises(ValueError, match="unknown method `euler`; valid methods are"):
+    with pytest.raises(ValueError, match="unknown method `euler`; valid methods are") as info:
         s.integrate((0.0, 0.1), 0.01, method="euler")
+    # The names listed are exactly the methods this system accepts: each listed one runs, each
+    # other one of methods() is refused as unable to integrate the system.
+    listed = str(info.value).split("valid methods are: ")[1].split(", ")
+    for m in (m["name"] for m in pc.methods()):
+        if m in listed:
+            make_systems()[system_name]().integrate((0.0, 0.01), 0.01, method=m)
+        else:
+            with pytest.raises(ValueError, match="cannot integrate"):
+                make_systems()[system_name]().integrate((0.0, 0.01), 0.01, method=m)
     with pytest.raises(ValueError, match="unknown method"):
         s.integrate((0.0, 0.1), 0.01, method="RK4")
     if not isinstance(s, pc.HamiltonianSystem):

@@ -205,9 +205,15 @@ pub fn method_names(entry: &SystemEntry) -> String {
 /// Parses a method name and checks that the catalogue lists it for `entry`.
 ///
 /// # Errors
-/// Unknown method names, or methods the entry does not list.
+/// Unknown method names (listing the entry's methods), or methods the entry does not list.
 pub fn method(entry: &SystemEntry, name: &str) -> Result<Method> {
-    let method: Method = name.parse()?;
+    let method: Method = name.parse().map_err(|_| {
+        anyhow!(
+            "unknown method `{name}` for `{}`; valid methods are: {}",
+            entry.name,
+            method_names(entry)
+        )
+    })?;
     if !entry.methods().any(|m| m == method) {
         bail!(
             "method `{method}` cannot integrate `{}`; valid methods are: {}",

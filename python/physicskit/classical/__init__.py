@@ -1,7 +1,8 @@
 """physicskit.classical: classical mechanics on structure-preserving integrators.
 
 Newtonian, Lagrangian, Hamiltonian, lattice-chain and rigid-body systems, integrated by the
-Rust core (``yoshida4``, ``verlet``, ``rk4``, ``implicit_midpoint``). Every built-in system's
+Rust core (the spec's ``yoshida4``, ``verlet``, ``rk4``, ``implicit_midpoint``, and the
+higher-order methods :func:`methods` lists). Every built-in system's
 numerics run natively with the GIL released; systems written in Python by subclassing
 :class:`HamiltonianSystem`, :class:`LagrangianSystem` or :class:`ODESystem` run on the same
 integrators.

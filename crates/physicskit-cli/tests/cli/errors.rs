@@ -82,6 +82,21 @@ fn unknown_method() {
 }
 
 #[test]
+fn unknown_method_lists_the_methods_of_that_system() {
+    // The list is the catalogue's for the system: every method for a separable pendulum, only
+    // those for non-separable systems for the (Lagrangian) double pendulum.
+    for system in ["pendulum", "double_pendulum"] {
+        let err = system_fails(system, &["--method", "euler"], "a.csv");
+        let entry = physicskit::classical::catalog::find(system).unwrap();
+        let listed = err.split("valid methods are: ").nth(1).unwrap_or("").trim();
+        let want: Vec<&str> = entry.methods().map(|m| m.name()).collect();
+        assert_eq!(listed, want.join(", "), "{system}: {err}");
+        assert!(listed.contains("gauss_legendre6"), "{err}");
+        assert_eq!(listed.contains("verlet"), system == "pendulum", "{err}");
+    }
+}
+
+#[test]
 fn zero_step() {
     let err = pendulum("0", "1", "a.csv", &[]);
     assert!(err.contains("dt must be finite and > 0"), "{err}");

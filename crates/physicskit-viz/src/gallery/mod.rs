@@ -1,4 +1,4 @@
-//! The gallery: the demonstrations (sixteen; [`demo_count`]), each a set of figures and a
+//! The gallery: the demonstrations (seventeen; [`demo_count`]), each a set of figures and a
 //! one-paragraph explanation of the physics, and [`render_gallery`], which renders them all and
 //! writes `index.html`.
 //!
@@ -28,6 +28,7 @@ mod projectile;
 mod sine_gordon;
 mod swarm;
 mod toda;
+mod work_precision;
 
 /// One file written by the gallery.
 #[derive(Debug, Clone, PartialEq, Eq)]
@@ -129,6 +130,7 @@ fn demos() -> Vec<(&'static str, Render)> {
         ("elastic pendulum", elastic_pendulum::render),
         ("flip-time fractal", flip_fractal::render),
         ("Kepler precession against c_pn", kepler_precession::render),
+        ("work–precision", work_precision::render),
     ]
 }
 

@@ -23,8 +23,8 @@
 use crate::classical::core::error::{check_finite, check_finite_scalar};
 use crate::classical::core::{Error, HamiltonianSystem, Method, Result};
 use crate::classical::integrators::{
-    splitting, AdaptiveStepper, Dispatch, FieldStepper, FirstOrder, Rk4, SplittingStepper,
-    VectorField,
+    splitting, splitting::Coefficients, AdaptiveStepper, Dispatch, FieldStepper, FirstOrder, Rk4,
+    SplittingStepper, VectorField,
 };
 
 /// Which way through the section a crossing must go to count.
@@ -415,11 +415,11 @@ impl<S: HamiltonianSystem> SeparableSection<'_, S> {
 impl<S: HamiltonianSystem> Dispatch for SeparableSection<'_, S> {
     type Output = Result<PoincareSection>;
 
-    fn splitting<const N: usize>(self, method: Method, drifts: [f64; N]) -> Self::Output {
+    fn splitting<const N: usize>(self, method: Method, weights: Coefficients<N>) -> Self::Output {
         let system = self.system;
         splitting::check_system(method, system)?;
         let ndof = system.ndof();
-        let mut stepper = SplittingStepper::from_drifts(drifts, ndof);
+        let mut stepper = SplittingStepper::new(weights, ndof);
         run_section(
             &FirstOrder(system),
             self.t0,

@@ -51,11 +51,16 @@ pub struct MethodInfo {
 /// exhaustive, so the compiler lists each place that must decide what the new kind does.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub enum Scheme {
-    /// A symmetric composition of Störmer–Verlet substeps with these drift weights (summing
-    /// to one), run by the one kick–drift–kick loop of
-    /// [`splitting`](crate::classical::integrators::splitting) on separable Hamiltonians.
+    /// A splitting method, `kick k_0, drift d_0, kick k_1, ..., drift d_{s-1}, kick k_s`, run
+    /// by the one kick–drift–kick loop of
+    /// [`splitting`](crate::classical::integrators::splitting) on separable Hamiltonians. A
+    /// symmetric composition of Störmer–Verlet has the kicks
+    /// [`composition_kicks`](crate::classical::integrators::splitting::composition_kicks) of
+    /// its drifts.
     Splitting {
-        /// Drift weight of each substep, as a fraction of the step.
+        /// The `s + 1` kick weights, as fractions of the step (summing to one).
+        kicks: &'static [f64],
+        /// The `s` drift weights, as fractions of the step (summing to one).
         drifts: &'static [f64],
     },
     /// An explicit one-step method on a vector field `dy/dt = f(t, y)`.

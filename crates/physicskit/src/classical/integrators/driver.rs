@@ -14,7 +14,7 @@ use std::collections::BTreeMap;
 use std::ops::ControlFlow;
 
 use super::field::{Canonical, FirstOrder, VectorField};
-use super::splitting::{check_system, SplittingStepper};
+use super::splitting::{check_system, Coefficients, SplittingStepper};
 use super::stepper::{AdaptiveStepper, Dispatch, FieldStepper, Report, Stepper};
 use crate::classical::core::options::check_adaptive;
 use crate::classical::core::{
@@ -101,8 +101,8 @@ struct Hamiltonian<'s, 'o, S>(Run<'s, 'o, S>);
 impl<S: HamiltonianSystem> Dispatch for Hamiltonian<'_, '_, S> {
     type Output = Result<SimulationResult>;
 
-    fn splitting<const N: usize>(self, method: Method, drifts: [f64; N]) -> Self::Output {
-        integrate_splitting(self.0, method, drifts)
+    fn splitting<const N: usize>(self, method: Method, weights: Coefficients<N>) -> Self::Output {
+        integrate_splitting(self.0, method, weights)
     }
 
     fn explicit_rk<St: FieldStepper>(self, method: Method) -> Self::Output {
@@ -124,7 +124,7 @@ struct Lagrangian<'s, 'o, S>(Run<'s, 'o, S>);
 impl<S: LagrangianSystem> Dispatch for Lagrangian<'_, '_, S> {
     type Output = Result<SimulationResult>;
 
-    fn splitting<const N: usize>(self, method: Method, _drifts: [f64; N]) -> Self::Output {
+    fn splitting<const N: usize>(self, method: Method, _: Coefficients<N>) -> Self::Output {
         Err(Error::UnsupportedMethod {
             method: method.name().into(),
             reason: "Lagrangian systems are integrated in canonical form, which is not \
@@ -153,7 +153,7 @@ struct Ode<'s, 'o, S>(Run<'s, 'o, S>);
 impl<S: OdeSystem> Dispatch for Ode<'_, '_, S> {
     type Output = Result<SimulationResult>;
 
-    fn splitting<const N: usize>(self, method: Method, _drifts: [f64; N]) -> Self::Output {
+    fn splitting<const N: usize>(self, method: Method, _: Coefficients<N>) -> Self::Output {
         Err(Error::UnsupportedMethod {
             method: method.name().into(),
             reason: "a general ODE system has no separable Hamiltonian structure; use \
@@ -175,7 +175,7 @@ impl<S: OdeSystem> Dispatch for Ode<'_, '_, S> {
     }
 }
 
-/// A splitting method with `N` substeps (drift weights `drifts`), after checking that the
+/// A splitting method with `N` drifts (weights `weights`), after checking that the
 /// system is separable and conservative.
 ///
 /// Systems of one or two degrees of freedom run with their state and force in fixed-length
@@ -184,23 +184,23 @@ impl<S: OdeSystem> Dispatch for Ode<'_, '_, S> {
 fn integrate_splitting<S: HamiltonianSystem, const N: usize>(
     run: Run<'_, '_, S>,
     method: Method,
-    drifts: [f64; N],
+    weights: Coefficients<N>,
 ) -> Result<SimulationResult> {
     check_system(method, &*run.system)?;
     let ndof = run.system.ndof();
     match ndof {
         1 => {
             let work = run.setup.start_in([0.0; 2]);
-            run_splitting(run, method, drifts, [0.0; 1], work)
+            run_splitting(run, method, weights, [0.0; 1], work)
         }
         2 => {
             let work = run.setup.start_in([0.0; 4]);
-            run_splitting(run, method, drifts, [0.0; 2], work)
+            run_splitting(run, method, weights, [0.0; 2], work)
         }
         _ => {
             let mut run = run;
             let work = std::mem::take(&mut run.setup.start);
-            run_splitting(run, method, drifts, vec![0.0; ndof], work)
+            run_splitting(run, method, weights, vec![0.0; ndof], work)
         }
     }
 }
@@ -210,7 +210,7 @@ fn integrate_splitting<S: HamiltonianSystem, const N: usize>(
 fn run_splitting<S, const N: usize, B, W>(
     run: Run<'_, '_, S>,
     method: Method,
-    drifts: [f64; N],
+    weights: Coefficients<N>,
     force: B,
     work: W,
 ) -> Result<SimulationResult>
@@ -224,7 +224,7 @@ where
         setup,
         options,
     } = run;
-    let mut stepper = SplittingStepper::with_buffer(drifts, force);
+    let mut stepper = SplittingStepper::with_buffer(weights, force);
     let sys = &*system;
     let (result, y) = setup.run_from(
         work,

@@ -694,6 +694,7 @@ impl<const S: usize, T: ButcherTableau<S> + 'static> FieldStepper for ImplicitRk
 
 #[cfg(test)]
 mod tests {
+    use super::super::gauss_legendre4::GaussLegendre4Tableau as GaussLegendre4;
     use super::super::implicit_midpoint::MidpointRule;
     use super::*;
 
@@ -770,20 +771,6 @@ mod tests {
                 "row {p} uses only {p} slopes"
             );
         }
-    }
-
-    /// The two-stage Gauss–Legendre tableau (order 4; Hairer, Lubich, Wanner, GNI §II.1.3),
-    /// to exercise the solve with more than one stage.
-    struct GaussLegendre4;
-
-    const R: f64 = 0.288_675_134_594_812_9; // sqrt(3) / 6
-
-    impl ButcherTableau<2> for GaussLegendre4 {
-        const TABLEAU: Tableau<2> = Tableau {
-            a: [[0.25, 0.25 - R], [0.25 + R, 0.25]],
-            b: [0.5, 0.5],
-            c: [0.5 - R, 0.5 + R],
-        };
     }
 
     /// A forced pendulum, `q' = p`, `p' = -sin q + cos(2 t) / 2`, with its Jacobian: nonlinear and

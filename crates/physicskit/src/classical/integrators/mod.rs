@@ -7,12 +7,14 @@
 //! registry of methods, from which [`Method`], [`Method::ALL`], [`Method::info`],
 //! [`Method::dispatch`] and [`methods`] are generated (by the macro in `registry.rs`).
 //!
-//! - Splitting methods (`verlet`, `yoshida4`) are a coefficient array in their file; one
-//!   kick–drift–kick loop ([`splitting`]) runs them all. Adding one is a new file with its
-//!   `DRIFTS` and `INFO` plus one line below.
+//! - Splitting methods (`verlet`, `yoshida4`, `yoshida6`, `kahan_li6`, `kahan_li8`,
+//!   `blanes_moan6`, `sofroniou_spaletta10`) are coefficient arrays (kicks and drifts) in their
+//!   file; one kick–drift–kick loop ([`splitting`]) runs them all. Adding one is a new file with
+//!   its `KICKS`, `DRIFTS` and `INFO` plus one line below.
 //! - Methods on a vector field name their [`FieldStepper`]: `rk4` ([`rk4`]) and the implicit
-//!   Runge–Kutta methods, which share one solve ([`implicit_solve`]): `implicit_midpoint` is
-//!   its one-stage tableau.
+//!   Runge–Kutta methods, which share one solve ([`implicit_solve`]): `implicit_midpoint`,
+//!   `gauss_legendre4` and `gauss_legendre6` are its one-, two- and three-stage Gauss–Legendre
+//!   tableaus.
 //! - Adaptive methods (`dop853`) name their [`AdaptiveStepper`], which steps with its own
 //!   step sizes and interpolates the output grid from its dense output.
 //!
@@ -27,6 +29,13 @@ registry::registry! {
     Verlet = verlet,
     Yoshida4 = yoshida4,
     ImplicitMidpoint = implicit_midpoint(ImplicitMidpoint),
+    Yoshida6 = yoshida6,
+    KahanLi6 = kahan_li6,
+    KahanLi8 = kahan_li8,
+    BlanesMoan6 = blanes_moan6,
+    SofroniouSpaletta10 = sofroniou_spaletta10,
+    GaussLegendre4 = gauss_legendre4(GaussLegendre4),
+    GaussLegendre6 = gauss_legendre6(GaussLegendre6),
     Dop853 = dop853(adaptive: Dop853),
 }
 
@@ -41,6 +50,8 @@ pub mod tangent;
 pub use dop853::Dop853;
 pub use ensemble::{integrate_ensemble, Ensemble, ENSEMBLE_CHUNK};
 pub use field::{Canonical, FirstOrder, VectorField};
+pub use gauss_legendre4::GaussLegendre4;
+pub use gauss_legendre6::GaussLegendre6;
 pub use implicit_midpoint::ImplicitMidpoint;
 pub use implicit_solve::{ButcherTableau, ImplicitRk, SolverSettings, SolverStats, Tableau};
 pub use rk4::Rk4;

@@ -6,8 +6,8 @@
 //! (its name is the method's spec name) and `Stepper` the [`FieldStepper`](super::FieldStepper)
 //! it declares, or `Variant = module(adaptive: Stepper)` for an adaptive method and its
 //! [`AdaptiveStepper`](super::AdaptiveStepper). Everything else comes from the file's `INFO`: the kind of the method is
-//! `INFO.scheme`, read at compile time. A splitting line takes its drift weights (and their
-//! number, the const parameter of [`SplittingStepper`](super::SplittingStepper)) from the
+//! `INFO.scheme`, read at compile time. A splitting line takes its kick and drift weights (and
+//! the number of drifts, the const parameter of [`SplittingStepper`](super::SplittingStepper)) from the
 //! scheme; a vector-field line is sent to [`Dispatch::explicit_rk`](super::Dispatch) or
 //! [`Dispatch::implicit_rk`](super::Dispatch) by the scheme; an adaptive line to
 //! [`Dispatch::adaptive`](super::Dispatch). A line that contradicts its
@@ -19,31 +19,29 @@
 //! [`Method::info`]: super::Method::info
 //! [`Method::dispatch`]: super::Method::dispatch
 
+use super::splitting::Coefficients;
 use crate::classical::core::method::{MethodInfo, Scheme};
 
 /// Number of substeps of a splitting method. Evaluated at compile time for each splitting line
 /// of the registry, where a scheme of another kind fails the build.
 pub(crate) const fn splitting_len(info: &MethodInfo) -> usize {
     match info.scheme {
-        Scheme::Splitting { drifts } => drifts.len(),
+        Scheme::Splitting { drifts, .. } => drifts.len(),
         Scheme::ExplicitRk | Scheme::ImplicitRk | Scheme::Adaptive => {
             panic!("a registry line without a stepper must be a splitting method")
         }
     }
 }
 
-/// The drift weights of a splitting method as an array of its length `N`
-/// ([`splitting_len`]), evaluated at compile time.
-pub(crate) const fn splitting_drifts<const N: usize>(info: &MethodInfo) -> [f64; N] {
-    let mut out = [0.0; N];
-    if let Scheme::Splitting { drifts } = info.scheme {
-        let mut i = 0;
-        while i < N {
-            out[i] = drifts[i];
-            i += 1;
+/// The weights of a splitting method with `N` drifts ([`splitting_len`]), evaluated at compile
+/// time, where kicks of the wrong length fail the build.
+pub(crate) const fn splitting_coefficients<const N: usize>(info: &MethodInfo) -> Coefficients<N> {
+    match info.scheme {
+        Scheme::Splitting { kicks, drifts } => Coefficients::partitioned(kicks, drifts),
+        Scheme::ExplicitRk | Scheme::ImplicitRk | Scheme::Adaptive => {
+            panic!("a registry line without a stepper must be a splitting method")
         }
     }
-    out
 }
 
 /// The kinds of method that run on a vector field.
@@ -125,8 +123,9 @@ macro_rules! registry {
     };
     (@arm $dispatch:ident, $variant:ident, $module:ident) => {{
         const N: usize = registry::splitting_len(&$module::INFO);
-        const DRIFTS: [f64; N] = registry::splitting_drifts(&$module::INFO);
-        $dispatch.splitting(Method::$variant, DRIFTS)
+        const COEFFICIENTS: splitting::Coefficients<N> =
+            registry::splitting_coefficients(&$module::INFO);
+        $dispatch.splitting(Method::$variant, COEFFICIENTS)
     }};
     (@arm $dispatch:ident, $variant:ident, $module:ident, adaptive: $stepper:ident) => {{
         const _: () = registry::check_adaptive(&$module::INFO);

@@ -1,19 +1,28 @@
-//! One kick–drift–kick loop for every symmetric composition of Störmer–Verlet.
+//! One kick–drift–kick loop for every splitting method of a separable Hamiltonian
+//! `H = T(p) + V(q)`.
 //!
-//! A composition with drift weights `w_1..w_s` (summing to one) is executed as
+//! A method with `s` drifts is `s + 1` kick weights `k_0..k_s` and `s` drift weights
+//! `d_0..d_{s-1}` (each set summing to one), executed as
 //!
 //! ```text
-//! kick w_1/2, drift w_1, kick (w_1+w_2)/2, drift w_2, ..., drift w_s, kick w_s/2
+//! kick k_0, drift d_0, kick k_1, drift d_1, ..., drift d_{s-1}, kick k_s
 //! ```
 //!
-//! which is `s` Verlet substeps with the touching half-kicks merged. The force after the last
-//! drift is cached and reused as the first kick of the next step (first same as last), so a
-//! step costs `s` force evaluations. As in OrdinaryDiffEq's symplectic tableaus, the methods
-//! differ only in their weights, declared in each method's file as the
-//! [`Scheme::Splitting`](crate::classical::core::method::Scheme::Splitting) of its `INFO`
-//! ([`verlet::DRIFTS`](super::verlet::DRIFTS), [`yoshida4::DRIFTS`](super::yoshida4::DRIFTS)).
+//! (a kick is `p += k h F(q)`, a drift `q += d h M^-1 p`). This is the general symmetric
+//! partitioned Runge–Kutta method of ABA type (S. Blanes, P. C. Moan, J. Comput. Appl. Math.
+//! 142 (2002) 313–330, eq. (2)). A symmetric composition of `s` Störmer–Verlet substeps with
+//! weights `w_1..w_s` is the special case `d_i = w_i`, `k_i = (w_{i-1} + w_i) / 2`
+//! (the touching half-kicks merged, [`Coefficients::composition`]); `blanes_moan6` declares
+//! independent kicks and drifts ([`Coefficients::partitioned`]).
 //!
-//! The number of substeps is a const parameter of [`SplittingStepper`], so the substep loop
+//! The force after the last drift is cached and reused as the first kick of the next step
+//! (first same as last), so a step costs `s` force evaluations. As in OrdinaryDiffEq's
+//! symplectic tableaus, the methods differ only in their coefficients, declared in each
+//! method's file as the [`Scheme::Splitting`](crate::classical::core::method::Scheme::Splitting)
+//! of its `INFO` ([`verlet::DRIFTS`](super::verlet::DRIFTS),
+//! [`yoshida4::DRIFTS`](super::yoshida4::DRIFTS), ...).
+//!
+//! The number of drifts is a const parameter of [`SplittingStepper`], so the substep loop
 //! unrolls and each kick fuses with the following drift into one pass over the coordinates.
 //! Short slices (up to three coordinates) run a fixed-length copy of that pass, long ones
 //! (from 64) the SSE2/AVX2/AVX-512 clone the CPU supports.
@@ -25,8 +34,98 @@ use multiversion::multiversion;
 use super::stepper::{Report, Stepper};
 use crate::classical::core::{Error, ExtraValue, HamiltonianSystem, MassInv, Method, Result};
 
-/// Kick–drift–kick stepper for a separable Hamiltonian system, for a composition of `S`
-/// Verlet substeps (`S = 1`: verlet, `S = 3`: yoshida4). `S` is a compile-time constant so the
+/// The weights of a splitting method with `S` drifts: `kicks[i]` before `drifts[i]`, and
+/// `last_kick` after the last drift (see the module docs). Built at compile time from a
+/// method's [`Scheme::Splitting`](crate::classical::core::method::Scheme::Splitting).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Coefficients<const S: usize> {
+    /// Kick weight before each drift.
+    pub kicks: [f64; S],
+    /// Drift weights (summing to one).
+    pub drifts: [f64; S],
+    /// The closing kick.
+    pub last_kick: f64,
+}
+
+impl<const S: usize> Coefficients<S> {
+    /// The symmetric composition of `S` Störmer–Verlet substeps of lengths `drifts[i] h`:
+    /// kicks `(w_{i-1} + w_i) / 2` (with `w_{-1} = 0`) and a closing half-kick `w_{S-1} / 2`.
+    pub const fn composition(drifts: [f64; S]) -> Self {
+        let mut kicks = [0.0; S];
+        let mut i = 0;
+        while i < S {
+            kicks[i] = composition_kick(&drifts, i);
+            i += 1;
+        }
+        Self {
+            kicks,
+            drifts,
+            last_kick: composition_kick(&drifts, S),
+        }
+    }
+
+    /// A general method: `kicks` holds the `S + 1` kick weights, `drifts` the `S` drift
+    /// weights. Evaluated at compile time, where other lengths fail the build.
+    pub const fn partitioned(kicks: &[f64], drifts: &[f64]) -> Self {
+        assert!(drifts.len() == S && kicks.len() == S + 1);
+        let mut out = Self {
+            kicks: [0.0; S],
+            drifts: [0.0; S],
+            last_kick: kicks[S],
+        };
+        let mut i = 0;
+        while i < S {
+            out.kicks[i] = kicks[i];
+            out.drifts[i] = drifts[i];
+            i += 1;
+        }
+        out
+    }
+}
+
+/// `composition_kicks(w)`: the `M = S + 1` kick weights of the symmetric composition of
+/// Störmer–Verlet with drift weights `w` ([`Coefficients::composition`]), for a method file's
+/// [`Scheme::Splitting`](crate::classical::core::method::Scheme::Splitting).
+pub const fn composition_kicks<const M: usize>(drifts: &[f64]) -> [f64; M] {
+    assert!(drifts.len() + 1 == M);
+    let mut kicks = [0.0; M];
+    let mut i = 0;
+    while i < M {
+        kicks[i] = composition_kick(drifts, i);
+        i += 1;
+    }
+    kicks
+}
+
+/// The `N` weights of a palindromic sequence from its first half `half`: for odd `N`, the last
+/// entry of `half` is the middle weight (`N = 2 half.len() - 1`); for even `N`, `N = 2
+/// half.len()`. The published coefficients of the symmetric methods are given this way.
+pub const fn mirrored<const N: usize>(half: &[f64]) -> [f64; N] {
+    assert!(N == 2 * half.len() || N + 1 == 2 * half.len());
+    let mut out = [0.0; N];
+    let mut i = 0;
+    while i < half.len() {
+        out[i] = half[i];
+        out[N - 1 - i] = half[i];
+        i += 1;
+    }
+    out
+}
+
+/// Kick `i` of the composition of Störmer–Verlet substeps `drifts`: the half-kicks of the
+/// substeps either side merged, `(w_{i-1} + w_i) / 2` with `w_{-1} = w_s = 0`.
+const fn composition_kick(drifts: &[f64], i: usize) -> f64 {
+    if i == 0 {
+        0.5 * drifts[0]
+    } else if i == drifts.len() {
+        0.5 * drifts[i - 1]
+    } else {
+        0.5 * (drifts[i - 1] + drifts[i])
+    }
+}
+
+/// Kick–drift–kick stepper for a separable Hamiltonian system, for a splitting method with
+/// `S` drifts (`S = 1`: verlet, `S = 3`: yoshida4). `S` is a compile-time constant so the
 /// substep loop unrolls and each kick fuses with the following drift into one pass. As a
 /// [`Stepper`] it advances the state `y = [q, p]`.
 ///
@@ -35,9 +134,9 @@ use crate::classical::core::{Error, ExtraValue, HamiltonianSystem, MassInv, Meth
 #[derive(Debug, Clone)]
 pub struct SplittingStepper<const S: usize, B = Vec<f64>> {
     drifts: [f64; S],
-    /// Kick weight before each drift: `(w_{i-1} + w_i) / 2`, with `w_{-1} = 0`.
+    /// Kick weight before each drift.
     kicks: [f64; S],
-    /// The closing half-kick, `w_{S-1} / 2`.
+    /// The closing kick.
     last_kick: f64,
     /// Substep end times as fractions of the step; the last is exactly 1.
     ends: [f64; S],
@@ -89,29 +188,37 @@ pub fn check_system<S: HamiltonianSystem + ?Sized>(method: Method, system: &S) -
 }
 
 impl<const S: usize> SplittingStepper<S> {
-    /// A stepper for the symmetric composition with drift weights `drifts` (summing to 1).
+    /// A stepper for the symmetric composition of Störmer–Verlet with drift weights `drifts`
+    /// (summing to 1).
     pub fn from_drifts(drifts: [f64; S], ndof: usize) -> Self {
-        SplittingStepper::with_buffer(drifts, vec![0.0; ndof])
+        Self::new(Coefficients::composition(drifts), ndof)
+    }
+
+    /// A stepper for the method with weights `coefficients`, on `ndof` degrees of freedom.
+    pub fn new(coefficients: Coefficients<S>, ndof: usize) -> Self {
+        SplittingStepper::with_buffer(coefficients, vec![0.0; ndof])
     }
 }
 
 impl<const S: usize, B: AsRef<[f64]> + AsMut<[f64]>> SplittingStepper<S, B> {
-    /// A stepper for the symmetric composition with drift weights `drifts` (summing to 1),
-    /// caching the force in `force` (of length `ndof`).
-    pub fn with_buffer(drifts: [f64; S], force: B) -> Self {
-        let mut kicks = [0.0; S];
+    /// A stepper for the method with weights `coefficients`, caching the force in `force` (of
+    /// length `ndof`).
+    pub fn with_buffer(coefficients: Coefficients<S>, force: B) -> Self {
+        let Coefficients {
+            kicks,
+            drifts,
+            last_kick,
+        } = coefficients;
         let mut ends = [0.0; S];
         let mut elapsed = 0.0;
         for i in 0..S {
-            let before = if i == 0 { 0.0 } else { drifts[i - 1] };
-            kicks[i] = 0.5 * (before + drifts[i]);
             elapsed += drifts[i];
             ends[i] = if i + 1 == S { 1.0 } else { elapsed };
         }
         Self {
             drifts,
             kicks,
-            last_kick: 0.5 * drifts[S - 1],
+            last_kick,
             ends,
             force,
             force_valid: false,

@@ -23,6 +23,7 @@
 use std::collections::BTreeMap;
 
 use super::field::VectorField;
+use super::splitting::Coefficients;
 use crate::classical::core::{ExtraValue, Method, Result, Tolerances};
 
 /// A stepper's statistics over the steps so far (evaluations, solver iterations), reported
@@ -113,10 +114,14 @@ pub trait Dispatch {
     /// What the caller returns.
     type Output;
 
-    /// A splitting method (a [`Scheme::Splitting`](crate::classical::core::method::Scheme)):
-    /// a symmetric composition of `N` Störmer–Verlet substeps with drift weights `drifts`,
-    /// for [`SplittingStepper`](super::SplittingStepper).
-    fn splitting<const N: usize>(self, method: Method, drifts: [f64; N]) -> Self::Output;
+    /// A splitting method (a [`Scheme::Splitting`](crate::classical::core::method::Scheme))
+    /// with `N` drifts and the weights `coefficients`, for
+    /// [`SplittingStepper`](super::SplittingStepper).
+    fn splitting<const N: usize>(
+        self,
+        method: Method,
+        coefficients: Coefficients<N>,
+    ) -> Self::Output;
 
     /// An explicit one-step method on a vector field, stepped by `St`.
     fn explicit_rk<St: FieldStepper>(self, method: Method) -> Self::Output;

@@ -39,7 +39,7 @@
 use std::cell::RefCell;
 
 use super::field::{Canonical, FirstOrder, VectorField};
-use super::splitting::{check_system, SplittingStepper};
+use super::splitting::{check_system, Coefficients, SplittingStepper};
 use super::stepper::{AdaptiveStepper, Dispatch, FieldStepper};
 use crate::classical::core::{
     Error, HamiltonianSystem, LagrangianSystem, MassInv, Method, OdeSystem, Result,
@@ -212,8 +212,8 @@ struct SplittingFlow<'a, S: ?Sized, const N: usize> {
     system: &'a S,
     orbit: SplittingStepper<N>,
     fresh: SplittingStepper<N>,
-    drifts: [f64; N],
-    kicks: [f64; N],
+    /// The method's kick and drift weights, the same as the orbit's stepper.
+    coefficients: Coefficients<N>,
     ends: [f64; N],
     force: Vec<f64>,
     jac: Vec<f64>,
@@ -224,24 +224,20 @@ struct SplittingFlow<'a, S: ?Sized, const N: usize> {
 }
 
 impl<'a, S: HamiltonianSystem + ?Sized, const N: usize> SplittingFlow<'a, S, N> {
-    fn new(system: &'a S, drifts: [f64; N], max_vectors: usize) -> Self {
+    fn new(system: &'a S, coefficients: Coefficients<N>, max_vectors: usize) -> Self {
         let n = system.ndof();
-        // The weights of the kick-drift-kick form, as in `SplittingStepper::with_buffer`.
-        let mut kicks = [0.0; N];
+        // The time at which each drift ends (the force after it is evaluated there).
         let mut ends = [0.0; N];
         let mut elapsed = 0.0;
-        for i in 0..N {
-            let before = if i == 0 { 0.0 } else { drifts[i - 1] };
-            kicks[i] = 0.5 * (before + drifts[i]);
-            elapsed += drifts[i];
-            ends[i] = if i + 1 == N { 1.0 } else { elapsed };
+        for (i, end) in ends.iter_mut().enumerate() {
+            elapsed += coefficients.drifts[i];
+            *end = if i + 1 == N { 1.0 } else { elapsed };
         }
         Self {
             system,
-            orbit: SplittingStepper::from_drifts(drifts, n),
-            fresh: SplittingStepper::from_drifts(drifts, n),
-            drifts,
-            kicks,
+            orbit: SplittingStepper::new(coefficients, n),
+            fresh: SplittingStepper::new(coefficients, n),
+            coefficients,
             ends,
             force: vec![0.0; n],
             jac: vec![0.0; n * n],
@@ -304,9 +300,10 @@ impl<S: HamiltonianSystem + ?Sized, const N: usize> Flow for SplittingFlow<'_, S
         }
         self.cached = false;
         let mass_inv = self.system.mass_inv();
+        let c = self.coefficients;
         for i in 0..N {
-            self.kick(p, w, self.kicks[i] * h);
-            let b = self.drifts[i] * h;
+            self.kick(p, w, c.kicks[i] * h);
+            let b = c.drifts[i] * h;
             drift(mass_inv, q, p, b);
             for v in w.chunks_exact_mut(2 * n) {
                 let (dq, dp) = v.split_at_mut(n);
@@ -314,7 +311,7 @@ impl<S: HamiltonianSystem + ?Sized, const N: usize> Flow for SplittingFlow<'_, S
             }
             self.evaluate(q, t + self.ends[i] * h)?;
         }
-        self.kick(p, w, 0.5 * self.drifts[N - 1] * h);
+        self.kick(p, w, c.last_kick * h);
         self.cached = true;
         Ok(())
     }
@@ -531,11 +528,15 @@ struct HamiltonianFlow<'a, S: ?Sized> {
 impl<'a, S: HamiltonianSystem + ?Sized> Dispatch for HamiltonianFlow<'a, S> {
     type Output = Result<Box<dyn Flow + 'a>>;
 
-    fn splitting<const N: usize>(self, method: Method, drifts: [f64; N]) -> Self::Output {
+    fn splitting<const N: usize>(
+        self,
+        method: Method,
+        coefficients: Coefficients<N>,
+    ) -> Self::Output {
         check_system(method, self.system)?;
         Ok(Box::new(SplittingFlow::new(
             self.system,
-            drifts,
+            coefficients,
             self.max_vectors,
         )))
     }
@@ -565,7 +566,11 @@ struct LagrangianFlow<'a, S> {
 impl<'a, S: LagrangianSystem> Dispatch for LagrangianFlow<'a, S> {
     type Output = Result<Box<dyn Flow + 'a>>;
 
-    fn splitting<const N: usize>(self, method: Method, _drifts: [f64; N]) -> Self::Output {
+    fn splitting<const N: usize>(
+        self,
+        method: Method,
+        _coefficients: Coefficients<N>,
+    ) -> Self::Output {
         Err(no_splitting(method, "Lagrangian"))
     }
 
@@ -598,7 +603,11 @@ struct OdeFlow<'a, S: ?Sized> {
 impl<'a, S: OdeSystem + ?Sized> Dispatch for OdeFlow<'a, S> {
     type Output = Result<Box<dyn Flow + 'a>>;
 
-    fn splitting<const N: usize>(self, method: Method, _drifts: [f64; N]) -> Self::Output {
+    fn splitting<const N: usize>(
+        self,
+        method: Method,
+        _coefficients: Coefficients<N>,
+    ) -> Self::Output {
         Err(no_splitting(method, "general ODE"))
     }
 

@@ -11,10 +11,14 @@
 //! as the next step's first kick, so a step costs one force evaluation. Needs a separable
 //! `H = T(p) + V(q)` with conservative forces.
 
+use super::splitting::composition_kicks;
 use crate::classical::core::method::{MethodInfo, Scheme};
 
 /// Drift weights: a single full drift.
 pub const DRIFTS: [f64; 1] = [1.0];
+
+/// Kick weights: the two half-kicks.
+pub const KICKS: [f64; 2] = composition_kicks(&DRIFTS);
 
 /// The facts about `verlet`.
 pub const INFO: MethodInfo = MethodInfo {
@@ -27,5 +31,8 @@ pub const INFO: MethodInfo = MethodInfo {
     evaluations: "force evaluations, exact (the last force is reused as the next step's first)",
     reference: "L. Verlet, Phys. Rev. 159 (1967) 98; Hairer, Lubich, Wanner, Geometric \
                 Numerical Integration (2006), §I.3",
-    scheme: Scheme::Splitting { drifts: &DRIFTS },
+    scheme: Scheme::Splitting {
+        kicks: &KICKS,
+        drifts: &DRIFTS,
+    },
 };

@@ -12,6 +12,7 @@
 //! consecutive substeps merge, so a step costs three force evaluations, and the last force is
 //! reused by the next step. Needs a separable `H = T(p) + V(q)` with conservative forces.
 
+use super::splitting::composition_kicks;
 use crate::classical::core::method::{MethodInfo, Scheme};
 
 /// `w1 = 1 / (2 - 2^(1/3))`, the outer substep weight.
@@ -23,6 +24,9 @@ pub const W0: f64 = -1.702_414_383_919_315_3;
 /// Drift weights of the three substeps.
 pub const DRIFTS: [f64; 3] = [W1, W0, W1];
 
+/// Kick weights: the touching half-kicks of consecutive substeps merged.
+pub const KICKS: [f64; 4] = composition_kicks(&DRIFTS);
+
 /// The facts about `yoshida4`.
 pub const INFO: MethodInfo = MethodInfo {
     name: "yoshida4",
@@ -33,7 +37,10 @@ pub const INFO: MethodInfo = MethodInfo {
     evaluations_per_step: 3,
     evaluations: "force evaluations, exact (touching half-kicks merged, the last force reused)",
     reference: "H. Yoshida, Phys. Lett. A 150 (1990) 262–268",
-    scheme: Scheme::Splitting { drifts: &DRIFTS },
+    scheme: Scheme::Splitting {
+        kicks: &KICKS,
+        drifts: &DRIFTS,
+    },
 };
 
 #[cfg(test)]

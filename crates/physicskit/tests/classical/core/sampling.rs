@@ -97,6 +97,7 @@ fn identical_inputs_give_bit_identical_outputs() {
 /// for bit, every row, for every splitting method of the table.
 #[test]
 fn the_driver_takes_the_steps_of_the_public_stepper() {
+    use physicskit::classical::integrators::splitting::Coefficients;
     use physicskit::classical::integrators::{
         AdaptiveStepper, Dispatch, FieldStepper, SplittingStepper,
     };
@@ -113,14 +114,14 @@ fn the_driver_takes_the_steps_of_the_public_stepper() {
     impl<S: HamiltonianSystem + Clone> Dispatch for Compare<'_, S> {
         type Output = ();
 
-        fn splitting<const N: usize>(self, method: Method, drifts: [f64; N]) {
+        fn splitting<const N: usize>(self, method: Method, weights: Coefficients<N>) {
             let (dt, n) = (0.01, 300);
             let (name, system) = (self.name, self.system);
             let ndof = system.ndof();
             let mut s = system.clone();
             let r = s.integrate((0.0, n as f64 * dt), dt, method).unwrap();
             let mut state = system.state().to_vec();
-            let mut stepper = SplittingStepper::from_drifts(drifts, ndof);
+            let mut stepper = SplittingStepper::new(weights, ndof);
             for (i, row) in r.y.rows().into_iter().enumerate() {
                 assert!(
                     row.iter()

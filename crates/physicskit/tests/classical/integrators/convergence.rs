@@ -17,8 +17,17 @@ fn fixed_step_methods() -> impl Iterator<Item = Method> {
         .filter(|m| !matches!(m.info().scheme, Scheme::Adaptive))
 }
 
-/// The issue's acceptance band for a measured slope: +-0.15 around the theoretical order.
-const SLOPE_TOLERANCE: f64 = 0.15;
+/// Acceptance band for a measured slope around the theoretical order: +-0.15 up to order 4
+/// (issue 12's band, which those methods meet with room), +-0.2 above (issue 13's band: the
+/// fits of orders 6 to 10 span at most a factor 4 in step between ~1e-7 and the floor, where
+/// the next term of the error expansion still moves the slope by ~0.1).
+fn slope_tolerance(order: u32) -> f64 {
+    if order <= 4 {
+        0.15
+    } else {
+        0.2
+    }
+}
 
 /// Steps at which errors are measured up to order 4: halving four times keeps every error
 /// above 1e-12 (well clear of the ~1e-15 rounding floor) for the fourth-order methods, yet
@@ -39,16 +48,23 @@ const ERROR_FLOOR: f64 = 1e-12;
 /// (chosen and checked above). Higher orders would reach the rounding floor on that grid, and
 /// their error constants vary by orders of magnitude between methods of one order (a triple
 /// jump's large negative weights against an optimized composition's), so no fixed grid suits
-/// them all: the step is halved from `T_END / 8` until the error falls below
+/// them all: the step is reduced from `T_END / 8` until the error falls below
 /// [`ERROR_FLOOR`], and the fit uses the three finest steps above it, where the error is
-/// smallest but still clear of rounding (the asymptotic regime, when any step is).
+/// smallest but still clear of rounding (the asymptotic regime, when any step is). Orders 8
+/// and 10 fall from ~1e-7 to the floor within two or three halvings, so their steps shrink by
+/// about sqrt(2) instead (`T_END / n` for whole `n`), never below `T_END / 2^13`: the three
+/// points then lie between ~1e-9 and 1e-12, h from ~0.31 to ~0.16 for kahan_li8 on the
+/// pendulum, where halving from 0.625 to 0.156 measured a pre-asymptotic 8.3.
 fn errors(base: &[f64], order: u32, error_at: impl Fn(f64) -> f64) -> (Vec<f64>, Vec<f64>) {
     if order <= 4 {
         return (base.to_vec(), base.iter().map(|&h| error_at(h)).collect());
     }
+    let per_halving = if order >= 8 { 2 } else { 1 };
     let mut points: Vec<(f64, f64)> = Vec::new();
-    for k in 3..14 {
-        let h = T_END / 2f64.powi(k);
+    for k in 3 * per_halving..=13 * per_halving {
+        // A whole number of steps in T_END (the driver refuses others): 8, 11, 16, 23, ...
+        let n = 2f64.powf(f64::from(k) / f64::from(per_halving)).round();
+        let h = T_END / n;
         let e = error_at(h);
         if e < ERROR_FLOOR {
             break;
@@ -68,7 +84,7 @@ fn assert_order(method: Method, steps: &[f64], errors: &[f64]) {
     let slope = loglog_slope(steps, errors);
     let expected = f64::from(method.order());
     assert!(
-        (slope - expected).abs() <= SLOPE_TOLERANCE,
+        (slope - expected).abs() <= slope_tolerance(method.order()),
         "{method}: measured order {slope:.3}, expected {expected} (steps {steps:?}, errors \
          {errors:?})"
     );

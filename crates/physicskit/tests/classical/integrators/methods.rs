@@ -5,6 +5,7 @@
 use crate::fixtures::{LagrangianPendulum, NonSeparable, Scalar};
 use physicskit::classical::core::method::Scheme;
 use physicskit::classical::examples::Pendulum;
+use physicskit::classical::integrators::splitting::Coefficients;
 use physicskit::classical::integrators::{AdaptiveStepper, Dispatch, FieldStepper};
 use physicskit::classical::{
     methods, Error, HamiltonianSystem, LagrangianSystem, Method, OdeSystem, Phase, Result,
@@ -29,34 +30,38 @@ fn names_round_trip_through_from_str() {
 }
 
 #[test]
-fn splitting_drifts_sum_to_one_and_are_symmetric() {
+fn splitting_weights_sum_to_one_and_are_symmetric() {
     let mut splitting = 0;
     for method in Method::ALL {
         let info = method.info();
-        let Scheme::Splitting { drifts } = info.scheme else {
+        let Scheme::Splitting { kicks, drifts } = info.scheme else {
             continue;
         };
         splitting += 1;
-        // A splitting method integrates only H = T(p) + V(q), is symplectic, and its substeps
-        // add up to one step: sum w_i = 1, each w_i rounded once, so the sum is within
-        // s roundings of 1 in the largest weight's ulp.
+        // A splitting method integrates only H = T(p) + V(q), is symplectic, and its kicks and
+        // its drifts each add up to one step. Each weight is rounded once (the completing one
+        // of a published set a few times), so a sum is within a few roundings per weight of 1
+        // in the largest weight's ulp.
         assert!(info.separable_only && info.symplectic, "{method}");
-        let sum: f64 = drifts.iter().sum();
-        let largest = drifts.iter().fold(0.0_f64, |m, w| m.max(w.abs()));
-        let tolerance = drifts.len() as f64 * f64::EPSILON * largest;
-        assert!(
-            (sum - 1.0).abs() <= tolerance,
-            "{method}: drifts sum to {sum}"
-        );
-        // The loop is written for symmetric compositions (time-reversible, even order): the
-        // weights read the same backwards, bit for bit.
-        assert!(
-            drifts
-                .iter()
-                .zip(drifts.iter().rev())
-                .all(|(a, b)| a.to_bits() == b.to_bits()),
-            "{method}: drifts not symmetric: {drifts:?}"
-        );
+        assert_eq!(kicks.len(), drifts.len() + 1, "{method}");
+        for (what, weights) in [("kicks", kicks), ("drifts", drifts)] {
+            let sum: f64 = weights.iter().sum();
+            let largest = weights.iter().fold(0.0_f64, |m, w| m.max(w.abs()));
+            let tolerance = 2.0 * weights.len() as f64 * f64::EPSILON * largest;
+            assert!(
+                (sum - 1.0).abs() <= tolerance,
+                "{method}: {what} sum to {sum}"
+            );
+            // The methods are symmetric (time-reversible, even order): the weights read the
+            // same backwards, bit for bit.
+            assert!(
+                weights
+                    .iter()
+                    .zip(weights.iter().rev())
+                    .all(|(a, b)| a.to_bits() == b.to_bits()),
+                "{method}: {what} not symmetric: {weights:?}"
+            );
+        }
     }
     assert!(splitting > 0, "no splitting method in the table");
 }
@@ -70,8 +75,8 @@ fn only_splitting_methods_are_separable_only() {
     }
 }
 
-/// Where the dispatch sent a method: its kind, the method it was told, and the drift weights
-/// (bits) or the stepper type.
+/// Where the dispatch sent a method: its kind, the method it was told, and the kick and drift
+/// weights (bits) or the stepper type.
 #[derive(Debug, Clone, PartialEq)]
 enum Route {
     Splitting(Method, Vec<u64>),
@@ -85,8 +90,10 @@ struct Probe;
 impl Dispatch for Probe {
     type Output = Route;
 
-    fn splitting<const N: usize>(self, method: Method, drifts: [f64; N]) -> Route {
-        Route::Splitting(method, drifts.iter().map(|w| w.to_bits()).collect())
+    fn splitting<const N: usize>(self, method: Method, weights: Coefficients<N>) -> Route {
+        let all = weights.kicks.iter().chain(&weights.drifts);
+        let bits = all.chain([&weights.last_kick]).map(|w| w.to_bits());
+        Route::Splitting(method, bits.collect())
     }
 
     fn explicit_rk<St: FieldStepper>(self, method: Method) -> Route {
@@ -110,8 +117,14 @@ fn every_method_is_dispatched_to_its_own_path() {
         // The kind the registry dispatched on is the one the method's file declares, with the
         // file's own coefficients.
         let path = match (&route, method.info().scheme) {
-            (Route::Splitting(m, bits), Scheme::Splitting { drifts }) if *m == method => {
-                let declared: Vec<u64> = drifts.iter().map(|w| w.to_bits()).collect();
+            (Route::Splitting(m, bits), Scheme::Splitting { kicks, drifts }) if *m == method => {
+                let (last, first) = kicks.split_last().unwrap();
+                let declared: Vec<u64> = first
+                    .iter()
+                    .chain(drifts)
+                    .chain([last])
+                    .map(|w| w.to_bits())
+                    .collect();
                 assert_eq!(bits, &declared, "{method}");
                 format!("splitting {bits:?}")
             }
@@ -146,7 +159,8 @@ fn evaluations(result: &SimulationResult) -> f64 {
 #[test]
 fn each_method_spends_the_evaluations_it_declares() {
     // A pendulum at a small step, where the implicit solve takes its typical count. The count
-    // tells the methods apart (1, 3, 4 and ~2 today), so a method sent down another's loop
+    // tells most methods apart (1, 3, 7, 9, 10, 17, 35 for the splittings; 4 and ~2, ~4, ~6
+    // for the others), so a method sent down another's loop
     // fails here even where its order would not give it away.
     let n = 10_000;
     let dt = 1e-3;

@@ -6,6 +6,7 @@
 // float comparisons are intended.
 #![allow(clippy::float_cmp)]
 
+mod coefficients;
 mod convergence;
 mod dop853;
 mod energy_behaviour;

@@ -2,7 +2,11 @@
 
 use crate::fixtures::NonSeparable;
 use physicskit::classical::examples::Pendulum;
-use physicskit::classical::integrators::{FirstOrder, ImplicitMidpoint, SplittingStepper};
+use physicskit::classical::integrators::splitting::Coefficients;
+use physicskit::classical::integrators::{
+    AdaptiveStepper, Dispatch, FieldStepper, FirstOrder, ImplicitMidpoint, SplittingStepper,
+    Stepper,
+};
 use physicskit::classical::{DynamicalSystem, Method};
 
 const N: usize = 1000;
@@ -100,4 +104,76 @@ fn rk4_is_not_reversible() {
         rk4.step(&field, i as f64 * DT, &mut y, -DT).unwrap();
     }
     assert!(relative_distance(&y, &start) > 100.0 * TOLERANCE);
+}
+
+/// Round trips with a method's stepper, on the pendulum (every method) and, for the implicit
+/// methods, on a non-separable Hamiltonian: the relative distance from the start of each.
+struct RoundTrip;
+
+/// `N` steps forward and `N` back from `start`: the relative distance from `start`.
+fn there_and_back<P: ?Sized>(stepper: &mut impl Stepper<P>, problem: &P, start: &[f64]) -> f64 {
+    let mut y = start.to_vec();
+    for i in 0..N {
+        stepper.step(problem, i as f64 * DT, &mut y, DT).unwrap();
+    }
+    for i in (1..=N).rev() {
+        stepper.step(problem, i as f64 * DT, &mut y, -DT).unwrap();
+    }
+    relative_distance(&y, start)
+}
+
+impl Dispatch for RoundTrip {
+    type Output = Vec<(&'static str, f64)>;
+
+    fn splitting<const S: usize>(self, _: Method, weights: Coefficients<S>) -> Self::Output {
+        let pendulum = Pendulum::new(2.0, 0.3, 1.0).unwrap();
+        let mut stepper = SplittingStepper::new(weights, 1);
+        vec![(
+            "pendulum",
+            there_and_back(&mut stepper, &pendulum, pendulum.state()),
+        )]
+    }
+
+    fn explicit_rk<St: FieldStepper>(self, _: Method) -> Self::Output {
+        Vec::new()
+    }
+
+    /// Not symplectic, and its steps are not symmetric: nothing to check.
+    fn adaptive<St: AdaptiveStepper>(self, _: Method) -> Self::Output {
+        Vec::new()
+    }
+
+    fn implicit_rk<St: FieldStepper>(self, _: Method) -> Self::Output {
+        let pendulum = Pendulum::new(2.0, 0.3, 1.0).unwrap();
+        let nonsep = NonSeparable::new(0.8, 0.4);
+        vec![
+            (
+                "pendulum",
+                there_and_back(&mut St::new(2), &FirstOrder(&pendulum), pendulum.state()),
+            ),
+            (
+                "non-separable",
+                there_and_back(&mut St::new(2), &FirstOrder(&nonsep), nonsep.state()),
+            ),
+        ]
+    }
+}
+
+#[test]
+fn every_symplectic_method_in_the_table_is_reversible() {
+    // The registry's symplectic methods are all symmetric (their coefficients are palindromes,
+    // methods.rs; Gauss–Legendre tableaus are symmetric), so each one's round trip returns to
+    // the start up to rounding, through its own stepper as the registry dispatches it.
+    let mut checked = 0;
+    for method in Method::ALL.into_iter().filter(|m| m.is_symplectic()) {
+        for (problem, d) in method.dispatch(RoundTrip) {
+            println!("{method} on the {problem}: returned {d:e} away");
+            assert!(
+                d <= TOLERANCE,
+                "{method} on the {problem}: returned {d:e} away"
+            );
+            checked += 1;
+        }
+    }
+    assert!(checked >= 12, "only {checked} round trips");
 }
