@@ -43,7 +43,8 @@ fn max_relative_drift(e: &[f64]) -> f64 {
 }
 
 fn work_precision(quick: bool) -> Result<()> {
-    println!("problem method dt error seconds");
+    // `setting` is the step of a fixed-step method, the tolerance (rtol = atol) of dop853.
+    println!("problem method setting error seconds");
     for problem in Problem::all(quick) {
         let reference = match problem {
             Problem::DoublePendulum { t_end } => double_pendulum_reference(t_end)?,

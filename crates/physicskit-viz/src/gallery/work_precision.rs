@@ -20,7 +20,8 @@ pub(crate) fn render(ctx: &Ctx) -> Result<Demo> {
         "work-precision",
         "15. Work–precision",
         "How much accuracy each integrator buys per second of computing. Each line is one \
-         method, each point one step size (halved from point to point); lower left is better. \
+         method, each point one step size (halved from point to point) or, for the adaptive \
+         dop853, one tolerance (tenfold apart); lower left is better. \
          On the Kepler orbit (e = 0.5, the error is the phase lag after the run against the \
          analytic orbit) and on Hénon–Heiles (the largest energy error over the run), the \
          high-order symplectic compositions (kahan_li8, sofroniou_spaletta10) reach the \
