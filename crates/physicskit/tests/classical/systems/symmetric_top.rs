@@ -36,6 +36,8 @@ fn top(l: f64) -> HeavySymmetricTop {
 }
 
 #[test]
+// The default q is the stored one: the same bits, an exact comparison.
+#[allow(clippy::float_cmp)]
 fn symmetry_axis_is_the_body_z_axis_of_the_z_x_z_rotation() {
     // Body to space: R = Rz(phi) Rx(theta) Rz(psi); the body z axis in space is R e3, its
     // third column. Products of order-1 factors in another order: a few ulps.
