@@ -499,6 +499,43 @@ impl NativeSystem {
             .py()
     }
 
+    /// Unit vector along a top's symmetry axis in space for the configuration `q`.
+    fn symmetry_axis<'py>(&self, py: Python<'py>, q: Arr<'_>) -> PyResult<Array<'py>> {
+        let a = self.caps().symmetry_axis(&to_vec(&q));
+        Ok(array1(
+            py,
+            &self.offer("symmetry_axis", a).and_then(|r| r).py()?,
+        ))
+    }
+
+    /// A rigid body's body-frame angular momentum `(I1 w1, I2 w2, I3 w3)` of `state`.
+    fn body_angular_momentum<'py>(&self, py: Python<'py>, state: Arr<'_>) -> PyResult<Array<'py>> {
+        let l = self.caps().body_angular_momentum(&to_vec(&state));
+        let l = self
+            .offer("body_angular_momentum", l)
+            .and_then(|r| r)
+            .py()?;
+        Ok(array1(py, &l))
+    }
+
+    /// Half-extents of the uniform box of mass `mass` with the body's principal moments.
+    fn inertia_box<'py>(&self, py: Python<'py>, mass: f64) -> PyResult<Array<'py>> {
+        let b = self.caps().inertia_box(mass);
+        Ok(array1(
+            py,
+            &self.offer("inertia_box", b).and_then(|r| r).py()?,
+        ))
+    }
+
+    /// Energies of the separatrices (saddle equilibria), lowest first.
+    fn separatrix_energies<'py>(&self, py: Python<'py>) -> PyResult<Array<'py>> {
+        let e = self.caps().separatrix_energies();
+        Ok(PyArray1::from_vec(
+            py,
+            self.offer("separatrix_energies", e).py()?,
+        ))
+    }
+
     /// Conserved quantities beyond the energy of `state`, sorted.
     fn conserved_quantities<'py>(&self, py: Python<'py>, state: Arr<'_>) -> PyResult<Array<'py>> {
         let c = self.caps().conserved_quantities(&to_vec(&state));

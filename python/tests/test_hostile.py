@@ -413,9 +413,13 @@ def _method_calls(system):
         if hasattr(system, meth):
             f = getattr(system, meth)
             calls += [(meth, "q", lambda v, f=f: f(v, p)), (meth, "p", lambda v, f=f: f(q, v))]
-    if hasattr(system, "positions"):
-        calls.append(("positions", "q", lambda v: system.positions(v)))
-    for meth in ("conserved_quantities", "mode_energies"):
+    for meth in ("positions", "symmetry_axis"):
+        if hasattr(system, meth):
+            f = getattr(system, meth)
+            calls.append((meth, "q", lambda v, f=f: f(v)))
+    if hasattr(system, "inertia_box"):
+        calls.append(("inertia_box", "mass", lambda v: system.inertia_box(v)))
+    for meth in ("conserved_quantities", "mode_energies", "body_angular_momentum"):
         if hasattr(system, meth):
             f = getattr(system, meth)
             calls.append((meth, "state", lambda v, f=f: f(v)))
@@ -436,12 +440,14 @@ def test_hostile_method_arguments(system_name, data):
     calls, state = _method_calls(system)
     label, pname, call = data.draw(st.sampled_from(calls), label="method")
     before = (np.array(system.state, copy=True), system.t)
-    if pname in ("dt", "t", "t0", "t_span", "stride", "rtol", "atol"):
+    if pname in ("dt", "t", "t0", "t_span", "stride", "rtol", "atol", "mass"):
         pool = NONREAL_SCALARS + HUGE_REALS
         if pname == "stride":
             pool = pool + HUGE_INTS + NONINT_NUMBERS + [0, -1]
         if pname in ("rtol", "atol"):
             pool = pool + NONFINITE + [0.0, -1e-8]
+        if pname == "mass":
+            pool = pool + NONFINITE + [0.0, -1.0]
         value = data.draw(st.sampled_from(pool), label="value")
         if value is None and pname in ("t0", "rtol", "atol"):
             return

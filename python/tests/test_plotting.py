@@ -222,6 +222,8 @@ def test_top_axis_on_the_unit_sphere():
     # A unit vector by construction; 1e-12 allows the rounding of sin^2 + cos^2.
     np.testing.assert_allclose(x**2 + y**2 + z**2, 1.0, atol=1e-12)
     np.testing.assert_allclose(z, np.cos(result.q[:, 1]), atol=0)
+    # The library's axis, not a recomputation.
+    np.testing.assert_array_equal(np.column_stack([x, y, z])[-1], top.symmetry_axis(result.q[-1]))
     assert_drawn(line.figure)
     assert "unit sphere" in line.axes.get_zlabel()
 
@@ -237,6 +239,7 @@ def test_polhodes_lie_on_the_angular_momentum_sphere():
         # Implicit midpoint keeps |L|^2 to rounding; 1e-12 relative covers 500 steps of it.
         r2 = top.angular_momentum_squared(run.y[0])
         np.testing.assert_allclose(x**2 + y**2 + z**2, r2, rtol=1e-12)
+        np.testing.assert_array_equal([x[-1], y[-1], z[-1]], top.body_angular_momentum(run.y[-1]))
     assert_drawn(lines[0].figure)
     assert "kg m" in lines[0].axes.get_xlabel()
 
@@ -294,3 +297,35 @@ def test_integer_options_refuse_what_is_not_a_positive_integer(double, bad):
     for name, call in calls.items():
         with pytest.raises(ValueError, match=name):
             call()
+
+
+def test_tumbling_box_has_the_library_shape_or_says_it_has_none():
+    from mpl_toolkits.mplot3d.art3d import Line3D
+
+    for moments, shape in (((1.0, 2.0, 2.5), "box with the body's moments"),
+                           ((1.0, 2.0, 10.0), "cube: no rigid body has these moments")):
+        top = pc.EulerTop([0.1, 1.0, 0.1], I1=moments[0], I2=moments[1], I3=moments[2])
+        result = top.integrate_sampled((0, 0.2), 0.01)
+        anim = pl.animate(top, result, frames=2)
+        ax = anim._fig.axes[0]
+        assert [t.get_text() for t in ax.texts] == [shape]
+        edges = [a for a in ax.get_children() if isinstance(a, Line3D)]
+        assert len(edges) == 12
+        if shape.startswith("box"):  # (before rendering: frame 0 is drawn)
+            # Frame 0 at the identity orientation: the box's extent along each axis is the
+            # library's half-extents, scaled so that the largest is 1.
+            half = top.inertia_box()
+            pts = np.concatenate([np.array(e.get_data_3d()).T for e in edges])
+            np.testing.assert_allclose(pts.max(axis=0), half / half.max(), rtol=1e-15)
+        assert anim.to_jshtml().count("data:image/png;base64") == 2
+
+
+def test_hoop_animation_draws_the_library_positions():
+    bead = pc.BeadOnRotatingHoop(1.0, 0.5, R=1.5)
+    result = bead.integrate_sampled((0, 0.5), 0.01)
+    anim = pl.animate(bead, result, frames=3)
+    assert anim.to_jshtml().count("data:image/png;base64") == 3
+    # After rendering, the bead sits where the last frame put it.
+    bead_line = [ln for ln in anim._fig.axes[0].lines if ln.get_marker() == "o"][0]
+    xy = bead_line.get_xydata()[0]
+    np.testing.assert_array_equal(xy, bead.positions(result.q[anim.frame_indices[-1]]))

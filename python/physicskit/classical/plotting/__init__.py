@@ -3,8 +3,9 @@
 Importing this module imports matplotlib (``import physicskit.classical`` does not); without
 matplotlib it raises ImportError naming the extra to install. Every function takes an optional
 ``ax`` (where to draw; a new figure otherwise) and returns what it drew. The numbers drawn are
-the library's: energies from ``result.energy``, modal energies, the LRL vector, phase-space
-areas, bob positions and rotation matrices from the system's own methods.
+the library's: energies from ``result.energy``; modal energies, the LRL vector, phase-space
+areas, separatrix energies, bob positions, rotation matrices, the heavy top's symmetry axis,
+the Euler top's body angular momentum and box shape from the system's own methods.
 
 =========================  ===============================================================
 ``plot_result``            ``q(t)``, ``p(t)`` (or ``qdot``) and the relative energy error

@@ -71,10 +71,9 @@ def _bobs(system: Any, result: Any, idx: np.ndarray, ax: Any, trail: int) -> _Up
 
 
 def _hoop(system: Any, result: Any, idx: np.ndarray, ax: Any, trail: int) -> _Update:
-    """The bead on its hoop, seen in the hoop's rotating frame: ``(R sin theta, -R cos theta)``."""
+    """The bead on its hoop, seen in the hoop's rotating frame (the system's ``positions``)."""
     radius = system.R
-    th = result.q[idx, 0]
-    xy = np.column_stack([radius * np.sin(th), -radius * np.cos(th)])
+    xy = np.array([system.positions(result.q[i]) for i in idx]).reshape(-1, 2)
     ring = np.linspace(0.0, 2.0 * np.pi, 200)
     ax.plot(radius * np.cos(ring), radius * np.sin(ring), color="0.5", lw=2)
     ax.plot([0, 0], [-1.2 * radius, 1.2 * radius], "k:", lw=0.8)
@@ -173,11 +172,17 @@ _EDGES = [(a, b) for a in range(8) for b in range(a + 1, 8) if bin(a ^ b).count(
 
 
 def _box(system: Any, result: Any, idx: np.ndarray, ax: Any) -> _Update:
-    """A uniform box with the top's principal moments (half-sides ``a_1^2 ∝ I2 + I3 - I1``
-    ...), turned by the system's ``rotation_matrix`` of each state."""
-    inertia = np.array([system.I1, system.I2, system.I3])
-    half_sq = np.maximum(inertia.sum() - 2.0 * inertia, 1e-3 * inertia.sum())
-    half = np.sqrt(half_sq / half_sq.max())
+    """The uniform box with the top's principal moments (the system's ``inertia_box``, scaled
+    to unit size; a plate where one half-extent is zero), turned by the system's
+    ``rotation_matrix`` of each state. Moments that no rigid body has (one above the sum of
+    the other two) have no box: a cube shows the orientation, and the axes say so."""
+    try:
+        half = system.inertia_box()
+        shape = "box with the body's moments"
+    except ValueError:
+        half = np.ones(3)
+        shape = "cube: no rigid body has these moments"
+    half = half / half.max()
     corners = np.array([[(c >> k & 1) * 2 - 1 for k in range(3)] for c in range(8)]) * half
     rots = np.array([system.rotation_matrix(result.y[i]) for i in idx])
     lines = [ax.plot([], [], [], color="C0", lw=1.5)[0] for _ in _EDGES]
@@ -185,6 +190,7 @@ def _box(system: Any, result: Any, idx: np.ndarray, ax: Any) -> _Update:
     ax.set_ylim(-1.2, 1.2)
     ax.set_zlim(-1.2, 1.2)
     ax.set_box_aspect((1, 1, 1))
+    ax.text2D(0.02, 0.95, shape, transform=ax.transAxes, fontsize="small")
     ax.set_xlabel("$x$ (space frame)")
     ax.set_ylabel("$y$ (space frame)")
     ax.set_zlabel("$z$ (space frame)")
@@ -203,7 +209,7 @@ def _top(system: Any, result: Any, idx: np.ndarray, ax: Any, trail: int) -> _Upd
     """The heavy top's symmetry axis from the pivot, its tip tracing the unit sphere."""
     from .rigid import _sphere, axis_tip
 
-    tip = axis_tip(result)[idx]
+    tip = axis_tip(system, result)[idx]
     _sphere(ax, 1.0)
     (stick,) = ax.plot([], [], [], color="C0", lw=3)
     (path,) = ax.plot([], [], [], color="C3", lw=1)

@@ -35,13 +35,11 @@ def _pendulum_energy_grid(system: Any, qq: np.ndarray, pp: np.ndarray) -> np.nda
 
 
 def _separatrix_levels(system: Any) -> list[float]:
-    """Energies of the equilibria ``q = 0`` and ``q = pi`` at rest (the library's energy
-    function): the separatrix passes through whichever is a saddle (the top always; the
-    hoop's bottom too above the critical rotation rate). A level at a minimum draws nothing."""
-    qq = np.array([[0.0, np.pi]])
-    pp = np.zeros_like(qq)
-    e = _pendulum_energy_grid(system, qq, pp)
-    return sorted(set(float(v) for v in e.ravel())) if e is not None else []
+    """The system's ``separatrix_energies`` (the levels of its saddle equilibria), or none
+    for a system without them."""
+    if not hasattr(system, "separatrix_energies"):
+        return []
+    return [float(v) for v in system.separatrix_energies()]
 
 
 def draw_separatrix(ax: Any, system: Any, linewidth: float = 1.0) -> Any:
@@ -58,7 +56,8 @@ def draw_separatrix(ax: Any, system: Any, linewidth: float = 1.0) -> Any:
     nx, ny = _GRID if isinstance(system, PendulumSwarm) else _GRID_PER_POINT
     qq, pp = np.meshgrid(np.linspace(x0, x1, nx), np.linspace(y0, y1, ny))
     e = _pendulum_energy_grid(system, qq, pp)
-    assert e is not None  # levels exist only for the pendulum family
+    if e is None:  # a separatrix, but no vectorized energy to contour it with
+        return None
     inside = [v for v in levels if e.min() < v < e.max()]
     cs = None
     if inside:

@@ -17,13 +17,10 @@ def _sphere(ax: Any, radius: float) -> Any:
                              radius * np.cos(v), color="0.75", linewidth=0.4, alpha=0.6)
 
 
-def axis_tip(result: Any) -> np.ndarray:
-    """Symmetry-axis direction in space of a heavy top's run, shape ``(n, 3)``: the third
-    column of the z-x-z rotation matrix, ``(sin theta sin phi, -sin theta cos phi, cos
-    theta)`` (Goldstein, *Classical Mechanics*, 3rd ed., eq. 4.47)."""
-    phi, theta = result.q[:, 0], result.q[:, 1]
-    return np.column_stack([np.sin(theta) * np.sin(phi), -np.sin(theta) * np.cos(phi),
-                            np.cos(theta)])
+def axis_tip(system: Any, result: Any) -> np.ndarray:
+    """The heavy top's symmetry-axis direction in space at each stored sample, shape
+    ``(n, 3)``: the system's ``symmetry_axis`` of each sample's Euler angles."""
+    return np.array([system.symmetry_axis(q) for q in result.q]).reshape(-1, 3)
 
 
 def top_axis(system: Any, result: Any, *, ax: Any = None) -> Any:
@@ -38,7 +35,7 @@ def top_axis(system: Any, result: Any, *, ax: Any = None) -> Any:
         raise ValueError(f"top_axis draws a HeavySymmetricTop, got {type(system).__name__}")
     ax = new_axes(ax, projection="3d")
     _sphere(ax, 1.0)
-    tip = axis_tip(result)
+    tip = axis_tip(system, result)
     (line,) = ax.plot(tip[:, 0], tip[:, 1], tip[:, 2], color="C3", lw=1.0, label="axis tip")
     ax.plot([0, 0], [0, 0], [-1.1, 1.1], color="k", lw=0.6, ls=":")
     ax.scatter([tip[0, 0]], [tip[0, 1]], [tip[0, 2]], color="k", s=12, label="start")
@@ -52,10 +49,11 @@ def top_axis(system: Any, result: Any, *, ax: Any = None) -> Any:
 
 def polhodes(system: Any, results: Any, *, labels: Sequence[str] | None = None,
              ax: Any = None) -> list[Any]:
-    """Polhodes: the body-frame angular momentum ``L = (I1 w1, I2 w2, I3 w3)`` of each run
-    of an ``EulerTop`` on the sphere ``|L| = const`` (its radius from the system's
-    ``angular_momentum_squared`` at the first run's start). Closed loops round the largest
-    and smallest axes, the separatrix through the intermediate one (the tennis-racket axis).
+    """Polhodes: the body-frame angular momentum ``L = (I1 w1, I2 w2, I3 w3)`` (the system's
+    ``body_angular_momentum``) of each run of an ``EulerTop`` on the sphere ``|L| = const``
+    (its radius from the system's ``angular_momentum_squared`` at the first run's start).
+    Closed loops round the largest and smallest axes, the separatrix through the
+    intermediate one (the tennis-racket axis).
 
     Returns one ``Line3D`` per run.
     """
@@ -68,10 +66,9 @@ def polhodes(system: Any, results: Any, *, labels: Sequence[str] | None = None,
     ax = new_axes(ax, projection="3d")
     radius = float(np.sqrt(system.angular_momentum_squared(runs[0].y[0])))
     _sphere(ax, radius)
-    inertia = np.array([system.I1, system.I2, system.I3])
     lines = []
     for r, c, name in zip(runs, orbit_colours(len(runs)), names):
-        body_l = r.y[:, :3] * inertia
+        body_l = np.array([system.body_angular_momentum(s) for s in r.y]).reshape(-1, 3)
         (line,) = ax.plot(body_l[:, 0], body_l[:, 1], body_l[:, 2], color=c, lw=1.2,
                           label=name)
         lines.append(line)

@@ -71,6 +71,11 @@ class PendulumSwarm(HamiltonianSystem):
         """Convex-hull area of the ``(q, p)`` point cloud: a proxy of the occupied area."""
         return self._native.phase_space_area(*self._qp(q, p))
 
+    def separatrix_energies(self) -> np.ndarray:
+        """Energy of each pendulum's separatrix, ``[g/l]``: the level of the inverted
+        pendulum at rest (the saddle), between libration below and rotation above."""
+        return self._native.separatrix_energies()
+
 
 def pendulum_action_angle(E: float, g_over_l: float = 1.0):
     """Action ``J(E)`` and period ``T(E)`` of a librating pendulum orbit

@@ -73,6 +73,19 @@ class BeadOnRotatingHoop(LagrangianSystem):
         """Return the conserved energy (Jacobi integral) of ``state``."""
         return _energy(self, state)
 
+    def positions(self, q=None) -> np.ndarray:
+        """Bead position ``(x, y) = (R sin theta, -R cos theta)`` in the hoop's rotating plane
+        for ``q = (theta,)`` (default: the current ``q``); hoop centre at the origin, ``y``
+        up."""
+        q = self.q if q is None else q
+        return self._native.positions(as_vector("q", q, self.ndof))
+
+    def separatrix_energies(self) -> np.ndarray:
+        """Energies of the separatrices, lowest first: the levels of the saddle equilibria
+        (the top, ``2 g R``, while ``R omega^2 + g > 0``; the bottom, ``0``, above the
+        critical rate ``omega_c = sqrt(g/R)``)."""
+        return self._native.separatrix_energies()
+
 
 class CoupledOscillators(LagrangianSystem):
     """``N`` equal masses joined by equal linear springs between two fixed walls.

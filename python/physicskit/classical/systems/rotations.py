@@ -63,6 +63,19 @@ class EulerTop(ODESystem):
         """Body-to-world rotation matrix, shape (3, 3), from the state's quaternion."""
         return self._native.rotation_matrix(self._state_arg(state))
 
+    def body_angular_momentum(self, state: Optional[np.ndarray] = None) -> np.ndarray:
+        """Body-frame angular momentum ``L = (I1 w1, I2 w2, I3 w3)``, shape (3,), of ``state``
+        (default: the current state). Its tip traces a polhode on the sphere ``|L|^2 =
+        const``; ``rotation_matrix(state) @ L`` is the conserved space-frame vector."""
+        return self._native.body_angular_momentum(self._state_arg(state))
+
+    def inertia_box(self, mass: float = 1.0) -> np.ndarray:
+        """Half-extents ``(a1, a2, a3)``, shape (3,), of the uniform box of mass ``mass`` with
+        the principal moments ``I1, I2, I3`` (``a1^2 = 3 (I2 + I3 - I1) / (2 mass)``): the
+        shape to draw the body as. ValueError for moments no rigid body has (one above the
+        sum of the other two)."""
+        return self._native.inertia_box(as_scalar("mass", mass))
+
 
 class HeavySymmetricTop(LagrangianSystem):
     """Symmetric top with a fixed point, under gravity; ``q = (phi, theta, psi)`` z-x-z Euler
@@ -95,6 +108,13 @@ class HeavySymmetricTop(LagrangianSystem):
     def precession_nutation_rate(self, state: Optional[np.ndarray] = None):
         """Instantaneous ``(phidot, thetadot)``: precession and nutation rates."""
         return self._native.precession_nutation_rate(self._state_arg(state))
+
+    def symmetry_axis(self, q=None) -> np.ndarray:
+        """Unit vector along the symmetry axis in space (z up), shape (3,), for the Euler
+        angles ``q = (phi, theta, psi)`` (default: the current ``q``):
+        ``(sin theta sin phi, -sin theta cos phi, cos theta)``."""
+        q = self.q if q is None else q
+        return self._native.symmetry_axis(as_vector("q", q, self.ndof))
 
 
 def effective_potential_symmetric_top(theta, p_phi: float, p_psi: float, I1: float, I3: float,

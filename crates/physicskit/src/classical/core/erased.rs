@@ -103,11 +103,36 @@ pub trait Capabilities {
         let _ = state;
         None
     }
+
+    /// The unit vector along a top's symmetry axis, in space, for the configuration `q`.
+    fn symmetry_axis(&self, q: &[f64]) -> Option<Result<[f64; 3]>> {
+        let _ = q;
+        None
+    }
+
+    /// A rigid body's angular momentum in the body frame, `(I1 w1, I2 w2, I3 w3)`.
+    fn body_angular_momentum(&self, state: &[f64]) -> Option<Result<[f64; 3]>> {
+        let _ = state;
+        None
+    }
+
+    /// Half-extents (m) of the uniform box of mass `mass` (kg) whose principal moments are the
+    /// body's: the shape to draw it as.
+    fn inertia_box(&self, mass: f64) -> Option<Result<[f64; 3]>> {
+        let _ = mass;
+        None
+    }
+
+    /// Energies of the separatrices of a one-degree-of-freedom system: the energy levels of
+    /// its unstable (saddle) equilibria, lowest first.
+    fn separatrix_energies(&self) -> Option<Vec<f64>> {
+        None
+    }
 }
 
 /// The names of the [`Capabilities`] accessors, in declaration order, for listings (`list
 /// --json`, the lab): [`offered`] says which of them a system has.
-pub const CAPABILITY_NAMES: [&str; 12] = [
+pub const CAPABILITY_NAMES: [&str; 16] = [
     "positions",
     "lrl_vector",
     "angular_momentum",
@@ -120,6 +145,10 @@ pub const CAPABILITY_NAMES: [&str; 12] = [
     "angular_momentum_squared",
     "precession_nutation_rate",
     "conserved_quantities",
+    "symmetry_axis",
+    "body_angular_momentum",
+    "inertia_box",
+    "separatrix_energies",
 ];
 
 /// Which [`CAPABILITY_NAMES`] `system` offers, asked at its current state.
@@ -144,6 +173,10 @@ pub fn offered(system: &dyn DynSystem) -> Vec<&'static str> {
         c.angular_momentum_squared(state).is_some(),
         c.precession_nutation_rate(state).is_some(),
         c.conserved_quantities(state).is_some(),
+        c.symmetry_axis(q).is_some(),
+        c.body_angular_momentum(state).is_some(),
+        c.inertia_box(1.0).is_some(),
+        c.separatrix_energies().is_some(),
     ];
     CAPABILITY_NAMES
         .into_iter()

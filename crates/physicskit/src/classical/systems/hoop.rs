@@ -191,6 +191,29 @@ impl BeadOnRotatingHoop {
     pub fn engine(&self) -> &LagrangianEngine<HoopParams> {
         &self.engine
     }
+
+    /// Energies of the separatrices, lowest first: the levels of the saddle equilibria.
+    ///
+    /// The equilibria at rest are `sin theta = 0` and `cos theta = g / (R omega^2)`. With the
+    /// effective potential `V = -R^2 omega^2 sin^2(theta) / 2 + g R (1 - cos theta)`,
+    /// `V'' = -R^2 omega^2 cos 2theta + g R cos theta`: the top (`V = 2 g R`) is a saddle when
+    /// `R omega^2 + g > 0`, the bottom (`V = 0`) when `R omega^2 > g` (above the critical
+    /// rate), and the off-axis pair never (`V'' = R^2 omega^2 sin^2 theta > 0` there). A
+    /// degenerate equilibrium (`V'' = 0`, at the bifurcation) is not counted.
+    pub fn separatrix_energies(&self) -> Vec<f64> {
+        let HoopParams { r, omega, g } = *self.params();
+        let spin = r * omega * omega;
+        let mut levels = Vec::with_capacity(2);
+        if spin > g {
+            levels.push(0.0);
+        }
+        if spin + g > 0.0 {
+            levels.push(2.0 * g * r);
+        }
+        levels.sort_by(f64::total_cmp);
+        levels.dedup();
+        levels
+    }
 }
 
 crate::impl_lagrangian_dynamics!(BeadOnRotatingHoop);
@@ -200,6 +223,9 @@ impl Capabilities for BeadOnRotatingHoop {
         // The bead in the hoop's rotating plane: (R sin theta, -R cos theta).
         let r = self.params().r;
         Some(check_len("q", q, 1).map(|()| vec![r * q[0].sin(), -r * q[0].cos()]))
+    }
+    fn separatrix_energies(&self) -> Option<Vec<f64>> {
+        Some(BeadOnRotatingHoop::separatrix_energies(self))
     }
 }
 

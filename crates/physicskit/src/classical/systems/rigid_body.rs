@@ -144,6 +144,48 @@ impl EulerTop {
         Ok((0..3).map(|i| (self.inertia[i] * s[i]).powi(2)).sum())
     }
 
+    /// The angular momentum in the body frame, `L = (I1 w1, I2 w2, I3 w3)` (kg m^2/s), of
+    /// `state` (the current state if `None`). Its tip traces the polhodes on the sphere
+    /// `|L|^2 = const`; `R L` (with [`EulerTop::rotation_matrix`]) is the conserved space-frame
+    /// angular momentum.
+    ///
+    /// # Errors
+    /// [`Error::DimensionMismatch`] unless `state` has length 7.
+    pub fn body_angular_momentum(&self, state: Option<&[f64]>) -> Result<[f64; 3]> {
+        let s = state.unwrap_or(self.phase.state());
+        state_len(s)?;
+        Ok([0, 1, 2].map(|i| self.inertia[i] * s[i]))
+    }
+
+    /// Half-extents `(a1, a2, a3)` (m) of the uniform box of mass `mass` (kg) whose principal
+    /// moments are this body's, the shape to draw it as. A box of half-extents `a_i` has
+    /// `I1 = M (a2^2 + a3^2) / 3` and cyclically, so `a1^2 = 3 (I2 + I3 - I1) / (2 M)`. The
+    /// default moments `(1, 2, 3)` are those of a flat plate (`a3 = 0`).
+    ///
+    /// # Errors
+    /// [`Error::InvalidParameter`] for a mass that is not finite and positive, or moments that
+    /// break the triangle inequality `I_i <= I_j + I_k` (no rigid body has them).
+    pub fn inertia_box(&self, mass: f64) -> Result<[f64; 3]> {
+        check_positive("mass", mass)?;
+        let sum: f64 = self.inertia.iter().sum();
+        // `sum - 2 I_i` rounds with an error of a few ulps of `sum`: within that it is a plate.
+        let slack = 4.0 * f64::EPSILON * sum;
+        let mut half = [0.0; 3];
+        for (i, (a, &moment)) in half.iter_mut().zip(&self.inertia).enumerate() {
+            let excess = sum - 2.0 * moment;
+            if excess < -slack {
+                return Err(Error::invalid(
+                    ["I1", "I2", "I3"][i],
+                    moment,
+                    "exceeds the sum of the other two moments: no rigid body (so no box) has \
+                     these moments",
+                ));
+            }
+            *a = (1.5 * excess.max(0.0) / mass).sqrt();
+        }
+        Ok(half)
+    }
+
     /// The body-to-world rotation matrix (row-major) of the quaternion in `state` (the current
     /// state if `None`): `v_world = R v_body`. The quaternion is normalized first, so the
     /// result is a rotation even after a non-norm-preserving integrator (`rk4`).
@@ -279,6 +321,12 @@ impl Capabilities for EulerTop {
     }
     fn angular_momentum_squared(&self, state: &[f64]) -> Option<Result<f64>> {
         Some(EulerTop::angular_momentum_squared(self, Some(state)))
+    }
+    fn body_angular_momentum(&self, state: &[f64]) -> Option<Result<[f64; 3]>> {
+        Some(EulerTop::body_angular_momentum(self, Some(state)))
+    }
+    fn inertia_box(&self, mass: f64) -> Option<Result<[f64; 3]>> {
+        Some(EulerTop::inertia_box(self, mass))
     }
 }
 

@@ -341,6 +341,10 @@ impl Capabilities for PendulumSwarm {
     fn phase_space_area(&self, q: &[f64], p: &[f64]) -> Option<Result<f64>> {
         Some(PendulumSwarm::phase_space_area(self, q, p))
     }
+    fn separatrix_energies(&self) -> Option<Vec<f64>> {
+        // Each pendulum's one saddle, inverted at rest: H_i(pi, 0) = g/l.
+        Some(vec![self.g_over_l])
+    }
 }
 
 const G_OVER_L: P = P::scalar(

@@ -304,20 +304,36 @@ impl HeavySymmetricTop {
     pub fn engine(&self) -> &LagrangianEngine<SymmetricTopParams> {
         &self.engine
     }
+
+    /// The unit vector along the symmetry axis, in the space frame (z up), for the Euler
+    /// angles `q = (phi, theta, psi)` (the current ones if `None`): the third column of the
+    /// z-x-z rotation matrix (Goldstein, 3rd ed., eq. 4.47),
+    /// `(sin theta sin phi, -sin theta cos phi, cos theta)`. `psi` (the spin) does not move it.
+    ///
+    /// # Errors
+    /// [`Error::DimensionMismatch`] unless `q` has length 3.
+    pub fn symmetry_axis(&self, q: Option<&[f64]>) -> Result<[f64; 3]> {
+        let q = q.unwrap_or(&self.phase.state()[..3]);
+        check_len("q", q, 3)?;
+        let (sp, cp) = q[0].sin_cos();
+        let (st, ct) = q[1].sin_cos();
+        Ok([st * sp, -st * cp, ct])
+    }
 }
 
 crate::impl_lagrangian_dynamics!(HeavySymmetricTop);
 
 impl Capabilities for HeavySymmetricTop {
     fn positions(&self, q: &[f64]) -> Option<Result<Vec<f64>>> {
-        // The tip of the symmetry axis at the centre of mass, pivot at the origin, z up:
-        // l (sin theta sin phi, -sin theta cos phi, cos theta).
+        // The centre of mass, on the symmetry axis at distance l from the pivot (the origin).
         let l = self.params().l;
-        Some(check_len("q", q, 3).map(|()| {
-            let (sp, cp) = q[0].sin_cos();
-            let (st, ct) = q[1].sin_cos();
-            vec![l * st * sp, -l * st * cp, l * ct]
-        }))
+        Some(
+            self.symmetry_axis(Some(q))
+                .map(|a| a.map(|x| l * x).to_vec()),
+        )
+    }
+    fn symmetry_axis(&self, q: &[f64]) -> Option<Result<[f64; 3]>> {
+        Some(HeavySymmetricTop::symmetry_axis(self, Some(q)))
     }
     fn precession_nutation_rate(&self, state: &[f64]) -> Option<Result<(f64, f64)>> {
         Some(HeavySymmetricTop::precession_nutation_rate(

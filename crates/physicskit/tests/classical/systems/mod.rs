@@ -4,11 +4,13 @@
 mod chains;
 mod elastic_pendulum;
 mod henon_heiles;
+mod hoop;
 mod kepler;
 mod lagrangian;
 mod projectile;
 mod rigid_body;
 mod sizes;
 mod swarm;
+mod symmetric_top;
 mod toda;
 mod validation;

@@ -2,6 +2,7 @@
 
 use std::f64::consts::PI;
 
+use physicskit::classical::core::erased::Capabilities;
 use physicskit::classical::systems::{convex_hull_area, polygon_area, PendulumSwarm};
 use physicskit::classical::{HamiltonianSystem, Method};
 
@@ -130,4 +131,18 @@ fn the_separatrix_has_the_energy_of_the_unstable_equilibrium() {
             "{e:?}"
         );
     }
+}
+
+#[test]
+fn separatrix_energy_is_that_of_the_inverted_pendulum() {
+    // H_i at (q, p) = (pi, 0) from the system's own energy, and the branch through it (the
+    // separatrix_momentum above) has the same level: one rounding of g/l cos(pi) apart.
+    let swarm = PendulumSwarm::new(&[0.1, 0.2], &[0.0, 0.0], 2.5).unwrap();
+    let levels = swarm.separatrix_energies().unwrap();
+    let top = swarm.per_particle_energy(&[PI, PI], &[0.0, 0.0]).unwrap();
+    assert_eq!(levels.len(), 1);
+    assert!(
+        (levels[0] - top[0]).abs() < 1e-15 * levels[0],
+        "{levels:?} vs {top:?}"
+    );
 }
