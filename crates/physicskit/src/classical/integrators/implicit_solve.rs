@@ -675,7 +675,7 @@ impl<const S: usize, T> Report for ImplicitRk<S, T> {
     }
 }
 
-impl<const S: usize, T: ButcherTableau<S>> FieldStepper for ImplicitRk<S, T> {
+impl<const S: usize, T: ButcherTableau<S> + 'static> FieldStepper for ImplicitRk<S, T> {
     fn new(dim: usize) -> Self {
         ImplicitRk::new(dim)
     }

@@ -31,6 +31,7 @@ pub mod driver;
 pub mod ensemble;
 pub mod field;
 pub mod implicit_solve;
+pub mod session;
 pub mod splitting;
 pub mod stepper;
 
@@ -39,5 +40,6 @@ pub use field::{Canonical, FirstOrder, VectorField};
 pub use implicit_midpoint::ImplicitMidpoint;
 pub use implicit_solve::{ButcherTableau, ImplicitRk, SolverSettings, SolverStats, Tableau};
 pub use rk4::Rk4;
+pub use session::{Refused, Session};
 pub use splitting::{SplittingStepper, VerletStepper, Yoshida4Stepper};
 pub use stepper::{Dispatch, FieldStepper, Report, Stepper};

@@ -66,7 +66,7 @@ pub trait Stepper<P: ?Sized>: Report {
 /// [`ExplicitRk`](crate::classical::core::method::Scheme::ExplicitRk) and
 /// [`ImplicitRk`](crate::classical::core::method::Scheme::ImplicitRk) kinds. Every
 /// `FieldStepper` is a [`Stepper`] of every vector field.
-pub trait FieldStepper: Report + Sized {
+pub trait FieldStepper: Report + Sized + 'static {
     /// A stepper with its work buffers for states of `dim` components.
     fn new(dim: usize) -> Self;
 

@@ -44,7 +44,7 @@
 use crate::classical::core::catalog::{
     Default as D, Family, Length, ParamSpec as P, Range, SystemEntry,
 };
-use crate::classical::core::erased::{Capabilities, Lagrangian as Erased};
+use crate::classical::core::erased::{fill, Capabilities, Lagrangian as Erased};
 use crate::classical::core::error::check_len;
 use crate::classical::core::error::{check_finite_scalar, check_positive};
 use crate::classical::core::linalg::negligible_pivot;
@@ -309,14 +309,14 @@ impl HeavySymmetricTop {
 crate::impl_lagrangian_dynamics!(HeavySymmetricTop);
 
 impl Capabilities for HeavySymmetricTop {
-    fn positions(&self, q: &[f64]) -> Option<Result<Vec<f64>>> {
+    fn positions_into(&self, q: &[f64], out: &mut Vec<f64>) -> Option<Result<()>> {
         // The tip of the symmetry axis at the centre of mass, pivot at the origin, z up:
         // l (sin theta sin phi, -sin theta cos phi, cos theta).
         let l = self.params().l;
         Some(check_len("q", q, 3).map(|()| {
             let (sp, cp) = q[0].sin_cos();
             let (st, ct) = q[1].sin_cos();
-            vec![l * st * sp, -l * st * cp, l * ct]
+            fill(out, &[l * st * sp, -l * st * cp, l * ct]);
         }))
     }
     fn precession_nutation_rate(&self, state: &[f64]) -> Option<Result<(f64, f64)>> {

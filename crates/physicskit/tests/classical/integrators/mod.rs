@@ -15,3 +15,4 @@ mod invariants;
 mod lagrangian_path;
 mod methods;
 mod reversibility;
+mod session;
