@@ -49,7 +49,7 @@ const sceneInk = (page) => page.evaluate(() => {
 
 const page = await open();
 const systems = await page.evaluate(() => window.physicskitLab.app.catalogue.systems.map((s) => [s.name, s.default_method]));
-const SHOTS = ["double-pendulum", "henon-heiles", "pendulum-swarm"];
+const SHOTS = ["double-pendulum", "henon-heiles", "pendulum-swarm", "heavy-top"];
 for (const [name, method] of systems) {
   await page.evaluate((n) => window.physicskitLab.select(n), name);
   const before = await sceneInk(page);
