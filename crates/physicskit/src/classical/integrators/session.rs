@@ -2,7 +2,7 @@
 //! and buffers kept between calls; for front ends that advance a run frame by frame (the
 //! browser lab) without allocating per frame.
 //!
-//! [`DynSystem::start`](crate::classical::core::DynSystem::start) hands the system to a
+//! [`DynSystem::start`] hands the system to a
 //! session for one method and step `dt`. The session is generic over the concrete system and
 //! stepper inside (the same [`Method::dispatch`](crate::classical::Method::dispatch) as
 //! `integrate` chooses the stepper), and erased once, at construction: a frame costs one
