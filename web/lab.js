@@ -645,6 +645,9 @@ function selectSystem(name, params = {}, build = true) {
   app.params = { ...params };
   const note = app.entry.note ? ` ${app.entry.note}` : "";
   $("caption").textContent = `${app.entry.summary}.${note}`;
+  // The physics paragraph: the gallery's text for this system, from the catalogue JSON.
+  $("physics").textContent = app.entry.physics ?? "";
+  $("about").hidden = !app.entry.physics;
   fillParams();
   setControlValues();
   // A new system starts from its own default method (the catalogue's).
