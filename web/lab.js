@@ -2,7 +2,8 @@
 // --json` prints, read from the WebAssembly module), a frame loop stepping the Rust
 // integrators, and the views: the scene with trails, a phase-space panel, the energy error
 // on a log scale and, for two-degree-of-freedom separable Hamiltonians, a Poincaré section
-// that launches orbits where it is clicked. Nothing here names a system or a method.
+// that launches orbits where it is clicked. Nothing here names a system or a method, but for
+// the one system whose section is shown unasked (SECTION_BY_DEFAULT).
 import { load } from "./physicskit.js";
 
 const $ = (id) => document.getElementById(id);
@@ -103,8 +104,11 @@ function setControlValues() {
 
 function fillMethods(keep) {
   const sel = $("method");
-  sel.replaceChildren(...app.entry.methods.map((m) => new Option(m, m)));
-  sel.value = app.entry.methods.includes(keep) ? keep : app.entry.default_method;
+  // The lab steps frame by frame, which an adaptive method (dop853: it steps onto the end of a
+  // known span) cannot: only the fixed-step methods are offered.
+  const fixed = app.entry.methods.filter((m) => !app.catalogue.methods.find((x) => x.name === m)?.adaptive);
+  sel.replaceChildren(...fixed.map((m) => new Option(m, m)));
+  sel.value = fixed.includes(keep) ? keep : app.entry.default_method;
   describeMethod();
 }
 
@@ -125,7 +129,15 @@ function rebuildSoon() {
 
 function family() { return app.entry.family; }
 function ndof() { const n = app.lab.state().length; return family() === "ode" ? n : n / 2; }
-function hasSection() { return family() === "hamiltonian" && app.entry.separable && ndof() === 2; }
+// The Poincaré section panel. A section (q2 = 0, p2 > 0) of the 3-D energy surface is a 2-D
+// picture for a separable Hamiltonian of two degrees of freedom, so it is offered (a checkbox)
+// for those only; it is on by default only where it is the picture that matters: Hénon–Heiles,
+// bounded and chaotic at its energies (islands and a chaotic sea). Elsewhere the reader
+// chooses: a Kepler orbit is closed (one crossing, a point; a drifting point when perturbed),
+// a projectile crosses once if ever.
+const SECTION_BY_DEFAULT = new Set(["henon-heiles"]);
+function sectionOffered() { return family() === "hamiltonian" && app.entry.separable && ndof() === 2; }
+function hasSection() { return sectionOffered() && $("section-on").checked; }
 
 function stateLabels() {
   const n = app.lab.state().length;
@@ -151,6 +163,8 @@ function rebuild(state0 = null) {
   // while the same system is rebuilt.
   const same = app.phaseSystem === app.entry.name;
   app.phaseSystem = app.entry.name;
+  if (!same) $("section-on").checked = SECTION_BY_DEFAULT.has(app.entry.name);
+  $("section-choice").hidden = !sectionOffered();
   for (const [id, def] of [["phase-x", 0], ["phase-y", family() === "ode" ? 1 : labels.length / 2]]) {
     const sel = $(id), old = sel.value;
     sel.replaceChildren(...labels.map((l, i) => new Option(l, i)));
@@ -240,9 +254,69 @@ function view(canvas, box, square) {
   };
 }
 
+const SWARM_BANDS = 12;
+
+// The view of 3-D points (a top): turned by AZIMUTH about the vertical, then tilted by
+// ELEVATION towards the viewer; x across, z up. Returns [screen x, screen y, depth].
+const AZIMUTH = 0.6, ELEVATION = 0.35;
+function project3([x, y, z]) {
+  const ca = Math.cos(AZIMUTH), sa = Math.sin(AZIMUTH), ce = Math.cos(ELEVATION), se = Math.sin(ELEVATION);
+  const u = ca * x + sa * y, w = -sa * x + ca * y;
+  return [u, ce * z - se * w, ce * w + se * z];
+}
+
+// The heavy top: the ground's axes and a unit square of floor, the symmetry axis from the
+// pivot to the centre of mass with a disc across it, its shadow on the floor, and the path
+// of the axis tip (the nutation loops).
+function drawTop(c, ctx, tip) {
+  const l = Math.hypot(tip[0], tip[1], tip[2]) || 1;
+  app.sceneBox = { x0: -1.3 * l, x1: 1.3 * l, y0: -0.7 * l, y1: 1.3 * l };
+  const v = view(c, app.sceneBox, true);
+  app.sceneView = v;
+  const P = (p) => { const [x, y] = project3(p); return [v.X(x), v.Y(y)]; };
+  const line = (a, b) => { ctx.beginPath(); ctx.moveTo(...P(a)); ctx.lineTo(...P(b)); ctx.stroke(); };
+  ctx.strokeStyle = "#ccc"; ctx.lineWidth = 1;
+  ctx.beginPath();
+  for (const [a, b] of [[[-l, -l, 0], [l, -l, 0]], [[l, -l, 0], [l, l, 0]], [[l, l, 0], [-l, l, 0]], [[-l, l, 0], [-l, -l, 0]]]) {
+    ctx.moveTo(...P(a)); ctx.lineTo(...P(b));
+  }
+  ctx.stroke();
+  ctx.fillStyle = "#555";
+  for (const [axis, name] of [[[l, 0, 0], "x"], [[0, l, 0], "y"], [[0, 0, l], "z"]]) {
+    ctx.strokeStyle = "#999"; line([0, 0, 0], axis);
+    const [px, py] = P(axis.map((a) => 1.08 * a)); ctx.fillText(name, px - 4, py + 4);
+  }
+  // The tip's path, fading with age.
+  ctx.lineWidth = 1.5;
+  for (let k = 1; k < app.trails.length; k++) {
+    ctx.strokeStyle = `rgba(40, 90, 200, ${0.1 + 0.7 * k / app.trails.length})`;
+    line(app.trails[k - 1], app.trails[k]);
+  }
+  ctx.setLineDash([4, 4]); ctx.strokeStyle = "#aaa"; line([0, 0, 0], [tip[0], tip[1], 0]); ctx.setLineDash([]);
+  ctx.strokeStyle = "#333"; ctx.lineWidth = 3; line([0, 0, 0], tip);
+  // The disc: a circle of radius l/2 about the tip, across the axis.
+  const a = tip.map((x) => x / l);
+  let e1 = [a[1], -a[0], 0];
+  const n1 = Math.hypot(...e1);
+  e1 = n1 > 1e-9 ? e1.map((x) => x / n1) : [1, 0, 0];
+  const e2 = [a[1] * e1[2] - a[2] * e1[1], a[2] * e1[0] - a[0] * e1[2], a[0] * e1[1] - a[1] * e1[0]];
+  ctx.beginPath();
+  for (let k = 0; k <= 48; k++) {
+    const th = (2 * Math.PI * k) / 48, r = 0.5 * l;
+    const p = [0, 1, 2].map((i) => tip[i] + r * (Math.cos(th) * e1[i] + Math.sin(th) * e2[i]));
+    const [x, y] = P(p);
+    if (k) ctx.lineTo(x, y); else ctx.moveTo(x, y);
+  }
+  ctx.fillStyle = "rgba(192, 57, 43, 0.35)"; ctx.fill();
+  ctx.strokeStyle = "#c0392b"; ctx.lineWidth = 2; ctx.stroke();
+  ctx.fillStyle = "#333"; ctx.fillRect(v.X(0) - 4, v.Y(0) - 4, 8, 8);
+  ctx.lineWidth = 1;
+  ctx.fillText("symmetry axis, pivot at the origin; its tip's path: precession and nutation", 8, 20);
+}
+
 function project(p) {
-  // The 3D positions (a top's axis tip) seen from slightly above: x across, z up.
-  if (p.length === 3) return [[p[0] - 0.45 * p[1], p[2] - 0.25 * p[1]]];
+  // The 3D positions (a top's axis tip) as drawTop shows them.
+  if (p.length === 3) { const [x, y] = project3(p); return [[x, y]]; }
   const out = [];
   for (let i = 0; i + 1 < p.length; i += 2) out.push([p[i], p[i + 1]]);
   return out;
@@ -262,6 +336,7 @@ function drawScene() {
   clear(ctx); font(ctx);
   const lab = app.lab, pos = lab.positions(), caps = app.entry.capabilities;
   if (pos.length) {
+    if (pos.length === 3) { drawTop(c, ctx, pos); return; }
     const bodies = project(pos), linked = family() === "lagrangian";
     let box = grow(app.sceneBox, 0, 0);
     // While a body is dragged, and until the next frame, the view does not move under it.
@@ -300,9 +375,14 @@ function drawScene() {
     for (let i = 0; i < n; i++) box = grow(box, s[i], s[n + i]);
     app.sceneBox = box;
     const v = view(c, box, false);
-    for (let i = 0; i < n; i++) {
-      ctx.fillStyle = `hsl(${(300 * i) / n}, 70%, 45%)`;
-      ctx.fillRect(v.X(s[i]) - 1.5, v.Y(s[n + i]) - 1.5, 3, 3);
+    // One path and one fill per colour band (not a fillStyle per member): members keep
+    // their hue along the swarm, in SWARM_BANDS steps.
+    for (let b = 0; b < SWARM_BANDS; b++) {
+      ctx.fillStyle = `hsl(${(300 * b) / SWARM_BANDS}, 70%, 45%)`;
+      ctx.beginPath();
+      const i1 = Math.round(((b + 1) * n) / SWARM_BANDS);
+      for (let i = Math.round((b * n) / SWARM_BANDS); i < i1; i++) ctx.rect(v.X(s[i]) - 1.5, v.Y(s[n + i]) - 1.5, 3, 3);
+      ctx.fill();
     }
     ctx.fillStyle = "#333";
     ctx.fillText(`${n} members: angle (across) and momentum (up)`, 8, 20);
@@ -568,6 +648,9 @@ function selectSystem(name, params = {}, build = true) {
   app.params = { ...params };
   const note = app.entry.note ? ` ${app.entry.note}` : "";
   $("caption").textContent = `${app.entry.summary}.${note}`;
+  // The physics paragraph: the gallery's text for this system, from the catalogue JSON.
+  $("physics").textContent = app.entry.physics ?? "";
+  $("about").hidden = !app.entry.physics;
   fillParams();
   setControlValues();
   // A new system starts from its own default method (the catalogue's).
@@ -612,6 +695,7 @@ async function main() {
   $("large").onchange = () => { document.body.classList.toggle("large", $("large").checked); draw(); };
   $("phase-x").onchange = $("phase-y").onchange = () => { app.phase = []; app.phaseBox = null; record(); draw(); };
   $("section-clear").onclick = () => { app.lab.clearCrossings(); draw(); };
+  $("section-on").onchange = () => rebuild(Array.from(app.lab.state()));
   for (const t of ["pointerdown", "pointermove", "pointerup", "pointercancel"]) $("scene").addEventListener(t, onScenePointer);
   $("section").addEventListener("click", onSectionClick);
   if (!(location.hash && applyHash(location.hash))) selectSystem(app.catalogue.systems[0].name);

@@ -5,6 +5,7 @@
 //   - the energy-error readout against the native run (the text, and the number behind it
 //     within the wasm/native bound of node_compare.mjs);
 //   - the scene canvas is not blank and changes between frames;
+//   - the physics paragraph shown is the catalogue's `physics` text (hidden when none);
 // then: a share link round trip (a dragged start, reopened in a new page, runs to the same
 // bits), one drag of the double pendulum's lower bob, one click on the Hénon–Heiles section,
 // and no console errors. Screenshots of three systems go to the given directory.
@@ -49,7 +50,7 @@ const sceneInk = (page) => page.evaluate(() => {
 
 const page = await open();
 const systems = await page.evaluate(() => window.physicskitLab.app.catalogue.systems.map((s) => [s.name, s.default_method]));
-const SHOTS = ["double-pendulum", "henon-heiles", "pendulum-swarm"];
+const SHOTS = ["double-pendulum", "henon-heiles", "pendulum-swarm", "heavy-top"];
 for (const [name, method] of systems) {
   await page.evaluate((n) => window.physicskitLab.select(n), name);
   const before = await sceneInk(page);
@@ -70,6 +71,11 @@ for (const [name, method] of systems) {
   // A system at rest (the sine-Gordon chain's zero state) has nothing to move.
   const atRest = await page.evaluate(() => window.physicskitLab.app.lab.state().every((x) => x === 0));
   if (after.hash === before.hash && !atRest) fail(`${name}: scene did not change between frames`);
+  // The physics paragraph shown is the catalogue's (the gallery's text for the system, checked
+  // against the rendered gallery in crates/physicskit-viz/tests/gallery.rs), shown only if any.
+  const physics = await page.evaluate(() => window.physicskitLab.app.entry.physics);
+  const shown = await page.locator("#about").isVisible() ? await page.locator("#physics").textContent() : null;
+  if (shown !== physics) fail(`${name}: physics paragraph ${JSON.stringify(shown)?.slice(0, 60)} vs catalogue ${JSON.stringify(physics)?.slice(0, 60)}`);
   console.log(`ok ${name} (${method}): energy error ${readout}, ${after.ink} inked pixels`);
   if (SHOTS.includes(name)) {
     await page.evaluate(() => window.physicskitLab.runFrames(120));

@@ -3,10 +3,11 @@
 //! ```text
 //! {"version": "0.1.0",
 //!  "systems": [{"name", "python", "summary", "family", "separable", "methods": [..],
-//!               "default_method", "note", "capabilities": [..],
+//!               "default_method", "note", "physics", "capabilities": [..],
 //!               "params": [{"name", "kind", "length", "choices", "default",
 //!                           "default_origin", "unit", "range", "help"}, ..]}, ..],
-//!  "methods": [{"name", "order", "symplectic", "separable_only", "evaluations_per_step",
+//!  "methods": [{"name", "order", "symplectic", "separable_only", "adaptive",
+//!               "evaluations_per_step",
 //!               "evaluations", "reference"}, ..]}
 //! ```
 //!
@@ -24,6 +25,8 @@
 //!   finite). Every number must be finite.
 //! - `capabilities`: the optional accessors the system built from its defaults offers
 //!   (`physicskit::classical::core::erased::CAPABILITY_NAMES`).
+//! - `physics`: the paragraph of the gallery demonstration showing the system
+//!   (`physicskit::classical::explanations::for_system`), the lab's caption; `null` if none.
 //! - `methods` per system: those that can integrate it, as `simulate --method` takes them.
 
 use std::io::{self, Write};
@@ -32,6 +35,7 @@ use physicskit::classical::catalog::SYSTEMS;
 use physicskit::classical::core::catalog::{Bound, Default, Length, Literal, ParamKind, Range};
 use physicskit::classical::core::erased::offered;
 use physicskit::classical::core::{ParamSpec, SystemEntry};
+use physicskit::classical::explanations;
 use serde::Serialize;
 
 use crate::{method_rows, MethodRow};
@@ -53,6 +57,7 @@ struct System {
     methods: Vec<&'static str>,
     default_method: &'static str,
     note: Option<&'static str>,
+    physics: Option<&'static str>,
     capabilities: Vec<&'static str>,
     params: Vec<Param>,
 }
@@ -135,6 +140,7 @@ fn system(entry: &SystemEntry) -> System {
         methods: entry.methods().map(|m| m.name()).collect(),
         default_method: entry.default_method.name(),
         note: entry.note,
+        physics: explanations::for_system(entry.name),
         // Every entry builds from its defaults (the catalogue's own tests check it); should
         // one not, it offers nothing rather than breaking the listing.
         capabilities: entry

@@ -10,6 +10,7 @@
 
 mod json;
 
+use physicskit::classical::core::method::Scheme;
 use physicskit::classical::methods;
 use serde::Serialize;
 
@@ -26,6 +27,9 @@ pub struct MethodRow {
     pub symplectic: bool,
     /// Whether it applies only to separable systems `H = T(p) + V(q)`.
     pub separable_only: bool,
+    /// Whether its step adapts to tolerances (`dt` is then the output spacing); the browser
+    /// lab's frame-by-frame sessions run only the fixed-step methods.
+    pub adaptive: bool,
     /// Force or right-hand-side evaluations per step (typical, for implicit methods).
     pub evaluations_per_step: u32,
     /// What `evaluations_per_step` counts.
@@ -43,6 +47,7 @@ pub fn method_rows() -> Vec<MethodRow> {
             order: m.order,
             symplectic: m.symplectic,
             separable_only: m.separable_only,
+            adaptive: m.scheme == Scheme::Adaptive,
             evaluations_per_step: m.evaluations_per_step,
             evaluations: m.evaluations,
             reference: m.reference,

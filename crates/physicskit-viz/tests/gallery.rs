@@ -67,6 +67,44 @@ fn gif_frames(path: &Path) -> (usize, f64) {
     (frames, last_var)
 }
 
+/// The lab's caption of each system (the `physics` field of the catalogue JSON the lab is
+/// handed, `physicskit_listing::catalogue_json`) is the paragraph the gallery printed for the
+/// demonstration showing that system, and every demonstration's paragraph reaches the lab
+/// (the integrators demonstration through the pendulum it integrates).
+fn lab_captions_are_the_gallery_paragraphs(demos: &[physicskit_viz::Demo], html: &str) {
+    let json: serde_json::Value =
+        serde_json::from_str(&physicskit_listing::catalogue_json()).expect("catalogue JSON");
+    let systems = json["systems"].as_array().expect("systems");
+    let mut captioned = 0;
+    for s in systems {
+        let name = s["name"].as_str().unwrap();
+        let Some(caption) = s["physics"].as_str() else {
+            continue;
+        };
+        captioned += 1;
+        let demo = demos
+            .iter()
+            .find(|d| d.explanation == caption)
+            .unwrap_or_else(|| panic!("the lab's caption of {name} is no gallery paragraph"));
+        assert!(
+            html.contains(&format!("id=\"{}\"", demo.slug)),
+            "index.html has no section {} for {name}",
+            demo.slug
+        );
+    }
+    for d in demos {
+        assert!(
+            systems
+                .iter()
+                .any(|s| s["physics"].as_str() == Some(d.explanation.as_str())),
+            "no lab caption carries the paragraph of {}",
+            d.slug
+        );
+    }
+    // Every catalogue system but the harmonic oscillator is shown by some demonstration.
+    assert_eq!(captioned, systems.len() - 1, "captioned systems");
+}
+
 #[test]
 fn quick_gallery_renders_every_promised_file() {
     let dir = TempDir::new("physicskit-gallery");
@@ -94,6 +132,7 @@ fn quick_gallery_renders_every_promised_file() {
         );
     }
     let html = std::fs::read_to_string(&report.index).unwrap();
+    lab_captions_are_the_gallery_paragraphs(&report.demos, &html);
     let mut gifs = 0;
     for f in &report.files {
         assert!(f.path.starts_with(&dir.0));

@@ -1,21 +1,22 @@
 //! [`Lab`]: one system running in the lab, stepped a frame at a time.
 //!
-//! A frame is one `integrate` call of `n` steps from the current time (the system keeps its
-//! state and clock between calls, so frames continue each other). Without a section only the
-//! final sample is stored; with one, every sample of the frame is, and each step that
-//! carries the section coordinate across its value in the section's direction is refined to
-//! the crossing by Hénon's trick (M. Hénon, Physica D 5, 412, 1982), as
-//! `analysis::poincare` does.
+//! The system runs in a [`Session`] (`DynSystem::start`): a frame advances it `n` steps with
+//! the stepper and buffers kept from frame to frame, so frames allocate nothing and a run has
+//! the bits of one `integrate` over all its steps, whatever the frames. With a section the
+//! frame advances one step at a time, and each step that carries the section coordinate
+//! across its value in the section's direction is refined to the crossing by Hénon's trick
+//! (M. Hénon, Physica D 5, 412, 1982), as `analysis::poincare` does.
 //!
 //! The energy error is `|E - E0| / |E0|` with `E0` the energy of the run's initial state
 //! (absolute when `E0 = 0`). What the page reads lives in buffers the lab owns (`positions`,
-//! `crossings`), refilled in place each frame.
+//! `crossings`), refilled in place each frame (`Capabilities::positions_into`); the crossings
+//! grow by doubling up to [`MAX_CROSSINGS`], then stay.
 
-use physicskit::classical::analysis::poincare::{henon_step, Direction, Section};
+use physicskit::classical::analysis::poincare::{Direction, HenonWork, Section};
 use physicskit::classical::catalog;
 use physicskit::classical::core::erased::DynSystem;
-use physicskit::classical::core::{IntegrateOptions, SystemEntry};
-use physicskit::classical::integrators::FirstOrder;
+use physicskit::classical::core::SystemEntry;
+use physicskit::classical::integrators::{FirstOrder, Session};
 use physicskit::classical::Method;
 
 use crate::params::values_from_json;
@@ -27,11 +28,14 @@ const HENON_SUBSTEPS: usize = 2;
 /// Crossings kept; older ones are dropped first (a section shows a few thousand points).
 const MAX_CROSSINGS: usize = 20_000;
 
+/// The step a lab starts with, before its first frame names one (the page's default).
+const INITIAL_DT: f64 = 1e-3;
+
 /// One running system.
 pub struct Lab {
     entry: &'static SystemEntry,
-    system: Box<dyn DynSystem>,
-    method: Method,
+    /// Always `Some` between calls; taken only while the method changes.
+    session: Option<Box<dyn Session>>,
     /// The run's initial state (what `reset` returns to) and its energy.
     state0: Vec<f64>,
     energy0: f64,
@@ -42,6 +46,9 @@ pub struct Lab {
     /// Crossing states, one after another (`state_len` values each).
     crossings: Vec<f64>,
     crossing: Vec<f64>,
+    /// The state before the step being checked for a crossing.
+    before: Vec<f64>,
+    henon: HenonWork,
 }
 
 impl Lab {
@@ -57,10 +64,12 @@ impl Lab {
         let state0 = system.dynamical().state().to_vec();
         let energy0 = system.dynamical().energy(&state0);
         let n = state0.len();
+        let session = system
+            .start(entry.default_method, INITIAL_DT)
+            .map_err(|r| r.error.to_string())?;
         let mut lab = Self {
             entry,
-            method: entry.default_method,
-            system,
+            session: Some(session),
             state0,
             energy0,
             positions: Vec::new(),
@@ -68,6 +77,8 @@ impl Lab {
             section: None,
             crossings: Vec::with_capacity(n * 1024),
             crossing: vec![0.0; n],
+            before: vec![0.0; n],
+            henon: HenonWork::new(n),
         };
         lab.refresh_positions();
         Ok(lab)
@@ -97,74 +108,109 @@ impl Lab {
                     .join(", ")
             ));
         }
-        self.method = method;
-        Ok(())
+        if method == self.method() {
+            return Ok(());
+        }
+        let old = self.session.take().expect("a lab always holds its session");
+        let (dt, previous) = (old.dt(), old.method());
+        match old.into_system().start(method, dt) {
+            Ok(session) => {
+                self.session = Some(session);
+                Ok(())
+            }
+            Err(refused) => {
+                let error = refused.error.to_string();
+                // Back to the method in use: it ran this system at this dt a moment ago.
+                let back = refused
+                    .system
+                    .start(previous, dt)
+                    .map_err(|r| r.error.to_string())?;
+                self.session = Some(back);
+                Err(error)
+            }
+        }
     }
 
     /// The method in use.
     pub fn method(&self) -> Method {
-        self.method
+        self.session().method()
+    }
+
+    fn session(&self) -> &dyn Session {
+        self.session
+            .as_deref()
+            .expect("a lab always holds its session")
+    }
+
+    fn session_mut(&mut self) -> &mut dyn Session {
+        self.session
+            .as_deref_mut()
+            .expect("a lab always holds its session")
+    }
+
+    fn system(&self) -> &dyn DynSystem {
+        self.session().system()
     }
 
     /// Advances `n` steps of `dt`, recording section crossings if a section is set.
     ///
     /// # Errors
-    /// The integrator's message (a refused step, a non-finite state); the state is then
-    /// left where the failed frame started.
+    /// The integrator's message (a refused step, a non-finite state, a `dt` that is not
+    /// finite and positive); the state is then left where the failed frame started.
     pub fn step(&mut self, n: u32, dt: f64) -> Result<(), String> {
         if n == 0 {
             return Ok(());
         }
-        let t0 = self.system.dynamical().t();
-        let t1 = t0 + f64::from(n) * dt;
-        let options = IntegrateOptions {
-            skip_energy: true,
-            ..if self.section.is_some() {
-                IntegrateOptions::default()
-            } else {
-                IntegrateOptions::final_only()
-            }
+        let session = self
+            .session
+            .as_deref_mut()
+            .expect("a lab always holds its session");
+        if dt.to_bits() != session.dt().to_bits() {
+            session.set_dt(dt).map_err(|e| e.to_string())?;
+        }
+        let Some(section) = self.section else {
+            return session
+                .advance(n as usize)
+                .map_err(|e| e.to_string())
+                .map(|()| {
+                    self.refresh_positions();
+                });
         };
-        let result = self
-            .system
-            .integrate((t0, t1), dt, self.method, options)
-            .map_err(|e| e.to_string())?;
-        if let Some(section) = self.section {
-            let field = FirstOrder(self.system.dynamical());
-            let k = section.coordinate();
-            let c = section.value();
-            for i in 1..result.y.nrows() {
-                let (a, b) = (result.y[[i - 1, k]] - c, result.y[[i, k]] - c);
-                let up = a < 0.0 && b >= 0.0;
-                let down = a > 0.0 && b <= 0.0;
-                let wanted = match section.direction() {
-                    Direction::Increasing => up,
-                    Direction::Decreasing => down,
-                    Direction::Both => up || down,
-                };
-                if !wanted {
-                    continue;
-                }
-                let before = result.y.row(i - 1);
-                let Some(before) = before.as_slice() else {
-                    continue;
-                };
-                // A tangency (no transversal crossing) is skipped, as the section runs do.
-                if henon_step(
+        let k = section.coordinate();
+        let c = section.value();
+        for _ in 0..n {
+            self.before.copy_from_slice(session.state());
+            let t_before = session.t();
+            session.advance(1).map_err(|e| e.to_string())?;
+            let (a, b) = (self.before[k] - c, session.state()[k] - c);
+            let up = a < 0.0 && b >= 0.0;
+            let down = a > 0.0 && b <= 0.0;
+            let wanted = match section.direction() {
+                Direction::Increasing => up,
+                Direction::Decreasing => down,
+                Direction::Both => up || down,
+            };
+            if !wanted {
+                continue;
+            }
+            let field = FirstOrder(session.system().dynamical());
+            // A tangency (no transversal crossing) is skipped, as the section runs do.
+            if self
+                .henon
+                .step(
                     &field,
-                    result.t[i - 1],
-                    before,
+                    t_before,
+                    &self.before,
                     &section,
                     HENON_SUBSTEPS,
                     &mut self.crossing,
                 )
                 .is_ok()
-                {
-                    if self.crossings.len() >= MAX_CROSSINGS * self.crossing.len() {
-                        self.crossings.drain(..self.crossing.len());
-                    }
-                    self.crossings.extend_from_slice(&self.crossing);
+            {
+                if self.crossings.len() >= MAX_CROSSINGS * self.crossing.len() {
+                    self.crossings.drain(..self.crossing.len());
                 }
+                self.crossings.extend_from_slice(&self.crossing);
             }
         }
         self.refresh_positions();
@@ -173,17 +219,17 @@ impl Lab {
 
     /// The current state (`[q, p]`, `[q, qdot]` for Lagrangian systems, or the ODE state).
     pub fn state(&self) -> &[f64] {
-        self.system.dynamical().state()
+        self.session().state()
     }
 
     /// The clock.
     pub fn time(&self) -> f64 {
-        self.system.dynamical().t()
+        self.session().t()
     }
 
     /// The energy of the current state.
     pub fn energy(&self) -> f64 {
-        self.system.dynamical().energy(self.state())
+        self.session().energy()
     }
 
     /// The energy of the run's initial state.
@@ -214,8 +260,13 @@ impl Lab {
     /// A configuration of the wrong length.
     pub fn positions_of(&mut self, q: &[f64]) -> Result<&[f64], String> {
         self.probe.clear();
-        if let Some(p) = self.system.capabilities().positions(q) {
-            self.probe.extend_from_slice(&p.map_err(|e| e.to_string())?);
+        let system = self
+            .session
+            .as_deref()
+            .expect("a lab always holds its session")
+            .system();
+        if let Some(done) = system.capabilities().positions_into(q, &mut self.probe) {
+            done.map_err(|e| e.to_string())?;
         }
         Ok(&self.probe)
     }
@@ -231,12 +282,12 @@ impl Lab {
     /// # Errors
     /// A state of the wrong length or with non-finite entries.
     pub fn set_state(&mut self, state: &[f64]) -> Result<(), String> {
-        self.system
-            .reset(Some(state), 0.0)
+        self.session_mut()
+            .restart(Some(state), 0.0)
             .map_err(|e| e.to_string())?;
         self.state0.clear();
         self.state0.extend_from_slice(state);
-        self.energy0 = self.system.dynamical().energy(state);
+        self.energy0 = self.system().dynamical().energy(state);
         self.refresh_positions();
         Ok(())
     }
@@ -246,8 +297,12 @@ impl Lab {
     /// # Errors
     /// None in practice (the initial state was accepted before).
     pub fn reset(&mut self) -> Result<(), String> {
-        self.system
-            .reset(Some(&self.state0), 0.0)
+        let session = self
+            .session
+            .as_deref_mut()
+            .expect("a lab always holds its session");
+        session
+            .restart(Some(&self.state0), 0.0)
             .map_err(|e| e.to_string())?;
         self.refresh_positions();
         Ok(())
@@ -320,7 +375,7 @@ impl Lab {
         if solve >= n {
             return Err(format!("index {solve} is past the state (length {n})"));
         }
-        let d = self.system.dynamical();
+        let d = self.system().dynamical();
         let energy_at = |s: &mut Vec<f64>, p: f64| {
             s[solve] = p;
             d.energy(s)
@@ -361,15 +416,21 @@ impl Lab {
     }
 
     fn refresh_positions(&mut self) {
-        let d = self.system.dynamical();
-        let state = d.state();
-        let q = match self.system.ndof() {
+        let system = self
+            .session
+            .as_deref()
+            .expect("a lab always holds its session")
+            .system();
+        let state = system.dynamical().state();
+        let q = match system.ndof() {
             Some(n) if n <= state.len() => &state[..n],
             _ => state,
         };
-        self.positions.clear();
-        if let Some(Ok(p)) = self.system.capabilities().positions(q) {
-            self.positions.extend_from_slice(&p);
+        if !matches!(
+            system.capabilities().positions_into(q, &mut self.positions),
+            Some(Ok(()))
+        ) {
+            self.positions.clear();
         }
     }
 }

@@ -121,6 +121,11 @@ fn list_json_holds_the_whole_catalogue() {
             "{name}"
         );
         assert_eq!(s["note"], json!(entry.note), "{name}");
+        assert_eq!(
+            s["physics"],
+            json!(physicskit::classical::explanations::for_system(name)),
+            "{name}"
+        );
         assert!(s["capabilities"].is_array(), "{name}");
         let params = s["params"].as_array().expect("a `params` array");
         assert_eq!(params.len(), entry.params.len(), "{name}");
@@ -156,6 +161,10 @@ fn list_json_holds_the_whole_catalogue() {
         assert_eq!(row["order"], json!(m.order));
         assert_eq!(row["symplectic"], json!(m.symplectic));
         assert_eq!(row["separable_only"], json!(m.separable_only));
+        assert_eq!(
+            row["adaptive"],
+            json!(m.scheme == physicskit::classical::core::method::Scheme::Adaptive)
+        );
         assert_eq!(row["evaluations_per_step"], json!(m.evaluations_per_step));
         assert_eq!(row["reference"], json!(m.reference));
     }

@@ -14,19 +14,7 @@ use crate::figure::{color, save_panel, save_png, Legend, Mark, Panel, Series};
 const N: usize = 8;
 
 pub(crate) fn render(ctx: &Ctx) -> Result<Demo> {
-    let mut d = demo(
-        "chains",
-        "6. Harmonic chain and coupled oscillators",
-        "Masses joined by identical springs between two walls move, for small oscillations, as a \
-         superposition of normal modes: standing waves in which every mass oscillates at the \
-         same frequency ωⱼ = 2√(k/m) sin(jπ/2(N+1)). The first figure shows the shapes of the \
-         four lowest modes of an 8-mass chain, each checked by simulation: started in a mode \
-         shape, the chain stays in it (the dots are the displacements half a period later, \
-         flipped in sign as a standing wave must be). The second shows beats: a 12-mass chain started in \
-         a superposition of its two highest modes, whose frequencies are close. Each mode keeps \
-         its own energy, yet a single mass swells and falls silent at the difference frequency, \
-         cos(ω₁₁t) + cos(ω₁₂t) = 2 cos(Δω t/2) cos(ω̄ t): beats are interference.",
-    );
+    let mut d = demo("chains", "6. Harmonic chain and coupled oscillators");
     // Mode shapes from the chain's own modal transform, verified by integration.
     let probe = HarmonicChain::new(&[0.0; N], &[0.0; N], 1.0, 1.0)?;
     let omega = probe.normal_mode_frequencies().to_vec();

@@ -16,18 +16,7 @@ use crate::figure::{color, save_panel, Legend, Mark, Panel, Series};
 const THETA0: [f64; 2] = [2.0, 2.4];
 
 pub(crate) fn render(ctx: &Ctx) -> Result<Demo> {
-    let mut d = demo(
-        "double-pendulum",
-        "1. Double pendulum",
-        "Two rods (1 m, 1 kg bobs, g = 9.81 m/s²) released from 115° and 138°. The motion is \
-         deterministic yet chaotic: two runs whose starting angles differ by 10⁻⁹ rad separate \
-         exponentially (a straight rise on the log plot, whose slope is the largest Lyapunov \
-         exponent) until the difference is as large as the motion itself. The phase panel shows \
-         the lower bob's angle θ₂ against its canonical momentum p₂, which fill a region instead \
-         of tracing a closed curve. Its Hamiltonian is not separable (the mass matrix depends on \
-         θ₁ − θ₂), so the symplectic choice is the implicit midpoint rule: its energy error stays \
-         bounded, while rk4's drifts.",
-    );
+    let mut d = demo("double-pendulum", "1. Double pendulum");
     let params = DoublePendulumParams::default();
     let dt = 0.002;
     let t1 = ctx.pick(12.0, 30.0);

@@ -20,17 +20,6 @@ pub(crate) fn render(ctx: &Ctx) -> Result<Demo> {
     let mut d = demo(
         "elastic-pendulum",
         "14. Elastic pendulum: the 2:1 resonance",
-        "A 1 kg bob on a spring of rest length 1 m (g = 9.81 m/s²) is pulled 10 cm below its \
-         hanging position and let go with a 1° swing. Small bounces have the frequency \
-         ω_s = √(k/m), small swings ω_p = √(g/r_eq), where r_eq = l0 + mg/k is the stretched \
-         length it hangs at. When ω_s = 2ω_p the bob bounces twice per swing, rising at each \
-         end of the swing and dropping at the bottom (as a child pumps a swing by standing and \
-         crouching), and the energy passes almost completely from bounce to swing and back: the Fermi resonance of the CO₂ molecule in a \
-         classroom toy. The condition is often quoted as k/m = 4g/l0, but the swing sees the \
-         stretched length; solving k/m = 4g/r_eq gives k = 3mg/l0 = 29.43 N/m (r_eq = 4/3 m). \
-         At k = 40 N/m (ω_s/ω_p = 2.25, close to the quoted rule) the same start keeps bouncing \
-         with a swing that never grows. The energies are split exactly: E − E_eq = \
-         [m ṙ²/2 + k(r − r_eq)²/2] + [m r² θ̇²/2 + m g r (1 − cos θ)].",
     );
     let base = ElasticPendulumParams::default();
     let k_res = ElasticPendulumParams::resonant_k(base.m, base.l0, base.g)?;

@@ -21,15 +21,6 @@ pub(crate) fn render(ctx: &Ctx) -> Result<Demo> {
     let mut d = demo(
         "euler-top",
         "8. Euler top: the tennis-racket (Dzhanibekov) effect",
-        "A free rigid body with principal moments I₁ = 1 < I₂ = 2 < I₃ = 3 (a flat plate) is \
-         spun almost exactly about its intermediate axis. Rotation about the smallest and the \
-         largest axes is stable, but about the intermediate axis it is not: the spin ω₂ \
-         periodically reverses, the plate flipping over while angular momentum stays fixed in \
-         space (the effect the cosmonaut Dzhanibekov saw with a wing nut). In the body frame the \
-         angular momentum L moves on a sphere |L| = const along its intersections with the \
-         energy ellipsoid, the polhodes: closed loops around the stable axes 1 and 3, and \
-         separatrices through the unstable axis 2. The implicit midpoint rule keeps energy and \
-         |L| exactly, so the computed curves close.",
     );
     let params = EulerTopParams::default();
     let dt = 0.01;

@@ -14,17 +14,7 @@ const BETA: f64 = 1.0;
 const AMPLITUDE: f64 = 3.0;
 
 pub(crate) fn render(ctx: &Ctx) -> Result<Demo> {
-    let mut d = demo(
-        "fput",
-        "4. Fermi–Pasta–Ulam–Tsingou recurrence",
-        "A chain of 32 unit masses joined by springs with a weak quartic non-linearity \
-         (V(r) = r²/2 + β r⁴/4, fixed ends) starts in its lowest normal mode. Fermi, Pasta, Ulam \
-         and Tsingou expected the non-linearity to share the energy out evenly among all modes \
-         (equipartition). Instead the energy flows into a few neighbouring modes and then comes \
-         back almost entirely to mode 1: the FPUT recurrence, an early hint of solitons and of \
-         KAM stability. (The quartic force keeps the chain's left–right symmetry, so the even \
-         modes 2 and 4 are never excited.)",
-    );
+    let mut d = demo("fput", "4. Fermi–Pasta–Ulam–Tsingou recurrence");
     let dt = 0.05;
     let t1 = ctx.pick(10000.0, 20000.0);
     let mut chain = FPUTChain::new(N, 1.0, 1.0, BETA, 1, AMPLITUDE)?;

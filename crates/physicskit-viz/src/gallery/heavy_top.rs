@@ -20,13 +20,6 @@ pub(crate) fn render(ctx: &Ctx) -> Result<Demo> {
     let mut d = demo(
         "heavy-top",
         "9. Heavy symmetric top: precession and nutation",
-        "A spinning top with its tip fixed (I₁ = 1, I₃ = 0.5 kg m², M g l = 9.81 J) precesses \
-         slowly about the vertical while its axis nods up and down (nutation). Because the \
-         angles φ and ψ do not appear in the Lagrangian, their momenta are conserved and the \
-         tilt θ moves like a particle in the effective potential V_eff(θ): it oscillates between \
-         the two turning points where V_eff equals the energy. Started with a small backward \
-         precession, the tip of the axis draws loops on the unit sphere; started from rest in φ \
-         it would draw cusps.",
     );
     let params = SymmetricTopParams::default();
     let t1 = ctx.pick(6.0, 12.0);

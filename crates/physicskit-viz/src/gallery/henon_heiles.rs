@@ -36,17 +36,7 @@ fn orbit(
 }
 
 pub(crate) fn render(ctx: &Ctx) -> Result<Demo> {
-    let mut d = demo(
-        "henon-heiles",
-        "2. Hénon–Heiles: KAM tori breaking up",
-        "A star in an axisymmetric galaxy (Hénon & Heiles 1964), H = (px² + py²)/2 + (x² + y²)/2 \
-         + x²y − y³/3. Each dot is a crossing of the plane y = 0 with py > 0 (located exactly \
-         with Hénon's trick, not taken from the nearest time step); each colour is one orbit. At \
-         E = 1/12 almost every orbit lies on a smooth closed curve, the section of an invariant \
-         (KAM) torus: the motion is regular. At E = 1/8 the tori between the islands have \
-         dissolved into a chaotic sea of scattered dots, and at E = 1/6, the energy of the \
-         saddle points of the potential, almost all tori are gone.",
-    );
+    let mut d = demo("henon-heiles", "2. Hénon–Heiles: KAM tori breaking up");
     let section = Section::new(1, 0.0, Direction::Increasing)?;
     let crossings = ctx.pick(250, 900);
     let n_orbits = ctx.pick(12, 30);

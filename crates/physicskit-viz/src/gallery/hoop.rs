@@ -13,13 +13,6 @@ pub(crate) fn render(ctx: &Ctx) -> Result<Demo> {
     let mut d = demo(
         "hoop",
         "10. Bead on a rotating hoop: a pitchfork bifurcation",
-        "A bead slides without friction on a vertical hoop (R = 1 m) spun at a fixed rate ω \
-         about its vertical diameter. In the rotating frame gravity pulls the bead down and the \
-         centrifugal force pushes it out. Below the critical rate ω_c = √(g/R) the bottom \
-         θ = 0 is the only stable rest point; above it the bottom becomes unstable and two new \
-         stable equilibria appear at cos θ = g/(Rω²), climbing the hoop as ω grows: a pitchfork \
-         bifurcation, the textbook example of spontaneous symmetry breaking. The phase portraits \
-         show the single centre turning into a saddle between two centres.",
     );
     let params0 = HoopParams::default();
     let wc = params0.critical_omega();

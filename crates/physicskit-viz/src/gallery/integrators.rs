@@ -40,17 +40,7 @@ pub(crate) fn window_max(t: &[f64], v: &[f64], windows: usize) -> Vec<(f64, f64)
 }
 
 pub(crate) fn render(ctx: &Ctx) -> Result<Demo> {
-    let mut d = demo(
-        "integrators",
-        "12. Integrators compared",
-        "The same pendulum (released from 115°, g/l = 1 s⁻²) integrated with the four methods. \
-         The symplectic methods (verlet, yoshida4) and the implicit midpoint rule conserve a \
-         modified energy exactly, so their energy error oscillates but never grows, however long \
-         the run; rk4 is more accurate per step than verlet but not symplectic, and its energy \
-         error grows steadily. The convergence plot measures each method's order p from the \
-         slope of the error at a fixed time against the step size (error ∝ dt^p): 2 for verlet \
-         and implicit_midpoint, 4 for yoshida4 and rk4.",
-    );
+    let mut d = demo("integrators", "12. Integrators compared");
 
     // Energy error against time at a coarse step, where the differences are visible.
     let dt = 0.1;

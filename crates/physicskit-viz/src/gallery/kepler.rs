@@ -15,17 +15,7 @@ const E: f64 = 0.6;
 const C_PN: f64 = -0.005;
 
 pub(crate) fn render(ctx: &Ctx) -> Result<Demo> {
-    let mut d = demo(
-        "kepler",
-        "7. Kepler orbits and perihelion precession",
-        "A planet in an inverse-square force (units with G M = 1, semi-major axis 1, \
-         eccentricity 0.6) traces the same closed ellipse for ever: besides energy and angular \
-         momentum, the Laplace–Runge–Lenz vector, which points at the perihelion, is conserved, \
-         a symmetry special to 1/r². Adding a small attractive 1/r³ term, the effective \
-         post-Newtonian correction of general relativity, breaks that symmetry: the ellipse \
-         turns a little every orbit into a rosette, and the LRL vector's angle grows at a \
-         steady rate, the perihelion precession (43 arc-seconds per century for Mercury).",
-    );
+    let mut d = demo("kepler", "7. Kepler orbits and perihelion precession");
     let period = std::f64::consts::TAU * A.powf(1.5);
     let orbits = ctx.pick(12.0, 30.0);
     let t1 = orbits * period;

@@ -46,7 +46,8 @@ pub struct Demo {
     pub slug: String,
     /// Section title.
     pub title: String,
-    /// One paragraph of physics.
+    /// One paragraph of physics (from `physicskit::classical::explanations`, shared with the
+    /// lab).
     pub explanation: String,
     /// Figures and animations, in display order.
     pub files: Vec<GalleryFile>,
@@ -89,12 +90,17 @@ impl Ctx<'_> {
     }
 }
 
-/// Starts a [`Demo`].
-pub(crate) fn demo(slug: &str, title: &str, explanation: &str) -> Demo {
+/// Starts a [`Demo`]; its paragraph is the core's
+/// [`explanations::for_demo`](physicskit::classical::explanations::for_demo)`(slug)`, the text
+/// the lab shows for the same systems (empty for a slug without one, which the gallery test
+/// refuses).
+pub(crate) fn demo(slug: &str, title: &str) -> Demo {
     Demo {
         slug: slug.into(),
         title: title.into(),
-        explanation: explanation.into(),
+        explanation: physicskit::classical::explanations::for_demo(slug)
+            .map(|e| e.text.to_owned())
+            .unwrap_or_default(),
         files: Vec::new(),
     }
 }

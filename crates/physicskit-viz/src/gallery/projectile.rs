@@ -40,11 +40,6 @@ pub(crate) fn render(ctx: &Ctx) -> Result<Demo> {
     let mut d = demo(
         "projectile",
         "11. Projectile motion with and without air drag",
-        "A 1 kg ball launched at 40 m/s. Without air resistance every trajectory is Galileo's \
-         parabola and the range v² sin(2θ)/g is largest at 45°, with complementary angles \
-         (30° and 60°) landing at the same spot. Quadratic air drag (force −c|v|v, terminal \
-         speed 22 m/s) takes energy out of the flight: the paths become lopsided, steeper on \
-         the way down, the range shrinks a lot, and the best launch angle drops below 45°.",
     );
     let mut traj = Panel::new(
         "Trajectories (solid: no drag, dashed: with drag)",

@@ -19,12 +19,6 @@ pub(crate) fn render(ctx: &Ctx) -> Result<Demo> {
     let mut d = demo(
         "sine-gordon",
         "5. Sine-Gordon chain: kink–antikink collision",
-        "A chain of pendulums on a torsion spring (the Frenkel–Kontorova model) is the lattice \
-         form of the sine-Gordon equation q_tt = c² q_xx − sin q. A kink is a travelling twist by \
-         2π in which the pendulums turn over one after another; an antikink twists back. They \
-         behave like particles: sent towards each other at 0.4 of the wave speed, they collide, \
-         pass through each other and re-emerge with their shapes intact, the signature of a \
-         soliton (the lattice sheds only a little radiation).",
     );
     let n = ctx.pick(160, 240);
     let width = K.sqrt();

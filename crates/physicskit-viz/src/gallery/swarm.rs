@@ -64,17 +64,7 @@ fn wrapped(q: &[f64], p: &[f64]) -> Vec<(f64, f64)> {
 }
 
 pub(crate) fn render(ctx: &Ctx) -> Result<Demo> {
-    let mut d = demo(
-        "swarm",
-        "3. Pendulum swarm: Liouville's theorem",
-        "A cloud of identical, independent pendulums (g/l = 1 s⁻²) starts as a small rectangle in \
-         phase space (angle q, momentum p) just inside the separatrix, the boundary between \
-         swinging and whirling motion. Near the separatrix the swing period depends strongly on \
-         the energy, so the patch is sheared and wound into a long thin filament; yet by Liouville's theorem the \
-         Hamiltonian flow preserves phase-space area, and the area enclosed by the patch's \
-         boundary (measured on 2000 boundary points carried along with the flow) stays at its \
-         initial value.",
-    );
+    let mut d = demo("swarm", "3. Pendulum swarm: Liouville's theorem");
     let n = ctx.pick(1500, 5000);
     let n_side = ctx.pick(500, 1500);
     let snaps = [0.0, 10.0, 20.0, 40.0];

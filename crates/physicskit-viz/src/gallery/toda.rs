@@ -16,21 +16,7 @@ const N: usize = 16;
 const KICKS: [(usize, f64); 2] = [(0, 3.0), (8, -1.5)];
 
 pub(crate) fn render(ctx: &Ctx) -> Result<Demo> {
-    let mut d = demo(
-        "toda",
-        "13. Toda lattice: n conserved quantities",
-        "Sixteen unit masses on a ring joined by exponential springs, V(r) = (a/b) e^(−b r) \
-         with a = b = 1 (stiff under compression, soft under stretching), the lattice Morikazu \
-         Toda found in 1967. Two particles are kicked, 3 and −1.5 units of momentum; each kick \
-         launches a compression pulse (a lattice soliton) that runs around the ring, and the \
-         energy sloshes from particle to particle (left: the energy of each particle above its \
-         equilibrium share a/b; middle: two particles). Yet the motion is completely \
-         integrable: Flaschka's Lax matrix L (diagonal pᵢ, off-diagonal √(a/b) e^(−b rᵢ/2), \
-         corners closing the ring) only rotates as time goes on, so its sixteen eigenvalues are \
-         conserved (right: flat lines; the sum of their squares is twice the energy). The FPUT \
-         chain of demonstration 4 is the same kind of lattice with a polynomial spring: it is \
-         only close to integrable, which is why its energy nearly, but not exactly, returns.",
-    );
+    let mut d = demo("toda", "13. Toda lattice: n conserved quantities");
     let (a, b) = (1.0, 1.0);
     let mut p0 = [0.0; N];
     for (i, p) in KICKS {

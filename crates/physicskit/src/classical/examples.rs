@@ -3,7 +3,7 @@
 //! They are deliberately minimal: the full systems of the spec live in `systems`.
 
 use crate::classical::core::catalog::{Default as D, Family, ParamSpec as P, Range, SystemEntry};
-use crate::classical::core::erased::{Capabilities, Hamiltonian};
+use crate::classical::core::erased::{fill, Capabilities, Hamiltonian};
 use crate::classical::core::error::check_len;
 use crate::classical::core::error::{check_finite_scalar, check_positive};
 use crate::classical::core::{HamiltonianSystem, MassInv, Method, Phase, Result};
@@ -114,9 +114,9 @@ impl HamiltonianSystem for HarmonicOscillator {
 crate::impl_separable_dynamics!(HarmonicOscillator);
 
 impl Capabilities for Pendulum {
-    fn positions(&self, q: &[f64]) -> Option<Result<Vec<f64>>> {
+    fn positions_into(&self, q: &[f64], out: &mut Vec<f64>) -> Option<Result<()>> {
         // The bob of a unit-length pendulum, angle from the downward vertical.
-        Some(check_len("q", q, 1).map(|()| vec![q[0].sin(), -q[0].cos()]))
+        Some(check_len("q", q, 1).map(|()| fill(out, &[q[0].sin(), -q[0].cos()])))
     }
 }
 

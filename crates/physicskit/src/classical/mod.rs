@@ -10,12 +10,14 @@
 //! * [`systems`]: the spec's systems; [`analysis`]: functions on states and trajectories.
 //! * [`examples`]: small reference systems (pendulum, harmonic oscillator) used in docs, tests
 //!   and benchmarks.
+//! * [`explanations`]: the physics paragraphs shared by the gallery and the lab.
 
 pub mod analysis;
 pub mod catalog;
 pub mod core;
 pub mod ensemble;
 pub mod examples;
+pub mod explanations;
 pub mod integrators;
 pub mod lagrangian;
 pub mod systems;

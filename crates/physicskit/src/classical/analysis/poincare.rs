@@ -178,25 +178,64 @@ pub fn henon_step<F: VectorField + ?Sized>(
     substeps: usize,
     out: &mut [f64],
 ) -> Result<f64> {
-    let n = field.dim();
-    check_dims(n, y.len(), section)?;
-    if out.len() != n {
-        return Err(Error::DimensionMismatch {
-            name: "out".into(),
-            expected: n,
-            found: out.len(),
-        });
+    HenonWork::new(field.dim()).step(field, t, y, section, substeps, out)
+}
+
+/// The buffers of [`henon_step`] (the extended state `[y, t]` and its RK4 stepper), kept by a
+/// caller that locates crossings as it steps (the lab) so that a crossing allocates nothing.
+#[derive(Debug, Clone)]
+pub struct HenonWork {
+    dim: usize,
+    z: Vec<f64>,
+    rk: Rk4,
+}
+
+impl HenonWork {
+    /// Buffers for fields of dimension `dim`.
+    pub fn new(dim: usize) -> Self {
+        Self {
+            dim,
+            z: Vec::with_capacity(dim + 1),
+            rk: Rk4::new(dim + 1),
+        }
     }
-    if substeps == 0 {
-        return Err(Error::invalid("substeps", 0.0, "must be >= 1"));
+
+    /// [`henon_step`] in these buffers (allocating nothing when `field.dim()` is the `dim`
+    /// they were made for).
+    ///
+    /// # Errors
+    /// As [`henon_step`].
+    pub fn step<F: VectorField + ?Sized>(
+        &mut self,
+        field: &F,
+        t: f64,
+        y: &[f64],
+        section: &Section,
+        substeps: usize,
+        out: &mut [f64],
+    ) -> Result<f64> {
+        let n = field.dim();
+        check_dims(n, y.len(), section)?;
+        if out.len() != n {
+            return Err(Error::DimensionMismatch {
+                name: "out".into(),
+                expected: n,
+                found: out.len(),
+            });
+        }
+        if substeps == 0 {
+            return Err(Error::invalid("substeps", 0.0, "must be >= 1"));
+        }
+        if self.dim != n {
+            *self = Self::new(n);
+        }
+        self.z.clear();
+        self.z.extend_from_slice(y);
+        self.z.push(t);
+        henon_into(field, section, substeps, &mut self.rk, &mut self.z)?;
+        out.copy_from_slice(&self.z[..n]);
+        Ok(self.z[n])
     }
-    let mut z = Vec::with_capacity(n + 1);
-    z.extend_from_slice(y);
-    z.push(t);
-    let mut rk = Rk4::new(n + 1);
-    henon_into(field, section, substeps, &mut rk, &mut z)?;
-    out.copy_from_slice(&z[..n]);
-    Ok(z[n])
 }
 
 /// Runs the Hénon step on the extended state `z = [y, t]` in place.

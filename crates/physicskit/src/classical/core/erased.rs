@@ -12,7 +12,7 @@
 //! system overrides in its own file. Front ends ask for a capability and report its absence;
 //! they never downcast to a concrete type.
 
-use std::ops::Deref;
+use std::ops::{Deref, DerefMut};
 
 use super::catalog::Family;
 use super::error::{Error, Result};
@@ -20,6 +20,9 @@ use super::method::Method;
 use super::options::IntegrateOptions;
 use super::result::SimulationResult;
 use super::system::{DynamicalSystem, HamiltonianSystem, LagrangianSystem, OdeSystem};
+use crate::classical::integrators::session::{
+    Refused, Session, StartHamiltonian, StartLagrangian, StartOde,
+};
 use crate::classical::integrators::tangent::{self, Flow};
 
 /// What only some systems offer. Every method returns `None` unless the system overrides it;
@@ -30,8 +33,18 @@ use crate::classical::integrators::tangent::{self, Flow};
 pub trait Capabilities {
     /// Cartesian positions of the drawn bodies for the configuration `q`, as
     /// `[x1, y1, x2, y2, ...]` (the double pendulum's two bobs, a spring pendulum's bob).
+    /// Allocates the vector: [`positions_into`](Self::positions_into) reuses one.
     fn positions(&self, q: &[f64]) -> Option<Result<Vec<f64>>> {
-        let _ = q;
+        let mut out = Vec::new();
+        self.positions_into(q, &mut out)
+            .map(|done| done.map(|()| out))
+    }
+
+    /// [`positions`](Self::positions) written into `out` (cleared first), which allocates
+    /// nothing once `out` has the room: for drawing every frame. Systems offering positions
+    /// override this one.
+    fn positions_into(&self, q: &[f64], out: &mut Vec<f64>) -> Option<Result<()>> {
+        let _ = (q, out);
         None
     }
 
@@ -239,6 +252,19 @@ pub trait DynSystem: Send + Sync {
     fn default_method(&self) -> Method {
         self.dynamical().default_method()
     }
+
+    /// Hands the system to a [`Session`] stepping it with `method` and step `dt` from its
+    /// current state and clock, a frame at a time, with the same bits as `integrate` over the
+    /// same steps and no allocation per frame.
+    ///
+    /// # Errors
+    /// A [`Refused`] holding the reason (the method is not one this system can use, `dt` is
+    /// not finite and positive, the state is not finite) and the system, unchanged.
+    fn start(
+        self: Box<Self>,
+        method: Method,
+        dt: f64,
+    ) -> std::result::Result<Box<dyn Session>, Refused>;
 }
 
 /// A [`HamiltonianSystem`] behind [`DynSystem`].
@@ -254,7 +280,7 @@ pub struct Lagrangian<S>(pub S);
 pub struct Ode<S>(pub S);
 
 macro_rules! impl_dyn_system {
-    ($wrapper:ident, $family:ident, $tag:expr, $ndof:expr, $view:ident, $flow:ident) => {
+    ($wrapper:ident, $family:ident, $tag:expr, $ndof:expr, $view:ident, $flow:ident, $start:ident) => {
         impl<S> Deref for $wrapper<S> {
             type Target = S;
             fn deref(&self) -> &S {
@@ -262,7 +288,13 @@ macro_rules! impl_dyn_system {
             }
         }
 
-        impl<S: $family + Capabilities + Send + Sync> DynSystem for $wrapper<S> {
+        impl<S> DerefMut for $wrapper<S> {
+            fn deref_mut(&mut self) -> &mut S {
+                &mut self.0
+            }
+        }
+
+        impl<S: $family + Capabilities + Send + Sync + 'static> DynSystem for $wrapper<S> {
             fn family(&self) -> Family {
                 $tag
             }
@@ -284,6 +316,13 @@ macro_rules! impl_dyn_system {
                 options: IntegrateOptions<'_>,
             ) -> Result<SimulationResult> {
                 $family::integrate_with(&mut self.0, t_span, dt, method, options)
+            }
+            fn start(
+                self: Box<Self>,
+                method: Method,
+                dt: f64,
+            ) -> std::result::Result<Box<dyn Session>, Refused> {
+                method.dispatch($start { system: self, dt })
             }
             impl_dyn_system!(@view $view);
             fn capabilities(&self) -> &dyn Capabilities {
@@ -313,7 +352,8 @@ impl_dyn_system!(
     Family::Hamiltonian,
     |s: &S| Some(HamiltonianSystem::ndof(s)),
     hamiltonian,
-    hamiltonian_flow
+    hamiltonian_flow,
+    StartHamiltonian
 );
 impl_dyn_system!(
     Lagrangian,
@@ -321,9 +361,25 @@ impl_dyn_system!(
     Family::Lagrangian,
     |s: &S| Some(LagrangianSystem::ndof(s)),
     lagrangian,
-    lagrangian_flow
+    lagrangian_flow,
+    StartLagrangian
 );
-impl_dyn_system!(Ode, OdeSystem, Family::Ode, |_: &S| None, none, ode_flow);
+impl_dyn_system!(
+    Ode,
+    OdeSystem,
+    Family::Ode,
+    |_: &S| None,
+    none,
+    ode_flow,
+    StartOde
+);
+
+/// Replaces the contents of `out` by `values`: what a `positions_into` writes (no allocation
+/// once `out` has the room).
+pub fn fill(out: &mut Vec<f64>, values: &[f64]) {
+    out.clear();
+    out.extend_from_slice(values);
+}
 
 /// An [`Error::Unsupported`] for a capability `system` lacks, for front ends.
 pub fn missing(capability: &str, system: &str) -> Error {

@@ -42,12 +42,24 @@ fn budget_bytes() -> u128 {
     (available as f64 * MAX_FRACTION_OF_AVAILABLE) as u128
 }
 
+/// Trajectories up to this size are accepted by [`check_fits`] without reading the available
+/// memory (on Linux a read of `/proc/meminfo`, which costs more than a short run: the lab
+/// integrates a frame of a few steps sixty times a second). Refusing one would take less than
+/// 1.25 MiB available (the budget is 80% of it), a machine too short of memory to have started
+/// this process; so no trajectory that was accepted before is refused now, and one refused only
+/// under such starvation is now left to the allocator, which reports failure as an error
+/// (`storage` uses `try_reserve`).
+const TRAJECTORY_ALWAYS_FITS_BYTES: u128 = 1 << 20;
+
 /// Checks that `samples * values_per_sample` f64 values fit in memory.
 ///
 /// # Errors
 /// [`Error::TrajectoryTooLarge`].
 pub(crate) fn check_fits(samples: usize, values_per_sample: usize) -> Result<()> {
     let bytes = samples as u128 * values_per_sample as u128 * 8;
+    if bytes <= TRAJECTORY_ALWAYS_FITS_BYTES {
+        return Ok(());
+    }
     let budget = budget_after_release(bytes);
     if bytes > budget {
         return Err(Error::TrajectoryTooLarge {
@@ -225,6 +237,8 @@ mod tests {
         assert!(set_memory_release_hook(count));
         assert!(!set_memory_release_hook(count));
         check_fits(1000, 4).unwrap();
+        // Just past the threshold the budget is read (and this machine has room).
+        check_fits((TRAJECTORY_ALWAYS_FITS_BYTES / 8) as usize + 1, 1).unwrap();
         assert_eq!(CALLS.load(Ordering::SeqCst), 0);
         // 2^60 samples of 16 values: 2^67 bytes, more than any machine has.
         assert!(matches!(

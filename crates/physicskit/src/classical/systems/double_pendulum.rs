@@ -48,7 +48,7 @@
 use crate::classical::core::catalog::{
     Default as D, Family, Length, ParamSpec as P, Range, SystemEntry,
 };
-use crate::classical::core::erased::{Capabilities, Lagrangian as Erased};
+use crate::classical::core::erased::{fill, Capabilities, Lagrangian as Erased};
 use crate::classical::core::error::check_finite_scalar;
 use crate::classical::core::error::check_positive;
 use crate::classical::core::linalg::negligible_pivot;
@@ -313,8 +313,8 @@ impl DoublePendulum {
 crate::impl_lagrangian_dynamics!(DoublePendulum);
 
 impl Capabilities for DoublePendulum {
-    fn positions(&self, q: &[f64]) -> Option<Result<Vec<f64>>> {
-        Some(DoublePendulum::positions(self, Some(q)).map(|x| x.to_vec()))
+    fn positions_into(&self, q: &[f64], out: &mut Vec<f64>) -> Option<Result<()>> {
+        Some(DoublePendulum::positions(self, Some(q)).map(|x| fill(out, &x)))
     }
 }
 

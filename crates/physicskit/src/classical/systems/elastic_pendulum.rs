@@ -74,7 +74,7 @@
 use crate::classical::core::catalog::{
     Default as D, Family, Length, ParamSpec as P, Range, SystemEntry,
 };
-use crate::classical::core::erased::{Capabilities, Lagrangian as Erased};
+use crate::classical::core::erased::{fill, Capabilities, Lagrangian as Erased};
 use crate::classical::core::error::{check_finite_scalar, check_non_negative, check_positive};
 use crate::classical::core::linalg::negligible_pivot;
 use crate::classical::core::trig::sin_cos;
@@ -373,8 +373,8 @@ impl ElasticPendulum {
 crate::impl_lagrangian_dynamics!(ElasticPendulum);
 
 impl Capabilities for ElasticPendulum {
-    fn positions(&self, q: &[f64]) -> Option<Result<Vec<f64>>> {
-        Some(ElasticPendulum::positions(self, Some(q)).map(|x| x.to_vec()))
+    fn positions_into(&self, q: &[f64], out: &mut Vec<f64>) -> Option<Result<()>> {
+        Some(ElasticPendulum::positions(self, Some(q)).map(|x| fill(out, &x)))
     }
     fn modal_energies(&self, q: &[f64], qdot: &[f64]) -> Option<Result<Vec<f64>>> {
         // The bounce and the swing: the two modes the 2:1 resonance couples.

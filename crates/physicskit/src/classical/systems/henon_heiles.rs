@@ -10,7 +10,7 @@
 //! sea. Reference: M. Hénon and C. Heiles, Astron. J. 69 (1964) 73–79.
 
 use crate::classical::core::catalog::{Default as D, Family, Length, ParamSpec as P, SystemEntry};
-use crate::classical::core::erased::{Capabilities, Hamiltonian};
+use crate::classical::core::erased::{fill, Capabilities, Hamiltonian};
 use crate::classical::core::error::{check_len, check_vector};
 use crate::classical::core::{HamiltonianSystem, Method, Phase, Result};
 
@@ -66,8 +66,8 @@ impl HamiltonianSystem for HenonHeilesSystem {
 crate::impl_separable_dynamics!(HenonHeilesSystem);
 
 impl Capabilities for HenonHeilesSystem {
-    fn positions(&self, q: &[f64]) -> Option<Result<Vec<f64>>> {
-        Some(check_len("q", q, 2).map(|()| q.to_vec()))
+    fn positions_into(&self, q: &[f64], out: &mut Vec<f64>) -> Option<Result<()>> {
+        Some(check_len("q", q, 2).map(|()| fill(out, q)))
     }
 }
 

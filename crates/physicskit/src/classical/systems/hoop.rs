@@ -30,7 +30,7 @@
 //! ```
 
 use crate::classical::core::catalog::{Default as D, Family, ParamSpec as P, Range, SystemEntry};
-use crate::classical::core::erased::{Capabilities, Lagrangian as Erased};
+use crate::classical::core::erased::{fill, Capabilities, Lagrangian as Erased};
 use crate::classical::core::error::check_len;
 use crate::classical::core::error::{check_finite_scalar, check_positive};
 use crate::classical::core::linalg::negligible_pivot;
@@ -219,10 +219,10 @@ impl BeadOnRotatingHoop {
 crate::impl_lagrangian_dynamics!(BeadOnRotatingHoop);
 
 impl Capabilities for BeadOnRotatingHoop {
-    fn positions(&self, q: &[f64]) -> Option<Result<Vec<f64>>> {
+    fn positions_into(&self, q: &[f64], out: &mut Vec<f64>) -> Option<Result<()>> {
         // The bead in the hoop's rotating plane: (R sin theta, -R cos theta).
         let r = self.params().r;
-        Some(check_len("q", q, 1).map(|()| vec![r * q[0].sin(), -r * q[0].cos()]))
+        Some(check_len("q", q, 1).map(|()| fill(out, &[r * q[0].sin(), -r * q[0].cos()])))
     }
     fn separatrix_energies(&self) -> Option<Vec<f64>> {
         Some(BeadOnRotatingHoop::separatrix_energies(self))

@@ -22,7 +22,7 @@
 use crate::classical::core::catalog::{
     Default as D, Family, Length, ParamSpec as P, Range, SystemEntry, Values,
 };
-use crate::classical::core::erased::{Capabilities, Hamiltonian};
+use crate::classical::core::erased::{fill, Capabilities, Hamiltonian};
 use crate::classical::core::error::check_len;
 use crate::classical::core::error::{check_finite_scalar, check_non_negative, check_positive};
 use crate::classical::core::{Error, HamiltonianSystem, MassInv, Method, Phase, Result};
@@ -280,9 +280,9 @@ impl HamiltonianSystem for KeplerSystem {
 crate::impl_separable_dynamics!(KeplerSystem);
 
 impl Capabilities for KeplerSystem {
-    fn positions(&self, q: &[f64]) -> Option<Result<Vec<f64>>> {
+    fn positions_into(&self, q: &[f64], out: &mut Vec<f64>) -> Option<Result<()>> {
         // The body relative to the force centre.
-        Some(check_len("q", q, 2).map(|()| q.to_vec()))
+        Some(check_len("q", q, 2).map(|()| fill(out, q)))
     }
     fn lrl_vector(&self, q: &[f64], p: &[f64]) -> Option<Result<[f64; 2]>> {
         Some(check_qp(q, p).map(|()| KeplerSystem::lrl_vector(self, q, p)))

@@ -16,7 +16,7 @@
 use crate::classical::core::catalog::{
     Default as D, Family, Length, ParamSpec as P, Range, SystemEntry,
 };
-use crate::classical::core::erased::{Capabilities, Hamiltonian};
+use crate::classical::core::erased::{fill, Capabilities, Hamiltonian};
 use crate::classical::core::error::{
     check_finite_scalar, check_len, check_non_negative, check_positive, check_vector,
 };
@@ -249,8 +249,8 @@ impl DynamicalSystem for ProjectileMotion {
 }
 
 impl Capabilities for ProjectileMotion {
-    fn positions(&self, q: &[f64]) -> Option<Result<Vec<f64>>> {
-        Some(check_len("q", q, 2).map(|()| q.to_vec()))
+    fn positions_into(&self, q: &[f64], out: &mut Vec<f64>) -> Option<Result<()>> {
+        Some(check_len("q", q, 2).map(|()| fill(out, q)))
     }
 }
 

@@ -44,7 +44,7 @@
 use crate::classical::core::catalog::{
     Default as D, Family, Length, ParamSpec as P, Range, SystemEntry,
 };
-use crate::classical::core::erased::{Capabilities, Lagrangian as Erased};
+use crate::classical::core::erased::{fill, Capabilities, Lagrangian as Erased};
 use crate::classical::core::error::check_len;
 use crate::classical::core::error::{check_finite_scalar, check_positive};
 use crate::classical::core::linalg::negligible_pivot;
@@ -324,13 +324,10 @@ impl HeavySymmetricTop {
 crate::impl_lagrangian_dynamics!(HeavySymmetricTop);
 
 impl Capabilities for HeavySymmetricTop {
-    fn positions(&self, q: &[f64]) -> Option<Result<Vec<f64>>> {
+    fn positions_into(&self, q: &[f64], out: &mut Vec<f64>) -> Option<Result<()>> {
         // The centre of mass, on the symmetry axis at distance l from the pivot (the origin).
         let l = self.params().l;
-        Some(
-            self.symmetry_axis(Some(q))
-                .map(|a| a.map(|x| l * x).to_vec()),
-        )
+        Some(HeavySymmetricTop::symmetry_axis(self, Some(q)).map(|a| fill(out, &a.map(|x| l * x))))
     }
     fn symmetry_axis(&self, q: &[f64]) -> Option<Result<[f64; 3]>> {
         Some(HeavySymmetricTop::symmetry_axis(self, Some(q)))

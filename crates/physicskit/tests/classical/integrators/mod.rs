@@ -17,3 +17,4 @@ mod invariants;
 mod lagrangian_path;
 mod methods;
 mod reversibility;
+mod session;

@@ -1,0 +1,206 @@
+//! The physics explanations: one paragraph per gallery demonstration, keyed by the
+//! demonstration's slug and mapped to the catalogue systems ([`catalog::SYSTEMS`] names) it
+//! shows.
+//!
+//! This is the one source of those texts. The gallery (`physicskit-viz`) prints
+//! [`for_demo`]`(slug)` under each demonstration; the catalogue JSON (`physicskit-listing`,
+//! read by `physicskit list --json` and by the browser lab) carries [`for_system`]`(name)` as
+//! each system's `physics` field, which the lab shows as the system's caption. A system no
+//! demonstration shows (the harmonic oscillator) has none.
+//!
+//! The texts describe the gallery's figures, so they quote the gallery's parameters (the lab
+//! starts from the catalogue's defaults, which may differ).
+//!
+//! [`catalog::SYSTEMS`]: crate::classical::catalog::SYSTEMS
+
+/// One demonstration's physics paragraph.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub struct Explanation {
+    /// The gallery demonstration's anchor name, e.g. `"double-pendulum"`.
+    pub slug: &'static str,
+    /// The catalogue systems the paragraph describes (each in at most one explanation).
+    pub systems: &'static [&'static str],
+    /// The paragraph (plain text, Unicode).
+    pub text: &'static str,
+}
+
+/// The paragraph of the gallery demonstration `slug`, if there is one.
+pub fn for_demo(slug: &str) -> Option<&'static Explanation> {
+    EXPLANATIONS.iter().find(|e| e.slug == slug)
+}
+
+/// The paragraph describing the catalogue system `name`, if a demonstration shows it.
+pub fn for_system(name: &str) -> Option<&'static str> {
+    EXPLANATIONS
+        .iter()
+        .find(|e| e.systems.contains(&name))
+        .map(|e| e.text)
+}
+
+/// Every explanation, in gallery order.
+pub static EXPLANATIONS: &[Explanation] = &[
+    Explanation {
+        slug: "double-pendulum",
+        systems: &["double-pendulum"],
+        text: "Two rods (1 m, 1 kg bobs, g = 9.81 m/s²) released from 115° and 138°. The motion is \
+         deterministic yet chaotic: two runs whose starting angles differ by 10⁻⁹ rad separate \
+         exponentially (a straight rise on the log plot, whose slope is the largest Lyapunov \
+         exponent) until the difference is as large as the motion itself. The phase panel shows \
+         the lower bob's angle θ₂ against its canonical momentum p₂, which fill a region instead \
+         of tracing a closed curve. Its Hamiltonian is not separable (the mass matrix depends on \
+         θ₁ − θ₂), so the symplectic choice is the implicit midpoint rule: its energy error stays \
+         bounded, while rk4's drifts.",
+    },
+    Explanation {
+        slug: "henon-heiles",
+        systems: &["henon-heiles"],
+        text: "A star in an axisymmetric galaxy (Hénon & Heiles 1964), H = (px² + py²)/2 + (x² + y²)/2 \
+         + x²y − y³/3. Each dot is a crossing of the plane y = 0 with py > 0 (located exactly \
+         with Hénon's trick, not taken from the nearest time step); each colour is one orbit. At \
+         E = 1/12 almost every orbit lies on a smooth closed curve, the section of an invariant \
+         (KAM) torus: the motion is regular. At E = 1/8 the tori between the islands have \
+         dissolved into a chaotic sea of scattered dots, and at E = 1/6, the energy of the \
+         saddle points of the potential, almost all tori are gone.",
+    },
+    Explanation {
+        slug: "swarm",
+        systems: &["pendulum-swarm", "pendulum-swarm-state"],
+        text: "A cloud of identical, independent pendulums (g/l = 1 s⁻²) starts as a small rectangle in \
+         phase space (angle q, momentum p) just inside the separatrix, the boundary between \
+         swinging and whirling motion. Near the separatrix the swing period depends strongly on \
+         the energy, so the patch is sheared and wound into a long thin filament; yet by Liouville's theorem the \
+         Hamiltonian flow preserves phase-space area, and the area enclosed by the patch's \
+         boundary (measured on 2000 boundary points carried along with the flow) stays at its \
+         initial value.",
+    },
+    Explanation {
+        slug: "fput",
+        systems: &["fput"],
+        text: "A chain of 32 unit masses joined by springs with a weak quartic non-linearity \
+         (V(r) = r²/2 + β r⁴/4, fixed ends) starts in its lowest normal mode. Fermi, Pasta, Ulam \
+         and Tsingou expected the non-linearity to share the energy out evenly among all modes \
+         (equipartition). Instead the energy flows into a few neighbouring modes and then comes \
+         back almost entirely to mode 1: the FPUT recurrence, an early hint of solitons and of \
+         KAM stability. (The quartic force keeps the chain's left–right symmetry, so the even \
+         modes 2 and 4 are never excited.)",
+    },
+    Explanation {
+        slug: "sine-gordon",
+        systems: &["sine-gordon", "sine-gordon-state"],
+        text: "A chain of pendulums on a torsion spring (the Frenkel–Kontorova model) is the lattice \
+         form of the sine-Gordon equation q_tt = c² q_xx − sin q. A kink is a travelling twist by \
+         2π in which the pendulums turn over one after another; an antikink twists back. They \
+         behave like particles: sent towards each other at 0.4 of the wave speed, they collide, \
+         pass through each other and re-emerge with their shapes intact, the signature of a \
+         soliton (the lattice sheds only a little radiation).",
+    },
+    Explanation {
+        slug: "chains",
+        systems: &["harmonic-chain", "coupled-oscillators"],
+        text: "Masses joined by identical springs between two walls move, for small oscillations, as a \
+         superposition of normal modes: standing waves in which every mass oscillates at the \
+         same frequency ωⱼ = 2√(k/m) sin(jπ/2(N+1)). The first figure shows the shapes of the \
+         four lowest modes of an 8-mass chain, each checked by simulation: started in a mode \
+         shape, the chain stays in it (the dots are the displacements half a period later, \
+         flipped in sign as a standing wave must be). The second shows beats: a 12-mass chain started in \
+         a superposition of its two highest modes, whose frequencies are close. Each mode keeps \
+         its own energy, yet a single mass swells and falls silent at the difference frequency, \
+         cos(ω₁₁t) + cos(ω₁₂t) = 2 cos(Δω t/2) cos(ω̄ t): beats are interference.",
+    },
+    Explanation {
+        slug: "kepler",
+        systems: &["kepler", "kepler-state"],
+        text: "A planet in an inverse-square force (units with G M = 1, semi-major axis 1, \
+         eccentricity 0.6) traces the same closed ellipse for ever: besides energy and angular \
+         momentum, the Laplace–Runge–Lenz vector, which points at the perihelion, is conserved, \
+         a symmetry special to 1/r². Adding a small attractive 1/r³ term, the effective \
+         post-Newtonian correction of general relativity, breaks that symmetry: the ellipse \
+         turns a little every orbit into a rosette, and the LRL vector's angle grows at a \
+         steady rate, the perihelion precession (43 arc-seconds per century for Mercury).",
+    },
+    Explanation {
+        slug: "euler-top",
+        systems: &["euler-top"],
+        text: "A free rigid body with principal moments I₁ = 1 < I₂ = 2 < I₃ = 3 (a flat plate) is \
+         spun almost exactly about its intermediate axis. Rotation about the smallest and the \
+         largest axes is stable, but about the intermediate axis it is not: the spin ω₂ \
+         periodically reverses, the plate flipping over while angular momentum stays fixed in \
+         space (the effect the cosmonaut Dzhanibekov saw with a wing nut). In the body frame the \
+         angular momentum L moves on a sphere |L| = const along its intersections with the \
+         energy ellipsoid, the polhodes: closed loops around the stable axes 1 and 3, and \
+         separatrices through the unstable axis 2. The implicit midpoint rule keeps energy and \
+         |L| exactly, so the computed curves close.",
+    },
+    Explanation {
+        slug: "heavy-top",
+        systems: &["heavy-top"],
+        text: "A spinning top with its tip fixed (I₁ = 1, I₃ = 0.5 kg m², M g l = 9.81 J) precesses \
+         slowly about the vertical while its axis nods up and down (nutation). Because the \
+         angles φ and ψ do not appear in the Lagrangian, their momenta are conserved and the \
+         tilt θ moves like a particle in the effective potential V_eff(θ): it oscillates between \
+         the two turning points where V_eff equals the energy. Started with a small backward \
+         precession, the tip of the axis draws loops on the unit sphere; started from rest in φ \
+         it would draw cusps.",
+    },
+    Explanation {
+        slug: "hoop",
+        systems: &["hoop"],
+        text: "A bead slides without friction on a vertical hoop (R = 1 m) spun at a fixed rate ω \
+         about its vertical diameter. In the rotating frame gravity pulls the bead down and the \
+         centrifugal force pushes it out. Below the critical rate ω_c = √(g/R) the bottom \
+         θ = 0 is the only stable rest point; above it the bottom becomes unstable and two new \
+         stable equilibria appear at cos θ = g/(Rω²), climbing the hoop as ω grows: a pitchfork \
+         bifurcation, the textbook example of spontaneous symmetry breaking. The phase portraits \
+         show the single centre turning into a saddle between two centres.",
+    },
+    Explanation {
+        slug: "projectile",
+        systems: &["projectile", "projectile-state"],
+        text: "A 1 kg ball launched at 40 m/s. Without air resistance every trajectory is Galileo's \
+         parabola and the range v² sin(2θ)/g is largest at 45°, with complementary angles \
+         (30° and 60°) landing at the same spot. Quadratic air drag (force −c|v|v, terminal \
+         speed 22 m/s) takes energy out of the flight: the paths become lopsided, steeper on \
+         the way down, the range shrinks a lot, and the best launch angle drops below 45°.",
+    },
+    Explanation {
+        slug: "integrators",
+        systems: &["pendulum"],
+        text: "The same pendulum (released from 115°, g/l = 1 s⁻²) integrated with the four methods. \
+         The symplectic methods (verlet, yoshida4) and the implicit midpoint rule conserve a \
+         modified energy exactly, so their energy error oscillates but never grows, however long \
+         the run; rk4 is more accurate per step than verlet but not symplectic, and its energy \
+         error grows steadily. The convergence plot measures each method's order p from the \
+         slope of the error at a fixed time against the step size (error ∝ dt^p): 2 for verlet \
+         and implicit_midpoint, 4 for yoshida4 and rk4.",
+    },
+    Explanation {
+        slug: "toda",
+        systems: &["toda"],
+        text: "Sixteen unit masses on a ring joined by exponential springs, V(r) = (a/b) e^(−b r) \
+         with a = b = 1 (stiff under compression, soft under stretching), the lattice Morikazu \
+         Toda found in 1967. Two particles are kicked, 3 and −1.5 units of momentum; each kick \
+         launches a compression pulse (a lattice soliton) that runs around the ring, and the \
+         energy sloshes from particle to particle (left: the energy of each particle above its \
+         equilibrium share a/b; middle: two particles). Yet the motion is completely \
+         integrable: Flaschka's Lax matrix L (diagonal pᵢ, off-diagonal √(a/b) e^(−b rᵢ/2), \
+         corners closing the ring) only rotates as time goes on, so its sixteen eigenvalues are \
+         conserved (right: flat lines; the sum of their squares is twice the energy). The FPUT \
+         chain of demonstration 4 is the same kind of lattice with a polynomial spring: it is \
+         only close to integrable, which is why its energy nearly, but not exactly, returns.",
+    },
+    Explanation {
+        slug: "elastic-pendulum",
+        systems: &["elastic-pendulum"],
+        text: "A 1 kg bob on a spring of rest length 1 m (g = 9.81 m/s²) is pulled 10 cm below its \
+         hanging position and let go with a 1° swing. Small bounces have the frequency \
+         ω_s = √(k/m), small swings ω_p = √(g/r_eq), where r_eq = l0 + mg/k is the stretched \
+         length it hangs at. When ω_s = 2ω_p the bob bounces twice per swing, rising at each \
+         end of the swing and dropping at the bottom (as a child pumps a swing by standing and \
+         crouching), and the energy passes almost completely from bounce to swing and back: the Fermi resonance of the CO₂ molecule in a \
+         classroom toy. The condition is often quoted as k/m = 4g/l0, but the swing sees the \
+         stretched length; solving k/m = 4g/r_eq gives k = 3mg/l0 = 29.43 N/m (r_eq = 4/3 m). \
+         At k = 40 N/m (ω_s/ω_p = 2.25, close to the quoted rule) the same start keeps bouncing \
+         with a swing that never grows. The energies are split exactly: E − E_eq = \
+         [m ṙ²/2 + k(r − r_eq)²/2] + [m r² θ̇²/2 + m g r (1 − cos θ)].",
+    },
+];
