@@ -23,18 +23,7 @@ fn axis(n: usize) -> Vec<f64> {
 }
 
 pub(crate) fn render(ctx: &Ctx) -> Result<Demo> {
-    let mut d = demo(
-        "flip-fractal",
-        "15. Double pendulum: the flip-time fractal",
-        "Each pixel is one double pendulum (equal masses and arms, g = 9.81 m/s²) released \
-         from rest at the angles (θ₁, θ₂); its colour is the time until either arm first \
-         swings over the top (|θ| > π), located inside the integration step. Members that \
-         cannot flip for lack of energy (3 cos θ₁ + cos θ₂ > 2) and those that did not flip \
-         within the run are drawn at the top of the scale. The boundaries between flip times \
-         are fractal (Heyl 2008): nearby starts that straddle them flip at very different \
-         times, the fingerprint of chaos. Computed as one ensemble on all cores \
-         (physicskit::classical::ensemble), bit-identical for any number of threads.",
-    );
+    let mut d = demo("flip-fractal", "15. Double pendulum: the flip-time fractal");
     let n = ctx.pick(64, 240);
     let t_max = ctx.pick(10.0, 30.0);
     let theta = axis(n);

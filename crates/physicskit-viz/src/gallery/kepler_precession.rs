@@ -35,12 +35,6 @@ pub(crate) fn render(ctx: &Ctx) -> Result<Demo> {
     let mut d = demo(
         "kepler-precession",
         "16. Kepler: perihelion precession against c_pn",
-        "An ensemble of Kepler orbits (a = 1, e = 0.5, G M = 1) with the post-Newtonian term \
-         c_pn/r³ swept over a range of strengths. For each member the direction of the \
-         Laplace–Runge–Lenz vector is followed along the run and its mean turning rate times \
-         the orbital period gives the precession per orbit (dots). First-order perturbation \
-         theory (Landau & Lifshitz §15) predicts Δφ = −6π c_pn μ² k / L⁴ per orbit (line): \
-         the two agree for weak corrections and part at second order in c_pn.",
     );
     let n = ctx.pick(12, 40);
     let c_pn: Vec<f64> = (0..n).map(|i| -0.01 * (i + 1) as f64 / n as f64).collect();

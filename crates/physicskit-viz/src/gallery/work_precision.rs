@@ -16,22 +16,7 @@ use crate::figure::{color, save_panel, Legend, Mark, Panel, Series};
 const ROUNDING: f64 = 1e-14;
 
 pub(crate) fn render(ctx: &Ctx) -> Result<Demo> {
-    let mut d = demo(
-        "work-precision",
-        "15. Work–precision",
-        "How much accuracy each integrator buys per second of computing. Each line is one \
-         method, each point one step size (halved from point to point) or, for the adaptive \
-         dop853, one tolerance (tenfold apart); lower left is better. \
-         On the Kepler orbit (e = 0.5, the error is the phase lag after the run against the \
-         analytic orbit) and on Hénon–Heiles (the largest energy error over the run), the \
-         high-order symplectic compositions (kahan_li8, sofroniou_spaletta10) reach the \
-         rounding floor at a small fraction of the cost of verlet or yoshida4, whose lines \
-         are steep but start far up. On the double pendulum, a chaotic Lagrangian system \
-         where only the methods for non-separable systems apply, the Gauss–Legendre methods \
-         of order 4 and 6 reach a given error far faster than the second-order implicit \
-         midpoint rule. Wall times are of one run on a shared machine: the slopes and the \
-         ordering matter, not the last digit.",
-    );
+    let mut d = demo("work-precision", "17. Work–precision");
     let points = ctx.pick(4, 7);
     for (k, problem) in Problem::all(ctx.quick).into_iter().enumerate() {
         let reference = match problem {

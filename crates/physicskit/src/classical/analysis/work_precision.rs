@@ -66,8 +66,7 @@ pub fn double_pendulum_reference(t_end: f64) -> Result<Vec<f64>> {
         tolerances: Some(Tolerances::new(1e-14, 1e-14)?),
         ..final_only()
     };
-    let result =
-        double_pendulum()?.integrate_with((0.0, t_end), t_end, Method::Dop853, options)?;
+    let result = double_pendulum()?.integrate_with((0.0, t_end), t_end, Method::Dop853, options)?;
     Ok(result.final_state().to_vec())
 }
 

@@ -25,8 +25,8 @@
 use std::ops::DerefMut;
 
 use super::field::{Canonical, FirstOrder, VectorField};
-use super::splitting::{check_system, SplittingStepper};
 use super::splitting::Coefficients;
+use super::splitting::{check_system, SplittingStepper};
 use super::stepper::{AdaptiveStepper, Dispatch, FieldStepper};
 use crate::classical::core::{
     error::check_finite, DynSystem, DynamicalSystem, Error, HamiltonianSystem, LagrangianSystem,

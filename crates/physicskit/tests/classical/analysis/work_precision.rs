@@ -46,8 +46,15 @@ fn errors_fall_at_the_methods_order() {
             .map(|&dt| problem.error(&problem.run(Method::Rk4, dt).unwrap(), &reference))
             .collect();
         let slope = loglog_slope(steps, &errors);
-        println!("{}: rk4 at {steps:?}: {errors:?}, slope {slope:.3}", problem.name());
-        assert!((slope - 4.0).abs() < 0.3, "{}: slope {slope}", problem.name());
+        println!(
+            "{}: rk4 at {steps:?}: {errors:?}, slope {slope:.3}",
+            problem.name()
+        );
+        assert!(
+            (slope - 4.0).abs() < 0.3,
+            "{}: slope {slope}",
+            problem.name()
+        );
     }
 }
 
@@ -72,7 +79,11 @@ fn the_adaptive_method_follows_its_tolerance() {
         println!("{}: dop853 at {tolerances:?}: {errors:?}", problem.name());
         assert!(errors[0] > errors[2], "{}: {errors:?}", problem.name());
         for (tol, e) in tolerances.iter().zip(&errors) {
-            assert!(*e < 1e3 * tol * problem.t_end().max(1.0), "{}: {e:e}", problem.name());
+            assert!(
+                *e < 1e3 * tol * problem.t_end().max(1.0),
+                "{}: {e:e}",
+                problem.name()
+            );
         }
     }
 }

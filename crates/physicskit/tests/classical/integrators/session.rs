@@ -3,8 +3,8 @@
 //! and a refusal by one is a refusal by the other.
 
 use physicskit::classical::catalog::SYSTEMS;
-use physicskit::classical::core::DynSystem;
 use physicskit::classical::core::method::Scheme;
+use physicskit::classical::core::DynSystem;
 use physicskit::classical::{Error, IntegrateOptions, Method};
 
 /// Steps compared per system and method: enough for the splitting methods' cached force and
@@ -32,7 +32,9 @@ fn frames_of_a_session_have_the_bits_of_one_integrate() {
             if method.info().scheme == Scheme::Adaptive {
                 // No session for an adaptive method (it needs the end of its span): refused
                 // with the system handed back unchanged.
-                let refused = build(entry).start(method, DT).err().expect("refused");
+                let Err(refused) = build(entry).start(method, DT) else {
+                    panic!("{} {method}: a session of an adaptive method", entry.name)
+                };
                 assert!(matches!(refused.error, Error::UnsupportedMethod { .. }));
                 assert_eq!(
                     refused.system.dynamical().state(),
