@@ -17,3 +17,4 @@ pub mod lyapunov;
 pub mod poincare;
 pub mod sali;
 pub mod section;
+pub mod watch;

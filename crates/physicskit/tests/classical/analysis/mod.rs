@@ -7,3 +7,4 @@ mod lyapunov;
 mod sali;
 mod section;
 mod symmetric_top;
+mod watch;
