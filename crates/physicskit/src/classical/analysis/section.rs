@@ -25,10 +25,10 @@
 //! method runs on `[q, p]`).
 
 use super::poincare::{Direction, PoincareSection};
+use super::watch::AnalysisOptions;
 use crate::classical::core::erased::DynSystem;
 use crate::classical::core::error::{check_finite, check_finite_scalar};
 use crate::classical::core::{Error, Method, Result, TimeGrid};
-use super::watch::AnalysisOptions;
 use crate::classical::integrators::Flow;
 
 /// Iteration cap of the crossing search; the Illinois iteration needs about ten.

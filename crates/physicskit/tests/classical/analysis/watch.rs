@@ -55,7 +55,10 @@ fn a_thinned_history_keeps_the_full_ones_rows() {
     for (j, &i) in rows.iter().enumerate() {
         assert_eq!(thin.t[j].to_bits(), full.t[i].to_bits());
         for c in 0..4 {
-            assert_eq!(thin.history[4 * j + c].to_bits(), full.history[4 * i + c].to_bits());
+            assert_eq!(
+                thin.history[4 * j + c].to_bits(),
+                full.history[4 * i + c].to_bits()
+            );
         }
     }
     let bits = |v: &[f64]| v.iter().map(|x| x.to_bits()).collect::<Vec<_>>();
@@ -72,9 +75,17 @@ fn a_thinned_sali_keeps_its_minimum_and_verdict() {
         let state0 = sys.dynamical().state().to_vec();
         let mut flow = sys.flow(Method::Yoshida4, 2).unwrap();
         let options = AnalysisOptions::default().with_history_stride(stride);
-        alignment_on_flow(flow.as_mut(), &state0, &grid, Alignment::Sali, 10, 0.0, options)
-            .unwrap()
-            .0
+        alignment_on_flow(
+            flow.as_mut(),
+            &state0,
+            &grid,
+            Alignment::Sali,
+            10,
+            0.0,
+            options,
+        )
+        .unwrap()
+        .0
     };
     let full = run(1);
     let thin = run(5);
@@ -86,7 +97,10 @@ fn a_thinned_sali_keeps_its_minimum_and_verdict() {
     assert_eq!(full.t.len(), 3001);
     assert_eq!(thin.t.len(), 601);
     assert_eq!(thin.index[1].to_bits(), full.index[5].to_bits());
-    assert_eq!(thin.t.last().unwrap().to_bits(), full.t.last().unwrap().to_bits());
+    assert_eq!(
+        thin.t.last().unwrap().to_bits(),
+        full.t.last().unwrap().to_bits()
+    );
 }
 
 /// 1e15 steps renormalized at each: 1e15 rows of 5 numbers, 4e16 bytes, more than any
@@ -129,8 +143,16 @@ fn the_observer_stops_every_chaos_loop() {
     };
     let mut flow = sys.flow(Method::Yoshida4, 2).unwrap();
     let options = AnalysisOptions::observed(&mut observer, 100);
-    let e = alignment_on_flow(flow.as_mut(), &state0, &grid, Alignment::Sali, 10, 0.0, options)
-        .unwrap_err();
+    let e = alignment_on_flow(
+        flow.as_mut(),
+        &state0,
+        &grid,
+        Alignment::Sali,
+        10,
+        0.0,
+        options,
+    )
+    .unwrap_err();
     expect_stop(e, &observer);
 
     let mut observer = StopAfter {
@@ -140,7 +162,7 @@ fn the_observer_stops_every_chaos_loop() {
     let mut flow = sys.flow(Method::Yoshida4, 0).unwrap();
     let surface = SurfaceOfSection::coordinate(0, 0.0, Direction::Increasing).unwrap();
     let options = AnalysisOptions::observed(&mut observer, 100);
-    let e = section_on_flow(flow.as_mut(), &state0, &grid, &surface, usize::MAX, options)
-        .unwrap_err();
+    let e =
+        section_on_flow(flow.as_mut(), &state0, &grid, &surface, usize::MAX, options).unwrap_err();
     expect_stop(e, &observer);
 }
