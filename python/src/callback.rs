@@ -508,7 +508,14 @@ fn chaos_run<'s, S: DynamicalSystem>(
     let state = sys.state().to_vec();
     let mut flow = make(sys, job.vectors(state.len()))?;
     // Python callbacks are ~100x slower than native code: check more often, as `integrate`.
-    chaos::run(flow.as_mut(), &state, &grid, job, observer, CHECK_EVERY / 16)
+    chaos::run(
+        flow.as_mut(),
+        &state,
+        &grid,
+        job,
+        observer,
+        CHECK_EVERY / 16,
+    )
 }
 
 /// Registers the callback integrators.
