@@ -123,7 +123,7 @@ fn the_observer_stops_every_chaos_loop() {
     let grid = TimeGrid::new((0.0, 100.0), 0.01).unwrap();
     let sys = chaotic_orbit();
     let state0 = sys.dynamical().state().to_vec();
-    let mut expect_stop = |result: Error, observer: &StopAfter| {
+    let expect_stop = |result: Error, observer: &StopAfter| {
         assert_eq!(observer.calls, vec![100, 200, 300]);
         match result {
             Error::Interrupted { t } => assert!((t - 3.0).abs() < 1e-12, "t = {t}"),
