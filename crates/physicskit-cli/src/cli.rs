@@ -45,8 +45,8 @@ pub enum Action {
         override_usage = "physicskit lyapunov SYSTEM [--PARAM VALUE ...] [--method M] [--n-exponents K] [--renormalize-every M] [--history-stride S] --dt DT --t1 T1 [--t0 T0] --out FILE"
     )]
     Lyapunov(LyapunovArgs),
-    /// Poincaré section of one orbit: the crossings of state[COORDINATE] = VALUE, each located
-    /// inside its step to the method's order.
+    /// Poincaré section of one orbit: the crossings of the state's component COORDINATE through
+    /// VALUE, each located inside its step to the method's order.
     ///
     /// The output format follows the extension of --out: .npz (numpy.load), .csv or .json.
     /// Run `physicskit poincare SYSTEM --help` for a system's parameters.
