@@ -482,10 +482,11 @@ pub fn chaos_hamiltonian<'py>(
     let method = parse_method(Some(method), Method::Yoshida4, separable).py()?;
     let sys =
         PyHamiltonian::new(obj, to_vec(&state), t0, ndof, separable, to_vec(&mass_inv)).py()?;
-    let outcome = chaos_run(&sys, t_span, dt, &job, |s, k| {
+    let mut observer = SignalObserver::default();
+    let outcome = chaos_run(&sys, t_span, dt, &job, &mut observer, |s, k| {
         hamiltonian_flow(s, method, k)
     });
-    let out = sys.cb.finish_with(outcome, None)?;
+    let out = sys.cb.finish_with(outcome, observer.raised)?;
     chaos::to_dict(py, out)
 }
 
@@ -508,8 +509,11 @@ pub fn chaos_ode<'py>(
     let job = chaos::job_from_py(kind, options)?;
     let method = parse_method(Some(method), Method::ImplicitMidpoint, false).py()?;
     let sys = PyOde::new(obj, to_vec(&state), t0).py()?;
-    let outcome = chaos_run(&sys, t_span, dt, &job, |s, k| ode_flow(s, method, k));
-    let out = sys.cb.finish_with(outcome, None)?;
+    let mut observer = SignalObserver::default();
+    let outcome = chaos_run(&sys, t_span, dt, &job, &mut observer, |s, k| {
+        ode_flow(s, method, k)
+    });
+    let out = sys.cb.finish_with(outcome, observer.raised)?;
     chaos::to_dict(py, out)
 }
 
@@ -519,12 +523,21 @@ fn chaos_run<'s, S: DynamicalSystem>(
     t_span: (f64, f64),
     dt: f64,
     job: &chaos::Job,
+    observer: &mut SignalObserver,
     make: impl FnOnce(&'s S, usize) -> Result<Box<dyn Flow + 's>>,
 ) -> Result<chaos::JobResult> {
     let grid = TimeGrid::new(t_span, dt)?;
     let state = sys.state().to_vec();
     let mut flow = make(sys, job.vectors(state.len()))?;
-    chaos::run(flow.as_mut(), &state, &grid, job)
+    // Python callbacks are ~100x slower than native code: check more often, as `integrate`.
+    chaos::run(
+        flow.as_mut(),
+        &state,
+        &grid,
+        job,
+        observer,
+        CHECK_EVERY / 16,
+    )
 }
 
 /// Registers the callback integrators.

@@ -15,8 +15,9 @@ use numpy::{
 use physicskit::classical::analysis::chaos_map::{chaos_map_by, Indicator, MapRun};
 use physicskit::classical::analysis::lyapunov::lyapunov_on_flow;
 use physicskit::classical::analysis::poincare::Direction;
-use physicskit::classical::analysis::sali::{alignment_on_flow, Alignment, Verdict};
+use physicskit::classical::analysis::sali::{alignment_on_flow, Alignment};
 use physicskit::classical::analysis::section::{section_on_flow, Continuation, SurfaceOfSection};
+use physicskit::classical::analysis::watch::AnalysisOptions;
 use physicskit::classical::core::erased::DynSystem;
 use physicskit::classical::integrators::Flow;
 use physicskit::classical::{Error, Method, Result, TimeGrid};
@@ -25,6 +26,7 @@ use pyo3::types::PyDict;
 
 use crate::convert::to_vec;
 use crate::errors::IntoPyResult;
+use crate::interrupt::{SignalObserver, CHECK_EVERY};
 use crate::native::{parse_method, NativeSystem};
 
 /// One analysis, as the Python functions describe it.
@@ -38,6 +40,8 @@ pub enum Job {
         k: Option<usize>,
         /// Steps between renormalizations.
         every: usize,
+        /// Keep every `stride`-th row of the history.
+        stride: usize,
     },
     /// SALI or GALI_k.
     Alignment {
@@ -45,6 +49,8 @@ pub enum Job {
         which: Alignment,
         /// Steps between evaluations.
         every: usize,
+        /// Keep every `stride`-th evaluation.
+        stride: usize,
     },
 }
 
@@ -87,8 +93,8 @@ fn direction(d: i64) -> Result<Direction> {
 }
 
 /// The options of a job, as keyword arguments: `coordinate`, `normal`, `value`, `direction`
-/// (sections), `n_exponents` (Lyapunov), `renormalize_every` (Lyapunov, SALI, GALI), `k`
-/// (GALI), each optional.
+/// (sections), `n_exponents` (Lyapunov), `renormalize_every` and `history_stride` (Lyapunov,
+/// SALI, GALI), `k` (GALI), each optional.
 #[derive(Debug, Clone)]
 pub struct JobOptions {
     coordinate: Option<usize>,
@@ -97,6 +103,7 @@ pub struct JobOptions {
     direction: i64,
     n_exponents: Option<usize>,
     renormalize_every: usize,
+    history_stride: usize,
     k: usize,
 }
 
@@ -113,6 +120,7 @@ impl JobOptions {
             direction: 1,
             n_exponents: None,
             renormalize_every: 10,
+            history_stride: 1,
             k: 2,
         };
         let Some(kwargs) = kwargs else {
@@ -127,6 +135,7 @@ impl JobOptions {
                 "direction" => o.direction = v.extract()?,
                 "n_exponents" => o.n_exponents = v.extract()?,
                 "renormalize_every" => o.renormalize_every = v.extract()?,
+                "history_stride" => o.history_stride = v.extract()?,
                 "k" => o.k = v.extract()?,
                 other => {
                     return Err(pyo3::exceptions::PyTypeError::new_err(format!(
@@ -146,6 +155,10 @@ impl JobOptions {
 /// direction, or a section with neither or both of `coordinate` and `normal`.
 pub fn job(kind: &str, o: JobOptions) -> Result<Job> {
     let every = o.renormalize_every;
+    let stride = o.history_stride;
+    if stride == 0 {
+        return Err(Error::invalid("history_stride", 0.0, "must be >= 1"));
+    }
     Ok(match kind {
         "section" => {
             let d = direction(o.direction)?;
@@ -165,14 +178,17 @@ pub fn job(kind: &str, o: JobOptions) -> Result<Job> {
         "lyapunov" => Job::Lyapunov {
             k: o.n_exponents,
             every,
+            stride,
         },
         "sali" => Job::Alignment {
             which: Alignment::Sali,
             every,
+            stride,
         },
         "gali" => Job::Alignment {
             which: Alignment::Gali(o.k),
             every,
+            stride,
         },
         other => {
             return Err(Error::InvalidArgument {
@@ -191,15 +207,25 @@ pub fn job_from_py(kind: &str, kwargs: Option<&Bound<'_, PyDict>>) -> PyResult<J
     job(kind, JobOptions::from_kwargs(kwargs)?).py()
 }
 
-/// Runs `job` on `flow` from `state0` over `grid`.
+/// Runs `job` on `flow` from `state0` over `grid`, `observer` checking for Ctrl-C every
+/// `check_every` steps.
 ///
 /// # Errors
-/// Whatever the analysis reports.
-pub fn run(flow: &mut dyn Flow, state0: &[f64], grid: &TimeGrid, job: &Job) -> Result<JobResult> {
+/// Whatever the analysis reports; [`Error::Interrupted`] when a signal handler raised (the
+/// exception is in `observer`).
+pub fn run(
+    flow: &mut dyn Flow,
+    state0: &[f64],
+    grid: &TimeGrid,
+    job: &Job,
+    observer: &mut SignalObserver,
+    check_every: usize,
+) -> Result<JobResult> {
     let dim = state0.len();
+    let options = AnalysisOptions::observed(observer, check_every);
     Ok(match job {
         Job::Section(surface) => {
-            let (cut, end) = section_on_flow(flow, state0, grid, surface, usize::MAX)?;
+            let (cut, end) = section_on_flow(flow, state0, grid, surface, usize::MAX, options)?;
             let n = cut.len();
             (
                 vec![
@@ -209,9 +235,10 @@ pub fn run(flow: &mut dyn Flow, state0: &[f64], grid: &TimeGrid, job: &Job) -> R
                 end,
             )
         }
-        Job::Lyapunov { k, every } => {
+        Job::Lyapunov { k, every, stride } => {
             let k = k.unwrap_or(flow.dim());
-            let (s, end) = lyapunov_on_flow(flow, state0, grid, k, *every)?;
+            let options = options.with_history_stride(*stride);
+            let (s, end) = lyapunov_on_flow(flow, state0, grid, k, *every, options)?;
             let rows = s.t.len();
             (
                 vec![
@@ -222,9 +249,14 @@ pub fn run(flow: &mut dyn Flow, state0: &[f64], grid: &TimeGrid, job: &Job) -> R
                 end,
             )
         }
-        Job::Alignment { which, every } => {
-            let (s, end) = alignment_on_flow(flow, state0, grid, *which, *every, 0.0)?;
-            let verdict = Verdict::of(&s.index).name();
+        Job::Alignment {
+            which,
+            every,
+            stride,
+        } => {
+            let options = options.with_history_stride(*stride);
+            let (s, end) = alignment_on_flow(flow, state0, grid, *which, *every, 0.0, options)?;
+            let verdict = s.verdict().name();
             let rows = s.t.len();
             (
                 vec![
@@ -283,18 +315,30 @@ pub fn chaos_native<'py>(
     let state = to_vec(&state);
     let inner = native.inner_mut();
     let method = parse_method(method, inner.default_method(), true).py()?;
+    let mut observer = SignalObserver::default();
     let outcome = py.detach(|| -> Result<_> {
         inner.reset(Some(&state), t0)?;
         let grid = TimeGrid::new(t_span, dt)?;
         let out = {
             let sys: &dyn DynSystem = &**inner;
             let mut flow = sys.flow(method, job.vectors(state.len()))?;
-            run(flow.as_mut(), &state, &grid, &job)?
+            run(
+                flow.as_mut(),
+                &state,
+                &grid,
+                &job,
+                &mut observer,
+                CHECK_EVERY,
+            )?
         };
         inner.reset(Some(&out.1.state), out.1.t)?;
         Ok(out)
     });
-    to_dict(py, outcome.py()?)
+    match (outcome, observer.raised) {
+        (Ok(out), _) => to_dict(py, out),
+        (Err(Error::Interrupted { .. }), Some(signal)) => Err(signal),
+        (Err(e), _) => Err(crate::errors::to_py(e)),
+    }
 }
 
 fn indicator(kind: &str, job: Job) -> Result<Indicator> {

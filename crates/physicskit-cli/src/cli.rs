@@ -1,7 +1,10 @@
-//! The command-line grammar (clap derive), with one `simulate` subcommand per catalogue entry
-//! generated from the entry, so that `physicskit simulate SYSTEM --help` lists that system's
-//! parameters with their units, ranges and defaults.
+//! The command-line grammar (clap derive), with one subcommand per catalogue entry under each
+//! of `simulate`, `lyapunov` and `poincare`, generated from the entry, so that
+//! `physicskit simulate SYSTEM --help` lists that system's parameters with their units, ranges
+//! and defaults. The three share the system, method and time flags; each adds its own
+//! ([`RunKind::FLAGS`]).
 
+use std::marker::PhantomData;
 use std::path::PathBuf;
 
 use clap::{Arg, ArgAction, ArgMatches, Args, Command, FromArgMatches, Parser, Subcommand};
@@ -33,6 +36,24 @@ pub enum Action {
         override_usage = "physicskit simulate SYSTEM [--PARAM VALUE ...] [--method M] [--rtol R --atol A] --dt DT --t1 T1 [--t0 T0] --out FILE"
     )]
     Simulate(Box<SimulateArgs>),
+    /// Lyapunov spectrum of one orbit (Benettin et al. 1980, QR every K steps): the exponents
+    /// and their running estimates against time.
+    ///
+    /// The output format follows the extension of --out: .npz (numpy.load), .csv or .json.
+    /// Run `physicskit lyapunov SYSTEM --help` for a system's parameters.
+    #[command(
+        override_usage = "physicskit lyapunov SYSTEM [--PARAM VALUE ...] [--method M] [--n-exponents K] [--renormalize-every M] [--history-stride S] --dt DT --t1 T1 [--t0 T0] --out FILE"
+    )]
+    Lyapunov(Box<LyapunovArgs>),
+    /// Poincaré section of one orbit: the crossings of the state's component COORDINATE through
+    /// VALUE, each located inside its step to the method's order.
+    ///
+    /// The output format follows the extension of --out: .npz (numpy.load), .csv or .json.
+    /// Run `physicskit poincare SYSTEM --help` for a system's parameters.
+    #[command(
+        override_usage = "physicskit poincare SYSTEM [--PARAM VALUE ...] [--method M] --coordinate I [--value X] [--direction D] --dt DT --t1 T1 [--t0 T0] --out FILE"
+    )]
+    Poincare(Box<PoincareArgs>),
     /// Render every demonstration (figures, animations, index.html) into a directory.
     Gallery(GalleryArgs),
     /// Integrate an ensemble (a parameter grid) of one system on all cores; write an .npz.
@@ -102,7 +123,152 @@ pub struct EnsembleArgs {
 pub struct SimulateArgs {
     /// The system and its arguments.
     #[command(subcommand)]
-    pub system: SystemCall,
+    pub system: SystemCall<Simulate>,
+}
+
+/// Arguments of `lyapunov`.
+#[derive(Debug, Args)]
+pub struct LyapunovArgs {
+    /// The system and its arguments.
+    #[command(subcommand)]
+    pub system: SystemCall<Lyapunov>,
+}
+
+/// Arguments of `poincare`.
+#[derive(Debug, Args)]
+pub struct PoincareArgs {
+    /// The system and its arguments.
+    #[command(subcommand)]
+    pub system: SystemCall<Poincare>,
+}
+
+/// A flag of one kind of run, beyond the shared ones.
+#[derive(Debug, Clone, Copy)]
+pub struct Flag {
+    /// Long name, also the clap id.
+    pub name: &'static str,
+    /// Placeholder in the help.
+    pub value_name: &'static str,
+    /// Default text, if any.
+    pub default: Option<&'static str>,
+    /// Whether it must be given.
+    pub required: bool,
+    /// Help line.
+    pub help: &'static str,
+}
+
+impl Flag {
+    const fn optional(
+        name: &'static str,
+        value_name: &'static str,
+        default: Option<&'static str>,
+        help: &'static str,
+    ) -> Self {
+        Self {
+            name,
+            value_name,
+            default,
+            required: false,
+            help,
+        }
+    }
+}
+
+/// A kind of run on one system: its subcommand name and its own flags.
+pub trait RunKind: std::fmt::Debug + Clone + Send + Sync + 'static {
+    /// The subcommand, e.g. `simulate`.
+    const ACTION: &'static str;
+    /// Its flags beyond `--method`, `--dt`, `--t0`, `--t1` and `--out`.
+    const FLAGS: &'static [Flag];
+}
+
+/// `simulate`.
+#[derive(Debug, Clone)]
+pub struct Simulate;
+
+impl RunKind for Simulate {
+    const ACTION: &'static str = "simulate";
+    const FLAGS: &'static [Flag] = &[
+        Flag::optional(
+            "stride",
+            "K",
+            Some("1"),
+            "store every K-th step (and the last)",
+        ),
+        Flag::optional(
+            "rtol",
+            "RTOL",
+            None,
+            "relative tolerance of an adaptive method (dop853), > 0; default 1e-10",
+        ),
+        Flag::optional(
+            "atol",
+            "ATOL",
+            None,
+            "absolute tolerance of an adaptive method (dop853), > 0; default 1e-12",
+        ),
+    ];
+}
+
+/// `lyapunov`.
+#[derive(Debug, Clone)]
+pub struct Lyapunov;
+
+impl RunKind for Lyapunov {
+    const ACTION: &'static str = "lyapunov";
+    const FLAGS: &'static [Flag] = &[
+        Flag::optional(
+            "n-exponents",
+            "K",
+            None,
+            "number of exponents, 1 to the state dimension [default: all]",
+        ),
+        Flag::optional(
+            "renormalize-every",
+            "M",
+            Some("10"),
+            "steps between QR re-orthonormalizations of the deviation vectors",
+        ),
+        Flag::optional(
+            "history-stride",
+            "S",
+            Some("1"),
+            "keep the running estimates of every S-th renormalization (and the last)",
+        ),
+    ];
+}
+
+/// `poincare`.
+#[derive(Debug, Clone)]
+pub struct Poincare;
+
+impl RunKind for Poincare {
+    const ACTION: &'static str = "poincare";
+    const FLAGS: &'static [Flag] = &[
+        Flag {
+            name: "coordinate",
+            value_name: "I",
+            default: None,
+            required: true,
+            help: "index into the state of the section's coordinate: q_0.., then p_0.. (or y)",
+        },
+        Flag::optional("value", "X", Some("0"), "the section is state[I] = X"),
+        Flag::optional(
+            "direction",
+            "D",
+            Some("1"),
+            "crossings counted: 1 increasing, -1 decreasing, 0 both",
+        ),
+    ];
+}
+
+/// The flags of the run kind `action` beyond the shared ones, for messages.
+pub fn kind_flags(action: &str) -> Option<&'static [Flag]> {
+    [Simulate::ACTION, Lyapunov::ACTION, Poincare::ACTION]
+        .into_iter()
+        .zip([Simulate::FLAGS, Lyapunov::FLAGS, Poincare::FLAGS])
+        .find(|(a, _)| *a == action)
+        .map(|(_, flags)| flags)
 }
 
 /// Arguments of `list`.
@@ -124,10 +290,11 @@ pub struct GalleryArgs {
     pub quick: bool,
 }
 
-/// `simulate SYSTEM ...` as parsed: the system's name and its raw argument texts. Values are
-/// parsed against the catalogue afterwards, so every mistake gets the same one-line message.
+/// `simulate SYSTEM ...` (or `lyapunov`, `poincare`) as parsed: the system's name and its raw
+/// argument texts. Values are parsed against the catalogue afterwards, so every mistake gets
+/// the same one-line message.
 #[derive(Debug, Clone)]
-pub struct SystemCall {
+pub struct SystemCall<K> {
     /// System name as typed.
     pub name: String,
     /// `--PARAM VALUE` pairs for the system's own parameters, in command-line order.
@@ -142,15 +309,22 @@ pub struct SystemCall {
     pub t1: String,
     /// `--out`.
     pub out: PathBuf,
-    /// `--stride`.
-    pub stride: String,
-    /// `--rtol` (adaptive methods only).
-    pub rtol: Option<String>,
-    /// `--atol` (adaptive methods only).
-    pub atol: Option<String>,
+    /// The kind's own flags ([`RunKind::FLAGS`]) as typed or defaulted, in their order.
+    pub options: Vec<(&'static str, Option<String>)>,
+    kind: PhantomData<K>,
 }
 
-fn system_command(entry: &SystemEntry) -> Command {
+impl<K> SystemCall<K> {
+    /// The text of the kind's flag `name` (given or its default).
+    pub fn option(&self, name: &str) -> Option<&str> {
+        self.options
+            .iter()
+            .find(|(n, _)| *n == name)
+            .and_then(|(_, v)| v.as_deref())
+    }
+}
+
+fn system_command(entry: &SystemEntry, flags: &[Flag]) -> Command {
     let mut cmd = Command::new(entry.name)
         .about(entry.summary)
         .arg(
@@ -194,28 +368,19 @@ fn system_command(entry: &SystemEntry) -> Command {
                 .required(true)
                 .value_parser(clap::value_parser!(PathBuf))
                 .help("output file: .npz, .csv or .json"),
-        )
-        .arg(
-            Arg::new("stride")
-                .long("stride")
-                .value_name("K")
-                .default_value("1")
-                .help("store every K-th step (and the last)"),
-        )
-        .arg(
-            Arg::new("rtol")
-                .long("rtol")
-                .value_name("RTOL")
-                .allow_negative_numbers(true)
-                .help("relative tolerance of an adaptive method (dop853), > 0; default 1e-10"),
-        )
-        .arg(
-            Arg::new("atol")
-                .long("atol")
-                .value_name("ATOL")
-                .allow_negative_numbers(true)
-                .help("absolute tolerance of an adaptive method (dop853), > 0; default 1e-12"),
         );
+    for f in flags {
+        let mut arg = Arg::new(f.name)
+            .long(f.name)
+            .value_name(f.value_name)
+            .required(f.required)
+            .allow_negative_numbers(true)
+            .help(f.help);
+        if let Some(default) = f.default {
+            arg = arg.default_value(default);
+        }
+        cmd = cmd.arg(arg);
+    }
     for p in entry.params {
         cmd = cmd.arg(
             Arg::new(p.name)
@@ -242,7 +407,7 @@ fn text(m: &ArgMatches, id: &str) -> Option<String> {
     m.get_one::<String>(id).cloned()
 }
 
-impl FromArgMatches for SystemCall {
+impl<K: RunKind> FromArgMatches for SystemCall<K> {
     fn from_arg_matches(matches: &ArgMatches) -> Result<Self, clap::Error> {
         let Some((name, m)) = matches.subcommand() else {
             return Err(clap::Error::new(clap::error::ErrorKind::MissingSubcommand));
@@ -257,9 +422,8 @@ impl FromArgMatches for SystemCall {
                 t0: String::new(),
                 t1: String::new(),
                 out: PathBuf::new(),
-                stride: String::new(),
-                rtol: None,
-                atol: None,
+                options: Vec::new(),
+                kind: PhantomData,
             });
         };
         let mut params: Vec<(usize, String, String)> = Vec::new();
@@ -284,9 +448,8 @@ impl FromArgMatches for SystemCall {
                 .get_one::<PathBuf>("out")
                 .cloned()
                 .ok_or_else(|| clap::Error::new(clap::error::ErrorKind::MissingRequiredArgument))?,
-            stride: required("stride")?,
-            rtol: text(m, "rtol"),
-            atol: text(m, "atol"),
+            options: K::FLAGS.iter().map(|f| (f.name, text(m, f.name))).collect(),
+            kind: PhantomData,
         })
     }
 
@@ -296,10 +459,10 @@ impl FromArgMatches for SystemCall {
     }
 }
 
-impl Subcommand for SystemCall {
+impl<K: RunKind> Subcommand for SystemCall<K> {
     fn augment_subcommands(mut cmd: Command) -> Command {
         for entry in SYSTEMS {
-            cmd = cmd.subcommand(system_command(entry));
+            cmd = cmd.subcommand(system_command(entry, K::FLAGS));
         }
         cmd.subcommand_required(true)
             .subcommand_value_name("SYSTEM")

@@ -225,7 +225,7 @@ pub fn run(args: &EnsembleArgs, stop: &Stop) -> Result<()> {
             data: values.as_slice().unwrap_or(&[]),
         });
     }
-    pending.commit_with(|file| write_npz(file, &entries))
+    pending.commit_with(|_, file| write_npz(file, &entries))
 }
 
 /// Stops the run on a signal.

@@ -1,4 +1,5 @@
-//! `physicskit`: list the systems, export a trajectory or an ensemble, render the gallery.
+//! `physicskit`: list the systems, export a trajectory, an ensemble, a Lyapunov spectrum or a
+//! Poincaré section, render the gallery.
 //!
 //! Exit status: 0 on success; 2 on any error, printed as one line `error: ...` on stderr
 //! (bad input, a run the library refuses, an unwritable output); `128 + signal` after a run
@@ -6,12 +7,14 @@
 //! ([`signals`]). No physics lives here: systems, their parameters and defaults come from the
 //! library's catalogue (`physicskit::classical::catalog`).
 
+mod chaos;
 mod cli;
 mod ensemble;
 mod gallery;
 mod list;
 mod output;
 mod params;
+mod prepare;
 mod progress;
 mod signals;
 mod simulate;
@@ -39,6 +42,8 @@ fn main() -> ExitCode {
             other => other.map_err(anyhow::Error::from),
         },
         Action::Simulate(args) => simulate::run(&args.system, &stop),
+        Action::Lyapunov(args) => chaos::lyapunov(&args.system, &stop),
+        Action::Poincare(args) => chaos::poincare(&args.system, &stop),
         Action::Gallery(args) => gallery::render(&args.out, args.quick),
         Action::Ensemble(args) => ensemble::run(args, &stop),
     };
@@ -80,18 +85,23 @@ fn clap_failure(err: &clap::Error) -> ExitCode {
     }
 }
 
-/// For `simulate SYSTEM --typo`, names the system's parameters instead of clap's message.
+/// For `simulate SYSTEM --typo` (or `lyapunov`, `poincare`), names the system's parameters
+/// instead of clap's message.
 fn unknown_parameter(err: &clap::Error) -> Option<String> {
     let ContextValue::String(arg) = err.get(ContextKind::InvalidArg)? else {
         return None;
     };
     let args: Vec<String> = std::env::args().collect();
-    let at = args.iter().position(|a| a == "simulate")?;
+    let (at, flags) = args
+        .iter()
+        .enumerate()
+        .find_map(|(i, a)| cli::kind_flags(a).map(|f| (i, f)))?;
     let spec = physicskit::classical::catalog::find(args.get(at + 1)?).ok()?;
     let names: Vec<&str> = spec.params.iter().map(|p| p.name).collect();
+    let own: String = flags.iter().map(|f| format!(", --{}", f.name)).collect();
     Some(format!(
         "unknown parameter `{arg}` for `{}`; its parameters are: {} (and --method, --dt, --t0, \
-         --t1, --stride, --out, --rtol, --atol)",
+         --t1{own}, --out)",
         spec.name,
         names.join(", ")
     ))

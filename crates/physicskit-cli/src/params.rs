@@ -250,7 +250,11 @@ mod tests {
     /// Every flag must stay the system's own: a parameter called `dt` would be shadowed.
     #[test]
     fn parameters_do_not_shadow_run_options() {
-        let reserved = ["method", "dt", "t0", "t1", "out", "stride", "help"];
+        use crate::cli::{Lyapunov, Poincare, RunKind, Simulate};
+        let mut reserved = vec!["method", "dt", "t0", "t1", "out", "help"];
+        for flags in [Simulate::FLAGS, Lyapunov::FLAGS, Poincare::FLAGS] {
+            reserved.extend(flags.iter().map(|f| f.name));
+        }
         for entry in SYSTEMS {
             for p in entry.params {
                 assert!(!reserved.contains(&p.name), "{}: --{}", entry.name, p.name);

@@ -190,50 +190,60 @@ def poincare_section(
 
 def lyapunov_spectrum(
     system: DynamicalSystem, t_span, dt: float, *, n_exponents: Optional[int] = None,
-    renormalize_every: int = 10, method: Optional[str] = None,
+    renormalize_every: int = 10, method: Optional[str] = None, history_stride: int = 1,
 ) -> LyapunovSpectrum:
     """The ``n_exponents`` largest Lyapunov exponents (all for None), re-orthonormalizing the
-    deviation vectors by QR every ``renormalize_every`` steps."""
+    deviation vectors by QR every ``renormalize_every`` steps.
+
+    ``history`` keeps the running estimates of every ``history_stride``-th renormalization
+    (and of the last), so a long run need not hold them all; the exponents do not depend on
+    it. Ctrl-C stops the run with ``KeyboardInterrupt``."""
     if n_exponents is not None:
         n_exponents = as_int("n_exponents", n_exponents, minimum=1)
     out = _run(
         system, t_span, dt, method, "lyapunov", n_exponents=n_exponents,
         renormalize_every=as_int("renormalize_every", renormalize_every, minimum=1),
+        history_stride=as_int("history_stride", history_stride, minimum=1),
     )
     return LyapunovSpectrum(out["exponents"], out["t"], out["history"])
 
 
 def max_lyapunov(
     system: DynamicalSystem, t_span, dt: float, *, renormalize_every: int = 10,
-    method: Optional[str] = None,
+    method: Optional[str] = None, history_stride: int = 1,
 ) -> LyapunovSpectrum:
     """The largest Lyapunov exponent (one deviation vector): ``exponents[0]``."""
     return lyapunov_spectrum(
-        system, t_span, dt, n_exponents=1, renormalize_every=renormalize_every, method=method
+        system, t_span, dt, n_exponents=1, renormalize_every=renormalize_every, method=method,
+        history_stride=history_stride,
     )
 
 
 def sali(
     system: DynamicalSystem, t_span, dt: float, *, renormalize_every: int = 10,
-    method: Optional[str] = None,
+    method: Optional[str] = None, history_stride: int = 1,
 ) -> AlignmentIndex:
-    """The Smaller Alignment Index of two deviation vectors against time."""
+    """The Smaller Alignment Index of two deviation vectors against time, kept at every
+    ``history_stride``-th evaluation (and the first and last); the verdict is on all."""
     out = _run(
         system, t_span, dt, method, "sali",
         renormalize_every=as_int("renormalize_every", renormalize_every, minimum=1),
+        history_stride=as_int("history_stride", history_stride, minimum=1),
     )
     return AlignmentIndex(out["t"], out["index"], out["verdict"])
 
 
 def gali(
     system: DynamicalSystem, t_span, dt: float, k: int, *, renormalize_every: int = 10,
-    method: Optional[str] = None,
+    method: Optional[str] = None, history_stride: int = 1,
 ) -> AlignmentIndex:
     """The Generalized Alignment Index GALI_k (volume spanned by ``k`` unit deviation
-    vectors) against time; ``2 <= k <= state dimension``."""
+    vectors) against time; ``2 <= k <= state dimension``. ``history_stride`` as for
+    :func:`sali`."""
     out = _run(
         system, t_span, dt, method, "gali", k=as_int("k", k, minimum=2),
         renormalize_every=as_int("renormalize_every", renormalize_every, minimum=1),
+        history_stride=as_int("history_stride", history_stride, minimum=1),
     )
     return AlignmentIndex(out["t"], out["index"], out["verdict"])
 

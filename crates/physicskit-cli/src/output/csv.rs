@@ -18,27 +18,38 @@ use super::Record;
 fn constants(record: &Record<'_>) -> (Vec<String>, Vec<f64>) {
     let mut names = vec!["dt".to_string()];
     let mut values = vec![record.dt];
-    for (name, value) in record.params.iter() {
+    push_numeric("param_", record.params.iter(), &mut names, &mut values);
+    (names, values)
+}
+
+/// Appends the numeric values among `items` as columns `<prefix><name>` (`<prefix><name>_<i>`
+/// for list entries); text has no place in a numeric table.
+pub(super) fn push_numeric<'n, 'v>(
+    prefix: &str,
+    items: impl Iterator<Item = (&'n str, Option<&'v Value>)>,
+    names: &mut Vec<String>,
+    values: &mut Vec<f64>,
+) {
+    for (name, value) in items {
         match value {
             Some(Value::Scalar(v)) => {
-                names.push(format!("param_{name}"));
+                names.push(format!("{prefix}{name}"));
                 values.push(*v);
             }
             Some(Value::Integer(n)) => {
-                names.push(format!("param_{name}"));
+                names.push(format!("{prefix}{name}"));
                 // Integers are sizes, seeds and mode numbers, far below 2^53: exact as f64.
                 values.push(*n as f64);
             }
             Some(Value::Vector(items)) => {
                 for (i, v) in items.iter().enumerate() {
-                    names.push(format!("param_{name}_{i}"));
+                    names.push(format!("{prefix}{name}_{i}"));
                     values.push(*v);
                 }
             }
             Some(Value::Choice(_)) | None => {}
         }
     }
-    (names, values)
 }
 
 pub(super) fn write(w: &mut impl Write, record: &Record<'_>) -> io::Result<()> {

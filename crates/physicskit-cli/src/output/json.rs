@@ -4,7 +4,7 @@
 
 use std::io::{self, Write};
 
-use physicskit::classical::core::Value;
+use physicskit::classical::core::{Value, Values};
 use physicskit::classical::ExtraValue;
 
 use super::number::push_f64;
@@ -21,14 +21,8 @@ pub(super) fn write(w: &mut impl Write, record: &Record<'_>) -> io::Result<()> {
         push_f64(&mut s, value);
         s.push_str(",\n");
     }
-    s.push_str("  \"parameters\": {");
-    for (k, (name, value)) in record.params.iter().enumerate() {
-        s.push_str(if k == 0 { "\n    " } else { ",\n    " });
-        s.push_str(&quote(name));
-        s.push_str(": ");
-        push_value(&mut s, value);
-    }
-    s.push_str("\n  },\n  \"extra\": {");
+    push_parameters(&mut s, record.params);
+    s.push_str(",\n  \"extra\": {");
     let scalars = result.extra.iter().filter_map(|(name, value)| match value {
         ExtraValue::Scalar(v) => Some((name, *v)),
         ExtraValue::Array(_) => None,
@@ -62,7 +56,19 @@ pub(super) fn write(w: &mut impl Write, record: &Record<'_>) -> io::Result<()> {
     w.write_all(b"\n}\n")
 }
 
-fn push_list(out: &mut String, items: impl Iterator<Item = f64>) {
+/// `"parameters": {..}` (without a trailing comma or newline).
+pub(super) fn push_parameters(s: &mut String, params: &Values) {
+    s.push_str("  \"parameters\": {");
+    for (k, (name, value)) in params.iter().enumerate() {
+        s.push_str(if k == 0 { "\n    " } else { ",\n    " });
+        s.push_str(&quote(name));
+        s.push_str(": ");
+        push_value(s, value);
+    }
+    s.push_str("\n  }");
+}
+
+pub(super) fn push_list(out: &mut String, items: impl Iterator<Item = f64>) {
     out.push('[');
     for (k, v) in items.enumerate() {
         if k > 0 {
@@ -73,7 +79,7 @@ fn push_list(out: &mut String, items: impl Iterator<Item = f64>) {
     out.push(']');
 }
 
-fn push_value(out: &mut String, value: Option<&Value>) {
+pub(super) fn push_value(out: &mut String, value: Option<&Value>) {
     match value {
         Some(Value::Scalar(v)) => push_f64(out, *v),
         Some(Value::Integer(n)) => out.push_str(&n.to_string()),
@@ -85,7 +91,7 @@ fn push_value(out: &mut String, value: Option<&Value>) {
 
 /// A JSON string literal. Names here come from the catalogue, but escaping keeps the output
 /// valid whatever they hold.
-fn quote(s: &str) -> String {
+pub(super) fn quote(s: &str) -> String {
     let mut out = String::with_capacity(s.len() + 2);
     out.push('"');
     for c in s.chars() {

@@ -1,4 +1,5 @@
-//! Writing a trajectory to `.npz`, `.csv` or `.json`, chosen by the file's extension.
+//! Writing a trajectory to `.npz`, `.csv` or `.json`, chosen by the file's extension; an
+//! analysis's named arrays likewise ([`Arrays`]).
 //!
 //! Every format holds the same content: the sample times `t`; `q` and `p` (for Lagrangian
 //! systems `p` holds `qdot`, as in the spec), or the raw state `y` for general ODE systems;
@@ -11,12 +12,15 @@
 //! early, and [`Pending::commit`] renames it over the destination only after everything is
 //! written and flushed. If anything fails, the temporary file is deleted when dropped.
 
+mod analysis;
 pub mod arrays;
 mod csv;
 mod json;
 mod npy;
 mod npz;
 pub mod number;
+
+pub use analysis::{Arrays, Named};
 
 use std::fs::File;
 use std::io::{BufWriter, Write};
@@ -156,8 +160,7 @@ impl Pending {
     /// # Errors
     /// I/O failures; the temporary file is then removed and the destination left untouched.
     pub fn commit(self, record: &Record<'_>) -> Result<()> {
-        let format = self.format;
-        self.commit_with(|file| match format {
+        self.commit_with(|format, file| match format {
             Format::Npz => npz::write(file, record),
             Format::Csv => write_buffered(file, |w| csv::write(w, record)),
             Format::Json => write_buffered(file, |w| json::write(w, record)),
@@ -169,14 +172,30 @@ impl Pending {
         self.format == Format::Npz
     }
 
-    /// Writes the file with `write`, flushes it to disk and renames it into place.
+    /// Writes an analysis's named arrays, as [`commit`](Self::commit).
     ///
     /// # Errors
     /// As [`commit`](Self::commit).
-    pub fn commit_with(self, write: impl FnOnce(&File) -> std::io::Result<()>) -> Result<()> {
+    pub fn commit_arrays(self, record: &Arrays<'_>) -> Result<()> {
+        self.commit_with(|format, file| match format {
+            Format::Npz => analysis::write_npz(file, record),
+            Format::Csv => write_buffered(file, |w| analysis::write_csv(w, record)),
+            Format::Json => write_buffered(file, |w| analysis::write_json(w, record)),
+        })
+    }
+
+    /// Writes the file with `write` (given the format), flushes it to disk and renames it into
+    /// place.
+    ///
+    /// # Errors
+    /// As [`commit`](Self::commit).
+    pub fn commit_with(
+        self,
+        write: impl FnOnce(Format, &File) -> std::io::Result<()>,
+    ) -> Result<()> {
         let context = || format!("cannot write `{}`", self.path.display());
         let file: &File = self.temp.as_file();
-        write(file).with_context(context)?;
+        write(self.format, file).with_context(context)?;
         file.sync_all().with_context(context)?;
         make_readable(file);
         self.temp

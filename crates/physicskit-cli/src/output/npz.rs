@@ -8,7 +8,7 @@
 use std::fs::File;
 use std::io::{self, BufWriter, Write};
 
-use physicskit::classical::core::Value;
+use physicskit::classical::core::{Value, Values};
 use physicskit::classical::ExtraValue;
 use zip::write::SimpleFileOptions;
 use zip::{CompressionMethod, ZipWriter};
@@ -44,36 +44,12 @@ pub(super) fn write(file: &File, record: &Record<'_>) -> io::Result<()> {
         entry(&mut zip, name)?;
         npy::write_f64(&mut zip, &[], [value])?;
     }
-    for (name, text) in [
+    let texts = [
         ("system", record.system),
         ("family", record.family.name()),
         ("method", result.method.as_str()),
-    ] {
-        entry(&mut zip, name)?;
-        npy::write_str(&mut zip, text)?;
-    }
-    for (name, value) in record.params.iter() {
-        let key = format!("param_{name}");
-        match value {
-            Some(Value::Scalar(v)) => {
-                entry(&mut zip, &key)?;
-                npy::write_f64(&mut zip, &[], [*v])?;
-            }
-            Some(Value::Integer(n)) => {
-                entry(&mut zip, &key)?;
-                npy::write_i64(&mut zip, &[], [*n])?;
-            }
-            Some(Value::Vector(items)) => {
-                entry(&mut zip, &key)?;
-                npy::write_f64(&mut zip, &[items.len()], items.iter().copied())?;
-            }
-            Some(Value::Choice(word)) => {
-                entry(&mut zip, &key)?;
-                npy::write_str(&mut zip, word)?;
-            }
-            None => {}
-        }
-    }
+    ];
+    write_labels(&mut zip, options, texts, record.params)?;
     for (name, value) in &result.extra {
         if let ExtraValue::Scalar(v) = value {
             entry(&mut zip, &format!("extra_{name}"))?;
@@ -82,4 +58,36 @@ pub(super) fn write(file: &File, record: &Record<'_>) -> io::Result<()> {
     }
     let mut inner = zip.finish().map_err(io::Error::other)?;
     inner.flush()
+}
+
+/// The 0-d strings `texts`, then one `param_<name>` per given parameter.
+pub(super) fn write_labels(
+    zip: &mut ZipWriter<BufWriter<&File>>,
+    options: SimpleFileOptions,
+    texts: [(&str, &str); 3],
+    params: &Values,
+) -> io::Result<()> {
+    for (name, text) in texts {
+        zip.start_file(format!("{name}.npy"), options)
+            .map_err(io::Error::other)?;
+        npy::write_str(zip, text)?;
+    }
+    for (name, value) in params.iter() {
+        if let Some(value) = value {
+            zip.start_file(format!("param_{name}.npy"), options)
+                .map_err(io::Error::other)?;
+            write_value(zip, value)?;
+        }
+    }
+    Ok(())
+}
+
+/// One catalogue value as a 0-d or 1-d array: `<f8`, `<i8`, or a string for a word.
+pub(super) fn write_value(w: &mut impl Write, value: &Value) -> io::Result<()> {
+    match value {
+        Value::Scalar(v) => npy::write_f64(w, &[], [*v]),
+        Value::Integer(n) => npy::write_i64(w, &[], [*n]),
+        Value::Vector(items) => npy::write_f64(w, &[items.len()], items.iter().copied()),
+        Value::Choice(word) => npy::write_str(w, word),
+    }
 }

@@ -11,7 +11,7 @@ const GOOD: [&str; 8] = [
 ];
 
 /// Runs `args` in a fresh directory and checks the failure contract; returns stderr.
-fn fails(args: &[&str]) -> String {
+pub fn fails(args: &[&str]) -> String {
     let dir = scratch();
     let out = run_in(dir.path(), args);
     let err = stderr(&out);
@@ -85,7 +85,7 @@ fn unknown_method() {
 fn unknown_method_lists_the_methods_of_that_system() {
     // The list is the catalogue's for the system: every method for a separable pendulum, only
     // those for non-separable systems for the (Lagrangian) double pendulum.
-    for system in ["pendulum", "double_pendulum"] {
+    for system in ["pendulum", "double-pendulum"] {
         let err = system_fails(system, &["--method", "euler"], "a.csv");
         let entry = physicskit::classical::catalog::find(system).unwrap();
         let listed = err.split("valid methods are: ").nth(1).unwrap_or("").trim();
@@ -292,30 +292,33 @@ fn method_the_system_cannot_use() {
     assert!(err.contains("yoshida4"), "{err}");
 }
 
-/// Starts a long run, sends it `signal` (a `kill` name) once the run has started, and checks
-/// that it stops with exit status `status` and one error line naming the signal, leaving no
-/// file (the temporary `.physicskit-*.tmp` included) behind.
+/// A long `simulate` run.
+const LONG_RUN: [&str; 12] = [
+    "simulate",
+    "pendulum-swarm",
+    "--n",
+    "2000",
+    "--dt",
+    "0.01",
+    "--t1",
+    "1e6",
+    "--stride",
+    "100000",
+    "--out",
+    "a.npz",
+];
+
+/// Starts the long run `args`, sends it `signal` (a `kill` name) once the run has started, and
+/// checks that it stops with exit status `status` and one error line naming the signal,
+/// leaving no file (the temporary `.physicskit-*.tmp` included) behind.
 #[cfg(unix)]
-fn signal_stops_a_run_and_leaves_nothing(signal: &str, status: i32) {
+pub fn signal_stops_a_run_and_leaves_nothing(args: &[&str], signal: &str, status: i32) {
     use std::process::{Command, Stdio};
     use std::time::{Duration, Instant};
 
     let dir = scratch();
     let child = Command::new(env!("CARGO_BIN_EXE_physicskit"))
-        .args([
-            "simulate",
-            "pendulum-swarm",
-            "--n",
-            "2000",
-            "--dt",
-            "0.01",
-            "--t1",
-            "1e6",
-            "--stride",
-            "100000",
-            "--out",
-            "a.npz",
-        ])
+        .args(args)
         .current_dir(dir.path())
         .stderr(Stdio::piped())
         .spawn()
@@ -349,7 +352,7 @@ fn signal_stops_a_run_and_leaves_nothing(signal: &str, status: i32) {
 #[cfg(unix)]
 #[test]
 fn interrupted_run_leaves_nothing() {
-    signal_stops_a_run_and_leaves_nothing("INT", 130);
+    signal_stops_a_run_and_leaves_nothing(&LONG_RUN, "INT", 130);
 }
 
 /// SIGTERM (what `kill`, systemd and container runtimes send) is handled as Ctrl-C: exit
@@ -357,14 +360,14 @@ fn interrupted_run_leaves_nothing() {
 #[cfg(unix)]
 #[test]
 fn terminated_run_leaves_nothing() {
-    signal_stops_a_run_and_leaves_nothing("TERM", 143);
+    signal_stops_a_run_and_leaves_nothing(&LONG_RUN, "TERM", 143);
 }
 
 /// SIGHUP (the terminal closed): exit status 129, no temporary file left.
 #[cfg(unix)]
 #[test]
 fn hung_up_run_leaves_nothing() {
-    signal_stops_a_run_and_leaves_nothing("HUP", 129);
+    signal_stops_a_run_and_leaves_nothing(&LONG_RUN, "HUP", 129);
 }
 
 /// Sizes that cannot fit in memory (the cases: 10^12 sites, and 2^62, whose byte

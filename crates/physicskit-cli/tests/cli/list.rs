@@ -209,7 +209,16 @@ fn list_json_encodes_defaults_ranges_and_lengths() {
     assert_eq!(theta0["default_origin"], json!("demo"));
     assert_eq!(theta0["length"], json!({"rule": "fixed", "n": 2}));
     assert_eq!(theta0["range"], Json::Null);
-    assert_eq!(dp["methods"], json!(["rk4", "implicit_midpoint", "dop853"]));
+    assert_eq!(
+        dp["methods"],
+        json!([
+            "rk4",
+            "implicit_midpoint",
+            "gauss_legendre4",
+            "gauss_legendre6",
+            "dop853"
+        ])
+    );
     assert!(dp["capabilities"]
         .as_array()
         .unwrap()

@@ -1,7 +1,8 @@
 //! Integration tests of the `physicskit` command: one test binary whose modules follow the
-//! commands in `src/` (`list`, and `simulate`'s output and errors), each running the built
+//! commands in `src/` (`list`, `simulate`'s output and errors, `lyapunov` and `poincare`), each running the built
 //! binary in a scratch directory.
 
+mod chaos;
 mod common;
 
 mod ensemble;

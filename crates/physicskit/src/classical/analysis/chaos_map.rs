@@ -16,6 +16,7 @@ use rayon::prelude::*;
 use super::lyapunov::lyapunov_on_flow;
 use super::sali::{alignment_on_flow, Alignment};
 use super::section::{section_on_flow, SurfaceOfSection};
+use super::watch::AnalysisOptions;
 use crate::classical::core::erased::DynSystem;
 use crate::classical::core::error::check_vector;
 use crate::classical::core::{Error, Method, Result, TimeGrid};
@@ -64,7 +65,15 @@ fn one_point(system: &dyn DynSystem, state0: &[f64], grid: &TimeGrid, run: &MapR
     match &run.indicator {
         Indicator::MaxLyapunov { renormalize_every } => {
             let mut flow = system.flow(method, 1)?;
-            let (s, _) = lyapunov_on_flow(flow.as_mut(), state0, grid, 1, *renormalize_every)?;
+            let (s, _) = lyapunov_on_flow(
+                flow.as_mut(),
+                state0,
+                grid,
+                1,
+                *renormalize_every,
+                // Only the exponent is used: one row of history.
+                AnalysisOptions::default().with_history_stride(usize::MAX),
+            )?;
             Ok(s.exponents[0])
         }
         Indicator::Sali { renormalize_every } => {
@@ -76,12 +85,20 @@ fn one_point(system: &dyn DynSystem, state0: &[f64], grid: &TimeGrid, run: &MapR
                 Alignment::Sali,
                 *renormalize_every,
                 SALI_FLOOR,
+                AnalysisOptions::default().with_history_stride(usize::MAX),
             )?;
             Ok(s.index.last().copied().unwrap_or(f64::NAN))
         }
         Indicator::Crossings(surface) => {
             let mut flow = system.flow(method, 0)?;
-            let (cut, _) = section_on_flow(flow.as_mut(), state0, grid, surface, usize::MAX)?;
+            let (cut, _) = section_on_flow(
+                flow.as_mut(),
+                state0,
+                grid,
+                surface,
+                usize::MAX,
+                AnalysisOptions::default(),
+            )?;
             Ok(cut.len() as f64)
         }
     }

@@ -30,6 +30,7 @@
 //! the flow, or inside an invariant subspace).
 
 use super::section::Continuation;
+use super::watch::AnalysisOptions;
 use crate::classical::core::erased::DynSystem;
 use crate::classical::core::error::check_finite;
 use crate::classical::core::{Error, Method, Result, TimeGrid};
@@ -119,17 +120,21 @@ pub(crate) fn gram_schmidt(w: &mut [f64], dim: usize, r: &mut [f64], t: f64) -> 
 
 /// The Lyapunov spectrum's first `k` exponents of the orbit from `state0` over `grid` on
 /// `flow` (built for at least `k` vectors), renormalizing every `renormalize_every` steps and
-/// at the end; and where the run ended.
+/// at the end; and where the run ended. `options` has the observer and which rows of the
+/// history to keep ([`AnalysisOptions`]; the exponents do not depend on it).
 ///
 /// # Errors
 /// [`Error::InvalidParameter`] for `k` outside `1..=dim` or `renormalize_every = 0`;
-/// [`Error::NonFinite`] for a diverging orbit or deviation; whatever the system reports.
+/// [`Error::NonFinite`] for a diverging orbit or deviation; [`Error::TrajectoryTooLarge`] for
+/// a history that would not fit in memory; [`Error::Interrupted`] when the observer stops the
+/// run; whatever the system reports.
 pub fn lyapunov_on_flow(
     flow: &mut dyn Flow,
     state0: &[f64],
     grid: &TimeGrid,
     k: usize,
     renormalize_every: usize,
+    mut options: AnalysisOptions<'_>,
 ) -> Result<(LyapunovSpectrum, Continuation)> {
     let n = flow.dim();
     check_vectors(k, n, renormalize_every, "n_exponents")?;
@@ -140,14 +145,16 @@ pub fn lyapunov_on_flow(
     let mut r = vec![0.0; k];
     let mut sums = vec![0.0; k];
     let steps = grid.n_steps();
-    let renormalizations = steps.div_ceil(renormalize_every);
+    let thinning = options.thinning(steps.div_ceil(renormalize_every), k + 1)?;
     let mut out = LyapunovSpectrum {
         exponents: Vec::new(),
-        t: Vec::with_capacity(renormalizations),
-        history: Vec::with_capacity(renormalizations * k),
+        t: Vec::with_capacity(thinning.kept()),
+        history: Vec::with_capacity(thinning.kept() * k),
         k,
     };
     let dt = grid.dt();
+    let mut watch = options.watch(steps);
+    let mut row = 0;
     for i in 0..steps {
         flow.step_tangent(grid.time(i), &mut y, &mut w, dt)?;
         let done = i + 1;
@@ -155,13 +162,17 @@ pub fn lyapunov_on_flow(
             let t = grid.time(done);
             check_finite("state", &y, t)?;
             gram_schmidt(&mut w, n, &mut r, t)?;
-            let elapsed = t - grid.t0();
-            out.t.push(t);
             for (s, ri) in sums.iter_mut().zip(&r) {
                 *s += ri.ln();
-                out.history.push(*s / elapsed);
             }
+            if thinning.keeps(row) {
+                let elapsed = t - grid.t0();
+                out.t.push(t);
+                out.history.extend(sums.iter().map(|s| s / elapsed));
+            }
+            row += 1;
         }
+        watch.tick(done, grid.time(done))?;
     }
     let elapsed = grid.t_end() - grid.t0();
     out.exponents = sums
@@ -215,7 +226,14 @@ pub fn lyapunov_spectrum<S: DynSystem + ?Sized>(
     let (spectrum, end) = {
         let mut flow = system.flow(method, n_exponents.unwrap_or(state0.len()))?;
         let k = n_exponents.unwrap_or(flow.dim());
-        lyapunov_on_flow(flow.as_mut(), &state0, &grid, k, renormalize_every)?
+        lyapunov_on_flow(
+            flow.as_mut(),
+            &state0,
+            &grid,
+            k,
+            renormalize_every,
+            AnalysisOptions::default(),
+        )?
     };
     system.reset(Some(&end.state), end.t)?;
     Ok(spectrum)

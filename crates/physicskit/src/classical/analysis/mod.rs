@@ -17,4 +17,5 @@ pub mod lyapunov;
 pub mod poincare;
 pub mod sali;
 pub mod section;
+pub mod watch;
 pub mod work_precision;

@@ -21,6 +21,7 @@
 
 use super::lyapunov::{check_vectors, gram_schmidt, initial_vectors};
 use super::section::Continuation;
+use super::watch::AnalysisOptions;
 use crate::classical::core::erased::DynSystem;
 use crate::classical::core::error::check_finite;
 use crate::classical::core::{Method, Result, TimeGrid};
@@ -83,12 +84,15 @@ pub struct AlignmentIndex {
     pub t: Vec<f64>,
     /// The index at each time.
     pub index: Vec<f64>,
+    /// The smallest index of the run, over every evaluation, kept or not
+    /// ([`AnalysisOptions::history_stride`]).
+    pub minimum: f64,
 }
 
 impl AlignmentIndex {
-    /// The verdict of [`Verdict::of`].
+    /// The verdict on every evaluation of the run, kept or not: [`Verdict::of`] its minimum.
     pub fn verdict(&self) -> Verdict {
-        Verdict::of(&self.index)
+        Verdict::of(&[self.minimum])
     }
 }
 
@@ -136,13 +140,17 @@ fn index_of(
 /// The alignment index `which` of the orbit from `state0` over `grid` on `flow` (built for at
 /// least its number of vectors), evaluated every `renormalize_every` steps and at the end. The
 /// run stops early once the index is below `stop_below` (0 never stops), which saves the rest
-/// of a chaotic orbit when only the verdict matters.
+/// of a chaotic orbit when only the verdict matters. `options` has the observer and which
+/// evaluations to keep ([`AnalysisOptions`]: the start, every `history_stride`-th and the last
+/// are kept; the minimum is taken over all).
 ///
 /// # Errors
 /// [`Error::InvalidParameter`](crate::classical::Error::InvalidParameter) for a number of
 /// vectors outside `2..=dim` (SALI needs a state of 2 or more), or `renormalize_every = 0`;
-/// [`Error::NonFinite`](crate::classical::Error::NonFinite) for a diverging orbit; whatever the
-/// system reports.
+/// [`Error::NonFinite`](crate::classical::Error::NonFinite) for a diverging orbit;
+/// [`Error::TrajectoryTooLarge`](crate::classical::Error::TrajectoryTooLarge) for a history
+/// that would not fit in memory; [`Error::Interrupted`](crate::classical::Error::Interrupted)
+/// when the observer stops the run; whatever the system reports.
 pub fn alignment_on_flow(
     flow: &mut dyn Flow,
     state0: &[f64],
@@ -150,6 +158,7 @@ pub fn alignment_on_flow(
     which: Alignment,
     renormalize_every: usize,
     stop_below: f64,
+    mut options: AnalysisOptions<'_>,
 ) -> Result<(AlignmentIndex, Continuation)> {
     let n = flow.dim();
     let k = which.vectors();
@@ -168,15 +177,19 @@ pub fn alignment_on_flow(
     let mut q = vec![0.0; k * n];
     let mut r = vec![0.0; k];
     let steps = grid.n_steps();
+    // The start, then the evaluations, thinned: evaluation `e` (1-based) is row `e - 1`.
+    let thinning = options.thinning(steps.div_ceil(renormalize_every), 2)?;
     let mut out = AlignmentIndex {
-        t: Vec::with_capacity(steps / renormalize_every + 2),
-        index: Vec::with_capacity(steps / renormalize_every + 2),
+        t: Vec::with_capacity(thinning.kept() + 1),
+        index: Vec::with_capacity(thinning.kept() + 1),
+        minimum: index_of(which, &mut w, n, &mut q, &mut r, grid.t0())?,
     };
     out.t.push(grid.t0());
-    out.index
-        .push(index_of(which, &mut w, n, &mut q, &mut r, grid.t0())?);
+    out.index.push(out.minimum);
     let dt = grid.dt();
     let mut t_end = grid.t0();
+    let mut watch = options.watch(steps);
+    let mut row = 0;
     for i in 0..steps {
         flow.step_tangent(grid.time(i), &mut y, &mut w, dt)?;
         let done = i + 1;
@@ -184,12 +197,18 @@ pub fn alignment_on_flow(
             t_end = grid.time(done);
             check_finite("state", &y, t_end)?;
             let v = index_of(which, &mut w, n, &mut q, &mut r, t_end)?;
-            out.t.push(t_end);
-            out.index.push(v);
+            out.minimum = out.minimum.min(v);
+            // The row that ends a run early is kept too.
+            if thinning.keeps(row) || v < stop_below {
+                out.t.push(t_end);
+                out.index.push(v);
+            }
+            row += 1;
             if v < stop_below {
                 break;
             }
         }
+        watch.tick(done, grid.time(done))?;
     }
     let mut state = state0.to_vec();
     flow.leave(t_end, &y, &mut state)?;
@@ -216,7 +235,15 @@ pub fn alignment_index<S: DynSystem + ?Sized>(
     let state0 = system.dynamical().state().to_vec();
     let (index, end) = {
         let mut flow = system.flow(method, which.vectors())?;
-        alignment_on_flow(flow.as_mut(), &state0, &grid, which, renormalize_every, 0.0)?
+        alignment_on_flow(
+            flow.as_mut(),
+            &state0,
+            &grid,
+            which,
+            renormalize_every,
+            0.0,
+            AnalysisOptions::default(),
+        )?
     };
     system.reset(Some(&end.state), end.t)?;
     Ok(index)

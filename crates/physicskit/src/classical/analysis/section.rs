@@ -25,6 +25,7 @@
 //! method runs on `[q, p]`).
 
 use super::poincare::{Direction, PoincareSection};
+use super::watch::AnalysisOptions;
 use crate::classical::core::erased::DynSystem;
 use crate::classical::core::error::{check_finite, check_finite_scalar};
 use crate::classical::core::{Error, Method, Result, TimeGrid};
@@ -156,17 +157,20 @@ pub struct Continuation {
 }
 
 /// The crossings of the orbit from `state0` over `grid` on `flow`, at most `max_crossings`
-/// of them (the run stops at the last one kept), and where the run ended.
+/// of them (the run stops at the last one kept), and where the run ended. `options` has the
+/// observer ([`AnalysisOptions`]; a section has no history to thin).
 ///
 /// # Errors
 /// [`Error::DimensionMismatch`] for a state or plane of the wrong length,
-/// [`Error::NonFinite`] for a diverging orbit; whatever the system or method report.
+/// [`Error::NonFinite`] for a diverging orbit; [`Error::Interrupted`] when the observer stops
+/// the run; whatever the system or method report.
 pub fn section_on_flow(
     flow: &mut dyn Flow,
     state0: &[f64],
     grid: &TimeGrid,
     surface: &SurfaceOfSection,
     max_crossings: usize,
+    mut options: AnalysisOptions<'_>,
 ) -> Result<(PoincareSection, Continuation)> {
     let n = flow.dim();
     let sdim = state0.len();
@@ -185,6 +189,7 @@ pub fn section_on_flow(
     let (mut s_before, _) = surface.eval(&state);
     let dt = grid.dt();
     let mut t_end = grid.t0();
+    let mut watch = options.watch(grid.n_steps());
     for i in 0..grid.n_steps() {
         if out.len() >= max_crossings {
             break;
@@ -211,6 +216,7 @@ pub fn section_on_flow(
             out.states.extend_from_slice(&trial_state);
         }
         s_before = s_after;
+        watch.tick(i + 1, t_end)?;
     }
     Ok((out, Continuation { state, t: t_end }))
 }
@@ -302,7 +308,14 @@ pub fn poincare_section<S: DynSystem + ?Sized>(
     let state0 = system.dynamical().state().to_vec();
     let (cut, end) = {
         let mut flow = system.flow(method, 0)?;
-        section_on_flow(flow.as_mut(), &state0, &grid, surface, max_crossings)?
+        section_on_flow(
+            flow.as_mut(),
+            &state0,
+            &grid,
+            surface,
+            max_crossings,
+            AnalysisOptions::default(),
+        )?
     };
     system.reset(Some(&end.state), end.t)?;
     Ok(cut)

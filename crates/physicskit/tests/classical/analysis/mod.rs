@@ -7,4 +7,5 @@ mod lyapunov;
 mod sali;
 mod section;
 mod symmetric_top;
+mod watch;
 mod work_precision;

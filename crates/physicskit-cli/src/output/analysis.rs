@@ -1,0 +1,196 @@
+//! Named arrays of an analysis (a Lyapunov spectrum, a Poincaré section), written in the three
+//! formats as a trajectory is: the same settings, parameters and number text, so the files
+//! read back to the same bits.
+//!
+//! - `.npz`: one array per name with its shape; each setting as a 0-d array (`<i8` for
+//!   integers); `system`, `family`, `method` as 0-d strings; `param_<name>` per parameter.
+//! - `.json`: one object: `system`, `family`, `method`, the settings, `"parameters": {..}`,
+//!   then each array as a (nested) list.
+//! - `.csv`: one row per entry of the row arrays (those whose first dimension is the length
+//!   of `t`: columns `name` or `name_<j>`), then as constant columns the other arrays
+//!   (`name_<i>`), the numeric settings and `param_<name>`.
+
+use std::fs::File;
+use std::io::{self, BufWriter, Write};
+
+use physicskit::classical::core::{Family, Value, Values};
+use zip::write::SimpleFileOptions;
+use zip::{CompressionMethod, ZipWriter};
+
+use super::json::{push_list, push_parameters, push_value, quote};
+use super::npz::{write_labels, write_value};
+use super::number::push_f64;
+use super::{csv, npy};
+
+/// One named array: C-order data and its shape (`[n]` or `[n, m]`).
+#[derive(Debug, Clone)]
+pub struct Named {
+    /// Its name in the file.
+    pub name: &'static str,
+    /// Its shape.
+    pub shape: Vec<usize>,
+    /// Its elements in C order.
+    pub data: Vec<f64>,
+}
+
+impl Named {
+    /// A 1-d array.
+    pub fn vector(name: &'static str, data: Vec<f64>) -> Self {
+        Self {
+            name,
+            shape: vec![data.len()],
+            data,
+        }
+    }
+
+    /// An `(rows, data.len() / rows)` array; `cols` gives the width when `rows` is 0.
+    pub fn matrix(name: &'static str, cols: usize, data: Vec<f64>) -> Self {
+        Self {
+            name,
+            shape: vec![data.len() / cols.max(1), cols],
+            data,
+        }
+    }
+
+    fn width(&self) -> usize {
+        self.shape.get(1).copied().unwrap_or(1)
+    }
+}
+
+/// Everything written about one analysis.
+#[derive(Debug)]
+pub struct Arrays<'a> {
+    /// Catalogue name of the system.
+    pub system: &'a str,
+    /// Its family.
+    pub family: Family,
+    /// The method's name.
+    pub method: &'a str,
+    /// The run's settings (`t0`, `t1`, `dt` and the analysis's own), by name.
+    pub settings: Vec<(&'static str, Value)>,
+    /// Every parameter with the value used.
+    pub params: &'a Values,
+    /// The results; the one named `t` gives the rows of the CSV.
+    pub arrays: Vec<Named>,
+}
+
+impl Arrays<'_> {
+    fn rows(&self) -> usize {
+        self.arrays
+            .iter()
+            .find(|a| a.name == "t")
+            .map_or(0, |a| a.shape[0])
+    }
+
+    fn texts(&self) -> [(&'static str, &str); 3] {
+        [
+            ("system", self.system),
+            ("family", self.family.name()),
+            ("method", self.method),
+        ]
+    }
+}
+
+pub(super) fn write_npz(file: &File, record: &Arrays<'_>) -> io::Result<()> {
+    let values: usize = record.arrays.iter().map(|a| a.data.len()).sum();
+    // Entries over 4 GiB need the zip64 extension, which numpy reads.
+    let options = SimpleFileOptions::default()
+        .compression_method(CompressionMethod::Stored)
+        .large_file(values * 8 > u32::MAX as usize / 2);
+    let mut zip = ZipWriter::new(BufWriter::new(file));
+    let entry = |zip: &mut ZipWriter<BufWriter<&File>>, name: &str| {
+        zip.start_file(format!("{name}.npy"), options)
+            .map_err(io::Error::other)
+    };
+    for a in &record.arrays {
+        entry(&mut zip, a.name)?;
+        npy::write_f64(&mut zip, &a.shape, a.data.iter().copied())?;
+    }
+    for (name, value) in &record.settings {
+        entry(&mut zip, name)?;
+        write_value(&mut zip, value)?;
+    }
+    write_labels(&mut zip, options, record.texts(), record.params)?;
+    let mut inner = zip.finish().map_err(io::Error::other)?;
+    inner.flush()
+}
+
+pub(super) fn write_json(w: &mut impl Write, record: &Arrays<'_>) -> io::Result<()> {
+    let mut s = String::from("{\n");
+    for (name, text) in record.texts() {
+        s.push_str(&format!("  \"{name}\": {},\n", quote(text)));
+    }
+    for (name, value) in &record.settings {
+        s.push_str(&format!("  \"{name}\": "));
+        push_value(&mut s, Some(value));
+        s.push_str(",\n");
+    }
+    push_parameters(&mut s, record.params);
+    w.write_all(s.as_bytes())?;
+    for a in &record.arrays {
+        w.write_all(format!(",\n  \"{}\": ", a.name).as_bytes())?;
+        s.clear();
+        if a.shape.len() == 1 {
+            push_list(&mut s, a.data.iter().copied());
+        } else {
+            s.push('[');
+            for (i, row) in a.data.chunks_exact(a.width()).enumerate() {
+                s.push_str(if i == 0 { "\n    " } else { ",\n    " });
+                push_list(&mut s, row.iter().copied());
+            }
+            s.push_str("\n  ]");
+        }
+        w.write_all(s.as_bytes())?;
+    }
+    w.write_all(b"\n}\n")
+}
+
+pub(super) fn write_csv(w: &mut impl Write, record: &Arrays<'_>) -> io::Result<()> {
+    let rows = record.rows();
+    let (columns, constants): (Vec<&Named>, Vec<&Named>) = record
+        .arrays
+        .iter()
+        .partition(|a| a.shape[0] == rows && (a.shape.len() == 2 || a.name == "t"));
+    let mut header = Vec::new();
+    for a in &columns {
+        match a.shape.len() {
+            1 => header.push(a.name.to_string()),
+            _ => header.extend((0..a.width()).map(|j| format!("{}_{j}", a.name))),
+        }
+    }
+    let (mut names, mut values) = (Vec::new(), Vec::new());
+    for a in &constants {
+        for (i, v) in a.data.iter().enumerate() {
+            names.push(format!("{}_{i}", a.name));
+            values.push(*v);
+        }
+    }
+    let settings = record.settings.iter().map(|(n, v)| (*n, Some(v)));
+    csv::push_numeric("", settings, &mut names, &mut values);
+    csv::push_numeric("param_", record.params.iter(), &mut names, &mut values);
+    header.extend(names);
+    w.write_all(header.join(",").as_bytes())?;
+    w.write_all(b"\n")?;
+
+    let mut tail = String::new();
+    for &v in &values {
+        tail.push(',');
+        push_f64(&mut tail, v);
+    }
+    tail.push('\n');
+    let mut row = String::new();
+    for i in 0..rows {
+        row.clear();
+        for a in &columns {
+            let width = a.width();
+            for &x in &a.data[i * width..(i + 1) * width] {
+                push_f64(&mut row, x);
+                row.push(',');
+            }
+        }
+        row.pop();
+        row.push_str(&tail);
+        w.write_all(row.as_bytes())?;
+    }
+    Ok(())
+}
