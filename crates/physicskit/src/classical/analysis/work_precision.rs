@@ -70,6 +70,11 @@ pub fn double_pendulum_reference(t_end: f64) -> Result<Vec<f64>> {
     Ok(result.final_state().to_vec())
 }
 
+/// The tolerances (`rtol = atol`) an adaptive method is run at, coarsest first.
+const TOLERANCES: [f64; 10] = [
+    1e-5, 1e-6, 1e-7, 1e-8, 1e-9, 1e-10, 1e-11, 1e-12, 1e-13, 1e-14,
+];
+
 /// True for a method that takes tolerances rather than a step.
 fn is_adaptive(method: Method) -> bool {
     method.info().scheme == Scheme::Adaptive
@@ -135,11 +140,11 @@ impl Problem {
     /// method these are steps: halvings from a step where every method is stable and in its
     /// asymptotic regime or close to it, starting lower for the low-order methods (which would
     /// otherwise take the longest runs at errors no one wants). For an adaptive method they are
-    /// tolerances (`rtol = atol`), from `1e-5` down by a factor 10 each: its step follows from
+    /// tolerances (`rtol = atol`), from `1e-5` down by a factor 10 each (at most ten): its step follows from
     /// them, and [`run`](Self::run) takes them in place of a step.
     pub fn steps(self, method: Method, points: usize) -> Vec<f64> {
         if is_adaptive(method) {
-            return (0..points).map(|k| 1e-5 / 10f64.powi(k as i32)).collect();
+            return TOLERANCES.iter().copied().take(points).collect();
         }
         let largest = match self {
             Problem::Kepler { .. } => 0.05,
@@ -147,8 +152,14 @@ impl Problem {
             Problem::DoublePendulum { .. } => 0.05,
         };
         let low_order = if method.order() <= 2 { 0.25 } else { 1.0 };
+        // Each step a whole fraction of the span (the driver refuses others): 100 Kepler
+        // periods are no multiple of 0.05.
+        let t_end = self.t_end();
         (0..points)
-            .map(|k| largest * low_order / 2f64.powi(k as i32))
+            .map(|k| {
+                let dt = largest * low_order / 2f64.powi(k as i32);
+                t_end / (t_end / dt).round().max(1.0)
+            })
             .collect()
     }
 
