@@ -16,9 +16,9 @@ distributed = pytest.importorskip("distributed")
 THETA = np.linspace(-3.0, 3.0, 12)
 
 
-def _run(**kw):
+def _run(t1=3.0, **kw):
     return pc.ensemble(
-        pc.DoublePendulum([0.0, 0.0], [0.0, 0.0]), (0.0, 3.0), 0.01, "rk4",
+        pc.DoublePendulum([0.0, 0.0], [0.0, 0.0]), (0.0, t1), 0.01, "rk4",
         grid={"theta0[0]": THETA, "theta0[1]": THETA},
         events={"flip": pc.abs_above(1, np.pi)}, energy_error=True, stride=100, **kw)
 
@@ -47,7 +47,9 @@ def test_local_cluster_gives_the_local_bits(client):
 
 
 def test_a_worker_killed_mid_run_costs_only_its_chunk(client):
-    local = _run(threads=1)
+    # A hundred times the span of the other test: on an idle machine a tenfold one ends in
+    # 0.3 s, before the kill at 0.5 s (dispatch dominates); this one takes seconds.
+    local = _run(t1=300.0, threads=1)
     pids = client.run(os.getpid)
     victim = sorted(pids.values())[0]
     killed = threading.Event()
@@ -61,7 +63,7 @@ def test_a_worker_killed_mid_run_costs_only_its_chunk(client):
     killer = threading.Thread(target=kill_soon)
     killer.start()
     start = time.monotonic()
-    out = _run(client=client, chunk_size=6)
+    out = _run(t1=300.0, client=client, chunk_size=6)
     elapsed = time.monotonic() - start
     killer.join()
     assert killed.is_set()
