@@ -15,7 +15,8 @@ use std::ops::ControlFlow;
 
 use super::field::{Canonical, FirstOrder, VectorField};
 use super::splitting::{check_system, Coefficients, SplittingStepper};
-use super::stepper::{AdaptiveStepper, Dispatch, FieldStepper, Report, Stepper};
+use super::stepper::{splitting_refused, AdaptiveStepper, Dispatch, FieldStepper, Report, Stepper};
+use crate::classical::core::catalog::Family;
 use crate::classical::core::options::check_adaptive;
 use crate::classical::core::{
     error::check_finite, DynamicalSystem, Error, ExtraValue, HamiltonianSystem, IntegrateOptions,
@@ -125,12 +126,7 @@ impl<S: LagrangianSystem> Dispatch for Lagrangian<'_, '_, S> {
     type Output = Result<SimulationResult>;
 
     fn splitting<const N: usize>(self, method: Method, _: Coefficients<N>) -> Self::Output {
-        Err(Error::UnsupportedMethod {
-            method: method.name().into(),
-            reason: "Lagrangian systems are integrated in canonical form, which is not \
-                     separable in general; use implicit_midpoint (symplectic) or rk4"
-                .into(),
-        })
+        Err(splitting_refused(method, Family::Lagrangian))
     }
 
     fn explicit_rk<St: FieldStepper>(self, method: Method) -> Self::Output {
@@ -154,12 +150,7 @@ impl<S: OdeSystem> Dispatch for Ode<'_, '_, S> {
     type Output = Result<SimulationResult>;
 
     fn splitting<const N: usize>(self, method: Method, _: Coefficients<N>) -> Self::Output {
-        Err(Error::UnsupportedMethod {
-            method: method.name().into(),
-            reason: "a general ODE system has no separable Hamiltonian structure; use \
-                     implicit_midpoint or rk4"
-                .into(),
-        })
+        Err(splitting_refused(method, Family::Ode))
     }
 
     fn explicit_rk<St: FieldStepper>(self, method: Method) -> Self::Output {

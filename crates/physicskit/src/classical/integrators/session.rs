@@ -27,7 +27,8 @@ use std::ops::DerefMut;
 use super::field::{Canonical, FirstOrder, VectorField};
 use super::splitting::Coefficients;
 use super::splitting::{check_system, SplittingStepper};
-use super::stepper::{AdaptiveStepper, Dispatch, FieldStepper};
+use super::stepper::{splitting_refused, AdaptiveStepper, Dispatch, FieldStepper};
+use crate::classical::core::catalog::Family;
 use crate::classical::core::{
     error::check_finite, DynSystem, DynamicalSystem, Error, HamiltonianSystem, LagrangianSystem,
     Method, OdeSystem, Result, TimeGrid,
@@ -439,12 +440,7 @@ where
         _coefficients: Coefficients<N>,
     ) -> Self::Output {
         Err(Refused {
-            error: Error::UnsupportedMethod {
-                method: method.name().into(),
-                reason: "Lagrangian systems are integrated in canonical form, which is not \
-                         separable in general; use implicit_midpoint (symplectic) or rk4"
-                    .into(),
-            },
+            error: splitting_refused(method, Family::Lagrangian),
             system: self.system,
         })
     }
@@ -488,12 +484,7 @@ where
         _coefficients: Coefficients<N>,
     ) -> Self::Output {
         Err(Refused {
-            error: Error::UnsupportedMethod {
-                method: method.name().into(),
-                reason: "a general ODE system has no separable Hamiltonian structure; use \
-                         implicit_midpoint or rk4"
-                    .into(),
-            },
+            error: splitting_refused(method, Family::Ode),
             system: self.system,
         })
     }

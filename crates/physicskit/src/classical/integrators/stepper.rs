@@ -24,7 +24,8 @@ use std::collections::BTreeMap;
 
 use super::field::VectorField;
 use super::splitting::Coefficients;
-use crate::classical::core::{ExtraValue, Method, Result, Tolerances};
+use crate::classical::core::catalog::Family;
+use crate::classical::core::{Error, ExtraValue, Method, Result, Tolerances};
 
 /// A stepper's statistics over the steps so far (evaluations, solver iterations), reported
 /// into `result.extra`.
@@ -132,4 +133,27 @@ pub trait Dispatch {
 
     /// An adaptive method with dense output on a vector field, stepped by `St`.
     fn adaptive<St: AdaptiveStepper>(self, method: Method) -> Self::Output;
+}
+
+/// The refusal of a splitting method by a system of `family` that is not a separable
+/// Hamiltonian: the one message the integrate driver, sessions and chaos flows give, naming the
+/// methods that do apply (read from the method table, so a new general method appears in it).
+pub(crate) fn splitting_refused(method: Method, family: Family) -> Error {
+    let why = match family {
+        Family::Lagrangian => {
+            "Lagrangian systems are integrated in canonical form, which is not separable in \
+             general"
+        }
+        Family::Ode => "a general ODE system has no separable Hamiltonian structure",
+        Family::Hamiltonian => "this Hamiltonian is not separable as H = T(p) + V(q)",
+    };
+    let general: Vec<&str> = Method::ALL
+        .into_iter()
+        .filter(|m| !m.needs_separable())
+        .map(Method::name)
+        .collect();
+    Error::UnsupportedMethod {
+        method: method.name().into(),
+        reason: format!("{why}; use one of {}", general.join(", ")),
+    }
 }

@@ -40,7 +40,8 @@ use std::cell::RefCell;
 
 use super::field::{Canonical, FirstOrder, VectorField};
 use super::splitting::{check_system, Coefficients, SplittingStepper};
-use super::stepper::{AdaptiveStepper, Dispatch, FieldStepper};
+use super::stepper::{splitting_refused, AdaptiveStepper, Dispatch, FieldStepper};
+use crate::classical::core::catalog::Family;
 use crate::classical::core::{
     Error, HamiltonianSystem, LagrangianSystem, MassInv, Method, OdeSystem, Result,
 };
@@ -498,16 +499,6 @@ fn boxed_field<'a, St: FieldStepper, F: VectorField + 'a>(
     Box::new(FieldFlow::<F, St>::new(field, coordinates, max_vectors))
 }
 
-fn no_splitting(method: Method, family: &str) -> Error {
-    Error::UnsupportedMethod {
-        method: method.name().into(),
-        reason: format!(
-            "a {family} system has no separable Hamiltonian for a splitting method; use \
-             implicit_midpoint or rk4"
-        ),
-    }
-}
-
 /// An adaptive method has no flow here: a section or tangent run steps the orbit on a fixed
 /// grid of `dt` (the crossing search re-runs a step of chosen length), while an adaptive
 /// method picks its own steps, and its error control would act on the tangent vectors too.
@@ -571,7 +562,7 @@ impl<'a, S: LagrangianSystem> Dispatch for LagrangianFlow<'a, S> {
         method: Method,
         _coefficients: Coefficients<N>,
     ) -> Self::Output {
-        Err(no_splitting(method, "Lagrangian"))
+        Err(splitting_refused(method, Family::Lagrangian))
     }
 
     fn explicit_rk<St: FieldStepper>(self, _method: Method) -> Self::Output {
@@ -608,7 +599,7 @@ impl<'a, S: OdeSystem + ?Sized> Dispatch for OdeFlow<'a, S> {
         method: Method,
         _coefficients: Coefficients<N>,
     ) -> Self::Output {
-        Err(no_splitting(method, "general ODE"))
+        Err(splitting_refused(method, Family::Ode))
     }
 
     fn explicit_rk<St: FieldStepper>(self, _method: Method) -> Self::Output {
