@@ -40,7 +40,7 @@ pub trait Stepper<P: ?Sized>: Report {
     ///
     /// # Errors
     /// Whatever the problem's evaluation reports; for implicit methods,
-    /// [`Error::SolverDidNotConverge`](crate::classical::Error::SolverDidNotConverge).
+    /// [`Error::SolverDidNotConverge`].
     fn step(&mut self, problem: &P, t: f64, y: &mut [f64], h: f64) -> Result<()>;
 
     /// [`step`](Self::step), told whether the new state will be stored with its energy
