@@ -98,15 +98,20 @@ class AlignmentIndex:
         The index at each time.
     verdict : str
         ``"chaotic"`` once the index fell below :data:`CHAOS_THRESHOLD`, else ``"regular"``.
+    name : str
+        Which index: ``"SALI"`` or ``"GALI_k"`` (``k`` the number of vectors, e.g.
+        ``"GALI_3"``).
     """
 
-    def __init__(self, t: np.ndarray, index: np.ndarray, verdict: str):
+    def __init__(self, t: np.ndarray, index: np.ndarray, verdict: str, name: str = "SALI"):
         self.t = t
         self.index = index
         self.verdict = verdict
+        self.name = name
 
     def __repr__(self) -> str:
-        return f"AlignmentIndex(final={self.index[-1]:.3g}, verdict={self.verdict!r})"
+        return (f"AlignmentIndex({self.name}, final={self.index[-1]:.3g}, "
+                f"verdict={self.verdict!r})")
 
 
 def _native_of(system: Any):
@@ -240,12 +245,13 @@ def gali(
     """The Generalized Alignment Index GALI_k (volume spanned by ``k`` unit deviation
     vectors) against time; ``2 <= k <= state dimension``. ``history_stride`` as for
     :func:`sali`."""
+    k = as_int("k", k, minimum=2)
     out = _run(
-        system, t_span, dt, method, "gali", k=as_int("k", k, minimum=2),
+        system, t_span, dt, method, "gali", k=k,
         renormalize_every=as_int("renormalize_every", renormalize_every, minimum=1),
         history_stride=as_int("history_stride", history_stride, minimum=1),
     )
-    return AlignmentIndex(out["t"], out["index"], out["verdict"])
+    return AlignmentIndex(out["t"], out["index"], out["verdict"], f"GALI_{k}")
 
 
 def chaos_verdict(index: Union[AlignmentIndex, Any]) -> str:

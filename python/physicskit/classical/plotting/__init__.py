@@ -5,7 +5,9 @@ matplotlib it raises ImportError naming the extra to install. Every function tak
 ``ax`` (where to draw; a new figure otherwise) and returns what it drew. The numbers drawn are
 the library's: energies from ``result.energy``; modal energies, the LRL vector, phase-space
 areas, separatrix energies, bob positions, rotation matrices, the heavy top's symmetry axis,
-the Euler top's body angular momentum and box shape from the system's own methods.
+the Euler top's body angular momentum and box shape from the system's own methods; Lyapunov
+estimates, alignment indices, the chaos threshold and chaos maps from
+``physicskit.classical.chaos``.
 
 =========================  ===============================================================
 ``plot_result``            ``q(t)``, ``p(t)`` (or ``qdot``) and the relative energy error
@@ -19,6 +21,10 @@ the Euler top's body angular momentum and box shape from the system's own method
 ``kepler_orbit``           a Kepler orbit, its LRL vector and the perihelion precession
 ``top_axis``               the heavy top's axis tip on the unit sphere (3-D)
 ``polhodes``               the Euler top's polhodes on the angular-momentum sphere (3-D)
+``plot_lyapunov``          running Lyapunov estimates against time (``lyapunov_spectrum``)
+``plot_sali``              SALI / GALI_k against time, with the chaos threshold (``sali``,
+                           ``gali``)
+``plot_chaos_map``         a ``chaos_map`` on its grid of initial conditions, with colour bar
 ``animate``                a ``FuncAnimation`` of a run (pendulums, chains, swarm, orbits,
                            tops); ``save_animation`` writes it as GIF or MP4
 =========================  ===============================================================
@@ -31,6 +37,7 @@ from ._mpl import pyplot as _pyplot
 _pyplot()  # ImportError naming physicskit[plot] before anything else needs matplotlib
 
 from .animation import animate, save_animation  # noqa: E402
+from .chaos import plot_chaos_map, plot_lyapunov, plot_sali  # noqa: E402
 from .lattices import modal_energies, modal_heatmap  # noqa: E402
 from .orbits import kepler_orbit  # noqa: E402
 from .phase import phase_portrait, poincare  # noqa: E402
@@ -49,6 +56,9 @@ __all__ = [
     "kepler_orbit",
     "top_axis",
     "polhodes",
+    "plot_lyapunov",
+    "plot_sali",
+    "plot_chaos_map",
     "animate",
     "save_animation",
 ]

@@ -117,6 +117,11 @@ class Labels:
             return f"$p_{sym}$ ({unit})"
         return f"$p_{{{sym}}}$ ({unit})"
 
+    def state(self, i: int) -> str:
+        """Label of state component ``i``: coordinate ``i`` below ``ndof``, else momentum (or
+        velocity) ``i - ndof``."""
+        return self.q(i) if i < self.ndof else self.p(i - self.ndof)
+
     def _family(self) -> str | None:
         """The one symbol every coordinate shares (a swarm's or a chain's), else None."""
         if self._symbols is not None and len(self._symbols) == 1:

@@ -184,9 +184,8 @@ def poincare(sections: Any, *, x: int = 0, y: int | None = None,
             kw["label"] = labels[k]
         out.append(ax.scatter(a[:, x], a[:, yi], **kw))
     lab = Labels(system, dim // 2)
-    ndof = dim // 2
-    ax.set_xlabel(lab.q(x) if x < ndof else lab.p(x - ndof))
-    ax.set_ylabel(lab.q(yi) if yi < ndof else lab.p(yi - ndof))
+    ax.set_xlabel(lab.state(x))
+    ax.set_ylabel(lab.state(yi))
     if labels is not None:
         ax.legend(fontsize="small", markerscale=3)
     return out
