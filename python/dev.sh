@@ -4,8 +4,8 @@
 #   bash python/dev.sh env    create/refresh <repo>/.venv, install maturin numpy pytest sympy
 #                             hypothesis, mypy, scipy (reference integrations in tests), matplotlib,
 #                             pillow, nbclient nbformat ipykernel, distributed (Dask, for the
-#                             ensemble tests), build the extension in release mode and install it
-#                             (editable)
+#                             ensemble tests), tqdm (progress bars), build the extension in release
+#                             mode and install it (editable)
 #   bash python/dev.sh test   run pytest on python/tests (warnings are errors)
 #   bash python/dev.sh stubs  check the type stubs against the installed modules (mypy's
 #                             stubtest; python/stubtest-allowlist.txt lists what it cannot know)
@@ -38,6 +38,8 @@ env)
     # The optional plotting extra (physicskit[plot]), which tests/test_plotting.py exercises.
     "$py" -m pip install --quiet --disable-pip-version-check \
         "matplotlib>=3.7,<4" "pillow>=9.5,<13"
+    # The optional progress extra (physicskit[progress]), whose bar tests/test_progress.py draws.
+    "$py" -m pip install --quiet --disable-pip-version-check "tqdm>=4.66,<5"
     # What tests/test_notebooks.py runs the example notebooks with.
     "$py" -m pip install --quiet --disable-pip-version-check \
         "nbclient>=0.10,<0.12" "nbformat>=5.9,<6" "ipykernel>=6.29,<8"

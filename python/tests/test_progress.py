@@ -1,10 +1,13 @@
 """``integrate_sampled(..., progress=True)``: a tqdm bar when tqdm is installed, a plain text
-bar on standard error otherwise. tqdm need not be installed here: its path runs against a fake
-``tqdm.auto`` module put into ``sys.modules``, the plain path with tqdm made unimportable."""
+bar on standard error otherwise. The tqdm path runs against a fake ``tqdm.auto`` module put into
+``sys.modules`` (what the bar is told) and against the real tqdm, the optional extra
+``physicskit[progress]`` that ``python/dev.sh env`` installs (what a user sees); the plain path
+with tqdm made unimportable."""
 
 from __future__ import annotations
 
 import re
+import subprocess
 import sys
 import types
 
@@ -92,6 +95,30 @@ def test_tqdm_bar_when_tqdm_is_installed(fake_tqdm, capsys):
     assert len(bar.updates) >= 2 and all(u > 0 for u in bar.updates)
     assert sum(bar.updates) == N_STEPS and bar.closed == 1
     assert capsys.readouterr().err == ""
+
+
+def test_real_tqdm_bar_on_stderr(capsys):
+    import tqdm  # the physicskit[progress] extra, installed by python/dev.sh env
+    import tqdm.auto
+
+    reporter = progress_module.progress_reporter()
+    assert isinstance(reporter, progress_module.TqdmBar)
+    assert reporter._tqdm in (tqdm.tqdm, tqdm.auto.tqdm)
+    oscillator().integrate_sampled((0.0, N_STEPS * 1e-3), 1e-3, progress=True)
+    err = capsys.readouterr().err
+    # tqdm's own text bar, ended at the full count.
+    final = err.rstrip("\n").split("\r")[-1]
+    assert final.startswith("integrate: 100%") and f"{N_STEPS}/{N_STEPS}" in final, err
+
+
+def test_import_of_the_package_does_not_load_tqdm():
+    code = ("import sys, physicskit.classical as pc\n"
+            "print('tqdm' in sys.modules)\n"
+            "pc.HarmonicChain([0.1], [0.0]).integrate_sampled((0.0, 1.0), 0.1)\n"
+            "print('tqdm' in sys.modules)\n")
+    out = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, check=True)
+    # Neither the import nor a run without progress=True imports it.
+    assert out.stdout.split() == ["False", "False"]
 
 
 def test_python_subclass_reports_progress(fake_tqdm):
