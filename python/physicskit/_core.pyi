@@ -8,6 +8,7 @@ import numpy as np
 import numpy.typing as npt
 
 __all__ = [
+    "CHAOS_THRESHOLD",
     "ConvergenceError",
     "NativeSystem",
     "build",
@@ -38,6 +39,10 @@ __all__ = [
 
 _ArrayF64 = npt.NDArray[np.float64]
 _MatrixF64 = npt.NDArray[np.float64]
+
+CHAOS_THRESHOLD: float
+"""SALI or GALI below this value classifies an orbit as chaotic (the core's
+`analysis::sali::CHAOS_THRESHOLD`)."""
 """A two-dimensional float64 array (rows of states)."""
 _ResultTuple = tuple[_ArrayF64, _ArrayF64, int | None, _ArrayF64 | None, str, dict[str, Any]]
 _ParamValue = float | int | _ArrayF64 | str | None
@@ -78,6 +83,7 @@ class _SystemInfo(TypedDict):
     methods: list[str]
     default_method: str
     note: str | None
+    physics: str | None
     params: list[_ParamInfo]
 
 class _MethodInfo(TypedDict):

@@ -10,6 +10,7 @@ use physicskit::classical::catalog as core_catalog;
 use physicskit::classical::core::catalog::{
     Bound as Limit, Default, Length, Literal, ParamKind, ParamSpec, SystemEntry,
 };
+use physicskit::classical::explanations;
 use physicskit::classical::Method;
 use pyo3::prelude::*;
 use pyo3::types::{PyDict, PyList};
@@ -118,6 +119,7 @@ fn entry_info<'py>(py: Python<'py>, e: &SystemEntry) -> PyResult<Bound<'py, PyDi
     d.set_item("methods", e.methods().map(Method::name).collect::<Vec<_>>())?;
     d.set_item("default_method", e.default_method.name())?;
     d.set_item("note", e.note)?;
+    d.set_item("physics", explanations::for_system(e.name))?;
     let params = e
         .params
         .iter()
@@ -129,7 +131,8 @@ fn entry_info<'py>(py: Python<'py>, e: &SystemEntry) -> PyResult<Bound<'py, PyDi
 
 /// Every system of the catalogue, in listing order, as dicts: `name`, `python` (the class or
 /// `Class.classmethod`, or `None`), `summary`, `family`, `separable`, `methods`,
-/// `default_method`, `note` and `params` (each with `name`, `kind`, `default`,
+/// `default_method`, `note`, `physics` (the paragraph of [`explanations::for_system`], as in
+/// `physicskit list --json`, or `None`) and `params` (each with `name`, `kind`, `default`,
 /// `default_kind`, `spec_default`, `unit`, `range`, `length`, `choices`, `expectation`,
 /// `help`).
 ///

@@ -15,7 +15,7 @@ use numpy::{
 use physicskit::classical::analysis::chaos_map::{chaos_map_by, Indicator, MapRun};
 use physicskit::classical::analysis::lyapunov::lyapunov_on_flow;
 use physicskit::classical::analysis::poincare::Direction;
-use physicskit::classical::analysis::sali::{alignment_on_flow, Alignment};
+use physicskit::classical::analysis::sali::{alignment_on_flow, Alignment, CHAOS_THRESHOLD};
 use physicskit::classical::analysis::section::{section_on_flow, Continuation, SurfaceOfSection};
 use physicskit::classical::analysis::watch::AnalysisOptions;
 use physicskit::classical::core::erased::DynSystem;
@@ -424,11 +424,13 @@ pub fn chaos_map<'py>(
     Ok(out.py()?.into_pyarray(py))
 }
 
-/// Registers the analyses.
+/// Registers the analyses and `CHAOS_THRESHOLD` (the core's constant, so Python's verdicts and
+/// plots use the same value as Rust's).
 ///
 /// # Errors
 /// Python errors while adding to the module.
 pub fn register(m: &Bound<'_, PyModule>) -> PyResult<()> {
+    m.add("CHAOS_THRESHOLD", CHAOS_THRESHOLD)?;
     m.add_function(wrap_pyfunction!(chaos_native, m)?)?;
     m.add_function(wrap_pyfunction!(chaos_map, m)?)?;
     Ok(())

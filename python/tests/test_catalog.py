@@ -112,6 +112,7 @@ def test_catalogue_listing_shape():
     for e in _core.catalog():
         assert e["family"] in ("hamiltonian", "lagrangian", "ode")
         assert e["default_method"] in e["methods"]
+        assert e["physics"] is None or len(e["physics"]) > 100, e["name"]
         for p in e["params"]:
             assert p["kind"] in ("scalar", "integer", "vector", "choice")
             assert (p["length"] is not None) == (p["kind"] == "vector"), p
@@ -295,5 +296,10 @@ def test_methods_and_catalogue_agree_with_the_command_line():
         assert system["methods"] == ours["methods"], system["name"]
         assert system["default_method"] == ours["default_method"], system["name"]
         assert [p["name"] for p in system["params"]] == [p["name"] for p in ours["params"]]
+        # The physics paragraph: the one text of classical/explanations.rs, through both.
+        assert system["physics"] == ours["physics"], system["name"]
         for p, q in zip(system["params"], ours["params"]):
             assert (p["unit"], p["default"]) == (q["unit"], q["default"]), (system["name"], p["name"])
+    # The gallery shows (and so explains) most systems; the harmonic oscillator it does not.
+    assert py_systems["double-pendulum"]["physics"].startswith("Two rods")
+    assert py_systems["harmonic-oscillator"]["physics"] is None

@@ -38,8 +38,10 @@ __all__ = [
     "chaos_map",
 ]
 
-CHAOS_THRESHOLD = 1e-8
-"""SALI or GALI below this value classifies an orbit as chaotic (Skokos 2001)."""
+CHAOS_THRESHOLD: float = _core.CHAOS_THRESHOLD
+"""SALI or GALI below this value classifies an orbit as chaotic (Skokos 2001): the core's
+constant (``physicskit::classical::analysis::sali::CHAOS_THRESHOLD``, 1e-8), which its
+verdicts use too."""
 
 
 class PoincareSection:

@@ -23,7 +23,8 @@ def methods() -> list[dict[str, Any]]:
 def catalog() -> list[dict[str, Any]]:
     """Every built-in system of the native catalogue as a dict: ``name``, ``python`` (the class
     or ``"Class.classmethod"`` that builds it), ``summary``, ``family``, ``separable``,
-    ``methods``, ``default_method``, ``note`` and ``params`` (each with ``name``, ``kind``,
-    ``default``, ``default_kind``, ``spec_default``, ``unit``, ``range``, ``length``,
-    ``choices``, ``expectation`` and ``help``)."""
+    ``methods``, ``default_method``, ``note``, ``physics`` (the paragraph on the system's physics
+    that the gallery and ``physicskit list --json`` show, or None) and ``params`` (each with
+    ``name``, ``kind``, ``default``, ``default_kind``, ``spec_default``, ``unit``, ``range``,
+    ``length``, ``choices``, ``expectation`` and ``help``)."""
     return [dict(e) for e in _core.catalog()]
