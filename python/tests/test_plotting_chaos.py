@@ -178,6 +178,8 @@ def test_one_dimensional_chaos_map_is_a_line(section_map):
     (lambda: pl.plot_chaos_map(np.zeros(4), [0, 1], [0, 1], components=(0, 1)), "system"),
     (lambda: pl.plot_chaos_map(np.zeros(4), [0, 1], [0, 1], components=(0, 9),
                                system=pc.HenonHeilesSystem([0, 0], [0, 0])), "out of range"),
+    (lambda: pl.plot_chaos_map(np.zeros(4), [0, 1], [0, 1], components=(True, 1),
+                               system=pc.HenonHeilesSystem([0, 0], [0, 0])), "components"),
     (lambda: pl.plot_chaos_map(np.full(4, np.nan), [0, 1], [0, 1]), "finite"),
     (lambda: pl.plot_chaos_map(np.zeros(2), [[0, 1]]), "1-D"),
     (lambda: pl.plot_lyapunov(np.zeros(3)), "LyapunovSpectrum"),

@@ -177,8 +177,14 @@ def _grid_label(given: str | None, system: Any, component: int | None, axis: str
 def _components(components: Any, system: Any) -> tuple[int | None, int | None]:
     if components is None:
         return None, None
-    pair = [components] if isinstance(components, (int, np.integer)) else list(components)
-    if not 1 <= len(pair) <= 2 or not all(isinstance(c, (int, np.integer)) for c in pair):
+    def index(c: Any) -> bool:
+        return isinstance(c, (int, np.integer)) and not isinstance(c, (bool, np.bool_))
+
+    if index(components):
+        pair = [components]
+    else:
+        pair = list(np.asarray(components, dtype=object).ravel())
+    if not 1 <= len(pair) <= 2 or not all(index(c) for c in pair):
         raise ValueError(f"components must be one or two state indices, got {components!r}")
     if system is None:
         raise ValueError("components names state components: pass the system too")
