@@ -78,6 +78,7 @@ class _SystemInfo(TypedDict):
     methods: list[str]
     default_method: str
     note: str | None
+    physics: str | None
     params: list[_ParamInfo]
 
 class _MethodInfo(TypedDict):

@@ -118,6 +118,10 @@ fn entry_info<'py>(py: Python<'py>, e: &SystemEntry) -> PyResult<Bound<'py, PyDi
     d.set_item("methods", e.methods().map(Method::name).collect::<Vec<_>>())?;
     d.set_item("default_method", e.default_method.name())?;
     d.set_item("note", e.note)?;
+    d.set_item(
+        "physics",
+        physicskit::classical::explanations::for_system(e.name),
+    )?;
     let params = e
         .params
         .iter()
@@ -129,7 +133,8 @@ fn entry_info<'py>(py: Python<'py>, e: &SystemEntry) -> PyResult<Bound<'py, PyDi
 
 /// Every system of the catalogue, in listing order, as dicts: `name`, `python` (the class or
 /// `Class.classmethod`, or `None`), `summary`, `family`, `separable`, `methods`,
-/// `default_method`, `note` and `params` (each with `name`, `kind`, `default`,
+/// `default_method`, `note`, `physics` (the gallery's paragraph on the system, from
+/// `physicskit::classical::explanations`, or `None`) and `params` (each with `name`, `kind`, `default`,
 /// `default_kind`, `spec_default`, `unit`, `range`, `length`, `choices`, `expectation`,
 /// `help`).
 ///
@@ -143,9 +148,8 @@ pub fn catalog(py: Python<'_>) -> PyResult<Vec<Bound<'_, PyDict>>> {
         .collect()
 }
 
-/// Every integrator, as dicts: `name`, `order`, `symplectic`, `separable_only`,
-/// `evaluations_per_step` and `reference` (the last two `None` until the core's method table
-/// provides them).
+/// Every integrator, as dicts: `name`, `order`, `symplectic`, `separable_only`, `adaptive`,
+/// `evaluations_per_step`, `evaluations`, `reference` and `summary`.
 ///
 /// # Errors
 /// Python allocation failures.

@@ -306,6 +306,7 @@ def test_methods_and_catalogue_agree_with_the_command_line():
         ours = py_systems[system["name"]]
         assert system["methods"] == ours["methods"], system["name"]
         assert system["default_method"] == ours["default_method"], system["name"]
+        assert system["physics"] == ours["physics"], system["name"]
         assert [p["name"] for p in system["params"]] == [p["name"] for p in ours["params"]]
         for p, q in zip(system["params"], ours["params"]):
             assert (p["unit"], p["default"]) == (q["unit"], q["default"]), (system["name"], p["name"])

@@ -24,7 +24,8 @@ def methods() -> list[dict[str, Any]]:
 def catalog() -> list[dict[str, Any]]:
     """Every built-in system of the native catalogue as a dict: ``name``, ``python`` (the class
     or ``"Class.classmethod"`` that builds it), ``summary``, ``family``, ``separable``,
-    ``methods``, ``default_method``, ``note`` and ``params`` (each with ``name``, ``kind``,
+    ``methods``, ``default_method``, ``note``, ``physics`` (the physics paragraph the gallery
+    and the lab show for it, or ``None``) and ``params`` (each with ``name``, ``kind``,
     ``default``, ``default_kind``, ``spec_default``, ``unit``, ``range``, ``length``,
     ``choices``, ``expectation`` and ``help``)."""
     return [dict(e) for e in _core.catalog()]
