@@ -27,7 +27,8 @@ def call(python, *args):
     return out.stdout.strip().splitlines()[-1]
 
 
-def main():
+def parse_args():
+    """The options shared with same_accuracy.py."""
     parser = argparse.ArgumentParser()
     parser.add_argument("--ours", required=True, help="python of the physicskit venv")
     parser.add_argument("--peer", required=True, help="python of the peer venv")
@@ -35,7 +36,11 @@ def main():
     parser.add_argument("--repeats", type=int, default=3)
     parser.add_argument("--cases", nargs="*")
     parser.add_argument("--json", help="also write the rows here")
-    args = parser.parse_args()
+    return parser.parse_args()
+
+
+def main():
+    args = parse_args()
 
     cases = args.cases or call(args.ours, "list").split()
     header = (

@@ -2,6 +2,7 @@
 # Compares physicskit with the Numba peer (physicskit 0.4.0 from PyPI) on the issue-7 workloads.
 #
 #   bash benchmarks/compare_peer.sh [--steps N] [--repeats R] [--cases A B ...]
+#   bash benchmarks/compare_peer.sh --same-accuracy [...]   # time to the peer's own accuracy
 #
 # Builds our package into <repo>/.venv (python/dev.sh env) and installs the peer into
 # benchmarks/.venv-peer (git-ignored): the two packages share the name `physicskit`, so each
@@ -15,4 +16,9 @@ if [ ! -x "$peer/bin/python" ]; then
     python3 -m venv "$peer"
     "$peer/bin/python" -m pip install --quiet --disable-pip-version-check "physicskit==0.4.0"
 fi
-exec python3 "$here/compare_peer.py" --ours "$repo/.venv/bin/python" --peer "$peer/bin/python" "$@"
+script="$here/compare_peer.py"
+if [ "${1:-}" = "--same-accuracy" ]; then
+    script="$here/same_accuracy.py"
+    shift
+fi
+exec python3 "$script" --ours "$repo/.venv/bin/python" --peer "$peer/bin/python" "$@"

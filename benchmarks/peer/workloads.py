@@ -7,6 +7,10 @@ in each implementation's own virtual environment.
     python workloads.py list
     python workloads.py run CASE STEPS REPEATS     # prints one JSON line
     python workloads.py first CASE                 # import + construct + 1e3 steps, fresh process
+    python workloads.py same CASE STEPS REPEATS TARGET
+        # ours only (it reads `methods()`): for every fixed-step method the system accepts, the
+        # coarsest step of the ladder dt, 2 dt, 4 dt, ... (whole fractions of the workload's
+        # span) whose max relative energy error stays <= TARGET, timed best of REPEATS
 """
 
 import json
@@ -66,15 +70,47 @@ def _cases(pc):
     }
 
 
-def _run(pc, case, steps):
-    make, method, dt = _cases(pc)[case]
+def _run(pc, case, steps, method=None, n=None):
+    """One run of `case` over its span `steps * dt`: with the workload's method and step, or
+    with `method` in `n` equal steps of the same span. Returns (seconds, max |dE/E0|)."""
+    make, default_method, dt = _cases(pc)[case]
+    span = steps * dt
+    step = dt if n is None else span / n
     system = make()
     start = time.perf_counter()
-    result = system.integrate((0.0, steps * dt), dt, method=method)
+    result = system.integrate((0.0, span), step, method=method or default_method)
     elapsed = time.perf_counter() - start
     e = np.asarray(result.energy)
     drift = float(np.max(np.abs(e - e[0])) / abs(e[0]))
     return elapsed, drift
+
+
+def _same_accuracy(pc, case, steps, repeats, target):
+    """Per fixed-step method: the fewest steps (halving the count from the workload's) whose
+    run stays within `target`, timed best of `repeats`; `None` fields where even the
+    workload's step misses it or the system refuses the method."""
+    rows = []
+    for info in pc.methods():
+        if info["adaptive"]:
+            continue  # its cost is set by rtol/atol, not by a step: not on this ladder
+        name, best_n, n = info["name"], None, steps
+        while n >= 1:
+            try:
+                _, drift = _run(pc, case, steps, name, n)
+            except (ValueError, RuntimeError):  # refused, or an implicit solve gave up
+                break
+            if not drift <= target:
+                break
+            best_n, n = n, n // 2
+        if best_n is None:
+            rows.append({"method": name, "steps": None, "seconds": None, "drift": None})
+            continue
+        best, drift = float("inf"), float("nan")
+        for _ in range(repeats):
+            elapsed, drift = _run(pc, case, steps, name, best_n)
+            best = min(best, elapsed)
+        rows.append({"method": name, "steps": best_n, "seconds": best, "drift": drift})
+    return rows
 
 
 def main(argv):
@@ -91,6 +127,9 @@ def main(argv):
         print(" ".join(_cases(pc)))
         return
     case, steps, repeats = argv[2], int(argv[3]), int(argv[4])
+    if argv[1] == "same":
+        print(json.dumps(_same_accuracy(pc, case, steps, repeats, float(argv[5]))))
+        return
     _run(pc, case, 1000)  # warm-up: the peer compiles here
     best, drift = float("inf"), float("nan")
     for _ in range(repeats):

@@ -91,6 +91,7 @@ class _MethodInfo(TypedDict):
     order: int
     symplectic: bool
     separable_only: bool
+    adaptive: bool
     evaluations_per_step: int
     evaluations: str
     reference: str

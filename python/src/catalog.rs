@@ -146,9 +146,8 @@ pub fn catalog(py: Python<'_>) -> PyResult<Vec<Bound<'_, PyDict>>> {
         .collect()
 }
 
-/// Every integrator, as dicts: `name`, `order`, `symplectic`, `separable_only`,
-/// `evaluations_per_step` and `reference` (the last two `None` until the core's method table
-/// provides them).
+/// Every integrator, as dicts: `name`, `order`, `symplectic`, `separable_only`, `adaptive`,
+/// `evaluations_per_step`, `evaluations`, `reference` and `summary`.
 ///
 /// # Errors
 /// Python allocation failures.
@@ -162,6 +161,7 @@ pub fn methods(py: Python<'_>) -> PyResult<Vec<Bound<'_, PyDict>>> {
             d.set_item("order", m.order)?;
             d.set_item("symplectic", m.symplectic)?;
             d.set_item("separable_only", m.separable_only)?;
+            d.set_item("adaptive", m.is_adaptive())?;
             d.set_item("evaluations_per_step", m.evaluations_per_step)?;
             d.set_item("evaluations", m.evaluations)?;
             d.set_item("reference", m.reference)?;

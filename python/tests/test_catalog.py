@@ -238,7 +238,10 @@ def test_capabilities_are_listed_and_missing_ones_are_not_implemented():
 
 # -- methods() ---------------------------------------------------------------------------------
 
-KEYS = {"name", "order", "symplectic", "separable_only", "evaluations_per_step", "reference"}
+KEYS = {
+    "name", "order", "symplectic", "separable_only", "adaptive", "evaluations_per_step",
+    "evaluations", "reference",
+}
 
 
 
@@ -259,6 +262,15 @@ def test_methods_have_the_required_keys_and_describe_integrate():
                 dp.integrate((0.0, 0.01), 0.01, m["name"])
         else:
             dp.integrate((0.0, 0.01), 0.01, m["name"])
+    # `adaptive` is what integrate_sampled does with tolerances: an adaptive method takes
+    # them, a fixed-step one refuses them.
+    assert any(m["adaptive"] for m in methods)
+    for m in methods:
+        if m["adaptive"]:
+            kepler.integrate_sampled((0.0, 0.01), 0.01, m["name"], rtol=1e-8)
+        else:
+            with pytest.raises(ValueError, match="fixed-step"):
+                kepler.integrate_sampled((0.0, 0.01), 0.01, m["name"], rtol=1e-8)
     # The catalogue's per-system method lists are drawn from the same names.
     names = {m["name"] for m in methods}
     for e in _core.catalog():
@@ -301,5 +313,5 @@ def test_methods_and_catalogue_agree_with_the_command_line():
         for p, q in zip(system["params"], ours["params"]):
             assert (p["unit"], p["default"]) == (q["unit"], q["default"]), (system["name"], p["name"])
     # The gallery shows (and so explains) most systems; the harmonic oscillator it does not.
-    assert py_systems["double-pendulum"]["physics"].startswith("Two rods")
+    assert py_systems["double-pendulum"]["physics"].startswith("Two rigid rods")
     assert py_systems["harmonic-oscillator"]["physics"] is None

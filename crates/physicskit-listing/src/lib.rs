@@ -10,7 +10,6 @@
 
 mod json;
 
-use physicskit::classical::core::method::Scheme;
 use physicskit::classical::methods;
 use serde::Serialize;
 
@@ -47,7 +46,7 @@ pub fn method_rows() -> Vec<MethodRow> {
             order: m.order,
             symplectic: m.symplectic,
             separable_only: m.separable_only,
-            adaptive: m.scheme == Scheme::Adaptive,
+            adaptive: m.is_adaptive(),
             evaluations_per_step: m.evaluations_per_step,
             evaluations: m.evaluations,
             reference: m.reference,

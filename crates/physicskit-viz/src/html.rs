@@ -30,12 +30,14 @@ pub(crate) fn index_html(demos: &[Demo], quick: bool) -> String {
          h1{margin-bottom:0.2em} h2{border-bottom:1px solid #ccc;padding-bottom:0.2em;margin-top:2em}\n\
          figure{margin:1em 0} figure img{max-width:100%;border:1px solid #ddd}\n\
          figcaption{color:#555;font-size:0.95em} nav li{margin:0.15em 0}\n\
+         p.setup{color:#444;font-style:italic}\n\
          </style>\n</head>\n<body>\n<h1>physicskit gallery</h1>\n",
     );
     let _ = writeln!(
         h,
-        "<p>Twelve demonstrations of classical mechanics computed with physicskit's \
+        "<p>{} demonstrations of classical mechanics computed with physicskit's \
          structure-preserving integrators{}. Every file is a plain PNG or GIF in this folder.</p>",
+        demos.len(),
         if quick {
             " (quick mode: fewer orbits and frames)"
         } else {
@@ -67,6 +69,9 @@ pub(crate) fn index_html(demos: &[Demo], quick: bool) -> String {
             escape(&d.title)
         );
         let _ = writeln!(h, "<p>{}</p>", escape(&d.explanation));
+        if !d.figure.is_empty() {
+            let _ = writeln!(h, "<p class=\"setup\">{}</p>", escape(&d.figure));
+        }
         for f in &d.files {
             let name = f
                 .path

@@ -137,6 +137,17 @@ fn quick_gallery_renders_every_promised_file() {
         );
     }
     let html = std::fs::read_to_string(&report.index).unwrap();
+    // The figures' setup follows the physics wherever a demonstration has one; the systems'
+    // own demonstrations all do (the lab's caption omits it, as the lab runs any setting).
+    for d in &report.demos {
+        let systems = physicskit::classical::explanations::for_demo(&d.slug)
+            .expect("an explanation")
+            .systems;
+        assert_eq!(d.figure.is_empty(), systems.is_empty(), "{}", d.slug);
+    }
+    let setups = report.demos.iter().filter(|d| !d.figure.is_empty()).count();
+    assert_eq!(html.matches("<p class=\"setup\">").count(), setups);
+    assert!(html.contains(&format!("<p>{count} demonstrations")));
     lab_captions_are_the_gallery_paragraphs(&report.demos, &html);
     let mut gifs = 0;
     for f in &report.files {

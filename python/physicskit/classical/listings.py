@@ -13,7 +13,8 @@ __all__ = ["methods", "catalog"]
 def methods() -> list[dict[str, Any]]:
     """Every integrator as a dict: ``name`` (the ``method`` argument of ``integrate``),
     ``order`` (of the global error), ``symplectic``, ``separable_only`` (needs ``H = T(p) +
-    V(q)``), ``evaluations_per_step`` (force or vector-field evaluations per step: exact for
+    V(q)``), ``adaptive`` (its step follows ``rtol``/``atol`` and ``dt`` is the output
+    spacing), ``evaluations_per_step`` (force or vector-field evaluations per step: exact for
     explicit methods, typical for implicit ones), ``evaluations`` (what that count counts),
     ``reference`` (the method's source) and ``summary``. The same table as ``physicskit
     list``."""

@@ -49,6 +49,9 @@ pub struct Demo {
     /// One paragraph of physics (from `physicskit::classical::explanations`, shared with the
     /// lab).
     pub explanation: String,
+    /// What this demonstration's figures show: their parameters and panels (the same source's
+    /// `figure`; empty when the explanation describes the figure itself).
+    pub figure: String,
     /// Figures and animations, in display order.
     pub files: Vec<GalleryFile>,
 }
@@ -95,12 +98,12 @@ impl Ctx<'_> {
 /// the lab shows for the same systems (empty for a slug without one, which the gallery test
 /// refuses).
 pub(crate) fn demo(slug: &str, title: &str) -> Demo {
+    let explanation = physicskit::classical::explanations::for_demo(slug);
     Demo {
         slug: slug.into(),
         title: title.into(),
-        explanation: physicskit::classical::explanations::for_demo(slug)
-            .map(|e| e.text.to_owned())
-            .unwrap_or_default(),
+        explanation: explanation.map(|e| e.text.to_owned()).unwrap_or_default(),
+        figure: explanation.map(|e| e.figure.to_owned()).unwrap_or_default(),
         files: Vec::new(),
     }
 }

@@ -8,8 +8,9 @@
 //! each system's `physics` field, which the lab shows as the system's caption. A system no
 //! demonstration shows (the harmonic oscillator) has none.
 //!
-//! The texts describe the gallery's figures, so they quote the gallery's parameters (the lab
-//! starts from the catalogue's defaults, which may differ).
+//! Each paragraph is in two parts: the physics of the system, true for any parameters, and what
+//! the gallery's figures show (their parameters and panels). The lab, which starts from the
+//! catalogue's defaults and lets the reader change them, shows only the first part.
 //!
 //! [`catalog::SYSTEMS`]: crate::classical::catalog::SYSTEMS
 
@@ -22,8 +23,13 @@ pub struct Explanation {
     /// for a demonstration about a method or an analysis across systems whose own paragraphs
     /// are elsewhere (work–precision, the flip-time fractal, the precession sweep).
     pub systems: &'static [&'static str],
-    /// The paragraph (plain text, Unicode).
+    /// The physics, true of the system whatever its parameters (plain text, Unicode): what the
+    /// lab shows beside a run from any setting.
     pub text: &'static str,
+    /// What the gallery's figures show: their parameters and panels (empty for the analyses
+    /// across systems, whose `text` describes their figure). The gallery prints it after
+    /// [`text`](Self::text); the lab, which starts from the catalogue's defaults, does not.
+    pub figure: &'static str,
 }
 
 /// The paragraph of the gallery demonstration `slug`, if there is one.
@@ -44,166 +50,198 @@ pub static EXPLANATIONS: &[Explanation] = &[
     Explanation {
         slug: "double-pendulum",
         systems: &["double-pendulum"],
-        text: "Two rods (1 m, 1 kg bobs, g = 9.81 m/s²) released from 115° and 138°. The motion is \
-         deterministic yet chaotic: two runs whose starting angles differ by 10⁻⁹ rad separate \
-         exponentially (a straight rise on the log plot, whose slope is the largest Lyapunov \
-         exponent) until the difference is as large as the motion itself. The phase panel shows \
-         the lower bob's angle θ₂ against its canonical momentum p₂, which fill a region instead \
-         of tracing a closed curve. Its Hamiltonian is not separable (the mass matrix depends on \
-         θ₁ − θ₂), so the symplectic choice is the implicit midpoint rule: its energy error stays \
-         bounded, while rk4's drifts.",
+        text:
+            "Two rigid rods, each with a bob at its end, hanging from a fixed pivot. Given enough \
+         energy the motion is deterministic yet chaotic: two runs whose starting angles \
+         differ by a billionth of a radian separate exponentially (a straight rise of the log \
+         of their separation, whose slope is the largest Lyapunov exponent) until the \
+         difference is as large as the motion itself, and the lower bob's angle θ₂ against \
+         its canonical momentum p₂ fills a region instead of tracing a closed curve. Its \
+         Hamiltonian is not separable (the mass matrix depends on θ₁ − θ₂), so the symplectic \
+         choices are the implicit methods (implicit midpoint, Gauss–Legendre): their energy \
+         error stays bounded, while rk4's drifts.",
+        figure:
+            "Rods of 1 m with 1 kg bobs (g = 9.81 m/s²) released from 115° and 138°; the second \
+         run starts 10⁻⁹ rad away; the integrators are the implicit midpoint rule and rk4.",
     },
     Explanation {
         slug: "henon-heiles",
         systems: &["henon-heiles"],
-        text: "A star in an axisymmetric galaxy (Hénon & Heiles 1964), H = (px² + py²)/2 + (x² + y²)/2 \
-         + x²y − y³/3. Each dot is a crossing of the plane y = 0 with py > 0 (located exactly \
-         with Hénon's trick, not taken from the nearest time step); each colour is one orbit. At \
-         E = 1/12 almost every orbit lies on a smooth closed curve, the section of an invariant \
-         (KAM) torus: the motion is regular. At E = 1/8 the tori between the islands have \
-         dissolved into a chaotic sea of scattered dots, and at E = 1/6, the energy of the \
-         saddle points of the potential, almost all tori are gone.",
+        text: "A star in an axisymmetric galaxy (Hénon & Heiles 1964), H = (px² + py²)/2 + (x² + \
+         y²)/2 + x²y − y³/3. A Poincaré section records each crossing of the plane y = 0 with \
+         py > 0 (located exactly with Hénon's trick, not taken from the nearest time step). \
+         At low energy almost every orbit's crossings lie on a smooth closed curve, the \
+         section of an invariant (KAM) torus: the motion is regular. As the energy rises, the \
+         tori between the islands dissolve into a chaotic sea of scattered dots, and at E = \
+         1/6, the energy of the saddle points of the potential, almost all tori are gone.",
+        figure: "Each colour is one orbit; the three panels are at E = 1/12 (almost everything \
+         regular), E = 1/8 (islands in a chaotic sea) and E = 1/6.",
     },
     Explanation {
         slug: "swarm",
         systems: &["pendulum-swarm", "pendulum-swarm-state"],
-        text: "A cloud of identical, independent pendulums (g/l = 1 s⁻²) starts as a small rectangle in \
-         phase space (angle q, momentum p) just inside the separatrix, the boundary between \
-         swinging and whirling motion. Near the separatrix the swing period depends strongly on \
-         the energy, so the patch is sheared and wound into a long thin filament; yet by Liouville's theorem the \
-         Hamiltonian flow preserves phase-space area, and the area enclosed by the patch's \
-         boundary (measured on 2000 boundary points carried along with the flow) stays at its \
-         initial value.",
+        text: "A cloud of identical, independent pendulums starts as a small rectangle in phase \
+         space (angle q, momentum p). Near the separatrix, the boundary between swinging and \
+         whirling motion, the swing period depends strongly on the energy, so the patch is \
+         sheared and wound into a long thin filament; yet by Liouville's theorem the \
+         Hamiltonian flow preserves phase-space area, so the area enclosed by the patch's \
+         boundary stays at its initial value.",
+        figure:
+            "g/l = 1 s⁻²; the patch starts just inside the separatrix, and its area is measured \
+         on 2000 boundary points carried along with the flow.",
     },
     Explanation {
         slug: "fput",
         systems: &["fput"],
-        text: "A chain of 32 unit masses joined by springs with a weak quartic non-linearity \
-         (V(r) = r²/2 + β r⁴/4, fixed ends) starts in its lowest normal mode. Fermi, Pasta, Ulam \
-         and Tsingou expected the non-linearity to share the energy out evenly among all modes \
-         (equipartition). Instead the energy flows into a few neighbouring modes and then comes \
-         back almost entirely to mode 1: the FPUT recurrence, an early hint of solitons and of \
-         KAM stability. (The quartic force keeps the chain's left–right symmetry, so the even \
-         modes 2 and 4 are never excited.)",
+        text: "A chain of unit masses joined by springs with a weak quartic non-linearity (V(r) = \
+         r²/2 + β r⁴/4, fixed ends) starts in its lowest normal mode. Fermi, Pasta, Ulam and \
+         Tsingou expected the non-linearity to share the energy out evenly among all modes \
+         (equipartition). Instead the energy flows into a few neighbouring modes and then \
+         comes back almost entirely to mode 1: the FPUT recurrence, an early hint of solitons \
+         and of KAM stability. (The quartic force keeps the chain's left–right symmetry, so \
+         the even modes are never excited.)",
+        figure: "32 masses; the figure follows the energies of the lowest modes.",
     },
     Explanation {
         slug: "sine-gordon",
         systems: &["sine-gordon", "sine-gordon-state"],
-        text: "A chain of pendulums on a torsion spring (the Frenkel–Kontorova model) is the lattice \
-         form of the sine-Gordon equation q_tt = c² q_xx − sin q. A kink is a travelling twist by \
-         2π in which the pendulums turn over one after another; an antikink twists back. They \
-         behave like particles: sent towards each other at 0.4 of the wave speed, they collide, \
-         pass through each other and re-emerge with their shapes intact, the signature of a \
-         soliton (the lattice sheds only a little radiation).",
+        text: "A chain of pendulums on a torsion spring (the Frenkel–Kontorova model) is the \
+         lattice form of the sine-Gordon equation q_tt = c² q_xx − sin q. A kink is a \
+         travelling twist by 2π in which the pendulums turn over one after another; an \
+         antikink twists back. They behave like particles: sent towards each other, they \
+         collide, pass through each other and re-emerge with their shapes intact, the \
+         signature of a soliton (the lattice sheds only a little radiation).",
+        figure: "The kink and the antikink approach each other at 0.4 of the wave speed.",
     },
     Explanation {
         slug: "chains",
         systems: &["harmonic-chain", "coupled-oscillators"],
-        text: "Masses joined by identical springs between two walls move, for small oscillations, as a \
-         superposition of normal modes: standing waves in which every mass oscillates at the \
-         same frequency ωⱼ = 2√(k/m) sin(jπ/2(N+1)). The first figure shows the shapes of the \
-         four lowest modes of an 8-mass chain, each checked by simulation: started in a mode \
-         shape, the chain stays in it (the dots are the displacements half a period later, \
-         flipped in sign as a standing wave must be). The second shows beats: a 12-mass chain started in \
-         a superposition of its two highest modes, whose frequencies are close. Each mode keeps \
-         its own energy, yet a single mass swells and falls silent at the difference frequency, \
-         cos(ω₁₁t) + cos(ω₁₂t) = 2 cos(Δω t/2) cos(ω̄ t): beats are interference.",
+        text: "Masses joined by identical springs between two walls move, for small oscillations, \
+         as a superposition of normal modes: standing waves in which every mass oscillates at \
+         the same frequency ωⱼ = 2√(k/m) sin(jπ/2(N+1)). Started in a mode shape, the chain \
+         stays in it. Started in a superposition of two modes of close frequencies, each mode \
+         keeps its own energy, yet a single mass swells and falls silent at the difference \
+         frequency, cos(ω₁t) + cos(ω₂t) = 2 cos(Δω t/2) cos(ω̄ t): beats are interference.",
+        figure:
+            "The first figure shows the shapes of the four lowest modes of an 8-mass chain, each \
+         checked by simulation (the dots are the displacements half a period later, flipped \
+         in sign as a standing wave must be). The second shows beats in a 12-mass chain \
+         started in a superposition of its two highest modes (ω₁₁ and ω₁₂).",
     },
     Explanation {
         slug: "kepler",
         systems: &["kepler", "kepler-state"],
-        text: "A planet in an inverse-square force (units with G M = 1, semi-major axis 1, \
-         eccentricity 0.6) traces the same closed ellipse for ever: besides energy and angular \
-         momentum, the Laplace–Runge–Lenz vector, which points at the perihelion, is conserved, \
-         a symmetry special to 1/r². Adding a small attractive 1/r³ term, the effective \
-         post-Newtonian correction of general relativity, breaks that symmetry: the ellipse \
-         turns a little every orbit into a rosette, and the LRL vector's angle grows at a \
-         steady rate, the perihelion precession (43 arc-seconds per century for Mercury).",
+        text:
+            "A planet in an inverse-square force traces the same closed ellipse for ever: besides \
+         energy and angular momentum, the Laplace–Runge–Lenz vector, which points at the \
+         perihelion, is conserved, a symmetry special to 1/r². Adding a small attractive 1/r³ \
+         term, the effective post-Newtonian correction of general relativity, breaks that \
+         symmetry: the ellipse turns a little every orbit into a rosette, and the LRL \
+         vector's angle grows at a steady rate, the perihelion precession (43 arc-seconds per \
+         century for Mercury).",
+        figure: "Units with G M = 1; semi-major axis 1, eccentricity 0.6.",
     },
     Explanation {
         slug: "euler-top",
         systems: &["euler-top"],
-        text: "A free rigid body with principal moments I₁ = 1 < I₂ = 2 < I₃ = 3 (a flat plate) is \
-         spun almost exactly about its intermediate axis. Rotation about the smallest and the \
-         largest axes is stable, but about the intermediate axis it is not: the spin ω₂ \
-         periodically reverses, the plate flipping over while angular momentum stays fixed in \
-         space (the effect the cosmonaut Dzhanibekov saw with a wing nut). In the body frame the \
-         angular momentum L moves on a sphere |L| = const along its intersections with the \
-         energy ellipsoid, the polhodes: closed loops around the stable axes 1 and 3, and \
-         separatrices through the unstable axis 2. The implicit midpoint rule keeps energy and \
-         |L| exactly, so the computed curves close.",
+        text:
+            "A free rigid body with three different principal moments I₁ < I₂ < I₃ rotates stably \
+         about its smallest and its largest axis, but not about the intermediate one: spun \
+         almost exactly about it, the spin ω₂ periodically reverses, the body flipping over \
+         while angular momentum stays fixed in space (the effect the cosmonaut Dzhanibekov \
+         saw with a wing nut). In the body frame the angular momentum L moves on a sphere |L| \
+         = const along its intersections with the energy ellipsoid, the polhodes: closed \
+         loops around the stable axes 1 and 3, and separatrices through the unstable axis 2. \
+         The implicit midpoint rule keeps energy and |L| exactly, so the computed curves \
+         close.",
+        figure: "I₁ = 1, I₂ = 2, I₃ = 3 (a flat plate), spun almost exactly about axis 2.",
     },
     Explanation {
         slug: "heavy-top",
         systems: &["heavy-top"],
-        text: "A spinning top with its tip fixed (I₁ = 1, I₃ = 0.5 kg m², M g l = 9.81 J) precesses \
-         slowly about the vertical while its axis nods up and down (nutation). Because the \
-         angles φ and ψ do not appear in the Lagrangian, their momenta are conserved and the \
-         tilt θ moves like a particle in the effective potential V_eff(θ): it oscillates between \
-         the two turning points where V_eff equals the energy. Started with a small backward \
-         precession, the tip of the axis draws loops on the unit sphere; started from rest in φ \
-         it would draw cusps.",
+        text:
+            "A spinning top with its tip fixed precesses slowly about the vertical while its axis \
+         nods up and down (nutation). Because the angles φ and ψ do not appear in the \
+         Lagrangian, their momenta are conserved and the tilt θ moves like a particle in the \
+         effective potential V_eff(θ): it oscillates between the two turning points where \
+         V_eff equals the energy, so θ against its rate is the revealing phase portrait. \
+         Depending on the start, the tip of the axis draws waves, loops or, started from rest \
+         in φ, cusps on the unit sphere.",
+        figure:
+            "I₁ = 1, I₃ = 0.5 kg m², M g l = 9.81 J, started with a small backward precession: \
+         the tip draws loops.",
     },
     Explanation {
         slug: "hoop",
         systems: &["hoop"],
-        text: "A bead slides without friction on a vertical hoop (R = 1 m) spun at a fixed rate ω \
-         about its vertical diameter. In the rotating frame gravity pulls the bead down and the \
-         centrifugal force pushes it out. Below the critical rate ω_c = √(g/R) the bottom \
-         θ = 0 is the only stable rest point; above it the bottom becomes unstable and two new \
-         stable equilibria appear at cos θ = g/(Rω²), climbing the hoop as ω grows: a pitchfork \
-         bifurcation, the textbook example of spontaneous symmetry breaking. The phase portraits \
-         show the single centre turning into a saddle between two centres.",
+        text:
+            "A bead slides without friction on a vertical hoop of radius R spun at a fixed rate ω \
+         about its vertical diameter. In the rotating frame gravity pulls the bead down and \
+         the centrifugal force pushes it out. Below the critical rate ω_c = √(g/R) the bottom \
+         θ = 0 is the only stable rest point; above it the bottom becomes unstable and two \
+         new stable equilibria appear at cos θ = g/(Rω²), climbing the hoop as ω grows: a \
+         pitchfork bifurcation, the textbook example of spontaneous symmetry breaking. In \
+         phase space the single centre turns into a saddle between two centres.",
+        figure: "R = 1 m; the phase portraits are below and above ω_c.",
     },
     Explanation {
         slug: "projectile",
         systems: &["projectile", "projectile-state"],
-        text: "A 1 kg ball launched at 40 m/s. Without air resistance every trajectory is Galileo's \
-         parabola and the range v² sin(2θ)/g is largest at 45°, with complementary angles \
-         (30° and 60°) landing at the same spot. Quadratic air drag (force −c|v|v, terminal \
-         speed 22 m/s) takes energy out of the flight: the paths become lopsided, steeper on \
-         the way down, the range shrinks a lot, and the best launch angle drops below 45°.",
+        text: "Without air resistance every trajectory is Galileo's parabola and the range v² \
+         sin(2θ)/g is largest at 45°, with complementary angles (30° and 60°) landing at the \
+         same spot. Quadratic air drag (force −c|v|v) takes energy out of the flight: the \
+         paths become lopsided, steeper on the way down, the range shrinks a lot, and the \
+         best launch angle drops below 45°.",
+        figure: "A 1 kg ball launched at 40 m/s; with drag its terminal speed is 22 m/s.",
     },
     Explanation {
         slug: "integrators",
         systems: &["pendulum"],
-        text: "The same pendulum (released from 115°, g/l = 1 s⁻²) integrated with the four methods. \
-         The symplectic methods (verlet, yoshida4) and the implicit midpoint rule conserve a \
-         modified energy exactly, so their energy error oscillates but never grows, however long \
-         the run; rk4 is more accurate per step than verlet but not symplectic, and its energy \
-         error grows steadily. The convergence plot measures each method's order p from the \
-         slope of the error at a fixed time against the step size (error ∝ dt^p): 2 for verlet \
-         and implicit_midpoint, 4 for yoshida4 and rk4.",
+        text:
+            "The symplectic methods (verlet, yoshida4 and the higher-order compositions) and the \
+         implicit midpoint rule conserve a modified energy exactly, so their energy error \
+         oscillates but never grows, however long the run; rk4 is more accurate per step than \
+         verlet but not symplectic, and its energy error grows steadily. The order p of a \
+         method shows in the slope of its error at a fixed time against the step size (error \
+         ∝ dt^p): 2 for verlet and implicit_midpoint, 4 for yoshida4 and rk4.",
+        figure:
+            "The same pendulum (released from 115°, g/l = 1 s⁻²) integrated with the four methods \
+         of the specification, and the convergence plot of their errors.",
     },
     Explanation {
         slug: "toda",
         systems: &["toda"],
-        text: "Sixteen unit masses on a ring joined by exponential springs, V(r) = (a/b) e^(−b r) \
-         with a = b = 1 (stiff under compression, soft under stretching), the lattice Morikazu \
-         Toda found in 1967. Two particles are kicked, 3 and −1.5 units of momentum; each kick \
-         launches a compression pulse (a lattice soliton) that runs around the ring, and the \
-         energy sloshes from particle to particle (left: the energy of each particle above its \
-         equilibrium share a/b; middle: two particles). Yet the motion is completely \
+        text: "Unit masses on a ring joined by exponential springs, V(r) = (a/b) e^(−b r) (stiff \
+         under compression, soft under stretching), the lattice Morikazu Toda found in 1967. \
+         A kick launches a compression pulse (a lattice soliton) that runs around the ring, \
+         and the energy sloshes from particle to particle. Yet the motion is completely \
          integrable: Flaschka's Lax matrix L (diagonal pᵢ, off-diagonal √(a/b) e^(−b rᵢ/2), \
-         corners closing the ring) only rotates as time goes on, so its sixteen eigenvalues are \
-         conserved (right: flat lines; the sum of their squares is twice the energy). The FPUT \
-         chain of demonstration 4 is the same kind of lattice with a polynomial spring: it is \
-         only close to integrable, which is why its energy nearly, but not exactly, returns.",
+         corners closing the ring) only rotates as time goes on, so its eigenvalues are \
+         conserved (the sum of their squares is twice the energy). The FPUT chain is the same \
+         kind of lattice with a polynomial spring: it is only close to integrable, which is \
+         why its energy nearly, but not exactly, returns.",
+        figure: "Sixteen masses, a = b = 1; two particles are kicked with 3 and −1.5 units of \
+         momentum. Left: the energy of each particle above its equilibrium share a/b; middle: \
+         two particles; right: the sixteen eigenvalues of L, flat lines.",
     },
     Explanation {
         slug: "elastic-pendulum",
         systems: &["elastic-pendulum"],
-        text: "A 1 kg bob on a spring of rest length 1 m (g = 9.81 m/s²) is pulled 10 cm below its \
-         hanging position and let go with a 1° swing. Small bounces have the frequency \
-         ω_s = √(k/m), small swings ω_p = √(g/r_eq), where r_eq = l0 + mg/k is the stretched \
-         length it hangs at. When ω_s = 2ω_p the bob bounces twice per swing, rising at each \
-         end of the swing and dropping at the bottom (as a child pumps a swing by standing and \
-         crouching), and the energy passes almost completely from bounce to swing and back: the Fermi resonance of the CO₂ molecule in a \
-         classroom toy. The condition is often quoted as k/m = 4g/l0, but the swing sees the \
-         stretched length; solving k/m = 4g/r_eq gives k = 3mg/l0 = 29.43 N/m (r_eq = 4/3 m). \
-         At k = 40 N/m (ω_s/ω_p = 2.25, close to the quoted rule) the same start keeps bouncing \
-         with a swing that never grows. The energies are split exactly: E − E_eq = \
-         [m ṙ²/2 + k(r − r_eq)²/2] + [m r² θ̇²/2 + m g r (1 − cos θ)].",
+        text:
+            "A bob on a spring swings and bounces. Small bounces have the frequency ω_s = √(k/m), \
+         small swings ω_p = √(g/r_eq), where r_eq = l0 + mg/k is the stretched length it \
+         hangs at. When ω_s = 2ω_p the bob bounces twice per swing, rising at each end of the \
+         swing and dropping at the bottom (as a child pumps a swing by standing and \
+         crouching), and the energy passes almost completely from bounce to swing and back: \
+         the Fermi resonance of the CO₂ molecule in a classroom toy. The condition is often \
+         quoted as k/m = 4g/l0, but the swing sees the stretched length; solving k/m = \
+         4g/r_eq gives k = 3mg/l0. The energies are split exactly: E − E_eq = [m ṙ²/2 + k(r − \
+         r_eq)²/2] + [m r² θ̇²/2 + m g r (1 − cos θ)].",
+        figure:
+            "A 1 kg bob, rest length 1 m, g = 9.81 m/s², pulled 10 cm below its hanging position \
+         and let go with a 1° swing: at the resonance, k = 29.43 N/m (r_eq = 4/3 m), the \
+         energy passes to the swing; at k = 40 N/m (ω_s/ω_p = 2.25, close to the quoted rule) \
+         the same start keeps bouncing with a swing that never grows.",
     },
     Explanation {
         slug: "flip-fractal",
@@ -216,16 +254,19 @@ pub static EXPLANATIONS: &[Explanation] = &[
          are fractal (Heyl 2008): nearby starts that straddle them flip at very different \
          times, the fingerprint of chaos. Computed as one ensemble on all cores \
          (physicskit::classical::ensemble), bit-identical for any number of threads.",
+        figure: "",
     },
     Explanation {
         slug: "kepler-precession",
         systems: &[],
-        text: "An ensemble of Kepler orbits (a = 1, e = 0.5, G M = 1) with the post-Newtonian term \
+        text:
+            "An ensemble of Kepler orbits (a = 1, e = 0.5, G M = 1) with the post-Newtonian term \
          c_pn/r³ swept over a range of strengths. For each member the direction of the \
          Laplace–Runge–Lenz vector is followed along the run and its mean turning rate times \
          the orbital period gives the precession per orbit (dots). First-order perturbation \
          theory (Landau & Lifshitz §15) predicts Δφ = −6π c_pn μ² k / L⁴ per orbit (line): \
          the two agree for weak corrections and part at second order in c_pn.",
+        figure: "",
     },
     Explanation {
         slug: "work-precision",
@@ -242,5 +283,6 @@ pub static EXPLANATIONS: &[Explanation] = &[
          of order 4 and 6 reach a given error far faster than the second-order implicit \
          midpoint rule. Wall times are of one run on a shared machine: the slopes and the \
          ordering matter, not the last digit.",
+        figure: "",
     },
 ];

@@ -18,7 +18,6 @@
 //! registry that accepts the system, so a new method appears without editing this file) and a
 //! ladder of steps, or of tolerances for an adaptive method ([`Problem::steps`]).
 
-use crate::classical::core::method::Scheme;
 use crate::classical::core::options::{IntegrateOptions, Sampling, Tolerances};
 use crate::classical::systems::KeplerPerturbations;
 use crate::classical::systems::{DoublePendulum, HenonHeilesSystem, KeplerSystem};
@@ -77,7 +76,7 @@ const TOLERANCES: [f64; 10] = [
 
 /// True for a method that takes tolerances rather than a step.
 fn is_adaptive(method: Method) -> bool {
-    method.info().scheme == Scheme::Adaptive
+    method.is_adaptive()
 }
 
 fn final_only() -> IntegrateOptions<'static> {

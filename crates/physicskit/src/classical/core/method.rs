@@ -44,6 +44,13 @@ pub struct MethodInfo {
     pub scheme: Scheme,
 }
 
+impl MethodInfo {
+    /// True for the [`Scheme::Adaptive`] kind (see [`Method::is_adaptive`]).
+    pub fn is_adaptive(&self) -> bool {
+        matches!(self.scheme, Scheme::Adaptive)
+    }
+}
+
 /// The kind of a method, which decides the loop that runs it and the systems it accepts.
 ///
 /// Adding a kind (an adaptive method with dense output, say) means adding a variant here and a
@@ -96,6 +103,12 @@ impl Method {
     /// True if the method is symplectic (on the systems it accepts).
     pub fn is_symplectic(self) -> bool {
         self.info().symplectic
+    }
+
+    /// True if the method adapts its step to tolerances ([`Scheme::Adaptive`]): `dt` is then
+    /// the output spacing, and the frame-by-frame sessions of the lab do not run it.
+    pub fn is_adaptive(self) -> bool {
+        self.info().is_adaptive()
     }
 
     /// Comma-separated list of valid names, for messages.

@@ -4,7 +4,7 @@
 use std::ops::ControlFlow;
 
 use super::error::{Error, Result};
-use super::method::{Method, Scheme};
+use super::method::Method;
 
 /// Which steps of the grid are stored in the [`SimulationResult`](super::SimulationResult).
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
@@ -156,12 +156,12 @@ impl Tolerances {
 /// `Ok` for an adaptive method; for a fixed-step one, [`Error::InvalidArgument`] naming `name`
 /// (the argument that carried tolerances) and listing the adaptive methods.
 pub(crate) fn check_adaptive(name: &str, method: Method) -> Result<()> {
-    if matches!(method.info().scheme, Scheme::Adaptive) {
+    if method.is_adaptive() {
         return Ok(());
     }
     let adaptive: Vec<&str> = Method::ALL
         .into_iter()
-        .filter(|m| matches!(m.info().scheme, Scheme::Adaptive))
+        .filter(|m| m.is_adaptive())
         .map(Method::name)
         .collect();
     Err(Error::InvalidArgument {

@@ -7,7 +7,6 @@ use crate::fixtures::henon_heiles_at;
 use physicskit::classical::analysis::poincare::Direction;
 use physicskit::classical::analysis::section::{poincare_section, SurfaceOfSection};
 use physicskit::classical::core::erased::{DynSystem, Hamiltonian};
-use physicskit::classical::core::method::Scheme;
 use physicskit::classical::examples::HarmonicOscillator;
 use physicskit::classical::{Error, Method};
 
@@ -66,7 +65,7 @@ fn oscillator_crossing_times_converge_at_each_methods_order() {
     for method in Method::ALL {
         // An adaptive method has no step to halve (its `dt` is the output spacing; sections
         // refuse it, see `bad_sections_are_errors`).
-        if method.info().scheme == Scheme::Adaptive {
+        if method.is_adaptive() {
             continue;
         }
         let order = method.order();

@@ -14,7 +14,7 @@ fn two_calls_equal_one_call() {
         let second = split.integrate((1.0, 2.0), 0.01, method).unwrap();
         let (a, b) = (one.final_state(), second.final_state());
         let diff = (a[0] - b[0]).abs().max((a[1] - b[1]).abs());
-        if matches!(method.info().scheme, Scheme::Adaptive) {
+        if method.is_adaptive() {
             // The second call starts its step-size control afresh, so it steps elsewhere: the
             // two runs agree to their global error at the default tolerances (rtol 1e-10 per
             // step on |y| ~ 2 over some tens of steps: ~1e-9 at most), not bit for bit.

@@ -6,15 +6,12 @@
 //! `dop853.rs`.
 
 use crate::checks::loglog_slope;
-use physicskit::classical::core::method::Scheme;
 use physicskit::classical::examples::{HarmonicOscillator, Pendulum};
 use physicskit::classical::{HamiltonianSystem, Method};
 
 /// The methods whose error is set by `dt`: all but the adaptive ones.
 fn fixed_step_methods() -> impl Iterator<Item = Method> {
-    Method::ALL
-        .into_iter()
-        .filter(|m| !matches!(m.info().scheme, Scheme::Adaptive))
+    Method::ALL.into_iter().filter(|m| !m.is_adaptive())
 }
 
 /// Acceptance band for a measured slope around the theoretical order: +-0.15 up to order 4

@@ -3,7 +3,6 @@
 //! and a refusal by one is a refusal by the other.
 
 use physicskit::classical::catalog::SYSTEMS;
-use physicskit::classical::core::method::Scheme;
 use physicskit::classical::core::DynSystem;
 use physicskit::classical::{Error, IntegrateOptions, Method};
 
@@ -29,7 +28,7 @@ fn frames_of_a_session_have_the_bits_of_one_integrate() {
     let mut compared = 0;
     for entry in SYSTEMS {
         for method in entry.methods() {
-            if method.info().scheme == Scheme::Adaptive {
+            if method.is_adaptive() {
                 // No session for an adaptive method (it needs the end of its span): refused
                 // with the system handed back unchanged.
                 let Err(refused) = build(entry).start(method, DT) else {
