@@ -23,6 +23,7 @@ out = pc.ensemble(
     pc.DoublePendulum([0.0, 0.0], [0.0, 0.0]), (0.0, t_max), 0.01, "rk4",
     grid={"theta0[0]": theta, "theta0[1]": theta},
     events={"upper": pc.abs_above(0, np.pi), "lower": pc.abs_above(1, np.pi)},
+    final_state=False,  # events only: each member stops once both arms have flipped
     progress=True,
 )
 flip = np.fmin(out.events["upper"], out.events["lower"])  # NaN only if neither flips

@@ -196,7 +196,7 @@ def system_jacobian(system: NativeSystem, t: float, state: _ArrayF64) -> _ArrayF
 def force_jacobian(system: NativeSystem, q: _ArrayF64, t: float) -> _ArrayF64:
     """The force Jacobian `dF/dq` of a separable Hamiltonian `system` at `(q, t)`."""
 
-def ensemble(name: str, common: dict[str, Any], sweeps: list[tuple[str, _ArrayF64]], states: _MatrixF64 | None, n: int, t_span: tuple[float, float], dt: float, method: str | None = None, stride: int | None = None, energy_error: bool = False, events: list[tuple[int, str, float]] = ..., threads: int | None = None, progress: Callable[[int, int], Any] | None = None, check_only: bool = False) -> dict[str, Any]:
+def ensemble(name: str, common: dict[str, Any], sweeps: list[tuple[str, _ArrayF64]], states: _MatrixF64 | None, n: int, t_span: tuple[float, float], dt: float, method: str | None = None, stride: int | None = None, energy_error: bool = False, events: list[tuple[int, str, float]] = ..., max_lyapunov: int | None = None, sali: int | None = None, final_state: bool = True, threads: int | None = None, progress: Callable[[int, int], Any] | None = None, check_only: bool = False) -> dict[str, Any]:
     """Integrates `n` members of the catalogue system `name` on all cores (GIL released):
     `common` values, `sweeps` of (parameter or "name[i]", n values), optional `states`
     (n x state length). Returns method, ndof, final_state, t, trajectory (with `stride`) and

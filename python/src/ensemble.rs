@@ -65,7 +65,11 @@ fn event(index: usize, kind: &str, value: f64) -> PyResult<Reduction> {
 /// them), `sweeps` of `(parameter or "name[i]", values)`, optional initial `states`
 /// (`n x state length`). Returns a dict: `method`, `ndof`, `final_state` (`n x dim`), `t` and
 /// `trajectory` (`n x samples x dim`) when `stride` is given, `reductions` (one array of `n`
-/// per reduction: the energy error first if asked, then the events in order).
+/// per reduction: the energy error first if asked, then the events in order, then the largest
+/// Lyapunov exponent and SALI if asked, `max_lyapunov` and `sali` being their
+/// `renormalize_every`), `steps` (the steps each member took: fewer than the span's when
+/// `final_state` is false and only events are asked, each member then stopping at its last
+/// event; `final_state` is then `n x 0`).
 ///
 /// # Errors
 /// `ValueError` for anything the engine refuses (a bad member named by index, before any
@@ -73,8 +77,8 @@ fn event(index: usize, kind: &str, value: f64) -> PyResult<Reduction> {
 /// `KeyboardInterrupt` on Ctrl-C, and what `progress` raises.
 #[pyfunction]
 #[pyo3(signature = (name, common, sweeps, states, n, t_span, dt, method=None, stride=None,
-                    energy_error=false, events=Vec::new(), threads=None, progress=None,
-                    check_only=false))]
+                    energy_error=false, events=Vec::new(), max_lyapunov=None, sali=None,
+                    final_state=true, threads=None, progress=None, check_only=false))]
 #[allow(clippy::too_many_arguments)]
 pub fn ensemble<'py>(
     py: Python<'py>,
@@ -89,6 +93,9 @@ pub fn ensemble<'py>(
     stride: Option<usize>,
     energy_error: bool,
     events: Vec<(usize, String, f64)>,
+    max_lyapunov: Option<usize>,
+    sali: Option<usize>,
+    final_state: bool,
     threads: Option<usize>,
     progress: Option<Py<PyAny>>,
     check_only: bool,
@@ -118,12 +125,19 @@ pub fn ensemble<'py>(
     for (index, kind, value) in &events {
         reductions.push(event(*index, kind, *value)?);
     }
+    if let Some(renormalize_every) = max_lyapunov {
+        reductions.push(Reduction::MaxLyapunov { renormalize_every });
+    }
+    if let Some(renormalize_every) = sali {
+        reductions.push(Reduction::Sali { renormalize_every });
+    }
     let plan = Plan {
         t_span,
         dt,
         method: method.map(str::parse).transpose().py()?,
         stride,
         reductions,
+        final_state,
         threads,
     };
     if check_only {
@@ -148,6 +162,7 @@ pub fn ensemble<'py>(
     d.set_item("method", out.method.name())?;
     d.set_item("ndof", out.ndof)?;
     d.set_item("final_state", out.final_state.into_pyarray(py))?;
+    d.set_item("steps", out.steps.into_pyarray(py))?;
     d.set_item("t", out.t.map(|t| t.into_pyarray(py)))?;
     d.set_item("trajectory", out.trajectory.map(|a| a.into_pyarray(py)))?;
     let reductions = PyList::empty(py);

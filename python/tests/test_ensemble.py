@@ -113,3 +113,37 @@ def test_bad_arguments_are_refused():
         pc.crossing(0, 0.0, "sideways")
     with pytest.raises(ValueError, match="unknown system"):
         pc.ensemble("nope", (0, 1), 0.1, grid={"q0": [1.0]})
+
+
+def test_chaos_reductions_equal_single_orbit_max_lyapunov_and_sali_bit_for_bit():
+    # Henon-Heiles at E = 1/8 from the section x = 0 (p_x >= 0 from the energy), a 2 x 3 grid.
+    y, py = np.meshgrid([-0.2, 0.1], [-0.1, 0.0, 0.25], indexing="ij")
+    px = np.sqrt(2 * 0.125 - py**2 - y**2 + 2 * y**3 / 3)
+    states = np.stack([np.zeros_like(y), y, px, py], axis=-1)
+    hh = pc.HenonHeilesSystem([0.0, 0.0], [0.0, 0.0])
+    out = pc.ensemble(hh, (0.0, 40.0), 0.05, states=states, max_lyapunov=True, sali=True,
+                      renormalize_every=5, energy_error=True, threads=2)
+    assert out.max_lyapunov.shape == out.sali.shape == out.energy_error.shape == (2, 3)
+    for i, j in [(0, 0), (1, 2)]:
+        member = lambda: pc.HenonHeilesSystem(states[i, j, :2], states[i, j, 2:])  # noqa: E731
+        lyap = pc.max_lyapunov(member(), (0.0, 40.0), 0.05, renormalize_every=5)
+        sali = pc.sali(member(), (0.0, 40.0), 0.05, renormalize_every=5)
+        assert out.max_lyapunov[i, j] == lyap.exponents[0]
+        assert out.sali[i, j] == sali.index[-1]
+    with pytest.raises(ValueError, match="renormalize_every"):
+        pc.ensemble(hh, (0, 1), 0.1, states=states, sali=True, renormalize_every=0)
+
+
+def test_events_only_without_final_state_stop_early_with_the_same_times():
+    full = _flips()
+    early = pc.ensemble(
+        pc.DoublePendulum([0.0, 0.0], [0.0, 0.0]), (0.0, 2.0), 0.01,
+        grid={"theta0[0]": THETA, "theta0[1]": THETA[:4]},
+        events={"flip": pc.abs_above(1, np.pi)}, final_state=False)
+    assert early.final_state is None
+    assert np.array_equal(early.events["flip"], full.events["flip"], equal_nan=True)
+    flipped = np.isfinite(full.events["flip"])
+    assert flipped.any() and (~flipped).any()
+    # A member stops on the step of its flip; one that never flips runs the whole span.
+    assert np.all(early.steps[flipped] == np.ceil(full.events["flip"][flipped] / 0.01 - 1e-9))
+    assert np.all(early.steps[~flipped] == 200) and np.all(full.steps == 200)

@@ -151,7 +151,7 @@ INT_PARAMS = {"n", "mode", "seed", "polarity", "stride", "coordinate", "directio
               "renormalize_every"}
 
 #: Parameters that take True or False (``progress`` also a callable): bools are good there.
-BOOL_PARAMS = {"energy_error", "progress"}
+BOOL_PARAMS = {"energy_error", "progress", "max_lyapunov", "sali", "final_state"}
 
 #: Parameters that take an array; the rest take a real number.
 ARRAY_PARAMS = {"q0", "p0", "qdot0", "theta0", "thetadot0", "omega0", "quat0", "state0",

@@ -110,6 +110,15 @@ pub struct EnsembleArgs {
         allow_hyphen_values = true
     )]
     pub events: Vec<String>,
+    /// Keep each member's largest Lyapunov exponent at T1 (`max_lyapunov`).
+    #[arg(long)]
+    pub max_lyapunov: bool,
+    /// Keep each member's SALI at T1 (`sali`; above 1e-8: regular over the span).
+    #[arg(long)]
+    pub sali: bool,
+    /// Steps between renormalizations of the deviation vectors of --max-lyapunov and --sali.
+    #[arg(long, value_name = "M", default_value_t = 10)]
+    pub renormalize_every: usize,
     /// Worker threads (default: one per core); the results do not depend on it.
     #[arg(long, value_name = "N")]
     pub threads: Option<usize>,

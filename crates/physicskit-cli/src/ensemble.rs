@@ -134,6 +134,13 @@ pub fn run(args: &EnsembleArgs, stop: &Stop) -> Result<()> {
         .map(|e| event(e))
         .collect::<Result<_>>()?;
     reductions.extend(events.iter().map(|(_, r)| *r));
+    let renormalize_every = args.renormalize_every;
+    if args.max_lyapunov {
+        reductions.push(Reduction::MaxLyapunov { renormalize_every });
+    }
+    if args.sali {
+        reductions.push(Reduction::Sali { renormalize_every });
+    }
     let members = Members {
         common: common(entry, &args.set)?,
         sweeps,
@@ -146,6 +153,7 @@ pub fn run(args: &EnsembleArgs, stop: &Stop) -> Result<()> {
         method,
         stride: args.stride,
         reductions,
+        final_state: true,
         threads: args.threads,
     };
     let pending = Pending::create(&args.out)?;
@@ -218,9 +226,17 @@ pub fn run(args: &EnsembleArgs, stop: &Stop) -> Result<()> {
             });
         }
     }
-    for ((name, _), (_, values)) in events.iter().zip(reductions) {
+    for ((name, _), (_, values)) in events.iter().zip(reductions.by_ref()) {
         entries.push(Entry::F64 {
             name: format!("event_{name}"),
+            shape: shape.clone(),
+            data: values.as_slice().unwrap_or(&[]),
+        });
+    }
+    // The chaos reductions, named as the library names them.
+    for (name, values) in reductions {
+        entries.push(Entry::F64 {
+            name: (*name).into(),
             shape: shape.clone(),
             data: values.as_slice().unwrap_or(&[]),
         });

@@ -58,16 +58,23 @@ class EnsembleResult:
     ``final_state``: ``shape + (state length,)``; ``trajectory`` (with ``stride``):
     ``shape + (samples, state length)`` at times ``t``; ``energy_error`` (with
     ``energy_error=True``): ``max |E - E0| / |E0|`` per member; ``events``: the first time of
-    each named event per member (``NaN``: never, ``t0``: already at the start).
+    each named event per member (``NaN``: never, ``t0``: already at the start);
+    ``max_lyapunov`` and ``sali`` (with ``max_lyapunov=True``, ``sali=True``): the largest
+    Lyapunov exponent and SALI at ``t_span[1]`` per member; ``steps``: the steps each member
+    took (fewer than the span's for members stopped early, see :func:`ensemble`).
+    ``final_state`` is ``None`` when ``final_state=False`` was asked.
     """
 
     shape: tuple[int, ...]
     method: str
-    final_state: np.ndarray
+    final_state: np.ndarray | None
     t: np.ndarray | None = None
     trajectory: np.ndarray | None = None
     energy_error: np.ndarray | None = None
     events: dict[str, np.ndarray] = field(default_factory=dict)
+    max_lyapunov: np.ndarray | None = None
+    sali: np.ndarray | None = None
+    steps: np.ndarray | None = None
 
 
 def _system_spec(system: Any) -> tuple[str, dict[str, Any]]:
@@ -202,6 +209,10 @@ def ensemble(
     stride: int | None = None,
     energy_error: bool = False,
     events: Mapping[str, EventSpec] | None = None,
+    max_lyapunov: bool = False,
+    sali: bool = False,
+    renormalize_every: int = 10,
+    final_state: bool = True,
     progress: bool | Callable[[int, int], None] = False,
     threads: int | None = None,
     client: Any = None,
@@ -219,6 +230,17 @@ def ensemble(
     relative energy error (``energy_error=True``) and the first time of each event in
     ``events`` (name -> :func:`crossing` or :func:`abs_above`), located inside its step to the
     method's order.
+
+    ``max_lyapunov=True`` and ``sali=True`` keep the largest Lyapunov exponent and SALI of each
+    member at ``t_span[1]``, from the same loops as :func:`max_lyapunov` and :func:`sali` (each
+    member's value is ``max_lyapunov(member, ...).exponents[0]`` and ``sali(member,
+    ...).index[-1]`` bit for bit), renormalizing every ``renormalize_every`` steps. Their
+    deviation vectors are followed in a run of their own beside the member's ``integrate``. SALI
+    above :data:`CHAOS_THRESHOLD` (1e-8) says the orbit stayed regular over the span.
+
+    ``final_state=False`` keeps no final states; when only ``events`` are asked (no
+    ``stride``, no other reduction) each member then stops at its last event, with the same
+    event times as the full run (a flip-time map costs the time to each flip, not the span).
 
     ``progress``: ``True`` for a bar on stderr, or a callable ``(done, total)``. ``threads``:
     worker threads (default: one per core). ``client``: a ``distributed.Client``; the members
@@ -240,7 +262,11 @@ def ensemble(
         "stride": None if stride is None else as_int("stride", stride, minimum=1),
         "energy_error": _flag("energy_error", energy_error),
         "events": _events(events),
+        "final_state": _flag("final_state", final_state),
     }
+    every = as_int("renormalize_every", renormalize_every, minimum=1)
+    for key, value in (("max_lyapunov", max_lyapunov), ("sali", sali)):
+        run[key] = every if _flag(key, value) else None
     if threads is not None:
         threads = as_int("threads", threads, minimum=1, maximum=4096)
     if chunk_size is not None:
@@ -261,7 +287,7 @@ def ensemble(
                 bar.close()
     else:
         out = _distributed(client, job, chunk_size)
-    return _shape(out, shape, run["energy_error"], event_names)
+    return _shape(out, shape, run, event_names)
 
 
 def _method(method: Any) -> str | None:
@@ -307,6 +333,7 @@ def _distributed(client: Any, job: _Job, chunk_size: int | None) -> dict[str, An
         "method": first["method"],
         "t": first["t"],
         "final_state": np.concatenate([p["final_state"] for p in parts]),
+        "steps": np.concatenate([p["steps"] for p in parts]),
         "trajectory": None
         if first["trajectory"] is None
         else np.concatenate([p["trajectory"] for p in parts]),
@@ -319,19 +346,25 @@ def _distributed(client: Any, job: _Job, chunk_size: int | None) -> dict[str, An
 
 
 def _shape(
-    out: Mapping[str, Any], shape: tuple[int, ...], energy_error: bool, event_names: list[str]
+    out: Mapping[str, Any], shape: tuple[int, ...], run: Mapping[str, Any], event_names: list[str]
 ) -> EnsembleResult:
-    """The engine's member-major outputs reshaped to the member grid."""
+    """The engine's member-major outputs reshaped to the member grid (the reductions in the
+    engine's order: energy error, events, max_lyapunov, sali)."""
     final = np.asarray(out["final_state"])
-    reductions = list(out["reductions"])
-    energy = reductions.pop(0).reshape(shape) if energy_error else None
+    reductions = [np.asarray(r).reshape(shape) for r in out["reductions"]]
+    energy = reductions.pop(0) if run["energy_error"] else None
+    events = {k: reductions.pop(0) for k in event_names}
+    chaos = {k: reductions.pop(0) if run[k] is not None else None for k in ("max_lyapunov", "sali")}
     trajectory = out["trajectory"]
     return EnsembleResult(
         shape=shape,
         method=out["method"],
-        final_state=final.reshape(shape + final.shape[1:]),
+        final_state=final.reshape(shape + final.shape[1:]) if run["final_state"] else None,
+        steps=np.asarray(out["steps"]).reshape(shape),
         t=out["t"],
         trajectory=None if trajectory is None else trajectory.reshape(shape + trajectory.shape[1:]),
         energy_error=energy,
-        events={k: r.reshape(shape) for k, r in zip(event_names, reductions)},
+        events=events,
+        max_lyapunov=chaos["max_lyapunov"],
+        sali=chaos["sali"],
     )

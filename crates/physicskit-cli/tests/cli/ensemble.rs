@@ -76,6 +76,7 @@ fn the_npz_is_the_library_ensemble_shaped_by_the_grid() {
                 },
             }),
         ],
+        final_state: true,
         threads: None,
     };
     let entry = catalog::find("harmonic-oscillator").unwrap();
@@ -117,4 +118,70 @@ fn a_bad_member_is_named_and_no_file_is_left() {
     assert!(message.contains("member 0: m"), "{message}");
     let message = oscillator_fails("q0=0:1:x");
     assert!(message.contains("NAME=A:B:N"), "{message}");
+}
+
+#[test]
+fn chaos_reductions_are_the_library_ones() {
+    let dir = scratch();
+    let out = run_in(
+        dir.path(),
+        &[
+            "ensemble",
+            "henon-heiles",
+            "--grid",
+            "q0[1]=-0.2:0.2:3",
+            "--set",
+            "p0=0.4,0.1",
+            "--max-lyapunov",
+            "--sali",
+            "--renormalize-every",
+            "5",
+            "--dt",
+            "0.05",
+            "--t1",
+            "20",
+            "--out",
+            "e.npz",
+        ],
+    );
+    assert_eq!(out.status.code(), Some(0), "{}", stderr(&out));
+    let mut npz = NpzReader::new(File::open(dir.path().join("e.npz")).unwrap()).unwrap();
+    let lyapunov: Array1<f64> = npz.by_name("max_lyapunov.npy").unwrap();
+    let sali: Array1<f64> = npz.by_name("sali.npy").unwrap();
+    let members = Members {
+        common: vec![(
+            "p0".into(),
+            physicskit::classical::core::Value::Vector(vec![0.4, 0.1]),
+        )],
+        sweeps: vec![Sweep::new("q0[1]", vec![-0.2, 0.0, 0.2])],
+        states: None,
+        n: 3,
+    };
+    let plan = Plan {
+        t_span: (0.0, 20.0),
+        dt: 0.05,
+        method: None,
+        stride: None,
+        reductions: vec![
+            Reduction::MaxLyapunov {
+                renormalize_every: 5,
+            },
+            Reduction::Sali {
+                renormalize_every: 5,
+            },
+        ],
+        final_state: true,
+        threads: None,
+    };
+    let entry = catalog::find("henon-heiles").unwrap();
+    let lib = ensemble::run(entry, &members, &plan, None).unwrap();
+    let bits = |v: &[f64]| v.iter().map(|x| x.to_bits()).collect::<Vec<_>>();
+    assert_eq!(
+        bits(lyapunov.as_slice().unwrap()),
+        bits(lib.reductions[0].1.as_slice().unwrap())
+    );
+    assert_eq!(
+        bits(sali.as_slice().unwrap()),
+        bits(lib.reductions[1].1.as_slice().unwrap())
+    );
 }

@@ -52,6 +52,7 @@ pub(crate) fn render(ctx: &Ctx) -> Result<Demo> {
         method: Some(Method::Rk4),
         stride: None,
         reductions: vec![flip(0), flip(1)],
+        final_state: false,
         threads: None,
     };
     let out = ensemble::run(catalog::find("double-pendulum")?, &members, &plan, None)?;

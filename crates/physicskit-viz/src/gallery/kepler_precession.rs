@@ -57,6 +57,7 @@ pub(crate) fn render(ctx: &Ctx) -> Result<Demo> {
         method: Some(Method::Yoshida4),
         stride: Some(4000 / samples_per_orbit),
         reductions: vec![],
+        final_state: true,
         threads: None,
     };
     let out = ensemble::run(catalog::find("kepler")?, &members, &plan, None)?;

@@ -1,4 +1,4 @@
-//! The gallery: the demonstrations (seventeen; [`demo_count`]), each a set of figures and a
+//! The gallery: the demonstrations (eighteen; [`demo_count`]), each a set of figures and a
 //! one-paragraph explanation of the physics, and [`render_gallery`], which renders them all and
 //! writes `index.html`.
 //!
@@ -20,6 +20,7 @@ mod flip_fractal;
 mod fput;
 mod heavy_top;
 mod henon_heiles;
+mod henon_heiles_regular;
 mod hoop;
 mod integrators;
 mod kepler;
@@ -140,6 +141,10 @@ fn demos() -> Vec<(&'static str, Render)> {
         ("flip-time fractal", flip_fractal::render),
         ("Kepler precession against c_pn", kepler_precession::render),
         ("work–precision", work_precision::render),
+        (
+            "Hénon–Heiles regular fraction",
+            henon_heiles_regular::render,
+        ),
     ]
 }
 

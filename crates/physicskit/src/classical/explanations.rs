@@ -269,6 +269,21 @@ pub static EXPLANATIONS: &[Explanation] = &[
         figure: "",
     },
     Explanation {
+        slug: "henon-heiles-regular-fraction",
+        systems: &[],
+        text: "How much of the Hénon–Heiles energy surface is regular, energy by energy. At each \
+         energy E a grid of starts fills the surface of section x = 0 inside its zero-velocity \
+         curve (p_x ≥ 0 from the energy); each start is one ensemble member whose SALI (the \
+         smaller alignment index of two deviation vectors, Skokos 2001) is computed on all \
+         cores. An orbit on an invariant torus keeps SALI away from zero; a chaotic one drives \
+         it below 1e-8, the threshold used here. The fraction of regular starts estimates the \
+         relative area of the section covered by invariant curves, the quantity Hénon & Heiles \
+         (1964) plotted against E: close to one up to about E = 0.11, then falling steeply as \
+         the tori break up, with only small islands left near the escape energy 1/6. A chaotic \
+         orbit that has not yet shown its chaos by the end of the run counts as regular, so \
+         the curve is an upper estimate that longer runs lower.",
+    },
+    Explanation {
         slug: "work-precision",
         systems: &[],
         text: "How much accuracy each integrator buys per second of computing. Each line is one \

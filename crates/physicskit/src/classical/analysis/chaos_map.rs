@@ -13,8 +13,8 @@
 
 use rayon::prelude::*;
 
-use super::lyapunov::lyapunov_on_flow;
-use super::sali::{alignment_on_flow, Alignment};
+use super::lyapunov::max_exponent_on_flow;
+use super::sali::sali_on_flow;
 use super::section::{section_on_flow, SurfaceOfSection};
 use super::watch::AnalysisOptions;
 use crate::classical::core::erased::DynSystem;
@@ -63,32 +63,21 @@ fn one_point(system: &dyn DynSystem, state0: &[f64], grid: &TimeGrid, run: &MapR
     let method = run.method.unwrap_or_else(|| system.default_method());
     check_vector("state", state0, system.dynamical().state().len())?;
     match &run.indicator {
-        Indicator::MaxLyapunov { renormalize_every } => {
-            let mut flow = system.flow(method, 1)?;
-            let (s, _) = lyapunov_on_flow(
-                flow.as_mut(),
-                state0,
-                grid,
-                1,
-                *renormalize_every,
-                // Only the exponent is used: one row of history.
-                AnalysisOptions::default().with_history_stride(usize::MAX),
-            )?;
-            Ok(s.exponents[0])
-        }
-        Indicator::Sali { renormalize_every } => {
-            let mut flow = system.flow(method, 2)?;
-            let (s, _) = alignment_on_flow(
-                flow.as_mut(),
-                state0,
-                grid,
-                Alignment::Sali,
-                *renormalize_every,
-                SALI_FLOOR,
-                AnalysisOptions::default().with_history_stride(usize::MAX),
-            )?;
-            Ok(s.index.last().copied().unwrap_or(f64::NAN))
-        }
+        Indicator::MaxLyapunov { renormalize_every } => max_exponent_on_flow(
+            system.flow(method, 1)?.as_mut(),
+            state0,
+            grid,
+            *renormalize_every,
+            AnalysisOptions::default(),
+        ),
+        Indicator::Sali { renormalize_every } => sali_on_flow(
+            system.flow(method, 2)?.as_mut(),
+            state0,
+            grid,
+            *renormalize_every,
+            SALI_FLOOR,
+            AnalysisOptions::default(),
+        ),
         Indicator::Crossings(surface) => {
             let mut flow = system.flow(method, 0)?;
             let (cut, _) = section_on_flow(

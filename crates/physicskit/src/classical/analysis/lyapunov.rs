@@ -191,6 +191,25 @@ pub fn lyapunov_on_flow(
     ))
 }
 
+/// The largest Lyapunov exponent at the end of the run from `state0` over `grid` on `flow`
+/// (one deviation vector, no history kept): [`lyapunov_on_flow`] with `k = 1`, so the same
+/// bits as [`max_lyapunov`]'s `exponents[0]` for the same system, method and grid. The chaos
+/// maps and the ensembles' per-member reduction run it.
+///
+/// # Errors
+/// As [`lyapunov_on_flow`].
+pub(crate) fn max_exponent_on_flow(
+    flow: &mut dyn Flow,
+    state0: &[f64],
+    grid: &TimeGrid,
+    renormalize_every: usize,
+    options: AnalysisOptions<'_>,
+) -> Result<f64> {
+    let options = options.with_history_stride(usize::MAX);
+    let (spectrum, _) = lyapunov_on_flow(flow, state0, grid, 1, renormalize_every, options)?;
+    Ok(spectrum.exponents[0])
+}
+
 /// The first `n_exponents` Lyapunov exponents (all for `None`) of `system`'s orbit over
 /// `t_span` with step `dt` and `method` (the system's default for `None`), re-orthonormalizing
 /// every `renormalize_every` steps. The system is left at the end of the run, as `integrate`

@@ -215,6 +215,35 @@ pub fn alignment_on_flow(
     Ok((out, Continuation { state, t: t_end }))
 }
 
+/// SALI at the end of the run from `state0` over `grid` on `flow`, or where it fell below
+/// `stop_below` (0: the end of the run; no history kept): the last value of
+/// [`alignment_on_flow`]'s index, so with `stop_below = 0` the same bits as the last value of
+/// [`alignment_index`] with [`Alignment::Sali`] for the same system, method and grid. The
+/// chaos maps and the ensembles' per-member reduction run it.
+///
+/// # Errors
+/// As [`alignment_on_flow`].
+pub(crate) fn sali_on_flow(
+    flow: &mut dyn Flow,
+    state0: &[f64],
+    grid: &TimeGrid,
+    renormalize_every: usize,
+    stop_below: f64,
+    options: AnalysisOptions<'_>,
+) -> Result<f64> {
+    let options = options.with_history_stride(usize::MAX);
+    let (index, _) = alignment_on_flow(
+        flow,
+        state0,
+        grid,
+        Alignment::Sali,
+        renormalize_every,
+        stop_below,
+        options,
+    )?;
+    Ok(index.index.last().copied().unwrap_or(f64::NAN))
+}
+
 /// SALI (`which = Alignment::Sali`) or GALI_k of `system`'s orbit over `t_span` with step `dt`
 /// and `method` (the system's default for `None`), every `renormalize_every` steps. The system
 /// is left at the end of the run.

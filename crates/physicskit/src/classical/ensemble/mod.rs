@@ -15,13 +15,22 @@
 //! over a Dask cluster).
 //!
 //! Per member the engine keeps ([`Plan`]):
-//! * the final state, always;
+//! * the final state, unless `final_state` is `false`;
 //! * optionally the trajectory every `stride` steps (the rows `integrate` with
 //!   `Sampling::Stride(stride)` stores); its memory is checked before anything is allocated;
 //! * any [`Reduction`]s: the maximum relative energy error, the time of a first event located
-//!   inside its step (see [`reduction`]). A member's steps are stored while it runs (one
-//!   member per thread at a time) and reduced as soon as it is done, so memory stays
-//!   `O(members x outputs)`.
+//!   inside its step, the largest Lyapunov exponent or SALI by the chaos toolkit's loops (see
+//!   [`reduction`]). A member's steps are stored while it runs (one member per thread at a
+//!   time; only when a reduction reads them) and reduced as soon as it is done, so memory
+//!   stays `O(members x outputs)`.
+//!
+//! **Early stop.** When every requested output is a first-event time (no final state, no
+//! trajectory, no other reduction) and the method has a fixed step, a member is stepped one
+//! step at a time by a [`Session`](crate::classical::integrators::Session) (the same bits as
+//! `integrate`), each event is checked as its step completes, and the member stops once all
+//! have happened: a flip-time map then costs the time to each member's flip, not the whole
+//! span. The times are those of the full run, bit for bit; [`EnsembleResult::steps`] says
+//! how many steps each member took.
 //!
 //! The observer ([`Observer`]) is told `(members done, members, NaN)` about every 20 ms from
 //! the calling thread and may stop the run (Ctrl-C): running members stop within 1024 steps.
@@ -41,13 +50,16 @@ pub use members::{Members, Sweep};
 pub use reduction::{Condition, Direction, Event, MemberRun, Reduction};
 
 use crate::classical::core::{
-    memory_check, DynSystem, Error, IntegrateOptions, Method, Observer, Result, Sampling,
+    memory_check, DynSystem, Error, IntegrateOptions, Method, Observer, Result, Sampling, Scheme,
     SystemEntry, TimeGrid,
 };
 
 /// Members per parallel chunk: enough to make scheduling negligible, few enough that 1e3
 /// members balance over many cores.
 pub const MEMBER_CHUNK: usize = 16;
+
+/// Steps between checks of the stop flag inside a member's run.
+const OBSERVE_EVERY: usize = 1024;
 
 /// What to integrate and what to keep of each member.
 #[derive(Debug, Clone, PartialEq)]
@@ -62,6 +74,9 @@ pub struct Plan {
     pub stride: Option<usize>,
     /// Per-member reductions, in output order.
     pub reductions: Vec<Reduction>,
+    /// Keep each member's final state (`false`: [`EnsembleResult::final_state`] has no
+    /// columns, and a plan of events only stops each member at its last event).
+    pub final_state: bool,
     /// Worker threads (`None`: rayon's global pool, one per core).
     pub threads: Option<usize>,
 }
@@ -74,8 +89,11 @@ pub struct EnsembleResult {
     pub method: Method,
     /// Degrees of freedom (`None` for ODE systems).
     pub ndof: Option<usize>,
-    /// Final states, `members x state length`.
+    /// Final states, `members x state length` (`members x 0` when the plan kept none).
     pub final_state: Array2<f64>,
+    /// Steps each member took: the span's number of steps, or fewer for a member stopped
+    /// early after its last event (see the module docs).
+    pub steps: Vec<usize>,
     /// Sample times of the trajectories (the same for every member).
     pub t: Option<Array1<f64>>,
     /// Trajectories, `members x samples x state length`.
@@ -91,6 +109,10 @@ struct Prepared<'a> {
     method: Method,
     ndof: Option<usize>,
     dim: usize,
+    /// Columns of the final state in a member's output row (`dim` or 0).
+    final_width: usize,
+    /// The events of a plan of events only, run by `events_only`; `None` otherwise.
+    early: Option<Vec<Event>>,
     /// Stored rows of the run of one member, and of its kept trajectory.
     run_rows: usize,
     kept_rows: usize,
@@ -123,6 +145,7 @@ struct Prepared<'a> {
 ///     method: None,
 ///     stride: None,
 ///     reductions: vec![],
+///     final_state: true,
 ///     threads: None,
 /// };
 /// let out = ensemble::run(catalog::find("harmonic-oscillator")?, &members, &plan, None)?;
@@ -185,6 +208,12 @@ fn prepare<'a>(
     if plan.stride == Some(0) {
         return Err(Error::invalid("stride", 0.0, "must be >= 1"));
     }
+    if !plan.final_state && plan.stride.is_none() && plan.reductions.is_empty() {
+        return Err(Error::InvalidArgument {
+            name: "plan".into(),
+            reason: "nothing to keep: ask for the final state, a trajectory or a reduction".into(),
+        });
+    }
     let recipe = Recipe::new(entry, members)?;
     let first = recipe.build(0, grid.t0())?;
     let dim = first.dynamical().state_dim();
@@ -192,6 +221,12 @@ fn prepare<'a>(
     let method = plan.method.unwrap_or_else(|| first.default_method());
     for r in &plan.reductions {
         r.check(dim)?;
+    }
+    // A chaos reduction's flow refuses what the member cannot run (a splitting method on a
+    // non-separable system), here rather than in member 0's run.
+    let vectors = plan.reductions.iter().map(Reduction::vectors).max();
+    if let Some(k) = vectors.filter(|&k| k > 0) {
+        first.flow(method, k)?;
     }
     // Every member is built and checked up front (in parallel; the lowest bad index wins).
     let bad =
@@ -213,7 +248,7 @@ fn prepare<'a>(
         return Err(e);
     }
     let n_steps = grid.n_steps();
-    let reduce = !plan.reductions.is_empty();
+    let reduce = plan.reductions.iter().any(Reduction::needs_steps);
     let sampling = match (reduce, plan.stride) {
         (true, _) => Sampling::All,
         (false, Some(k)) => Sampling::Stride(k),
@@ -224,7 +259,21 @@ fn prepare<'a>(
         .map_or(0, |k| Sampling::Stride(k).count(n_steps));
     let run_rows = sampling.count(n_steps);
     let skip_energy = !plan.reductions.iter().any(Reduction::needs_energy);
-    let width = dim + kept_rows * dim + plan.reductions.len();
+    let final_width = if plan.final_state { dim } else { 0 };
+    let width = final_width + kept_rows * dim + plan.reductions.len();
+    let fixed_step = !matches!(method.info().scheme, Scheme::Adaptive);
+    let early = (!plan.final_state && plan.stride.is_none() && fixed_step)
+        .then(|| {
+            plan.reductions
+                .iter()
+                .map(|r| match r {
+                    Reduction::FirstEvent(e) => Some(*e),
+                    _ => None,
+                })
+                .collect::<Option<Vec<Event>>>()
+        })
+        .flatten()
+        .filter(|events| !events.is_empty());
     // Outputs, counted twice (the member-major buffer and the assembled arrays coexist), and
     // one member's run per thread.
     memory_check(recipe.len(), 2 * width)?;
@@ -238,6 +287,8 @@ fn prepare<'a>(
         method,
         ndof,
         dim,
+        final_width,
+        early,
         run_rows,
         kept_rows,
         sampling,
@@ -254,25 +305,30 @@ fn run_prepared(
 ) -> Result<EnsembleResult> {
     let n = prepared.recipe.len();
     let dim = prepared.dim;
-    let width = dim + prepared.kept_rows * dim + plan.reductions.len();
+    let width = prepared.final_width + prepared.kept_rows * dim + plan.reductions.len();
     let mut out = vec![0.0; n * width];
+    let mut steps = vec![0; n];
     let stop = AtomicBool::new(false);
     let done = AtomicUsize::new(0);
-    let work = |out: &mut [f64]| -> Result<()> {
+    let work = |(out, steps): (&mut [f64], &mut [usize])| -> Result<()> {
         in_pool(pool, || {
             let results: Vec<Result<()>> = out
-                .par_chunks_mut(MEMBER_CHUNK * width)
+                .par_chunks_mut(MEMBER_CHUNK * width.max(1))
+                .zip(steps.par_chunks_mut(MEMBER_CHUNK))
                 .enumerate()
-                .map(|(chunk, rows)| {
-                    for (j, row) in rows.chunks_mut(width).enumerate() {
+                .map(|(chunk, (rows, steps))| {
+                    for (j, step_count) in steps.iter_mut().enumerate() {
+                        let row = &mut rows[j * width..(j + 1) * width];
                         let index = chunk * MEMBER_CHUNK + j;
                         if stop.load(Ordering::Relaxed) {
                             return Err(Error::Interrupted { t: f64::NAN });
                         }
-                        run_member(&prepared, plan, index, row, &stop).map_err(|e| match e {
-                            Error::Interrupted { .. } => e,
-                            e => in_member(index, e),
-                        })?;
+                        *step_count = run_member(&prepared, plan, index, row, &stop).map_err(
+                            |e| match e {
+                                Error::Interrupted { .. } => e,
+                                e => in_member(index, e),
+                            },
+                        )?;
                         done.fetch_add(1, Ordering::Relaxed);
                     }
                     Ok(())
@@ -283,11 +339,11 @@ fn run_prepared(
         })
     };
     match observer {
-        None => work(&mut out)?,
+        None => work((&mut out, &mut steps))?,
         Some(observer) => std::thread::scope(|scope| {
-            let out = &mut out;
+            let buffers = (&mut out[..], &mut steps[..]);
             let work = &work;
-            let handle = scope.spawn(move || work(out));
+            let handle = scope.spawn(move || work(buffers));
             while !handle.is_finished() {
                 std::thread::sleep(Duration::from_millis(20));
                 let members_done = done.load(Ordering::Relaxed);
@@ -303,18 +359,23 @@ fn run_prepared(
             })
         })?,
     }
-    assemble(prepared, plan, out)
+    assemble(prepared, plan, out, steps)
 }
 
-/// Member `index`: build, integrate, keep what the plan asks into `row`.
+/// Member `index`: build, integrate, keep what the plan asks into `row`; returns the steps
+/// taken.
 fn run_member(
     p: &Prepared<'_>,
     plan: &Plan,
     index: usize,
     row: &mut [f64],
     stop: &AtomicBool,
-) -> Result<()> {
+) -> Result<usize> {
     let mut system: Box<dyn DynSystem> = p.recipe.build(index, p.grid.t0())?;
+    if let Some(events) = &p.early {
+        return events_only(system, p, events, row, stop);
+    }
+    let state0 = system.dynamical().state().to_vec();
     let mut flag = StopFlag(stop);
     let result = system.integrate(
         plan.t_span,
@@ -324,14 +385,16 @@ fn run_member(
             sampling: p.sampling,
             skip_energy: p.skip_energy,
             observer: Some(&mut flag),
-            observe_every: 1024,
+            observe_every: OBSERVE_EVERY,
             ..IntegrateOptions::default()
         },
     )?;
     debug_assert_eq!(result.y.nrows(), p.run_rows);
     let dim = p.dim;
-    let (final_out, rest) = row.split_at_mut(dim);
-    final_out.copy_from_slice(result.y.row(result.y.nrows() - 1).as_slice().unwrap_or(&[]));
+    let (final_out, rest) = row.split_at_mut(p.final_width);
+    if p.final_width > 0 {
+        final_out.copy_from_slice(result.y.row(result.y.nrows() - 1).as_slice().unwrap_or(&[]));
+    }
     let (traj_out, red_out) = rest.split_at_mut(p.kept_rows * dim);
     if let Some(k) = plan.stride {
         let n_steps = p.grid.n_steps();
@@ -349,18 +412,75 @@ fn run_member(
         system: &*system,
         method: p.method,
         result: &result,
+        state0: &state0,
+        grid: &p.grid,
     };
     for (r, out) in plan.reductions.iter().zip(red_out.iter_mut()) {
-        *out = r.reduce(&member)?;
+        *out = r.reduce(&member, Some(&mut flag), OBSERVE_EVERY)?;
     }
-    Ok(())
+    Ok(p.grid.n_steps())
+}
+
+/// A member of a plan of events only: stepped one step at a time by a session (the same bits
+/// as `integrate`), each event checked as its step completes, located inside its step as
+/// [`Reduction::FirstEvent`] does, and stopped once every event has happened. Writes the event
+/// times (`NaN`: never) into `out` and returns the steps taken.
+fn events_only(
+    system: Box<dyn DynSystem>,
+    p: &Prepared<'_>,
+    events: &[Event],
+    out: &mut [f64],
+    stop: &AtomicBool,
+) -> Result<usize> {
+    let mut session = system.start(p.method, p.grid.dt()).map_err(|r| r.error)?;
+    let mut previous = session.state().to_vec();
+    let mut pending = events.len();
+    for (e, out) in events.iter().zip(out.iter_mut()) {
+        *out = if e.condition.at_start(previous[e.index]) {
+            pending -= 1;
+            p.grid.t0()
+        } else {
+            f64::NAN
+        };
+    }
+    let n_steps = p.grid.n_steps();
+    let mut done = 0;
+    while pending > 0 && done < n_steps {
+        if done % OBSERVE_EVERY == 0 && stop.load(Ordering::Relaxed) {
+            return Err(Error::Interrupted {
+                t: p.grid.time(done),
+            });
+        }
+        session.advance(1)?;
+        done += 1;
+        let current = session.state();
+        let span = (p.grid.time(done - 1), p.grid.time(done));
+        for (e, out) in events.iter().zip(out.iter_mut()) {
+            if !out.is_nan() {
+                continue;
+            }
+            let c = e.index;
+            if let Some(target) = e.condition.target(previous[c], current[c]) {
+                *out = reduction::locate(session.system(), span, &previous, current, c, target)?;
+                pending -= 1;
+            }
+        }
+        previous.copy_from_slice(current);
+    }
+    Ok(done)
 }
 
 /// Splits the member-major buffer into the result's arrays.
-fn assemble(p: Prepared<'_>, plan: &Plan, out: Vec<f64>) -> Result<EnsembleResult> {
+fn assemble(
+    p: Prepared<'_>,
+    plan: &Plan,
+    out: Vec<f64>,
+    steps: Vec<usize>,
+) -> Result<EnsembleResult> {
     let n = p.recipe.len();
     let dim = p.dim;
-    let width = dim + p.kept_rows * dim + plan.reductions.len();
+    let fw = p.final_width;
+    let width = fw + p.kept_rows * dim + plan.reductions.len();
     let column = |offset: usize, len: usize| -> Vec<f64> {
         out.chunks(width)
             .flat_map(|row| row[offset..offset + len].iter().copied())
@@ -370,15 +490,15 @@ fn assemble(p: Prepared<'_>, plan: &Plan, out: Vec<f64>) -> Result<EnsembleResul
         operation: "ensemble assembly".into(),
         reason: e.to_string(),
     };
-    let final_state = Array2::from_shape_vec((n, dim), column(0, dim)).map_err(shape_error)?;
+    let final_state = Array2::from_shape_vec((n, fw), column(0, fw)).map_err(shape_error)?;
     let trajectory = match plan.stride {
         None => None,
         Some(_) => Some(
-            Array3::from_shape_vec((n, p.kept_rows, dim), column(dim, p.kept_rows * dim))
+            Array3::from_shape_vec((n, p.kept_rows, dim), column(fw, p.kept_rows * dim))
                 .map_err(shape_error)?,
         ),
     };
-    let base = dim + p.kept_rows * dim;
+    let base = fw + p.kept_rows * dim;
     let reductions = plan
         .reductions
         .iter()
@@ -389,6 +509,7 @@ fn assemble(p: Prepared<'_>, plan: &Plan, out: Vec<f64>) -> Result<EnsembleResul
         method: p.method,
         ndof: p.ndof,
         final_state,
+        steps,
         t: plan.stride.map(|k| {
             let n_steps = p.grid.n_steps();
             let stride = Sampling::Stride(k);

@@ -8,6 +8,23 @@
 //!   value (in a given direction), or its magnitude exceeds a value (a double pendulum flips
 //!   when `|theta2| > pi`); `NaN` if it never happens, `t0` if the initial state is already
 //!   beyond.
+//! * [`Reduction::MaxLyapunov`]: the largest Lyapunov exponent at `t1`, by the chaos toolkit's
+//!   own loop ([`lyapunov`](crate::classical::analysis::lyapunov), one deviation vector
+//!   renormalized every `renormalize_every` steps) on the member's
+//!   [`Flow`](crate::classical::integrators::Flow) with the plan's
+//!   method and grid: the same bits as
+//!   [`max_lyapunov`](crate::classical::analysis::lyapunov::max_lyapunov)`(member, ...)
+//!   .exponents[0]`.
+//! * [`Reduction::Sali`]: SALI at `t1` ([`sali`](crate::classical::analysis::sali), its two
+//!   deviation vectors as the library chooses them), the same bits as the last value of
+//!   [`alignment_index`](crate::classical::analysis::sali::alignment_index)`(member, ...,
+//!   Alignment::Sali, ...)`; above [`CHAOS_THRESHOLD`](crate::classical::analysis::sali::CHAOS_THRESHOLD)
+//!   an orbit is regular over the span, below it chaotic. No early stop at a floor (unlike
+//!   the chaos maps), so that a member equals its single run.
+//!
+//! The chaos reductions follow their deviation vectors in their own run of the member's flow
+//! (the ensemble's `integrate` run still gives the final state and the other reductions); a
+//! splitting method on a non-separable system is refused before any work, as by `integrate`.
 //!
 //! # Locating an event inside a step
 //! The step `[t_k, t_{k+1}]` whose end states bracket the event is interpolated by the cubic
@@ -23,10 +40,15 @@
 //! One variant, its [`name`](Reduction::name) and its arm in [`Reduction::reduce`], which sees
 //! the member's whole run ([`MemberRun`]): its system at the initial state, the time grid and
 //! method, and every stored step. Reductions that integrate something of their own (the chaos
-//! toolkit's max Lyapunov exponent and SALI, which follow deviation vectors) get the system and
-//! grid from there and run their own integration.
+//! toolkit's max Lyapunov exponent and SALI, which follow deviation vectors) get the system,
+//! initial state and grid from there and run their own integration.
 
-use crate::classical::core::{DynSystem, Error, Method, Result, SimulationResult};
+use crate::classical::analysis::lyapunov::{check_vectors, max_exponent_on_flow};
+use crate::classical::analysis::sali::sali_on_flow;
+use crate::classical::analysis::watch::AnalysisOptions;
+use crate::classical::core::{
+    DynSystem, Error, Method, Observer, Result, SimulationResult, TimeGrid,
+};
 
 /// Which way a [`Condition::Crosses`] event must cross.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
@@ -72,6 +94,16 @@ pub enum Reduction {
     MaxEnergyError,
     /// The time of the first event (`NaN` if none).
     FirstEvent(Event),
+    /// The largest Lyapunov exponent at the end of the span.
+    MaxLyapunov {
+        /// Steps between renormalizations of the deviation vector (>= 1).
+        renormalize_every: usize,
+    },
+    /// SALI at the end of the span.
+    Sali {
+        /// Steps between evaluations of the index (>= 1).
+        renormalize_every: usize,
+    },
 }
 
 /// What a reduction sees of one member's run.
@@ -81,16 +113,23 @@ pub struct MemberRun<'a> {
     pub system: &'a dyn DynSystem,
     /// The method.
     pub method: Method,
-    /// The run, storing every step (energies when a reduction asked for them).
+    /// The run, storing every step when a reduction needs them (energies when one asked for
+    /// them), else only the final state.
     pub result: &'a SimulationResult,
+    /// The member's initial state.
+    pub state0: &'a [f64],
+    /// The time grid of the run.
+    pub grid: &'a TimeGrid,
 }
 
 impl Reduction {
-    /// The output's name: `max_energy_error`, `event_time`.
+    /// The output's name: `max_energy_error`, `event_time`, `max_lyapunov`, `sali`.
     pub fn name(&self) -> &'static str {
         match self {
             Reduction::MaxEnergyError => "max_energy_error",
             Reduction::FirstEvent(_) => "event_time",
+            Reduction::MaxLyapunov { .. } => "max_lyapunov",
+            Reduction::Sali { .. } => "sali",
         }
     }
 
@@ -99,13 +138,33 @@ impl Reduction {
         matches!(self, Reduction::MaxEnergyError)
     }
 
+    /// Whether the run must store every step (the chaos reductions run their own flow).
+    pub(crate) fn needs_steps(&self) -> bool {
+        matches!(self, Reduction::MaxEnergyError | Reduction::FirstEvent(_))
+    }
+
+    /// The deviation vectors the reduction's own flow carries (0: it has none).
+    pub(crate) fn vectors(&self) -> usize {
+        match self {
+            Reduction::MaxEnergyError | Reduction::FirstEvent(_) => 0,
+            Reduction::MaxLyapunov { .. } => 1,
+            Reduction::Sali { .. } => 2,
+        }
+    }
+
     /// Checks the reduction against a state of `dim` entries.
     ///
     /// # Errors
-    /// [`Error::InvalidArgument`] for an index beyond the state or a non-finite level.
+    /// [`Error::InvalidArgument`] for an index beyond the state or a non-finite level;
+    /// [`Error::InvalidParameter`] for `renormalize_every = 0` or a state too short for the
+    /// deviation vectors (SALI needs two entries).
     pub fn check(&self, dim: usize) -> Result<()> {
         match self {
             Reduction::MaxEnergyError => Ok(()),
+            Reduction::MaxLyapunov { renormalize_every }
+            | Reduction::Sali { renormalize_every } => {
+                check_vectors(self.vectors(), dim, *renormalize_every, "deviation vectors")
+            }
             Reduction::FirstEvent(Event { index, condition }) => {
                 if *index >= dim {
                     return Err(Error::InvalidArgument {
@@ -128,16 +187,69 @@ impl Reduction {
         }
     }
 
-    /// The reduction of one member's run.
+    /// The reduction of one member's run. `observer` is consulted every `observe_every`
+    /// steps of a chaos reduction's own run and may stop it.
     ///
     /// # Errors
-    /// Whatever the system's `derivatives` returns at an event.
-    pub fn reduce(&self, run: &MemberRun<'_>) -> Result<f64> {
+    /// Whatever the system's `derivatives` returns at an event; for the chaos reductions, what
+    /// their loops return (a method the system cannot run, a diverging orbit,
+    /// [`Error::Interrupted`] when the observer stops).
+    pub fn reduce(
+        &self,
+        run: &MemberRun<'_>,
+        observer: Option<&mut dyn Observer>,
+        observe_every: usize,
+    ) -> Result<f64> {
+        let options = || AnalysisOptions {
+            observer,
+            observe_every,
+            history_stride: 1,
+        };
         match self {
             Reduction::MaxEnergyError => {
                 Ok(run.result.max_relative_energy_error().unwrap_or(f64::NAN))
             }
             Reduction::FirstEvent(event) => first_event(event, run),
+            Reduction::MaxLyapunov { renormalize_every } => max_exponent_on_flow(
+                run.system.flow(run.method, 1)?.as_mut(),
+                run.state0,
+                run.grid,
+                *renormalize_every,
+                options(),
+            ),
+            Reduction::Sali { renormalize_every } => sali_on_flow(
+                run.system.flow(run.method, 2)?.as_mut(),
+                run.state0,
+                run.grid,
+                *renormalize_every,
+                0.0,
+                options(),
+            ),
+        }
+    }
+}
+
+impl Condition {
+    /// Whether the initial value `y0` is already beyond (the event is then at `t0`).
+    pub(crate) fn at_start(self, y0: f64) -> bool {
+        matches!(self, Condition::AbsExceeds(v) if y0.abs() > v)
+    }
+
+    /// The level the coordinate reaches inside the step from `a` to `b`, if the event
+    /// happens in that step.
+    pub(crate) fn target(self, a: f64, b: f64) -> Option<f64> {
+        match self {
+            Condition::Crosses { value, direction } => {
+                let rising = a < value && b >= value;
+                let falling = a > value && b <= value;
+                let hit = match direction {
+                    Direction::Either => rising || falling,
+                    Direction::Rising => rising,
+                    Direction::Falling => falling,
+                };
+                hit.then_some(value)
+            }
+            Condition::AbsExceeds(v) => (b.abs() > v).then(|| v.copysign(b)),
         }
     }
 }
@@ -147,51 +259,35 @@ fn first_event(event: &Event, run: &MemberRun<'_>) -> Result<f64> {
     let y = &run.result.y;
     let t = &run.result.t;
     let c = event.index;
-    if let Condition::AbsExceeds(v) = event.condition {
-        if y[[0, c]].abs() > v {
-            return Ok(t[0]);
-        }
+    if event.condition.at_start(y[[0, c]]) {
+        return Ok(t[0]);
     }
     for k in 1..y.nrows() {
-        let (a, b) = (y[[k - 1, c]], y[[k, c]]);
-        let target = match event.condition {
-            Condition::Crosses { value, direction } => {
-                let rising = a < value && b >= value;
-                let falling = a > value && b <= value;
-                let hit = match direction {
-                    Direction::Either => rising || falling,
-                    Direction::Rising => rising,
-                    Direction::Falling => falling,
-                };
-                if !hit {
-                    continue;
-                }
-                value
-            }
-            Condition::AbsExceeds(v) => {
-                if b.abs() <= v {
-                    continue;
-                }
-                v.copysign(b)
-            }
-        };
-        return locate(run, k, c, target);
+        if let Some(target) = event.condition.target(y[[k - 1, c]], y[[k, c]]) {
+            let (start, end) = (y.row(k - 1).to_vec(), y.row(k).to_vec());
+            return locate(run.system, (t[k - 1], t[k]), &start, &end, c, target);
+        }
     }
     Ok(f64::NAN)
 }
 
-/// Where entry `c` of the cubic Hermite interpolant of step `k - 1 -> k` equals `target`,
-/// the step's end values bracketing it.
-fn locate(run: &MemberRun<'_>, k: usize, c: usize, target: f64) -> Result<f64> {
-    let (y, t) = (&run.result.y, &run.result.t);
-    let (t0, t1) = (t[k - 1], t[k]);
+/// Where entry `c` of the cubic Hermite interpolant of the step from `start` at `t0` to `end`
+/// at `t1` equals `target`, the step's end values bracketing it; the slopes are `system`'s
+/// derivatives.
+pub(crate) fn locate(
+    system: &dyn DynSystem,
+    (t0, t1): (f64, f64),
+    start: &[f64],
+    end: &[f64],
+    c: usize,
+    target: f64,
+) -> Result<f64> {
     let h = t1 - t0;
-    let dynamics = run.system.dynamical();
-    let (start, end) = (y.row(k - 1).to_vec(), y.row(k).to_vec());
+    let dynamics = system.dynamical();
     let mut d0 = vec![0.0; start.len()];
     let mut d1 = vec![0.0; start.len()];
-    dynamics.derivatives(t0, &start, &mut d0)?;
-    dynamics.derivatives(t1, &end, &mut d1)?;
+    dynamics.derivatives(t0, start, &mut d0)?;
+    dynamics.derivatives(t1, end, &mut d1)?;
     let s = hermite_crossing(start[c], end[c], h * d0[c], h * d1[c], target);
     Ok(t0 + h * s)
 }

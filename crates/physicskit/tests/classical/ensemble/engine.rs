@@ -42,6 +42,7 @@ fn pendulum_plan(threads: Option<usize>) -> Plan {
                 condition: Condition::AbsExceeds(std::f64::consts::PI),
             }),
         ],
+        final_state: true,
         threads,
     }
 }
@@ -137,6 +138,7 @@ fn states_given_per_member_equal_single_runs() {
         method: None,
         stride: None,
         reductions: vec![],
+        final_state: true,
         threads: Some(2),
     };
     let entry = catalog::find("henon-heiles").unwrap();
@@ -179,6 +181,7 @@ fn a_nan_in_member_731_of_1000_is_refused_by_index_before_any_integration() {
         method: None,
         stride: None,
         reductions: vec![],
+        final_state: true,
         threads: None,
     };
     let mut count = Count(0);

@@ -26,6 +26,7 @@ fn crossing_errors(method: Method, dt: f64) -> [f64; 2] {
                 direction: Direction::Falling,
             },
         })],
+        final_state: true,
         threads: Some(1),
     };
     let entry = catalog::find("harmonic-oscillator").unwrap();
@@ -80,10 +81,76 @@ fn events_never_reached_are_nan_and_events_at_the_start_are_t0() {
             index: 0,
             condition: Condition::AbsExceeds(1.0),
         })],
+        final_state: true,
         threads: Some(1),
     };
     let entry = catalog::find("harmonic-oscillator").unwrap();
     let out = ensemble::run(entry, &members, &plan, None).unwrap();
     assert!(out.reductions[0].1[0].is_nan());
     assert_eq!(out.reductions[0].1[1], 1.0);
+}
+
+#[test]
+fn members_of_an_events_only_plan_stop_at_their_last_event_with_the_same_times() {
+    // Double pendulums released from rest at large angles: some flip early, some never.
+    let theta: Vec<f64> = (0..12).map(|i| 1.5 + 0.14 * f64::from(i)).collect();
+    let members = Members {
+        common: vec![(
+            "thetadot0".into(),
+            physicskit::classical::core::Value::Vector(vec![0.0, 0.0]),
+        )],
+        sweeps: vec![
+            Sweep::new("theta0[0]", theta.clone()),
+            Sweep::new("theta0[1]", theta.iter().map(|t| -t).collect()),
+        ],
+        n: 12,
+        ..Members::default()
+    };
+    let flip = |index| {
+        Reduction::FirstEvent(Event {
+            index,
+            condition: Condition::AbsExceeds(std::f64::consts::PI),
+        })
+    };
+    let mut plan = Plan {
+        t_span: (0.0, 8.0),
+        dt: 0.01,
+        method: Some(Method::Rk4),
+        stride: None,
+        reductions: vec![flip(0), flip(1)],
+        final_state: true,
+        threads: Some(2),
+    };
+    let entry = catalog::find("double-pendulum").unwrap();
+    let full = ensemble::run(entry, &members, &plan, None).unwrap();
+    plan.final_state = false;
+    let early = ensemble::run(entry, &members, &plan, None).unwrap();
+    assert_eq!(early.final_state.dim(), (12, 0));
+    let n_steps = 800;
+    assert!(full.steps.iter().all(|&s| s == n_steps));
+    for i in 0..12 {
+        let bits = |r: &ensemble::EnsembleResult, k: usize| r.reductions[k].1[i].to_bits();
+        assert_eq!(bits(&full, 0), bits(&early, 0), "member {i}");
+        assert_eq!(bits(&full, 1), bits(&early, 1), "member {i}");
+        let (a, b) = (full.reductions[0].1[i], full.reductions[1].1[i]);
+        if a.is_finite() && b.is_finite() {
+            // Both arms flipped: the member stopped on the step that holds the later flip,
+            // t_{k-1} < t <= t_k (1e-12: the rounding of t_k = k dt).
+            let last = a.max(b);
+            let k = early.steps[i] as f64;
+            assert!(k * 0.01 >= last - 1e-12 && (k - 1.0) * 0.01 < last + 1e-12);
+            assert!(early.steps[i] < n_steps);
+        } else {
+            assert_eq!(early.steps[i], n_steps, "member {i}");
+        }
+    }
+    // Something was saved: some members had both arms flip well before the end.
+    let saved: usize = early.steps.iter().map(|s| n_steps - s).sum();
+    assert!(saved > n_steps, "{:?}", early.steps);
+    // Nothing to keep is refused.
+    plan.reductions.clear();
+    assert!(ensemble::run(entry, &members, &plan, None)
+        .unwrap_err()
+        .to_string()
+        .contains("nothing to keep"));
 }

@@ -4,5 +4,6 @@
 // Bit-identical reproducibility is the claim here, so exact float comparisons are intended.
 #![allow(clippy::float_cmp)]
 
+mod chaos;
 mod engine;
 mod events;
