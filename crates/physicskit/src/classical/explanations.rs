@@ -282,6 +282,7 @@ pub static EXPLANATIONS: &[Explanation] = &[
          the tori break up, with only small islands left near the escape energy 1/6. A chaotic \
          orbit that has not yet shown its chaos by the end of the run counts as regular, so \
          the curve is an upper estimate that longer runs lower.",
+        figure: "",
     },
     Explanation {
         slug: "work-precision",
