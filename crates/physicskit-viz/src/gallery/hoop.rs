@@ -28,11 +28,15 @@ pub(super) fn pitchfork_panel(params0: HoopParams, max_ratio: f64) -> Panel {
             ..params0
         };
         for e in params.equilibria() {
-            let b = match e.theta {
-                t if t == 0.0 => 0,
-                t if t < 0.0 => 1,
-                t if t < std::f64::consts::PI => 2,
-                _ => 3,
+            // Bottom, the lower and upper branches, top.
+            let b = if e.theta == 0.0 {
+                0
+            } else if e.theta < 0.0 {
+                1
+            } else if e.theta < std::f64::consts::PI {
+                2
+            } else {
+                3
             };
             branches[b].push((ratio, e.theta.to_degrees(), e.is_stable()));
         }
