@@ -31,15 +31,17 @@ use crate::signals::Stop;
 pub fn lyapunov(call: &SystemCall<Lyapunov>, stop: &Stop) -> Result<()> {
     let checked = Call::check(call)?;
     let flag = |name| checked.option(name).unwrap_or("1");
-    let k = checked
-        .option("n-exponents")
-        .map(|text| count("n-exponents", text, 1))
-        .transpose()?;
     let every = count("renormalize-every", flag("renormalize-every"), 1)?;
     let stride = count("history-stride", flag("history-stride"), 1)?;
+    // The temporary output goes with `run` if the number of exponents is refused.
     let run = checked.start()?;
     let state0 = run.system.dynamical().state().to_vec();
-    let k = k.unwrap_or(state0.len());
+    let k = n_exponents(
+        checked.option("n-exponents"),
+        state0.len(),
+        checked.entry.name,
+        every,
+    )?;
     let mut observer = RunObserver::new(run.grid.n_steps(), stop);
     let outcome = run
         .system
@@ -62,6 +64,46 @@ pub fn lyapunov(call: &SystemCall<Lyapunov>, stop: &Stop) -> Result<()> {
         Named::matrix("history", k, spectrum.history),
     ];
     write(&checked, run, settings, arrays)
+}
+
+/// Largest state dimension whose full spectrum `lyapunov` computes without `--n-exponents`.
+pub const FULL_SPECTRUM_MAX_DIM: usize = 20;
+
+/// The number of exponents: `--n-exponents` (`text`), a whole number from 1 to the state
+/// dimension `dim` of `system`, or without it the full spectrum up to
+/// [`FULL_SPECTRUM_MAX_DIM`]. A larger system's full spectrum is refused rather than started:
+/// `dim` deviation vectors cost about `dim + 1` times the orbit's work per step, and each
+/// renormalization (every `every` steps) a Gram–Schmidt of about `2 dim^3` operations.
+///
+/// # Errors
+/// A text that is not such a number (`1e23`, `2.5`, `0`, more than `dim`), naming the flag and
+/// the range; no `--n-exponents` for a system larger than [`FULL_SPECTRUM_MAX_DIM`].
+fn n_exponents(text: Option<&str>, dim: usize, system: &str, every: usize) -> Result<usize> {
+    match text {
+        Some(text) => text
+            .trim()
+            .parse::<usize>()
+            .ok()
+            .filter(|k| (1..=dim).contains(k))
+            .ok_or_else(|| {
+                anyhow!(
+                    "invalid value `{text}` for `--n-exponents`: expected a whole number from 1 \
+                     to {dim}, the state dimension of `{system}`"
+                )
+            }),
+        None if dim > FULL_SPECTRUM_MAX_DIM => {
+            let gram_schmidt = 2.0 * (dim as f64).powi(3);
+            Err(anyhow!(
+                "`{system}`: pass --n-exponents K (1 to {dim}; 1 gives the largest exponent): \
+                 the full spectrum of this {dim}-dimensional system costs {dim} deviation \
+                 vectors, about {} times the orbit's work per step, plus a Gram–Schmidt of \
+                 about {gram_schmidt:.1e} operations every {every} steps (without the flag the \
+                 full spectrum is computed only up to dimension {FULL_SPECTRUM_MAX_DIM})",
+                dim + 1
+            ))
+        }
+        None => Ok(dim),
+    }
 }
 
 /// Runs `poincare` for one parsed invocation.

@@ -230,7 +230,7 @@ impl RunKind for Lyapunov {
             "n-exponents",
             "K",
             None,
-            "number of exponents, 1 to the state dimension [default: all]",
+            "number of exponents, 1 to the state dimension [default: all; required above dimension 20]",
         ),
         Flag::optional(
             "renormalize-every",

@@ -1,5 +1,5 @@
 //! A space–time heat map: a field `u(x, t)` on a regular grid drawn as coloured cells
-//! (viridis colour map) with a colour bar.
+//! (viridis colour map) with a colour bar. Non-finite cells (outside a domain) are left blank.
 
 use std::path::Path;
 
@@ -7,7 +7,7 @@ use plotters::prelude::*;
 use plotters::style::colors::colormaps::ViridisRGB;
 
 use crate::error::{DrawContext, Result, VizError};
-use crate::figure::{tick, Area};
+use crate::figure::{tick, Area, Chart};
 use crate::font::{ensure_registered, FAMILY};
 
 /// A field sampled on a regular `nx x ny` grid.
@@ -29,7 +29,8 @@ pub struct HeatMap {
     pub nx: usize,
     /// Number of cells along y.
     pub ny: usize,
-    /// Values, row-major: row `j` (y index) holds `nx` values.
+    /// Values, row-major: row `j` (y index) holds `nx` values; a non-finite value is left
+    /// blank.
     pub values: Vec<f64>,
 }
 
@@ -39,6 +40,20 @@ impl HeatMap {
     /// # Errors
     /// [`VizError::Draw`] if the grid does not match the values or plotters fails.
     pub fn draw(&self, area: &Area<'_>, path: &Path) -> Result<()> {
+        self.draw_with(area, path, |_| Ok(()))
+    }
+
+    /// [`draw`](Self::draw), then `overlay` on the map's chart (data coordinates), e.g. a
+    /// contour line.
+    ///
+    /// # Errors
+    /// As [`draw`](Self::draw), and what `overlay` returns.
+    pub fn draw_with<'b>(
+        &self,
+        area: &Area<'b>,
+        path: &Path,
+        overlay: impl FnOnce(&mut Chart<'_, 'b>) -> Result<()>,
+    ) -> Result<()> {
         ensure_registered()?;
         if self.nx == 0 || self.ny == 0 || self.values.len() != self.nx * self.ny {
             return Err(VizError::Draw {
@@ -87,7 +102,9 @@ impl HeatMap {
             .y_label_formatter(&|v| tick(*v))
             .draw()
             .at(path)?;
-        let cells = (0..self.ny).flat_map(|j| (0..self.nx).map(move |i| (i, j)));
+        let cells = (0..self.ny)
+            .flat_map(|j| (0..self.nx).map(move |i| (i, j)))
+            .filter(|&(i, j)| self.values[j * self.nx + i].is_finite());
         chart
             .draw_series(cells.map(|(i, j)| {
                 let x = self.x_range.0 + i as f64 * dx;
@@ -100,6 +117,7 @@ impl HeatMap {
                 )
             }))
             .at(path)?;
+        overlay(&mut chart)?;
         // Labels on the right of the bar, left-aligned: right-aligned on its left, their ends
         // ran past the label area (the font's width estimate is short) and were cut off.
         let mut bar = ChartBuilder::on(&bar_area)

@@ -11,16 +11,14 @@
 //!   (`name_<i>`), the numeric settings and `param_<name>`.
 
 use std::fs::File;
-use std::io::{self, BufWriter, Write};
+use std::io::{self, Write};
 
 use physicskit::classical::core::{Family, Value, Values};
-use zip::write::SimpleFileOptions;
-use zip::{CompressionMethod, ZipWriter};
 
+use super::arrays::{write_npz as write_npz_entries, Entry};
+use super::csv;
 use super::json::{push_list, push_parameters, push_value, quote};
-use super::npz::{write_labels, write_value};
 use super::number::push_f64;
-use super::{csv, npy};
 
 /// One named array: C-order data and its shape (`[n]` or `[n, m]`).
 #[derive(Debug, Clone)]
@@ -91,28 +89,29 @@ impl Arrays<'_> {
     }
 }
 
+/// The arrays, the settings, the texts and the given parameters, in that order.
 pub(super) fn write_npz(file: &File, record: &Arrays<'_>) -> io::Result<()> {
-    let values: usize = record.arrays.iter().map(|a| a.data.len()).sum();
-    // Entries over 4 GiB need the zip64 extension, which numpy reads.
-    let options = SimpleFileOptions::default()
-        .compression_method(CompressionMethod::Stored)
-        .large_file(values * 8 > u32::MAX as usize / 2);
-    let mut zip = ZipWriter::new(BufWriter::new(file));
-    let entry = |zip: &mut ZipWriter<BufWriter<&File>>, name: &str| {
-        zip.start_file(format!("{name}.npy"), options)
-            .map_err(io::Error::other)
-    };
-    for a in &record.arrays {
-        entry(&mut zip, a.name)?;
-        npy::write_f64(&mut zip, &a.shape, a.data.iter().copied())?;
-    }
-    for (name, value) in &record.settings {
-        entry(&mut zip, name)?;
-        write_value(&mut zip, value)?;
-    }
-    write_labels(&mut zip, options, record.texts(), record.params)?;
-    let mut inner = zip.finish().map_err(io::Error::other)?;
-    inner.flush()
+    let arrays = record.arrays.iter().map(|a| Entry::F64 {
+        name: a.name.into(),
+        shape: a.shape.clone(),
+        data: &a.data,
+    });
+    let settings = record.settings.iter().map(|(name, value)| Entry::Value {
+        name: (*name).into(),
+        value,
+    });
+    let texts = record.texts().into_iter().map(|(name, text)| Entry::Str {
+        name: name.into(),
+        text,
+    });
+    let params = record.params.iter().filter_map(|(name, value)| {
+        value.map(|value| Entry::Value {
+            name: format!("param_{name}"),
+            value,
+        })
+    });
+    let entries: Vec<Entry<'_>> = arrays.chain(settings).chain(texts).chain(params).collect();
+    write_npz_entries(file, &entries)
 }
 
 pub(super) fn write_json(w: &mut impl Write, record: &Arrays<'_>) -> io::Result<()> {

@@ -1,13 +1,16 @@
-//! An NPZ archive of named f64 arrays and strings, for outputs that are not one trajectory
-//! (`physicskit ensemble`).
+//! An NPZ archive of named f64 arrays, strings and catalogue values, for outputs that are not
+//! one trajectory: `physicskit ensemble` and the analyses (`lyapunov`, `poincare`, through
+//! [`analysis`](super::analysis)). The one NPZ writer of named entries.
 
 use std::fs::File;
 use std::io::{self, BufWriter, Write};
 
+use physicskit::classical::core::Value;
 use zip::write::SimpleFileOptions;
 use zip::{CompressionMethod, ZipWriter};
 
 use super::npy;
+use super::npz::write_value;
 
 /// One entry of the archive.
 #[derive(Debug)]
@@ -28,9 +31,19 @@ pub enum Entry<'a> {
         /// The text.
         text: &'a str,
     },
+    /// A catalogue value (a setting or parameter), as the trajectory files write it: `<f8`
+    /// (0-d or 1-d), `<i8` for an integer, a string for a word.
+    Value {
+        /// Entry name.
+        name: String,
+        /// The value.
+        value: &'a Value,
+    },
 }
 
-/// Writes `entries` as an uncompressed NPZ (zip64 when large), as `numpy.savez` would.
+/// Writes `entries` as an uncompressed NPZ, as `numpy.savez` would; zip64 when the f64 arrays
+/// (not the strings and values, which are small) exceed 2 GiB, as entries over 4 GiB need it
+/// and numpy reads it.
 ///
 /// # Errors
 /// I/O errors.
@@ -39,7 +52,7 @@ pub fn write_npz(file: &File, entries: &[Entry<'_>]) -> io::Result<()> {
         .iter()
         .map(|e| match e {
             Entry::F64 { data, .. } => data.len(),
-            Entry::Str { .. } => 0,
+            Entry::Str { .. } | Entry::Value { .. } => 0,
         })
         .sum();
     let options = SimpleFileOptions::default()
@@ -48,7 +61,7 @@ pub fn write_npz(file: &File, entries: &[Entry<'_>]) -> io::Result<()> {
     let mut zip = ZipWriter::new(BufWriter::new(file));
     for e in entries {
         let name = match e {
-            Entry::F64 { name, .. } | Entry::Str { name, .. } => name,
+            Entry::F64 { name, .. } | Entry::Str { name, .. } | Entry::Value { name, .. } => name,
         };
         zip.start_file(format!("{name}.npy"), options)
             .map_err(io::Error::other)?;
@@ -57,6 +70,7 @@ pub fn write_npz(file: &File, entries: &[Entry<'_>]) -> io::Result<()> {
                 npy::write_f64(&mut zip, shape, data.iter().copied())?
             }
             Entry::Str { text, .. } => npy::write_str(&mut zip, text)?,
+            Entry::Value { value, .. } => write_value(&mut zip, value)?,
         }
     }
     zip.finish().map_err(io::Error::other)?.flush()

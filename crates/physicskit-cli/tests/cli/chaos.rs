@@ -171,23 +171,17 @@ fn poincare_files_are_the_librarys_section() {
     }
 }
 
+/// `action system` over one time unit in steps of 0.1 into `a.npz`, then `extra`.
+fn short_run<'a>(action: &'a str, system: &'a str, extra: &[&'a str]) -> Vec<&'a str> {
+    let mut args = vec![action, system, "--dt", "0.1", "--t1", "1", "--out", "a.npz"];
+    args.extend_from_slice(extra);
+    args
+}
+
 /// Bad analysis options: one error line naming the flag, exit 2, no file.
 #[test]
 fn bad_options_name_their_flag() {
-    let base = |action: &'static str, extra: &[&'static str]| {
-        let mut args = vec![
-            action,
-            "henon-heiles",
-            "--dt",
-            "0.1",
-            "--t1",
-            "1",
-            "--out",
-            "a.npz",
-        ];
-        args.extend_from_slice(extra);
-        fails(&args)
-    };
+    let base = |action, extra: &[&str]| fails(&short_run(action, "henon-heiles", extra));
     let cases: [(&str, &[&str], &str); 8] = [
         ("lyapunov", &["--n-exponents", "5"], "--n-exponents"),
         ("lyapunov", &["--n-exponents", "0"], "--n-exponents"),
@@ -225,6 +219,35 @@ fn bad_options_name_their_flag() {
         err.contains("--renormalize-every") && err.contains("q0"),
         "{err}"
     );
+}
+
+/// The number of exponents: without `--n-exponents` a system larger than dimension 20 (the
+/// pendulum swarm's 1000 members: 2000) is refused with the flag to pass and what the full
+/// spectrum would cost, before any step; a value that is no whole number from 1 to the state
+/// dimension (`1e23`, too large, fractional) names the flag and the range. With the flag the
+/// swarm runs.
+#[test]
+fn n_exponents_is_required_for_large_systems_and_checked() {
+    let args = |extra: &[&'static str]| short_run("lyapunov", "pendulum-swarm", extra);
+    let err = fails(&args(&[]));
+    assert!(
+        err.contains("pass --n-exponents K") && err.contains("2000-dimensional"),
+        "{err}"
+    );
+    for bad in ["1e23", "100000000000000000000000", "2001", "2.5", "0", "-1"] {
+        let err = fails(&args(&["--n-exponents", bad]));
+        assert!(
+            err.contains(&format!("invalid value `{bad}` for `--n-exponents`"))
+                && err.contains("a whole number from 1 to 2000"),
+            "{bad}: {err}"
+        );
+    }
+    let dir = scratch();
+    let out = run_in(dir.path(), &args(&["--n-exponents", "2"]));
+    assert_eq!(out.status.code(), Some(0), "{}", stderr(&out));
+    let mut npz = NpzReader::new(File::open(dir.path().join("a.npz")).unwrap()).unwrap();
+    let exponents: Array1<f64> = npz.by_name("exponents").unwrap();
+    assert_eq!(exponents.len(), 2);
 }
 
 /// Ctrl-C and SIGTERM stop a long Lyapunov run (checked every 1024 steps of the tangent

@@ -1,4 +1,4 @@
-//! Demonstration 18, the Hénon–Heiles fraction of regular orbits against energy (Hénon & Heiles,
+//! Demonstration 21, the Hénon–Heiles fraction of regular orbits against energy (Hénon & Heiles,
 //! *Astron. J.* 69, 73–79, 1964, their figure of the "relative area covered by curves"),
 //! measured by SALI on one ensemble.
 //!
@@ -61,7 +61,7 @@ fn section_starts(energy: f64, n: usize) -> Vec<[f64; 4]> {
 pub(crate) fn render(ctx: &Ctx) -> Result<Demo> {
     let mut d = demo(
         "henon-heiles-regular-fraction",
-        "18. Hénon–Heiles: the fraction of regular orbits against energy",
+        "21. Hénon–Heiles: the fraction of regular orbits against energy",
     );
     let energies = [
         1.0 / 24.0,
@@ -123,7 +123,7 @@ pub(crate) fn render(ctx: &Ctx) -> Result<Demo> {
         Series::dots("ensemble of SALI runs (one per cell)", fraction, color(0))
             .with_mark(Mark::Dots(5)),
     );
-    let path = ctx.path("18_henon_heiles_regular_fraction.png");
+    let path = ctx.path("21_henon_heiles_regular_fraction.png");
     save_panel(&path, (900, 600), &panel)?;
     d.add(
         path,

@@ -9,6 +9,75 @@ use super::{demo, Ctx, Demo};
 use crate::error::Result;
 use crate::figure::{color, save_png, Legend, Mark, Panel, Series};
 
+/// The equilibria at rest against `omega / omega_c` from 0 to `max_ratio`, from the library
+/// ([`HoopParams::equilibria`]), one line per branch (bottom, top, the off-axis pair), solid
+/// where stable and dashed where unstable.
+pub(super) fn pitchfork_panel(params0: HoopParams, max_ratio: f64) -> Panel {
+    let wc = params0.critical_omega();
+    // Uniform below omega_c; above it, closer near omega_c, where the branches leave the
+    // bottom like sqrt(omega - omega_c).
+    let n = 150;
+    let ratios = (0..n)
+        .map(|k| k as f64 / n as f64)
+        .chain((0..=2 * n).map(|k| 1.0 + (max_ratio - 1.0) * (k as f64 / (2 * n) as f64).powi(2)));
+    // Branch points (omega / omega_c, theta in degrees, stable).
+    let mut branches: [Vec<(f64, f64, bool)>; 4] = Default::default();
+    for ratio in ratios {
+        let params = HoopParams {
+            omega: ratio * wc,
+            ..params0
+        };
+        for e in params.equilibria() {
+            // Bottom, the lower and upper branches, top.
+            let b = if e.theta == 0.0 {
+                0
+            } else if e.theta < 0.0 {
+                1
+            } else if e.theta < std::f64::consts::PI {
+                2
+            } else {
+                3
+            };
+            branches[b].push((ratio, e.theta.to_degrees(), e.is_stable()));
+        }
+    }
+    let mut panel = Panel::new(
+        format!("Equilibria (ω_c = √(g/R) = {wc:.2} rad/s)"),
+        "ω / ω_c",
+        "equilibrium angle θ* (degrees)",
+    );
+    let (mut stable_named, mut unstable_named) = (false, false);
+    for branch in &branches {
+        // Runs of equal stability; each run starts at the previous run's last point.
+        let mut start = 0;
+        while start < branch.len() {
+            let stable = branch[start].2;
+            let end = branch[start..]
+                .iter()
+                .position(|p| p.2 != stable)
+                .map_or(branch.len(), |k| start + k);
+            let pts = branch[start.saturating_sub(1)..end]
+                .iter()
+                .map(|p| (p.0, p.1))
+                .collect();
+            let named = if stable {
+                &mut stable_named
+            } else {
+                &mut unstable_named
+            };
+            let series = if stable {
+                Series::line("stable", pts, color(0)).with_mark(Mark::Line(3))
+            } else {
+                Series::line("unstable", pts, color(1)).with_mark(Mark::Dashed(2))
+            };
+            panel = panel.with(if *named { series.unlabeled() } else { series });
+            *named = true;
+            start = end;
+        }
+    }
+    panel
+}
+
 pub(crate) fn render(ctx: &Ctx) -> Result<Demo> {
     let mut d = demo(
         "hoop",
@@ -16,58 +85,9 @@ pub(crate) fn render(ctx: &Ctx) -> Result<Demo> {
     );
     let params0 = HoopParams::default();
     let wc = params0.critical_omega();
-    // Equilibria, from d V_eff/d theta = m R sin(theta) (g - R w^2 cos(theta)) = 0.
-    let n = 300;
-    let ws: Vec<f64> = (0..=n).map(|k| 2.5 * wc * k as f64 / n as f64).collect();
-    let below: Vec<(f64, f64)> = ws
-        .iter()
-        .filter(|&&w| w <= wc)
-        .map(|&w| (w / wc, 0.0))
-        .collect();
-    let above_zero: Vec<(f64, f64)> = ws
-        .iter()
-        .filter(|&&w| w >= wc)
-        .map(|&w| (w / wc, 0.0))
-        .collect();
-    let branch = |sign: f64| -> Vec<(f64, f64)> {
-        ws.iter()
-            .filter(|&&w| w >= wc)
-            .map(|&w| {
-                (
-                    w / wc,
-                    sign * (params0.g / (params0.r * w * w))
-                        .min(1.0)
-                        .acos()
-                        .to_degrees(),
-                )
-            })
-            .collect()
-    };
-    let top: Vec<(f64, f64)> = ws.iter().map(|&w| (w / wc, 180.0)).collect();
-    let diagram = Panel::new(
-        format!("Equilibria (ω_c = √(g/R) = {wc:.2} rad/s)"),
-        "ω / ω_c",
-        "equilibrium angle θ* (degrees)",
-    )
-    .y_range(-200.0, 200.0)
-    .legend(Legend::LowerLeft)
-    .with(Series::line("stable", below, color(0)).with_mark(Mark::Line(3)))
-    .with(Series::line("unstable", above_zero, color(1)).with_mark(Mark::Dashed(2)))
-    .with(
-        Series::line("", branch(1.0), color(0))
-            .with_mark(Mark::Line(3))
-            .unlabeled(),
-    )
-    .with(
-        Series::line("", branch(-1.0), color(0))
-            .with_mark(Mark::Line(3))
-            .unlabeled(),
-    )
-    .with(
-        Series::line("", top, color(1))
-            .with_mark(Mark::Dashed(2))
-            .unlabeled(),
-    );
+    let diagram = pitchfork_panel(params0, 2.5)
+        .y_range(-200.0, 200.0)
+        .legend(Legend::LowerLeft);
 
     let t1 = ctx.pick(6.0, 10.0);
     let mut portraits = Vec::new();
@@ -99,12 +119,11 @@ pub(crate) fn render(ctx: &Ctx) -> Result<Demo> {
                 panel = panel.with(Series::dots("", pts, color(k)).with_mark(Mark::Dots(1)));
             }
         }
-        let eq: Vec<(f64, f64)> = if ratio > 1.0 {
-            let a = (1.0 / (ratio * ratio)).acos();
-            vec![(a, 0.0), (-a, 0.0)]
-        } else {
-            vec![(0.0, 0.0)]
-        };
+        let eq = params
+            .stable_equilibria()
+            .into_iter()
+            .map(|theta| (theta, 0.0))
+            .collect();
         panel =
             panel.with(Series::dots("stable equilibria", eq, color(6)).with_mark(Mark::Dots(5)));
         portraits.push(panel);

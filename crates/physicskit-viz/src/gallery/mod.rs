@@ -1,4 +1,4 @@
-//! The gallery: the demonstrations (eighteen; [`demo_count`]), each a set of figures and a
+//! The gallery: the demonstrations (twenty-one; [`demo_count`]), each a set of figures and a
 //! one-paragraph explanation of the physics, and [`render_gallery`], which renders them all and
 //! writes `index.html`.
 //!
@@ -14,6 +14,7 @@ use crate::error::{Result, VizError};
 mod chains;
 mod common;
 mod double_pendulum;
+mod double_pendulum_lyapunov;
 mod elastic_pendulum;
 mod euler_top;
 mod flip_fractal;
@@ -21,7 +22,9 @@ mod fput;
 mod heavy_top;
 mod henon_heiles;
 mod henon_heiles_regular;
+mod henon_heiles_sali;
 mod hoop;
+mod hoop_pitchfork;
 mod integrators;
 mod kepler;
 mod kepler_precession;
@@ -141,6 +144,15 @@ fn demos() -> Vec<(&'static str, Render)> {
         ("flip-time fractal", flip_fractal::render),
         ("Kepler precession against c_pn", kepler_precession::render),
         ("work–precision", work_precision::render),
+        ("Hénon–Heiles SALI map", henon_heiles_sali::render),
+        (
+            "double pendulum Lyapunov map",
+            double_pendulum_lyapunov::render,
+        ),
+        (
+            "hoop pitchfork and Lyapunov exponent",
+            hoop_pitchfork::render,
+        ),
         (
             "Hénon–Heiles regular fraction",
             henon_heiles_regular::render,

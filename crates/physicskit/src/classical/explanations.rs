@@ -21,7 +21,8 @@ pub struct Explanation {
     pub slug: &'static str,
     /// The catalogue systems the paragraph describes (each in at most one explanation); none
     /// for a demonstration about a method or an analysis across systems whose own paragraphs
-    /// are elsewhere (work–precision, the flip-time fractal, the precession sweep).
+    /// are elsewhere (work–precision, the flip-time fractal, the precession sweep, the chaos
+    /// maps and the hoop's bifurcation diagram).
     pub systems: &'static [&'static str],
     /// The physics, true of the system whatever its parameters (plain text, Unicode): what the
     /// lab shows beside a run from any setting.
@@ -249,7 +250,8 @@ pub static EXPLANATIONS: &[Explanation] = &[
         text: "Each pixel is one double pendulum (equal masses and arms, g = 9.81 m/s²) released \
          from rest at the angles (θ₁, θ₂); its colour is the time until either arm first \
          swings over the top (|θ| > π), located inside the integration step. Members that \
-         cannot flip for lack of energy (3 cos θ₁ + cos θ₂ > 2) and those that did not flip \
+         cannot flip for lack of energy (2 cos θ₁ + cos θ₂ > 1 for these point bobs; Heyl's \
+         3 cos θ₁ + cos θ₂ > 2 is for uniform rods) and those that did not flip \
          within the run are drawn at the top of the scale. The boundaries between flip times \
          are fractal (Heyl 2008): nearby starts that straddle them flip at very different \
          times, the fingerprint of chaos. Computed as one ensemble on all cores \
@@ -299,6 +301,63 @@ pub static EXPLANATIONS: &[Explanation] = &[
          of order 4 and 6 reach a given error far faster than the second-order implicit \
          midpoint rule. Wall times are of one run on a shared machine: the slopes and the \
          ordering matter, not the last digit.",
+        figure: "",
+    },
+    Explanation {
+        slug: "henon-heiles-sali",
+        systems: &[],
+        text: "The Hénon–Heiles system at E = 1/8 seen two ways on the same plane, the section \
+         x = 0 with pₓ > 0 (pₓ fixed by the energy; the blank corners lie outside the energy \
+         surface). Left, the Poincaré section: regular orbits draw closed \
+         curves, sections of invariant tori, around the islands; chaotic ones scatter dots over \
+         a sea. Right, every cell is one orbit started there, coloured by its Smaller Alignment \
+         Index (Skokos 2001) at the end of the run: two deviation vectors follow the tangent \
+         dynamics (the exact tangent map of the yoshida4 step) and SALI measures how nearly \
+         they have aligned. On a chaotic orbit both turn towards the most unstable direction \
+         and SALI falls exponentially, as exp(−(λ₁ − λ₂)t); on a torus they stay apart and SALI \
+         stays of order 0.1–1. Below the library's threshold of 10⁻⁸ (dark) an orbit is called \
+         chaotic; the map draws the islands of the section in one run per cell, without \
+         following any orbit by eye. Sticky orbits, which cling to an island's edge for a long \
+         time, have not fallen below the threshold yet and show as intermediate colours.",
+        figure: "",
+    },
+    Explanation {
+        slug: "double-pendulum-lyapunov",
+        systems: &[],
+        text: "Each pixel is one double pendulum (equal masses and arms, g = 9.81 m/s²) released \
+         from rest at the angles (θ₁, θ₂), coloured by its largest Lyapunov exponent: the \
+         growth rate, per second, of an infinitesimal deviation carried by the tangent \
+         dynamics (Benettin's method, renormalized every 10 steps of rk4, the finite-time value \
+         at the end of the run). Inside the white contour the energy, E(θ₁, θ₂, 0, 0) = \
+         −2g cos θ₁ − g cos θ₂ (in J for these unit masses and arms), is below that of the \
+         lowest state with an arm upside down, so neither arm can ever flip: there the map is \
+         dark, small exponents of mostly regular motion (a finite run leaves a residue of order \
+         ln(t)/t even on a torus). The dark region reaches beyond the contour \
+         in two arms, starts that the energy would let flip but that stay on regular tori. \
+         Further out the map is a speckle of chaotic starts, with exponents of one to two per \
+         second, the same structure the flip-time fractal shows in its boundaries. The map has \
+         the pendulum's symmetry (θ₁, θ₂) → (−θ₁, −θ₂) up to the finite run. Computed \
+         with the library's chaos map on all cores, bit-identical for any number of threads.",
+        figure: "",
+    },
+    Explanation {
+        slug: "hoop-pitchfork",
+        systems: &[],
+        text: "The bead on the rotating hoop (R = 1 m) as a bifurcation diagram. Left: the \
+         equilibria at rest against the rotation rate ω, from the library's analysis of \
+         V_eff = −R²ω² sin²θ/2 + gR(1 − cos θ): the bottom is stable up to ω_c = √(g/R), then \
+         gives way to the pair θ* = ±arccos(g/(Rω²)); the top is always unstable. Right: the \
+         largest Lyapunov exponent at the bottom. Linearized about θ = 0 the motion is \
+         x'' = (ω² − g/R)x: a centre below ω_c, with exponent zero, and a saddle above it, \
+         whose deviations grow as exp(t√(ω² − g/R)) (line). The orbit resting exactly at the \
+         bottom has these tangent dynamics, and its measured finite-time exponent (orange) \
+         follows the line, crossing zero at ω_c; below ω_c it scatters about zero by the \
+         1/t of a bounded rotation. An orbit started 0.01 rad from the bottom (green) is \
+         different: with one degree of freedom every orbit lies on a regular curve, here a \
+         libration about one of the new minima that passes close to the saddle. Over a short \
+         window near the saddle its deviations grow at the saddle's rate, but over a long run \
+         they only grow linearly, and its exponent tends to zero like ln(t)/t: the hoop is \
+         not chaotic, the exponent at the bottom measures the instability of the equilibrium.",
         figure: "",
     },
 ];

@@ -75,6 +75,54 @@ impl HoopParams {
         (self.g / self.r).sqrt()
     }
 
+    /// The equilibria at rest in `(-pi, pi]`, in increasing `theta`, each with its stiffness.
+    ///
+    /// With `a = R^2 omega^2` and `b = g R` the effective potential is
+    /// `V = -a sin^2(theta) / 2 + b (1 - cos theta)`, so `V' = sin theta (b - a cos theta)`
+    /// vanishes at `theta = 0`, `theta = pi` and, when `|b / a| < 1`, at
+    /// `theta* = ±arccos(g / (R omega^2))` (the pitchfork's branches above `omega_c`). The
+    /// stiffness is `V''(theta) / R^2 = -d theta'' / d theta` (units 1/s^2):
+    /// `g / R - omega^2` at the bottom, `-omega^2 - g / R` at the top and
+    /// `omega^2 sin^2 theta*` on the branches (always stable). At a degenerate point
+    /// (`V'' = 0`, e.g. the bottom at `omega = omega_c`) `V` grows like `a x^4 / 8`, so the
+    /// equilibrium is stable: stability is `stiffness >= 0` (which side of the bifurcation a
+    /// rate within rounding of `omega_c` falls on is decided by that rounding).
+    pub fn equilibria(&self) -> Vec<HoopEquilibrium> {
+        let Self { r, omega, g } = *self;
+        let (a, b) = (r * r * omega * omega, g * r);
+        let mut out = vec![
+            HoopEquilibrium {
+                theta: 0.0,
+                stiffness: (b - a) / (r * r),
+            },
+            HoopEquilibrium {
+                theta: std::f64::consts::PI,
+                stiffness: -(a + b) / (r * r),
+            },
+        ];
+        let c = b / a;
+        if c.abs() < 1.0 {
+            let theta = c.acos();
+            // V'' = a sin^2(theta*) there (from b = a cos theta*): positive, stable.
+            let stiffness = omega * omega * (1.0 - c * c);
+            for theta in [-theta, theta] {
+                out.push(HoopEquilibrium { theta, stiffness });
+            }
+        }
+        out.sort_by(|x, y| x.theta.total_cmp(&y.theta));
+        out
+    }
+
+    /// The stable equilibria of [`equilibria`](Self::equilibria): the bottom below the
+    /// critical rate, the pair `±arccos(g / (R omega^2))` above it (for `g > 0`).
+    pub fn stable_equilibria(&self) -> Vec<f64> {
+        self.equilibria()
+            .into_iter()
+            .filter(HoopEquilibrium::is_stable)
+            .map(|e| e.theta)
+            .collect()
+    }
+
     /// `dL/dtheta = (R^2 omega^2 cos theta - g R) sin theta`.
     #[inline(always)]
     fn force(&self, theta: f64) -> f64 {
@@ -91,6 +139,32 @@ impl HoopParams {
             return Err(singular_mass_matrix(t));
         }
         Ok(m.recip())
+    }
+}
+
+/// An equilibrium of the bead at rest on the rotating hoop ([`HoopParams::equilibria`]).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct HoopEquilibrium {
+    /// The angle from the bottom, in `(-pi, pi]` (rad).
+    pub theta: f64,
+    /// `V''(theta) / R^2 = -d theta'' / d theta` (1/s^2): the linearization about the
+    /// equilibrium is `x'' = -stiffness x`.
+    pub stiffness: f64,
+}
+
+impl HoopEquilibrium {
+    /// Stable: a minimum of the effective potential (`stiffness >= 0`, see
+    /// [`HoopParams::equilibria`]).
+    pub fn is_stable(&self) -> bool {
+        self.stiffness >= 0.0
+    }
+
+    /// The largest Lyapunov exponent of the linearized flow about the equilibrium (1/s):
+    /// `sqrt(-stiffness)` at a saddle (the deviations grow as `exp(t sqrt(-stiffness))`), zero
+    /// at a centre (they rotate on an ellipse). At the bottom above the critical rate this is
+    /// `sqrt(omega^2 - g / R)`.
+    pub fn linear_exponent(&self) -> f64 {
+        (-self.stiffness).max(0.0).sqrt()
     }
 }
 
