@@ -7,10 +7,13 @@ in each implementation's own virtual environment.
     python workloads.py list
     python workloads.py run CASE STEPS REPEATS     # prints one JSON line
     python workloads.py first CASE                 # import + construct + 1e3 steps, fresh process
-    python workloads.py same CASE STEPS REPEATS TARGET
+    python workloads.py same CASE STEPS REPEATS TARGET FINAL
         # ours only (it reads `methods()`): for every fixed-step method the system accepts, the
         # coarsest step of the ladder dt, 2 dt, 4 dt, ... (whole fractions of the workload's
-        # span) whose max relative energy error stays <= TARGET, timed best of REPEATS
+        # span) whose max relative energy error stays <= TARGET and whose final state is as
+        # close to a reference run as the peer's (FINAL: the peer's final state as JSON), timed
+        # best of REPEATS
+    python workloads.py final CASE STEPS           # the final state of the workload's run, JSON
 """
 
 import json
@@ -72,7 +75,8 @@ def _cases(pc):
 
 def _run(pc, case, steps, method=None, n=None):
     """One run of `case` over its span `steps * dt`: with the workload's method and step, or
-    with `method` in `n` equal steps of the same span. Returns (seconds, max |dE/E0|)."""
+    with `method` in `n` equal steps of the same span. Returns (seconds, max |dE/E0|,
+    final state)."""
     make, default_method, dt = _cases(pc)[case]
     span = steps * dt
     step = dt if n is None else span / n
@@ -82,34 +86,64 @@ def _run(pc, case, steps, method=None, n=None):
     elapsed = time.perf_counter() - start
     e = np.asarray(result.energy)
     drift = float(np.max(np.abs(e - e[0])) / abs(e[0]))
-    return elapsed, drift
+    return elapsed, drift, np.asarray(result.y)[-1]
 
 
-def _same_accuracy(pc, case, steps, repeats, target):
+# The reference's tolerances: dop853 at rtol 1e-13 is some two orders below the closest final
+# states compared here (ERROR_FLOOR), and independent of every fixed-step method.
+REFERENCE_RTOL, REFERENCE_ATOL = 1e-13, 1e-15
+# Final-state errors below this are the reference's own level, where comparing is noise.
+ERROR_FLOOR = 1e-11
+# Energy errors below this are rounding: 1e5 steps each rounding E at ~1e-16 relative random-walk
+# to ~3e-14, so a peer figure of 3e-14 against ours of 4e-14 says nothing about either method.
+ENERGY_FLOOR = 1e-13
+
+
+def _reference(pc, case, steps):
+    make, _, dt = _cases(pc)[case]
+    span = steps * dt
+    result = make().integrate_sampled(
+        (0.0, span), span, "dop853", rtol=REFERENCE_RTOL, atol=REFERENCE_ATOL
+    )
+    return np.asarray(result.y)[-1]
+
+
+def _error(final, reference):
+    return float(np.max(np.abs(final - reference)) / max(np.max(np.abs(reference)), 1e-300))
+
+
+def _same_accuracy(pc, case, steps, repeats, target, peer_final):
     """Per fixed-step method: the fewest steps (halving the count from the workload's) whose
-    run stays within `target`, timed best of `repeats`; `None` fields where even the
-    workload's step misses it or the system refuses the method."""
-    rows = []
+    run stays within `target` in energy and within the peer's final-state error of the
+    reference run, timed best of `repeats`; `None` fields where even the workload's step misses
+    it or the system refuses the method. Energy alone would crown a single step of the implicit
+    midpoint rule on a linear system, whose quadratic energy it keeps exactly at any step."""
+    reference = _reference(pc, case, steps)
+    peer_error = _error(np.asarray(peer_final), reference)
+    bar = max(peer_error, ERROR_FLOOR)
+    target = max(target, ENERGY_FLOOR)
+    rows = [{"method": "peer", "final_error": peer_error}]
     for info in pc.methods():
         if info["adaptive"]:
             continue  # its cost is set by rtol/atol, not by a step: not on this ladder
         name, best_n, n = info["name"], None, steps
         while n >= 1:
             try:
-                _, drift = _run(pc, case, steps, name, n)
+                _, drift, final = _run(pc, case, steps, name, n)
             except (ValueError, RuntimeError):  # refused, or an implicit solve gave up
                 break
-            if not drift <= target:
+            if not (drift <= target and _error(final, reference) <= bar):
                 break
             best_n, n = n, n // 2
         if best_n is None:
             rows.append({"method": name, "steps": None, "seconds": None, "drift": None})
             continue
-        best, drift = float("inf"), float("nan")
+        best = float("inf")
         for _ in range(repeats):
-            elapsed, drift = _run(pc, case, steps, name, best_n)
+            elapsed, drift, final = _run(pc, case, steps, name, best_n)
             best = min(best, elapsed)
-        rows.append({"method": name, "steps": best_n, "seconds": best, "drift": drift})
+        rows.append({"method": name, "steps": best_n, "seconds": best, "drift": drift,
+                     "final_error": _error(final, reference)})
     return rows
 
 
@@ -126,14 +160,18 @@ def main(argv):
     if argv[1] == "list":
         print(" ".join(_cases(pc)))
         return
+    if argv[1] == "final":
+        print(json.dumps(_run(pc, argv[2], int(argv[3]))[2].tolist()))
+        return
     case, steps, repeats = argv[2], int(argv[3]), int(argv[4])
     if argv[1] == "same":
-        print(json.dumps(_same_accuracy(pc, case, steps, repeats, float(argv[5]))))
+        peer_final = json.loads(argv[6])
+        print(json.dumps(_same_accuracy(pc, case, steps, repeats, float(argv[5]), peer_final)))
         return
     _run(pc, case, 1000)  # warm-up: the peer compiles here
     best, drift = float("inf"), float("nan")
     for _ in range(repeats):
-        elapsed, drift = _run(pc, case, steps)
+        elapsed, drift, _ = _run(pc, case, steps)
         best = min(best, elapsed)
     print(json.dumps({"ns_per_step": best * 1e9 / steps, "drift": drift}))
 

@@ -98,18 +98,18 @@ fn drift_bar() -> Result<()> {
     let (base, drift) = run(Method::ImplicitMidpoint, 3e-5)?;
     println!("double_pendulum implicit_midpoint dt=3e-5 max_rel_dE={drift:.3e} seconds={base:.4}");
     for method in [Method::GaussLegendre4, Method::GaussLegendre6] {
-        // Doubling from the peer's step while the bar holds; the last step that held is timed.
-        let mut dt = 3e-5;
-        let mut best = None;
-        while dt < 0.1 {
-            let (_, drift) = run(method, dt * 2.0)?;
+        // Halving the number of steps from the peer's 1e5 while the bar holds (each step a
+        // whole fraction of the span, as the time grid requires); the last count that held is
+        // timed.
+        let mut steps: u32 = 100_000;
+        while steps > 1 {
+            let (_, drift) = run(method, span.1 / f64::from(steps / 2))?;
             if drift >= 1e-6 {
                 break;
             }
-            dt *= 2.0;
-            best = Some(dt);
+            steps /= 2;
         }
-        let dt = best.unwrap_or(3e-5);
+        let dt = span.1 / f64::from(steps);
         let (seconds, drift) = run(method, dt)?;
         println!(
             "double_pendulum {method} dt={dt:e} max_rel_dE={drift:.3e} seconds={seconds:.4} \
