@@ -125,6 +125,8 @@ impl Report for Rk4 {
 pub(crate) fn axpy(out: &mut [f64], y: &[f64], a: f64, x: &[f64]) {
     let n = out.len();
     let (y, x) = (&y[..n], &x[..n]);
+    // Advanced by the SSE2 pairs on x86-64 only (elsewhere, e.g. the lab's wasm32, it stays 0).
+    #[cfg_attr(not(target_arch = "x86_64"), allow(unused_mut))]
     let mut done = 0;
     #[cfg(target_arch = "x86_64")]
     {
