@@ -35,6 +35,27 @@ pub fn color(i: usize) -> RGBColor {
     PALETTE[i % PALETTE.len()]
 }
 
+/// Colours after the palette's eight, for figures with more series (the work–precision
+/// diagrams have a line per method): dark red, purple, brown and grey, each far from the
+/// palette's colours and from each other.
+pub const BEYOND_PALETTE: [RGBColor; 4] = [
+    RGBColor(153, 0, 0),
+    RGBColor(110, 60, 170),
+    RGBColor(140, 90, 40),
+    RGBColor(120, 120, 120),
+];
+
+/// The `i`-th colour of the palette followed by [`BEYOND_PALETTE`]'s four (cycling after
+/// twelve): distinct colours for up to twelve series.
+pub fn color_of_many(i: usize) -> RGBColor {
+    let i = i % (PALETTE.len() + BEYOND_PALETTE.len());
+    if i < PALETTE.len() {
+        PALETTE[i]
+    } else {
+        BEYOND_PALETTE[i - PALETTE.len()]
+    }
+}
+
 /// How a series is drawn.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub enum Mark {

@@ -10,7 +10,7 @@ use physicskit::classical::Method;
 use super::integrators::log10_rel;
 use super::{demo, Ctx, Demo};
 use crate::error::Result;
-use crate::figure::{color, save_panel, Legend, Mark, Panel, Series};
+use crate::figure::{color_of_many as color, save_panel, Legend, Mark, Panel, Series};
 
 /// Errors below this are rounding: smaller steps would only add time.
 const ROUNDING: f64 = 1e-14;
