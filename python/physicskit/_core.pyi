@@ -9,6 +9,7 @@ import numpy.typing as npt
 
 __all__ = [
     "CHAOS_THRESHOLD",
+    "DEFAULT_RENORMALIZE_EVERY",
     "ConvergenceError",
     "NativeSystem",
     "build",
@@ -43,6 +44,9 @@ _MatrixF64 = npt.NDArray[np.float64]
 CHAOS_THRESHOLD: float
 """SALI or GALI below this value classifies an orbit as chaotic (the core's
 `analysis::sali::CHAOS_THRESHOLD`)."""
+DEFAULT_RENORMALIZE_EVERY: int
+"""Steps between renormalizations when none is named (the core's
+`analysis::lyapunov::DEFAULT_RENORMALIZE_EVERY`)."""
 """A two-dimensional float64 array (rows of states)."""
 _ResultTuple = tuple[_ArrayF64, _ArrayF64, int | None, _ArrayF64 | None, str, dict[str, Any]]
 _ParamValue = float | int | _ArrayF64 | str | None

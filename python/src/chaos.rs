@@ -13,7 +13,7 @@ use numpy::{
     IntoPyArray, PyArrayMethods, PyReadonlyArray1, PyReadonlyArray2, PyUntypedArrayMethods,
 };
 use physicskit::classical::analysis::chaos_map::{chaos_map_by, Indicator, MapRun};
-use physicskit::classical::analysis::lyapunov::lyapunov_on_flow;
+use physicskit::classical::analysis::lyapunov::{lyapunov_on_flow, DEFAULT_RENORMALIZE_EVERY};
 use physicskit::classical::analysis::poincare::Direction;
 use physicskit::classical::analysis::sali::{alignment_on_flow, Alignment, CHAOS_THRESHOLD};
 use physicskit::classical::analysis::section::{section_on_flow, Continuation, SurfaceOfSection};
@@ -119,7 +119,7 @@ impl JobOptions {
             value: 0.0,
             direction: 1,
             n_exponents: None,
-            renormalize_every: 10,
+            renormalize_every: DEFAULT_RENORMALIZE_EVERY,
             history_stride: 1,
             k: 2,
         };
@@ -431,6 +431,7 @@ pub fn chaos_map<'py>(
 /// Python errors while adding to the module.
 pub fn register(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add("CHAOS_THRESHOLD", CHAOS_THRESHOLD)?;
+    m.add("DEFAULT_RENORMALIZE_EVERY", DEFAULT_RENORMALIZE_EVERY)?;
     m.add_function(wrap_pyfunction!(chaos_native, m)?)?;
     m.add_function(wrap_pyfunction!(chaos_map, m)?)?;
     Ok(())

@@ -199,3 +199,18 @@ def test_bad_arguments_are_value_errors(call, match):
     with pytest.raises(ValueError, match=match):
         call(hh)
     np.testing.assert_array_equal(hh.state, state)
+
+
+def test_renormalize_every_defaults_are_the_cores():
+    """The issue's signatures spell the default out (``renormalize_every=10``); it must be the
+    core's ``DEFAULT_RENORMALIZE_EVERY``, which the CLI and the gallery use, in every
+    function that takes it."""
+    import inspect
+
+    from physicskit import _core
+
+    functions = [pc.lyapunov_spectrum, pc.max_lyapunov, pc.sali, pc.gali, pc.chaos_map,
+                 pc.ensemble]
+    for f in functions:
+        default = inspect.signature(f).parameters["renormalize_every"].default
+        assert default == _core.DEFAULT_RENORMALIZE_EVERY, f.__name__

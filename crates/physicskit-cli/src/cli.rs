@@ -117,7 +117,7 @@ pub struct EnsembleArgs {
     #[arg(long)]
     pub sali: bool,
     /// Steps between renormalizations of the deviation vectors of --max-lyapunov and --sali.
-    #[arg(long, value_name = "M", default_value_t = 10)]
+    #[arg(long, value_name = "M", default_value_t = physicskit::classical::analysis::lyapunov::DEFAULT_RENORMALIZE_EVERY)]
     pub renormalize_every: usize,
     /// Worker threads (default: one per core); the results do not depend on it.
     #[arg(long, value_name = "N")]

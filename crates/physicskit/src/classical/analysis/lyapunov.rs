@@ -36,6 +36,13 @@ use crate::classical::core::error::check_finite;
 use crate::classical::core::{Error, Method, Result, TimeGrid};
 use crate::classical::integrators::Flow;
 
+/// Steps between re-orthonormalizations (Lyapunov) or evaluations of the index (SALI, GALI)
+/// when the caller names none: the default of every front end (Python's `renormalize_every`,
+/// the CLI's `--renormalize-every`, the gallery). Short enough that the deviation vectors grow
+/// by at most `exp(10 h lambda)` between renormalizations, long enough that the QR step costs
+/// little beside the tangent integration.
+pub const DEFAULT_RENORMALIZE_EVERY: usize = 10;
+
 /// The result of [`lyapunov_spectrum`].
 #[derive(Debug, Clone, PartialEq)]
 pub struct LyapunovSpectrum {

@@ -74,11 +74,6 @@ const TOLERANCES: [f64; 10] = [
     1e-5, 1e-6, 1e-7, 1e-8, 1e-9, 1e-10, 1e-11, 1e-12, 1e-13, 1e-14,
 ];
 
-/// True for a method that takes tolerances rather than a step.
-fn is_adaptive(method: Method) -> bool {
-    method.is_adaptive()
-}
-
 fn final_only() -> IntegrateOptions<'static> {
     IntegrateOptions {
         sampling: Sampling::FinalOnly,
@@ -142,7 +137,7 @@ impl Problem {
     /// tolerances (`rtol = atol`), from `1e-5` down by a factor 10 each (at most ten): its step follows from
     /// them, and [`run`](Self::run) takes them in place of a step.
     pub fn steps(self, method: Method, points: usize) -> Vec<f64> {
-        if is_adaptive(method) {
+        if method.is_adaptive() {
             return TOLERANCES.iter().copied().take(points).collect();
         }
         let largest = match self {
@@ -180,7 +175,7 @@ impl Problem {
     pub fn run(self, method: Method, setting: f64) -> Result<SimulationResult> {
         let t_end = self.t_end();
         let span = (0.0, t_end);
-        let (dt, tolerances) = if is_adaptive(method) {
+        let (dt, tolerances) = if method.is_adaptive() {
             let dt = match self {
                 Problem::HenonHeiles { .. } => t_end / 10_000.0,
                 _ => t_end,

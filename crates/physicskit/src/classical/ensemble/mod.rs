@@ -50,7 +50,7 @@ pub use members::{Members, Sweep};
 pub use reduction::{Condition, Direction, Event, MemberRun, Reduction};
 
 use crate::classical::core::{
-    memory_check, DynSystem, Error, IntegrateOptions, Method, Observer, Result, Sampling, Scheme,
+    memory_check, DynSystem, Error, IntegrateOptions, Method, Observer, Result, Sampling,
     SystemEntry, TimeGrid,
 };
 
@@ -261,7 +261,7 @@ fn prepare<'a>(
     let skip_energy = !plan.reductions.iter().any(Reduction::needs_energy);
     let final_width = if plan.final_state { dim } else { 0 };
     let width = final_width + kept_rows * dim + plan.reductions.len();
-    let fixed_step = !matches!(method.info().scheme, Scheme::Adaptive);
+    let fixed_step = !method.is_adaptive();
     let early = (!plan.final_state && plan.stride.is_none() && fixed_step)
         .then(|| {
             plan.reductions
