@@ -40,6 +40,7 @@ __all__ = [
 
 _ArrayF64 = npt.NDArray[np.float64]
 _MatrixF64 = npt.NDArray[np.float64]
+"""A two-dimensional float64 array (rows of states)."""
 
 CHAOS_THRESHOLD: float
 """SALI or GALI below this value classifies an orbit as chaotic (the core's
@@ -47,7 +48,7 @@ CHAOS_THRESHOLD: float
 DEFAULT_RENORMALIZE_EVERY: int
 """Steps between renormalizations when none is named (the core's
 `analysis::lyapunov::DEFAULT_RENORMALIZE_EVERY`)."""
-"""A two-dimensional float64 array (rows of states)."""
+
 _ResultTuple = tuple[_ArrayF64, _ArrayF64, int | None, _ArrayF64 | None, str, dict[str, Any]]
 _ParamValue = float | int | _ArrayF64 | str | None
 """A checked parameter value: float (scalar), int (integer), float64 array (vector), str
