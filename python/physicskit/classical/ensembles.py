@@ -29,7 +29,7 @@ from typing import Any, Callable, Mapping, Sequence
 
 import numpy as np
 
-from ._native import _core, as_array, as_int, as_scalar, as_t_span
+from ._native import _core, as_array, as_flag, as_int, as_scalar, as_t_span
 
 __all__ = ["ensemble", "EnsembleResult", "crossing", "abs_above"]
 
@@ -260,13 +260,13 @@ def ensemble(
         "dt": as_scalar("dt", dt),
         "method": _method(method),
         "stride": None if stride is None else as_int("stride", stride, minimum=1),
-        "energy_error": _flag("energy_error", energy_error),
+        "energy_error": as_flag("energy_error", energy_error),
         "events": _events(events),
-        "final_state": _flag("final_state", final_state),
+        "final_state": as_flag("final_state", final_state),
     }
     every = as_int("renormalize_every", renormalize_every, minimum=1)
     for key, value in (("max_lyapunov", max_lyapunov), ("sali", sali)):
-        run[key] = every if _flag(key, value) else None
+        run[key] = every if as_flag(key, value) else None
     if threads is not None:
         threads = as_int("threads", threads, minimum=1, maximum=4096)
     if chunk_size is not None:
@@ -294,12 +294,6 @@ def _method(method: Any) -> str | None:
     if method is None or isinstance(method, str):
         return method
     raise ValueError(f"method must be a method name (a str) or None, got {method!r}")
-
-
-def _flag(name: str, value: Any) -> bool:
-    if isinstance(value, (bool, np.bool_)):
-        return bool(value)
-    raise ValueError(f"{name} must be True or False, got {value!r}")
 
 
 def _events(events: Any) -> list[EventSpec]:

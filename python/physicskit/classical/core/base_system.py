@@ -24,7 +24,7 @@ from typing import Any, NamedTuple, Optional
 
 import numpy as np
 
-from .._native import _core, as_array, as_int, as_scalar, as_t_span, as_vector
+from .._native import _core, as_array, as_flag, as_int, as_scalar, as_t_span, as_vector
 
 __all__ = [
     "SimulationResult",
@@ -145,12 +145,6 @@ class _Sampling(NamedTuple):
 _EVERY_SAMPLE = _Sampling()
 
 
-def _as_flag(name: str, value) -> bool:
-    if isinstance(value, (bool, np.bool_)):
-        return bool(value)
-    raise ValueError(f"{name} must be True or False, got {value!r}")
-
-
 def _as_stride(value) -> int:
     return as_int("stride", value, minimum=1)
 
@@ -254,9 +248,9 @@ class DynamicalSystem(ABC):
             supported: the Rust integrators calling them back honour the sampling too.
         """
         stride = _as_stride(stride)
-        final_only = _as_flag("final_only", final_only)
-        energy = _as_flag("energy", energy)
-        progress = _as_flag("progress", progress)
+        final_only = as_flag("final_only", final_only)
+        energy = as_flag("energy", energy)
+        progress = as_flag("progress", progress)
         rtol = None if rtol is None else as_scalar("rtol", rtol)
         atol = None if atol is None else as_scalar("atol", atol)
         if final_only and stride > 1:
