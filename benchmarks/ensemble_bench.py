@@ -3,6 +3,12 @@ on 1 and 2 threads, the Dask LocalCluster overhead against the local engine, and
 of the flip-time fractal, from which the 1000 x 1000 map is extrapolated.
 
     .venv/bin/python benchmarks/ensemble_bench.py [--quick]
+    .venv/bin/python benchmarks/ensemble_bench.py --fractal [SIDE [T]]
+
+`--fractal` runs the flip-time fractal of `examples/flip_fractal.py` at full size (default
+1000 x 1000, 10 s; events only, so each member stops once both arms have flipped) once on 1 and
+2 threads and on a Dask LocalCluster of 1 and 2 single-threaded workers: its wall time and how
+it scales with workers.
 
 Wall times are the best of `REPEAT` runs (a shared machine only ever slows a run down); the
 process CPU time is printed beside each, so a loaded machine shows as wall >> CPU / threads.
@@ -32,8 +38,13 @@ def best(fn):
 
 
 def double_pendulum(n, t1, threads=None, client=None, events=False):
+    """An n x n grid from rest; with `events`, the flip fractal's two events and no final state
+    (each member stops once both have fired), as in examples/flip_fractal.py."""
     theta = np.linspace(-3.0, 3.0, n)
-    kw = dict(events={"flip": pc.abs_above(1, np.pi)}) if events else {}
+    kw = {}
+    if events:
+        kw = dict(events={"upper": pc.abs_above(0, np.pi), "lower": pc.abs_above(1, np.pi)},
+                  final_state=False)
     return pc.ensemble(pc.DoublePendulum([0.0, 0.0], [0.0, 0.0]), (0.0, t1), 0.01, "rk4",
                        grid={"theta0[0]": theta, "theta0[1]": theta}, threads=threads,
                        client=client, **kw)
@@ -55,7 +66,36 @@ def report(label, members, fn):
     return wall
 
 
+def fractal(side, t1):
+    """The full-size flip fractal once per configuration (each run takes minutes)."""
+    import distributed
+
+    print(f"cores: {os.cpu_count()}, load average: {os.getloadavg()}")
+    walls = {}
+    for threads in (1, 2):
+        t0 = time.perf_counter()
+        out = double_pendulum(side, t1, threads, events=True)
+        walls[f"{threads} thread(s)"] = time.perf_counter() - t0
+        print(f"flip fractal {side} x {side}, {t1} s, {threads} thread(s): "
+              f"{walls[f'{threads} thread(s)']:.1f} s wall, mean steps per member "
+              f"{out.steps.mean():.0f} of {round(t1 / 0.01)}", flush=True)
+    for workers in (1, 2):
+        with distributed.LocalCluster(n_workers=workers, threads_per_worker=1,
+                                      dashboard_address=None, silence_logs=50) as cluster, \
+                distributed.Client(cluster) as client:
+            double_pendulum(10, 1.0, client=client, events=True)  # warm the workers
+            t0 = time.perf_counter()
+            double_pendulum(side, t1, client=client, events=True)
+            wall = time.perf_counter() - t0
+        print(f"flip fractal {side} x {side}, {t1} s, Dask LocalCluster {workers} worker(s): "
+              f"{wall:.1f} s wall", flush=True)
+
+
 def main():
+    if "--fractal" in sys.argv:
+        rest = sys.argv[sys.argv.index("--fractal") + 1:]
+        fractal(int(rest[0]) if rest else 1000, float(rest[1]) if len(rest) > 1 else 10.0)
+        return
     print(f"cores: {os.cpu_count()}, load average: {os.getloadavg()}")
     side = 50 if QUICK else 100
     dp = {}
