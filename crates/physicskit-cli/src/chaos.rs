@@ -8,7 +8,7 @@
 //! stopping signals are checked every [`OBSERVE_EVERY`] steps, as for `simulate`.
 
 use anyhow::{anyhow, Result};
-use physicskit::classical::analysis::lyapunov::lyapunov_on_flow;
+use physicskit::classical::analysis::lyapunov::{check_vectors, lyapunov_on_flow};
 use physicskit::classical::analysis::poincare::Direction;
 use physicskit::classical::analysis::section::{section_on_flow, SurfaceOfSection};
 use physicskit::classical::analysis::watch::AnalysisOptions;
@@ -80,11 +80,11 @@ pub const FULL_SPECTRUM_MAX_DIM: usize = 20;
 /// the range; no `--n-exponents` for a system larger than [`FULL_SPECTRUM_MAX_DIM`].
 fn n_exponents(text: Option<&str>, dim: usize, system: &str, every: usize) -> Result<usize> {
     match text {
-        Some(text) => text
-            .trim()
-            .parse::<usize>()
+        // The range is the library's (`check_vectors`), checked before the flow is built
+        // for `k` vectors.
+        Some(text) => count("n-exponents", text, 0)
             .ok()
-            .filter(|k| (1..=dim).contains(k))
+            .filter(|&k| check_vectors(k, dim, every, "n_exponents").is_ok())
             .ok_or_else(|| {
                 anyhow!(
                     "invalid value `{text}` for `--n-exponents`: expected a whole number from 1 \

@@ -9,6 +9,8 @@ use std::path::PathBuf;
 
 use clap::{Arg, ArgAction, ArgMatches, Args, Command, FromArgMatches, Parser, Subcommand};
 
+use physicskit::classical::analysis::lyapunov::DEFAULT_RENORMALIZE_EVERY;
+use physicskit::classical::analysis::sali::CHAOS_THRESHOLD;
 use physicskit::classical::catalog::{self, SYSTEMS};
 use physicskit::classical::core::SystemEntry;
 
@@ -56,13 +58,21 @@ pub enum Action {
     Poincare(Box<PoincareArgs>),
     /// Render every demonstration (figures, animations, index.html) into a directory.
     Gallery(GalleryArgs),
-    /// Integrate an ensemble (a parameter grid) of one system on all cores; write an .npz.
+    /// Integrate an ensemble (a grid and/or a list of members) of one system on all cores;
+    /// write an .npz.
     ///
-    /// Outputs are shaped by the grid: `final_state` (grid shape + state length),
-    /// `trajectory` with --stride, `max_energy_error` with --energy-error, `event_<name>` per
-    /// --event, and `grid_<k>` the values of each axis.
+    /// Outputs are shaped by the members' axes (the --values list first, then each --grid):
+    /// `final_state` (axes + state length; none with --no-final-state), `steps` (steps each
+    /// member took), `trajectory` with --stride, `max_energy_error` with --energy-error,
+    /// `event_<name>` per --event, `max_lyapunov`, `sali`, `grid_<k>` the values of each grid
+    /// axis, `values_<name>` and `states` the listed members.
+    ///
+    /// --scenario FILE reads all of this from a JSON or TOML file with the flags' names as
+    /// keys (`_` for `-`; see the README); flags given beside it replace its settings, `--set`
+    /// its value of that parameter, and switches add to it; --grid, --values and --event beside
+    /// a file that has members or events are an error.
     #[command(
-        override_usage = "physicskit ensemble SYSTEM --grid NAME=A:B:N [--grid ...] [--set NAME=VALUE ...] --dt DT --t1 T1 --out FILE.npz"
+        override_usage = "physicskit ensemble SYSTEM --grid NAME=A:B:N [--grid ...] [--set NAME=VALUE ...] --dt DT --t1 T1 --out FILE.npz\n       physicskit ensemble --scenario FILE [FLAGS]"
     )]
     Ensemble(Box<EnsembleArgs>),
 }
@@ -70,12 +80,23 @@ pub enum Action {
 /// Arguments of `ensemble`.
 #[derive(Debug, Args)]
 pub struct EnsembleArgs {
-    /// The catalogue system (see `physicskit list`).
-    pub system: String,
+    /// The catalogue system (see `physicskit list`); or `system` in the --scenario file.
+    pub system: Option<String>,
+    /// A JSON (.json) or TOML (.toml) file describing the run; the flags given override it.
+    #[arg(long, value_name = "FILE")]
+    pub scenario: Option<PathBuf>,
     /// A grid axis: N values from A to B (both included) of a real or integer parameter, or
     /// of one entry `name[i]` of a vector parameter. Repeat for more axes (the product).
     #[arg(long = "grid", value_name = "NAME=A:B:N", allow_hyphen_values = true)]
     pub grid: Vec<String>,
+    /// Listed members: member j takes the j-th value. Repeat for more parameters (same
+    /// count, zipped); the list is one axis, before the grid's.
+    #[arg(
+        long = "values",
+        value_name = "NAME=V1,V2,..",
+        allow_hyphen_values = true
+    )]
+    pub values: Vec<String>,
     /// A value shared by every member, as `simulate --NAME VALUE` takes it.
     #[arg(long = "set", value_name = "NAME=VALUE", allow_hyphen_values = true)]
     pub set: Vec<String>,
@@ -84,18 +105,13 @@ pub struct EnsembleArgs {
     pub method: Option<String>,
     /// Time step, > 0.
     #[arg(long, value_name = "DT", allow_negative_numbers = true)]
-    pub dt: String,
-    /// Start time.
-    #[arg(
-        long,
-        value_name = "T0",
-        default_value = "0",
-        allow_negative_numbers = true
-    )]
-    pub t0: String,
+    pub dt: Option<String>,
+    /// Start time [default: 0].
+    #[arg(long, value_name = "T0", allow_negative_numbers = true)]
+    pub t0: Option<String>,
     /// End time.
     #[arg(long, value_name = "T1", allow_negative_numbers = true)]
-    pub t1: String,
+    pub t1: Option<String>,
     /// Keep each member's trajectory every K steps.
     #[arg(long, value_name = "K")]
     pub stride: Option<usize>,
@@ -110,21 +126,37 @@ pub struct EnsembleArgs {
         allow_hyphen_values = true
     )]
     pub events: Vec<String>,
+    /// Keep no final state. With only --event outputs (and a fixed-step method) each member
+    /// then stops at its last event instead of running to T1: the same event times, for the
+    /// cost of reaching them (`steps` shows how far each member went).
+    #[arg(long)]
+    pub no_final_state: bool,
     /// Keep each member's largest Lyapunov exponent at T1 (`max_lyapunov`).
     #[arg(long)]
     pub max_lyapunov: bool,
-    /// Keep each member's SALI at T1 (`sali`; above 1e-8: regular over the span).
-    #[arg(long)]
+    /// Keep each member's SALI at T1 (`sali`; above the chaos threshold: regular over the span).
+    #[arg(long, help = format!(
+        "Keep each member's SALI at T1 (`sali`; above {CHAOS_THRESHOLD:e}: regular over the span)"
+    ))]
     pub sali: bool,
-    /// Steps between renormalizations of the deviation vectors of --max-lyapunov and --sali.
-    #[arg(long, value_name = "M", default_value_t = physicskit::classical::analysis::lyapunov::DEFAULT_RENORMALIZE_EVERY)]
-    pub renormalize_every: usize,
+    /// Steps between renormalizations of the deviation vectors of --max-lyapunov and --sali,
+    /// >= 1 (default [`DEFAULT_RENORMALIZE_EVERY`]); an error without either.
+    #[arg(
+        long,
+        value_name = "M",
+        allow_negative_numbers = true,
+        help = format!(
+            "Steps between renormalizations of the deviation vectors of --max-lyapunov and \
+             --sali, >= 1 [default: {DEFAULT_RENORMALIZE_EVERY}]"
+        )
+    )]
+    pub renormalize_every: Option<String>,
     /// Worker threads (default: one per core); the results do not depend on it.
     #[arg(long, value_name = "N")]
     pub threads: Option<usize>,
     /// Output file (.npz).
     #[arg(long, value_name = "FILE")]
-    pub out: PathBuf,
+    pub out: Option<PathBuf>,
 }
 
 /// Arguments of `simulate`.
@@ -159,11 +191,30 @@ pub struct Flag {
     /// Placeholder in the help.
     pub value_name: &'static str,
     /// Default text, if any.
-    pub default: Option<&'static str>,
+    pub default: Option<Text>,
     /// Whether it must be given.
     pub required: bool,
     /// Help line.
-    pub help: &'static str,
+    pub help: Text,
+}
+
+/// A flag's help or default: written out, or formatted from a library constant when the
+/// command is built, so that the help cannot drift from the value the code uses.
+#[derive(Debug, Clone, Copy)]
+pub enum Text {
+    /// Fixed text.
+    Fixed(&'static str),
+    /// Text made from constants.
+    Made(fn() -> String),
+}
+
+impl Text {
+    fn text(self) -> String {
+        match self {
+            Text::Fixed(text) => text.to_string(),
+            Text::Made(make) => make(),
+        }
+    }
 }
 
 impl Flag {
@@ -176,9 +227,12 @@ impl Flag {
         Self {
             name,
             value_name,
-            default,
+            default: match default {
+                Some(text) => Some(Text::Fixed(text)),
+                None => None,
+            },
             required: false,
-            help,
+            help: Text::Fixed(help),
         }
     }
 }
@@ -226,18 +280,26 @@ pub struct Lyapunov;
 impl RunKind for Lyapunov {
     const ACTION: &'static str = "lyapunov";
     const FLAGS: &'static [Flag] = &[
-        Flag::optional(
-            "n-exponents",
-            "K",
-            None,
-            "number of exponents, 1 to the state dimension [default: all; required above dimension 20]",
-        ),
-        Flag::optional(
-            "renormalize-every",
-            "M",
-            Some("10"),
-            "steps between QR re-orthonormalizations of the deviation vectors",
-        ),
+        Flag {
+            name: "n-exponents",
+            value_name: "K",
+            default: None,
+            required: false,
+            help: Text::Made(|| {
+                format!(
+                    "number of exponents, 1 to the state dimension [default: all; required above \
+                     dimension {}]",
+                    crate::chaos::FULL_SPECTRUM_MAX_DIM
+                )
+            }),
+        },
+        Flag {
+            name: "renormalize-every",
+            value_name: "M",
+            default: Some(Text::Made(|| DEFAULT_RENORMALIZE_EVERY.to_string())),
+            required: false,
+            help: Text::Fixed("steps between QR re-orthonormalizations of the deviation vectors"),
+        },
         Flag::optional(
             "history-stride",
             "S",
@@ -259,7 +321,9 @@ impl RunKind for Poincare {
             value_name: "I",
             default: None,
             required: true,
-            help: "index into the state of the section's coordinate: q_0.., then p_0.. (or y)",
+            help: Text::Fixed(
+                "index into the state of the section's coordinate: q_0.., then p_0.. (or y)",
+            ),
         },
         Flag::optional("value", "X", Some("0"), "the section is state[I] = X"),
         Flag::optional(
@@ -384,9 +448,9 @@ fn system_command(entry: &SystemEntry, flags: &[Flag]) -> Command {
             .value_name(f.value_name)
             .required(f.required)
             .allow_negative_numbers(true)
-            .help(f.help);
+            .help(f.help.text());
         if let Some(default) = f.default {
-            arg = arg.default_value(default);
+            arg = arg.default_value(default.text());
         }
         cmd = cmd.arg(arg);
     }

@@ -1,96 +1,145 @@
-//! `physicskit ensemble`: a grid of members of one catalogue system on all cores, into an
-//! `.npz` shaped by the grid.
+//! `physicskit ensemble`: the members of one catalogue system (a grid, a list, or a list by a
+//! grid) on all cores, into an `.npz` shaped by the members' axes.
 //!
-//! Parsing only: the members are built, checked (a bad member is named by its index in the
-//! flattened grid, before any integration) and integrated by the library's ensemble engine
-//! (`physicskit::classical::ensemble`).
+//! The flags and the scenario file are read into one [`Scenario`] ([`crate::scenario`]); from
+//! it the members are laid out, and then built, checked (a bad member is named by its index in
+//! the flattened members, before any integration) and integrated by the library's ensemble
+//! engine (`physicskit::classical::ensemble`). With only event times kept and no final state,
+//! the engine stops each member at its last event (`steps` says how far each went).
 
 use std::ops::ControlFlow;
 
 use anyhow::{anyhow, bail, Context, Result};
+use physicskit::classical::analysis::lyapunov::DEFAULT_RENORMALIZE_EVERY;
 use physicskit::classical::catalog;
-use physicskit::classical::core::SystemEntry;
-use physicskit::classical::ensemble::{
-    self, Condition, Direction, Event, Members, Plan, Reduction, Sweep,
-};
+use physicskit::classical::core::{SystemEntry, Value};
+use physicskit::classical::ensemble::{self, Members, Plan, Reduction, Sweep};
 use physicskit::classical::Observer;
 
 use crate::cli::EnsembleArgs;
 use crate::output::arrays::{write_npz, Entry};
 use crate::output::Pending;
 use crate::params;
+use crate::scenario::{required, Scenario};
 use crate::signals::Stop;
 
-fn number(what: &str, text: &str) -> Result<f64> {
-    text.trim()
-        .parse()
-        .map_err(|_| anyhow!("invalid value `{text}` for {what}: expected a number"))
-}
-
-/// `NAME=A:B:N` as the axis name and its `N` values from `A` to `B`.
-fn axis(text: &str) -> Result<(String, Vec<f64>)> {
-    let bad = || anyhow!("invalid `--grid {text}`: expected NAME=A:B:N (e.g. theta0[0]=-3:3:100)");
-    let (name, range) = text.split_once('=').ok_or_else(bad)?;
-    let parts: Vec<&str> = range.split(':').collect();
-    let [a, b, n] = parts[..] else {
-        return Err(bad());
-    };
-    let (a, b) = (number("--grid", a)?, number("--grid", b)?);
-    let n: usize = n.trim().parse().ok().filter(|&n| n >= 1).ok_or_else(bad)?;
-    // Both ends included, as numpy.linspace; the ends exactly as given.
-    let values = (0..n)
-        .map(|i| match (i, n) {
-            (0, _) => a,
-            (i, n) if i == n - 1 => b,
-            (i, n) => a + (b - a) * (i as f64 / (n - 1) as f64),
-        })
-        .collect();
-    Ok((name.trim().to_string(), values))
-}
-
-/// `NAME=KIND:INDEX:VALUE` as an event's name and reduction.
-fn event(text: &str) -> Result<(String, Reduction)> {
-    let bad = || {
-        anyhow!(
-            "invalid `--event {text}`: expected NAME=KIND:INDEX:VALUE with KIND one of crosses, \
-             rising, falling, abs_above (e.g. flip=abs_above:1:3.141592653589793)"
-        )
-    };
-    let (name, spec) = text.split_once('=').ok_or_else(bad)?;
-    let parts: Vec<&str> = spec.split(':').collect();
-    let [kind, index, value] = parts[..] else {
-        return Err(bad());
-    };
-    let index: usize = index.trim().parse().map_err(|_| bad())?;
-    let value = number("--event", value)?;
-    let crosses = |direction| Condition::Crosses { value, direction };
-    let condition = match kind.trim() {
-        "crosses" => crosses(Direction::Either),
-        "rising" => crosses(Direction::Rising),
-        "falling" => crosses(Direction::Falling),
-        "abs_above" => Condition::AbsExceeds(value),
-        _ => return Err(bad()),
-    };
-    Ok((
-        name.trim().to_string(),
-        Reduction::FirstEvent(Event { index, condition }),
-    ))
-}
-
 /// The common values, parsed by each parameter's kind.
-fn common(
-    entry: &SystemEntry,
-    set: &[String],
-) -> Result<Vec<(String, physicskit::classical::core::Value)>> {
-    set.iter()
-        .map(|text| {
-            let (name, value) = text
-                .split_once('=')
-                .ok_or_else(|| anyhow!("invalid `--set {text}`: expected NAME=VALUE"))?;
-            let spec = entry.lookup(name.trim())?;
-            Ok((spec.name.to_string(), params::parse(spec, value)?))
+fn common(entry: &SystemEntry, scenario: &Scenario) -> Result<Vec<(String, Value)>> {
+    scenario
+        .set
+        .iter()
+        .map(|(name, literal)| {
+            let spec = entry.lookup(name)?;
+            Ok((spec.name.to_string(), params::parse(spec, &literal.text())?))
         })
         .collect()
+}
+
+/// The members' axes: the listed members first (if any), then the grid's; and the members
+/// they give, last axis fastest (C order, numpy's `indexing="ij"`).
+struct Layout {
+    /// Length of each axis.
+    shape: Vec<usize>,
+    /// The members.
+    members: Members,
+}
+
+impl Layout {
+    fn new(scenario: &Scenario, common: Vec<(String, Value)>) -> Result<Self> {
+        let mut lists = scenario
+            .values
+            .iter()
+            .map(|(name, v)| (name.as_str(), v.len()))
+            .chain(scenario.states.as_ref().map(|rows| ("states", rows.len())));
+        let first = lists.next();
+        if let Some((name, m)) = first {
+            if let Some((other, k)) = lists.find(|&(_, k)| k != m) {
+                bail!("the listed members disagree in number: `{name}` has {m}, `{other}` {k}");
+            }
+        }
+        let listed = first.map(|(_, m)| m);
+        let mut shape: Vec<usize> = listed.into_iter().collect();
+        shape.extend(scenario.grid.iter().map(|axis| axis.n));
+        if shape.is_empty() {
+            bail!(
+                "give the members: at least one --grid NAME=A:B:N or --values NAME=V1,V2,.. \
+                 (or `grid`, `values` or `states` in a --scenario file)"
+            );
+        }
+        if let Some(axis) = scenario.grid.iter().find(|a| a.n == 0) {
+            bail!("grid axis `{}`: `n` must be >= 1", axis.name);
+        }
+        let n = shape
+            .iter()
+            .try_fold(1usize, |acc, &k| acc.checked_mul(k))
+            .filter(|&n| n > 0)
+            .ok_or_else(|| {
+                anyhow!("the members' axes give {shape:?} members: none, or too many")
+            })?;
+        // Member i's index along axis k.
+        let along = |k: usize, i: usize| (i / shape[k + 1..].iter().product::<usize>()) % shape[k];
+        let offset = usize::from(listed.is_some());
+        let mut sweeps: Vec<Sweep> = scenario
+            .values
+            .iter()
+            .map(|(name, v)| Sweep::new(name.clone(), (0..n).map(|i| v[along(0, i)]).collect()))
+            .collect();
+        sweeps.extend(scenario.grid.iter().enumerate().map(|(k, axis)| {
+            let values = axis.values();
+            Sweep::new(
+                axis.name.clone(),
+                (0..n).map(|i| values[along(k + offset, i)]).collect(),
+            )
+        }));
+        let states = match &scenario.states {
+            Some(rows) => {
+                let dim = rows.first().map_or(0, Vec::len);
+                if let Some(j) = rows.iter().position(|r| r.len() != dim) {
+                    bail!(
+                        "`states` rows differ in length: row 0 has {dim}, row {j} has {}",
+                        rows[j].len()
+                    );
+                }
+                Some((0..n).flat_map(|i| rows[along(0, i)].clone()).collect())
+            }
+            None => None,
+        };
+        Ok(Self {
+            members: Members {
+                common,
+                sweeps,
+                states,
+                n,
+            },
+            shape,
+        })
+    }
+}
+
+/// The reductions the scenario asks for, in output order: energy error, events, chaos.
+fn reductions(scenario: &Scenario) -> Result<Vec<Reduction>> {
+    let chaos = scenario.max_lyapunov || scenario.sali;
+    let renormalize_every = match scenario.renormalize_every {
+        Some(_) if !chaos => bail!(
+            "`--renormalize-every` applies only with --max-lyapunov or --sali \
+             (`renormalize_every` only with `max_lyapunov` or `sali`)"
+        ),
+        Some(0) => bail!("invalid value `0` for `renormalize_every`: expected an integer >= 1"),
+        Some(m) => m,
+        None => DEFAULT_RENORMALIZE_EVERY,
+    };
+    let mut out = Vec::new();
+    if scenario.energy_error {
+        out.push(Reduction::MaxEnergyError);
+    }
+    out.extend(scenario.events.iter().map(|e| e.reduction()));
+    if scenario.max_lyapunov {
+        out.push(Reduction::MaxLyapunov { renormalize_every });
+    }
+    if scenario.sali {
+        out.push(Reduction::Sali { renormalize_every });
+    }
+    Ok(out)
 }
 
 /// Runs `ensemble`.
@@ -99,75 +148,49 @@ fn common(
 /// Bad input (before any integration), a member the library refuses (named by index), a
 /// stopping signal, or a file that cannot be written (no file is left behind).
 pub fn run(args: &EnsembleArgs, stop: &Stop) -> Result<()> {
-    let entry = catalog::find(&args.system).map_err(|e| anyhow!("{e} (see `physicskit list`)"))?;
-    let method = args
+    let scenario = Scenario::from_args(args)?;
+    let system = scenario
+        .system
+        .as_deref()
+        .ok_or_else(|| anyhow!("give SYSTEM (or `system` in a --scenario file)"))?;
+    let entry = catalog::find(system).map_err(|e| anyhow!("{e} (see `physicskit list`)"))?;
+    let method = scenario
         .method
         .as_deref()
         .map(|m| params::method(entry, m))
         .transpose()?;
-    if args.grid.is_empty() {
-        bail!("give at least one --grid NAME=A:B:N");
+    let layout = Layout::new(&scenario, common(entry, &scenario)?)?;
+    let reductions = reductions(&scenario)?;
+    let final_state = scenario.final_state.unwrap_or(true);
+    if !final_state && scenario.stride.is_none() && reductions.is_empty() {
+        bail!("`--no-final-state` (`final_state: false`) leaves nothing to write: keep a reduction or --stride");
     }
-    let axes: Vec<(String, Vec<f64>)> = args.grid.iter().map(|g| axis(g)).collect::<Result<_>>()?;
-    let shape: Vec<usize> = axes.iter().map(|(_, v)| v.len()).collect();
-    let n = shape
-        .iter()
-        .try_fold(1usize, |acc, &k| acc.checked_mul(k))
-        .ok_or_else(|| anyhow!("the grid has too many members"))?;
-    // The Cartesian product, last axis fastest (C order, numpy's `indexing="ij"`).
-    let sweeps = axes
-        .iter()
-        .enumerate()
-        .map(|(k, (name, values))| {
-            let inner: usize = shape[k + 1..].iter().product();
-            let column = (0..n).map(|i| values[(i / inner) % values.len()]).collect();
-            Sweep::new(name.clone(), column)
-        })
-        .collect();
-    let mut reductions = Vec::new();
-    if args.energy_error {
-        reductions.push(Reduction::MaxEnergyError);
-    }
-    let events: Vec<(String, Reduction)> = args
-        .events
-        .iter()
-        .map(|e| event(e))
-        .collect::<Result<_>>()?;
-    reductions.extend(events.iter().map(|(_, r)| *r));
-    let renormalize_every = args.renormalize_every;
-    if args.max_lyapunov {
-        reductions.push(Reduction::MaxLyapunov { renormalize_every });
-    }
-    if args.sali {
-        reductions.push(Reduction::Sali { renormalize_every });
-    }
-    let members = Members {
-        common: common(entry, &args.set)?,
-        sweeps,
-        states: None,
-        n,
-    };
     let plan = Plan {
-        t_span: (number("--t0", &args.t0)?, number("--t1", &args.t1)?),
-        dt: number("--dt", &args.dt)?,
+        t_span: (
+            scenario.t0.unwrap_or(0.0),
+            required(&scenario.t1, "t1", "t1")?,
+        ),
+        dt: required(&scenario.dt, "dt", "dt")?,
         method,
-        stride: args.stride,
+        stride: scenario.stride,
         reductions,
-        final_state: true,
-        threads: args.threads,
+        final_state,
+        threads: scenario.threads,
     };
-    let pending = Pending::create(&args.out)?;
+    let out_path = required(&scenario.out, "out", "out")?;
+    let pending = Pending::create(&out_path)?;
     if !pending.is_npz() {
-        bail!("`ensemble` writes .npz only, got `{}`", args.out.display());
+        bail!("`ensemble` writes .npz only, got `{}`", out_path.display());
     }
     let mut observer = StopObserver(stop);
-    let out = ensemble::run(entry, &members, &plan, Some(&mut observer)).context("ensemble run")?;
+    let out = ensemble::run(entry, &layout.members, &plan, Some(&mut observer))
+        .context("ensemble run")?;
     if stop.requested() {
-        bail!("interrupted before writing `{}`", args.out.display());
+        bail!("interrupted before writing `{}`", out_path.display());
     }
-    let dim = out.final_state.ncols();
+    let shape = &layout.shape;
     let with = |extra: &[usize]| -> Vec<usize> { shape.iter().chain(extra).copied().collect() };
-    let final_state = out.final_state.as_standard_layout().into_owned();
+    let f64s = |name: String, shape: Vec<usize>, data| Entry::F64 { name, shape, data };
     let mut entries = vec![
         Entry::Str {
             name: "system".into(),
@@ -177,68 +200,87 @@ pub fn run(args: &EnsembleArgs, stop: &Stop) -> Result<()> {
             name: "method".into(),
             text: out.method.name(),
         },
-        Entry::F64 {
-            name: "final_state".into(),
-            shape: with(&[dim]),
-            data: final_state.as_slice().unwrap_or(&[]),
-        },
     ];
+    if plan.final_state {
+        entries.push(Entry::View {
+            name: "final_state".into(),
+            view: out
+                .final_state
+                .view()
+                .into_shape_with_order(with(&[out.final_state.ncols()]))
+                .context("final state")?,
+        });
+    }
+    entries.push(Entry::I64 {
+        name: "steps".into(),
+        shape: shape.clone(),
+        data: out
+            .steps
+            .iter()
+            .map(|&s| i64::try_from(s).unwrap_or(i64::MAX))
+            .collect(),
+    });
     let settings = [plan.t_span.0, plan.t_span.1, plan.dt];
     for (k, name) in ["t0", "t1", "dt"].into_iter().enumerate() {
-        entries.push(Entry::F64 {
-            name: name.into(),
-            shape: vec![],
-            data: &settings[k..=k],
-        });
+        entries.push(f64s(name.into(), vec![], &settings[k..=k]));
     }
-    for (k, (_, values)) in axes.iter().enumerate() {
-        entries.push(Entry::F64 {
-            name: format!("grid_{k}"),
-            shape: vec![values.len()],
-            data: values,
-        });
+    let grids: Vec<Vec<f64>> = scenario.grid.iter().map(|a| a.values()).collect();
+    for (k, values) in grids.iter().enumerate() {
+        entries.push(f64s(format!("grid_{k}"), vec![values.len()], &values[..]));
     }
-    let names: Vec<&str> = axes.iter().map(|(name, _)| name.as_str()).collect();
+    let names: Vec<&str> = scenario.grid.iter().map(|a| a.name.as_str()).collect();
     let grid_names = names.join(",");
-    entries.push(Entry::Str {
-        name: "grid_names".into(),
-        text: &grid_names,
-    });
+    if !names.is_empty() {
+        entries.push(Entry::Str {
+            name: "grid_names".into(),
+            text: &grid_names,
+        });
+    }
+    for (name, values) in &scenario.values {
+        entries.push(f64s(
+            format!("values_{name}"),
+            vec![values.len()],
+            &values[..],
+        ));
+    }
+    let states: Vec<f64> = scenario
+        .states
+        .iter()
+        .flatten()
+        .flatten()
+        .copied()
+        .collect();
+    if let Some(rows) = &scenario.states {
+        let dim = states.len() / rows.len().max(1);
+        entries.push(f64s("states".into(), vec![rows.len(), dim], &states[..]));
+    }
     if let (Some(t), Some(trajectory)) = (&out.t, &out.trajectory) {
-        entries.push(Entry::F64 {
+        entries.push(Entry::View {
             name: "t".into(),
-            shape: vec![t.len()],
-            data: t.as_slice().unwrap_or(&[]),
+            view: t.view().into_dyn(),
         });
-        entries.push(Entry::F64 {
+        let (_, samples, dim) = trajectory.dim();
+        entries.push(Entry::View {
             name: "trajectory".into(),
-            shape: with(&[t.len(), dim]),
-            data: trajectory.as_slice().unwrap_or(&[]),
+            view: trajectory
+                .view()
+                .into_shape_with_order(with(&[samples, dim]))
+                .context("trajectory")?,
         });
     }
-    let mut reductions = out.reductions.iter();
-    if args.energy_error {
-        if let Some((_, values)) = reductions.next() {
-            entries.push(Entry::F64 {
-                name: "max_energy_error".into(),
-                shape: shape.clone(),
-                data: values.as_slice().unwrap_or(&[]),
-            });
-        }
-    }
-    for ((name, _), (_, values)) in events.iter().zip(reductions.by_ref()) {
-        entries.push(Entry::F64 {
-            name: format!("event_{name}"),
-            shape: shape.clone(),
-            data: values.as_slice().unwrap_or(&[]),
-        });
-    }
-    // The chaos reductions, named as the library names them.
-    for (name, values) in reductions {
-        entries.push(Entry::F64 {
-            name: (*name).into(),
-            shape: shape.clone(),
-            data: values.as_slice().unwrap_or(&[]),
+    // Each reduction named as the library names it, events as `event_<name>`.
+    let mut event_names = scenario.events.iter().map(|e| format!("event_{}", e.name));
+    for (name, values) in &out.reductions {
+        let name = match *name {
+            "event_time" => event_names.next().unwrap_or_default(),
+            other => other.to_string(),
+        };
+        entries.push(Entry::View {
+            name,
+            view: values
+                .view()
+                .into_shape_with_order(shape.clone())
+                .context("reduction")?,
         });
     }
     pending.commit_with(|_, file| write_npz(file, &entries))

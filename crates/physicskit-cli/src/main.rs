@@ -16,6 +16,7 @@ mod output;
 mod params;
 mod prepare;
 mod progress;
+mod scenario;
 mod signals;
 mod simulate;
 

@@ -4,90 +4,72 @@
 //! `t0`, `t1`, `dt`; 0-d strings `system`, `family`, `method`; one `param_<name>` per given
 //! parameter (`<f8` scalar or 1-d, `<i8` for integers, a string for choices; absent optional
 //! parameters are omitted); scalar extra diagnostics as `extra_<name>`.
+//!
+//! The entries are listed here and written by the command line's one NPZ writer,
+//! [`arrays::write_npz`](super::arrays::write_npz); `q` and `p`, strided views of the state,
+//! are written without a copy.
 
 use std::fs::File;
-use std::io::{self, BufWriter, Write};
+use std::io;
 
-use physicskit::classical::core::{Value, Values};
+use ndarray::ArrayViewD;
 use physicskit::classical::ExtraValue;
-use zip::write::SimpleFileOptions;
-use zip::{CompressionMethod, ZipWriter};
 
-use super::npy;
+use super::arrays::{write_npz, Entry};
 use super::Record;
 
 pub(super) fn write(file: &File, record: &Record<'_>) -> io::Result<()> {
     let result = record.result;
-    let state_values: usize = record.state_arrays().iter().map(|(_, a)| a.len()).sum();
-    // Entries over 4 GiB need the zip64 extension, which numpy reads.
-    let large = (state_values + 2 * result.t.len()) * 8 > u32::MAX as usize / 2;
-    let options = SimpleFileOptions::default()
-        .compression_method(CompressionMethod::Stored)
-        .large_file(large);
-    let mut zip = ZipWriter::new(BufWriter::new(file));
-    let entry = |zip: &mut ZipWriter<BufWriter<&File>>, name: &str| {
-        zip.start_file(format!("{name}.npy"), options)
-            .map_err(io::Error::other)
+    let f64_entry = |name: &str, shape: Vec<usize>, data| Entry::F64 {
+        name: name.into(),
+        shape,
+        data,
     };
-
-    entry(&mut zip, "t")?;
-    npy::write_f64(&mut zip, &[result.t.len()], result.t.iter().copied())?;
-    for (name, array) in record.state_arrays() {
-        entry(&mut zip, name)?;
-        npy::write_f64(&mut zip, array.shape(), array.iter().copied())?;
-    }
+    let mut entries = vec![view("t", result.t.view().into_dyn())];
+    let state = record.state_arrays();
+    entries.extend(
+        state
+            .iter()
+            .map(|(name, array)| view(name, array.view().into_dyn())),
+    );
     if let Some(energy) = record.energy() {
-        entry(&mut zip, "energy")?;
-        npy::write_f64(&mut zip, &[energy.len()], energy.iter().copied())?;
+        entries.push(view("energy", energy.view().into_dyn()));
     }
-    for (name, value) in record.settings() {
-        entry(&mut zip, name)?;
-        npy::write_f64(&mut zip, &[], [value])?;
-    }
+    let settings = record.settings();
+    entries.extend(
+        settings
+            .iter()
+            .map(|(name, value)| f64_entry(name, vec![], std::slice::from_ref(value))),
+    );
     let texts = [
         ("system", record.system),
         ("family", record.family.name()),
         ("method", result.method.as_str()),
     ];
-    write_labels(&mut zip, options, texts, record.params)?;
-    for (name, value) in &result.extra {
-        if let ExtraValue::Scalar(v) = value {
-            entry(&mut zip, &format!("extra_{name}"))?;
-            npy::write_f64(&mut zip, &[], [*v])?;
-        }
-    }
-    let mut inner = zip.finish().map_err(io::Error::other)?;
-    inner.flush()
+    entries.extend(texts.into_iter().map(|(name, text)| Entry::Str {
+        name: name.into(),
+        text,
+    }));
+    entries.extend(record.params.iter().filter_map(|(name, value)| {
+        value.map(|value| Entry::Value {
+            name: format!("param_{name}"),
+            value,
+        })
+    }));
+    entries.extend(result.extra.iter().filter_map(|(name, value)| match value {
+        ExtraValue::Scalar(v) => Some(f64_entry(
+            &format!("extra_{name}"),
+            vec![],
+            std::slice::from_ref(v),
+        )),
+        _ => None,
+    }));
+    write_npz(file, &entries)
 }
 
-/// The 0-d strings `texts`, then one `param_<name>` per given parameter.
-pub(super) fn write_labels(
-    zip: &mut ZipWriter<BufWriter<&File>>,
-    options: SimpleFileOptions,
-    texts: [(&str, &str); 3],
-    params: &Values,
-) -> io::Result<()> {
-    for (name, text) in texts {
-        zip.start_file(format!("{name}.npy"), options)
-            .map_err(io::Error::other)?;
-        npy::write_str(zip, text)?;
-    }
-    for (name, value) in params.iter() {
-        if let Some(value) = value {
-            zip.start_file(format!("param_{name}.npy"), options)
-                .map_err(io::Error::other)?;
-            write_value(zip, value)?;
-        }
-    }
-    Ok(())
-}
-
-/// One catalogue value as a 0-d or 1-d array: `<f8`, `<i8`, or a string for a word.
-pub(super) fn write_value(w: &mut impl Write, value: &Value) -> io::Result<()> {
-    match value {
-        Value::Scalar(v) => npy::write_f64(w, &[], [*v]),
-        Value::Integer(n) => npy::write_i64(w, &[], [*n]),
-        Value::Vector(items) => npy::write_f64(w, &[items.len()], items.iter().copied()),
-        Value::Choice(word) => npy::write_str(w, word),
+fn view<'a>(name: &str, view: ArrayViewD<'a, f64>) -> Entry<'a> {
+    Entry::View {
+        name: name.into(),
+        view,
     }
 }

@@ -7,7 +7,7 @@ use std::path::Path;
 
 use ndarray::{Array0, Array1, Array2};
 use ndarray_npy::NpzReader;
-use physicskit::classical::analysis::lyapunov::lyapunov_spectrum;
+use physicskit::classical::analysis::lyapunov::{lyapunov_spectrum, DEFAULT_RENORMALIZE_EVERY};
 use physicskit::classical::analysis::poincare::Direction;
 use physicskit::classical::analysis::section::{poincare_section, SurfaceOfSection};
 use physicskit::classical::core::erased::Hamiltonian;
@@ -248,6 +248,41 @@ fn n_exponents_is_required_for_large_systems_and_checked() {
     let mut npz = NpzReader::new(File::open(dir.path().join("a.npz")).unwrap()).unwrap();
     let exponents: Array1<f64> = npz.by_name("exponents").unwrap();
     assert_eq!(exponents.len(), 2);
+}
+
+/// The full-spectrum cap at its boundary: the swarm of 10 pendulums (dimension 20, the cap)
+/// runs without `--n-exponents` and gives 20 exponents; 11 pendulums (dimension 22) are refused
+/// with the flag to pass, before any file is written.
+#[test]
+fn the_full_spectrum_cap_is_dimension_20() {
+    let args = |n: &'static str| short_run("lyapunov", "pendulum-swarm", &["--n", n]);
+    let dir = scratch();
+    let out = run_in(dir.path(), &args("10"));
+    assert_eq!(out.status.code(), Some(0), "{}", stderr(&out));
+    let mut npz = NpzReader::new(File::open(dir.path().join("a.npz")).unwrap()).unwrap();
+    let exponents: Array1<f64> = npz.by_name("exponents").unwrap();
+    assert_eq!(exponents.len(), 20);
+    let err = fails(&args("11"));
+    assert!(
+        err.contains("pass --n-exponents K") && err.contains("22-dimensional"),
+        "{err}"
+    );
+}
+
+/// The help states the cap the code applies (20, tested above) and the library's default
+/// renormalization interval.
+#[test]
+fn lyapunov_help_states_the_cap_and_the_default_interval() {
+    let help = crate::common::help(&["lyapunov", "henon-heiles"]);
+    assert!(help.contains("required above dimension 20]"), "{help}");
+    let every = help
+        .lines()
+        .find(|l| l.contains("--renormalize-every"))
+        .unwrap_or_default();
+    assert!(
+        every.contains(&format!("[default: {DEFAULT_RENORMALIZE_EVERY}]")),
+        "{every}"
+    );
 }
 
 /// Ctrl-C and SIGTERM stop a long Lyapunov run (checked every 1024 steps of the tangent

@@ -36,3 +36,11 @@ pub fn stderr(out: &Output) -> String {
 pub fn stdout(out: &Output) -> String {
     String::from_utf8_lossy(&out.stdout).into_owned()
 }
+
+/// The `--help` text of `physicskit args... --help`.
+pub fn help(args: &[&str]) -> String {
+    let dir = scratch();
+    let out = run_in(dir.path(), &[args, &["--help"][..]].concat());
+    assert_eq!(out.status.code(), Some(0), "{}", stderr(&out));
+    stdout(&out)
+}

@@ -185,3 +185,93 @@ fn chaos_reductions_are_the_library_ones() {
         bits(lib.reductions[1].1.as_slice().unwrap())
     );
 }
+
+/// `ensemble`'s chaos options: a bad `--renormalize-every` names the flag, the flag without
+/// `--max-lyapunov` or `--sali` is refused rather than ignored, and SALI with a method the
+/// system cannot take is refused; one error line, exit 2, no file each time.
+#[test]
+fn bad_chaos_options_name_their_flag() {
+    let chaos = |extra: &[&'static str]| {
+        let mut args = vec![
+            "ensemble",
+            "harmonic-oscillator",
+            "--grid",
+            "q0=0.5:1:2",
+            "--dt",
+            "0.1",
+            "--t1",
+            "1",
+            "--out",
+            "e.npz",
+        ];
+        args.extend_from_slice(extra);
+        crate::errors::fails(&args)
+    };
+    for bad in [
+        "0",
+        "-1",
+        "nan",
+        "inf",
+        "1e23",
+        "18446744073709551616",
+        "2.5",
+    ] {
+        let err = chaos(&["--max-lyapunov", "--renormalize-every", bad]);
+        assert!(
+            err.contains(&format!("invalid value `{bad}` for `--renormalize-every`")),
+            "{bad}: {err}"
+        );
+    }
+    let err = chaos(&["--renormalize-every", "5"]);
+    assert!(
+        err.contains("--renormalize-every") && err.contains("--max-lyapunov"),
+        "{err}"
+    );
+    let err = crate::errors::fails(&[
+        "ensemble",
+        "double-pendulum",
+        "--grid",
+        "theta0[0]=0.1:0.2:2",
+        "--sali",
+        "--method",
+        "yoshida4",
+        "--dt",
+        "0.01",
+        "--t1",
+        "0.1",
+        "--out",
+        "e.npz",
+    ]);
+    assert!(
+        err.contains("yoshida4") && err.contains("double-pendulum"),
+        "{err}"
+    );
+}
+
+/// The help gives the default interval and the SALI threshold of the library's constants.
+#[test]
+fn help_states_the_library_constants() {
+    let help = crate::common::help(&["ensemble"]);
+    let every = physicskit::classical::analysis::lyapunov::DEFAULT_RENORMALIZE_EVERY;
+    let threshold = physicskit::classical::analysis::sali::CHAOS_THRESHOLD;
+    let line = |flag: &str| {
+        let at = help
+            .find(flag)
+            .unwrap_or_else(|| panic!("{flag} missing: {help}"));
+        help[at..]
+            .split("\n      --")
+            .next()
+            .unwrap_or_default()
+            .to_string()
+    };
+    let every_line = line("--renormalize-every");
+    assert!(
+        every_line.contains(&format!("[default: {every}]")),
+        "{every_line}"
+    );
+    let sali_line = line("--sali");
+    assert!(
+        sali_line.contains(&format!("above {threshold:e}: regular")),
+        "{sali_line}"
+    );
+}

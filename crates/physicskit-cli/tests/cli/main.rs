@@ -9,3 +9,4 @@ mod ensemble;
 mod errors;
 mod list;
 mod roundtrip;
+mod scenario;

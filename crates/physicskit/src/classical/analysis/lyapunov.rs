@@ -57,11 +57,13 @@ pub struct LyapunovSpectrum {
     pub k: usize,
 }
 
-/// Checks `renormalize_every >= 1` and `1 <= k <= dim`.
+/// Checks `renormalize_every >= 1` and `1 <= k <= dim`: the counts every front end must
+/// pass for `k` deviation vectors of a `dim`-dimensional state (`name` is the caller's name of
+/// `k` in the message). Front ends call it before building a flow for `k` vectors.
 ///
 /// # Errors
 /// [`Error::InvalidParameter`].
-pub(crate) fn check_vectors(k: usize, dim: usize, every: usize, name: &str) -> Result<()> {
+pub fn check_vectors(k: usize, dim: usize, every: usize, name: &str) -> Result<()> {
     if every == 0 {
         return Err(Error::invalid("renormalize_every", 0.0, "must be >= 1"));
     }
