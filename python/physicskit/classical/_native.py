@@ -152,6 +152,14 @@ def as_int(name: str, value: Any, minimum: int = 0, maximum: int = MAX_NATIVE_IN
     return n
 
 
+def as_flag(name: str, value: Any) -> bool:
+    """``value`` as a bool: ``True``/``False`` (or numpy's), nothing else (not ``1``, not
+    ``"yes"``); ValueError naming ``name`` otherwise."""
+    if isinstance(value, (bool, np.bool_)):
+        return bool(value)
+    raise ValueError(f"{name} must be True or False, got {_short(value)}")
+
+
 def _real_array(name: str, value: Any) -> np.ndarray:
     """``value`` as a new float64 array of its own shape, by the rules of the docstring."""
     if isinstance(value, np.ndarray):
