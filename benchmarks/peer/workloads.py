@@ -9,10 +9,11 @@ in each implementation's own virtual environment.
     python workloads.py first CASE                 # import + construct + 1e3 steps, fresh process
     python workloads.py same CASE STEPS REPEATS TARGET FINAL
         # ours only (it reads `methods()`): for every fixed-step method the system accepts, the
-        # coarsest step of the ladder dt, 2 dt, 4 dt, ... (whole fractions of the workload's
-        # span) whose max relative energy error stays <= TARGET and whose final state is as
-        # close to a reference run as the peer's (FINAL: the peer's final state as JSON), timed
-        # best of REPEATS
+        # fewest equal steps over the workload's span, on the ladder STEPS, STEPS // 2,
+        # STEPS // 4, ..., 1 (each count half the last, rounded down), whose max relative
+        # energy error stays <= TARGET and whose final state is as close to a reference run as
+        # the peer's (FINAL: the peer's final state as JSON), timed best of REPEATS. Prints
+        # {"peer_final_error": ..., "methods": [one row per method]}
     python workloads.py final CASE STEPS           # the final state of the workload's run, JSON
 """
 
@@ -112,39 +113,62 @@ def _error(final, reference):
     return float(np.max(np.abs(final - reference)) / max(np.max(np.abs(reference)), 1e-300))
 
 
+def _ladder(steps):
+    """The step counts tried: `steps`, then each half the last (rounded down), down to 1."""
+    n = steps
+    while n >= 1:
+        yield n
+        n //= 2
+
+
+def _fewest_steps(pc, case, steps, method, passes):
+    """The last count of `_ladder(steps)` at which `method` passes (`passes(drift, final)`)
+    before its first failure, or None if it fails at `steps` already or the system refuses it.
+    The search stops at the first failure: a coarser step that passed again would be luck
+    (a resonance, a cancelling error), not accuracy."""
+    fewest = None
+    for n in _ladder(steps):
+        try:
+            _, drift, final = _run(pc, case, steps, method, n)
+        except (ValueError, RuntimeError):  # refused, or an implicit solve gave up
+            break
+        if not passes(drift, final):
+            break
+        fewest = n
+    return fewest
+
+
 def _same_accuracy(pc, case, steps, repeats, target, peer_final):
-    """Per fixed-step method: the fewest steps (halving the count from the workload's) whose
-    run stays within `target` in energy and within the peer's final-state error of the
-    reference run, timed best of `repeats`; `None` fields where even the workload's step misses
-    it or the system refuses the method. Energy alone would crown a single step of the implicit
-    midpoint rule on a linear system, whose quadratic energy it keeps exactly at any step."""
+    """Per fixed-step method: the fewest steps (`_fewest_steps`) whose run stays within
+    `target` in energy and within the peer's final-state error of the reference run, timed best
+    of `repeats`; `None` fields where even the workload's step misses it or the system refuses
+    the method. Energy alone would crown a single step of the implicit midpoint rule on a
+    linear system, whose quadratic energy it keeps exactly at any step."""
     reference = _reference(pc, case, steps)
     peer_error = _error(np.asarray(peer_final), reference)
     bar = max(peer_error, ERROR_FLOOR)
     target = max(target, ENERGY_FLOOR)
-    rows = [{"method": "peer", "final_error": peer_error}]
+
+    def passes(drift, final):
+        return drift <= target and _error(final, reference) <= bar
+
+    rows = []
     for info in pc.methods():
         if info["adaptive"]:
             continue  # its cost is set by rtol/atol, not by a step: not on this ladder
-        name, best_n, n = info["name"], None, steps
-        while n >= 1:
-            try:
-                _, drift, final = _run(pc, case, steps, name, n)
-            except (ValueError, RuntimeError):  # refused, or an implicit solve gave up
-                break
-            if not (drift <= target and _error(final, reference) <= bar):
-                break
-            best_n, n = n, n // 2
-        if best_n is None:
-            rows.append({"method": name, "steps": None, "seconds": None, "drift": None})
+        name = info["name"]
+        n = _fewest_steps(pc, case, steps, name, passes)
+        if n is None:
+            rows.append({"method": name, "steps": None, "seconds": None, "drift": None,
+                         "final_error": None})
             continue
         best = float("inf")
         for _ in range(repeats):
-            elapsed, drift, final = _run(pc, case, steps, name, best_n)
+            elapsed, drift, final = _run(pc, case, steps, name, n)
             best = min(best, elapsed)
-        rows.append({"method": name, "steps": best_n, "seconds": best, "drift": drift,
+        rows.append({"method": name, "steps": n, "seconds": best, "drift": drift,
                      "final_error": _error(final, reference)})
-    return rows
+    return {"peer_final_error": peer_error, "methods": rows}
 
 
 def main(argv):

@@ -112,12 +112,33 @@ def test_catalogue_listing_shape():
     for e in _core.catalog():
         assert e["family"] in ("hamiltonian", "lagrangian", "ode")
         assert e["default_method"] in e["methods"]
-        assert e["physics"] is None or len(e["physics"]) > 100, e["name"]
         for p in e["params"]:
             assert p["kind"] in ("scalar", "integer", "vector", "choice")
             assert (p["length"] is not None) == (p["kind"] == "vector"), p
             assert (p["choices"] is not None) == (p["kind"] == "choice"), p
             assert p["help"] and p["expectation"]
+
+
+def test_physics_is_one_whole_paragraph_per_class():
+    # `physics` is the paragraph of the gallery demonstration that shows the system (Rust's
+    # explanations::for_system), which the lab shows as its caption: passed through whole (a
+    # paragraph of sentences, the last ending with a full stop, no stray whitespace from the Rust
+    # string's line continuations) and found by system, so the entries that build one Python
+    # class two ways (KeplerSystem and KeplerSystem.from_orbital_elements, ...) carry the same
+    # text. Every system with a Python class is shown by a demonstration, so has one.
+    texts_of: dict[str, set[str]] = {}
+    for e in _core.catalog():
+        text = e["physics"]
+        if e["python"] is None and text is None:
+            continue
+        assert isinstance(text, str), e["name"]
+        # The last sentence may stand in parentheses: "... (... excited.)".
+        assert text.rstrip(")").endswith(".") and ". " in text, (e["name"], text[-40:])
+        assert text == text.strip() and "  " not in text and "\n" not in text, e["name"]
+        if e["python"] is not None:
+            texts_of.setdefault(e["python"].split(".")[0], set()).add(text)
+    assert texts_of and all(len(texts) == 1 for texts in texts_of.values()), \
+        {cls: len(texts) for cls, texts in texts_of.items()}
 
 
 # -- the checked values become the attributes ------------------------------------------------

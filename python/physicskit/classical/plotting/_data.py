@@ -61,11 +61,28 @@ def frame_indices(n_samples: int, stride: int, frames: int | None) -> np.ndarray
     return np.arange(0, n_samples, as_int("stride", stride, minimum=1))
 
 
-def labels_for(results: Sequence[Any], labels: Sequence[str] | None) -> list[str]:
-    """Legend labels: the given ones, else each run's method name."""
+def given_labels(labels: Sequence[str] | None, n: int) -> list[str] | None:
+    """The legend labels given for ``n`` runs, as a list (None when none were given).
+
+    ValueError unless ``labels`` is a sequence of exactly ``n`` strings: a single string is
+    refused rather than split into characters.
+    """
     if labels is None:
+        return None
+    if isinstance(labels, (str, bytes)) or not hasattr(labels, "__iter__"):
+        raise ValueError(f"labels must be a sequence of strings, one per run, got {labels!r}")
+    out = list(labels)
+    if len(out) != n:
+        raise ValueError(f"labels has {len(out)} entries for {n} results")
+    for i, label in enumerate(out):
+        if not isinstance(label, str):
+            raise ValueError(f"labels[{i}] must be a string, got {label!r}")
+    return out
+
+
+def labels_for(results: Sequence[Any], labels: Sequence[str] | None) -> list[str]:
+    """Legend labels: the given ones (see ``given_labels``), else each run's method name."""
+    given = given_labels(labels, len(results))
+    if given is None:
         return [getattr(r, "method", "") or f"run {i}" for i, r in enumerate(results)]
-    labels = list(labels)
-    if len(labels) != len(results):
-        raise ValueError(f"labels has {len(labels)} entries for {len(results)} results")
-    return labels
+    return given

@@ -6,7 +6,7 @@ from typing import Any, Sequence
 
 import numpy as np
 
-from ._data import as_results, has_qp, labels_for
+from ._data import as_results, given_labels, has_qp
 from ._labels import Labels
 from ._mpl import new_axes, orbit_colours
 
@@ -112,7 +112,7 @@ def phase_portrait(results: Any, system: Any = None, *, dof: int | Sequence[int]
             raise ValueError(f"dof = {d} is out of range for {ndof} degrees of freedom")
     ax = new_axes(ax)
     lab = Labels(system, ndof)
-    names = labels_for(runs, labels) if labels is not None else None
+    names = given_labels(labels, len(runs))
     artists: list[Any] = []
     many = len(runs) * len(dofs) > 12
     for k, r in enumerate(runs):

@@ -7,7 +7,7 @@ from typing import Any, Sequence
 
 import numpy as np
 
-from ._data import as_results, labels_for
+from ._data import as_results, given_labels
 from ._mpl import new_axes, orbit_colours
 
 
@@ -62,7 +62,8 @@ def polhodes(system: Any, results: Any, *, labels: Sequence[str] | None = None,
     if not isinstance(system, EulerTop):
         raise ValueError(f"polhodes draws an EulerTop, got {type(system).__name__}")
     runs = as_results(results)
-    names = labels_for(runs, labels) if labels is not None else [None] * len(runs)
+    given = given_labels(labels, len(runs))
+    names: list[str | None] = [None] * len(runs) if given is None else list(given)
     ax = new_axes(ax, projection="3d")
     radius = float(np.sqrt(system.angular_momentum_squared(runs[0].y[0])))
     _sphere(ax, radius)
