@@ -68,7 +68,7 @@ fn event(index: usize, kind: &str, value: f64) -> PyResult<Reduction> {
 /// The system whose members an ensemble builds.
 enum System {
     /// A catalogue entry, with the common values.
-    Catalogue(&'static core_catalog::SystemEntry),
+    Catalogue(&'static physicskit::classical::core::catalog::SystemEntry),
     /// A SymPy engine's expression system.
     Expression(ExprSpec),
 }
