@@ -1,20 +1,24 @@
-//! `_core.ensemble`: a whole ensemble of a catalogue system in one call, on all cores with the
-//! GIL released ([`physicskit::classical::ensemble::run`]). The Python function
-//! `physicskit.classical.ensemble` shapes the arguments and the outputs (grids, Dask).
+//! `_core.ensemble`: a whole ensemble of a catalogue system or of a SymPy engine's expression
+//! system in one call, on all cores with the GIL released
+//! ([`physicskit::classical::ensemble::run_source`] on a [`FromCatalogue`] or, built from an
+//! [`ExprSpec`], a [`FromParameters`]). The Python function `physicskit.classical.ensemble`
+//! shapes the arguments and the outputs (grids, Dask).
 
 use std::ops::ControlFlow;
 
 use numpy::{IntoPyArray, PyReadonlyArray1, PyReadonlyArray2};
 use physicskit::classical::catalog as core_catalog;
 use physicskit::classical::ensemble::{
-    self as core_ensemble, Condition, Direction, Event, Members, Plan, Reduction, Sweep,
+    self as core_ensemble, Condition, Direction, EnsembleResult, Event, FromCatalogue,
+    FromParameters, MemberSource, Members, Plan, Reduction, Sweep,
 };
 use physicskit::classical::{Error, Observer};
-use pyo3::exceptions::PyValueError;
+use pyo3::exceptions::{PyTypeError, PyValueError};
 use pyo3::prelude::*;
-use pyo3::types::{PyDict, PyList};
+use pyo3::types::{PyDict, PyList, PyString};
 
 use crate::errors::IntoPyResult;
+use crate::expr::ExprSpec;
 use crate::params::{key, to_value};
 
 /// Calls the Python `progress(done, total)` callback, if any, and checks for Ctrl-C, from the
@@ -61,13 +65,57 @@ fn event(index: usize, kind: &str, value: f64) -> PyResult<Reduction> {
     Ok(Reduction::FirstEvent(Event { index, condition }))
 }
 
-/// Integrates `n` members of the catalogue system `name`: `common` values (as `build` takes
-/// them), `sweeps` of `(parameter or "name[i]", values)`, optional initial `states`
-/// (`n x state length`). Returns a dict: `method`, `ndof`, `final_state` (`n x dim`), `t` and
-/// `trajectory` (`n x samples x dim`) when `stride` is given, `reductions` (one array of `n`
-/// per reduction: the energy error first if asked, then the events in order, then the largest
-/// Lyapunov exponent and SALI if asked, `max_lyapunov` and `sali` being their
-/// `renormalize_every`), `steps` (the steps each member took: fewer than the span's when
+/// The system whose members an ensemble builds.
+enum System {
+    /// A catalogue entry, with the common values.
+    Catalogue(&'static physicskit::classical::core::catalog::SystemEntry),
+    /// A SymPy engine's expression system.
+    Expression(ExprSpec),
+}
+
+impl System {
+    /// `system` as `_core.ensemble` takes it: a catalogue name, or the dict of an expression
+    /// system (see [`ExprSpec::from_dict`]), whose parameters are its own (`common` must then be
+    /// empty); the common values of a catalogue system converted into `given`.
+    fn from_py(
+        system: &Bound<'_, PyAny>,
+        common: &Bound<'_, PyDict>,
+        given: &mut Vec<(String, physicskit::classical::core::Value)>,
+    ) -> PyResult<Self> {
+        if let Ok(name) = system.cast::<PyString>() {
+            let entry = core_catalog::find(&name.to_string()).py()?;
+            for (k, v) in common.iter() {
+                let k = key(&k)?;
+                let spec = entry.lookup(&k).py()?;
+                if let Some(value) = to_value(spec, &v)? {
+                    given.push((k, value));
+                }
+            }
+            return Ok(Self::Catalogue(entry));
+        }
+        let Ok(spec) = system.cast::<PyDict>() else {
+            return Err(PyTypeError::new_err(
+                "system must be a catalogue name or an expression system's dict",
+            ));
+        };
+        if !common.is_empty() {
+            return Err(PyValueError::new_err(
+                "common values apply to catalogue systems; an expression system's parameter \
+                 values are part of it",
+            ));
+        }
+        Ok(Self::Expression(ExprSpec::from_dict(spec)?))
+    }
+}
+
+/// Integrates `n` members of `system` (a catalogue name, or an expression system's dict: see
+/// [`ExprSpec::from_dict`]): `common` values of a catalogue system (as `build` takes them),
+/// `sweeps` of `(parameter or "name[i]", values)`, optional initial `states` (`n x state
+/// length`). Returns a dict: `method`, `ndof`, `final_state` (`n x dim`), `t` and
+/// `trajectory` (`n x samples x dim`) when `stride` is given, `reductions` (the reductions
+/// asked, by name: `max_energy_error`, `event_time` (one per event, in order),
+/// `max_lyapunov`, `sali`; each a list of arrays of `n`; `max_lyapunov` and `sali` being
+/// their `renormalize_every`), `steps` (the steps each member took: fewer than the span's when
 /// `final_state` is false and only events are asked, each member then stopping at its last
 /// event; `final_state` is then `n x 0`).
 ///
@@ -76,13 +124,13 @@ fn event(index: usize, kind: &str, value: f64) -> PyResult<Reduction> {
 /// integration; with `check_only` nothing else is done and an empty dict returned),
 /// `KeyboardInterrupt` on Ctrl-C, and what `progress` raises.
 #[pyfunction]
-#[pyo3(signature = (name, common, sweeps, states, n, t_span, dt, method=None, stride=None,
+#[pyo3(signature = (system, common, sweeps, states, n, t_span, dt, method=None, stride=None,
                     energy_error=false, events=Vec::new(), max_lyapunov=None, sali=None,
                     final_state=true, threads=None, progress=None, check_only=false))]
 #[allow(clippy::too_many_arguments)]
 pub fn ensemble<'py>(
     py: Python<'py>,
-    name: &str,
+    system: &Bound<'py, PyAny>,
     common: &Bound<'py, PyDict>,
     sweeps: Vec<(String, PyReadonlyArray1<'py, f64>)>,
     states: Option<PyReadonlyArray2<'py, f64>>,
@@ -100,15 +148,8 @@ pub fn ensemble<'py>(
     progress: Option<Py<PyAny>>,
     check_only: bool,
 ) -> PyResult<Bound<'py, PyDict>> {
-    let entry = core_catalog::find(name).py()?;
     let mut given = Vec::with_capacity(common.len());
-    for (k, v) in common.iter() {
-        let k = key(&k)?;
-        let spec = entry.lookup(&k).py()?;
-        if let Some(value) = to_value(spec, &v)? {
-            given.push((k, value));
-        }
-    }
+    let system = System::from_py(system, common, &mut given)?;
     let members = Members {
         common: given,
         sweeps: sweeps
@@ -140,23 +181,21 @@ pub fn ensemble<'py>(
         final_state,
         threads,
     };
-    if check_only {
-        py.detach(|| core_ensemble::check(entry, &members, &plan))
-            .py()?;
+    let out = match system {
+        System::Catalogue(entry) => {
+            let source = FromCatalogue::new(entry, &members).py()?;
+            execute(py, &source, &plan, progress, check_only)?
+        }
+        System::Expression(spec) => {
+            let build = |params: &[f64], state: &[f64]| spec.build(params, state);
+            let source =
+                FromParameters::new(spec.params.clone(), spec.state.clone(), &members, build)
+                    .py()?;
+            execute(py, &source, &plan, progress, check_only)?
+        }
+    };
+    let Some(out) = out else {
         return Ok(PyDict::new(py));
-    }
-    let (outcome, raised) = py.detach(|| {
-        let mut observer = Progress {
-            callback: progress,
-            raised: None,
-        };
-        let outcome = core_ensemble::run(entry, &members, &plan, Some(&mut observer));
-        (outcome, observer.raised)
-    });
-    let out = match (outcome, raised) {
-        (Ok(r), _) => r,
-        (Err(Error::Interrupted { .. }), Some(e)) => return Err(e),
-        (Err(e), _) => return Err(crate::errors::to_py(e)),
     };
     let d = PyDict::new(py);
     d.set_item("method", out.method.name())?;
@@ -165,12 +204,49 @@ pub fn ensemble<'py>(
     d.set_item("steps", out.steps.into_pyarray(py))?;
     d.set_item("t", out.t.map(|t| t.into_pyarray(py)))?;
     d.set_item("trajectory", out.trajectory.map(|a| a.into_pyarray(py)))?;
-    let reductions = PyList::empty(py);
-    for (_, values) in out.reductions {
-        reductions.append(values.into_pyarray(py))?;
+    let reductions = PyDict::new(py);
+    for (name, values) in out.reductions {
+        let same = match reductions.get_item(name)? {
+            Some(list) => list.cast_into::<PyList>()?,
+            None => {
+                let list = PyList::empty(py);
+                reductions.set_item(name, &list)?;
+                list
+            }
+        };
+        same.append(values.into_pyarray(py))?;
     }
     d.set_item("reductions", reductions)?;
     Ok(d)
+}
+
+/// Checks (`check_only`: `None` once every member passed) or runs the members of `source`
+/// with the GIL released, `progress` called and Ctrl-C checked from the waiting thread.
+fn execute<S: MemberSource + ?Sized>(
+    py: Python<'_>,
+    source: &S,
+    plan: &Plan,
+    progress: Option<Py<PyAny>>,
+    check_only: bool,
+) -> PyResult<Option<EnsembleResult>> {
+    if check_only {
+        py.detach(|| core_ensemble::check_source(source, plan))
+            .py()?;
+        return Ok(None);
+    }
+    let (outcome, raised) = py.detach(|| {
+        let mut observer = Progress {
+            callback: progress,
+            raised: None,
+        };
+        let outcome = core_ensemble::run_source(source, plan, Some(&mut observer));
+        (outcome, observer.raised)
+    });
+    match (outcome, raised) {
+        (Ok(r), _) => Ok(Some(r)),
+        (Err(Error::Interrupted { .. }), Some(e)) => Err(e),
+        (Err(e), _) => Err(crate::errors::to_py(e)),
+    }
 }
 
 /// Adds `ensemble` to the module.

@@ -1,15 +1,19 @@
 //! The SymPy engines' native half: a Lagrangian, a Hamiltonian or the components of an ODE
 //! given as prefix S-expressions (`physicskit::classical::lagrangian::Expr`) become a
 //! [`LagrangianModel`], an [`ExprHamiltonian`] or an [`ExprOde`] behind the core's
-//! type-erased wrappers, a [`NativeSystem`] like any built-in system.
+//! type-erased wrappers, a [`NativeSystem`] like any built-in system. [`ExprSpec`] holds what
+//! builds one (the expressions, named parameters, a state), for ensembles, which build one
+//! system per member.
 
 use numpy::{PyArray2, PyReadonlyArray1};
-use physicskit::classical::core::erased::{Hamiltonian, Lagrangian, Ode};
+use physicskit::classical::core::erased::{DynSystem, Hamiltonian, Lagrangian, Ode};
 use physicskit::classical::lagrangian::{
     Expr, ExprHamiltonian, ExprLagrangian, ExprOde, LagrangianModel,
 };
 use physicskit::classical::{Error, HamiltonianSystem};
+use pyo3::exceptions::PyValueError;
 use pyo3::prelude::*;
+use pyo3::types::PyDict;
 
 use crate::convert::to_vec;
 use crate::errors::IntoPyResult;
@@ -34,12 +38,158 @@ pub fn expr_hamiltonian(
     p0: Arr<'_>,
 ) -> PyResult<NativeSystem> {
     let expr = Expr::parse(sexpr).py()?;
-    let system =
-        ExprHamiltonian::new(expr, ndof, to_vec(&params), &to_vec(&q0), &to_vec(&p0)).py()?;
+    let system = hamiltonian(expr, ndof, to_vec(&params), &to_vec(&q0), &to_vec(&p0)).py()?;
     Ok(NativeSystem::unlisted(
         HAMILTONIAN_EXPRESSION_SYSTEM,
-        Box::new(Hamiltonian(system)),
+        system,
     ))
+}
+
+/// The system `expr_hamiltonian` wraps.
+fn hamiltonian(
+    expr: Expr,
+    ndof: usize,
+    params: Vec<f64>,
+    q0: &[f64],
+    p0: &[f64],
+) -> physicskit::classical::Result<Box<dyn DynSystem>> {
+    Ok(Box::new(Hamiltonian(ExprHamiltonian::new(
+        expr, ndof, params, q0, p0,
+    )?)))
+}
+
+/// The system `expr_ode` wraps.
+fn ode(
+    f: Vec<Expr>,
+    params: Vec<f64>,
+    y0: &[f64],
+    energy: Option<Expr>,
+) -> physicskit::classical::Result<Box<dyn DynSystem>> {
+    Ok(Box::new(Ode(ExprOde::new(f, params, y0, energy)?)))
+}
+
+/// The system `expr_lagrangian` wraps.
+fn lagrangian(
+    expr: Expr,
+    ndof: usize,
+    params: Vec<f64>,
+    q0: &[f64],
+    qdot0: &[f64],
+) -> physicskit::classical::Result<Box<dyn DynSystem>> {
+    let lagrangian = ExprLagrangian::new(expr, ndof, params)?;
+    Ok(Box::new(Lagrangian(LagrangianModel::new(
+        lagrangian, q0, qdot0,
+    )?)))
+}
+
+/// Which engine an [`ExprSpec`] is of.
+#[derive(Debug, Clone)]
+enum ExprFamily {
+    /// `HamiltonianEngine`: `H` in `ndof` coordinates and momenta.
+    Hamiltonian { ndof: usize },
+    /// `LagrangianEngine`: `L` in `ndof` coordinates and velocities.
+    Lagrangian { ndof: usize },
+    /// `ODEEngine`: one expression per component, and optionally an energy.
+    Ode { energy: Option<Expr> },
+}
+
+/// What builds an expression system: the engine's expressions, its parameters by name (in
+/// the order the expressions index them) and an initial state. An ensemble builds each member
+/// from it with the member's parameters and state ([`ExprSpec::build`]).
+#[derive(Debug, Clone)]
+pub struct ExprSpec {
+    family: ExprFamily,
+    exprs: Vec<Expr>,
+    /// The parameters' names and values.
+    pub params: Vec<(String, f64)>,
+    /// The initial state.
+    pub state: Vec<f64>,
+}
+
+impl ExprSpec {
+    /// The spec from the dict the Python engines make (`family`: `"hamiltonian"`,
+    /// `"lagrangian"` or `"ode"`; `expressions`: prefix S-expressions, one for `H` or `L`, one
+    /// per component for an ODE; `ndof`, except for an ODE; `params`: `(name, value)` pairs;
+    /// `energy`: an ODE's optional energy expression; `state`: the initial state).
+    ///
+    /// # Errors
+    /// `ValueError` for a missing or malformed entry, an expression that does not parse, or a
+    /// state of the wrong length.
+    pub fn from_dict(spec: &Bound<'_, PyDict>) -> PyResult<Self> {
+        fn item<'py, T: FromPyObjectOwned<'py>>(d: &Bound<'py, PyDict>, key: &str) -> PyResult<T> {
+            let value = d.get_item(key)?.ok_or_else(|| {
+                PyValueError::new_err(format!("the expression system lacks {key:?}"))
+            })?;
+            value.extract::<T>().map_err(|e| {
+                let e: PyErr = e.into();
+                PyValueError::new_err(format!("the expression system's {key:?}: {e}"))
+            })
+        }
+        let exprs = item::<Vec<String>>(spec, "expressions")?
+            .iter()
+            .map(|e| Expr::parse(e))
+            .collect::<Result<Vec<_>, _>>()
+            .py()?;
+        let family: String = item(spec, "family")?;
+        let state: Vec<f64> = item(spec, "state")?;
+        let params: Vec<(String, f64)> = item(spec, "params")?;
+        let (family, dim) = match family.as_str() {
+            "hamiltonian" | "lagrangian" if exprs.len() == 1 => {
+                let ndof: usize = item(spec, "ndof")?;
+                let family = if family == "hamiltonian" {
+                    ExprFamily::Hamiltonian { ndof }
+                } else {
+                    ExprFamily::Lagrangian { ndof }
+                };
+                (family, 2 * ndof)
+            }
+            "ode" => {
+                let energy: Option<String> = item(spec, "energy")?;
+                let energy = energy.as_deref().map(Expr::parse).transpose().py()?;
+                (ExprFamily::Ode { energy }, exprs.len())
+            }
+            other => {
+                return Err(PyValueError::new_err(format!(
+                    "the expression system's family must be hamiltonian or lagrangian (one \
+                     expression) or ode, got {other:?} with {} expressions",
+                    exprs.len()
+                )))
+            }
+        };
+        check_len("state", &state, dim).py()?;
+        Ok(Self {
+            family,
+            exprs,
+            params,
+            state,
+        })
+    }
+
+    /// The system with parameter values `params` (in the order of [`ExprSpec::params`]) at
+    /// `state`.
+    ///
+    /// # Errors
+    /// Whatever the system's constructor refuses (parameters not finite, a state of the
+    /// wrong length or not finite, a singular mass matrix ...).
+    pub fn build(
+        &self,
+        params: &[f64],
+        state: &[f64],
+    ) -> physicskit::classical::Result<Box<dyn DynSystem>> {
+        let params = params.to_vec();
+        let halves = |ndof: usize| state.split_at(ndof.min(state.len()));
+        match &self.family {
+            ExprFamily::Hamiltonian { ndof } => {
+                let (q0, p0) = halves(*ndof);
+                hamiltonian(self.exprs[0].clone(), *ndof, params, q0, p0)
+            }
+            ExprFamily::Lagrangian { ndof } => {
+                let (q0, qdot0) = halves(*ndof);
+                lagrangian(self.exprs[0].clone(), *ndof, params, q0, qdot0)
+            }
+            ExprFamily::Ode { energy } => ode(self.exprs.clone(), params, state, energy.clone()),
+        }
+    }
 }
 
 /// A first-order system from prefix S-expressions of the components of `f(t, y)` and
@@ -58,11 +208,8 @@ pub fn expr_ode(
         .collect::<Result<Vec<_>, _>>()
         .py()?;
     let energy = energy.map(Expr::parse).transpose().py()?;
-    let system = ExprOde::new(f, to_vec(&params), &to_vec(&y0), energy).py()?;
-    Ok(NativeSystem::unlisted(
-        ODE_EXPRESSION_SYSTEM,
-        Box::new(Ode(system)),
-    ))
+    let system = ode(f, to_vec(&params), &to_vec(&y0), energy).py()?;
+    Ok(NativeSystem::unlisted(ODE_EXPRESSION_SYSTEM, system))
 }
 
 /// The Jacobian `d(derivatives)/d(state)` of `system` at `(t, state)`, row-major as a square
@@ -141,12 +288,8 @@ pub fn expr_lagrangian(
     qdot0: Arr<'_>,
 ) -> PyResult<NativeSystem> {
     let expr = Expr::parse(sexpr).py()?;
-    let lagrangian = ExprLagrangian::new(expr, ndof, to_vec(&params)).py()?;
-    let model = LagrangianModel::new(lagrangian, &to_vec(&q0), &to_vec(&qdot0)).py()?;
-    Ok(NativeSystem::unlisted(
-        EXPRESSION_SYSTEM,
-        Box::new(Lagrangian(model)),
-    ))
+    let system = lagrangian(expr, ndof, to_vec(&params), &to_vec(&q0), &to_vec(&qdot0)).py()?;
+    Ok(NativeSystem::unlisted(EXPRESSION_SYSTEM, system))
 }
 
 /// Parses `sexpr` and checks its variable and parameter indices against `ndof` and `nparams`.

@@ -1,5 +1,6 @@
 """Ensembles from Python: grid-shaped outputs, bit-identity with single runs and across thread
-counts, bad members refused by index before any work, Python subclasses refused."""
+counts, bad members refused by index before any work, Python subclasses refused; the same for
+the SymPy engines' systems."""
 
 import numpy as np
 import pytest
@@ -115,12 +116,20 @@ def test_bad_arguments_are_refused():
         pc.ensemble("nope", (0, 1), 0.1, grid={"q0": [1.0]})
 
 
+def _henon_heiles_section(hh, energy, ys, pys):
+    """States ``[0, y, p_x, p_y]`` on the section ``x = 0`` at ``energy``, on the grid of
+    ``ys`` x ``pys``, ``p_x >= 0`` from the system's own potential: ``p_x^2 = 2 (E - V(0, y))
+    - p_y^2``."""
+    y, py = np.meshgrid(ys, pys, indexing="ij")
+    potential = np.vectorize(lambda v: hh.potential_energy(np.array([0.0, v])))(y)
+    px = np.sqrt(2 * (energy - potential) - py**2)
+    return np.stack([np.zeros_like(y), y, px, py], axis=-1)
+
+
 def test_chaos_reductions_equal_single_orbit_max_lyapunov_and_sali_bit_for_bit():
     # Henon-Heiles at E = 1/8 from the section x = 0 (p_x >= 0 from the energy), a 2 x 3 grid.
-    y, py = np.meshgrid([-0.2, 0.1], [-0.1, 0.0, 0.25], indexing="ij")
-    px = np.sqrt(2 * 0.125 - py**2 - y**2 + 2 * y**3 / 3)
-    states = np.stack([np.zeros_like(y), y, px, py], axis=-1)
     hh = pc.HenonHeilesSystem([0.0, 0.0], [0.0, 0.0])
+    states = _henon_heiles_section(hh, 0.125, [-0.2, 0.1], [-0.1, 0.0, 0.25])
     out = pc.ensemble(hh, (0.0, 40.0), 0.05, states=states, max_lyapunov=True, sali=True,
                       renormalize_every=5, energy_error=True, threads=2)
     assert out.max_lyapunov.shape == out.sali.shape == out.energy_error.shape == (2, 3)
@@ -144,6 +153,151 @@ def test_events_only_without_final_state_stop_early_with_the_same_times():
     assert np.array_equal(early.events["flip"], full.events["flip"], equal_nan=True)
     flipped = np.isfinite(full.events["flip"])
     assert flipped.any() and (~flipped).any()
-    # A member stops on the step of its flip; one that never flips runs the whole span.
-    assert np.all(early.steps[flipped] == np.ceil(full.events["flip"][flipped] / 0.01 - 1e-9))
+    # A member stops on the step of its flip, the step k whose span [t_(k-1), t_k] holds the
+    # flip time (t_k = k dt, as the engine's time grid computes it); one that never flips runs
+    # the whole span.
+    k, t_flip = early.steps[flipped], early.events["flip"][flipped]
+    assert np.all(((k - 1) * 0.01 <= t_flip) & (t_flip <= k * 0.01))
     assert np.all(early.steps[~flipped] == 200) and np.all(full.steps == 200)
+
+
+def test_final_state_false_with_nothing_else_says_which_options_give_an_output():
+    with pytest.raises(ValueError, match="final_state=False .* stride, energy_error=True, events"):
+        pc.ensemble("harmonic-oscillator", (0, 1), 0.1, sweep={"q0": [1.0]}, final_state=False)
+
+
+def test_chaos_reductions_need_a_fixed_step_method():
+    # dop853 has no fixed-step flow for the deviation vectors: refused before any work, naming
+    # the methods that do.
+    hh = pc.HenonHeilesSystem([0.0, 0.0], [0.0, 0.0])
+    states = _henon_heiles_section(hh, 0.125, [0.1], [0.0])
+    for flag in ("sali", "max_lyapunov"):
+        with pytest.raises(ValueError, match="adaptive method.*use rk4"):
+            pc.ensemble(hh, (0, 1), 0.1, "dop853", states=states, **{flag: True})
+    # Without a chaos reduction dop853 runs (its dt the first step).
+    assert pc.ensemble(hh, (0, 1), 0.1, "dop853", states=states).method == "dop853"
+
+
+def test_splitting_methods_are_refused_on_a_lagrangian_system():
+    with pytest.raises(ValueError, match="yoshida4"):
+        pc.ensemble(pc.DoublePendulum([0.0, 0.0], [0.0, 0.0]), (0, 1), 0.1, "yoshida4",
+                    grid={"theta0[0]": [0.1, 0.2]})
+
+
+def test_ensemble_sali_runs_past_the_floor_where_chaos_map_stops():
+    # A chaotic Henon-Heiles orbit at E = 1/6. chaos_map stops SALI once below its floor
+    # (1e-14); the ensemble follows it to t1 like sali() does, so its value is far below (the
+    # deviation vectors aligned to rounding). max_lyapunov is the same loop in both.
+    hh = pc.HenonHeilesSystem([0.0, 0.0], [0.0, 0.0])
+    states = _henon_heiles_section(hh, 1 / 6, [-0.1], [0.0]).reshape(1, 4)
+    span, dt = (0.0, 500.0), 0.05
+    out = pc.ensemble(hh, span, dt, states=states, sali=True, max_lyapunov=True)
+    mapped = pc.chaos_map(hh, states, span, dt, indicator="sali")
+    assert 0.0 < mapped[0] < 1e-14
+    assert out.sali[0] < mapped[0] / 100
+    lyapunov = pc.chaos_map(hh, states, span, dt, indicator="lyapunov")
+    assert out.max_lyapunov[0] == lyapunov[0]
+
+
+# -- the SymPy engines' systems ----------------------------------------------------------------
+
+def _henon_heiles_engine(lam=1.0):
+    """Henon-Heiles with its cubic terms scaled by a parameter ``lam``, in SymPy."""
+    sp = pytest.importorskip("sympy")
+    from physicskit.classical.utils import HamiltonianEngine
+
+    x, y, px, py, lam_ = sp.symbols("x y p_x p_y lam")
+    H = (px**2 + py**2) / 2 + (x**2 + y**2) / 2 + lam_ * (x**2 * y - y**3 / 3)
+    return HamiltonianEngine([x, y], [px, py], H, params={"lam": lam})
+
+
+def _lorenz_engine(rho=28.0):
+    sp = pytest.importorskip("sympy")
+    from physicskit.classical.utils import ODEEngine
+
+    x, y, z, s, r, b = sp.symbols("x y z sigma rho beta")
+    return ODEEngine([x, y, z], [s * (y - x), x * (r - z) - y, x * y - b * z],
+                     params={"sigma": 10.0, "rho": rho, "beta": 8.0 / 3.0})
+
+
+def test_sympy_engine_members_equal_their_own_integrate_bit_for_bit():
+    lam = np.array([[0.5, 1.0, 1.5], [1.0, 0.8, 1.2]])
+    states = np.zeros((2, 3, 4))
+    states[..., 1] = np.linspace(0.0, 0.25, 6).reshape(2, 3)
+    states[..., 2] = 0.35
+    system = _henon_heiles_engine().system([0.0, 0.1], [0.3, 0.0])
+    runs = [pc.ensemble(system, (0.0, 20.0), 0.01, sweep={"lam": lam}, states=states,
+                        energy_error=True, threads=k) for k in (1, 2, 3)]
+    out = runs[0]
+    for other in runs[1:]:
+        assert out.final_state.tobytes() == other.final_state.tobytes()
+        assert out.energy_error.tobytes() == other.energy_error.tobytes()
+    for i, j in [(0, 0), (1, 2)]:
+        single = _henon_heiles_engine(lam[i, j]).system(states[i, j, :2], states[i, j, 2:])
+        r = single.integrate((0.0, 20.0), 0.01)
+        assert out.method == r.method == "yoshida4"
+        assert np.array_equal(out.final_state[i, j], r.y[-1])
+        e = np.asarray(r.energy)
+        assert out.energy_error[i, j] == np.max(np.abs(e - e[0]) / abs(e[0]))
+    # Without states the members start from the system's state; a parameter may be named by
+    # its SymPy symbol.
+    (lam_symbol,) = system.engine.params
+    swept = pc.ensemble(system, (0.0, 20.0), 0.01, grid={lam_symbol: [0.7]})
+    alone = _henon_heiles_engine(0.7).system([0.0, 0.1], [0.3, 0.0]).integrate((0.0, 20.0), 0.01)
+    assert np.array_equal(swept.final_state[0], alone.y[-1])
+
+
+def test_sympy_lorenz_chaos_reductions_equal_the_single_orbit_calls():
+    rho = [10.0, 28.0]
+    out = pc.ensemble(_lorenz_engine().system([1.0, 1.0, 1.0]), (0.0, 10.0), 0.01, "rk4",
+                      grid={"rho": rho}, max_lyapunov=True, sali=True)
+    for i, r in enumerate(rho):
+        system = lambda: _lorenz_engine(r).system([1.0, 1.0, 1.0])  # noqa: E731
+        alone = pc.max_lyapunov(system(), (0.0, 10.0), 0.01, method="rk4")
+        assert out.max_lyapunov[i] == alone.exponents[0]
+        assert out.sali[i] == pc.sali(system(), (0.0, 10.0), 0.01, method="rk4").index[-1]
+    # rho = 10: a stable fixed point (negative exponent); rho = 28: chaos (about +0.9). Only
+    # the signs are asked of these finite-time estimates.
+    assert out.max_lyapunov[0] < 0.0 < out.max_lyapunov[1]
+
+
+def test_sympy_lagrangian_members_and_method_refusal():
+    from conftest import sympy_double_pendulum
+
+    engine = sympy_double_pendulum()
+    states = np.array([[0.3, 0.2, 0.0, 0.0], [2.0, 1.0, 0.0, 0.5]])
+    system = engine.system([0.0, 0.0], [0.0, 0.0])
+    out = pc.ensemble(system, (0.0, 1.0), 0.01, states=states)
+    r = engine.system(states[1, :2], states[1, 2:]).integrate((0.0, 1.0), 0.01)
+    assert out.method == r.method == "implicit_midpoint"
+    assert np.array_equal(out.final_state[1], r.y[-1])
+    with pytest.raises(ValueError, match="yoshida4"):
+        pc.ensemble(system, (0.0, 1.0), 0.01, "yoshida4", states=states)
+
+
+def test_sympy_engine_members_are_checked_by_index_and_names_listed():
+    system = _henon_heiles_engine().system([0.0, 0.1], [0.3, 0.0])
+    with pytest.raises(ValueError, match="no such parameter.*: lam"):
+        pc.ensemble(system, (0, 1), 0.1, grid={"mu": [1.0]})
+    lam = np.ones(50)
+    lam[31] = np.nan
+    with pytest.raises(ValueError, match="member 31: lam"):
+        pc.ensemble(system, (0, 1), 0.1, sweep={"lam": lam})
+    states = np.zeros((3, 4))
+    states[2, 3] = np.inf
+    with pytest.raises(ValueError, match="member 2"):
+        pc.ensemble(system, (0, 1), 0.1, states=states)
+    sp = pytest.importorskip("sympy")
+    from physicskit.classical.utils import HamiltonianEngine
+
+    q, p = sp.symbols("q p")
+    oscillator = HamiltonianEngine([q], [p], p**2 / 2 + q**2 / 2).system([1.0], [0.0])
+    with pytest.raises(ValueError, match="no parameters; vary the initial states"):
+        pc.ensemble(oscillator, (0, 1), 0.1, grid={"k": [1.0]})
+
+    class Mine(type(system)):
+        pass
+
+    with pytest.raises(TypeError, match="Python subclass"):
+        pc.ensemble(Mine(system.engine, [0.0, 0.1], [0.3, 0.0]), (0, 1), 0.1,
+                    grid={"lam": [1.0]})

@@ -1,5 +1,6 @@
-"""Ensembles on a Dask LocalCluster: the same bits as the local engine, even when a worker is
-killed mid-run (its chunks run again elsewhere)."""
+"""Ensembles on a Dask LocalCluster: the same bits as the local engine (every output, the chaos
+reductions and a SymPy engine's system included), even when a worker is killed mid-run (its
+chunks run again elsewhere)."""
 
 import os
 import signal
@@ -24,9 +25,13 @@ def _run(t1=3.0, **kw):
 
 
 def _same_bits(a, b):
-    for name in ("final_state", "trajectory", "energy_error", "t"):
-        assert getattr(a, name).tobytes() == getattr(b, name).tobytes(), name
-    assert a.events["flip"].tobytes() == b.events["flip"].tobytes()
+    for name in ("final_state", "trajectory", "energy_error", "t", "steps", "max_lyapunov",
+                 "sali"):
+        x, y = getattr(a, name), getattr(b, name)
+        assert (x is None and y is None) or x.tobytes() == y.tobytes(), name
+    assert a.events.keys() == b.events.keys()
+    for name in a.events:
+        assert a.events[name].tobytes() == b.events[name].tobytes(), name
     assert a.shape == b.shape and a.method == b.method
 
 
@@ -44,6 +49,24 @@ def test_local_cluster_gives_the_local_bits(client):
     _same_bits(local, _run(client=client))
     # Any chunking: one member per chunk at the edge of a chunk, and uneven chunks.
     _same_bits(local, _run(client=client, chunk_size=7))
+
+
+def test_chaos_reductions_and_a_sympy_engine_system_give_the_local_bits(client):
+    # Small runs (a fraction of a second each): what is checked is the shipping of the outputs
+    # and of an engine's system (its compiled expressions) to the workers.
+    short = dict(t1=2.0, max_lyapunov=True, sali=True, renormalize_every=5)
+    _same_bits(_run(threads=1, **short), _run(client=client, chunk_size=25, **short))
+    sp = pytest.importorskip("sympy")
+    from physicskit.classical.utils import ODEEngine
+
+    x, y, z, s, r, b = sp.symbols("x y z sigma rho beta")
+    lorenz = ODEEngine([x, y, z], [s * (y - x), x * (r - z) - y, x * y - b * z],
+                       params={"sigma": 10.0, "rho": 28.0, "beta": 8.0 / 3.0}).system([1, 1, 1])
+    run = dict(grid={"rho": np.linspace(0.5, 30.0, 9), "sigma": [8.0, 10.0]}, stride=50,
+               max_lyapunov=True)
+    local = pc.ensemble(lorenz, (0.0, 5.0), 0.01, "rk4", threads=1, **run)
+    _same_bits(local, pc.ensemble(lorenz, (0.0, 5.0), 0.01, "rk4", client=client, chunk_size=4,
+                                  **run))
 
 
 def test_a_worker_killed_mid_run_costs_only_its_chunk(client):

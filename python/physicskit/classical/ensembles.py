@@ -1,4 +1,5 @@
-"""Ensembles and parameter sweeps of a built-in system, on all cores or on a Dask cluster.
+"""Ensembles and parameter sweeps of a built-in system or a SymPy engine's system, on all
+cores or on a Dask cluster.
 
 >>> import numpy as np
 >>> from physicskit.classical import DoublePendulum, ensemble, abs_above
@@ -9,14 +10,30 @@
 >>> out.events["flip"].shape
 (5, 5)
 
-Every member is built through the catalogue from the system's constructor arguments, with the
-swept values in place, and checked before any integration (a bad member raises ``ValueError``
-naming its index in the flattened member list). The Rust engine integrates each member with
-its own ``integrate`` loop, so a member's results equal a single ``integrate`` of it bit for
-bit, on any number of threads and any split of the members over Dask workers.
+Every member of a built-in system is built through the catalogue from the system's
+constructor arguments, with the swept values in place; a member of a SymPy engine's system
+(:class:`~physicskit.classical.utils.LagrangianEngine`,
+:class:`~physicskit.classical.utils.HamiltonianEngine`,
+:class:`~physicskit.classical.utils.ODEEngine`) is built natively from the engine's compiled
+expressions with its parameter values and initial state. Each is checked before any
+integration (a bad member raises ``ValueError`` naming its index in the flattened member list).
+The Rust engine integrates each member with its own ``integrate`` loop, so a member's results
+equal a single ``integrate`` of it bit for bit, on any number of threads and any split of the
+members over Dask workers.
+
+>>> import sympy as sp
+>>> from physicskit.classical.utils import ODEEngine
+>>> x, y, z, rho = sp.symbols("x y z rho")
+>>> lorenz = ODEEngine([x, y, z], [10 * (y - x), x * (rho - z) - y, x * y - 8 * z / 3],
+...                    params={rho: 28.0})
+>>> out = ensemble(lorenz.system([1.0, 1.0, 1.0]), (0, 1), 0.01, "rk4",
+...                grid={"rho": [0.5, 14.0, 28.0]})
+>>> out.final_state.shape
+(3, 3)
 
 ``client=distributed.Client(...)`` splits the members into chunks that the workers run with
-the same engine; a worker lost mid-run costs only its chunks, which Dask runs again. Dask is
+the same engine; a worker lost mid-run costs only its chunks, which Dask runs again (an
+engine's system travels as its compiled expressions: the workers need no SymPy). Dask is
 optional (``pip install physicskit[distributed]``) and imported only when a client is given.
 """
 
@@ -29,7 +46,7 @@ from typing import Any, Callable, Mapping, Sequence
 
 import numpy as np
 
-from ._native import _core, as_array, as_flag, as_int, as_scalar, as_t_span
+from ._native import _core, as_array, as_flag, as_int, as_scalar, as_t_span, as_vector
 
 __all__ = ["ensemble", "EnsembleResult", "crossing", "abs_above"]
 
@@ -77,24 +94,40 @@ class EnsembleResult:
     steps: np.ndarray | None = None
 
 
-def _system_spec(system: Any) -> tuple[str, dict[str, Any]]:
-    """The catalogue name and the constructor values of ``system`` (an instance of a built-in
-    class, or a catalogue name for its defaults)."""
+def _system_spec(system: Any) -> tuple[str | dict[str, Any], dict[str, Any]]:
+    """What ``_core.ensemble`` builds the members from: the catalogue name and the constructor
+    values of ``system`` (an instance of a built-in class, or a catalogue name for its
+    defaults), or the native description of a SymPy engine's system (its expressions,
+    parameters and current state) with no constructor values."""
     if isinstance(system, str):
         return system, {}
-    from .core import DynamicalSystem
+    from .core import DynamicalSystem, LagrangianSystem
+    from .utils.symbolic import HamiltonianEngine, LagrangianEngine, ODEEngine
 
     if not isinstance(system, DynamicalSystem):
         raise TypeError(
-            f"system must be a built-in system or a catalogue name, got {system!r}"
+            f"system must be a built-in system, a SymPy engine's system or a catalogue name, "
+            f"got {system!r}"
         )
     native = getattr(system, "_native", None)
     module = type(system).__module__ or ""
-    if native is None or not module.startswith("physicskit."):
+    builtin = module.startswith("physicskit.")
+    engine = getattr(system, "engine", None)
+    # A LagrangianSystem subclass given an engine runs natively (its documented use); other
+    # subclasses of an engine's system class are Python subclasses like any other.
+    if isinstance(engine, (LagrangianEngine, HamiltonianEngine, ODEEngine)) and (
+        builtin or (isinstance(system, LagrangianSystem) and isinstance(engine, LagrangianEngine))
+    ):
+        spec = engine._native_spec()
+        spec["state"] = as_vector("state", system.state)
+        return spec, {}
+    if native is None or not builtin:
         raise TypeError(
-            f"ensemble runs built-in systems only; {type(system).__name__} is a Python "
-            "subclass, whose methods are Python callbacks that hold the GIL and cannot run on "
-            "the engine's threads or workers. Integrate it member by member with .integrate()"
+            f"ensemble runs built-in systems and SymPy engines' systems only; "
+            f"{type(system).__name__} is a Python subclass, whose methods are Python callbacks "
+            "that hold the GIL and cannot run on the engine's threads or workers. Write it with "
+            "a SymPy engine (physicskit.classical.utils), or integrate it member by member "
+            "with .integrate()"
         )
     params = native.params
     if params is None:
@@ -115,6 +148,7 @@ def _members(
             raise TypeError(f"{arg} must be a dict of parameter name -> values, got {value!r}")
     columns: list[tuple[str, np.ndarray]] = []
     shape: tuple[int, ...] | None = None
+    # Names as strings: an engine's parameter may be given by its SymPy symbol.
     if grid is not None:
         axes = []
         for name, values in grid.items():
@@ -124,7 +158,7 @@ def _members(
             axes.append(a)
         shape = tuple(a.size for a in axes)
         meshes = np.meshgrid(*axes, indexing="ij")
-        columns = [(name, m.ravel()) for name, m in zip(grid, meshes)]
+        columns = [(str(name), m.ravel()) for name, m in zip(grid, meshes)]
     if sweep is not None:
         for name, values in sweep.items():
             a = as_array(f"sweep[{name!r}]", values)
@@ -132,7 +166,7 @@ def _members(
                 shape = a.shape
             if a.shape != shape:
                 raise ValueError(f"sweep[{name!r}] has shape {a.shape}, expected {shape}")
-            columns.append((name, np.ascontiguousarray(a.ravel())))
+            columns.append((str(name), np.ascontiguousarray(a.ravel())))
     flat_states = None
     if states is not None:
         s = as_array("states", states)
@@ -150,9 +184,10 @@ def _members(
 
 @dataclass
 class _Job:
-    """Members and run settings, as ``_core.ensemble`` takes them."""
+    """Members and run settings, as ``_core.ensemble`` takes them (plain data that pickles to
+    Dask workers: a catalogue name, or an engine's system as its compiled expressions)."""
 
-    name: str
+    system: str | dict[str, Any]
     common: dict[str, Any]
     sweeps: list[tuple[str, np.ndarray]]
     states: np.ndarray | None
@@ -162,7 +197,7 @@ class _Job:
     def part(self, start: int, stop: int) -> _Job:
         """Members ``start:stop``."""
         return _Job(
-            self.name,
+            self.system,
             self.common,
             [(k, v[start:stop]) for k, v in self.sweeps],
             None if self.states is None else self.states[start:stop],
@@ -173,7 +208,7 @@ class _Job:
     def __call__(self, **extra: Any) -> dict[str, Any]:
         """Runs the members on the local engine (what a Dask worker does with a part)."""
         return dict(
-            _core.ensemble(self.name, self.common, self.sweeps, self.states, self.n,
+            _core.ensemble(self.system, self.common, self.sweeps, self.states, self.n,
                            **self.run, **extra)
         )
 
@@ -218,13 +253,18 @@ def ensemble(
     client: Any = None,
     chunk_size: int | None = None,
 ) -> EnsembleResult:
-    """Integrates an ensemble of ``system`` (a built-in system, whose constructor arguments all
-    members share, or a catalogue name for its defaults).
+    """Integrates an ensemble of ``system``: a built-in system, whose constructor arguments all
+    members share; a catalogue name, for its defaults; or a system of a SymPy engine
+    (``LagrangianEngine``, ``HamiltonianEngine``, ``ODEEngine``: ``engine.system(...)``),
+    whose members share the engine's expressions and parameter values and start from the
+    system's current ``state``.
 
     Members: ``grid`` (name -> 1-D values, the Cartesian product in ``indexing="ij"`` order:
     the outputs have shape ``(len, len, ...)``), or ``sweep`` (name -> arrays of one shape,
     zipped), and/or ``states`` (``shape + (state length,)`` initial states). A name is a real or
-    integer parameter (``"c_pn"``) or one entry of a vector parameter (``"theta0[1]"``).
+    integer parameter (``"c_pn"``) or one entry of a vector parameter (``"theta0[1]"``); for an
+    engine's system, a key of the engine's ``params`` (its name or its SymPy symbol). An
+    unknown name is refused with the list of valid ones.
 
     Keeps per member the final state, the trajectory every ``stride`` steps, the maximum
     relative energy error (``energy_error=True``) and the first time of each event in
@@ -235,12 +275,23 @@ def ensemble(
     member at ``t_span[1]``, from the same loops as :func:`max_lyapunov` and :func:`sali` (each
     member's value is ``max_lyapunov(member, ...).exponents[0]`` and ``sali(member,
     ...).index[-1]`` bit for bit), renormalizing every ``renormalize_every`` steps. Their
-    deviation vectors are followed in a run of their own beside the member's ``integrate``. SALI
-    above :data:`CHAOS_THRESHOLD` (1e-8) says the orbit stayed regular over the span.
+    deviation vectors are followed in a run of their own beside the member's ``integrate``
+    (engines' systems get their tangent dynamics by automatic differentiation). SALI above
+    :data:`CHAOS_THRESHOLD` (1e-8) says the orbit stayed regular over the span. They need a
+    fixed-step method: an adaptive one (``dop853``) is refused before any work.
 
-    ``final_state=False`` keeps no final states; when only ``events`` are asked (no
-    ``stride``, no other reduction) each member then stops at its last event, with the same
-    event times as the full run (a flip-time map costs the time to each flip, not the span).
+    Against :func:`chaos_map` on the same states: ``max_lyapunov`` equals its
+    ``indicator="lyapunov"`` bit for bit. ``sali`` does not: ``chaos_map`` stops a point once
+    SALI falls below its floor ``SALI_FLOOR`` = 1e-14 (the orbit classified long before, only
+    rounding left) and returns that value, while the ensemble follows every member to
+    ``t_span[1]`` like :func:`sali` does, so a chaotic member's SALI can be exactly ``0.0``
+    (its deviation vectors aligned to rounding) where ``chaos_map`` gives about 1e-14. The two
+    agree on every verdict against :data:`CHAOS_THRESHOLD`.
+
+    ``final_state=False`` keeps no final states (another output must then be asked); when only
+    ``events`` are asked (no ``stride``, no other reduction) each member then stops at its last
+    event, with the same event times as the full run (a flip-time map costs the time to each
+    flip, not the span).
 
     ``progress``: ``True`` for a bar on stderr, or a callable ``(done, total)``. ``threads``:
     worker threads (default: one per core). ``client``: a ``distributed.Client``; the members
@@ -248,9 +299,10 @@ def ensemble(
     workers. Results are bit-identical whatever ``threads``, ``client`` and ``chunk_size``.
 
     Raises ``ValueError`` for a bad argument or member (named by its flattened index) before
-    any integration, ``TypeError`` for Python subclasses (their callbacks hold the GIL).
+    any integration, ``TypeError`` for Python subclasses (their callbacks hold the GIL; a SymPy
+    engine runs the same system natively).
     """
-    name, common = _system_spec(system)
+    source, common = _system_spec(system)
     shape, sweeps, flat_states = _members(grid, sweep, states)
     n = math.prod(shape)
     if n == 0:
@@ -267,6 +319,12 @@ def ensemble(
     every = as_int("renormalize_every", renormalize_every, minimum=1)
     for key, value in (("max_lyapunov", max_lyapunov), ("sali", sali)):
         run[key] = every if as_flag(key, value) else None
+    outputs = ("stride", "energy_error", "events", "max_lyapunov", "sali")
+    if not run["final_state"] and not any(run[k] for k in outputs):
+        raise ValueError(
+            "final_state=False with nothing else asked leaves no output: ask for stride, "
+            "energy_error=True, events, max_lyapunov=True or sali=True, or keep final_state"
+        )
     if threads is not None:
         threads = as_int("threads", threads, minimum=1, maximum=4096)
     if chunk_size is not None:
@@ -276,7 +334,7 @@ def ensemble(
     if client is not None and not hasattr(client, "submit"):
         raise TypeError(f"client must be a distributed.Client, got {client!r}")
     event_names = list(events or {})
-    job = _Job(name, common, sweeps, flat_states, n, run)
+    job = _Job(source, common, sweeps, flat_states, n, run)
     if client is None:
         bar = _Bar() if progress is True else None
         callback = bar if bar is not None else (progress if callable(progress) else None)
@@ -310,6 +368,13 @@ def _events(events: Any) -> list[EventSpec]:
     return out
 
 
+def _run_part(part: _Job) -> dict[str, Any]:
+    """A chunk on a Dask worker, on one thread: the worker's own threads run as many chunks at
+    once as it has (the native call releases the GIL), so a host with several worker processes
+    is not oversubscribed by each chunk spreading over all its cores."""
+    return part(threads=1)
+
+
 def _distributed(client: Any, job: _Job, chunk_size: int | None) -> dict[str, Any]:
     """Runs the members in chunks on ``client``'s workers and concatenates the chunks."""
     # Every member is built and checked here before anything is shipped.
@@ -318,7 +383,7 @@ def _distributed(client: Any, job: _Job, chunk_size: int | None) -> dict[str, An
         cores = sum(client.ncores().values()) or 1
         chunk_size = max(1, math.ceil(job.n / (4 * cores)))
     futures = [
-        client.submit(job.part(start, min(job.n, start + chunk_size)), pure=False)
+        client.submit(_run_part, job.part(start, min(job.n, start + chunk_size)), pure=False)
         for start in range(0, job.n, chunk_size)
     ]
     parts = client.gather(futures)
@@ -331,10 +396,11 @@ def _distributed(client: Any, job: _Job, chunk_size: int | None) -> dict[str, An
         "trajectory": None
         if first["trajectory"] is None
         else np.concatenate([p["trajectory"] for p in parts]),
-        "reductions": [
-            np.concatenate([p["reductions"][k] for p in parts])
-            for k in range(len(first["reductions"]))
-        ],
+        "reductions": {
+            name: [np.concatenate([p["reductions"][name][k] for p in parts])
+                   for k in range(len(arrays))]
+            for name, arrays in first["reductions"].items()
+        },
     }
     return out
 
@@ -342,13 +408,20 @@ def _distributed(client: Any, job: _Job, chunk_size: int | None) -> dict[str, An
 def _shape(
     out: Mapping[str, Any], shape: tuple[int, ...], run: Mapping[str, Any], event_names: list[str]
 ) -> EnsembleResult:
-    """The engine's member-major outputs reshaped to the member grid (the reductions in the
-    engine's order: energy error, events, max_lyapunov, sali)."""
+    """The engine's member-major outputs reshaped to the member grid; the reductions by the
+    engine's names (each a list of arrays: one per event for ``event_time``)."""
     final = np.asarray(out["final_state"])
-    reductions = [np.asarray(r).reshape(shape) for r in out["reductions"]]
-    energy = reductions.pop(0) if run["energy_error"] else None
-    events = {k: reductions.pop(0) for k in event_names}
-    chaos = {k: reductions.pop(0) if run[k] is not None else None for k in ("max_lyapunov", "sali")}
+    reductions = {
+        name: [np.asarray(a).reshape(shape) for a in arrays]
+        for name, arrays in out["reductions"].items()
+    }
+
+    def one(name: str) -> np.ndarray | None:
+        return reductions[name][0] if name in reductions else None
+
+    energy = one("max_energy_error")
+    events = dict(zip(event_names, reductions.get("event_time", []), strict=True))
+    chaos = {k: one(k) for k in ("max_lyapunov", "sali")}
     trajectory = out["trajectory"]
     return EnsembleResult(
         shape=shape,

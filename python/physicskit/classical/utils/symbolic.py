@@ -110,6 +110,19 @@ def _sympify(name: str, e, sp):
     return out
 
 
+def _spec(family: str, expressions: list[str], params: dict, **extra: Any) -> dict[str, Any]:
+    """An engine's systems as ``_core.ensemble`` takes them (with a ``state`` added): the
+    family, the S-expressions, the parameters as ``(name, value)`` in the order the
+    expressions index them (``param<j>``), and ``ndof`` or an ODE's ``energy``. Plain strings
+    and floats, so it pickles without SymPy."""
+    return {
+        "family": family,
+        "expressions": list(expressions),
+        "params": [(str(k), float(v)) for k, v in params.items()],
+        **extra,
+    }
+
+
 class _Translator:
     """SymPy expression -> prefix S-expression of ``Expr::parse``."""
 
@@ -240,6 +253,11 @@ class LagrangianEngine:
         return native("expr_lagrangian")(
             self.sexpr, self.n, self._param_values, state[: self.n], state[self.n :]
         )
+
+    def _native_spec(self) -> dict[str, Any]:
+        """What builds this engine's systems natively, as plain data (``_core.ensemble`` builds
+        one per member from it, on Dask workers too): see :func:`_spec`."""
+        return _spec("lagrangian", [self.sexpr], self.params, ndof=self.n)
 
     @property
     def mass_matrix(self):
@@ -446,6 +464,10 @@ class HamiltonianEngine:
     def _native_system(self, q0, p0):
         return native("expr_hamiltonian")(self.sexpr, self.n, self._param_values, q0, p0)
 
+    def _native_spec(self) -> dict[str, Any]:
+        """What builds this engine's systems natively, as plain data: see :func:`_spec`."""
+        return _spec("hamiltonian", [self.sexpr], self.params, ndof=self.n)
+
     def system(self, q0, p0) -> "SymbolicHamiltonianSystem":
         """A :class:`~physicskit.classical.HamiltonianSystem` with this Hamiltonian, started at
         ``(q0, p0)``; it integrates fully natively."""
@@ -587,6 +609,10 @@ class ODEEngine:
 
     def _native_system(self, y0):
         return native("expr_ode")(self.sexprs, self._param_values, y0, self._energy_sexpr)
+
+    def _native_spec(self) -> dict[str, Any]:
+        """What builds this engine's systems natively, as plain data: see :func:`_spec`."""
+        return _spec("ode", self.sexprs, self.params, energy=self._energy_sexpr)
 
     def system(self, y0) -> "SymbolicODESystem":
         """An :class:`~physicskit.classical.ODESystem` with this right-hand side, started at

@@ -1,5 +1,8 @@
-//! The members of an ensemble: a catalogue entry, values common to all members, swept
-//! parameters and initial states, each member built and checked through the catalogue.
+//! The members of an ensemble: who they are ([`Members`]: values common to all, swept
+//! parameters, initial states) and where they come from ([`MemberSource`]): a catalogue entry
+//! ([`FromCatalogue`], every member built and checked through the catalogue), or any system
+//! a closure builds from named real parameters ([`FromParameters`](super::FromParameters),
+//! the SymPy engines' systems).
 
 use crate::classical::core::catalog::{Default as ParamDefault, Literal, ParamKind};
 use crate::classical::core::{DynSystem, Error, Result, SystemEntry, Value};
@@ -30,7 +33,8 @@ impl Sweep {
 /// Who the members are.
 #[derive(Debug, Clone, PartialEq, Default)]
 pub struct Members {
-    /// Values shared by every member (others take the catalogue's defaults).
+    /// Values shared by every member (others take the source's: the catalogue's defaults, or
+    /// the values given to [`FromParameters`](super::FromParameters)).
     pub common: Vec<(String, Value)>,
     /// Per-member parameter values, applied over `common`.
     pub sweeps: Vec<Sweep>,
@@ -52,9 +56,27 @@ enum Slot {
     Element { slot: usize, index: usize },
 }
 
-/// A member factory: the checked recipe of every member.
+/// Where an ensemble's members come from: member `index` built at its initial state with its
+/// clock at `t0`.
+///
+/// The engine builds every member once to check it before any integration, and again to run
+/// it, each time on whichever thread is free: `build` must give the same system (the same
+/// bits) every time it is asked for the same member, and must not panic.
+pub trait MemberSource: Sync {
+    /// The number of members (at least 1).
+    fn count(&self) -> usize;
+
+    /// Builds member `index` (`< count()`) at its initial state, clock at `t0`.
+    ///
+    /// # Errors
+    /// Whatever makes the member invalid; the engine prefixes the argument's name with
+    /// `member {index}: `.
+    fn build(&self, index: usize, t0: f64) -> Result<Box<dyn DynSystem>>;
+}
+
+/// The members of a catalogue entry: the checked recipe of every member.
 #[derive(Debug, Clone)]
-pub(crate) struct Recipe<'a> {
+pub struct FromCatalogue<'a> {
     entry: &'static SystemEntry,
     members: &'a Members,
     /// The common values, plus one slot per swept scalar and per swept vector.
@@ -110,28 +132,64 @@ fn element(target: &str) -> Option<(&str, &str)> {
     Some((name, rest.strip_suffix(']')?))
 }
 
-impl<'a> Recipe<'a> {
+/// Checks what every source needs of `members`: at least one member, and one value per member
+/// in every sweep.
+pub(crate) fn check_counts(members: &Members) -> Result<()> {
+    let n = members.n;
+    check_count(n)?;
+    match members.sweeps.iter().find(|s| s.values.len() != n) {
+        Some(sweep) => Err(Error::DimensionMismatch {
+            name: sweep.target.clone(),
+            expected: n,
+            found: sweep.values.len(),
+        }),
+        None => Ok(()),
+    }
+}
+
+/// Refuses an ensemble of no members.
+pub(crate) fn check_count(n: usize) -> Result<()> {
+    if n == 0 {
+        return Err(Error::invalid(
+            "members",
+            0.0,
+            "an ensemble needs >= 1 member",
+        ));
+    }
+    Ok(())
+}
+
+/// Row `index` of the per-member `states` (`None` without them), checked to hold `n` rows of
+/// `dim`.
+///
+/// # Errors
+/// [`Error::DimensionMismatch`] if `states` does not hold `n x dim` values.
+pub(crate) fn state_row(members: &Members, index: usize, dim: usize) -> Result<Option<&[f64]>> {
+    let Some(states) = &members.states else {
+        return Ok(None);
+    };
+    if states.len() != members.n * dim {
+        return Err(Error::DimensionMismatch {
+            name: "states".into(),
+            expected: members.n * dim,
+            found: states.len(),
+        });
+    }
+    Ok(Some(&states[index * dim..(index + 1) * dim]))
+}
+
+impl<'a> FromCatalogue<'a> {
     /// Checks the shape of `members` against `entry` (sweep targets, lengths); members
-    /// themselves are checked by [`Recipe::build`].
-    pub(crate) fn new(entry: &'static SystemEntry, members: &'a Members) -> Result<Self> {
-        let n = members.n;
-        if n == 0 {
-            return Err(Error::invalid(
-                "members",
-                0.0,
-                "an ensemble needs >= 1 member",
-            ));
-        }
+    /// themselves are checked when built ([`MemberSource::build`]).
+    ///
+    /// # Errors
+    /// No members, a sweep of the wrong length, an unknown parameter, or one that cannot be
+    /// swept (only real and integer parameters, and entries `name[i]` of vector parameters).
+    pub fn new(entry: &'static SystemEntry, members: &'a Members) -> Result<Self> {
+        check_counts(members)?;
         let mut given = members.common.clone();
         let mut slots = Vec::with_capacity(members.sweeps.len());
         for sweep in &members.sweeps {
-            if sweep.values.len() != n {
-                return Err(Error::DimensionMismatch {
-                    name: sweep.target.clone(),
-                    expected: n,
-                    found: sweep.values.len(),
-                });
-            }
             let (name, index) = match element(&sweep.target) {
                 Some((name, index)) => (name, Some(index)),
                 None => (sweep.target.as_str(), None),
@@ -212,9 +270,10 @@ impl<'a> Recipe<'a> {
             slots,
         })
     }
+}
 
-    /// The number of members.
-    pub(crate) fn len(&self) -> usize {
+impl MemberSource for FromCatalogue<'_> {
+    fn count(&self) -> usize {
         self.members.n
     }
 
@@ -222,13 +281,8 @@ impl<'a> Recipe<'a> {
     ///
     /// # Errors
     /// Whatever the catalogue or the constructor refuses, and an initial state of the wrong
-    /// length or not finite; every error names the member.
-    pub(crate) fn build(&self, index: usize, t0: f64) -> Result<Box<dyn DynSystem>> {
-        self.build_unnamed(index, t0)
-            .map_err(|e| in_member(index, e))
-    }
-
-    fn build_unnamed(&self, index: usize, t0: f64) -> Result<Box<dyn DynSystem>> {
+    /// length or not finite.
+    fn build(&self, index: usize, t0: f64) -> Result<Box<dyn DynSystem>> {
         let mut given = self.given.clone();
         for (sweep, slot) in self.members.sweeps.iter().zip(&self.slots) {
             let x = sweep.values[index];
@@ -253,16 +307,9 @@ impl<'a> Recipe<'a> {
             }
         }
         let mut system = self.entry.build_from(given)?;
-        if let Some(states) = &self.members.states {
-            let dim = system.dynamical().state_dim();
-            if states.len() != self.members.n * dim {
-                return Err(Error::DimensionMismatch {
-                    name: "states".into(),
-                    expected: self.members.n * dim,
-                    found: states.len(),
-                });
-            }
-            system.reset(Some(&states[index * dim..(index + 1) * dim]), t0)?;
+        let dim = system.dynamical().state_dim();
+        if let Some(state) = state_row(self.members, index, dim)? {
+            system.reset(Some(state), t0)?;
         }
         Ok(system)
     }

@@ -1,10 +1,14 @@
-//! Ensembles and parameter sweeps of any catalogue system, on all cores, bit-reproducibly.
+//! Ensembles and parameter sweeps of any catalogue system, or of any system built from named
+//! parameters, on all cores, bit-reproducibly.
 //!
-//! An ensemble is one catalogue entry ([`SystemEntry`]) and `n` members: values common to all
-//! ([`Members::common`]), per-member values of swept parameters ([`Sweep`], e.g. `c_pn` or
-//! `theta0[1]`) and optionally per-member initial states. Every member is built through the
-//! catalogue (`SystemEntry::build_from`, which checks every value) and checked **before any
-//! integration starts**; the first bad member is reported by index (`member 731: ...`).
+//! An ensemble is one system and `n` members: values common to all ([`Members::common`]),
+//! per-member values of swept parameters ([`Sweep`], e.g. `c_pn` or `theta0[1]`) and
+//! optionally per-member initial states. A [`MemberSource`] builds member `i`:
+//! [`FromCatalogue`] through a catalogue entry ([`SystemEntry`]; `SystemEntry::build_from`
+//! checks every value), [`FromParameters`] by a closure from named real parameters and a state
+//! (the SymPy engines' expression systems, which are not in the catalogue). Every member is
+//! built and checked **before any integration starts**; the first bad member is reported by
+//! index (`member 731: ...`). [`run`] is [`run_source`] on a [`FromCatalogue`].
 //!
 //! Each member is then integrated by its own `integrate` (the same monomorphized loop as a
 //! single run), so a member's results equal those of building it alone and calling
@@ -36,6 +40,7 @@
 //! the calling thread and may stop the run (Ctrl-C): running members stop within 1024 steps.
 
 mod members;
+mod parameters;
 pub mod reduction;
 
 use std::ops::ControlFlow;
@@ -45,8 +50,9 @@ use std::time::Duration;
 use ndarray::{Array1, Array2, Array3};
 use rayon::prelude::*;
 
-use members::{in_member, Recipe};
-pub use members::{Members, Sweep};
+use members::{check_count, in_member};
+pub use members::{FromCatalogue, MemberSource, Members, Sweep};
+pub use parameters::FromParameters;
 pub use reduction::{Condition, Direction, Event, MemberRun, Reduction};
 
 use crate::classical::core::{
@@ -103,8 +109,8 @@ pub struct EnsembleResult {
 }
 
 /// The checked ensemble, ready to run.
-struct Prepared<'a> {
-    recipe: Recipe<'a>,
+struct Prepared<'s, S: ?Sized> {
+    source: &'s S,
     grid: TimeGrid,
     method: Method,
     ndof: Option<usize>,
@@ -158,8 +164,21 @@ pub fn run(
     plan: &Plan,
     observer: Option<&mut dyn Observer>,
 ) -> Result<EnsembleResult> {
+    run_source(&FromCatalogue::new(entry, members)?, plan, observer)
+}
+
+/// Integrates the members of `source` as `plan` says: [`run`] for members from anywhere (see
+/// [`FromParameters`] for an example).
+///
+/// # Errors
+/// As [`run`]; a member `source` refuses is named by index.
+pub fn run_source<S: MemberSource + ?Sized>(
+    source: &S,
+    plan: &Plan,
+    observer: Option<&mut dyn Observer>,
+) -> Result<EnsembleResult> {
     let pool = pool(plan)?;
-    let prepared = in_pool(&pool, || prepare(entry, members, plan))?;
+    let prepared = in_pool(&pool, || prepare(source, plan))?;
     run_prepared(prepared, plan, observer, &pool)
 }
 
@@ -169,8 +188,25 @@ pub fn run(
 /// # Errors
 /// As [`run`] before any integration.
 pub fn check(entry: &'static SystemEntry, members: &Members, plan: &Plan) -> Result<()> {
+    check_source(&FromCatalogue::new(entry, members)?, plan)
+}
+
+/// [`check`] for members from anywhere.
+///
+/// # Errors
+/// As [`run_source`] before any integration.
+pub fn check_source<S: MemberSource + ?Sized>(source: &S, plan: &Plan) -> Result<()> {
     let pool = pool(plan)?;
-    in_pool(&pool, || prepare(entry, members, plan)).map(|_| ())
+    in_pool(&pool, || prepare(source, plan)).map(|_| ())
+}
+
+/// Member `index` of `source`, its errors named by the index.
+fn build<S: MemberSource + ?Sized>(
+    source: &S,
+    index: usize,
+    t0: f64,
+) -> Result<Box<dyn DynSystem>> {
+    source.build(index, t0).map_err(|e| in_member(index, e))
 }
 
 /// The thread pool `plan.threads` asks for (`None`: rayon's global pool).
@@ -199,11 +235,7 @@ fn in_pool<R: Send>(pool: &Option<rayon::ThreadPool>, f: impl FnOnce() -> R + Se
 }
 
 /// Checks everything and builds every member once, before any integration.
-fn prepare<'a>(
-    entry: &'static SystemEntry,
-    members: &'a Members,
-    plan: &Plan,
-) -> Result<Prepared<'a>> {
+fn prepare<'s, S: MemberSource + ?Sized>(source: &'s S, plan: &Plan) -> Result<Prepared<'s, S>> {
     let grid = TimeGrid::new(plan.t_span, plan.dt)?;
     if plan.stride == Some(0) {
         return Err(Error::invalid("stride", 0.0, "must be >= 1"));
@@ -214,8 +246,9 @@ fn prepare<'a>(
             reason: "nothing to keep: ask for the final state, a trajectory or a reduction".into(),
         });
     }
-    let recipe = Recipe::new(entry, members)?;
-    let first = recipe.build(0, grid.t0())?;
+    let n = source.count();
+    check_count(n)?;
+    let first = build(source, 0, grid.t0())?;
     let dim = first.dynamical().state_dim();
     let ndof = first.ndof();
     let method = plan.method.unwrap_or_else(|| first.default_method());
@@ -229,21 +262,20 @@ fn prepare<'a>(
         first.flow(method, k)?;
     }
     // Every member is built and checked up front (in parallel; the lowest bad index wins).
-    let bad =
-        (1..recipe.len())
-            .into_par_iter()
-            .find_map_first(|i| match recipe.build(i, grid.t0()) {
-                Err(e) => Some(e),
-                Ok(s) if s.dynamical().state_dim() != dim => Some(in_member(
-                    i,
-                    Error::DimensionMismatch {
-                        name: "state".into(),
-                        expected: dim,
-                        found: s.dynamical().state_dim(),
-                    },
-                )),
-                Ok(_) => None,
-            });
+    let bad = (1..n)
+        .into_par_iter()
+        .find_map_first(|i| match build(source, i, grid.t0()) {
+            Err(e) => Some(e),
+            Ok(s) if s.dynamical().state_dim() != dim => Some(in_member(
+                i,
+                Error::DimensionMismatch {
+                    name: "state".into(),
+                    expected: dim,
+                    found: s.dynamical().state_dim(),
+                },
+            )),
+            Ok(_) => None,
+        });
     if let Some(e) = bad {
         return Err(e);
     }
@@ -276,13 +308,13 @@ fn prepare<'a>(
         .filter(|events| !events.is_empty());
     // Outputs, counted twice (the member-major buffer and the assembled arrays coexist), and
     // one member's run per thread.
-    memory_check(recipe.len(), 2 * width)?;
+    memory_check(n, 2 * width)?;
     memory_check(
         run_rows.saturating_mul(rayon::current_num_threads()),
         1 + dim + usize::from(!skip_energy),
     )?;
     Ok(Prepared {
-        recipe,
+        source,
         grid,
         method,
         ndof,
@@ -297,13 +329,13 @@ fn prepare<'a>(
 }
 
 /// Runs every member of `prepared`, in `in_pool`'s threads.
-fn run_prepared(
-    prepared: Prepared<'_>,
+fn run_prepared<S: MemberSource + ?Sized>(
+    prepared: Prepared<'_, S>,
     plan: &Plan,
     observer: Option<&mut dyn Observer>,
     pool: &Option<rayon::ThreadPool>,
 ) -> Result<EnsembleResult> {
-    let n = prepared.recipe.len();
+    let n = prepared.source.count();
     let dim = prepared.dim;
     let width = prepared.final_width + prepared.kept_rows * dim + plan.reductions.len();
     let mut out = vec![0.0; n * width];
@@ -364,14 +396,14 @@ fn run_prepared(
 
 /// Member `index`: build, integrate, keep what the plan asks into `row`; returns the steps
 /// taken.
-fn run_member(
-    p: &Prepared<'_>,
+fn run_member<S: MemberSource + ?Sized>(
+    p: &Prepared<'_, S>,
     plan: &Plan,
     index: usize,
     row: &mut [f64],
     stop: &AtomicBool,
 ) -> Result<usize> {
-    let mut system: Box<dyn DynSystem> = p.recipe.build(index, p.grid.t0())?;
+    let mut system: Box<dyn DynSystem> = build(p.source, index, p.grid.t0())?;
     if let Some(events) = &p.early {
         return events_only(system, p, events, row, stop);
     }
@@ -425,9 +457,9 @@ fn run_member(
 /// as `integrate`), each event checked as its step completes, located inside its step as
 /// [`Reduction::FirstEvent`] does, and stopped once every event has happened. Writes the event
 /// times (`NaN`: never) into `out` and returns the steps taken.
-fn events_only(
+fn events_only<S: MemberSource + ?Sized>(
     system: Box<dyn DynSystem>,
-    p: &Prepared<'_>,
+    p: &Prepared<'_, S>,
     events: &[Event],
     out: &mut [f64],
     stop: &AtomicBool,
@@ -471,13 +503,13 @@ fn events_only(
 }
 
 /// Splits the member-major buffer into the result's arrays.
-fn assemble(
-    p: Prepared<'_>,
+fn assemble<S: MemberSource + ?Sized>(
+    p: Prepared<'_, S>,
     plan: &Plan,
     out: Vec<f64>,
     steps: Vec<usize>,
 ) -> Result<EnsembleResult> {
-    let n = p.recipe.len();
+    let n = p.source.count();
     let dim = p.dim;
     let fw = p.final_width;
     let width = fw + p.kept_rows * dim + plan.reductions.len();

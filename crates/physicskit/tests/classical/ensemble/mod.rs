@@ -1,5 +1,5 @@
-//! Ensembles of catalogue systems: bit-identity (threads, members vs single runs), events,
-//! validation of members before any work.
+//! Ensembles of catalogue systems and of systems built from named parameters: bit-identity
+//! (threads, members vs single runs), events, validation of members before any work.
 
 // Bit-identical reproducibility is the claim here, so exact float comparisons are intended.
 #![allow(clippy::float_cmp)]
@@ -7,3 +7,4 @@
 mod chaos;
 mod engine;
 mod events;
+mod parameters;
