@@ -12,6 +12,7 @@
 use std::f64::consts::PI;
 
 use physicskit::classical::analysis::chaos_map::{chaos_map, Indicator, MapRun};
+use physicskit::classical::analysis::lyapunov::DEFAULT_RENORMALIZE_EVERY;
 use physicskit::classical::core::erased::Lagrangian;
 use physicskit::classical::systems::{DoublePendulum, DoublePendulumParams};
 use physicskit::classical::{DynamicalSystem, Method};
@@ -77,7 +78,7 @@ pub(crate) fn render(ctx: &Ctx) -> Result<Demo> {
         dt,
         method: Some(Method::Rk4),
         indicator: Indicator::MaxLyapunov {
-            renormalize_every: 10,
+            renormalize_every: DEFAULT_RENORMALIZE_EVERY,
         },
     };
     let values = chaos_map(&Lagrangian(dp.clone()), &states, &run)?;

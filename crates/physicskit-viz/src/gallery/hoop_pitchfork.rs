@@ -13,6 +13,7 @@
 //! [`HoopEquilibrium::linear_exponent`]: physicskit::classical::systems::HoopEquilibrium::linear_exponent
 
 use physicskit::classical::analysis::chaos_map::{chaos_map_by, Indicator, MapRun};
+use physicskit::classical::analysis::lyapunov::DEFAULT_RENORMALIZE_EVERY;
 use physicskit::classical::core::erased::{DynSystem, Lagrangian};
 use physicskit::classical::systems::{BeadOnRotatingHoop, HoopParams};
 use physicskit::classical::Method;
@@ -47,7 +48,7 @@ fn exponents(params0: HoopParams, ratios: &[f64], theta0: f64, t_max: f64) -> Re
         dt: DT,
         method: Some(Method::ImplicitMidpoint),
         indicator: Indicator::MaxLyapunov {
-            renormalize_every: 10,
+            renormalize_every: DEFAULT_RENORMALIZE_EVERY,
         },
     };
     Ok(chaos_map_by(

@@ -23,6 +23,7 @@ mod heavy_top;
 mod henon_heiles;
 mod henon_heiles_regular;
 mod henon_heiles_sali;
+mod henon_heiles_starts;
 mod hoop;
 mod hoop_pitchfork;
 mod integrators;

@@ -10,7 +10,7 @@ use physicskit::classical::Method;
 use super::integrators::log10_rel;
 use super::{demo, Ctx, Demo};
 use crate::error::Result;
-use crate::figure::{color_of_many as color, save_panel, Legend, Mark, Panel, Series};
+use crate::figure::{color_of_many, save_panel, Legend, Mark, Panel, Series};
 
 /// Errors below this are rounding: smaller steps would only add time.
 const ROUNDING: f64 = 1e-14;
@@ -46,9 +46,9 @@ pub(crate) fn render(ctx: &Ctx) -> Result<Demo> {
                 }
             }
             let i = Method::ALL.iter().position(|m| *m == method).unwrap_or(0);
-            panel = panel.with(Series::line(method.name(), pts.clone(), color(i)));
+            panel = panel.with(Series::line(method.name(), pts.clone(), color_of_many(i)));
             panel = panel.with(
-                Series::dots("", pts, color(i))
+                Series::dots("", pts, color_of_many(i))
                     .with_mark(Mark::Dots(3))
                     .unlabeled(),
             );
