@@ -7,7 +7,7 @@ use physicskit::classical::systems::HenonHeilesSystem;
 use physicskit::classical::{Error, Method};
 
 use super::henon_heiles_starts::SectionStarts;
-use super::{demo, Ctx, Demo};
+use super::{Ctx, Demo};
 use crate::error::Result;
 use crate::figure::{color, save_png, Legend, Mark, Panel, Series};
 
@@ -26,14 +26,14 @@ fn orbit(y0: [f64; 4], run: &SectionRun, section: &Section) -> Result<Option<Vec
 }
 
 pub(crate) fn render(ctx: &Ctx) -> Result<Demo> {
-    let mut d = demo("henon-heiles", "2. Hénon–Heiles: KAM tori breaking up");
+    let mut d = ctx.demo("henon-heiles", "Hénon–Heiles: KAM tori breaking up");
     let section = Section::new(1, 0.0, Direction::Increasing)?;
     let crossings = ctx.pick(250, 900);
     let n_orbits = ctx.pick(12, 30);
     // One crossing per ~6-7 time units; the time limit only guards against stuck orbits.
     let run = SectionRun::new(0.02, 10.0 * crossings as f64, crossings);
     let energies: [(f64, &str); 3] = [(1.0 / 12.0, "1/12"), (1.0 / 8.0, "1/8"), (1.0 / 6.0, "1/6")];
-    let path = ctx.path("02_henon_heiles_sections.png");
+    let path = ctx.path("henon_heiles_sections.png");
     let mut panels = Vec::new();
     for (e, label) in energies {
         // The section y = 0, py > 0: its plane is (x, px).

@@ -17,7 +17,7 @@ use physicskit::classical::ensemble::{self, Members, Plan, Reduction};
 use physicskit::classical::Method;
 
 use super::henon_heiles_starts::SectionStarts;
-use super::{demo, Ctx, Demo};
+use super::{Ctx, Demo};
 use crate::error::Result;
 use crate::figure::{color, save_panel, Legend, Mark, Panel, Series};
 
@@ -34,9 +34,9 @@ fn section_starts(energy: f64, n: usize) -> Result<Vec<[f64; 4]>> {
 }
 
 pub(crate) fn render(ctx: &Ctx) -> Result<Demo> {
-    let mut d = demo(
+    let mut d = ctx.demo(
         "henon-heiles-regular-fraction",
-        "21. Hénon–Heiles: the fraction of regular orbits against energy",
+        "Hénon–Heiles: the fraction of regular orbits against energy",
     );
     let energies = [
         1.0 / 24.0,
@@ -101,7 +101,7 @@ pub(crate) fn render(ctx: &Ctx) -> Result<Demo> {
         Series::dots("ensemble of SALI runs (one per cell)", fraction, color(0))
             .with_mark(Mark::Dots(5)),
     );
-    let path = ctx.path("21_henon_heiles_regular_fraction.png");
+    let path = ctx.path("henon_heiles_regular_fraction.png");
     save_panel(&path, (900, 600), &panel)?;
     d.add(
         path,

@@ -15,7 +15,7 @@ use physicskit::classical::systems::HenonHeilesSystem;
 use physicskit::classical::Method;
 
 use super::henon_heiles_starts::SectionStarts;
-use super::{demo, Ctx, Demo};
+use super::{Ctx, Demo};
 use crate::error::Result;
 use crate::figure::{color, save_png, Legend, Mark, Panel, Series};
 use crate::heatmap::HeatMap;
@@ -28,9 +28,9 @@ const MARGIN: f64 = 0.02;
 const DT: f64 = 0.05;
 
 pub(crate) fn render(ctx: &Ctx) -> Result<Demo> {
-    let mut d = demo(
+    let mut d = ctx.demo(
         "henon-heiles-sali",
-        "18. Hénon–Heiles: a SALI map beside the Poincaré section",
+        "Hénon–Heiles: a SALI map beside the Poincaré section",
     );
     // The section x = 0, px > 0: its plane is (y, py).
     let starts = SectionStarts::new(0, ENERGY)?;
@@ -119,7 +119,7 @@ pub(crate) fn render(ctx: &Ctx) -> Result<Demo> {
         section = section.with(Series::dots("", pts, color(k)).with_mark(Mark::Dots(1)));
     }
 
-    let path = ctx.path("18_henon_heiles_sali.png");
+    let path = ctx.path("henon_heiles_sali.png");
     save_png(
         &path,
         (1500, 640),

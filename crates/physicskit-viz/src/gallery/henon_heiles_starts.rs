@@ -104,7 +104,7 @@ impl SectionStarts {
     pub(crate) fn spread(&self, k: usize, n: usize) -> Option<[f64; 4]> {
         let ((q_lo, q_hi), (_, p_hi)) = self.extent();
         let f = (k / 2) as f64 / (n / 2).max(1) as f64;
-        if k % 2 == 0 {
+        if k.is_multiple_of(2) {
             self.start(q_lo + (q_hi - q_lo) * (0.025 + 0.95 * f), 0.0)
         } else {
             self.start(0.0, p_hi * (0.05 + 0.9 * f))
