@@ -50,7 +50,7 @@ fn no_flip_contour(params: &DoublePendulumParams, n: usize) -> Vec<(f64, f64)> {
 }
 
 /// Saves `map` (over this plane) with the curve of [`no_flip_contour`] drawn on it in
-/// `colour` (named `colour_name` in the title, which states the parameters).
+/// `colour` (named `colour_name` in the map's title; the figure's title states the parameters).
 ///
 /// # Errors
 /// As [`save_png`].
@@ -61,10 +61,10 @@ pub(super) fn save_with_no_flip_contour(
     (colour, colour_name): (RGBColor, &str),
 ) -> Result<()> {
     let DoublePendulumParams { m1, m2, l1, l2, g } = *params;
-    let title = format!(
-        "Double pendulum from rest (m₁ = {m1} kg, m₂ = {m2} kg, l₁ = {l1} m, l₂ = {l2} m, \
-         g = {g} m/s²): inside the {colour_name} curve no arm can flip"
-    );
+    let title =
+        format!("Double pendulum from rest: m = ({m1}, {m2}) kg, l = ({l1}, {l2}) m, g = {g} m/s²");
+    let mut map = map.clone();
+    map.title = format!("{}; none flips inside the {colour_name} curve", map.title);
     let contour = no_flip_contour(params, 720);
     save_png(path, (860, 760), Some(&title), (1, 1), |_, area| {
         map.draw_with(area, path, |chart| {
