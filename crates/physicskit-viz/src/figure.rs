@@ -38,14 +38,14 @@ pub fn color(i: usize) -> RGBColor {
 /// Colours after the palette's eight, for figures with more series (the work–precision
 /// diagrams have a line per method): dark red, purple, brown and grey, each far from the
 /// palette's colours and from each other.
-pub const BEYOND_PALETTE: [RGBColor; 4] = [
+const BEYOND_PALETTE: [RGBColor; 4] = [
     RGBColor(153, 0, 0),
     RGBColor(110, 60, 170),
     RGBColor(140, 90, 40),
     RGBColor(120, 120, 120),
 ];
 
-/// The `i`-th colour of the palette followed by [`BEYOND_PALETTE`]'s four (cycling after
+/// The `i`-th colour of the palette followed by the four `BEYOND_PALETTE` colours (cycling after
 /// twelve): distinct colours for up to twelve series.
 pub fn color_of_many(i: usize) -> RGBColor {
     let i = i % (PALETTE.len() + BEYOND_PALETTE.len());

@@ -137,16 +137,32 @@ fn quick_gallery_renders_every_promised_file() {
         );
     }
     let html = std::fs::read_to_string(&report.index).unwrap();
-    // The figures' setup follows the physics wherever a demonstration has one; the systems'
-    // own demonstrations all do (the lab's caption omits it, as the lab runs any setting).
+    // Every demonstration prints its figures' setup after the physics (the lab's caption
+    // omits it, as the lab runs any setting).
     for d in &report.demos {
-        let systems = physicskit::classical::explanations::for_demo(&d.slug)
-            .expect("an explanation")
-            .systems;
-        assert_eq!(d.figure.is_empty(), systems.is_empty(), "{}", d.slug);
+        assert!(!d.figure.is_empty(), "{} has no setup", d.slug);
     }
-    let setups = report.demos.iter().filter(|d| !d.figure.is_empty()).count();
-    assert_eq!(html.matches("<p class=\"setup\">").count(), setups);
+    assert_eq!(html.matches("<p class=\"setup\">").count(), count);
+    // Demonstration k (its place in the list) is titled "k. ..." and its files are named
+    // "kk_...", each number written once (a page that typed its own would show it twice).
+    for (k, d) in report.demos.iter().enumerate() {
+        let title = d.title.strip_prefix(&format!("{}. ", k + 1));
+        assert!(
+            title.is_some_and(|t| !t.starts_with(|c: char| c.is_ascii_digit())),
+            "demonstration {} is titled {:?}",
+            k + 1,
+            d.title
+        );
+        for f in &d.files {
+            let name = f.path.file_name().unwrap().to_string_lossy();
+            let rest = name.strip_prefix(&format!("{:02}_", k + 1));
+            assert!(
+                rest.is_some_and(|r| !r.starts_with(|c: char| c.is_ascii_digit())),
+                "demonstration {} wrote {name}",
+                k + 1
+            );
+        }
+    }
     assert!(html.contains(&format!("<p>{count} demonstrations")));
     lab_captions_are_the_gallery_paragraphs(&report.demos, &html);
     let mut gifs = 0;

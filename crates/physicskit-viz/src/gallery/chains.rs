@@ -6,7 +6,7 @@ use physicskit::classical::systems::{
 use physicskit::classical::{HamiltonianSystem, LagrangianSystem, Method};
 
 use super::common::{column, nonempty};
-use super::{demo, Ctx, Demo};
+use super::{Ctx, Demo};
 use crate::error::Result;
 use crate::figure::{color, save_panel, save_png, Legend, Mark, Panel, Series};
 
@@ -14,7 +14,7 @@ use crate::figure::{color, save_panel, save_png, Legend, Mark, Panel, Series};
 const N: usize = 8;
 
 pub(crate) fn render(ctx: &Ctx) -> Result<Demo> {
-    let mut d = demo("chains", "6. Harmonic chain and coupled oscillators");
+    let mut d = ctx.demo("chains", "Harmonic chain and coupled oscillators");
     // Mode shapes from the chain's own modal transform, verified by integration.
     let probe = HarmonicChain::new(&[0.0; N], &[0.0; N], 1.0, 1.0)?;
     let omega = probe.normal_mode_frequencies().to_vec();
@@ -50,7 +50,7 @@ pub(crate) fn render(ctx: &Ctx) -> Result<Demo> {
                 .unlabeled(),
         );
     }
-    let path = ctx.path("06_chain_modes.png");
+    let path = ctx.path("chain_modes.png");
     save_panel(&path, (1000, 600), &panel)?;
     d.add(path, "shapes of the four lowest normal modes of an 8-mass chain; dots: minus the simulated displacement half a period later");
 
@@ -131,7 +131,7 @@ pub(crate) fn render(ctx: &Ctx) -> Result<Demo> {
     .legend(Legend::UpperRight)
     .with(Series::xy(format!("mode {ja}"), &t, &ea, color(2)))
     .with(Series::xy(format!("mode {jb}"), &t, &eb, color(3)));
-    let path = ctx.path("06_coupled_beats.png");
+    let path = ctx.path("coupled_beats.png");
     let panels = [top, bottom];
     save_png(&path, (1000, 800), None, (2, 1), |i, area| {
         panels[i].draw(area, &path).map(|_| ())

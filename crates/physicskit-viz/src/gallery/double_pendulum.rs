@@ -8,7 +8,7 @@ use plotters::prelude::*;
 
 use super::common::{column, nonempty, stride, wrap};
 use super::integrators::window_max;
-use super::{demo, Ctx, Demo};
+use super::{Ctx, Demo};
 use crate::animation::save_gif;
 use crate::error::{DrawContext, Result};
 use crate::figure::{color, save_panel, Legend, Mark, Panel, Series};
@@ -16,7 +16,7 @@ use crate::figure::{color, save_panel, Legend, Mark, Panel, Series};
 const THETA0: [f64; 2] = [2.0, 2.4];
 
 pub(crate) fn render(ctx: &Ctx) -> Result<Demo> {
-    let mut d = demo("double-pendulum", "1. Double pendulum");
+    let mut d = ctx.demo("double-pendulum", "Double pendulum");
     let params = DoublePendulumParams::default();
     let dt = 0.002;
     let t1 = ctx.pick(12.0, 30.0);
@@ -44,7 +44,7 @@ pub(crate) fn render(ctx: &Ctx) -> Result<Demo> {
     // Animation: bobs with a fading trail, and the phase point building up.
     let frames = ctx.pick(40, 100);
     let per = (t.len() / frames).max(1);
-    let path = ctx.path("01_double_pendulum.gif");
+    let path = ctx.path("double_pendulum.gif");
     save_gif(&path, (760, 380), frames, 80, |k, root| {
         let i = (k * per).min(t.len() - 1);
         let (left, right) = root.split_horizontally(380);
@@ -118,7 +118,7 @@ pub(crate) fn render(ctx: &Ctx) -> Result<Demo> {
     )
     .legend(Legend::LowerRight)
     .with(Series::line("separation (rk4, dt = 2 ms)", pts, color(0)));
-    let path = ctx.path("01_double_pendulum_chaos.png");
+    let path = ctx.path("double_pendulum_chaos.png");
     save_panel(&path, (900, 520), &panel)?;
     d.add(path, "log-separation of two runs started 1e-9 rad apart against time: exponential growth, then saturation");
 
@@ -149,7 +149,7 @@ pub(crate) fn render(ctx: &Ctx) -> Result<Demo> {
             color(if i == 0 { 3 } else { 2 }),
         ));
     }
-    let path = ctx.path("01_double_pendulum_energy.png");
+    let path = ctx.path("double_pendulum_energy.png");
     save_panel(&path, (900, 520), &panel)?;
     d.add(
         path,

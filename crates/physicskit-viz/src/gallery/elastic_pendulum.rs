@@ -5,7 +5,7 @@ use physicskit::classical::systems::{ElasticPendulum, ElasticPendulumParams};
 use physicskit::classical::{DynamicalSystem, LagrangianSystem, Method};
 
 use super::common::stride;
-use super::{demo, Ctx, Demo};
+use super::{Ctx, Demo};
 use crate::error::Result;
 use crate::figure::{color, save_png, Legend, Panel, Series};
 
@@ -17,10 +17,7 @@ const THETA0: f64 = 0.02;
 const K_DETUNED: f64 = 40.0;
 
 pub(crate) fn render(ctx: &Ctx) -> Result<Demo> {
-    let mut d = demo(
-        "elastic-pendulum",
-        "14. Elastic pendulum: the 2:1 resonance",
-    );
+    let mut d = ctx.demo("elastic-pendulum", "Elastic pendulum: the 2:1 resonance");
     let base = ElasticPendulumParams::default();
     let k_res = ElasticPendulumParams::resonant_k(base.m, base.l0, base.g)?;
     let t1 = ctx.pick(40.0, 60.0);
@@ -67,7 +64,7 @@ pub(crate) fn render(ctx: &Ctx) -> Result<Demo> {
         .with(Series::line("swing (pendulum)", swing, color(2)));
         panels.push((trajectory, energies));
     }
-    let path = ctx.path("14_elastic_pendulum.png");
+    let path = ctx.path("elastic_pendulum.png");
     let (res, det) = (panels.remove(0), panels.remove(0));
     let grid = [res.0, res.1, det.0, det.1];
     save_png(

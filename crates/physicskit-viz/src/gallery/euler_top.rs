@@ -6,7 +6,7 @@ use physicskit::classical::{Method, OdeSystem};
 use plotters::prelude::*;
 
 use super::common::{project, stride, ycol};
-use super::{demo, Ctx, Demo};
+use super::{Ctx, Demo};
 use crate::animation::save_gif;
 use crate::error::{DrawContext, Result};
 use crate::figure::{color, save_panel, Legend, Mark, Panel, Series};
@@ -18,9 +18,9 @@ const AZ: f64 = 0.7;
 const EL: f64 = 0.35;
 
 pub(crate) fn render(ctx: &Ctx) -> Result<Demo> {
-    let mut d = demo(
+    let mut d = ctx.demo(
         "euler-top",
-        "8. Euler top: the tennis-racket (Dzhanibekov) effect",
+        "Euler top: the tennis-racket (Dzhanibekov) effect",
     );
     let params = EulerTopParams::default();
     let dt = 0.01;
@@ -43,7 +43,7 @@ pub(crate) fn render(ctx: &Ctx) -> Result<Demo> {
     {
         panel = panel.with(Series::xy(*name, &t, &ycol(&r.y, j), color(j)));
     }
-    let path = ctx.path("08_euler_omega.png");
+    let path = ctx.path("euler_omega.png");
     save_panel(&path, (1000, 520), &panel)?;
     d.add(
         path,
@@ -122,7 +122,7 @@ pub(crate) fn render(ctx: &Ctx) -> Result<Demo> {
             .unlabeled(),
         );
     }
-    let path = ctx.path("08_euler_polhodes.png");
+    let path = ctx.path("euler_polhodes.png");
     crate::figure::save_png(&path, (760, 760), None, (1, 1), |_, area| {
         let mut chart = sphere.draw(area, &path)?;
         for (i, name) in ["axis 1", "axis 2 (unstable)", "axis 3"].iter().enumerate() {
@@ -157,7 +157,7 @@ pub(crate) fn render(ctx: &Ctx) -> Result<Demo> {
     let mut spin = EulerTop::new(&OMEGA0, params, None)?;
     let ra = spin.integrate_with((0.0, t_anim), 0.01, Method::ImplicitMidpoint, stride(1))?;
     let per = (ra.t.len() / frames).max(1);
-    let path = ctx.path("08_euler_tumbling.gif");
+    let path = ctx.path("euler_tumbling.gif");
     save_gif(&path, (420, 420), frames, 70, |k, root| {
         let i = (k * per).min(ra.t.len() - 1);
         let state = ra.y.row(i).to_vec();

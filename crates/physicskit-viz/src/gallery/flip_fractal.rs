@@ -1,29 +1,25 @@
 //! Demonstration 15, the double pendulum's flip-time fractal (Heyl 2008): over the plane of
 //! initial angles `(theta1, theta2)`, released from rest, the time until either arm first
-//! flips over the top (`|theta| > pi`), one ensemble member per pixel.
+//! flips over the top (`|theta| > pi`), one ensemble member per pixel, with the curve inside
+//! which the energy forbids any flip (the library's
+//! [`DoublePendulumParams::can_flip_from_rest`]).
 
 use std::f64::consts::PI;
 
 use physicskit::classical::catalog;
 use physicskit::classical::core::Value;
 use physicskit::classical::ensemble::{self, Condition, Event, Members, Plan, Reduction, Sweep};
+use physicskit::classical::systems::DoublePendulumParams;
 use physicskit::classical::Method;
+use plotters::prelude::BLACK;
 
-use super::{demo, Ctx, Demo};
+use super::double_pendulum_plane::{axis, save_with_no_flip_contour};
+use super::{Ctx, Demo};
 use crate::error::Result;
-use crate::figure::save_png;
 use crate::heatmap::HeatMap;
 
-/// `n` values from `-pi` to `pi`, cell centres (the edges, where the pendulum stands
-/// inverted, are left out).
-fn axis(n: usize) -> Vec<f64> {
-    (0..n)
-        .map(|i| -PI + (i as f64 + 0.5) * 2.0 * PI / n as f64)
-        .collect()
-}
-
 pub(crate) fn render(ctx: &Ctx) -> Result<Demo> {
-    let mut d = demo("flip-fractal", "15. Double pendulum: the flip-time fractal");
+    let mut d = ctx.demo("flip-fractal", "Double pendulum: the flip-time fractal");
     let n = ctx.pick(64, 240);
     let t_max = ctx.pick(10.0, 30.0);
     let theta = axis(n);
@@ -34,8 +30,14 @@ pub(crate) fn render(ctx: &Ctx) -> Result<Demo> {
             t2.push(b);
         }
     }
+    let params = DoublePendulumParams::default();
+    let DoublePendulumParams { m1, m2, l1, l2, g } = params;
+    let mut common = vec![("thetadot0".into(), Value::Vector(vec![0.0, 0.0]))];
+    for (name, value) in [("m1", m1), ("m2", m2), ("l1", l1), ("l2", l2), ("g", g)] {
+        common.push((name.into(), Value::Scalar(value)));
+    }
     let members = Members {
-        common: vec![("thetadot0".into(), Value::Vector(vec![0.0, 0.0]))],
+        common,
         sweeps: vec![Sweep::new("theta0[0]", t1), Sweep::new("theta0[1]", t2)],
         states: None,
         n: n * n,
@@ -57,8 +59,8 @@ pub(crate) fn render(ctx: &Ctx) -> Result<Demo> {
     };
     let out = ensemble::run(catalog::find("double-pendulum")?, &members, &plan, None)?;
     let (first, second) = (&out.reductions[0].1, &out.reductions[1].1);
-    let l_over_g: f64 = 1.0 / 9.81;
-    let scale = l_over_g.sqrt();
+    // Times in units of sqrt(l1 / g), the upper arm's small-swing time scale.
+    let scale = (l1 / g).sqrt();
     // Member (i, j) is theta1 = theta[i], theta2 = theta[j]; the map's row j holds x = theta1.
     let mut values = vec![0.0; n * n];
     for i in 0..n {
@@ -73,17 +75,15 @@ pub(crate) fn render(ctx: &Ctx) -> Result<Demo> {
         title: format!("Time to first flip, {n} × {n} members, run to t = {t_max} s"),
         x_label: "θ₁ (rad)".into(),
         y_label: "θ₂ (rad)".into(),
-        value_label: "log₁₀ (t_flip / √(l/g))".into(),
+        value_label: "log₁₀ (t_flip / √(l₁/g))".into(),
         x_range: (theta[0], theta[n - 1]),
         y_range: (theta[0], theta[n - 1]),
         nx: n,
         ny: n,
         values,
     };
-    let path = ctx.path("15_flip_fractal.png");
-    save_png(&path, (860, 720), None, (1, 1), |_, area| {
-        map.draw(area, &path)
-    })?;
-    d.add(path, "time to first flip over the plane of initial angles: fractal boundaries between flip times");
+    let path = ctx.path("flip_fractal.png");
+    save_with_no_flip_contour(&path, &map, &params, (BLACK, "black"))?;
+    d.add(path, "time to first flip over the plane of initial angles: fractal boundaries between flip times, and the curve inside which the energy forbids a flip");
     Ok(d)
 }

@@ -4,7 +4,7 @@ use physicskit::classical::systems::{FPUTChain, NormalModes};
 use physicskit::classical::{HamiltonianSystem, Method};
 
 use super::common::stride;
-use super::{demo, Ctx, Demo};
+use super::{Ctx, Demo};
 use crate::error::Result;
 use crate::figure::{color, save_panel, Legend, Panel, Series};
 
@@ -14,7 +14,7 @@ const BETA: f64 = 1.0;
 const AMPLITUDE: f64 = 3.0;
 
 pub(crate) fn render(ctx: &Ctx) -> Result<Demo> {
-    let mut d = demo("fput", "4. Fermi–Pasta–Ulam–Tsingou recurrence");
+    let mut d = ctx.demo("fput", "Fermi–Pasta–Ulam–Tsingou recurrence");
     let dt = 0.05;
     let t1 = ctx.pick(10000.0, 20000.0);
     let mut chain = FPUTChain::new(N, 1.0, 1.0, BETA, 1, AMPLITUDE)?;
@@ -45,7 +45,7 @@ pub(crate) fn render(ctx: &Ctx) -> Result<Demo> {
     for (j, m) in modes.into_iter().enumerate() {
         panel = panel.with(Series::line(format!("mode {}", j + 1), m, color(j)));
     }
-    let path = ctx.path("04_fput_modes.png");
+    let path = ctx.path("fput_modes.png");
     save_panel(&path, (1000, 560), &panel)?;
     d.add(path, "energies of normal modes 1–5 against time: energy leaves mode 1 and returns (the FPUT recurrence)");
     Ok(d)

@@ -6,7 +6,7 @@ use physicskit::classical::systems::{HeavySymmetricTop, SymmetricTopParams};
 use physicskit::classical::{DynamicalSystem, LagrangianSystem, Method};
 
 use super::common::{column, nonempty};
-use super::{demo, Ctx, Demo};
+use super::{Ctx, Demo};
 use crate::error::Result;
 use crate::figure::{color, save_png, Legend, Mark, Panel, Series};
 
@@ -17,10 +17,7 @@ const PHIDOT0: f64 = -1.5;
 const PSIDOT0: f64 = 30.0;
 
 pub(crate) fn render(ctx: &Ctx) -> Result<Demo> {
-    let mut d = demo(
-        "heavy-top",
-        "9. Heavy symmetric top: precession and nutation",
-    );
+    let mut d = ctx.demo("heavy-top", "Heavy symmetric top: precession and nutation");
     let params = SymmetricTopParams::default();
     let t1 = ctx.pick(6.0, 12.0);
     let mut top = HeavySymmetricTop::new(&[0.0, THETA0, 0.0], &[PHIDOT0, 0.0, PSIDOT0], params)?;
@@ -116,7 +113,7 @@ pub(crate) fn render(ctx: &Ctx) -> Result<Demo> {
             Series::dots("turning points", vec![(th_min, e0), (th_max, e0)], color(2))
                 .with_mark(Mark::Dots(5)),
         );
-    let path = ctx.path("09_heavy_top.png");
+    let path = ctx.path("heavy_top.png");
     let panels = [path_panel, theta_panel, veff_panel];
     save_png(
         &path,

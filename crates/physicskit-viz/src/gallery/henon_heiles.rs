@@ -6,24 +6,14 @@ use physicskit::classical::analysis::poincare::{
 use physicskit::classical::systems::HenonHeilesSystem;
 use physicskit::classical::{Error, Method};
 
-use super::{demo, Ctx, Demo};
+use super::henon_heiles_starts::SectionStarts;
+use super::{Ctx, Demo};
 use crate::error::Result;
 use crate::figure::{color, save_png, Legend, Mark, Panel, Series};
 
-/// Crossings of one orbit started on the section at `(x, px)` with energy `e`; `None` if the
-/// energy is not reachable there or the orbit escapes over a saddle.
-fn orbit(
-    e: f64,
-    x: f64,
-    px: f64,
-    run: &SectionRun,
-    section: &Section,
-) -> Result<Option<Vec<(f64, f64)>>> {
-    let py2 = 2.0 * e - px * px - x * x; // V(x, 0) = x^2 / 2
-    if py2 <= 0.0 {
-        return Ok(None);
-    }
-    let y0 = [x, 0.0, px, py2.sqrt()];
+/// Crossings of one orbit started on the section at `y0 = [x, y, p_x, p_y]`; `None` if the
+/// orbit escapes over a saddle.
+fn orbit(y0: [f64; 4], run: &SectionRun, section: &Section) -> Result<Option<Vec<(f64, f64)>>> {
     let sys = HenonHeilesSystem::new(&y0[..2], &y0[2..])?;
     match poincare_section_separable(&sys, 0.0, &y0, section, run, Method::Yoshida4) {
         Ok(cut) => Ok(Some(
@@ -36,27 +26,24 @@ fn orbit(
 }
 
 pub(crate) fn render(ctx: &Ctx) -> Result<Demo> {
-    let mut d = demo("henon-heiles", "2. Hénon–Heiles: KAM tori breaking up");
+    let mut d = ctx.demo("henon-heiles", "Hénon–Heiles: KAM tori breaking up");
     let section = Section::new(1, 0.0, Direction::Increasing)?;
     let crossings = ctx.pick(250, 900);
     let n_orbits = ctx.pick(12, 30);
     // One crossing per ~6-7 time units; the time limit only guards against stuck orbits.
     let run = SectionRun::new(0.02, 10.0 * crossings as f64, crossings);
     let energies: [(f64, &str); 3] = [(1.0 / 12.0, "1/12"), (1.0 / 8.0, "1/8"), (1.0 / 6.0, "1/6")];
-    let path = ctx.path("02_henon_heiles_sections.png");
+    let path = ctx.path("henon_heiles_sections.png");
     let mut panels = Vec::new();
     for (e, label) in energies {
-        let xmax = (2.0 * e).sqrt();
+        // The section y = 0, py > 0: its plane is (x, px).
+        let starts = SectionStarts::new(1, e)?;
         let mut panel = Panel::new(format!("E = {label}"), "x", "pₓ").legend(Legend::None);
         for k in 0..n_orbits {
-            // Starting points spread along px = 0 and along x = 0 of the section.
-            let f = (k / 2) as f64 / (n_orbits / 2) as f64;
-            let (x, px) = if k % 2 == 0 {
-                (xmax * (-0.95 + 1.9 * f), 0.0)
-            } else {
-                (0.0, xmax * (0.05 + 0.9 * f))
+            let Some(y0) = starts.spread(k, n_orbits) else {
+                continue;
             };
-            if let Some(pts) = orbit(e, x, px, &run, &section)? {
+            if let Some(pts) = orbit(y0, &run, &section)? {
                 panel = panel.with(Series::dots("", pts, color(k)).with_mark(Mark::Dots(1)));
             }
         }

@@ -3,65 +3,40 @@
 //! measured by SALI on one ensemble.
 //!
 //! For each energy `E` of a ladder, a grid of starts on the surface of section `x = 0` with
-//! `p_x = +sqrt(2E - p_y^2 - y^2 + 2y^3/3) >= 0` (the cells inside the zero-velocity curve
-//! `p_y^2 + y^2 - 2y^3/3 = 2E`); each start is one ensemble member, and its SALI at `t1`
-//! classifies it: regular when above the chaos toolkit's threshold 1e-8
-//! ([`CHAOS_THRESHOLD`]). The regular fraction of the cells estimates the relative area of the
+//! `p_x >= 0` from the energy (the cells inside the energy curve, the gallery's shared
+//! [`SectionStarts`]); each start is one ensemble member, and its SALI at `t1`
+//! classifies it: regular when above the chaos toolkit's threshold [`CHAOS_THRESHOLD`]. The regular fraction of the cells estimates the relative area of the
 //! section covered by invariant curves. A chaotic orbit whose SALI has not yet fallen below the
 //! threshold at `t1` counts as regular, so the fraction is an upper estimate that a longer run
 //! lowers.
 
+use physicskit::classical::analysis::lyapunov::DEFAULT_RENORMALIZE_EVERY;
 use physicskit::classical::analysis::sali::CHAOS_THRESHOLD;
 use physicskit::classical::catalog;
 use physicskit::classical::ensemble::{self, Members, Plan, Reduction};
 use physicskit::classical::Method;
 
-use super::{demo, Ctx, Demo};
+use super::henon_heiles_starts::SectionStarts;
+use super::{Ctx, Demo};
 use crate::error::Result;
 use crate::figure::{color, save_panel, Legend, Mark, Panel, Series};
 
-/// The `y` in `[lo, hi]` where `y^2/2 - y^3/3 = energy` (bisected to adjacent floats; the
-/// ends bracket it).
-fn edge(energy: f64, mut lo: f64, mut hi: f64) -> f64 {
-    let f = |y: f64| 0.5 * y * y - y * y * y / 3.0 - energy;
-    let rising = f(hi) > f(lo);
-    loop {
-        let mid = 0.5 * (lo + hi);
-        if mid <= lo || mid >= hi {
-            return mid;
-        }
-        if (f(mid) < 0.0) == rising {
-            lo = mid;
-        } else {
-            hi = mid;
-        }
-    }
-}
-
-/// The starts `[x, y, p_x, p_y]` of an `n x n` grid of cell centres on the section `x = 0` at
-/// `energy` (`0 < energy <= 1/6`), those strictly inside the zero-velocity curve.
-fn section_starts(energy: f64, n: usize) -> Vec<[f64; 4]> {
-    // The curve spans y from the root in [-1, 0] to the one in [0, 1] and |p_y| <= sqrt(2E).
-    let (y0, y1) = (edge(energy, -1.0, 0.0), edge(energy, 0.0, 1.0));
-    let p_max = (2.0 * energy).sqrt();
-    let mut out = Vec::with_capacity(n * n);
-    for i in 0..n {
-        let y = y0 + (i as f64 + 0.5) * (y1 - y0) / n as f64;
-        for j in 0..n {
-            let py = -p_max + (j as f64 + 0.5) * 2.0 * p_max / n as f64;
-            let px2 = 2.0 * energy - py * py - y * y + 2.0 * y * y * y / 3.0;
-            if px2 > 0.0 {
-                out.push([0.0, y, px2.sqrt(), py]);
-            }
-        }
-    }
-    out
+/// The starts `[x, y, p_x, p_y]` of an `n x n` grid of cell centres over the energy curve's
+/// extent on the section `x = 0` at `energy`, those strictly inside the curve.
+fn section_starts(energy: f64, n: usize) -> Result<Vec<[f64; 4]>> {
+    let starts = SectionStarts::new(0, energy)?;
+    let ((y0, y1), (p0, p1)) = starts.extent();
+    let cell = |i: usize, lo: f64, hi: f64| lo + (i as f64 + 0.5) * (hi - lo) / n as f64;
+    Ok((0..n)
+        .flat_map(|i| (0..n).map(move |j| (i, j)))
+        .filter_map(|(i, j)| starts.start(cell(i, y0, y1), cell(j, p0, p1)))
+        .collect())
 }
 
 pub(crate) fn render(ctx: &Ctx) -> Result<Demo> {
-    let mut d = demo(
+    let mut d = ctx.demo(
         "henon-heiles-regular-fraction",
-        "21. Hénon–Heiles: the fraction of regular orbits against energy",
+        "Hénon–Heiles: the fraction of regular orbits against energy",
     );
     let energies = [
         1.0 / 24.0,
@@ -79,7 +54,10 @@ pub(crate) fn render(ctx: &Ctx) -> Result<Demo> {
     // Quick: about 2 s on one core (1.2e3 members of 1e4 steps).
     let n = ctx.pick(12, 60);
     let t1 = ctx.pick(1000.0, 3000.0);
-    let starts: Vec<Vec<[f64; 4]>> = energies.iter().map(|&e| section_starts(e, n)).collect();
+    let starts = energies
+        .iter()
+        .map(|&e| section_starts(e, n))
+        .collect::<Result<Vec<_>>>()?;
     let states: Vec<f64> = starts.iter().flatten().flatten().copied().collect();
     let members = Members {
         states: Some(states),
@@ -92,9 +70,9 @@ pub(crate) fn render(ctx: &Ctx) -> Result<Demo> {
         method: Some(Method::Yoshida4),
         stride: None,
         reductions: vec![Reduction::Sali {
-            renormalize_every: 10,
+            renormalize_every: DEFAULT_RENORMALIZE_EVERY,
         }],
-        final_state: true,
+        final_state: false,
         threads: None,
     };
     let out = ensemble::run(catalog::find("henon-heiles")?, &members, &plan, None)?;
@@ -123,7 +101,7 @@ pub(crate) fn render(ctx: &Ctx) -> Result<Demo> {
         Series::dots("ensemble of SALI runs (one per cell)", fraction, color(0))
             .with_mark(Mark::Dots(5)),
     );
-    let path = ctx.path("21_henon_heiles_regular_fraction.png");
+    let path = ctx.path("henon_heiles_regular_fraction.png");
     save_panel(&path, (900, 600), &panel)?;
     d.add(
         path,

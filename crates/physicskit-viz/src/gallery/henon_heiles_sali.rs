@@ -1,46 +1,42 @@
 //! Demonstration 18, Hénon–Heiles at E = 1/8: the Poincaré section `(y, p_y)` at `x = 0`,
 //! `p_x > 0` beside a SALI map of the same plane (one orbit per cell, started on the section;
-//! colour the final `log10 SALI`, [`CHAOS_THRESHOLD`] = 1e-8 separating chaotic orbits).
+//! colour the final `log10 SALI`, [`CHAOS_THRESHOLD`] separating chaotic orbits).
 //!
-//! Both panels take `p_x` from the energy, `p_x = sqrt(2 (E - H(0, y, 0, p_y)))`, with the
-//! system's own `H`; cells where that is imaginary lie outside the energy surface and are left
-//! blank.
+//! Both panels take `p_x` from the energy (the gallery's shared [`SectionStarts`], from the
+//! system's own `H`); cells outside the energy curve are left blank.
 
-use physicskit::classical::analysis::chaos_map::{chaos_map, Indicator, MapRun};
+use physicskit::classical::analysis::chaos_map::{chaos_map, Indicator, MapRun, SALI_FLOOR};
+use physicskit::classical::analysis::lyapunov::DEFAULT_RENORMALIZE_EVERY;
 use physicskit::classical::analysis::poincare::Direction;
 use physicskit::classical::analysis::sali::CHAOS_THRESHOLD;
 use physicskit::classical::analysis::section::{poincare_section, SurfaceOfSection};
 use physicskit::classical::core::erased::Hamiltonian;
 use physicskit::classical::systems::HenonHeilesSystem;
-use physicskit::classical::{DynamicalSystem, Method};
+use physicskit::classical::Method;
 
-use super::{demo, Ctx, Demo};
+use super::henon_heiles_starts::SectionStarts;
+use super::{Ctx, Demo};
 use crate::error::Result;
 use crate::figure::{color, save_png, Legend, Mark, Panel, Series};
 use crate::heatmap::HeatMap;
 
 /// The energy of the section.
 const ENERGY: f64 = 1.0 / 8.0;
-/// Cell centres span `y` ...
-const Y_RANGE: (f64, f64) = (-0.46, 0.70);
-/// ... and `p_y` (the energy surface at `x = 0` spans y in [-0.44, 0.67], |p_y| <= 0.5).
-const PY_RANGE: (f64, f64) = (-0.52, 0.52);
+/// The cell centres span the energy curve and this fraction of its width beyond on each side.
+const MARGIN: f64 = 0.02;
 /// Step of yoshida4 (energy error ~1e-7 at this energy).
 const DT: f64 = 0.05;
 
-/// The state on the section `x = 0` with `p_x > 0` at `(y, p_y)` and energy [`ENERGY`], if
-/// the energy surface reaches there.
-fn on_section(hh: &HenonHeilesSystem, y: f64, py: f64) -> Option<[f64; 4]> {
-    let px2 = 2.0 * (ENERGY - hh.energy(&[0.0, y, 0.0, py]));
-    (px2 > 0.0).then(|| [0.0, y, px2.sqrt(), py])
-}
-
 pub(crate) fn render(ctx: &Ctx) -> Result<Demo> {
-    let mut d = demo(
+    let mut d = ctx.demo(
         "henon-heiles-sali",
-        "18. Hénon–Heiles: a SALI map beside the Poincaré section",
+        "Hénon–Heiles: a SALI map beside the Poincaré section",
     );
-    let hh = HenonHeilesSystem::new(&[0.0, 0.0], &[0.5, 0.0])?;
+    // The section x = 0, px > 0: its plane is (y, py).
+    let starts = SectionStarts::new(0, ENERGY)?;
+    let widen = |(lo, hi): (f64, f64)| (lo - MARGIN * (hi - lo), hi + MARGIN * (hi - lo));
+    let (y_range, py_range) = starts.extent();
+    let (y_range, py_range) = (widen(y_range), widen(py_range));
     let (ny, t_sali) = (ctx.pick(40, 100), ctx.pick(600.0, 1000.0));
     let (nx, npy) = (ny, ny);
     let cell =
@@ -49,7 +45,7 @@ pub(crate) fn render(ctx: &Ctx) -> Result<Demo> {
     let mut inside = Vec::new();
     for j in 0..npy {
         for i in 0..nx {
-            if let Some(s) = on_section(&hh, cell(i, nx, Y_RANGE), cell(j, npy, PY_RANGE)) {
+            if let Some(s) = starts.start(cell(i, nx, y_range), cell(j, npy, py_range)) {
                 states.extend_from_slice(&s);
                 inside.push(j * nx + i);
             }
@@ -60,27 +56,29 @@ pub(crate) fn render(ctx: &Ctx) -> Result<Demo> {
         dt: DT,
         method: Some(Method::Yoshida4),
         indicator: Indicator::Sali {
-            renormalize_every: 10,
+            renormalize_every: DEFAULT_RENORMALIZE_EVERY,
         },
     };
-    let sali = chaos_map(&Hamiltonian(hh.clone()), &states, &run)?;
+    let hh = HenonHeilesSystem::new(&[0.0, 0.0], &[0.0, 0.0])?;
+    let sali = chaos_map(&Hamiltonian(hh), &states, &run)?;
     let mut values = vec![f64::NAN; nx * npy];
     for (&k, &s) in inside.iter().zip(&sali) {
-        // The runs stop below 1e-14; exact zeros (aligned to rounding) go to the floor.
-        values[k] = s.max(1e-16).log10();
+        // Each run stops once SALI falls below the map's floor, so values under it say only
+        // "chaotic"; exact zeros (vectors aligned to rounding) go to the floor too.
+        values[k] = s.max(SALI_FLOOR).log10();
     }
     let chaotic = sali.iter().filter(|&&s| s < CHAOS_THRESHOLD).count();
     let map = HeatMap {
         title: format!(
-            "SALI at t = {t_sali}: {:.0} % of {} orbits chaotic (< 10⁻⁸)",
+            "SALI at t = {t_sali}: {:.0} % of {} orbits chaotic (< {CHAOS_THRESHOLD:e})",
             100.0 * chaotic as f64 / sali.len() as f64,
             sali.len()
         ),
         x_label: "y".into(),
         y_label: "p_y".into(),
-        value_label: "log₁₀ SALI (chaotic below −8)".into(),
-        x_range: Y_RANGE,
-        y_range: PY_RANGE,
+        value_label: format!("log₁₀ SALI (chaotic below {})", CHAOS_THRESHOLD.log10()),
+        x_range: y_range,
+        y_range: py_range,
         nx,
         ny: npy,
         values,
@@ -90,25 +88,19 @@ pub(crate) fn render(ctx: &Ctx) -> Result<Demo> {
     let surface = SurfaceOfSection::coordinate(0, 0.0, Direction::Increasing)?;
     let (n_orbits, crossings) = (ctx.pick(12, 24), ctx.pick(300, 800));
     let half = (
-        0.5 * (Y_RANGE.1 - Y_RANGE.0) / (nx - 1) as f64,
-        0.5 * (PY_RANGE.1 - PY_RANGE.0) / (npy - 1) as f64,
+        0.5 * (y_range.1 - y_range.0) / (nx - 1) as f64,
+        0.5 * (py_range.1 - py_range.0) / (npy - 1) as f64,
     );
     let mut section = Panel::new(
         format!("Poincaré section, {n_orbits} orbits (one colour each)"),
         "y",
         "p_y",
     )
-    .x_range(Y_RANGE.0 - half.0, Y_RANGE.1 + half.0)
-    .y_range(PY_RANGE.0 - half.1, PY_RANGE.1 + half.1)
+    .x_range(y_range.0 - half.0, y_range.1 + half.0)
+    .y_range(py_range.0 - half.1, py_range.1 + half.1)
     .legend(Legend::None);
     for k in 0..n_orbits {
-        let f = (k / 2) as f64 / (n_orbits / 2) as f64;
-        let (y, py) = if k % 2 == 0 {
-            (-0.43 + 1.08 * f, 0.0)
-        } else {
-            (0.0, 0.02 + 0.46 * f)
-        };
-        let Some(s) = on_section(&hh, y, py) else {
+        let Some(s) = starts.spread(k, n_orbits) else {
             continue;
         };
         let mut orbit = Hamiltonian(HenonHeilesSystem::new(&s[..2], &s[2..])?);
@@ -127,7 +119,7 @@ pub(crate) fn render(ctx: &Ctx) -> Result<Demo> {
         section = section.with(Series::dots("", pts, color(k)).with_mark(Mark::Dots(1)));
     }
 
-    let path = ctx.path("18_henon_heiles_sali.png");
+    let path = ctx.path("henon_heiles_sali.png");
     save_png(
         &path,
         (1500, 640),
@@ -144,6 +136,12 @@ pub(crate) fn render(ctx: &Ctx) -> Result<Demo> {
             }
         },
     )?;
-    d.add(path, "Poincaré section (y, p_y) at x = 0 beside the SALI map of the same plane: chaotic sea (SALI < 1e-8) and regular islands");
+    d.add(
+        path,
+        &format!(
+            "Poincaré section (y, p_y) at x = 0 beside the SALI map of the same plane: chaotic \
+             sea (SALI < {CHAOS_THRESHOLD:e}) and regular islands"
+        ),
+    );
     Ok(d)
 }

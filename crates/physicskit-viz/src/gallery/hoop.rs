@@ -1,25 +1,37 @@
 //! Demonstration 10, Bead on a rotating hoop: the pitchfork bifurcation and phase portraits below and above
 //! the critical speed.
 
-use physicskit::classical::systems::{BeadOnRotatingHoop, HoopParams};
+use physicskit::classical::systems::{BeadOnRotatingHoop, HoopBranch, HoopParams};
 use physicskit::classical::{LagrangianSystem, Method};
 
 use super::common::{column, nonempty};
-use super::{demo, Ctx, Demo};
+use super::{Ctx, Demo};
 use crate::error::Result;
 use crate::figure::{color, save_png, Legend, Mark, Panel, Series};
 
-/// The equilibria at rest against `omega / omega_c` from 0 to `max_ratio`, from the library
-/// ([`HoopParams::equilibria`]), one line per branch (bottom, top, the off-axis pair), solid
-/// where stable and dashed where unstable.
-pub(super) fn pitchfork_panel(params0: HoopParams, max_ratio: f64) -> Panel {
+/// Largest rotation rate of the pitchfork diagrams (this demonstration's and demonstration
+/// 20's), in units of `omega_c`.
+pub(super) const MAX_RATIO: f64 = 2.5;
+
+/// The figure title of a hoop demonstration, stating the parameters it was drawn with.
+pub(super) fn title(params: &HoopParams) -> String {
+    format!(
+        "Bead on a hoop rotating about its vertical diameter (R = {} m, g = {} m/s²)",
+        params.r, params.g
+    )
+}
+
+/// The equilibria at rest against `omega / omega_c` from 0 to [`MAX_RATIO`], from the library
+/// ([`HoopParams::equilibria`]), one line per branch ([`HoopBranch`]: bottom, top, the
+/// off-axis pair), solid where stable and dashed where unstable.
+pub(super) fn pitchfork_panel(params0: HoopParams) -> Panel {
     let wc = params0.critical_omega();
     // Uniform below omega_c; above it, closer near omega_c, where the branches leave the
     // bottom like sqrt(omega - omega_c).
     let n = 150;
     let ratios = (0..n)
         .map(|k| k as f64 / n as f64)
-        .chain((0..=2 * n).map(|k| 1.0 + (max_ratio - 1.0) * (k as f64 / (2 * n) as f64).powi(2)));
+        .chain((0..=2 * n).map(|k| 1.0 + (MAX_RATIO - 1.0) * (k as f64 / (2 * n) as f64).powi(2)));
     // Branch points (omega / omega_c, theta in degrees, stable).
     let mut branches: [Vec<(f64, f64, bool)>; 4] = Default::default();
     for ratio in ratios {
@@ -28,15 +40,11 @@ pub(super) fn pitchfork_panel(params0: HoopParams, max_ratio: f64) -> Panel {
             ..params0
         };
         for e in params.equilibria() {
-            // Bottom, the lower and upper branches, top.
-            let b = if e.theta == 0.0 {
-                0
-            } else if e.theta < 0.0 {
-                1
-            } else if e.theta < std::f64::consts::PI {
-                2
-            } else {
-                3
+            let b = match e.kind {
+                HoopBranch::Bottom => 0,
+                HoopBranch::Left => 1,
+                HoopBranch::Right => 2,
+                HoopBranch::Top => 3,
             };
             branches[b].push((ratio, e.theta.to_degrees(), e.is_stable()));
         }
@@ -75,19 +83,14 @@ pub(super) fn pitchfork_panel(params0: HoopParams, max_ratio: f64) -> Panel {
             start = end;
         }
     }
-    panel
+    panel.y_range(-200.0, 200.0).legend(Legend::LowerLeft)
 }
 
 pub(crate) fn render(ctx: &Ctx) -> Result<Demo> {
-    let mut d = demo(
-        "hoop",
-        "10. Bead on a rotating hoop: a pitchfork bifurcation",
-    );
+    let mut d = ctx.demo("hoop", "Bead on a rotating hoop: a pitchfork bifurcation");
     let params0 = HoopParams::default();
     let wc = params0.critical_omega();
-    let diagram = pitchfork_panel(params0, 2.5)
-        .y_range(-200.0, 200.0)
-        .legend(Legend::LowerLeft);
+    let diagram = pitchfork_panel(params0);
 
     let t1 = ctx.pick(6.0, 10.0);
     let mut portraits = Vec::new();
@@ -128,12 +131,12 @@ pub(crate) fn render(ctx: &Ctx) -> Result<Demo> {
             panel.with(Series::dots("stable equilibria", eq, color(6)).with_mark(Mark::Dots(5)));
         portraits.push(panel);
     }
-    let path = ctx.path("10_hoop_bifurcation.png");
+    let path = ctx.path("hoop_bifurcation.png");
     let panels = [diagram, portraits.remove(0), portraits.remove(0)];
     save_png(
         &path,
         (1500, 540),
-        Some("Bead on a hoop rotating about its vertical diameter (R = 1 m, g = 9.81 m/s²)"),
+        Some(&title(&params0)),
         (1, 3),
         |i, area| panels[i].draw(area, &path).map(|_| ()),
     )?;

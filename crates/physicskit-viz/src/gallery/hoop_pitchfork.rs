@@ -13,17 +13,15 @@
 //! [`HoopEquilibrium::linear_exponent`]: physicskit::classical::systems::HoopEquilibrium::linear_exponent
 
 use physicskit::classical::analysis::chaos_map::{chaos_map_by, Indicator, MapRun};
+use physicskit::classical::analysis::lyapunov::DEFAULT_RENORMALIZE_EVERY;
 use physicskit::classical::core::erased::{DynSystem, Lagrangian};
-use physicskit::classical::systems::{BeadOnRotatingHoop, HoopParams};
+use physicskit::classical::systems::{BeadOnRotatingHoop, HoopBranch, HoopParams};
 use physicskit::classical::Method;
 
-use super::hoop::pitchfork_panel;
-use super::{demo, Ctx, Demo};
+use super::hoop::{pitchfork_panel, title, MAX_RATIO};
+use super::{Ctx, Demo};
 use crate::error::Result;
 use crate::figure::{color, save_png, Legend, Mark, Panel, Series};
-
-/// Largest rotation rate shown, in units of `omega_c`.
-const MAX_RATIO: f64 = 2.5;
 /// Step: the fastest saddle rate here is 7.2/s, so `h lambda` <= 0.007.
 const DT: f64 = 1e-3;
 
@@ -47,7 +45,7 @@ fn exponents(params0: HoopParams, ratios: &[f64], theta0: f64, t_max: f64) -> Re
         dt: DT,
         method: Some(Method::ImplicitMidpoint),
         indicator: Indicator::MaxLyapunov {
-            renormalize_every: 10,
+            renormalize_every: DEFAULT_RENORMALIZE_EVERY,
         },
     };
     Ok(chaos_map_by(
@@ -58,15 +56,13 @@ fn exponents(params0: HoopParams, ratios: &[f64], theta0: f64, t_max: f64) -> Re
 }
 
 pub(crate) fn render(ctx: &Ctx) -> Result<Demo> {
-    let mut d = demo(
+    let mut d = ctx.demo(
         "hoop-pitchfork",
-        "20. Bead on a rotating hoop: the pitchfork and the Lyapunov exponent at the bottom",
+        "Bead on a rotating hoop: the pitchfork and the Lyapunov exponent at the bottom",
     );
     let params0 = HoopParams::default();
     let wc = params0.critical_omega();
-    let diagram = pitchfork_panel(params0, MAX_RATIO)
-        .y_range(-200.0, 200.0)
-        .legend(Legend::LowerLeft);
+    let diagram = pitchfork_panel(params0);
 
     let n = ctx.pick(20, 50);
     let ratios: Vec<f64> = (1..=n).map(|k| MAX_RATIO * k as f64 / n as f64).collect();
@@ -81,7 +77,10 @@ pub(crate) fn render(ctx: &Ctx) -> Result<Demo> {
                 omega: r * wc,
                 ..params0
             };
-            let bottom = params.equilibria().into_iter().find(|e| e.theta == 0.0);
+            let bottom = params
+                .equilibria()
+                .into_iter()
+                .find(|e| e.kind == HoopBranch::Bottom);
             (r, bottom.map_or(f64::NAN, |e| e.linear_exponent()))
         })
         .collect();
@@ -113,12 +112,12 @@ pub(crate) fn render(ctx: &Ctx) -> Result<Demo> {
         .with_mark(Mark::Dots(4)),
     );
 
-    let path = ctx.path("20_hoop_pitchfork.png");
+    let path = ctx.path("hoop_pitchfork.png");
     let panels = [diagram, lyapunov];
     save_png(
         &path,
         (1400, 560),
-        Some("Bead on a hoop rotating about its vertical diameter (R = 1 m, g = 9.81 m/s²)"),
+        Some(&title(&params0)),
         (1, 2),
         |i, area| panels[i].draw(area, &path).map(|_| ()),
     )?;

@@ -5,7 +5,7 @@ use physicskit::classical::analysis::convergence::fit_order;
 use physicskit::classical::examples::Pendulum;
 use physicskit::classical::{HamiltonianSystem, Method};
 
-use super::{demo, Ctx, Demo};
+use super::{Ctx, Demo};
 use crate::error::Result;
 use crate::figure::{color, save_panel, Legend, Mark, Panel, Series};
 
@@ -40,7 +40,7 @@ pub(crate) fn window_max(t: &[f64], v: &[f64], windows: usize) -> Vec<(f64, f64)
 }
 
 pub(crate) fn render(ctx: &Ctx) -> Result<Demo> {
-    let mut d = demo("integrators", "12. Integrators compared");
+    let mut d = ctx.demo("integrators", "Integrators compared");
 
     // Energy error against time at a coarse step, where the differences are visible.
     let dt = 0.1;
@@ -63,7 +63,7 @@ pub(crate) fn render(ctx: &Ctx) -> Result<Demo> {
         let pts = window_max(r.t.as_slice().unwrap_or(&[]), &rel, 200);
         energy = energy.with(Series::line(m.name(), pts, color(i)));
     }
-    let path = ctx.path("12_integrators_energy.png");
+    let path = ctx.path("integrators_energy.png");
     save_panel(&path, (1000, 560), &energy)?;
     d.add(path, "relative energy error against time for verlet, yoshida4, rk4 and implicit_midpoint on a pendulum (log scale)");
 
@@ -122,7 +122,7 @@ pub(crate) fn render(ctx: &Ctx) -> Result<Demo> {
                 .unlabeled(),
         );
     }
-    let path = ctx.path("12_integrators_convergence.png");
+    let path = ctx.path("integrators_convergence.png");
     save_panel(&path, (900, 620), &conv)?;
     d.add(path, "log–log error against step size for the four methods, with the measured orders (2, 4, 4, 2)");
     Ok(d)

@@ -5,7 +5,7 @@ use physicskit::classical::systems::{KeplerPerturbations, KeplerSystem};
 use physicskit::classical::{HamiltonianSystem, Method};
 
 use super::common::{column, stride, unwrap};
-use super::{demo, Ctx, Demo};
+use super::{Ctx, Demo};
 use crate::error::Result;
 use crate::figure::{color, save_panel, Legend, Panel, Series};
 
@@ -15,7 +15,7 @@ const E: f64 = 0.6;
 const C_PN: f64 = -0.005;
 
 pub(crate) fn render(ctx: &Ctx) -> Result<Demo> {
-    let mut d = demo("kepler", "7. Kepler orbits and perihelion precession");
+    let mut d = ctx.demo("kepler", "Kepler orbits and perihelion precession");
     let period = std::f64::consts::TAU * A.powf(1.5);
     let orbits = ctx.pick(12.0, 30.0);
     let t1 = orbits * period;
@@ -69,10 +69,10 @@ pub(crate) fn render(ctx: &Ctx) -> Result<Demo> {
                 .collect();
         angles = angles.with(Series::line(label, pts, color(if i == 0 { 6 } else { 1 })));
     }
-    let path = ctx.path("07_kepler_orbits.png");
+    let path = ctx.path("kepler_orbits.png");
     save_panel(&path, (820, 720), &panel)?;
     d.add(path, "the closed Newtonian ellipse against the precessing rosette with a post-Newtonian 1/r³ term");
-    let path = ctx.path("07_kepler_lrl.png");
+    let path = ctx.path("kepler_lrl.png");
     save_panel(&path, (900, 520), &angles)?;
     d.add(path, "angle of the Laplace–Runge–Lenz vector against time: constant for 1/r², growing steadily with the correction");
     Ok(d)

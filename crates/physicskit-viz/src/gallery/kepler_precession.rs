@@ -15,7 +15,7 @@ use physicskit::classical::ensemble::{self, Members, Plan, Sweep};
 use physicskit::classical::Method;
 
 use super::common::unwrap;
-use super::{demo, Ctx, Demo};
+use super::{Ctx, Demo};
 use crate::error::Result;
 use crate::figure::{color, save_panel, Legend, Mark, Panel, Series};
 
@@ -32,9 +32,9 @@ fn lrl_angle(s: &[f64]) -> f64 {
 }
 
 pub(crate) fn render(ctx: &Ctx) -> Result<Demo> {
-    let mut d = demo(
+    let mut d = ctx.demo(
         "kepler-precession",
-        "16. Kepler: perihelion precession against c_pn",
+        "Kepler: perihelion precession against c_pn",
     );
     let n = ctx.pick(12, 40);
     let c_pn: Vec<f64> = (0..n).map(|i| -0.01 * (i + 1) as f64 / n as f64).collect();
@@ -103,7 +103,7 @@ pub(crate) fn render(ctx: &Ctx) -> Result<Demo> {
         color(0),
     ))
     .with(Series::dots("measured (ensemble)", measured, color(1)).with_mark(Mark::Dots(4)));
-    let path = ctx.path("16_kepler_precession.png");
+    let path = ctx.path("kepler_precession.png");
     save_panel(&path, (900, 600), &panel)?;
     d.add(path, "precession per orbit against c_pn: the ensemble's measurement beside first-order perturbation theory");
     Ok(d)

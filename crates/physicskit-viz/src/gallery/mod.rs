@@ -5,6 +5,10 @@
 //! Every demonstration module has a `render(&Ctx) -> Result<Demo>` function. `quick` mode
 //! (used by tests and `physicskit gallery --quick`) runs fewer orbits, shorter times and fewer
 //! animation frames so the whole gallery renders in well under a minute on two cores.
+//!
+//! A demonstration's number is its place in the list below: [`Ctx`] numbers its title
+//! (`"17. Work–precision"`) and prefixes its files (`17_work_precision_1.png`), so no page
+//! types its own number.
 
 use std::path::{Path, PathBuf};
 use std::time::Instant;
@@ -15,6 +19,7 @@ mod chains;
 mod common;
 mod double_pendulum;
 mod double_pendulum_lyapunov;
+mod double_pendulum_plane;
 mod elastic_pendulum;
 mod euler_top;
 mod flip_fractal;
@@ -23,6 +28,7 @@ mod heavy_top;
 mod henon_heiles;
 mod henon_heiles_regular;
 mod henon_heiles_sali;
+mod henon_heiles_starts;
 mod hoop;
 mod hoop_pitchfork;
 mod integrators;
@@ -48,13 +54,13 @@ pub struct GalleryFile {
 pub struct Demo {
     /// Anchor name in `index.html`, e.g. `"double-pendulum"`.
     pub slug: String,
-    /// Section title.
+    /// Section title, numbered (`"17. Work–precision"`).
     pub title: String,
     /// One paragraph of physics (from `physicskit::classical::explanations`, shared with the
     /// lab).
     pub explanation: String,
     /// What this demonstration's figures show: their parameters and panels (the same source's
-    /// `figure`; empty when the explanation describes the figure itself).
+    /// `figure`).
     pub figure: String,
     /// Figures and animations, in display order.
     pub files: Vec<GalleryFile>,
@@ -74,17 +80,36 @@ pub struct GalleryReport {
     pub seconds: f64,
 }
 
-/// Rendering settings shared by the demonstrations.
+/// Rendering settings of one demonstration.
 pub(crate) struct Ctx<'a> {
     out_dir: &'a Path,
     /// Fewer orbits and frames.
     pub quick: bool,
+    /// The demonstration's number (its place in [`demos`], from 1).
+    number: usize,
 }
 
 impl Ctx<'_> {
-    /// Path of a gallery file.
+    /// Path of a gallery file of this demonstration: `name` prefixed with its two-digit number
+    /// (`"flip_fractal.png"` becomes `15_flip_fractal.png`).
     pub fn path(&self, name: &str) -> PathBuf {
-        self.out_dir.join(name)
+        self.out_dir.join(format!("{:02}_{name}", self.number))
+    }
+
+    /// Starts this demonstration's [`Demo`], its title numbered (`"17. Work–precision"`); its
+    /// paragraph is the core's
+    /// [`explanations::for_demo`](physicskit::classical::explanations::for_demo)`(slug)`, the
+    /// text the lab shows for the same systems (empty for a slug without one, which the gallery
+    /// test refuses).
+    pub fn demo(&self, slug: &str, title: &str) -> Demo {
+        let explanation = physicskit::classical::explanations::for_demo(slug);
+        Demo {
+            slug: slug.into(),
+            title: format!("{}. {title}", self.number),
+            explanation: explanation.map(|e| e.text.to_owned()).unwrap_or_default(),
+            figure: explanation.map(|e| e.figure.to_owned()).unwrap_or_default(),
+            files: Vec::new(),
+        }
     }
 
     /// `quick` value in quick mode, `full` otherwise.
@@ -94,21 +119,6 @@ impl Ctx<'_> {
         } else {
             full
         }
-    }
-}
-
-/// Starts a [`Demo`]; its paragraph is the core's
-/// [`explanations::for_demo`](physicskit::classical::explanations::for_demo)`(slug)`, the text
-/// the lab shows for the same systems (empty for a slug without one, which the gallery test
-/// refuses).
-pub(crate) fn demo(slug: &str, title: &str) -> Demo {
-    let explanation = physicskit::classical::explanations::for_demo(slug);
-    Demo {
-        slug: slug.into(),
-        title: title.into(),
-        explanation: explanation.map(|e| e.text.to_owned()).unwrap_or_default(),
-        figure: explanation.map(|e| e.figure.to_owned()).unwrap_or_default(),
-        files: Vec::new(),
     }
 }
 
@@ -182,11 +192,15 @@ pub fn render_gallery(
         path: out_dir.to_path_buf(),
         source,
     })?;
-    let ctx = Ctx { out_dir, quick };
     let list = demos();
     let mut rendered = Vec::with_capacity(list.len());
     for (i, (name, render)) in list.iter().enumerate() {
         progress(&format!("[{}/{}] {name}", i + 1, list.len()));
+        let ctx = Ctx {
+            out_dir,
+            quick,
+            number: i + 1,
+        };
         rendered.push(render(&ctx)?);
     }
     let index = out_dir.join("index.html");

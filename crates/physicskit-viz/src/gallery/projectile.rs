@@ -5,7 +5,7 @@ use physicskit::classical::systems::ProjectileMotion;
 use physicskit::classical::{HamiltonianSystem, Method};
 
 use super::common::column;
-use super::{demo, Ctx, Demo};
+use super::{Ctx, Demo};
 use crate::error::Result;
 use crate::figure::{color, save_png, Legend, Mark, Panel, Series};
 
@@ -37,10 +37,7 @@ fn flight(angle: f64, drag: f64) -> Result<Vec<(f64, f64)>> {
 }
 
 pub(crate) fn render(ctx: &Ctx) -> Result<Demo> {
-    let mut d = demo(
-        "projectile",
-        "11. Projectile motion with and without air drag",
-    );
+    let mut d = ctx.demo("projectile", "Projectile motion with and without air drag");
     let mut traj = Panel::new(
         "Trajectories (solid: no drag, dashed: with drag)",
         "x (m)",
@@ -93,7 +90,7 @@ pub(crate) fn render(ctx: &Ctx) -> Result<Demo> {
         air,
         color(1),
     ));
-    let path = ctx.path("11_projectile.png");
+    let path = ctx.path("projectile.png");
     let panels = [traj, range];
     save_png(
         &path,

@@ -4,7 +4,7 @@ use physicskit::classical::systems::SineGordonChain;
 use physicskit::classical::{HamiltonianSystem, Method};
 
 use super::common::stride;
-use super::{demo, Ctx, Demo};
+use super::{Ctx, Demo};
 use crate::animation::save_gif;
 use crate::error::Result;
 use crate::figure::{color, save_png, Legend, Panel, Series};
@@ -16,10 +16,7 @@ const K: f64 = 16.0;
 const BETA: f64 = 0.4;
 
 pub(crate) fn render(ctx: &Ctx) -> Result<Demo> {
-    let mut d = demo(
-        "sine-gordon",
-        "5. Sine-Gordon chain: kink–antikink collision",
-    );
+    let mut d = ctx.demo("sine-gordon", "Sine-Gordon chain: kink–antikink collision");
     let n = ctx.pick(160, 240);
     let width = K.sqrt();
     let c = K.sqrt(); // wave speed for m = 1, in sites per unit time
@@ -53,7 +50,7 @@ pub(crate) fn render(ctx: &Ctx) -> Result<Demo> {
         ny,
         values,
     };
-    let path = ctx.path("05_sine_gordon_spacetime.png");
+    let path = ctx.path("sine_gordon_spacetime.png");
     save_png(&path, (900, 700), None, (1, 1), |_, area| {
         map.draw(area, &path)
     })?;
@@ -61,7 +58,7 @@ pub(crate) fn render(ctx: &Ctx) -> Result<Demo> {
 
     let frames = ctx.pick(40, 120);
     let per = (ny / frames).max(1);
-    let path = ctx.path("05_sine_gordon.gif");
+    let path = ctx.path("sine_gordon.gif");
     save_gif(&path, (640, 360), frames, 80, |k, root| {
         let i = (k * per).min(ny - 1);
         let pts = q

@@ -4,7 +4,7 @@
 use physicskit::classical::systems::{polygon_area, PendulumSwarm};
 use physicskit::classical::{HamiltonianSystem, IntegrateOptions, Method, Sampling};
 
-use super::{demo, Ctx, Demo};
+use super::{Ctx, Demo};
 use crate::animation::save_gif;
 use crate::error::Result;
 use crate::figure::{color, save_png, Legend, Mark, Panel, Series};
@@ -64,7 +64,7 @@ fn wrapped(q: &[f64], p: &[f64]) -> Vec<(f64, f64)> {
 }
 
 pub(crate) fn render(ctx: &Ctx) -> Result<Demo> {
-    let mut d = demo("swarm", "3. Pendulum swarm: Liouville's theorem");
+    let mut d = ctx.demo("swarm", "Pendulum swarm: Liouville's theorem");
     let n = ctx.pick(1500, 5000);
     let n_side = ctx.pick(500, 1500);
     let snaps = [0.0, 10.0, 20.0, 40.0];
@@ -108,7 +108,7 @@ pub(crate) fn render(ctx: &Ctx) -> Result<Demo> {
         ));
         panels.push(panel);
     }
-    let path = ctx.path("03_swarm_liouville.png");
+    let path = ctx.path("swarm_liouville.png");
     save_png(
         &path,
         (1300, 900),
@@ -130,7 +130,7 @@ pub(crate) fn render(ctx: &Ctx) -> Result<Demo> {
         1.0,
         42,
     )?;
-    let path = ctx.path("03_swarm.gif");
+    let path = ctx.path("swarm.gif");
     let step = t_end / frames as f64;
     save_gif(&path, (560, 420), frames, 80, |k, root| {
         if k > 0 {

@@ -5,7 +5,7 @@ use physicskit::classical::systems::TodaLattice;
 use physicskit::classical::{HamiltonianSystem, Method};
 
 use super::common::stride;
-use super::{demo, Ctx, Demo};
+use super::{Ctx, Demo};
 use crate::error::Result;
 use crate::figure::{color, save_png, Legend, Panel, Series};
 use crate::heatmap::HeatMap;
@@ -16,7 +16,7 @@ const N: usize = 16;
 const KICKS: [(usize, f64); 2] = [(0, 3.0), (8, -1.5)];
 
 pub(crate) fn render(ctx: &Ctx) -> Result<Demo> {
-    let mut d = demo("toda", "13. Toda lattice: n conserved quantities");
+    let mut d = ctx.demo("toda", "Toda lattice: n conserved quantities");
     let (a, b) = (1.0, 1.0);
     let mut p0 = [0.0; N];
     for (i, p) in KICKS {
@@ -81,7 +81,7 @@ pub(crate) fn render(ctx: &Ctx) -> Result<Demo> {
     for (j, line) in eigen.into_iter().enumerate() {
         spectrum = spectrum.with(Series::line("", line, color(j % 7)).unlabeled());
     }
-    let path = ctx.path("13_toda.png");
+    let path = ctx.path("toda.png");
     save_png(
         &path,
         (1800, 640),

@@ -1,4 +1,4 @@
-//! Demonstration 15, Work–precision: error against wall time for every applicable method on
+//! Demonstration 17, Work–precision: error against wall time for every applicable method on
 //! three problems (Kepler at e = 0.5, Hénon–Heiles, the double pendulum), from
 //! [`physicskit::classical::analysis::work_precision`]. The methods come from the registry.
 
@@ -8,15 +8,15 @@ use physicskit::classical::analysis::work_precision::{double_pendulum_reference,
 use physicskit::classical::Method;
 
 use super::integrators::log10_rel;
-use super::{demo, Ctx, Demo};
+use super::{Ctx, Demo};
 use crate::error::Result;
-use crate::figure::{color_of_many as color, save_panel, Legend, Mark, Panel, Series};
+use crate::figure::{color_of_many, save_panel, Legend, Mark, Panel, Series};
 
 /// Errors below this are rounding: smaller steps would only add time.
 const ROUNDING: f64 = 1e-14;
 
 pub(crate) fn render(ctx: &Ctx) -> Result<Demo> {
-    let mut d = demo("work-precision", "17. Work–precision");
+    let mut d = ctx.demo("work-precision", "Work–precision");
     let points = ctx.pick(4, 7);
     for (k, problem) in Problem::all(ctx.quick).into_iter().enumerate() {
         let reference = match problem {
@@ -46,14 +46,14 @@ pub(crate) fn render(ctx: &Ctx) -> Result<Demo> {
                 }
             }
             let i = Method::ALL.iter().position(|m| *m == method).unwrap_or(0);
-            panel = panel.with(Series::line(method.name(), pts.clone(), color(i)));
+            panel = panel.with(Series::line(method.name(), pts.clone(), color_of_many(i)));
             panel = panel.with(
-                Series::dots("", pts, color(i))
+                Series::dots("", pts, color_of_many(i))
                     .with_mark(Mark::Dots(3))
                     .unlabeled(),
             );
         }
-        let path = ctx.path(&format!("15_work_precision_{}.png", k + 1));
+        let path = ctx.path(&format!("work_precision_{}.png", k + 1));
         save_panel(&path, (1000, 640), &panel)?;
         let what = format!(
             "log–log {} against wall time on {}, one line per method",

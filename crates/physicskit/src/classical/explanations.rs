@@ -8,9 +8,11 @@
 //! each system's `physics` field, which the lab shows as the system's caption. A system no
 //! demonstration shows (the harmonic oscillator) has none.
 //!
-//! Each paragraph is in two parts: the physics of the system, true for any parameters, and what
-//! the gallery's figures show (their parameters and panels). The lab, which starts from the
-//! catalogue's defaults and lets the reader change them, shows only the first part.
+//! Each paragraph is in two parts: the physics of the system or analysis, true for any
+//! parameters, and what the gallery's figures show (their parameters, grid sizes, run times and
+//! panels). The lab, which starts from the catalogue's defaults and lets the reader change
+//! them, shows only the first part. Every demonstration has both parts, and the first states no
+//! number the second does (`tests/classical/explanations.rs`).
 //!
 //! [`catalog::SYSTEMS`]: crate::classical::catalog::SYSTEMS
 
@@ -24,12 +26,12 @@ pub struct Explanation {
     /// are elsewhere (work–precision, the flip-time fractal, the precession sweep, the chaos
     /// maps and the hoop's bifurcation diagram).
     pub systems: &'static [&'static str],
-    /// The physics, true of the system whatever its parameters (plain text, Unicode): what the
-    /// lab shows beside a run from any setting.
+    /// The physics, true of the system or analysis whatever its parameters (plain text,
+    /// Unicode): what the lab shows beside a run from any setting.
     pub text: &'static str,
-    /// What the gallery's figures show: their parameters and panels (empty for the analyses
-    /// across systems, whose `text` describes their figure). The gallery prints it after
-    /// [`text`](Self::text); the lab, which starts from the catalogue's defaults, does not.
+    /// What the gallery's figures show: their parameters, grid sizes, run times and panels
+    /// (never empty). The gallery prints it after [`text`](Self::text); the lab, which starts
+    /// from the catalogue's defaults, does not.
     pub figure: &'static str,
 }
 
@@ -76,7 +78,7 @@ pub static EXPLANATIONS: &[Explanation] = &[
          tori between the islands dissolve into a chaotic sea of scattered dots, and at E = \
          1/6, the energy of the saddle points of the potential, almost all tori are gone.",
         figure: "Each colour is one orbit; the three panels are at E = 1/12 (almost everything \
-         regular), E = 1/8 (islands in a chaotic sea) and E = 1/6.",
+         regular), E = 1/8 (islands in a chaotic sea) and the saddles' energy.",
     },
     Explanation {
         slug: "swarm",
@@ -183,7 +185,8 @@ pub static EXPLANATIONS: &[Explanation] = &[
          new stable equilibria appear at cos θ = g/(Rω²), climbing the hoop as ω grows: a \
          pitchfork bifurcation, the textbook example of spontaneous symmetry breaking. In \
          phase space the single centre turns into a saddle between two centres.",
-        figure: "R = 1 m; the phase portraits are below and above ω_c.",
+        figure: "R = 1 m, g = 9.81 m/s², ω up to 2.5 ω_c; the phase portraits are at ω = 0.7 ω_c \
+         and 1.6 ω_c.",
     },
     Explanation {
         slug: "projectile",
@@ -247,117 +250,131 @@ pub static EXPLANATIONS: &[Explanation] = &[
     Explanation {
         slug: "flip-fractal",
         systems: &[],
-        text: "Each pixel is one double pendulum (equal masses and arms, g = 9.81 m/s²) released \
-         from rest at the angles (θ₁, θ₂); its colour is the time until either arm first \
-         swings over the top (|θ| > π), located inside the integration step. Members that \
-         cannot flip for lack of energy (2 cos θ₁ + cos θ₂ > 1 for these point bobs; Heyl's \
-         3 cos θ₁ + cos θ₂ > 2 is for uniform rods) and those that did not flip \
-         within the run are drawn at the top of the scale. The boundaries between flip times \
-         are fractal (Heyl 2008): nearby starts that straddle them flip at very different \
-         times, the fingerprint of chaos. Computed as one ensemble on all cores \
-         (physicskit::classical::ensemble), bit-identical for any number of threads.",
-        figure: "",
+        text: "Each pixel is one double pendulum released from rest at the angles (θ₁, θ₂); its \
+         colour is the time until either arm first swings over the top (|θ| > π), located \
+         inside the integration step. Energy alone forbids a flip where the energy at rest is \
+         at or below the flip energy, that of the lowest state with an arm upside down (for \
+         point bobs min(g₁ − |g₂|, g₂ − |g₁|), with g₁ = (m₁ + m₂) g l₁ and g₂ = m₂ g l₂: the \
+         library's DoublePendulumParams::flip_energy). No member inside the black curve can \
+         flip; those and the members that did not flip within the run are drawn at the top of \
+         the scale. The boundaries between flip times are fractal (Heyl 2008): nearby starts \
+         that straddle them flip at very different times, the fingerprint of chaos. Computed as \
+         one ensemble on all cores (physicskit::classical::ensemble), bit-identical for any \
+         number of threads.",
+        figure: "Equal masses and arms (1 kg, 1 m, g = 9.81 m/s²), for which the curve is 2 cos \
+         θ₁ + cos θ₂ = 1 (Heyl's 3 cos θ₁ + cos θ₂ = 2 is for uniform rods); 240 × 240 starts \
+         run for 30 s with rk4 at dt = 0.01 s; times in units of √(l/g).",
     },
     Explanation {
         slug: "kepler-precession",
         systems: &[],
-        text:
-            "An ensemble of Kepler orbits (a = 1, e = 0.5, G M = 1) with the post-Newtonian term \
-         c_pn/r³ swept over a range of strengths. For each member the direction of the \
+        text: "An ensemble of Kepler orbits with the post-Newtonian term c_pn/r³ added to the \
+         potential −k/r, swept over a range of strengths. For each member the direction of the \
          Laplace–Runge–Lenz vector is followed along the run and its mean turning rate times \
          the orbital period gives the precession per orbit (dots). First-order perturbation \
-         theory (Landau & Lifshitz §15) predicts Δφ = −6π c_pn μ² k / L⁴ per orbit (line): \
-         the two agree for weak corrections and part at second order in c_pn.",
-        figure: "",
+         theory (Landau & Lifshitz §15) predicts Δφ = −6π c_pn μ² k / L⁴ per orbit (line): the \
+         two agree for weak corrections and part at second order in c_pn.",
+        figure: "Forty orbits of semi-major axis a = 1 and eccentricity e = 0.5 in units with μ = \
+         k = 1, c_pn from −0.00025 to −0.01, each run for 20 periods with yoshida4 at 4000 \
+         steps per period.",
     },
     Explanation {
         slug: "henon-heiles-regular-fraction",
         systems: &[],
-        text: "How much of the Hénon–Heiles energy surface is regular, energy by energy. At each \
-         energy E a grid of starts fills the surface of section x = 0 inside its zero-velocity \
-         curve (p_x ≥ 0 from the energy); each start is one ensemble member whose SALI (the \
-         smaller alignment index of two deviation vectors, Skokos 2001) is computed on all \
-         cores. An orbit on an invariant torus keeps SALI away from zero; a chaotic one drives \
-         it below 1e-8, the threshold used here. The fraction of regular starts estimates the \
-         relative area of the section covered by invariant curves, the quantity Hénon & Heiles \
-         (1964) plotted against E: close to one up to about E = 0.11, then falling steeply as \
-         the tori break up, with only small islands left near the escape energy 1/6. A chaotic \
-         orbit that has not yet shown its chaos by the end of the run counts as regular, so \
-         the curve is an upper estimate that longer runs lower.",
-        figure: "",
+        text: "How much of the Hénon–Heiles energy surface is regular, energy by energy. At \
+         each energy E a grid of starts fills the surface of section x = 0 inside its \
+         zero-velocity curve (p_x ≥ 0 from the energy); each start is one ensemble member whose \
+         SALI (the smaller alignment index of two deviation vectors, Skokos 2001) is computed \
+         on all cores. An orbit on an invariant torus keeps SALI away from zero; a chaotic one \
+         drives it below the library's threshold of 10⁻⁸. The fraction of regular starts \
+         estimates the relative area of the section covered by invariant curves, the quantity \
+         Hénon & Heiles (1964) plotted against E: close to one up to about E = 0.11, then \
+         falling steeply as the tori break up, with only small islands left near the escape \
+         energy 1/6. A chaotic orbit that has not yet shown its chaos by the end of the run \
+         counts as regular, so the curve is an upper estimate that longer runs lower.",
+        figure: "Eleven energies from 1/24 to 0.16; at each, the cells of a 60 × 60 grid over the \
+         energy curve's extent that lie inside it, each run to t = 3000 with yoshida4 at dt = \
+         0.1.",
     },
     Explanation {
         slug: "work-precision",
         systems: &[],
         text: "How much accuracy each integrator buys per second of computing. Each line is one \
          method, each point one step size (halved from point to point) or, for the adaptive \
-         dop853, one tolerance (tenfold apart); lower left is better. \
-         On the Kepler orbit (e = 0.5, the error is the phase lag after the run against the \
-         analytic orbit) and on Hénon–Heiles (the largest energy error over the run), the \
-         high-order symplectic compositions (kahan_li8, sofroniou_spaletta10) reach the \
-         rounding floor at a small fraction of the cost of verlet or yoshida4, whose lines \
-         are steep but start far up. On the double pendulum, a chaotic Lagrangian system \
-         where only the methods for non-separable systems apply, the Gauss–Legendre methods \
-         of order 4 and 6 reach a given error far faster than the second-order implicit \
-         midpoint rule. Wall times are of one run on a shared machine: the slopes and the \
-         ordering matter, not the last digit.",
-        figure: "",
+         dop853, one tolerance (tenfold apart); lower left is better. On the Kepler orbit (the \
+         error is the phase lag after the run against the analytic orbit) and on Hénon–Heiles \
+         (the largest energy error over the run), the high-order symplectic compositions \
+         (kahan_li8, sofroniou_spaletta10) reach the rounding floor at a small fraction of the \
+         cost of verlet or yoshida4, whose lines are steep but start far up. On the double \
+         pendulum, a chaotic Lagrangian system where only the methods for non-separable systems \
+         apply, the Gauss–Legendre methods of order 4 and 6 reach a given error far faster than \
+         the second-order implicit midpoint rule. Wall times are of one run on a shared \
+         machine: the slopes and the ordering matter, not the last digit.",
+        figure: "Kepler at eccentricity e = 0.5 (a = k = μ = 1) over 100 orbits from perihelion; \
+         SciML's Hénon–Heiles case, q = (0.1, 0) and p = (0, 0.5), to t = 1000; the double \
+         pendulum with unit masses and arms from θ = (2, 1) rad and θ̇ = (0.5, −0.3) rad/s to t \
+         = 10 s, against a dop853 reference run.",
     },
     Explanation {
         slug: "henon-heiles-sali",
         systems: &[],
-        text: "The Hénon–Heiles system at E = 1/8 seen two ways on the same plane, the section \
-         x = 0 with pₓ > 0 (pₓ fixed by the energy; the blank corners lie outside the energy \
-         surface). Left, the Poincaré section: regular orbits draw closed \
-         curves, sections of invariant tori, around the islands; chaotic ones scatter dots over \
-         a sea. Right, every cell is one orbit started there, coloured by its Smaller Alignment \
-         Index (Skokos 2001) at the end of the run: two deviation vectors follow the tangent \
-         dynamics (the exact tangent map of the yoshida4 step) and SALI measures how nearly \
-         they have aligned. On a chaotic orbit both turn towards the most unstable direction \
-         and SALI falls exponentially, as exp(−(λ₁ − λ₂)t); on a torus they stay apart and SALI \
-         stays of order 0.1–1. Below the library's threshold of 10⁻⁸ (dark) an orbit is called \
-         chaotic; the map draws the islands of the section in one run per cell, without \
-         following any orbit by eye. Sticky orbits, which cling to an island's edge for a long \
-         time, have not fallen below the threshold yet and show as intermediate colours.",
-        figure: "",
+        text: "The Hénon–Heiles system at one energy seen two ways on the same plane, the \
+         section x = 0 with pₓ > 0 (pₓ fixed by the energy; the blank corners lie outside the \
+         energy surface). Left, the Poincaré section: regular orbits draw closed curves, \
+         sections of invariant tori, around the islands; chaotic ones scatter dots over a sea. \
+         Right, every cell is one orbit started there, coloured by its Smaller Alignment Index \
+         (Skokos 2001) at the end of the run: two deviation vectors follow the tangent dynamics \
+         (the exact tangent map of the splitting step) and SALI measures how nearly they have \
+         aligned. On a chaotic orbit both turn towards the most unstable direction and SALI \
+         falls exponentially, as exp(−(λ₁ − λ₂)t); on a torus they stay apart and SALI stays of \
+         order 0.1–1. Below the library's threshold of 10⁻⁸ (dark) an orbit is called chaotic; \
+         the map draws the islands of the section in one run per cell, without following any \
+         orbit by eye. Sticky orbits, which cling to an island's edge for a long time, have not \
+         fallen below the threshold yet and show as intermediate colours.",
+        figure: "E = 1/8; a 100 × 100 grid of starts run to t = 1000 with yoshida4 at dt = 0.05; \
+         the section's 24 orbits cross the plane 800 times each.",
     },
     Explanation {
         slug: "double-pendulum-lyapunov",
         systems: &[],
-        text: "Each pixel is one double pendulum (equal masses and arms, g = 9.81 m/s²) released \
-         from rest at the angles (θ₁, θ₂), coloured by its largest Lyapunov exponent: the \
-         growth rate, per second, of an infinitesimal deviation carried by the tangent \
-         dynamics (Benettin's method, renormalized every 10 steps of rk4, the finite-time value \
-         at the end of the run). Inside the white contour the energy, E(θ₁, θ₂, 0, 0) = \
-         −2g cos θ₁ − g cos θ₂ (in J for these unit masses and arms), is below that of the \
-         lowest state with an arm upside down, so neither arm can ever flip: there the map is \
-         dark, small exponents of mostly regular motion (a finite run leaves a residue of order \
-         ln(t)/t even on a torus). The dark region reaches beyond the contour \
-         in two arms, starts that the energy would let flip but that stay on regular tori. \
-         Further out the map is a speckle of chaotic starts, with exponents of one to two per \
-         second, the same structure the flip-time fractal shows in its boundaries. The map has \
-         the pendulum's symmetry (θ₁, θ₂) → (−θ₁, −θ₂) up to the finite run. Computed \
-         with the library's chaos map on all cores, bit-identical for any number of threads.",
-        figure: "",
+        text: "Each pixel is one double pendulum released from rest at the angles (θ₁, θ₂), \
+         coloured by its largest Lyapunov exponent: the growth rate, per second, of an \
+         infinitesimal deviation carried by the tangent dynamics (Benettin's method, the \
+         finite-time value at the end of the run). Inside the white curve the energy at rest is \
+         at or below the flip energy, that of the lowest state with an arm upside down (the \
+         library's DoublePendulumParams::flip_energy), so neither arm can ever flip: there the \
+         map is dark, small exponents of mostly regular motion (a finite run leaves a residue \
+         of order ln(t)/t even on a torus). Starts that the energy would let flip may still \
+         stay on regular tori and extend the dark region beyond the curve. Further out the map \
+         is a speckle of chaotic starts, the same structure the flip-time fractal shows in its \
+         boundaries. The map has the pendulum's symmetry (θ₁, θ₂) → (−θ₁, −θ₂) up to the finite \
+         run. Computed with the library's chaos map on all cores, bit-identical for any number \
+         of threads.",
+        figure: "Equal masses and arms (1 kg, 1 m, g = 9.81 m/s²), for which the curve is 2 cos \
+         θ₁ + cos θ₂ = 1; 100 × 100 starts run to t = 20 s with rk4 at dt = 0.01 s, the \
+         deviation renormalized every 10 steps. The dark region reaches beyond the curve in two \
+         arms; the chaotic starts have exponents of one to two per second.",
     },
     Explanation {
         slug: "hoop-pitchfork",
         systems: &[],
-        text: "The bead on the rotating hoop (R = 1 m) as a bifurcation diagram. Left: the \
-         equilibria at rest against the rotation rate ω, from the library's analysis of \
-         V_eff = −R²ω² sin²θ/2 + gR(1 − cos θ): the bottom is stable up to ω_c = √(g/R), then \
-         gives way to the pair θ* = ±arccos(g/(Rω²)); the top is always unstable. Right: the \
-         largest Lyapunov exponent at the bottom. Linearized about θ = 0 the motion is \
-         x'' = (ω² − g/R)x: a centre below ω_c, with exponent zero, and a saddle above it, \
-         whose deviations grow as exp(t√(ω² − g/R)) (line). The orbit resting exactly at the \
-         bottom has these tangent dynamics, and its measured finite-time exponent (orange) \
-         follows the line, crossing zero at ω_c; below ω_c it scatters about zero by the \
-         1/t of a bounded rotation. An orbit started 0.01 rad from the bottom (green) is \
-         different: with one degree of freedom every orbit lies on a regular curve, here a \
-         libration about one of the new minima that passes close to the saddle. Over a short \
-         window near the saddle its deviations grow at the saddle's rate, but over a long run \
-         they only grow linearly, and its exponent tends to zero like ln(t)/t: the hoop is \
-         not chaotic, the exponent at the bottom measures the instability of the equilibrium.",
-        figure: "",
+        text: "The bead on the rotating hoop as a bifurcation diagram. Left: the equilibria at \
+         rest against the rotation rate ω, from the library's analysis of V_eff = −R²ω² sin²θ/2 \
+         + gR(1 − cos θ): the bottom is stable up to ω_c = √(g/R), then gives way to the pair \
+         θ* = ±arccos(g/(Rω²)); the top is always unstable. Right: the largest Lyapunov \
+         exponent at the bottom. Linearized about θ = 0 the motion is x'' = (ω² − g/R)x: a \
+         centre below ω_c, with exponent zero, and a saddle above it, whose deviations grow as \
+         exp(t√(ω² − g/R)) (line). The orbit resting exactly at the bottom has these tangent \
+         dynamics, and its measured finite-time exponent follows the line, crossing zero at \
+         ω_c; below ω_c it scatters about zero by the 1/t of a bounded rotation. An orbit \
+         started slightly off the bottom is different: with one degree of freedom every orbit \
+         lies on a regular curve, here a libration about one of the new minima that passes \
+         close to the saddle. Over a short window near the saddle its deviations grow at the \
+         saddle's rate, but over a long run they only grow linearly, and its exponent tends to \
+         zero like ln(t)/t: the hoop is not chaotic, the exponent at the bottom measures the \
+         instability of the equilibrium.",
+        figure: "R = 1 m, g = 9.81 m/s², ω up to 2.5 ω_c; implicit midpoint at dt = 0.001 s; the \
+         orbit at rest at the bottom (orange dots) run for 10 s, the one started 0.01 rad from \
+         it (green dots) for 200 s.",
     },
 ];

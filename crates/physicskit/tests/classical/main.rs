@@ -9,6 +9,7 @@ mod analysis;
 mod core;
 mod digests;
 mod ensemble;
+mod explanations;
 mod integrators;
 mod lagrangian;
 mod systems;

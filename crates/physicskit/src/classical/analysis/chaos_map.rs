@@ -7,7 +7,7 @@
 //!
 //! Indicators ([`Indicator`]): the largest Lyapunov exponent at the end of the run
 //! ([`lyapunov`](super::lyapunov)), SALI at the end of the run ([`sali`](super::sali); the run
-//! of a point stops early below 1e-14, where SALI has classified the orbit long before and only
+//! of a point stops early below [`SALI_FLOOR`] = 1e-14, where SALI has classified the orbit long before and only
 //! rounding remains), or the number of crossings of a surface of section
 //! ([`section`](super::section)).
 
@@ -24,8 +24,9 @@ use crate::classical::core::{Error, Method, Result, TimeGrid};
 /// Points per parallel task.
 pub const MAP_CHUNK: usize = 4;
 
-/// SALI below which a point's run stops (see the module docs).
-const SALI_FLOOR: f64 = 1e-14;
+/// SALI below which a point's run stops (see the module docs): a map's SALI values are at
+/// least this, or exactly zero where the deviation vectors aligned to rounding before a check.
+pub const SALI_FLOOR: f64 = 1e-14;
 
 /// What a chaos map computes for each point.
 #[derive(Debug, Clone, PartialEq)]
@@ -36,7 +37,7 @@ pub enum Indicator {
         /// Steps between renormalizations.
         renormalize_every: usize,
     },
-    /// SALI at the end of the run (or when it fell below 1e-14).
+    /// SALI at the end of the run (or when it fell below [`SALI_FLOOR`]).
     Sali {
         /// Steps between evaluations.
         renormalize_every: usize,

@@ -44,6 +44,29 @@
 //! [`sin_cos_array`](crate::classical::core::trig::sin_cos_array)) by the angle-difference
 //! identities, at an absolute (not relative) rounding of ~1 ulp in `sin D`, which enters only
 //! multiplied by `O(1)` terms.
+//!
+//! # Which starts can flip an arm
+//!
+//! An arm flips when its angle passes `±pi` (its bob over the top of its pivot). The kinetic
+//! energy is never negative (`M` is positive definite), so a motion of energy `E` stays where
+//! `V(theta1, theta2) = -g1 cos theta1 - g2 cos theta2 <= E`. On the line `theta1 = pi`,
+//! `V = g1 - g2 cos theta2`, lowest at `g1 - |g2|`; on `theta2 = pi`, `V = g2 - g1 cos
+//! theta1`, lowest at `g2 - |g1|`. The flip energy
+//!
+//! ```text
+//! E_flip = min(g1 - |g2|, g2 - |g1|)      (= -|g1 - g2| for g >= 0)
+//! ```
+//!
+//! is the lowest energy of any state with an arm upside down. A motion with `E < E_flip` can
+//! never flip; at `E = E_flip` it could reach an inverted arm only at rest at the saddle,
+//! an equilibrium, which it approaches without reaching. So `E > E_flip` is necessary for a
+//! flip (not sufficient: many such starts stay on regular tori). For `g > 0` the cheaper flip
+//! costs `E_flip - (-(g1 + g2)) = 2 min(g1, g2)` above the hanging rest: `2 m2 g l2` lifts the
+//! lower bob over the top of the upper one with the upper arm hanging, `2 (m1 + m2) g l1` lifts
+//! the upper bob over the pivot with the lower arm hanging from it. Released from rest at
+//! `(theta1, theta2)` with equal masses and arms the condition reads `2 cos theta1 + cos theta2
+//! < 1` (Heyl's `3 cos theta1 + cos theta2 < 2`, *The double pendulum fractal*, 2008, is for
+//! uniform rods, whose moments differ).
 
 use crate::classical::core::catalog::{
     Default as D, Family, Length, ParamSpec as P, Range, SystemEntry,
@@ -101,6 +124,46 @@ impl DoublePendulumParams {
     #[inline(always)]
     fn coupling(&self, q: &[f64]) -> f64 {
         self.coefficients()[1] * sin_cos(q[0] - q[1]).1
+    }
+
+    /// The flip energy `E_flip = min(g1 - |g2|, g2 - |g1|)` (J): the lowest energy of a state
+    /// with an arm upside down (`theta1 = pi` or `theta2 = pi`), in the energy of
+    /// [`DoublePendulum`] (zero with both bobs at the pivot's height). A motion with energy at
+    /// or below it never flips an arm (derivation in the module documentation).
+    ///
+    /// # Example
+    /// ```
+    /// use physicskit::classical::systems::DoublePendulumParams;
+    ///
+    /// // Unit masses and arms (g1 = 2g, g2 = g): lifting the lower bob over the upper one
+    /// // costs 2 m2 g l2 = 2g above the hanging rest at -3g.
+    /// let p = DoublePendulumParams::default();
+    /// assert_eq!(p.flip_energy(), -p.g);
+    /// ```
+    pub fn flip_energy(&self) -> f64 {
+        let [.., g1, g2] = self.coefficients();
+        (g1 - g2.abs()).min(g2 - g1.abs())
+    }
+
+    /// Whether the pendulum released from rest at `(theta1, theta2)` has more than the
+    /// [`flip_energy`](Self::flip_energy), the energy an arm needs to swing over the top.
+    /// `false` means no arm can ever flip; `true` only that energy does not forbid it. The
+    /// energy at rest is the system's own (`-g1 cos theta1 - g2 cos theta2`, the same bits as
+    /// [`DoublePendulum`]'s energy at zero velocity).
+    ///
+    /// # Example
+    /// ```
+    /// use physicskit::classical::systems::DoublePendulumParams;
+    ///
+    /// let p = DoublePendulumParams::default();
+    /// // Equal masses and arms: a flip needs 2 cos(theta1) + cos(theta2) < 1.
+    /// assert!(!p.can_flip_from_rest(1.0, 1.0)); // 2 cos 1 + cos 1 = 1.62
+    /// assert!(p.can_flip_from_rest(1.5, 2.0)); // 0.14 - 0.42 < 1
+    /// ```
+    pub fn can_flip_from_rest(&self, theta1: f64, theta2: f64) -> bool {
+        let [.., g1, g2] = self.coefficients();
+        let [_, c1, _, c2, ..] = angles(&[theta1, theta2]);
+        -g1 * c1 - g2 * c2 > self.flip_energy()
     }
 
     /// `[a, b, d, g1, g2]` of the closed forms (module documentation).

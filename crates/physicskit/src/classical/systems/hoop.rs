@@ -75,7 +75,8 @@ impl HoopParams {
         (self.g / self.r).sqrt()
     }
 
-    /// The equilibria at rest in `(-pi, pi]`, in increasing `theta`, each with its stiffness.
+    /// The equilibria at rest in `(-pi, pi]`, in increasing `theta`, each with its branch
+    /// ([`HoopBranch`]) and stiffness.
     ///
     /// With `a = R^2 omega^2` and `b = g R` the effective potential is
     /// `V = -a sin^2(theta) / 2 + b (1 - cos theta)`, so `V' = sin theta (b - a cos theta)`
@@ -92,10 +93,12 @@ impl HoopParams {
         let (a, b) = (r * r * omega * omega, g * r);
         let mut out = vec![
             HoopEquilibrium {
+                kind: HoopBranch::Bottom,
                 theta: 0.0,
                 stiffness: (b - a) / (r * r),
             },
             HoopEquilibrium {
+                kind: HoopBranch::Top,
                 theta: std::f64::consts::PI,
                 stiffness: -(a + b) / (r * r),
             },
@@ -105,8 +108,12 @@ impl HoopParams {
             let theta = c.acos();
             // V'' = a sin^2(theta*) there (from b = a cos theta*): positive, stable.
             let stiffness = omega * omega * (1.0 - c * c);
-            for theta in [-theta, theta] {
-                out.push(HoopEquilibrium { theta, stiffness });
+            for (kind, theta) in [(HoopBranch::Left, -theta), (HoopBranch::Right, theta)] {
+                out.push(HoopEquilibrium {
+                    kind,
+                    theta,
+                    stiffness,
+                });
             }
         }
         out.sort_by(|x, y| x.theta.total_cmp(&y.theta));
@@ -142,9 +149,24 @@ impl HoopParams {
     }
 }
 
+/// Which branch of the pitchfork an equilibrium lies on ([`HoopParams::equilibria`]).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
+pub enum HoopBranch {
+    /// The bottom, `theta = 0`: stable below the critical rate, a saddle above it.
+    Bottom,
+    /// The top, `theta = pi`: always unstable for `g > 0`.
+    Top,
+    /// The off-axis branch `theta* = -arccos(g / (R omega^2))`, when it exists.
+    Left,
+    /// The off-axis branch `theta* = +arccos(g / (R omega^2))`, when it exists.
+    Right,
+}
+
 /// An equilibrium of the bead at rest on the rotating hoop ([`HoopParams::equilibria`]).
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct HoopEquilibrium {
+    /// The branch it lies on (identity, independent of the angle's rounding).
+    pub kind: HoopBranch,
     /// The angle from the bottom, in `(-pi, pi]` (rad).
     pub theta: f64,
     /// `V''(theta) / R^2 = -d theta'' / d theta` (1/s^2): the linearization about the

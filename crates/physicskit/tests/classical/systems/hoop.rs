@@ -9,7 +9,7 @@ use std::f64::consts::PI;
 
 use physicskit::classical::analysis::lyapunov::max_lyapunov;
 use physicskit::classical::core::erased::Lagrangian;
-use physicskit::classical::systems::{BeadOnRotatingHoop, HoopParams};
+use physicskit::classical::systems::{BeadOnRotatingHoop, HoopBranch, HoopParams};
 use physicskit::classical::{DynamicalSystem, LagrangianSystem, Method};
 
 /// Energies of the saddles among the candidate equilibria `theta = 0, pi` and
@@ -72,7 +72,8 @@ fn separatrix_energies_are_the_saddle_levels() {
 /// Every listed equilibrium is one (the system's acceleration vanishes), its stiffness is
 /// `-d theta'' / d theta` of the system's acceleration, the branches are the hand-derived
 /// `±arccos(g / (R omega^2))` above `omega_c` and absent below, and the stable ones are the
-/// bottom below `omega_c` and the branches above.
+/// bottom below `omega_c` and the branches above. Each is named by its branch: bottom and top
+/// at every rate, left (the negative angle) and right only above `omega_c`.
 // The bottom is listed as exactly 0 and its exponent below omega_c is exactly 0; the branches
 // are the same arccos of the same quotient: exact comparisons are the claim.
 #[allow(clippy::float_cmp)]
@@ -105,17 +106,29 @@ fn equilibria_are_the_pitchfork() {
                 "{ratio}: {e:?} vs {fd}"
             );
         }
-        let bottom = eqs.iter().find(|e| e.theta == 0.0).unwrap();
+        let bottom = eqs.iter().find(|e| e.kind == HoopBranch::Bottom).unwrap();
         // Two roundings of quantities of order omega^2.
         assert!((bottom.stiffness - (g / r - omega * omega)).abs() < 1e-13 * omega * omega);
         let stable = params.stable_equilibria();
         if ratio < 1.0 {
             assert_eq!(eqs.len(), 2, "{ratio}: bottom and top only");
+            let kinds: Vec<_> = eqs.iter().map(|e| (e.kind, e.theta)).collect();
+            assert_eq!(kinds, [(HoopBranch::Bottom, 0.0), (HoopBranch::Top, PI)]);
             assert_eq!(stable, vec![0.0]);
             assert_eq!(bottom.linear_exponent(), 0.0);
         } else {
             let theta = (g / (r * omega * omega)).acos();
+            // So Left, listed first, is the negative angle.
+            assert!(theta > 0.0, "{ratio}: {theta}");
             assert_eq!(eqs.len(), 4, "{ratio}: bottom, top and the pair");
+            let kinds: Vec<_> = eqs.iter().map(|e| (e.kind, e.theta)).collect();
+            let expected = [
+                (HoopBranch::Left, -theta),
+                (HoopBranch::Bottom, 0.0),
+                (HoopBranch::Right, theta),
+                (HoopBranch::Top, PI),
+            ];
+            assert_eq!(kinds, expected);
             assert_eq!(stable, vec![-theta, theta]);
             let rate = (omega * omega - g / r).sqrt();
             // The same expression rounded in another order: a few ulps.
@@ -148,7 +161,7 @@ fn bottom_exponent_is_the_linearized_rate() {
         let bottom = params
             .equilibria()
             .into_iter()
-            .find(|e| e.theta == 0.0)
+            .find(|e| e.kind == HoopBranch::Bottom)
             .unwrap();
         let mut bead = Lagrangian(BeadOnRotatingHoop::new(0.0, 0.0, params).unwrap());
         let s = max_lyapunov(

@@ -2,6 +2,7 @@
 //! and hand-derived forces; one test per validation error.
 
 mod chains;
+mod double_pendulum;
 mod elastic_pendulum;
 mod henon_heiles;
 mod hoop;

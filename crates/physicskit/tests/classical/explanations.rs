@@ -1,0 +1,91 @@
+//! The gallery's paragraphs: every demonstration has the physics (`text`, shown by the lab
+//! beside a run from any setting) and the figures' setup (`figure`), and the physics states no
+//! number of the setup.
+
+use physicskit::classical::catalog;
+use physicskit::classical::explanations::{for_demo, for_system, EXPLANATIONS};
+
+/// The numbers written in `s`: runs of ASCII digits with inner `.` or `/` (`9.81`, `1/6`),
+/// not glued to a preceding letter, digit, subscript or `_` (so `rk4`, `θ₁`, `kahan_li8` are
+/// names, not numbers). A superscript exponent ends the run (`10⁻⁸` gives `10`).
+fn numbers(s: &str) -> Vec<String> {
+    let chars: Vec<char> = s.chars().collect();
+    let mut out = Vec::new();
+    let mut i = 0;
+    while i < chars.len() {
+        let glued = i > 0 && (chars[i - 1].is_alphanumeric() || chars[i - 1] == '_');
+        if !chars[i].is_ascii_digit() || glued {
+            i += 1;
+            continue;
+        }
+        let mut token = String::new();
+        while i < chars.len() {
+            let c = chars[i];
+            let inner =
+                (c == '.' || c == '/') && chars.get(i + 1).is_some_and(char::is_ascii_digit);
+            if !(c.is_ascii_digit() || inner) {
+                break;
+            }
+            token.push(c);
+            i += 1;
+        }
+        out.push(token);
+    }
+    out
+}
+
+#[test]
+fn numbers_reads_values_not_names() {
+    assert_eq!(
+        numbers("g = 9.81 m/s², E = 1/6, rk4 at dt = 0.01, 10⁻⁸, θ₁ (2, 1)."),
+        ["9.81", "1/6", "0.01", "10", "2", "1"]
+    );
+}
+
+/// Every demonstration has both parts. The physics is true for any setting, so no number the
+/// setup states (a parameter, a grid size, a run time) appears in it. Single digits are left
+/// out: they are the coefficients, orders and labels of formulas (`1 − cos θ`, order 4, axis
+/// 2), which a physics text and a setup both use with different meanings.
+#[test]
+fn the_physics_states_no_number_of_the_setup() {
+    assert!(!EXPLANATIONS.is_empty());
+    for e in EXPLANATIONS {
+        assert!(e.text.len() > 200, "{}: text too short", e.slug);
+        assert!(!e.figure.is_empty(), "{}: no setup", e.slug);
+        let text = numbers(e.text);
+        let setup: Vec<String> = numbers(e.figure)
+            .into_iter()
+            .filter(|n| n.len() > 1)
+            .collect();
+        for n in &setup {
+            assert!(
+                !text.contains(n),
+                "{}: the physics states the setup's {n}",
+                e.slug
+            );
+        }
+    }
+}
+
+/// Slugs are unique, every named system is in the catalogue and in at most one paragraph,
+/// and `for_system` gives that paragraph's physics only (the lab never shows a setup).
+#[test]
+fn each_system_has_at_most_one_paragraph_and_the_lab_gets_its_physics() {
+    for (i, e) in EXPLANATIONS.iter().enumerate() {
+        assert!(
+            EXPLANATIONS[..i].iter().all(|o| o.slug != e.slug),
+            "{}",
+            e.slug
+        );
+        assert_eq!(for_demo(e.slug), Some(e));
+        for name in e.systems {
+            assert!(catalog::find(name).is_ok(), "{name}");
+            let owners = EXPLANATIONS
+                .iter()
+                .filter(|o| o.systems.contains(name))
+                .count();
+            assert_eq!(owners, 1, "{name}");
+            assert_eq!(for_system(name), Some(e.text));
+        }
+    }
+}
