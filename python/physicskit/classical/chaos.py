@@ -6,9 +6,12 @@ would use (``method=None``: the system's default) and, like ``integrate``, leave
 and ``t`` at the end of the run, so a second call continues the orbit. The tangent dynamics
 are exact for the splitting methods (the derivative of the discrete step: symplectic, of
 determinant one) and the variational equations integrated by the same method otherwise.
-Jacobians: analytic for built-in systems that have them; for a Python subclass its optional
-``force_jacobian(q, t)`` (Hamiltonian, ``(ndof, ndof)``) or ``jacobian(t, state)`` (ODE);
-else central differences (relative step ``eps**(1/3)``, about 6e-6).
+Jacobians: analytic for the built-in Hamiltonian and ODE systems; automatic differentiation
+for the built-in Lagrangian systems (of their closed-form equations of motion) and the SymPy
+engines, except the ``[q, qdot]`` form the explicit methods step for the coupled oscillators
+and a SymPy Lagrangian (central differences); for a Python subclass its
+optional ``force_jacobian(q, t)`` (Hamiltonian, ``(ndof, ndof)``) or ``jacobian(t, state)``
+(ODE); else central differences (relative step ``eps**(1/3)``, about 6e-6).
 
 References: Benettin et al., Meccanica 15 (1980) 9-30 (Lyapunov spectra); Skokos,
 J. Phys. A 34 (2001) 10029 (SALI); Skokos, Bountis & Antonopoulos, Physica D 231 (2007) 30

@@ -29,12 +29,20 @@
 //!   For an explicit Runge–Kutta method the orbit part is computed with the same operations as
 //!   without the vectors, so the orbit is bit-identical to the plain run.
 //!
-//! **Jacobians.** The system's analytic one (`HamiltonianSystem::force_jacobian`,
+//! **Jacobians.** The system's own (`HamiltonianSystem::force_jacobian`,
 //! `DynamicalSystem::jacobian`, `LagrangianSystem::canonical_jacobian`) where it has one;
 //! otherwise central differences with the step `h_j = ε^(1/3) max(1, |x_j|)`
 //! (`ε` = 2.2e-16, so `h ≈ 6e-6`): truncation `O(h²)` and rounding `O(ε/h)` are then both
 //! about `ε^(2/3) ≈ 4e-11` relative, the best a central difference can do. `2 n` evaluations
-//! per Jacobian.
+//! per Jacobian. Which systems have which:
+//!
+//! | systems | Jacobian |
+//! |---|---|
+//! | Kepler, Hénon–Heiles, harmonic / FPUT / sine-Gordon chains, Toda, pendulum swarm, projectile, Euler top, the examples | analytic (hand-derived `force_jacobian` / `jacobian`) |
+//! | double pendulum, hoop, heavy symmetric top, elastic pendulum | `[q, qdot]` (explicit methods): automatic differentiation (num-dual, forward mode) of the closed-form acceleration the integrator steps (`lagrangian/forward.rs`); `[q, p]` (implicit methods): automatic differentiation of `L` (`LagrangianEngine::canonical_jacobian`) |
+//! | coupled oscillators, `LagrangianModel` (users' and SymPy Lagrangians) | `[q, p]`: automatic differentiation of `L`; `[q, qdot]`: central differences |
+//! | SymPy `HamiltonianEngine` / `ODEEngine` (`ExprHamiltonian`, `ExprOde`) | automatic differentiation of the compiled expressions (`lagrangian/tape.rs`) |
+//! | Python subclasses | their `force_jacobian(q, t)` / `jacobian(t, state)` if defined, else central differences |
 
 use std::cell::RefCell;
 

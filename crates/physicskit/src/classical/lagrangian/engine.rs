@@ -27,11 +27,30 @@
 //! closed forms pays nothing for the check, and a closed form is plain `f64` arithmetic on the
 //! caller's slices: no allocation, no dual numbers. The built-in systems (double
 //! pendulum, hoop, coupled oscillators, heavy top, elastic pendulum) supply all seven, derived
-//! in their module docs (the hoop, the chain and the elastic pendulum get the canonical field from the provided
-//! `closed_canonical`, which composes their velocity and `dL/dq`); `canonical_jacobian` (the implicit-midpoint Newton fallback, used only when fixed
-//! point iteration contracts slowly) stays automatic. Wrapping a Lagrangian in [`AutoDiff`]
-//! hides its closed forms: that engine is the independent check of them
+//! in their module docs (the chain gets the canonical field from the provided
+//! `closed_canonical`, which composes its velocity and `dL/dq`). Wrapping a Lagrangian in
+//! [`AutoDiff`] hides its closed forms: that engine is the independent check of them
 //! (`tests/classical/lagrangian/closed_forms.rs`).
+//!
+//! # Jacobians
+//!
+//! The tangent dynamics (`integrators/tangent.rs`) and the implicit solvers' Newton fallback
+//! need the Jacobians of the two fields a Lagrangian system is integrated as. A Lagrangian
+//! that writes its acceleration and canonical field once, generic over the number type
+//! ([`Lagrangian::closed_acceleration_in`], [`Lagrangian::closed_canonical_in`]: the
+//! double pendulum, hoop, heavy top and elastic pendulum do), gets both by one forward-mode
+//! evaluation on dual vectors ([`forward_jacobian`]): [`first_order_jacobian`]
+//! (`d[qdot, qddot]/d[q, qdot]`, the `DynamicalSystem::jacobian` of `rk4`'s form) and
+//! [`closed_canonical_jacobian`](LagrangianEngine::closed_canonical_jacobian). Otherwise
+//! [`first_order_jacobian`] is `None` (it would need third derivatives of `L`), so the tangent
+//! dynamics of `[q, qdot]` fall back to central differences: the coupled oscillators (`ndof`
+//! beyond the fixed-size duals) and users' Lagrangians. [`canonical_jacobian`], which the
+//! implicit methods' Newton fallback and tangent dynamics use, differentiates `L` twice
+//! (below) for every Lagrangian: exact too, and switching it would change the bits of
+//! trajectories whose steps use Newton.
+//!
+//! [`first_order_jacobian`]: LagrangianEngine::first_order_jacobian
+//! [`canonical_jacobian`]: LagrangianEngine::canonical_jacobian
 //!
 //! A closed form thus replaces a dual-number evaluation of `L` and a linear solve by a few
 //! dozen flops; what remains of an implicit-midpoint step is mostly the solver itself. The
@@ -89,6 +108,7 @@ use num_dual::{Dual64, DualNum, HyperDual64};
 use super::buffer::{MatBuf, VecBuf};
 #[cfg(not(feature = "num-dual-kernels"))]
 use super::dual::{Dual2Arr, DualArr, HyperArr};
+use super::forward::{forward_jacobian, FieldScalar};
 use crate::classical::core::error::{check_len, check_vector};
 #[cfg(doc)]
 use crate::classical::core::linalg::negligible_pivot;
@@ -175,7 +195,8 @@ pub trait Lagrangian {
 
     /// Closed form of the Euler–Lagrange acceleration `qddot(q, qdot, t)`, or `None`.
     /// `Some(Err(_))` ([`singular_mass_matrix`]) where the mass matrix is singular by the
-    /// criterion of [`lu_factor`] (see [`negligible_pivot`]).
+    /// criterion of [`lu_factor`] (see [`negligible_pivot`]). The default is the generic
+    /// [`closed_acceleration_in`](Self::closed_acceleration_in) at `f64`.
     #[inline(always)]
     fn closed_acceleration(
         &self,
@@ -184,8 +205,7 @@ pub trait Lagrangian {
         t: f64,
         out: &mut [f64],
     ) -> Option<Result<()>> {
-        let _ = (q, qdot, t, out);
-        None
+        self.closed_acceleration_in(q, qdot, t, out)
     }
 
     /// Closed form of the inverse Legendre map `qdot(q, p, t)`, or `None`; errors as
@@ -200,9 +220,10 @@ pub trait Lagrangian {
     /// `pdot = dL/dq(q, qdot, t)`, or `None`; errors as
     /// [`closed_acceleration`](Self::closed_acceleration).
     ///
-    /// The default composes [`closed_velocity`](Self::closed_velocity) and
-    /// [`closed_generalized_force`](Self::closed_generalized_force) when both are supplied
-    /// (`None` otherwise); override it only to share work between the two.
+    /// The default is the generic [`closed_canonical_in`](Self::closed_canonical_in) at
+    /// `f64` if supplied, else the composition of [`closed_velocity`](Self::closed_velocity)
+    /// and [`closed_generalized_force`](Self::closed_generalized_force) when both are
+    /// supplied (`None` otherwise); override it only to share work between the two.
     #[inline(always)]
     fn closed_canonical(
         &self,
@@ -212,11 +233,49 @@ pub trait Lagrangian {
         qdot: &mut [f64],
         pdot: &mut [f64],
     ) -> Option<Result<()>> {
+        if let Some(r) = self.closed_canonical_in(q, p, t, qdot, pdot) {
+            return Some(r);
+        }
         if let Err(e) = self.closed_velocity(q, p, t, qdot)? {
             return Some(Err(e));
         }
         self.closed_generalized_force(q, qdot, t, pdot)?;
         Some(Ok(()))
+    }
+
+    // Generic closed forms: the same equations on any `FieldScalar`, so that automatic
+    // differentiation of them gives the Jacobians of the fields the integrators step
+    // (`forward.rs`). The default `f64` closed forms call them at `f64` (one source).
+
+    /// [`closed_acceleration`](Self::closed_acceleration) on any [`FieldScalar`], or `None`.
+    /// With it, the first-order field `[qdot, qddot]` has an exact Jacobian
+    /// ([`LagrangianEngine::first_order_jacobian`]) for `ndof <= 3`.
+    #[inline(always)]
+    fn closed_acceleration_in<D: FieldScalar>(
+        &self,
+        q: &[D],
+        qdot: &[D],
+        t: f64,
+        out: &mut [D],
+    ) -> Option<Result<()>> {
+        let _ = (q, qdot, t, out);
+        None
+    }
+
+    /// [`closed_canonical`](Self::closed_canonical) on any [`FieldScalar`], or `None`. With
+    /// it, [`LagrangianEngine::closed_canonical_jacobian`] differentiates this field directly
+    /// (one dual evaluation) for `ndof <= 3`.
+    #[inline(always)]
+    fn closed_canonical_in<D: FieldScalar>(
+        &self,
+        q: &[D],
+        p: &[D],
+        t: f64,
+        qdot: &mut [D],
+        pdot: &mut [D],
+    ) -> Option<Result<()>> {
+        let _ = (q, p, t, qdot, pdot);
+        None
     }
 }
 
@@ -726,6 +785,87 @@ impl<L: Lagrangian> LagrangianEngine<L> {
         Ok(())
     }
 
+    /// Writes the Jacobian of the first-order field `[qdot, qddot(q, qdot, t)]` with respect
+    /// to the state `[q, qdot]` (row-major `2n x 2n`: `[[0, I], [dqddot/dq, dqddot/dqdot]]`)
+    /// into `out`, by one forward-mode dual evaluation of the Lagrangian's generic closed
+    /// acceleration ([`Lagrangian::closed_acceleration_in`]). `None` when the Lagrangian
+    /// supplies none or `ndof > 3` (the tangent dynamics then take central differences).
+    ///
+    /// # Errors
+    /// [`Error::DimensionMismatch`] for wrong lengths; [`Error::SingularMatrix`] as
+    /// [`acceleration`](Self::acceleration).
+    pub fn first_order_jacobian(
+        &self,
+        t: f64,
+        state: &[f64],
+        out: &mut [f64],
+    ) -> Option<Result<()>> {
+        self.closed_jacobian(t, state, out, Field::FirstOrder)
+    }
+
+    /// Writes the Jacobian of the closed-form canonical field
+    /// ([`Lagrangian::closed_canonical_in`], which at `f64` is what `canonical_derivatives`
+    /// evaluates) into `out` by one forward-mode dual evaluation; `None` when the Lagrangian
+    /// supplies none or `ndof > 3`. It agrees with [`canonical_jacobian`](Self::canonical_jacobian)
+    /// to ~1e-15 relative, at a fraction of its cost; the integrators keep
+    /// `canonical_jacobian`, because a different Newton matrix changes the last bits of the
+    /// steps that use Newton (the hoop with `gauss_legendre4` at `dt = 0.5`), and trajectories
+    /// are pinned bit for bit.
+    ///
+    /// # Errors
+    /// As [`first_order_jacobian`](Self::first_order_jacobian).
+    pub fn closed_canonical_jacobian(
+        &self,
+        t: f64,
+        state: &[f64],
+        out: &mut [f64],
+    ) -> Option<Result<()>> {
+        self.closed_jacobian(t, state, out, Field::Canonical)
+    }
+
+    /// The Jacobian of `field` at `state` from the generic closed forms, for `ndof <= 3`;
+    /// `None` if there are none, a dimension error for wrong lengths.
+    #[inline]
+    fn closed_jacobian(
+        &self,
+        t: f64,
+        state: &[f64],
+        out: &mut [f64],
+        field: Field,
+    ) -> Option<Result<()>> {
+        let dim = 2 * self.ndof();
+        if let Err(e) = check_len("state", state, dim).and(check_len("out", out, dim * dim)) {
+            return Some(Err(e));
+        }
+        match self.ndof() {
+            1 => self.closed_jacobian_fixed::<1, 2>(t, state, out, field),
+            2 => self.closed_jacobian_fixed::<2, 4>(t, state, out, field),
+            3 => self.closed_jacobian_fixed::<3, 6>(t, state, out, field),
+            _ => None,
+        }
+    }
+
+    /// [`closed_jacobian`](Self::closed_jacobian) for `N` degrees of freedom (`M = 2N`).
+    fn closed_jacobian_fixed<const N: usize, const M: usize>(
+        &self,
+        t: f64,
+        state: &[f64],
+        out: &mut [f64],
+        field: Field,
+    ) -> Option<Result<()>> {
+        forward_jacobian::<M>(state, out, |z, f| {
+            let (q, v) = z.split_at(N);
+            let (dq, dv) = f.split_at_mut(N);
+            match field {
+                Field::FirstOrder => {
+                    dq.copy_from_slice(v);
+                    self.lagrangian.closed_acceleration_in(q, v, t, dv)
+                }
+                Field::Canonical => self.lagrangian.closed_canonical_in(q, v, t, dq, dv),
+            }
+        })
+    }
+
     /// [`hessian_vv_scalar`](Self::hessian_vv_scalar) for `N` degrees of freedom: one
     /// evaluation of `L` on second-order vector duals seeded in `v`.
     #[inline]
@@ -1135,6 +1275,15 @@ impl<L: Lagrangian> LagrangianEngine<L> {
             residual,
         })
     }
+}
+
+/// Which vector field of a Lagrangian system a Jacobian is of.
+#[derive(Clone, Copy)]
+enum Field {
+    /// `[qdot, qddot]` in `[q, qdot]`.
+    FirstOrder,
+    /// `[qdot(q, p), dL/dq]` in `[q, p]`.
+    Canonical,
 }
 
 /// Largest number of degrees of freedom with compile-time-sized kernels (vector duals, one

@@ -18,9 +18,10 @@ use crate::classical::core::{Phase, Result};
 /// [`LagrangianSystem`](crate::classical::LagrangianSystem) for a struct with fields
 /// `phase: Phase` and `engine: LagrangianEngine<L>`.
 ///
-/// `derivatives` is `[qdot, acceleration]`, `energy` the engine's `p . qdot - L` at the
-/// system's clock, the canonical form and its Jacobian come from the engine, and the default
-/// method is `implicit_midpoint`. For a generic struct write
+/// `derivatives` is `[qdot, acceleration]` with the engine's
+/// [`first_order_jacobian`](LagrangianEngine::first_order_jacobian) as its `jacobian`,
+/// `energy` the engine's `p . qdot - L` at the system's clock, the canonical form and its
+/// Jacobian come from the engine, and the default method is `implicit_midpoint`. For a generic struct write
 /// `impl_lagrangian_dynamics!(impl [L: Lagrangian] MySystem<L>)`.
 #[macro_export]
 macro_rules! impl_lagrangian_dynamics {
@@ -53,6 +54,14 @@ macro_rules! impl_lagrangian_dynamics {
             }
             fn energy(&self, state: &[f64]) -> f64 {
                 self.engine.energy_of_state(state, self.phase.t())
+            }
+            fn jacobian(
+                &self,
+                t: f64,
+                state: &[f64],
+                out: &mut [f64],
+            ) -> Option<$crate::classical::Result<()>> {
+                self.engine.first_order_jacobian(t, state, out)
             }
             fn default_method(&self) -> $crate::classical::Method {
                 $crate::classical::Method::ImplicitMidpoint

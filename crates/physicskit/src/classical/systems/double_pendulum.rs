@@ -43,7 +43,9 @@
 //! and `cos D` come from `sin`/`cos` of the two angles (one two-lane
 //! [`sin_cos_array`](crate::classical::core::trig::sin_cos_array)) by the angle-difference
 //! identities, at an absolute (not relative) rounding of ~1 ulp in `sin D`, which enters only
-//! multiplied by `O(1)` terms.
+//! multiplied by `O(1)` terms. The acceleration and the canonical field are written once,
+//! generic over the number type: at `f64` they are the integrators' right-hand sides, on dual
+//! numbers they give their exact Jacobians (`lagrangian/forward.rs`).
 //!
 //! # Which starts can flip an arm
 //!
@@ -75,10 +77,12 @@ use crate::classical::core::erased::{fill, Capabilities, Lagrangian as Erased};
 use crate::classical::core::error::check_finite_scalar;
 use crate::classical::core::error::check_positive;
 use crate::classical::core::linalg::negligible_pivot;
-use crate::classical::core::trig::{sin_cos, sin_cos_array};
+use crate::classical::core::trig::sin_cos;
 use crate::classical::core::Method;
 use crate::classical::core::{Error, Phase, Result};
-use crate::classical::lagrangian::{singular_mass_matrix, Lagrangian, LagrangianEngine, Scalar};
+use crate::classical::lagrangian::{
+    singular_mass_matrix, FieldScalar, Lagrangian, LagrangianEngine, Scalar,
+};
 
 /// Masses, rod lengths and gravity of a [`DoublePendulum`]; its [`Lagrangian`].
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -182,34 +186,34 @@ impl DoublePendulumParams {
 
 /// `sin`, `cos` of both angles and of their difference `D`: `[s1, c1, s2, c2, sin D, cos D]`.
 #[inline(always)]
-fn angles(q: &[f64]) -> [f64; 6] {
-    let ([s1, s2], [c1, c2]) = sin_cos_array([q[0], q[1]]);
+fn angles<X: FieldScalar>(q: &[X]) -> [X; 6] {
+    let ([s1, s2], [c1, c2]) = X::sin_cos_kernel_array([q[0], q[1]]);
     [s1, c1, s2, c2, s1 * c2 - c1 * s2, c1 * c2 + s1 * s2]
 }
 
 /// `dL/dq` at angular velocities `w`, from [`DoublePendulumParams::coefficients`] and
 /// [`angles`].
 #[inline(always)]
-fn force(coefficients: &[f64; 5], angles: &[f64; 6], w: &[f64]) -> [f64; 2] {
+fn force<X: FieldScalar>(coefficients: &[f64; 5], angles: &[X; 6], w: &[X]) -> [X; 2] {
     let [_, b, _, g1, g2] = *coefficients;
     let [s1, _, s2, _, sd, _] = *angles;
-    let k = b * w[0] * w[1] * sd;
-    [-k - g1 * s1, k - g2 * s2]
+    let k = w[0] * b * w[1] * sd;
+    [-k - s1 * g1, k - s2 * g2]
 }
 
 /// Solves `[[a, e], [e, d]] x = r` by Cramer's rule, or the singular-matrix error where
 /// partial-pivoting LU would find a negligible pivot (first pivot `max(|a|, |e|)`, second
 /// `det / max(|a|, |e|)`).
 #[inline(always)]
-fn solve_2x2(a: f64, e: f64, d: f64, r: [f64; 2], t: f64) -> Result<[f64; 2]> {
-    let det = a * d - e * e;
-    let first = a.abs().max(e.abs());
+fn solve_2x2<X: FieldScalar>(a: f64, e: X, d: f64, r: [X; 2], t: f64) -> Result<[X; 2]> {
+    let det = X::from(a * d) - e * e;
+    let first = a.abs().max(e.re().abs());
     let scale = first.max(d.abs());
-    if negligible_pivot(first, scale) || negligible_pivot(det, scale * first) {
+    if negligible_pivot(first, scale) || negligible_pivot(det.re(), scale * first) {
         return Err(singular_mass_matrix(t));
     }
     let inv = det.recip();
-    Ok([(d * r[0] - e * r[1]) * inv, (a * r[1] - e * r[0]) * inv])
+    Ok([(r[0] * d - e * r[1]) * inv, (r[1] * a - e * r[0]) * inv])
 }
 
 impl Lagrangian for DoublePendulumParams {
@@ -266,42 +270,42 @@ impl Lagrangian for DoublePendulumParams {
     }
 
     #[inline]
-    fn closed_acceleration(
-        &self,
-        q: &[f64],
-        w: &[f64],
-        t: f64,
-        out: &mut [f64],
-    ) -> Option<Result<()>> {
-        let [a, b, d, g1, g2] = self.coefficients();
-        let [s1, _, s2, _, sd, cd] = angles(q);
-        let f = [
-            -b * w[1] * w[1] * sd - g1 * s1,
-            b * w[0] * w[0] * sd - g2 * s2,
-        ];
-        Some(solve_2x2(a, b * cd, d, f, t).map(|x| out.copy_from_slice(&x)))
-    }
-
-    #[inline]
     fn closed_velocity(&self, q: &[f64], p: &[f64], t: f64, out: &mut [f64]) -> Option<Result<()>> {
         let [a, _, d, ..] = self.coefficients();
         let e = self.coupling(q);
         Some(solve_2x2(a, e, d, [p[0], p[1]], t).map(|w| out.copy_from_slice(&w)))
     }
 
-    #[inline]
-    fn closed_canonical(
+    #[inline(always)]
+    fn closed_acceleration_in<X: FieldScalar>(
         &self,
-        q: &[f64],
-        p: &[f64],
+        q: &[X],
+        w: &[X],
         t: f64,
-        qdot: &mut [f64],
-        pdot: &mut [f64],
+        out: &mut [X],
+    ) -> Option<Result<()>> {
+        let [a, b, d, g1, g2] = self.coefficients();
+        let [s1, _, s2, _, sd, cd] = angles(q);
+        let f = [
+            w[1] * -b * w[1] * sd - s1 * g1,
+            w[0] * b * w[0] * sd - s2 * g2,
+        ];
+        Some(solve_2x2(a, cd * b, d, f, t).map(|x| out.copy_from_slice(&x)))
+    }
+
+    #[inline(always)]
+    fn closed_canonical_in<X: FieldScalar>(
+        &self,
+        q: &[X],
+        p: &[X],
+        t: f64,
+        qdot: &mut [X],
+        pdot: &mut [X],
     ) -> Option<Result<()>> {
         let coefficients = self.coefficients();
         let [a, b, d, ..] = coefficients;
         let angles = angles(q);
-        Some(solve_2x2(a, b * angles[5], d, [p[0], p[1]], t).map(|w| {
+        Some(solve_2x2(a, angles[5] * b, d, [p[0], p[1]], t).map(|w| {
             qdot.copy_from_slice(&w);
             pdot.copy_from_slice(&force(&coefficients, &angles, &w));
         }))

@@ -18,7 +18,9 @@
 //! # Closed forms
 //!
 //! The integrators use these hand-derived forms (checked against automatic differentiation
-//! of `L` in `tests/classical/lagrangian/closed_forms.rs`). With `s = sin theta`, `c = cos theta` and
+//! of `L` in `tests/classical/lagrangian/closed_forms.rs`); the acceleration and the canonical
+//! field are written once, generic over the number type, so their Jacobians come from the
+//! same code by automatic differentiation (`lagrangian/forward.rs`). With `s = sin theta`, `c = cos theta` and
 //! `w = (r', theta')`:
 //!
 //! ```text
@@ -80,7 +82,7 @@ use crate::classical::core::linalg::negligible_pivot;
 use crate::classical::core::trig::sin_cos;
 use crate::classical::core::Method;
 use crate::classical::core::{Error, Phase, Result};
-use crate::classical::lagrangian::{Lagrangian, LagrangianEngine, Scalar};
+use crate::classical::lagrangian::{FieldScalar, Lagrangian, LagrangianEngine, Scalar};
 
 /// Mass, spring constant, rest length and gravity of an [`ElasticPendulum`]; its
 /// [`Lagrangian`].
@@ -165,15 +167,16 @@ impl ElasticPendulumParams {
     /// `(1/m, 1/(m r^2))`, or the singular-mass-matrix error at `r <= 0` (the bob on or past
     /// the pivot) or where LU would find a negligible pivot in `diag(m, m r^2)`.
     #[inline(always)]
-    fn inverse_mass(&self, r: f64, t: f64) -> Result<(f64, f64)> {
+    fn inverse_mass<X: FieldScalar>(&self, r: X, t: f64) -> Result<(f64, X)> {
         let m = self.m;
-        let mr2 = m * r * r;
-        let scale = m.max(mr2);
+        let mr2 = r * m * r;
+        let (r0, mr2_0) = (r.re(), mr2.re());
+        let scale = m.max(mr2_0);
         // A NaN r makes m r^2 NaN, which negligible_pivot calls singular.
-        if r <= 0.0 || negligible_pivot(m, scale) || negligible_pivot(mr2, scale) {
+        if r0 <= 0.0 || negligible_pivot(m, scale) || negligible_pivot(mr2_0, scale) {
             return Err(Error::SingularMatrix {
                 what: format!(
-                    "mass matrix diag(m, m r^2) at r = {r} (the bob reached the pivot, r <= 0 \
+                    "mass matrix diag(m, m r^2) at r = {r0} (the bob reached the pivot, r <= 0 \
                      or m r^2 negligible)"
                 ),
                 t,
@@ -184,11 +187,23 @@ impl ElasticPendulumParams {
 
     /// `dL/dq = (m r theta'^2 + m g cos theta - k (r - l0), -m g r sin theta)`.
     #[inline(always)]
-    fn force(&self, q: &[f64], w: &[f64]) -> [f64; 2] {
+    fn force<X: FieldScalar>(&self, q: &[X], w: &[X]) -> [X; 2] {
         let Self { m, k, l0, g } = *self;
-        let (s, c) = sin_cos(q[1]);
+        let (s, c) = q[1].sin_cos_kernel();
         let r = q[0];
-        [m * (r * w[1] * w[1] + g * c) - k * (r - l0), -m * g * r * s]
+        [
+            (r * w[1] * w[1] + c * g) * m - (r - l0) * k,
+            r * (-m * g) * s,
+        ]
+    }
+
+    /// The velocity `(p_r / m, p_theta / (m r^2))` at `q = (r, theta)`.
+    #[inline(always)]
+    fn velocity<X: FieldScalar>(&self, q: &[X], p: &[X], t: f64, out: &mut [X]) -> Result<()> {
+        self.inverse_mass(q[0], t).map(|(inv_m, inv_mr2)| {
+            out[0] = p[0] * inv_m;
+            out[1] = p[1] * inv_mr2;
+        })
     }
 }
 
@@ -244,27 +259,38 @@ impl Lagrangian for ElasticPendulumParams {
     }
 
     #[inline]
-    fn closed_acceleration(
+    fn closed_velocity(&self, q: &[f64], p: &[f64], t: f64, out: &mut [f64]) -> Option<Result<()>> {
+        Some(self.velocity(q, p, t, out))
+    }
+
+    #[inline(always)]
+    fn closed_acceleration_in<X: FieldScalar>(
         &self,
-        q: &[f64],
-        w: &[f64],
+        q: &[X],
+        w: &[X],
         t: f64,
-        out: &mut [f64],
+        out: &mut [X],
     ) -> Option<Result<()>> {
         let Self { m, k, l0, g } = *self;
         let r = q[0];
         Some(self.inverse_mass(r, t).map(|_| {
-            let (s, c) = sin_cos(q[1]);
-            out[0] = r * w[1] * w[1] + g * c - (k / m) * (r - l0);
-            out[1] = -(g * s + 2.0 * w[0] * w[1]) / r;
+            let (s, c) = q[1].sin_cos_kernel();
+            out[0] = r * w[1] * w[1] + c * g - (r - l0) * (k / m);
+            out[1] = -(s * g + w[0] * 2.0 * w[1]) / r;
         }))
     }
 
-    #[inline]
-    fn closed_velocity(&self, q: &[f64], p: &[f64], t: f64, out: &mut [f64]) -> Option<Result<()>> {
-        Some(self.inverse_mass(q[0], t).map(|(inv_m, inv_mr2)| {
-            out[0] = p[0] * inv_m;
-            out[1] = p[1] * inv_mr2;
+    #[inline(always)]
+    fn closed_canonical_in<X: FieldScalar>(
+        &self,
+        q: &[X],
+        p: &[X],
+        t: f64,
+        qdot: &mut [X],
+        pdot: &mut [X],
+    ) -> Option<Result<()>> {
+        Some(self.velocity(q, p, t, qdot).map(|()| {
+            pdot.copy_from_slice(&self.force(q, qdot));
         }))
     }
 }

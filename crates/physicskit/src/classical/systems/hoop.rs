@@ -19,7 +19,10 @@
 //! # Closed forms
 //!
 //! The integrators use these instead of differentiating `L` (checked against the
-//! [`LagrangianEngine`] in `tests/classical/lagrangian/closed_forms.rs`). With `s = sin theta`,
+//! [`LagrangianEngine`] in `tests/classical/lagrangian/closed_forms.rs`); the acceleration and
+//! the canonical field are written once, generic over the number type, so their Jacobians
+//! come from the same code by automatic differentiation (`lagrangian/forward.rs`). With
+//! `s = sin theta`,
 //! `c = cos theta`, `w = theta'`:
 //!
 //! ```text
@@ -37,7 +40,9 @@ use crate::classical::core::linalg::negligible_pivot;
 use crate::classical::core::trig::sin_cos;
 use crate::classical::core::Method;
 use crate::classical::core::{Phase, Result};
-use crate::classical::lagrangian::{singular_mass_matrix, Lagrangian, LagrangianEngine, Scalar};
+use crate::classical::lagrangian::{
+    singular_mass_matrix, FieldScalar, Lagrangian, LagrangianEngine, Scalar,
+};
 
 /// Radius, rotation rate and gravity of a [`BeadOnRotatingHoop`]; its [`Lagrangian`].
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -132,10 +137,10 @@ impl HoopParams {
 
     /// `dL/dtheta = (R^2 omega^2 cos theta - g R) sin theta`.
     #[inline(always)]
-    fn force(&self, theta: f64) -> f64 {
+    fn force<X: FieldScalar>(&self, theta: X) -> X {
         let Self { r, omega, g } = *self;
-        let (s, c) = sin_cos(theta);
-        (r * r * omega * omega * c - g * r) * s
+        let (s, c) = theta.sin_cos_kernel();
+        (c * (r * r * omega * omega) - g * r) * s
     }
 
     /// `1 / M = 1 / R^2`, or the singular-matrix error for `R^2 = 0` (unvalidated parameters).
@@ -235,20 +240,6 @@ impl Lagrangian for HoopParams {
     }
 
     #[inline]
-    fn closed_acceleration(
-        &self,
-        q: &[f64],
-        _w: &[f64],
-        t: f64,
-        out: &mut [f64],
-    ) -> Option<Result<()>> {
-        Some(
-            self.inverse_mass(t)
-                .map(|inv| out[0] = self.force(q[0]) * inv),
-        )
-    }
-
-    #[inline]
     fn closed_velocity(
         &self,
         _q: &[f64],
@@ -257,6 +248,35 @@ impl Lagrangian for HoopParams {
         out: &mut [f64],
     ) -> Option<Result<()>> {
         Some(self.inverse_mass(t).map(|inv| out[0] = p[0] * inv))
+    }
+
+    #[inline(always)]
+    fn closed_acceleration_in<X: FieldScalar>(
+        &self,
+        q: &[X],
+        _w: &[X],
+        t: f64,
+        out: &mut [X],
+    ) -> Option<Result<()>> {
+        Some(
+            self.inverse_mass(t)
+                .map(|inv| out[0] = self.force(q[0]) * inv),
+        )
+    }
+
+    #[inline(always)]
+    fn closed_canonical_in<X: FieldScalar>(
+        &self,
+        q: &[X],
+        p: &[X],
+        t: f64,
+        qdot: &mut [X],
+        pdot: &mut [X],
+    ) -> Option<Result<()>> {
+        Some(self.inverse_mass(t).map(|inv| {
+            qdot[0] = p[0] * inv;
+            pdot[0] = self.force(q[0]);
+        }))
     }
 }
 

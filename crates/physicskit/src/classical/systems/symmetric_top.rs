@@ -18,8 +18,10 @@
 //! # Closed forms
 //!
 //! The integrators use these instead of differentiating `L` (checked against the
-//! [`LagrangianEngine`] in `tests/classical/lagrangian/closed_forms.rs`). With `s = sin theta`,
-//! `c = cos theta` and the spin `w3 = psi' + phi' c` (Goldstein §5.7, eqs. 5.59–5.62):
+//! [`LagrangianEngine`] in `tests/classical/lagrangian/closed_forms.rs`); the acceleration and
+//! the canonical field are written once, generic over the number type, so their Jacobians
+//! come from the same code by automatic differentiation (`lagrangian/forward.rs`). With
+//! `s = sin theta`, `c = cos theta` and the spin `w3 = psi' + phi' c` (Goldstein §5.7, eqs. 5.59–5.62):
 //!
 //! ```text
 //! mass matrix   M = [[I1 s^2 + I3 c^2, 0, I3 c], [0, I1, 0], [I3 c, 0, I3]],  det = I1^2 I3 s^2
@@ -51,7 +53,9 @@ use crate::classical::core::linalg::negligible_pivot;
 use crate::classical::core::trig::sin_cos;
 use crate::classical::core::Method;
 use crate::classical::core::{Error, Phase, Result};
-use crate::classical::lagrangian::{singular_mass_matrix, Lagrangian, LagrangianEngine, Scalar};
+use crate::classical::lagrangian::{
+    singular_mass_matrix, FieldScalar, Lagrangian, LagrangianEngine, Scalar,
+};
 
 /// Inertia, mass, lever arm and gravity of a [`HeavySymmetricTop`]; its [`Lagrangian`].
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -126,10 +130,11 @@ impl SymmetricTopParams {
     /// `I1 s^2`, the pivot that vanishes with `sin theta`, or the singular-matrix error where
     /// it is negligible against the largest entry of the mass matrix.
     #[inline(always)]
-    fn pivot(&self, s: f64, c: f64, t: f64) -> Result<f64> {
-        let pivot = self.i1 * s * s;
-        let scale = (pivot + self.i3 * c * c).max(self.i1).max(self.i3);
-        if negligible_pivot(pivot, scale)
+    fn pivot<X: FieldScalar>(&self, s: X, c: X, t: f64) -> Result<X> {
+        let pivot = s * self.i1 * s;
+        let (pivot0, c0) = (pivot.re(), c.re());
+        let scale = (pivot0 + self.i3 * c0 * c0).max(self.i1).max(self.i3);
+        if negligible_pivot(pivot0, scale)
             || negligible_pivot(self.i1, scale)
             || negligible_pivot(self.i3, scale)
         {
@@ -140,7 +145,13 @@ impl SymmetricTopParams {
 
     /// The velocity `qdot(q, p)` and the spin `w3` at `(s, c)` (module documentation).
     #[inline(always)]
-    fn velocity_and_spin(&self, p: &[f64], s: f64, c: f64, t: f64) -> Result<([f64; 3], f64)> {
+    fn velocity_and_spin<X: FieldScalar>(
+        &self,
+        p: &[X],
+        s: X,
+        c: X,
+        t: f64,
+    ) -> Result<([X; 3], X)> {
         let pivot = self.pivot(s, c, t)?;
         let (phid, w3) = ((p[0] - p[2] * c) / pivot, p[2] / self.i3);
         Ok(([phid, p[1] / self.i1, w3 - phid * c], w3))
@@ -148,15 +159,15 @@ impl SymmetricTopParams {
 
     /// `dL/dtheta` at `(s, c)`, precession rate `phid` and spin `w3`.
     #[inline(always)]
-    fn nutation_force(&self, s: f64, c: f64, phid: f64, w3: f64) -> f64 {
-        (phid * (self.i1 * phid * c - self.i3 * w3) + self.mgl()) * s
+    fn nutation_force<X: FieldScalar>(&self, s: X, c: X, phid: X, w3: X) -> X {
+        (phid * (phid * self.i1 * c - w3 * self.i3) + self.mgl()) * s
     }
 }
 
 /// The spin `w3 = psi' + phi' cos theta` from the rates `w = (phi', theta', psi')` and
 /// `c = cos theta`.
 #[inline(always)]
-fn spin(w: &[f64], c: f64) -> f64 {
+fn spin<X: FieldScalar>(w: &[X], c: X) -> X {
     w[2] + w[0] * c
 }
 
@@ -212,27 +223,6 @@ impl Lagrangian for SymmetricTopParams {
     }
 
     #[inline]
-    fn closed_acceleration(
-        &self,
-        q: &[f64],
-        w: &[f64],
-        t: f64,
-        out: &mut [f64],
-    ) -> Option<Result<()>> {
-        let (s, c) = sin_cos(q[1]);
-        let (phid, thetad) = (w[0], w[1]);
-        let w3 = spin(w, c);
-        Some(self.pivot(s, c, t).map(|_| {
-            let phidd = thetad * (self.i3 * w3 - 2.0 * self.i1 * phid * c) / (self.i1 * s);
-            out.copy_from_slice(&[
-                phidd,
-                self.nutation_force(s, c, phid, w3) / self.i1,
-                phid * thetad * s - phidd * c,
-            ]);
-        }))
-    }
-
-    #[inline]
     fn closed_velocity(&self, q: &[f64], p: &[f64], t: f64, out: &mut [f64]) -> Option<Result<()>> {
         let (s, c) = sin_cos(q[1]);
         Some(
@@ -241,19 +231,41 @@ impl Lagrangian for SymmetricTopParams {
         )
     }
 
-    #[inline]
-    fn closed_canonical(
+    #[inline(always)]
+    fn closed_acceleration_in<X: FieldScalar>(
         &self,
-        q: &[f64],
-        p: &[f64],
+        q: &[X],
+        w: &[X],
         t: f64,
-        qdot: &mut [f64],
-        pdot: &mut [f64],
+        out: &mut [X],
     ) -> Option<Result<()>> {
-        let (s, c) = sin_cos(q[1]);
+        let (s, c) = q[1].sin_cos_kernel();
+        let (phid, thetad) = (w[0], w[1]);
+        let w3 = spin(w, c);
+        Some(self.pivot(s, c, t).map(|_| {
+            let phidd = thetad * (w3 * self.i3 - phid * (2.0 * self.i1) * c) / (s * self.i1);
+            out.copy_from_slice(&[
+                phidd,
+                self.nutation_force(s, c, phid, w3) / self.i1,
+                phid * thetad * s - phidd * c,
+            ]);
+        }))
+    }
+
+    #[inline(always)]
+    fn closed_canonical_in<X: FieldScalar>(
+        &self,
+        q: &[X],
+        p: &[X],
+        t: f64,
+        qdot: &mut [X],
+        pdot: &mut [X],
+    ) -> Option<Result<()>> {
+        let (s, c) = q[1].sin_cos_kernel();
         Some(self.velocity_and_spin(p, s, c, t).map(|(w, w3)| {
             qdot.copy_from_slice(&w);
-            pdot.copy_from_slice(&[0.0, self.nutation_force(s, c, w[0], w3), 0.0]);
+            let zero = X::from(0.0);
+            pdot.copy_from_slice(&[zero, self.nutation_force(s, c, w[0], w3), zero]);
         }))
     }
 }

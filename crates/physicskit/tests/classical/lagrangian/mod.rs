@@ -5,3 +5,4 @@
 mod closed_forms;
 mod engine;
 mod expr_systems;
+mod jacobians;
