@@ -207,7 +207,7 @@ fn run_splitting<S, const N: usize, B, W>(
 ) -> Result<SimulationResult>
 where
     S: HamiltonianSystem,
-    B: AsRef<[f64]> + AsMut<[f64]>,
+    B: AsRef<[f64]> + AsMut<[f64]> + Clone,
     W: AsRef<[f64]> + AsMut<[f64]>,
 {
     let Run {

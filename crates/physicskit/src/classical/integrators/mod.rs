@@ -39,6 +39,7 @@ registry::registry! {
     Dop853 = dop853(adaptive: Dop853),
 }
 
+pub mod compensated;
 pub mod driver;
 pub mod ensemble;
 pub mod field;

@@ -26,13 +26,21 @@
 //! unrolls and each kick fuses with the following drift into one pass over the coordinates.
 //! Short slices (up to three coordinates) run a fixed-length copy of that pass, long ones
 //! (from 64) the SSE2/AVX2/AVX-512 clone the CPU supports.
+//!
+//! **Rounding.** Within a step the kicks and drifts are summed with compensated summation
+//! ([`compensated`](super::compensated); Hairer, Lubich & Wanner, *Geometric Numerical
+//! Integration*, 2nd ed., §VIII.5): the `2 s + 1` additions of a step round the state once,
+//! where plain sums round it `2 s + 1` times (35 for `kahan_li8`), so the rounding random walk
+//! of a long run is about `sqrt(2 s + 1)` times smaller. The corrections enter `q` in the last
+//! drift (so the last force, reused by the next step, is the force of the `q` returned) and
+//! `p` in the last kick: between steps the state is just `[q, p]`, and a run continued by a
+//! second call, a session or a section repeats one long run's bits.
 
 use std::collections::BTreeMap;
 
-use multiversion::multiversion;
-
+use super::compensated;
 use super::stepper::{Report, Stepper};
-use crate::classical::core::{Error, ExtraValue, HamiltonianSystem, MassInv, Method, Result};
+use crate::classical::core::{Error, ExtraValue, HamiltonianSystem, Method, Result};
 
 /// The weights of a splitting method with `S` drifts: `kicks[i]` before `drifts[i]`, and
 /// `last_kick` after the last drift (see the module docs). Built at compile time from a
@@ -141,6 +149,10 @@ pub struct SplittingStepper<const S: usize, B = Vec<f64>> {
     /// Substep end times as fractions of the step; the last is exactly 1.
     ends: [f64; S],
     force: B,
+    /// The compensated sums' corrections of `q` and `p`: work space of one step (reset at its
+    /// start, nothing in them outlives it).
+    carry_q: B,
+    carry_p: B,
     /// The cached force belongs to the current `q` (first same as last).
     force_valid: bool,
     force_evaluations: u64,
@@ -202,8 +214,12 @@ impl<const S: usize> SplittingStepper<S> {
 
 impl<const S: usize, B: AsRef<[f64]> + AsMut<[f64]>> SplittingStepper<S, B> {
     /// A stepper for the method with weights `coefficients`, caching the force in `force` (of
-    /// length `ndof`).
-    pub fn with_buffer(coefficients: Coefficients<S>, force: B) -> Self {
+    /// length `ndof`; two copies of it hold the compensated sums' corrections).
+    pub fn with_buffer(coefficients: Coefficients<S>, mut force: B) -> Self
+    where
+        B: Clone,
+    {
+        force.as_mut().fill(0.0);
         let Coefficients {
             kicks,
             drifts,
@@ -220,6 +236,8 @@ impl<const S: usize, B: AsRef<[f64]> + AsMut<[f64]>> SplittingStepper<S, B> {
             kicks,
             last_kick,
             ends,
+            carry_q: force.clone(),
+            carry_p: force.clone(),
             force,
             force_valid: false,
             force_evaluations: 0,
@@ -281,16 +299,22 @@ impl<const S: usize, B: AsRef<[f64]> + AsMut<[f64]>> SplittingStepper<S, B> {
         // invalid).
         self.force_valid = false;
         let mass_inv = system.mass_inv();
+        let (carry_q, carry_p) = (self.carry_q.as_mut(), self.carry_p.as_mut());
+        // -0.0: the first `-0.0 + e` is `e` for every `e`, so the compiler can drop it.
+        carry_q.fill(-0.0);
+        carry_p.fill(-0.0);
         let mut v = None;
         for i in 0..S {
-            kick_drift(
-                mass_inv,
-                q,
-                p,
-                self.force.as_ref(),
-                self.kicks[i] * h,
-                self.drifts[i] * h,
-            );
+            let (force, kick, drift) = (self.force.as_ref(), self.kicks[i] * h, self.drifts[i] * h);
+            if i + 1 == S {
+                compensated::kick_drift::<true>(
+                    mass_inv, q, p, carry_q, carry_p, force, kick, drift,
+                );
+            } else {
+                compensated::kick_drift::<false>(
+                    mass_inv, q, p, carry_q, carry_p, force, kick, drift,
+                );
+            }
             let t_force = t + self.ends[i] * h;
             if potential && i + 1 == S {
                 v = system.force_and_potential(q, t_force, self.force.as_mut())?;
@@ -299,7 +323,7 @@ impl<const S: usize, B: AsRef<[f64]> + AsMut<[f64]>> SplittingStepper<S, B> {
             }
         }
         self.force_evaluations += S as u64;
-        kick(p, self.force.as_ref(), self.last_kick * h);
+        compensated::closing_kick(p, carry_p, self.force.as_ref(), self.last_kick * h);
         self.force_valid = true;
         Ok(v)
     }
@@ -339,188 +363,5 @@ impl<const S: usize, B> Report for SplittingStepper<S, B> {
             "force_evaluations".into(),
             ExtraValue::Scalar(self.force_evaluations as f64),
         );
-    }
-}
-
-/// `p += kick * F; q += drift * mass_inv * p`, fused into one pass.
-///
-/// Systems with up to three degrees of freedom (Kepler, Hénon–Heiles, the projectile, a
-/// pendulum) take a fixed-length copy of the loop: a runtime-length loop over two elements
-/// spends more instructions on its own control than on the arithmetic. The length test is one
-/// well-predicted branch. From [`DISPATCH_MIN`] coordinates on, the loop runs in the
-/// AVX2/AVX-512 clone this CPU supports.
-#[inline(always)]
-fn kick_drift(
-    mass_inv: MassInv<'_>,
-    q: &mut [f64],
-    p: &mut [f64],
-    force: &[f64],
-    kick: f64,
-    drift: f64,
-) {
-    match (q.len(), mass_inv) {
-        (1, MassInv::Uniform(m)) => kick_drift_fixed::<1>(m, q, p, force, kick, drift),
-        (2, MassInv::Uniform(m)) => kick_drift_fixed::<2>(m, q, p, force, kick, drift),
-        (3, MassInv::Uniform(m)) => kick_drift_fixed::<3>(m, q, p, force, kick, drift),
-        (n, MassInv::Uniform(m)) if n >= DISPATCH_MIN => {
-            kick_drift_uniform(q, p, force, kick, drift * m);
-        }
-        (_, MassInv::Uniform(m)) => kick_drift_uniform_body(q, p, force, kick, drift * m),
-        (n, MassInv::PerCoordinate(m)) if n >= DISPATCH_MIN => {
-            kick_drift_per_coordinate(q, p, force, m, kick, drift);
-        }
-        (_, MassInv::PerCoordinate(m)) => {
-            kick_drift_per_coordinate_body(q, p, force, m, kick, drift);
-        }
-    }
-}
-
-/// Shortest slices worth the indirect call into the SIMD clones below (the generic integrator
-/// itself is compiled for the baseline, SSE2). Chosen by measurement: the 100-site sine-Gordon
-/// chain and the 200-pendulum swarm gain from the clones, while the 32-site FPUT chain lost
-/// more to the call than it gained (figures in `benchmarks/README.md`), so it stays inline.
-const DISPATCH_MIN: usize = 64;
-
-// The kick-drift loops of long slices, compiled for SSE2, AVX2 and AVX-512 and chosen at run
-// time like the slice trig (core/trig.rs). `fma` is not enabled: each clone performs the same
-// IEEE multiplications and additions, so the results are the same bits on every machine.
-
-#[inline(always)]
-fn kick_drift_uniform_body(q: &mut [f64], p: &mut [f64], force: &[f64], kick: f64, dm: f64) {
-    for ((qi, pi), fi) in q.iter_mut().zip(p.iter_mut()).zip(force) {
-        *pi += kick * fi;
-        *qi += dm * *pi;
-    }
-}
-
-#[inline(always)]
-fn kick_drift_per_coordinate_body(
-    q: &mut [f64],
-    p: &mut [f64],
-    force: &[f64],
-    m: &[f64],
-    kick: f64,
-    drift: f64,
-) {
-    for (((qi, pi), fi), mi) in q.iter_mut().zip(p.iter_mut()).zip(force).zip(m) {
-        *pi += kick * fi;
-        *qi += drift * mi * *pi;
-    }
-}
-
-#[inline(always)]
-fn kick_body(p: &mut [f64], force: &[f64], k: f64) {
-    p.iter_mut().zip(force).for_each(|(pi, fi)| *pi += k * fi);
-}
-
-#[multiversion(targets("x86_64+avx512f+avx512dq+avx512vl+avx2", "x86_64+avx2"))]
-fn kick_drift_uniform(q: &mut [f64], p: &mut [f64], force: &[f64], kick: f64, dm: f64) {
-    kick_drift_uniform_body(q, p, force, kick, dm);
-}
-
-#[multiversion(targets("x86_64+avx512f+avx512dq+avx512vl+avx2", "x86_64+avx2"))]
-fn kick_drift_per_coordinate(
-    q: &mut [f64],
-    p: &mut [f64],
-    force: &[f64],
-    m: &[f64],
-    kick: f64,
-    drift: f64,
-) {
-    kick_drift_per_coordinate_body(q, p, force, m, kick, drift);
-}
-
-#[multiversion(targets("x86_64+avx512f+avx512dq+avx512vl+avx2", "x86_64+avx2"))]
-fn kick_long(p: &mut [f64], force: &[f64], k: f64) {
-    kick_body(p, force, k);
-}
-
-/// [`kick_drift`] with uniform masses on exactly `N` coordinates (`q`, `p`, `force` all of
-/// length `N`, which the caller has checked).
-#[inline(always)]
-fn kick_drift_fixed<const N: usize>(
-    m: f64,
-    q: &mut [f64],
-    p: &mut [f64],
-    force: &[f64],
-    kick: f64,
-    drift: f64,
-) {
-    let (Ok(q), Ok(p), Ok(force)) = (
-        <&mut [f64; N]>::try_from(q),
-        <&mut [f64; N]>::try_from(p),
-        <&[f64; N]>::try_from(force),
-    ) else {
-        return;
-    };
-    let dm = drift * m;
-    for i in 0..N {
-        p[i] += kick * force[i];
-        q[i] += dm * p[i];
-    }
-}
-
-/// `p += kick * F`, fixed-length for up to three coordinates and dispatched to a SIMD clone
-/// from [`DISPATCH_MIN`] on, as in [`kick_drift`].
-#[inline(always)]
-fn kick(p: &mut [f64], force: &[f64], k: f64) {
-    #[inline(always)]
-    fn fixed<const N: usize>(p: &mut [f64], force: &[f64], k: f64) {
-        if let (Ok(p), Ok(force)) = (<&mut [f64; N]>::try_from(p), <&[f64; N]>::try_from(force)) {
-            for i in 0..N {
-                p[i] += k * force[i];
-            }
-        }
-    }
-    match p.len() {
-        1 => fixed::<1>(p, force, k),
-        2 => fixed::<2>(p, force, k),
-        3 => fixed::<3>(p, force, k),
-        n if n >= DISPATCH_MIN => kick_long(p, force, k),
-        _ => kick_body(p, force, k),
-    }
-}
-
-#[cfg(test)]
-mod tests {
-    use super::*;
-
-    /// The run-time-dispatched clones (AVX-512 or AVX2 where the CPU has them) against the same
-    /// bodies compiled here at the baseline, bit for bit, at lengths around the vector widths
-    /// and the dispatch threshold, with values spanning many binades.
-    #[test]
-    fn dispatched_and_baseline_loops_are_bit_identical() {
-        let value = |i: usize, k: f64| ((i as f64) * k).sin() * 10f64.powi((i % 9) as i32 - 4);
-        for n in [DISPATCH_MIN, DISPATCH_MIN + 1, 100, 200, 257] {
-            let q: Vec<f64> = (0..n).map(|i| value(i, 0.37)).collect();
-            let p: Vec<f64> = (0..n).map(|i| value(i, 1.13)).collect();
-            let f: Vec<f64> = (0..n).map(|i| value(i, 2.71)).collect();
-            let m: Vec<f64> = (0..n).map(|i| 1.0 + value(i, 0.05).abs()).collect();
-            let bits = |v: &[f64]| v.iter().map(|x| x.to_bits()).collect::<Vec<_>>();
-            let (mut q1, mut p1, mut q2, mut p2) = (q.clone(), p.clone(), q.clone(), p.clone());
-            kick_drift_uniform(&mut q1, &mut p1, &f, 0.3, -0.7);
-            kick_drift_uniform_body(&mut q2, &mut p2, &f, 0.3, -0.7);
-            assert_eq!(
-                (bits(&q1), bits(&p1)),
-                (bits(&q2), bits(&p2)),
-                "uniform, n = {n}"
-            );
-            let (mut q1, mut p1, mut q2, mut p2) = (q.clone(), p.clone(), q.clone(), p.clone());
-            kick_drift_per_coordinate(&mut q1, &mut p1, &f, &m, 0.3, -0.7);
-            kick_drift_per_coordinate_body(&mut q2, &mut p2, &f, &m, 0.3, -0.7);
-            assert_eq!(
-                (bits(&q1), bits(&p1)),
-                (bits(&q2), bits(&p2)),
-                "masses, n = {n}"
-            );
-            let (mut p1, mut p2) = (p.clone(), p.clone());
-            kick_long(&mut p1, &f, 0.3);
-            kick_body(&mut p2, &f, 0.3);
-            assert_eq!(bits(&p1), bits(&p2), "kick, n = {n}");
-            // And the loops do what they say (against the formula written out).
-            let mut p3 = p.clone();
-            kick_body(&mut p3, &f, 0.3);
-            assert!((0..n).all(|i| p3[i].to_bits() == (p[i] + 0.3 * f[i]).to_bits()));
-        }
     }
 }

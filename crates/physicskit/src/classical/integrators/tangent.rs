@@ -46,6 +46,7 @@
 
 use std::cell::RefCell;
 
+use super::compensated;
 use super::field::{Canonical, FirstOrder, VectorField};
 use super::splitting::{check_system, Coefficients, SplittingStepper};
 use super::stepper::{splitting_refused, AdaptiveStepper, Dispatch, FieldStepper};
@@ -208,7 +209,7 @@ fn add_mat_vec(out: &mut [f64], a: f64, jac: &[f64], x: &[f64]) {
     }
 }
 
-/// `q += b M⁻¹ p`.
+/// `δq += b M⁻¹ δp` (a deviation vector's drift).
 #[inline]
 fn drift(mass_inv: MassInv<'_>, q: &mut [f64], p: &[f64], b: f64) {
     for (i, (qi, pi)) in q.iter_mut().zip(p).enumerate() {
@@ -226,6 +227,10 @@ struct SplittingFlow<'a, S: ?Sized, const N: usize> {
     ends: [f64; N],
     force: Vec<f64>,
     jac: Vec<f64>,
+    /// The compensated sums' corrections of the orbit's `q` and `p` within a step, as in the
+    /// orbit's [`SplittingStepper`].
+    carry_q: Vec<f64>,
+    carry_p: Vec<f64>,
     /// Force and Jacobian belong to the current `q` (first same as last).
     cached: bool,
     fd: FdScratch,
@@ -250,6 +255,8 @@ impl<'a, S: HamiltonianSystem + ?Sized, const N: usize> SplittingFlow<'a, S, N> 
             ends,
             force: vec![0.0; n],
             jac: vec![0.0; n * n],
+            carry_q: vec![0.0; n],
+            carry_p: vec![0.0; n],
             cached: false,
             fd: FdScratch::new(n),
             max_vectors,
@@ -261,12 +268,9 @@ impl<'a, S: HamiltonianSystem + ?Sized, const N: usize> SplittingFlow<'a, S, N> 
         force_jacobian(self.system, q, t, &mut self.jac, &mut self.fd)
     }
 
-    /// One kick of weight `a` on the orbit and the deviations.
-    fn kick(&self, p: &mut [f64], w: &mut [f64], a: f64) {
-        let n = p.len();
-        p.iter_mut()
-            .zip(&self.force)
-            .for_each(|(pi, fi)| *pi += a * fi);
+    /// One kick of weight `a` on the deviations.
+    fn kick_vectors(&self, w: &mut [f64], a: f64) {
+        let n = self.force.len();
         for v in w.chunks_exact_mut(2 * n) {
             let (dq, dp) = v.split_at_mut(n);
             add_mat_vec(dp, a, &self.jac, dq);
@@ -310,17 +314,29 @@ impl<S: HamiltonianSystem + ?Sized, const N: usize> Flow for SplittingFlow<'_, S
         self.cached = false;
         let mass_inv = self.system.mass_inv();
         let c = self.coefficients;
+        // The orbit takes exactly the operations of `SplittingStepper::step` (the same
+        // compensated kernels in the same order), so it is the orbit of a run without vectors,
+        // bit for bit.
+        self.carry_q.fill(-0.0);
+        self.carry_p.fill(-0.0);
         for i in 0..N {
-            self.kick(p, w, c.kicks[i] * h);
-            let b = c.drifts[i] * h;
-            drift(mass_inv, q, p, b);
+            let (a, b) = (c.kicks[i] * h, c.drifts[i] * h);
+            self.kick_vectors(w, a);
+            let (carry_q, carry_p, force) = (&mut self.carry_q, &mut self.carry_p, &self.force);
+            if i + 1 == N {
+                compensated::kick_drift::<true>(mass_inv, q, p, carry_q, carry_p, force, a, b);
+            } else {
+                compensated::kick_drift::<false>(mass_inv, q, p, carry_q, carry_p, force, a, b);
+            }
             for v in w.chunks_exact_mut(2 * n) {
                 let (dq, dp) = v.split_at_mut(n);
                 drift(mass_inv, dq, dp, b);
             }
             self.evaluate(q, t + self.ends[i] * h)?;
         }
-        self.kick(p, w, c.last_kick * h);
+        let a = c.last_kick * h;
+        self.kick_vectors(w, a);
+        compensated::closing_kick(p, &self.carry_p, &self.force, a);
         self.cached = true;
         Ok(())
     }

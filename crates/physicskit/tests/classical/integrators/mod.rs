@@ -1,12 +1,14 @@
 //! The integrators and their drivers: measured convergence orders, bounded vs drifting energy,
 //! time reversibility, quadratic invariants, the implicit-midpoint solve, ensembles, the stored
-//! energy of splitting methods, the Lagrangian path, the adaptive dop853.
+//! energy of splitting methods and their compensated sums, the Lagrangian path, the adaptive
+//! dop853.
 
 // Bit-identical reproducibility and exact clock values are claims of their own here, so exact
 // float comparisons are intended.
 #![allow(clippy::float_cmp)]
 
 mod coefficients;
+mod compensated;
 mod convergence;
 mod dop853;
 mod energy_behaviour;
