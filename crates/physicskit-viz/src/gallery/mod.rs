@@ -6,7 +6,7 @@
 //! (used by tests and `physicskit gallery --quick`) runs fewer orbits, shorter times and fewer
 //! animation frames so the whole gallery renders in well under a minute on two cores.
 //!
-//! A demonstration's number is its place in the list below: [`Ctx`] numbers its title
+//! A demonstration's number is its place in the list below: `Ctx` numbers its title
 //! (`"17. Work–precision"`) and prefixes its files (`17_work_precision_1.png`), so no page
 //! types its own number.
 

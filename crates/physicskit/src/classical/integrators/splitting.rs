@@ -28,7 +28,7 @@
 //! (from 64) the SSE2/AVX2/AVX-512 clone the CPU supports.
 //!
 //! **Rounding.** Within a step the kicks and drifts are summed with compensated summation
-//! ([`compensated`](super::compensated); Hairer, Lubich & Wanner, *Geometric Numerical
+//! ([`compensated`] module; Hairer, Lubich & Wanner, *Geometric Numerical
 //! Integration*, 2nd ed., §VIII.5): the `2 s + 1` additions of a step round the state once,
 //! where plain sums round it `2 s + 1` times (35 for `kahan_li8`), so the rounding random walk
 //! of a long run is about `sqrt(2 s + 1)` times smaller. The corrections enter `q` in the last

@@ -45,7 +45,7 @@ use crate::classical::core::{
 /// The number types the generic closed forms are evaluated on: `f64` for the integrators and
 /// num-dual's `DualSVec64<M>` for their Jacobians. Sine and cosine go through the crate's
 /// kernels ([`sin_cos`], [`sin_cos_array`]), so the `f64` values keep their bits (module
-/// documentation); everything else is [`DualNum`] arithmetic.
+/// documentation); everything else is [`DualNum`](num_dual::DualNum) arithmetic.
 pub trait FieldScalar: Scalar {
     /// `(sin x, cos x)`, the value parts from [`sin_cos`].
     fn sin_cos_kernel(self) -> (Self, Self);
