@@ -12,7 +12,7 @@ use std::ops::ControlFlow;
 use anyhow::{anyhow, bail, Context, Result};
 use physicskit::classical::analysis::lyapunov::DEFAULT_RENORMALIZE_EVERY;
 use physicskit::classical::catalog;
-use physicskit::classical::core::{SystemEntry, Value};
+use physicskit::classical::core::{check_items_fit, SystemEntry, Value};
 use physicskit::classical::ensemble::{self, Members, Plan, Reduction, Sweep};
 use physicskit::classical::Observer;
 
@@ -76,6 +76,16 @@ impl Layout {
             .ok_or_else(|| {
                 anyhow!("the members' axes give {shape:?} members: none, or too many")
             })?;
+        // The members' swept values and states are spelled out per member below: refuse a
+        // grid too large for memory before allocating (the engine then checks its outputs).
+        let per_member = scenario.values.len()
+            + scenario.grid.len()
+            + scenario
+                .states
+                .as_ref()
+                .and_then(|r| r.first())
+                .map_or(0, Vec::len);
+        check_items_fit("members", n, 8 * per_member.max(1))?;
         // Member i's index along axis k.
         let along = |k: usize, i: usize| (i / shape[k + 1..].iter().product::<usize>()) % shape[k];
         let offset = usize::from(listed.is_some());

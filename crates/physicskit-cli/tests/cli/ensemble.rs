@@ -118,6 +118,12 @@ fn a_bad_member_is_named_and_no_file_is_left() {
     assert!(message.contains("member 0: m"), "{message}");
     let message = oscillator_fails("q0=0:1:x");
     assert!(message.contains("NAME=A:B:N"), "{message}");
+    // 1e11 members need 800 GB for their swept values alone: refused before allocating (it
+    // aborted on the failed allocation before), naming the members; 2^64 - 1 likewise.
+    for n in ["100000000000", "18446744073709551615"] {
+        let message = oscillator_fails(&format!("q0=0:1:{n}"));
+        assert!(message.contains("members"), "{n}: {message}");
+    }
 }
 
 #[test]
