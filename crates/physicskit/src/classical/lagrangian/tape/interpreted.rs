@@ -5,7 +5,7 @@ use super::Tape;
 
 /// No native code, ever.
 #[derive(Debug, Clone, Default, PartialEq)]
-pub(super) struct Jit;
+pub(super) struct Jit(());
 
 /// Native code, which this build cannot have.
 pub(super) enum Native {}
