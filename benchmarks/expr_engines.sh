@@ -1,7 +1,9 @@
 #!/usr/bin/env bash
-# Instructions per yoshida4 step of Hénon–Heiles as a built-in system and as an expression
-# (`ExprHamiltonian`, the path of a SymPy `HamiltonianEngine`), from callgrind (load-
-# independent): (I(2N steps) - I(N steps)) / N, so set-up and process start cancel.
+# Instructions per step of Hénon–Heiles (yoshida4) and the Lorenz system (rk4), each as a
+# hand-written system and as an expression (`ExprHamiltonian`, `ExprOde`: the paths of a SymPy
+# `HamiltonianEngine` and `ODEEngine`) compiled to machine code and interpreted, from
+# callgrind (load-independent): (I(2N steps) - I(N steps)) / N, so set-up, process start and
+# compilation cancel.
 #
 #   bash benchmarks/expr_engines.sh [N]      (N defaults to 10000)
 #
@@ -14,10 +16,15 @@ cargo build --quiet --release -p physicskit-benchmarks --bin expr_engines
 bin="$target/release/expr_engines"
 # shellcheck source=benchmarks/instructions.sh
 source benchmarks/instructions.sh
-printf '| %-22s | %12s |\n' case "instr./step"
-printf '|%s|%s|\n' "------------------------" "-------------:"
-for c in builtin-henon-heiles expr-henon-heiles; do
-    a=$(instructions "$bin" "$c" "$n")
-    b=$(instructions "$bin" "$c" $((2 * n)))
-    printf '| %-22s | %12s |\n' "$c" $(((b - a) / n))
+printf '| %-30s | %12s | %6s |\n' case "instr./step" ratio
+printf '|%s|%s|%s|\n' "--------------------------------" "-------------:" "-------:"
+for family in henon-heiles lorenz; do
+    base=
+    for c in "builtin-$family" "expr-$family" "expr-$family-interpreted"; do
+        a=$(instructions "$bin" "$c" "$n")
+        b=$(instructions "$bin" "$c" $((2 * n)))
+        per=$(((b - a) / n))
+        base=${base:-$per}
+        printf '| %-30s | %12s | %6s |\n' "$c" "$per" "$(awk "BEGIN {printf \"%.2f\", $per / $base}")"
+    done
 done

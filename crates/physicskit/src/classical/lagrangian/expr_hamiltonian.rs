@@ -44,7 +44,7 @@
 
 use super::expr::Expr;
 use super::expr_diff::{negate, sum, Var};
-use super::tape::Tape;
+use super::tape::{Backend, Tape};
 use crate::classical::core::error::{check_len, check_vector};
 use crate::classical::core::{
     hamiltonian_energy, separable_derivatives, separable_jacobian, Capabilities, DynamicalSystem,
@@ -203,6 +203,45 @@ impl ExprHamiltonian {
     /// `H(q, p, t)`.
     pub fn hamiltonian(&self, q: &[f64], p: &[f64], t: f64) -> f64 {
         self.hamiltonian.eval_scalar(q, p, t)
+    }
+
+    /// The tapes: the step's first (the force, or the field), then the others.
+    fn tapes(&self) -> [&Tape; 4] {
+        match &self.kind {
+            Kind::Separable {
+                force,
+                potential,
+                force_potential,
+                ..
+            } => [force, force_potential, potential, &self.hamiltonian],
+            Kind::General { field } => [field, field, field, &self.hamiltonian],
+        }
+    }
+
+    /// Which code evaluates the right-hand side: native code once compiled (with the feature
+    /// `jit`: after [`COMPILE_AFTER`](super::COMPILE_AFTER) evaluations, or by [`compile_native`](Self::compile_native)),
+    /// else the interpreter; both give the same bits ([`Tape`]).
+    pub fn backend(&self) -> Backend {
+        self.tapes()[0].backend()
+    }
+
+    /// Compiles every tape to machine code now ([`Tape::compile_native`]) and returns the
+    /// right-hand side's backend.
+    pub fn compile_native(&self) -> Backend {
+        self.tapes().iter().for_each(|t| {
+            t.compile_native();
+        });
+        self.backend()
+    }
+
+    /// [`Tape::compile_native_for_unsupported_host`] on every tape: the system stays
+    /// interpreted (for tests of the fallback).
+    #[doc(hidden)]
+    pub fn compile_native_for_unsupported_host(&self) -> Backend {
+        self.tapes().iter().for_each(|t| {
+            t.compile_native_for_unsupported_host();
+        });
+        self.backend()
     }
 
     /// Operations per evaluation of the right-hand side (the force of a separable `H`, else

@@ -27,7 +27,7 @@
 //! ```
 
 use super::expr::Expr;
-use super::tape::Tape;
+use super::tape::{Backend, Tape};
 use crate::classical::core::error::check_len;
 use crate::classical::core::{
     Capabilities, DynamicalSystem, Error, IntegrateOptions, Method, OdeSystem, Phase, Result,
@@ -98,6 +98,32 @@ impl ExprOde {
     /// Whether an energy expression was given.
     pub fn has_energy(&self) -> bool {
         self.energy.is_some()
+    }
+
+    /// Which code evaluates `f`: native code once compiled (with the feature `jit`: after
+    /// [`COMPILE_AFTER`](super::COMPILE_AFTER) evaluations, or by [`compile_native`](Self::compile_native)), else the
+    /// interpreter; both give the same bits ([`Tape`]).
+    pub fn backend(&self) -> Backend {
+        self.field.backend()
+    }
+
+    /// Compiles `f` (and the energy expression) to machine code now
+    /// ([`Tape::compile_native`]) and returns `f`'s backend.
+    pub fn compile_native(&self) -> Backend {
+        self.energy.iter().for_each(|e| {
+            e.compile_native();
+        });
+        self.field.compile_native()
+    }
+
+    /// [`Tape::compile_native_for_unsupported_host`] on every tape: the system stays
+    /// interpreted (for tests of the fallback).
+    #[doc(hidden)]
+    pub fn compile_native_for_unsupported_host(&self) -> Backend {
+        self.energy.iter().for_each(|e| {
+            e.compile_native_for_unsupported_host();
+        });
+        self.field.compile_native_for_unsupported_host()
     }
 
     /// Operations per evaluation of `f`, after shared subexpressions and constants are folded.

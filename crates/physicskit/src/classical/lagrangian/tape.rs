@@ -14,6 +14,11 @@
 //!
 //! Jacobians come from forward-mode automatic differentiation over the same tape: one pass on
 //! num-dual's `Dual64` per input column ([`Tape::jacobian`]).
+//!
+//! With the feature `jit` on a native target, a tape evaluated more than [`COMPILE_AFTER`] times is
+//! compiled to machine code by Cranelift (`tape/jit.rs`), which does the same `f64`
+//! operations in the same order, so the results keep their bits; where Cranelift cannot
+//! compile, the tape stays interpreted. [`Tape::backend`] tells which runs.
 
 use std::collections::HashMap;
 
@@ -23,9 +28,22 @@ use super::engine::Scalar;
 use super::expr::{Expr, Func, MAX_EXPR_DEPTH};
 use crate::classical::core::{Error, Result};
 
+#[cfg(all(feature = "jit", not(target_arch = "wasm32")))]
+mod jit;
+#[cfg(not(all(feature = "jit", not(target_arch = "wasm32"))))]
+#[path = "tape/interpreted.rs"]
+mod jit;
+
 /// Largest register array kept on the stack; larger tapes use one heap buffer per evaluation
 /// (their hundreds of operations then dwarf the allocation).
 pub const STACK_SLOTS: usize = 256;
+
+/// Interpreted `f64` evaluations after which a tape is compiled to machine code (feature
+/// `jit`). Compiling a tape takes 0.3-0.6 ms and saves 20-30 ns per evaluation on small tapes
+/// (benchmarks/README.md, "Expression engines"): 10 000 to 30 000 evaluations pay it back.
+/// Compiling once the interpreter has run about that many (the rent-or-buy rule) costs any
+/// run at most about twice what the better choice in hindsight would have.
+pub const COMPILE_AFTER: u32 = 10_000;
 
 /// One operation; operands are slot indices (`a`, `b`) or constants (`c`).
 ///
@@ -139,6 +157,18 @@ pub struct Tape {
     n_second: usize,
     ops: Vec<Op>,
     outputs: Vec<Out>,
+    /// Native code for the `f64` evaluations, once compiled; shared by clones.
+    jit: jit::Jit,
+}
+
+/// Which code runs a tape's `f64` evaluations ([`Tape::eval`], [`Tape::eval_with_last`],
+/// [`Tape::eval_scalar`]); both give the same bits.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Backend {
+    /// The operations interpreted one by one.
+    Interpreter,
+    /// Machine code compiled from the operations (feature `jit`).
+    Native,
 }
 
 /// An output slot or constant, and whether it is negated.
@@ -354,6 +384,7 @@ impl Tape {
             n_second,
             ops: b.ops,
             outputs,
+            jit: jit::Jit::default(),
         })
     }
 
@@ -365,6 +396,34 @@ impl Tape {
     /// Number of operations run per evaluation (after sharing and folding).
     pub fn n_operations(&self) -> usize {
         self.ops.len()
+    }
+
+    /// Which code runs the `f64` evaluations now: native code once the tape has been
+    /// compiled (by [`compile_native`](Self::compile_native), or after [`COMPILE_AFTER`]
+    /// evaluations), else the interpreter.
+    pub fn backend(&self) -> Backend {
+        if self.jit.is_native() {
+            Backend::Native
+        } else {
+            Backend::Interpreter
+        }
+    }
+
+    /// Compiles the tape to machine code now rather than after [`COMPILE_AFTER`] evaluations, and
+    /// returns the backend that then runs it: [`Backend::Interpreter`] without the feature
+    /// `jit`, in WebAssembly, or if Cranelift cannot compile for this host. Compilation
+    /// happens once; clones share the code.
+    pub fn compile_native(&self) -> Backend {
+        self.jit.compile(self);
+        self.backend()
+    }
+
+    /// Compiles the tape as for a host Cranelift cannot generate code for, to test the
+    /// fallback: the tape stays interpreted for good (unless it was compiled before).
+    #[doc(hidden)]
+    pub fn compile_native_for_unsupported_host(&self) -> Backend {
+        self.jit.compile_for_foreign_target(self);
+        self.backend()
     }
 
     fn n_inputs(&self) -> usize {
@@ -435,14 +494,20 @@ impl Tape {
     /// compiled lengths, `out` of [`n_outputs`](Self::n_outputs)). Shorter slices give `NaN`
     /// outputs, never a panic (callers check lengths and report them).
     #[inline]
-    pub fn eval<D: Scalar>(&self, first: &[D], second: &[D], t: D, out: &mut [D]) {
+    pub fn eval(&self, first: &[f64], second: &[f64], t: f64, out: &mut [f64]) {
         let (nf, ns) = (self.n_first, self.n_second);
         if !self.fits(first.len(), second.len(), out.len()) {
-            out.iter_mut().for_each(|o| *o = D::from(f64::NAN));
+            out.iter_mut().for_each(|o| *o = f64::NAN);
+            return;
+        }
+        if let Some(code) = self.jit.code(self) {
+            if let Some((last, rest)) = out[..self.outputs.len()].split_last_mut() {
+                *last = code.call(first, second, t, rest);
+            }
             return;
         }
         self.run(
-            |r| {
+            |r: &mut [f64]| {
                 for (slot, &x) in r.iter_mut().zip(&first[..nf]) {
                     *slot = x;
                 }
@@ -464,6 +529,9 @@ impl Tape {
         if !self.fits(first.len(), second.len(), out.len() + 1) {
             out.iter_mut().for_each(|o| *o = f64::NAN);
             return f64::NAN;
+        }
+        if let Some(code) = self.jit.code(self) {
+            return code.call(first, second, t, out);
         }
         let last = self.outputs.len().wrapping_sub(1);
         let mut value = f64::NAN;
@@ -494,6 +562,11 @@ impl Tape {
         let mut out = f64::NAN;
         if !self.fits(first.len(), second.len(), self.outputs.len()) {
             return out;
+        }
+        if self.outputs.len() == 1 {
+            if let Some(code) = self.jit.code(self) {
+                return code.call(first, second, t, &mut []);
+            }
         }
         self.run(
             |r: &mut [f64]| {
