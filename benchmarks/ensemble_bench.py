@@ -83,7 +83,8 @@ def fractal(side, t1):
         walls[f"{threads} thread(s)"] = time.perf_counter() - t0
         print(f"flip fractal {side} x {side}, {t1} s, {threads} thread(s): "
               f"{walls[f'{threads} thread(s)']:.1f} s wall, mean steps per member "
-              f"{out.steps.mean():.0f} of {round(t1 / 0.01)}", flush=True)
+              f"{out.steps.mean():.0f} of {round(t1 / 0.01)}; load {os.getloadavg()[0]:.2f}",
+              flush=True)
     for workers in (1, 2):
         with distributed.LocalCluster(n_workers=workers, threads_per_worker=1,
                                       dashboard_address=None, silence_logs=50) as cluster, \
@@ -93,7 +94,7 @@ def fractal(side, t1):
             double_pendulum(side, t1, client=client, events=True)
             wall = time.perf_counter() - t0
         print(f"flip fractal {side} x {side}, {t1} s, Dask LocalCluster {workers} worker(s): "
-              f"{wall:.1f} s wall", flush=True)
+              f"{wall:.1f} s wall; load {os.getloadavg()[0]:.2f}", flush=True)
 
 
 def main():
