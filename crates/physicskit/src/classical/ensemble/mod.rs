@@ -435,7 +435,8 @@ fn run_member<S: MemberSource + ?Sized>(
     row: &mut [f64],
     stop: &AtomicBool,
 ) -> Result<usize> {
-    let mut system: Box<dyn DynSystem> = build(p.source, index, p.grid.t0())?;
+    // Not `build`: the caller names the member in every error of its run.
+    let mut system: Box<dyn DynSystem> = p.source.build(index, p.grid.t0())?;
     // Checked up front too, except by `run_source_prechecked`, which relies on this check:
     // a member of another length would not fit its output row.
     let found = system.dynamical().state_dim();
