@@ -3,7 +3,12 @@ on 1 and 2 threads, the Dask LocalCluster overhead against the local engine, and
 of the flip-time fractal, from which the 1000 x 1000 map is extrapolated.
 
     .venv/bin/python benchmarks/ensemble_bench.py [--quick]
+    .venv/bin/python benchmarks/ensemble_bench.py --dask [ROUNDS]
     .venv/bin/python benchmarks/ensemble_bench.py --fractal [SIDE [T]]
+
+`--dask` runs only the Dask overhead: 1e5 Hénon–Heiles members at 100 and 1000 steps, local
+engine (2 threads) and a warm LocalCluster of 2 single-threaded workers in turn, ROUNDS times
+(default 5; the order alternates between rounds), with the load average of each round.
 
 `--fractal` runs the flip-time fractal of `examples/flip_fractal.py` at full size (default
 1000 x 1000, 10 s; events only, so each member stops once both arms have flipped) once on 1 and
@@ -78,7 +83,8 @@ def fractal(side, t1):
         walls[f"{threads} thread(s)"] = time.perf_counter() - t0
         print(f"flip fractal {side} x {side}, {t1} s, {threads} thread(s): "
               f"{walls[f'{threads} thread(s)']:.1f} s wall, mean steps per member "
-              f"{out.steps.mean():.0f} of {round(t1 / 0.01)}", flush=True)
+              f"{out.steps.mean():.0f} of {round(t1 / 0.01)}; load {os.getloadavg()[0]:.2f}",
+              flush=True)
     for workers in (1, 2):
         with distributed.LocalCluster(n_workers=workers, threads_per_worker=1,
                                       dashboard_address=None, silence_logs=50) as cluster, \
@@ -88,10 +94,14 @@ def fractal(side, t1):
             double_pendulum(side, t1, client=client, events=True)
             wall = time.perf_counter() - t0
         print(f"flip fractal {side} x {side}, {t1} s, Dask LocalCluster {workers} worker(s): "
-              f"{wall:.1f} s wall", flush=True)
+              f"{wall:.1f} s wall; load {os.getloadavg()[0]:.2f}", flush=True)
 
 
 def main():
+    if "--dask" in sys.argv:
+        rest = sys.argv[sys.argv.index("--dask") + 1:]
+        dask_overhead(100000, int(rest[0]) if rest else 5)
+        return
     if "--fractal" in sys.argv:
         rest = sys.argv[sys.argv.index("--fractal") + 1:]
         fractal(int(rest[0]) if rest else 1000, float(rest[1]) if len(rest) > 1 else 10.0)
@@ -116,18 +126,41 @@ def main():
           "on this machine (linear in members)")
 
     try:
-        import distributed
+        import distributed  # noqa: F401
     except ImportError:
         return
-    n = 20000 if QUICK else 100000
-    local = report(f"Hénon–Heiles {n} members, 100 steps, local engine (2 threads)", n,
-                   lambda: henon_heiles(n, 1.0))
+    dask_overhead(20000 if QUICK else 100000, 2 if QUICK else 5)
+
+
+def dask_overhead(n, rounds):
+    """Dask LocalCluster against the local engine on the same cores, at 100 and 1000 steps per
+    member, interleaved: each round times both, in alternating order, so that a change of load
+    hits both alike. The workers are warm (imported, one small ensemble run), as a cluster
+    that is used is; the first call on a fresh cluster also pays the workers' imports."""
+    import distributed
+
+    print(f"cores: {os.cpu_count()}, load average: {os.getloadavg()}")
     with distributed.LocalCluster(n_workers=2, threads_per_worker=1, dashboard_address=None,
                                   silence_logs=50) as cluster, distributed.Client(cluster) as client:
         henon_heiles(1000, 1.0, client=client)  # warm the workers (import, first task)
-        dask = report(f"Hénon–Heiles {n} members, 100 steps, LocalCluster 2 workers", n,
-                      lambda: henon_heiles(n, 1.0, client=client))
-    print(f"Dask overhead against the local engine: {dask / local - 1:+.0%}")
+        for steps in (100, 1000):
+            t1 = steps * 0.01
+            ratios = []
+            for r in range(rounds):
+                runs = {"local": lambda: henon_heiles(n, t1),
+                        "dask": lambda: henon_heiles(n, t1, client=client)}
+                walls = {}
+                for name in (("local", "dask") if r % 2 == 0 else ("dask", "local")):
+                    t0 = time.perf_counter()
+                    runs[name]()
+                    walls[name] = time.perf_counter() - t0
+                ratios.append(walls["dask"] / walls["local"] - 1)
+                print(f"Hénon–Heiles {n} members, {steps} steps, round {r + 1}: load "
+                      f"{os.getloadavg()[0]:.2f}, local engine (2 threads) {walls['local']:.3f} s, "
+                      f"LocalCluster 2 workers {walls['dask']:.3f} s, Dask overhead "
+                      f"{ratios[-1]:+.0%}", flush=True)
+            print(f"Dask overhead at {steps} steps: median {np.median(ratios):+.0%}, range "
+                  f"{min(ratios):+.0%} to {max(ratios):+.0%}", flush=True)
 
 
 if __name__ == "__main__":  # Dask's worker processes import this file

@@ -201,7 +201,7 @@ def system_jacobian(system: NativeSystem, t: float, state: _ArrayF64) -> _ArrayF
 def force_jacobian(system: NativeSystem, q: _ArrayF64, t: float) -> _ArrayF64:
     """The force Jacobian `dF/dq` of a separable Hamiltonian `system` at `(q, t)`."""
 
-def ensemble(system: str | dict[str, Any], common: dict[str, Any], sweeps: list[tuple[str, _ArrayF64]], states: _MatrixF64 | None, n: int, t_span: tuple[float, float], dt: float, method: str | None = None, stride: int | None = None, energy_error: bool = False, events: list[tuple[int, str, float]] = ..., max_lyapunov: int | None = None, sali: int | None = None, final_state: bool = True, threads: int | None = None, progress: Callable[[int, int], Any] | None = None, check_only: bool = False) -> dict[str, Any]:
+def ensemble(system: str | dict[str, Any], common: dict[str, Any], sweeps: list[tuple[str, _ArrayF64]], states: _MatrixF64 | None, n: int, t_span: tuple[float, float], dt: float, method: str | None = None, stride: int | None = None, energy_error: bool = False, events: list[tuple[int, str, float]] = ..., max_lyapunov: int | None = None, sali: int | None = None, final_state: bool = True, threads: int | None = None, progress: Callable[[int, int], Any] | None = None, check_only: bool = False, prechecked: bool = False) -> dict[str, Any]:
     """Integrates `n` members of `system` on all cores (GIL released): a catalogue name with
     its `common` values, or a SymPy engine's system as a dict (`family` hamiltonian /
     lagrangian / ode, `expressions`, `ndof`, `params` as (name, value) pairs, `energy`,

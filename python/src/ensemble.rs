@@ -121,12 +121,15 @@ impl System {
 ///
 /// # Errors
 /// `ValueError` for anything the engine refuses (a bad member named by index, before any
-/// integration; with `check_only` nothing else is done and an empty dict returned),
+/// integration; with `check_only` nothing else is done and an empty dict returned; with
+/// `prechecked`, members that a `check_only` call on the same arguments passed, only member
+/// 0 and the plan are checked again before the run: the Dask workers' chunks),
 /// `KeyboardInterrupt` on Ctrl-C, and what `progress` raises.
 #[pyfunction]
 #[pyo3(signature = (system, common, sweeps, states, n, t_span, dt, method=None, stride=None,
                     energy_error=false, events=Vec::new(), max_lyapunov=None, sali=None,
-                    final_state=true, threads=None, progress=None, check_only=false))]
+                    final_state=true, threads=None, progress=None, check_only=false,
+                    prechecked=false))]
 #[allow(clippy::too_many_arguments)]
 pub fn ensemble<'py>(
     py: Python<'py>,
@@ -147,6 +150,7 @@ pub fn ensemble<'py>(
     threads: Option<usize>,
     progress: Option<Py<PyAny>>,
     check_only: bool,
+    prechecked: bool,
 ) -> PyResult<Bound<'py, PyDict>> {
     let mut given = Vec::with_capacity(common.len());
     let system = System::from_py(system, common, &mut given)?;
@@ -184,14 +188,14 @@ pub fn ensemble<'py>(
     let out = match system {
         System::Catalogue(entry) => {
             let source = FromCatalogue::new(entry, &members).py()?;
-            execute(py, &source, &plan, progress, check_only)?
+            execute(py, &source, &plan, progress, check_only, prechecked)?
         }
         System::Expression(spec) => {
             let build = |params: &[f64], state: &[f64]| spec.build(params, state);
             let source =
                 FromParameters::new(spec.params.clone(), spec.state.clone(), &members, build)
                     .py()?;
-            execute(py, &source, &plan, progress, check_only)?
+            execute(py, &source, &plan, progress, check_only, prechecked)?
         }
     };
     let Some(out) = out else {
@@ -221,13 +225,15 @@ pub fn ensemble<'py>(
 }
 
 /// Checks (`check_only`: `None` once every member passed) or runs the members of `source`
-/// with the GIL released, `progress` called and Ctrl-C checked from the waiting thread.
+/// (`prechecked`: members already checked, see `run_source_prechecked`) with the GIL
+/// released, `progress` called and Ctrl-C checked from the waiting thread.
 fn execute<S: MemberSource + ?Sized>(
     py: Python<'_>,
     source: &S,
     plan: &Plan,
     progress: Option<Py<PyAny>>,
     check_only: bool,
+    prechecked: bool,
 ) -> PyResult<Option<EnsembleResult>> {
     if check_only {
         py.detach(|| core_ensemble::check_source(source, plan))
@@ -239,7 +245,11 @@ fn execute<S: MemberSource + ?Sized>(
             callback: progress,
             raised: None,
         };
-        let outcome = core_ensemble::run_source(source, plan, Some(&mut observer));
+        let outcome = if prechecked {
+            core_ensemble::run_source_prechecked(source, plan, Some(&mut observer))
+        } else {
+            core_ensemble::run_source(source, plan, Some(&mut observer))
+        };
         (outcome, observer.raised)
     });
     match (outcome, raised) {

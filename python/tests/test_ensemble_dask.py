@@ -1,6 +1,7 @@
 """Ensembles on a Dask LocalCluster: the same bits as the local engine (every output, the chaos
 reductions and a SymPy engine's system included), even when a worker is killed mid-run (its
-chunks run again elsewhere)."""
+chunks run again elsewhere); the same error as the local engine when members fail during their
+runs; the default chunks cover every member once, large ones first."""
 
 import os
 import signal
@@ -9,8 +10,11 @@ import time
 
 import numpy as np
 import pytest
+from hypothesis import given
+from hypothesis import strategies as st
 
 import physicskit.classical as pc
+from physicskit.classical.ensembles import _SMALLEST, _chunks
 
 distributed = pytest.importorskip("distributed")
 
@@ -49,6 +53,16 @@ def test_local_cluster_gives_the_local_bits(client):
     _same_bits(local, _run(client=client))
     # Any chunking: one member per chunk at the edge of a chunk, and uneven chunks.
     _same_bits(local, _run(client=client, chunk_size=7))
+
+
+def test_progress_counts_the_members_of_finished_chunks(client):
+    calls = []
+    _run(client=client, chunk_size=7, progress=lambda done, total: calls.append((done, total)))
+    # 144 members in chunks of 7 (the last of 4): each call adds whole chunks, the last all.
+    done = [d for d, _ in calls]
+    assert {t for _, t in calls} == {144} and done[-1] == 144
+    assert done == sorted(done) and len(set(done)) == len(done)
+    assert all(d % 7 == 0 or d >= 4 and (d - 4) % 7 == 0 for d in done)
 
 
 def test_chaos_reductions_and_a_sympy_engine_system_give_the_local_bits(client):
@@ -95,3 +109,46 @@ def test_a_worker_killed_mid_run_costs_only_its_chunk(client):
     assert elapsed > 0.5, f"the run ended in {elapsed:.2f} s, before the kill"
     _same_bits(local, out)
     assert victim not in client.run(os.getpid).values()
+
+
+@given(st.integers(1, 10**7), st.integers(1, 64))
+def test_default_chunks_cover_every_member_once_large_first_ending_small(n, cores):
+    chunks = _chunks(n, cores, None)
+    # Contiguous, in member order, from 0 to n: every member in exactly one chunk.
+    assert chunks[0][0] == 0 and chunks[-1][1] == n
+    assert all(a[1] == b[0] for a, b in zip(chunks, chunks[1:]))
+    sizes = [stop - start for start, stop in chunks]
+    assert min(sizes) >= 1 and sizes == sorted(sizes, reverse=True)
+    # No chunk above half a core's share (the first batch), the last ones of the smallest
+    # size (about 1/_SMALLEST of a share), and a few chunks per core: four batches that halve
+    # from 1/2 to 1/16 of a share, then two of the smallest (1/32) take the rest.
+    smallest = max(1, -(-n // (_SMALLEST * cores)))
+    assert sizes[0] <= -(-n // (2 * cores)) and sizes[-1] <= smallest
+    assert len(chunks) <= 6 * cores
+
+
+def test_a_chunk_size_gives_equal_chunks_and_a_short_last_one():
+    assert _chunks(10, 4, 3) == [(0, 3), (3, 6), (6, 9), (9, 10)]
+    assert _chunks(10, 4, 20) == [(0, 10)]
+
+
+def test_members_failing_during_their_runs_raise_the_local_engines_error(client):
+    # Member 3 blows up at once, but only after members 0-2 of its chunk (the first) have run
+    # 3e6 steps each; members 4-7 (the second chunk, on the other worker) blow up at once. The
+    # local engine names the lowest failing member, 3; so must Dask, though the second chunk
+    # fails first (by a few tenths of a second at least).
+    y = np.array([0.1, -0.1, 0.2, 0.0, 0.0, 0.0, 0.0, 0.0])
+    states = np.zeros((8, 4))
+    states[:, 1] = y
+    states[:, 2] = np.sqrt(2 * 0.1 - y**2 + 2 * y**3 / 3)  # E = 0.1: bound orbits
+    states[3:, 2] = 1e200  # x grows by 1e198 in the first step, its force overflows
+
+    def run(**kw):
+        return pc.ensemble(pc.HenonHeilesSystem([0.0, 0.0], [0.0, 0.0]), (0.0, 3e4), 0.01,
+                           "yoshida4", states=states, **kw)
+
+    with pytest.raises(ValueError, match="member 3: ") as local:
+        run(threads=1)
+    with pytest.raises(ValueError, match="member 3: ") as dask:
+        run(client=client, chunk_size=4)
+    assert str(dask.value) == str(local.value)

@@ -42,7 +42,7 @@ from __future__ import annotations
 import math
 import sys
 from dataclasses import dataclass, field
-from typing import Any, Callable, Mapping, Sequence
+from typing import Any, Callable, Mapping, Sequence, cast
 
 import numpy as np
 
@@ -293,10 +293,14 @@ def ensemble(
     event, with the same event times as the full run (a flip-time map costs the time to each
     flip, not the span).
 
-    ``progress``: ``True`` for a bar on stderr, or a callable ``(done, total)``. ``threads``:
+    ``progress``: ``True`` for a bar on stderr, or a callable ``(done, total)`` (members; with
+    a ``client``, called as chunks finish). ``threads``:
     worker threads (default: one per core). ``client``: a ``distributed.Client``; the members
-    are split into chunks of ``chunk_size`` (default: about four per worker core) run by its
-    workers. Results are bit-identical whatever ``threads``, ``client`` and ``chunk_size``.
+    are split into chunks of ``chunk_size`` members run by its workers (default: large chunks
+    first, then smaller ones, the last about 1/32 of a worker core's share, so that the cores
+    finish together), each chunk's outputs fetched as soon as it is done. Results are
+    bit-identical whatever ``threads``, ``client`` and ``chunk_size``; a member failing during
+    its run raises the same error as locally (the lowest failing member's).
 
     Raises ``ValueError`` for a bad argument or member (named by its flattened index) before
     any integration, ``TypeError`` for Python subclasses (their callbacks hold the GIL; a SymPy
@@ -335,16 +339,16 @@ def ensemble(
         raise TypeError(f"client must be a distributed.Client, got {client!r}")
     event_names = list(events or {})
     job = _Job(source, common, sweeps, flat_states, n, run)
-    if client is None:
-        bar = _Bar() if progress is True else None
-        callback = bar if bar is not None else (progress if callable(progress) else None)
-        try:
+    bar = _Bar() if progress is True else None
+    callback = bar if bar is not None else (progress if callable(progress) else None)
+    try:
+        if client is None:
             out = job(threads=threads, progress=callback)
-        finally:
-            if bar is not None:
-                bar.close()
-    else:
-        out = _distributed(client, job, chunk_size)
+        else:
+            out = _distributed(client, job, chunk_size, callback)
+    finally:
+        if bar is not None:
+            bar.close()
     return _shape(out, shape, run, event_names)
 
 
@@ -371,33 +375,100 @@ def _events(events: Any) -> list[EventSpec]:
 def _run_part(part: _Job) -> dict[str, Any]:
     """A chunk on a Dask worker, on one thread: the worker's own threads run as many chunks at
     once as it has (the native call releases the GIL), so a host with several worker processes
-    is not oversubscribed by each chunk spreading over all its cores."""
-    return part(threads=1)
+    is not oversubscribed by each chunk spreading over all its cores. Its members were checked
+    by the client before any chunk was sent (``prechecked``: the worker does not build each
+    member once more to check it before building it to run it)."""
+    return part(threads=1, prechecked=True)
 
 
-def _distributed(client: Any, job: _Job, chunk_size: int | None) -> dict[str, Any]:
-    """Runs the members in chunks on ``client``'s workers and concatenates the chunks."""
+#: The smallest default chunk holds about 1/``_SMALLEST`` of a worker core's share of the
+#: members: the last chunks, which decide when the run ends, are that small.
+_SMALLEST = 32
+
+
+def _chunks(n: int, cores: int, chunk_size: int | None) -> list[tuple[int, int]]:
+    """The members' ranges ``[start, stop)``, in the order they should run: ``chunk_size``
+    each when given; by default by *factoring* (Hummel, Schonberg & Flynn, "Factoring: a
+    method for scheduling parallel loops", CACM 35(8), 1992): batches of ``cores`` equal
+    chunks, each batch holding half the members left, down to chunks of about
+    ``1/_SMALLEST`` of a core's share. Most members go in a few large chunks (little
+    per-task cost), and the last chunks are small, so every core finishes within a small
+    chunk of the others even when members differ in cost (a flip fractal's members stop at
+    their flips) or a worker runs slower than the others."""
+    if chunk_size is not None:
+        return [(start, min(n, start + chunk_size)) for start in range(0, n, chunk_size)]
+    smallest = max(1, math.ceil(n / (_SMALLEST * cores)))
+    out: list[tuple[int, int]] = []
+    start = 0
+    while start < n:
+        size = max(smallest, math.ceil((n - start) / (2 * cores)))
+        for _ in range(cores):
+            if start < n:
+                out.append((start, min(n, start + size)))
+                start = out[-1][1]
+    return out
+
+
+def _distributed(
+    client: Any,
+    job: _Job,
+    chunk_size: int | None,
+    progress: Callable[[int, int], None] | None = None,
+) -> dict[str, Any]:
+    """Runs the members in chunks on ``client``'s workers and concatenates the chunks;
+    ``progress(members done, members)`` is called as chunks finish."""
+    from distributed import as_completed
+
     # Every member is built and checked here before anything is shipped.
     job(check_only=True)
-    if chunk_size is None:
-        cores = sum(client.ncores().values()) or 1
-        chunk_size = max(1, math.ceil(job.n / (4 * cores)))
+    cores = sum(client.ncores().values()) or 1
+    chunks = _chunks(job.n, cores, chunk_size)
+    # The scheduler starts the chunks in this order (larger first, by factoring).
     futures = [
-        client.submit(_run_part, job.part(start, min(job.n, start + chunk_size)), pure=False)
-        for start in range(0, job.n, chunk_size)
+        client.submit(_run_part, job.part(start, stop), pure=False, priority=len(chunks) - k)
+        for k, (start, stop) in enumerate(chunks)
     ]
-    parts = client.gather(futures)
-    first = parts[0]
+    index = {future.key: k for k, future in enumerate(futures)}
+    parts: list[dict[str, Any] | None] = [None] * len(futures)
+    failed: int | None = None
+    try:
+        # Each chunk's outputs are fetched as soon as it is done, while the others run.
+        for batch in as_completed(futures).batches():
+            done = []
+            for future in batch:
+                k = index[future.key]
+                if future.status == "finished":
+                    done.append(future)
+                elif failed is None or k < failed:
+                    # An error (or a chunk cancelled from elsewhere). The local run raises the
+                    # lowest member's error: wait for the chunks before this one (one of them
+                    # may fail too), not for those after.
+                    failed = k
+                    client.cancel([f for f in futures[k + 1:] if not f.done()])
+            if failed is None and done:
+                for future, part in zip(done, client.gather(done)):
+                    parts[index[future.key]] = part
+                if progress is not None:
+                    progress(sum(stop - start for (start, stop), part in zip(chunks, parts)
+                                 if part is not None), job.n)
+        if failed is not None:
+            futures[failed].result()  # raises the chunk's error
+    except BaseException:
+        client.cancel([f for f in futures if not f.done()])
+        raise
+    # Every chunk finished and was fetched (a failed one raised above).
+    got = cast(list[dict[str, Any]], parts)
+    first = got[0]
     out: dict[str, Any] = {
         "method": first["method"],
         "t": first["t"],
-        "final_state": np.concatenate([p["final_state"] for p in parts]),
-        "steps": np.concatenate([p["steps"] for p in parts]),
+        "final_state": np.concatenate([p["final_state"] for p in got]),
+        "steps": np.concatenate([p["steps"] for p in got]),
         "trajectory": None
         if first["trajectory"] is None
-        else np.concatenate([p["trajectory"] for p in parts]),
+        else np.concatenate([p["trajectory"] for p in got]),
         "reductions": {
-            name: [np.concatenate([p["reductions"][name][k] for p in parts])
+            name: [np.concatenate([p["reductions"][name][k] for p in got])
                    for k in range(len(arrays))]
             for name, arrays in first["reductions"].items()
         },

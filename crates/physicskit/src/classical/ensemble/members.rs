@@ -59,8 +59,9 @@ enum Slot {
 /// Where an ensemble's members come from: member `index` built at its initial state with its
 /// clock at `t0`.
 ///
-/// The engine builds every member once to check it before any integration, and again to run
-/// it, each time on whichever thread is free: `build` must give the same system (the same
+/// The engine builds every member once to check it before any integration (unless the
+/// caller has: `run_source_prechecked`), and again to run it, each time on whichever thread is
+/// free: `build` must give the same system (the same
 /// bits) every time it is asked for the same member, and must not panic.
 pub trait MemberSource: Sync {
     /// The number of members (at least 1).

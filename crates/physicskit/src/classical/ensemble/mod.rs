@@ -177,8 +177,34 @@ pub fn run_source<S: MemberSource + ?Sized>(
     plan: &Plan,
     observer: Option<&mut dyn Observer>,
 ) -> Result<EnsembleResult> {
+    run_checking(source, plan, observer, true)
+}
+
+/// [`run_source`] for members that [`check_source`] has already passed with the same plan
+/// (elsewhere: the Dask front end checks every member before shipping chunks of them to
+/// workers): the plan and member 0 are checked again, but the other members are built only to
+/// run them, not once more before. The bits are those of [`run_source`].
+///
+/// # Errors
+/// As [`run_source`]; a member `check_source` would have refused (which it did not, for the
+/// same members) is reported by index when its run builds it.
+pub fn run_source_prechecked<S: MemberSource + ?Sized>(
+    source: &S,
+    plan: &Plan,
+    observer: Option<&mut dyn Observer>,
+) -> Result<EnsembleResult> {
+    run_checking(source, plan, observer, false)
+}
+
+/// [`run_source`] (`every_member`) or [`run_source_prechecked`].
+fn run_checking<S: MemberSource + ?Sized>(
+    source: &S,
+    plan: &Plan,
+    observer: Option<&mut dyn Observer>,
+    every_member: bool,
+) -> Result<EnsembleResult> {
     let pool = pool(plan)?;
-    let prepared = in_pool(&pool, || prepare(source, plan))?;
+    let prepared = in_pool(&pool, || prepare(source, plan, every_member))?;
     run_prepared(prepared, plan, observer, &pool)
 }
 
@@ -197,7 +223,7 @@ pub fn check(entry: &'static SystemEntry, members: &Members, plan: &Plan) -> Res
 /// As [`run_source`] before any integration.
 pub fn check_source<S: MemberSource + ?Sized>(source: &S, plan: &Plan) -> Result<()> {
     let pool = pool(plan)?;
-    in_pool(&pool, || prepare(source, plan)).map(|_| ())
+    in_pool(&pool, || prepare(source, plan, true)).map(|_| ())
 }
 
 /// Member `index` of `source`, its errors named by the index.
@@ -234,8 +260,13 @@ fn in_pool<R: Send>(pool: &Option<rayon::ThreadPool>, f: impl FnOnce() -> R + Se
     }
 }
 
-/// Checks everything and builds every member once, before any integration.
-fn prepare<'s, S: MemberSource + ?Sized>(source: &'s S, plan: &Plan) -> Result<Prepared<'s, S>> {
+/// Checks everything and, with `every_member`, builds every member once, before any
+/// integration (without: member 0 only, the others having been checked before).
+fn prepare<'s, S: MemberSource + ?Sized>(
+    source: &'s S,
+    plan: &Plan,
+    every_member: bool,
+) -> Result<Prepared<'s, S>> {
     let grid = TimeGrid::new(plan.t_span, plan.dt)?;
     if plan.stride == Some(0) {
         return Err(Error::invalid("stride", 0.0, "must be >= 1"));
@@ -262,7 +293,8 @@ fn prepare<'s, S: MemberSource + ?Sized>(source: &'s S, plan: &Plan) -> Result<P
         first.flow(method, k)?;
     }
     // Every member is built and checked up front (in parallel; the lowest bad index wins).
-    let bad = (1..n)
+    let others = if every_member { 1..n } else { n..n };
+    let bad = others
         .into_par_iter()
         .find_map_first(|i| match build(source, i, grid.t0()) {
             Err(e) => Some(e),
@@ -403,7 +435,18 @@ fn run_member<S: MemberSource + ?Sized>(
     row: &mut [f64],
     stop: &AtomicBool,
 ) -> Result<usize> {
-    let mut system: Box<dyn DynSystem> = build(p.source, index, p.grid.t0())?;
+    // Not `build`: the caller names the member in every error of its run.
+    let mut system: Box<dyn DynSystem> = p.source.build(index, p.grid.t0())?;
+    // Checked up front too, except by `run_source_prechecked`, which relies on this check:
+    // a member of another length would not fit its output row.
+    let found = system.dynamical().state_dim();
+    if found != p.dim {
+        return Err(Error::DimensionMismatch {
+            name: "state".into(),
+            expected: p.dim,
+            found,
+        });
+    }
     if let Some(events) = &p.early {
         return events_only(system, p, events, row, stop);
     }

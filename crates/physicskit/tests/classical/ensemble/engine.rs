@@ -52,6 +52,16 @@ fn run_pendulums(threads: Option<usize>) -> EnsembleResult {
     ensemble::run(entry, &pendulum_grid(), &pendulum_plan(threads), None).unwrap()
 }
 
+/// The bits of every float output (compared by bits: events never reached are NaN).
+fn bits(r: &EnsembleResult) -> Vec<u64> {
+    let mut v: Vec<u64> = r.final_state.iter().map(|x| x.to_bits()).collect();
+    v.extend(r.trajectory.iter().flatten().map(|x| x.to_bits()));
+    for (_, a) in &r.reductions {
+        v.extend(a.iter().map(|x| x.to_bits()));
+    }
+    v
+}
+
 #[test]
 fn one_two_and_three_threads_give_the_same_bits() {
     let one = run_pendulums(Some(1));
@@ -60,14 +70,6 @@ fn one_two_and_three_threads_give_the_same_bits() {
     assert!(flips.iter().any(|t| t.is_finite()) && flips.iter().any(|t| t.is_nan()));
     for threads in [2, 3] {
         let other = run_pendulums(Some(threads));
-        let bits = |r: &EnsembleResult| {
-            let mut v: Vec<u64> = r.final_state.iter().map(|x| x.to_bits()).collect();
-            v.extend(r.trajectory.iter().flatten().map(|x| x.to_bits()));
-            for (_, a) in &r.reductions {
-                v.extend(a.iter().map(|x| x.to_bits()));
-            }
-            v
-        };
         assert_eq!(bits(&one), bits(&other), "{threads} threads");
         assert_eq!(one.t, other.t);
     }
@@ -251,4 +253,74 @@ fn invalid_plans_and_sweeps_are_refused() {
         .unwrap_err()
         .to_string()
         .contains("member"));
+}
+
+/// The harmonic oscillator's defaults, but a double pendulum (a longer state) as member 5.
+struct OddMemberOut;
+
+impl ensemble::MemberSource for OddMemberOut {
+    fn count(&self) -> usize {
+        8
+    }
+
+    fn build(
+        &self,
+        index: usize,
+        _t0: f64,
+    ) -> physicskit::classical::Result<Box<dyn physicskit::classical::core::erased::DynSystem>>
+    {
+        let name = if index == 5 {
+            "double-pendulum"
+        } else {
+            "harmonic-oscillator"
+        };
+        catalog::find(name)?.build_from([])
+    }
+}
+
+#[test]
+fn prechecked_runs_give_the_same_bits_and_still_name_a_bad_member() {
+    let entry = catalog::find("double-pendulum").unwrap();
+    let members = pendulum_grid();
+    let source = ensemble::FromCatalogue::new(entry, &members).unwrap();
+    let plan = pendulum_plan(Some(2));
+    ensemble::check_source(&source, &plan).unwrap();
+    let prechecked = ensemble::run_source_prechecked(&source, &plan, None).unwrap();
+    let checked = ensemble::run_source(&source, &plan, None).unwrap();
+    assert_eq!(bits(&prechecked), bits(&checked));
+    assert_eq!(prechecked.steps, checked.steps);
+    // Something to compare: some members flip within the span, some do not.
+    let flips = &prechecked.reductions[1].1;
+    assert!(flips.iter().any(|t| t.is_finite()) && flips.iter().any(|t| t.is_nan()));
+    // Members it was not told the truth about are still refused by index, when their run
+    // builds them, not with a panic on a row of the wrong length.
+    let mut q0: Vec<f64> = (0..40).map(|i| 1e-3 * f64::from(i)).collect();
+    q0[31] = f64::NAN;
+    let members = Members {
+        sweeps: vec![Sweep::new("q0", q0)],
+        n: 40,
+        ..Members::default()
+    };
+    let oscillators = catalog::find("harmonic-oscillator").unwrap();
+    let source = ensemble::FromCatalogue::new(oscillators, &members).unwrap();
+    let plan = Plan {
+        stride: None,
+        reductions: vec![],
+        method: None,
+        ..pendulum_plan(Some(2))
+    };
+    let err = ensemble::run_source_prechecked(&source, &plan, None).unwrap_err();
+    assert!(
+        matches!(&err, Error::InvalidParameter { name, .. } if name == "member 31: q0"),
+        "{err}"
+    );
+    let err = ensemble::run_source_prechecked(&OddMemberOut, &plan, None).unwrap_err();
+    assert!(
+        matches!(&err, Error::DimensionMismatch { name, expected: 2, found: 4 }
+            if name == "member 5: state"),
+        "{err}"
+    );
+    // check_source finds both up front.
+    assert!(ensemble::check_source(&source, &plan).is_err());
+    assert!(ensemble::check_source(&OddMemberOut, &plan).is_err());
 }
