@@ -39,8 +39,9 @@ mod jit;
 pub const STACK_SLOTS: usize = 256;
 
 /// Interpreted `f64` evaluations after which a tape is compiled to machine code (feature
-/// `jit`). Compiling a tape takes 0.3-0.6 ms and saves 20-30 ns per evaluation on small tapes
-/// (benchmarks/README.md, "Expression engines"): 10 000 to 30 000 evaluations pay it back.
+/// `jit`). Compiling a tape takes a fraction of a millisecond to a few milliseconds and saves
+/// 20-30 ns per evaluation on small tapes (figures in benchmarks/README.md, "Expression
+/// engines"): some 10 000 to 100 000 evaluations pay it back.
 /// Compiling once the interpreter has run about that many (the rent-or-buy rule) costs any
 /// run at most about twice what the better choice in hindsight would have.
 pub const COMPILE_AFTER: u32 = 10_000;
