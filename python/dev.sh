@@ -4,8 +4,9 @@
 #   bash python/dev.sh env    create/refresh <repo>/.venv, install maturin numpy pytest sympy
 #                             hypothesis, mypy, scipy (reference integrations in tests), matplotlib,
 #                             pillow, nbclient nbformat ipykernel, distributed (Dask, for the
-#                             ensemble tests), tqdm (progress bars), build the extension in release
-#                             mode and install it (editable)
+#                             ensemble tests), tqdm (progress bars), build the extension in the
+#                             cargo profile PHYSICSKIT_PROFILE (default release) and install it
+#                             (editable)
 #   bash python/dev.sh test   run pytest on python/tests (warnings are errors)
 #   bash python/dev.sh stubs  check the type stubs against the installed modules (mypy's
 #                             stubtest; python/stubtest-allowlist.txt lists what it cannot know)
@@ -18,6 +19,11 @@ repo="$(cd "$here/.." && pwd)"
 venv="${PHYSICSKIT_VENV:-$repo/.venv}"
 py="$venv/bin/python"
 export CARGO_BUILD_JOBS="${CARGO_BUILD_JOBS:-2}"
+# The cargo profile of the extension and of the Rust programs the tests run (the bit-identity
+# reference, the CLI): release unless told otherwise. scripts/test sets `test`, which `cargo
+# test` has built just before (opt-level 3, debug assertions and overflow checks on), so CI
+# does not compile the workspace a second time with LTO; the tests read the same variable.
+profile="${PHYSICSKIT_PROFILE:-release}"
 
 need_venv() {
     if [ ! -x "$py" ]; then
@@ -43,19 +49,19 @@ env)
     # What tests/test_notebooks.py runs the example notebooks with.
     "$py" -m pip install --quiet --disable-pip-version-check \
         "nbclient>=0.10,<0.12" "nbformat>=5.9,<6" "ipykernel>=6.29,<8"
-    # maturin develop builds the cdylib in release mode and installs the package in the venv
+    # maturin develop builds the cdylib in $profile and installs the package in the venv
     # (the pure-Python part is linked, so edits under python/physicskit need no rebuild).
     # The grep only trims maturin's chatter; maturin's own exit status decides (a failed build
     # must not leave an older installed build looking current).
     (cd "$here" && VIRTUAL_ENV="$venv" PATH="$venv/bin:$PATH" \
-        "$venv/bin/maturin" develop --release --quiet 2>&1 \
+        "$venv/bin/maturin" develop --profile "$profile" --quiet 2>&1 \
         | { grep -v -E '^(📦|🔗|🐍|⚠️  Warning: You.re building a library without activating)' || true; }
         exit "${PIPESTATUS[0]}")
     # The pure-Rust reference program of tests/test_bit_identity.py, built now so that
     # `test` does not compile.
-    (cd "$repo" && cargo build --quiet --release -p physicskit-python --example reference_run \
-        && cargo build --quiet --release -p physicskit-cli)
-    "$py" -c "import physicskit.classical as pc; print('physicskit', pc.__version__, 'installed in', '$venv')"
+    (cd "$repo" && cargo build --quiet --profile "$profile" -p physicskit-python \
+        --example reference_run && cargo build --quiet --profile "$profile" -p physicskit-cli)
+    "$py" -c "import physicskit.classical as pc; print('physicskit', pc.__version__, 'installed in', '$venv ($profile build)')"
     ;;
 test)
     need_venv

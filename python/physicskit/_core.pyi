@@ -152,11 +152,12 @@ class NativeSystem:
         progress: Callable[[int, int], object] | None = None,
         rtol: float | None = None,
         atol: float | None = None,
+        max_steps: int | None = None,
     ) -> _ResultTuple:
         """Integrate from `(state, t0)`; keep every `stride`-th step (and the last), or only the
         first and last with `final_only`; `energy=False` gives `None` energy; `progress(step,
-        n_steps)` is called every few thousand steps; `rtol`, `atol`: an adaptive method's
-        tolerances (ValueError for a fixed-step method). ValueError when the stored samples
+        n_steps)` is called every few thousand steps; `rtol`, `atol`, `max_steps`: an adaptive
+        method's tolerances and step budget (ValueError for a fixed-step method). ValueError when the stored samples
         would not fit in memory."""
     def positions(self, q: _ArrayF64) -> _ArrayF64: ...
     def lrl_vector(self, q: _ArrayF64, p: _ArrayF64) -> _ArrayF64: ...
@@ -232,10 +233,10 @@ def chaos_hamiltonian(obj: Any, state: _ArrayF64, t0: float, t_span: tuple[float
 def chaos_ode(obj: Any, state: _ArrayF64, t0: float, t_span: tuple[float, float], dt: float, method: str, kind: str, **options: Any) -> dict[str, Any]:
     """Runs a chaos analysis on a Python `ODESystem` (or engine-less `LagrangianSystem`) `obj`"""
 
-def integrate_hamiltonian(obj: Any, state: _ArrayF64, t0: float, t_span: tuple[float, float], dt: float, method: str, ndof: int, separable: bool, mass_inv: _ArrayF64, stride: int = 1, final_only: bool = False, energy: bool = True, progress: Callable[[int, int], object] | None = None, rtol: float | None = None, atol: float | None = None) -> _ResultTuple:
+def integrate_hamiltonian(obj: Any, state: _ArrayF64, t0: float, t_span: tuple[float, float], dt: float, method: str, ndof: int, separable: bool, mass_inv: _ArrayF64, stride: int = 1, final_only: bool = False, energy: bool = True, progress: Callable[[int, int], object] | None = None, rtol: float | None = None, atol: float | None = None, max_steps: int | None = None) -> _ResultTuple:
     """Integrates a Python `HamiltonianSystem` subclass `obj` from `(state, t0)` with the Rust"""
 
-def integrate_ode(obj: Any, state: _ArrayF64, t0: float, t_span: tuple[float, float], dt: float, method: str, stride: int = 1, final_only: bool = False, energy: bool = True, progress: Callable[[int, int], object] | None = None, rtol: float | None = None, atol: float | None = None) -> _ResultTuple:
+def integrate_ode(obj: Any, state: _ArrayF64, t0: float, t_span: tuple[float, float], dt: float, method: str, stride: int = 1, final_only: bool = False, energy: bool = True, progress: Callable[[int, int], object] | None = None, rtol: float | None = None, atol: float | None = None, max_steps: int | None = None) -> _ResultTuple:
     """Integrates a Python `ODESystem` (or engine-less `LagrangianSystem`) `obj` from"""
 
 def nutation_frequency(p_phi: float, p_psi: float, I1: float, I3: float, Mgl: float, theta_eq: float | None, dtheta: float) -> float:

@@ -368,7 +368,7 @@ fn options(
     stride: usize,
     final_only: bool,
     energy: bool,
-    (rtol, atol, method): (Option<f64>, Option<f64>, Method),
+    (rtol, atol, max_steps, method): (Option<f64>, Option<f64>, Option<u64>, Method),
 ) -> Result<IntegrateOptions<'_>> {
     Ok(IntegrateOptions {
         sampling: sampling(stride, final_only)?,
@@ -376,15 +376,16 @@ fn options(
         observer: Some(observer),
         // A Python right-hand side is ~100x slower than a native one: check more often.
         observe_every: CHECK_EVERY / 16,
-        tolerances: Tolerances::for_method(rtol, atol, method)?,
+        tolerances: Tolerances::for_method(rtol, atol, max_steps, method)?,
     })
 }
 
 /// Integrates a Python `HamiltonianSystem` subclass `obj` from `(state, t0)` with the Rust
 /// integrators; returns the result tuple `(t, y, energy, method, extra)`. `stride`,
-/// `final_only`, `energy`, `progress`, `rtol` and `atol` as for `NativeSystem.integrate`.
+/// `final_only`, `energy`, `progress`, `rtol`, `atol` and `max_steps` as for
+/// `NativeSystem.integrate`.
 #[pyfunction]
-#[pyo3(signature = (obj, state, t0, t_span, dt, method, ndof, separable, mass_inv, stride=1, final_only=false, energy=true, progress=None, rtol=None, atol=None))]
+#[pyo3(signature = (obj, state, t0, t_span, dt, method, ndof, separable, mass_inv, stride=1, final_only=false, energy=true, progress=None, rtol=None, atol=None, max_steps=None))]
 #[allow(clippy::too_many_arguments)]
 pub fn integrate_hamiltonian<'py>(
     py: Python<'py>,
@@ -403,6 +404,7 @@ pub fn integrate_hamiltonian<'py>(
     progress: Option<Py<PyAny>>,
     rtol: Option<f64>,
     atol: Option<f64>,
+    max_steps: Option<u64>,
 ) -> PyResult<Bound<'py, PyTuple>> {
     let method = parse_method(Some(method), Method::Yoshida4, separable).py()?;
     let mut sys =
@@ -413,7 +415,7 @@ pub fn integrate_hamiltonian<'py>(
         stride,
         final_only,
         energy,
-        (rtol, atol, method),
+        (rtol, atol, max_steps, method),
     )
     .py()?;
     let outcome = sys.integrate_with(t_span, dt, method, options);
@@ -423,9 +425,10 @@ pub fn integrate_hamiltonian<'py>(
 
 /// Integrates a Python `ODESystem` (or engine-less `LagrangianSystem`) `obj` from
 /// `(state, t0)`; returns the result tuple `(t, y, energy, method, extra)`.
-/// `stride`, `final_only`, `energy`, `progress`, `rtol` and `atol` as for `NativeSystem.integrate`.
+/// `stride`, `final_only`, `energy`, `progress`, `rtol`, `atol` and `max_steps` as for
+/// `NativeSystem.integrate`.
 #[pyfunction]
-#[pyo3(signature = (obj, state, t0, t_span, dt, method, stride=1, final_only=false, energy=true, progress=None, rtol=None, atol=None))]
+#[pyo3(signature = (obj, state, t0, t_span, dt, method, stride=1, final_only=false, energy=true, progress=None, rtol=None, atol=None, max_steps=None))]
 #[allow(clippy::too_many_arguments)]
 pub fn integrate_ode<'py>(
     py: Python<'py>,
@@ -441,6 +444,7 @@ pub fn integrate_ode<'py>(
     progress: Option<Py<PyAny>>,
     rtol: Option<f64>,
     atol: Option<f64>,
+    max_steps: Option<u64>,
 ) -> PyResult<Bound<'py, PyTuple>> {
     let method = parse_method(Some(method), Method::ImplicitMidpoint, false).py()?;
     let mut sys = PyOde::new(obj, to_vec(&state), t0).py()?;
@@ -450,7 +454,7 @@ pub fn integrate_ode<'py>(
         stride,
         final_only,
         energy,
-        (rtol, atol, method),
+        (rtol, atol, max_steps, method),
     )
     .py()?;
     let outcome = sys.integrate_with(t_span, dt, method, options);

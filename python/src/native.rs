@@ -343,10 +343,10 @@ impl NativeSystem {
     /// tuple `(t, y, ndof, energy, method, extra)`. `stride` keeps every `stride`-th step (and
     /// the last), `final_only` only the first and last, `energy=False` skips the energy
     /// diagnostic (`None` in the tuple), and `progress(step, n_steps)`, if given, is called every
-    /// few thousand steps; `rtol` and `atol` are an adaptive method's tolerances (refused for a
-    /// fixed-step method). The GIL is released during the run; Ctrl-C stops it with
+    /// few thousand steps; `rtol`, `atol` and `max_steps` are an adaptive method's tolerances and
+    /// step budget (refused for a fixed-step method). The GIL is released during the run; Ctrl-C stops it with
     /// `KeyboardInterrupt`.
-    #[pyo3(signature = (state, t0, t_span, dt, method=None, stride=1, final_only=false, energy=true, progress=None, rtol=None, atol=None))]
+    #[pyo3(signature = (state, t0, t_span, dt, method=None, stride=1, final_only=false, energy=true, progress=None, rtol=None, atol=None, max_steps=None))]
     #[allow(clippy::too_many_arguments)]
     fn integrate<'py>(
         &mut self,
@@ -362,6 +362,7 @@ impl NativeSystem {
         progress: Option<Py<PyAny>>,
         rtol: Option<f64>,
         atol: Option<f64>,
+        max_steps: Option<u64>,
     ) -> PyResult<Bound<'py, PyTuple>> {
         let state = to_vec(&state);
         let splitting = self
@@ -370,7 +371,7 @@ impl NativeSystem {
             .is_some_and(|h| h.separable() && h.conservative());
         let method = parse_method(method, self.inner.default_method(), splitting).py()?;
         let sampling = sampling(stride, final_only).py()?;
-        let tolerances = Tolerances::for_method(rtol, atol, method).py()?;
+        let tolerances = Tolerances::for_method(rtol, atol, max_steps, method).py()?;
         let inner = &mut self.inner;
         let (outcome, raised) = py.detach(move || {
             let mut observer = SignalObserver::new(progress);

@@ -1,4 +1,7 @@
-"""Shared fixtures: every built-in system in a small, well-behaved configuration."""
+"""Shared fixtures: every built-in system in a small, well-behaved configuration, and the
+cargo profile of the Rust programs some tests build and run."""
+
+import os
 
 import pytest
 
@@ -23,6 +26,14 @@ def make_systems():
         "TodaLattice": lambda: pc.TodaLattice([0.0, 0.3, -0.2, 0.1], [0.5, 0.0, -0.5, 0.2]),
         "ElasticPendulum": lambda: pc.ElasticPendulum([1.2, 0.3], [0.0, 0.1]),
     }
+
+
+@pytest.fixture(scope="session")
+def cargo_profile():
+    """``["--profile", name]`` for the cargo and maturin commands of the tests: the profile
+    ``python/dev.sh env`` built the extension and the Rust programs in (``PHYSICSKIT_PROFILE``,
+    default ``release``; ``scripts/test`` uses ``test``), so that they reuse that build."""
+    return ["--profile", os.environ.get("PHYSICSKIT_PROFILE", "release")]
 
 
 @pytest.fixture(params=sorted(make_systems()))

@@ -1,7 +1,7 @@
 """The same runs through Python and directly in Rust give bit-identical arrays.
 
 The Rust side is `python/examples/reference_run.rs`, a plain Rust program on the `physicskit`
-crate (no PyO3 in the path), run with `cargo run --release`. An independent process rather
+crate (no PyO3 in the path), run with `cargo run` in the profile of the extension. An independent process rather
 than a hook inside the extension module: it shows that nothing in the binding layer (argument
 conversion, parameter handling, the choice of integrator path, the zero-copy hand-over of the
 arrays) changes a single bit. The program is built by `dev.sh env`; the test skips if cargo
@@ -22,12 +22,12 @@ REPO = pathlib.Path(__file__).resolve().parents[2]
 
 
 @pytest.fixture(scope="module")
-def reference(tmp_path_factory):
+def reference(tmp_path_factory, cargo_profile):
     if shutil.which("cargo") is None:
         pytest.skip("cargo is not installed")
     out = tmp_path_factory.mktemp("reference")
     subprocess.run(
-        ["cargo", "run", "--quiet", "--release", "-p", "physicskit-python", "--example",
+        ["cargo", "run", "--quiet", *cargo_profile, "-p", "physicskit-python", "--example",
          "reference_run", "--", str(out)],
         cwd=REPO, check=True, env={**os.environ, "CARGO_BUILD_JOBS": os.environ.get("CARGO_BUILD_JOBS", "2")},
     )

@@ -298,7 +298,7 @@ def test_methods_have_the_required_keys_and_describe_integrate():
         assert set(e["methods"]) <= names
 
 
-def test_methods_and_catalogue_agree_with_the_command_line():
+def test_methods_and_catalogue_agree_with_the_command_line(cargo_profile):
     """``physicskit list --json`` (the CLI) and ``methods()`` / ``catalog()`` (Python) are two
     renderings of the same core tables: every method fact and every system's parameters and
     defaults must be equal."""
@@ -312,7 +312,7 @@ def test_methods_and_catalogue_agree_with_the_command_line():
         pytest.skip("cargo is not installed")
     repo = pathlib.Path(__file__).resolve().parents[2]
     out = subprocess.run(
-        ["cargo", "run", "--quiet", "--release", "-p", "physicskit-cli", "--", "list", "--json"],
+        ["cargo", "run", "--quiet", *cargo_profile, "-p", "physicskit-cli", "--", "list", "--json"],
         cwd=repo, check=True, capture_output=True,
         env={**os.environ, "CARGO_BUILD_JOBS": os.environ.get("CARGO_BUILD_JOBS", "2")},
     ).stdout

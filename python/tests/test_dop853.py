@@ -1,6 +1,7 @@
 """``dop853`` (issue 13, part 3) from Python: against SciPy's DOP853 on a pendulum and on the
 projectile with drag, its tolerances ``rtol``/``atol`` (validated, refused for fixed-step
-methods), its step counts in ``result.extra``, and its step failure as ``ConvergenceError``.
+methods), its step budget ``max_steps`` (likewise), its step counts in ``result.extra``, and
+its step failure as ``ConvergenceError``.
 
 SciPy is used only here, as an independent implementation of the same method (Hairer's
 DOP853, with its own step-size selection): both runs must meet the tolerance, so they agree to
@@ -107,6 +108,57 @@ def test_tolerances_are_refused_for_fixed_step_methods(name, method):
 def test_tolerances_are_keyword_only():
     with pytest.raises(TypeError):
         pc.KeplerSystem([1.0, 0.0], [0.0, 1.0]).integrate_sampled((0.0, 1.0), 0.1, "dop853", 1, False, True, 1e-8)
+
+
+class Decay(pc.ODESystem):
+    """``y' = -y``, written in Python (the run calls back into it)."""
+
+    def derivatives(self, t, state):
+        return -state
+
+    def energy(self, state=None):
+        return 0.0
+
+
+# One system per path to the adaptive driver: a built-in (native), a Python Hamiltonian and a
+# Python ODE (both called back from Rust).
+BUDGET_SYSTEMS = {
+    "native": lambda: pc.KeplerSystem.from_orbital_elements(1.0, 0.5),
+    "python_hamiltonian": lambda: Pendulum([2.0], [0.0]),
+    "python_ode": lambda: Decay([1.0]),
+}
+
+
+@pytest.mark.parametrize("kind", sorted(BUDGET_SYSTEMS))
+def test_the_step_budget_stops_the_run_exactly_at_its_count(kind):
+    make = BUDGET_SYSTEMS[kind]
+    free = make().integrate_sampled((0.0, 6.0), 0.5, "dop853")
+    attempts = int(free.extra["accepted_steps"] + free.extra["rejected_steps"])
+    # Enough steps that a budget one below them is a real budget, not a degenerate one.
+    assert attempts > 5, attempts
+    exact = make().integrate_sampled((0.0, 6.0), 0.5, "dop853", max_steps=attempts)
+    assert exact.y.tobytes() == free.y.tobytes()
+    with pytest.raises(ConvergenceError, match=rf"budget of {attempts - 1} steps \(max_steps\)"):
+        make().integrate_sampled((0.0, 6.0), 0.5, "dop853", max_steps=attempts - 1)
+
+
+def test_a_numpy_integer_is_a_budget():
+    # Ten orbits take far more than 10 attempts at the default tolerances, so the run stops.
+    with pytest.raises(ConvergenceError, match="budget of 10 steps"):
+        pc.KeplerSystem.from_orbital_elements(1.0, 0.5).integrate_sampled(
+            (0.0, 60.0), 0.5, "dop853", max_steps=np.int64(10))
+
+
+@pytest.mark.parametrize("bad", [0, -1, 1.5, 10.0, "10", 1j, True, 2**64])
+def test_bad_step_budgets_are_value_errors_naming_them(bad):
+    with pytest.raises(ValueError, match="max_steps"):
+        pc.KeplerSystem([1.0, 0.0], [0.0, 1.0]).integrate_sampled((0.0, 1.0), 0.1, "dop853", max_steps=bad)
+
+
+@pytest.mark.parametrize("method", ["rk4", "yoshida4", "implicit_midpoint", None])
+def test_a_step_budget_is_refused_for_fixed_step_methods(method):
+    with pytest.raises(ValueError, match=r"max_steps.*dop853"):
+        pc.KeplerSystem([1.0, 0.0], [0.0, 1.0]).integrate_sampled((0.0, 1.0), 0.1, method, max_steps=100)
 
 
 class Blowup(pc.ODESystem):

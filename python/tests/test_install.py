@@ -2,7 +2,7 @@
 install it into a fresh virtual environment and use it there.
 
 The wheel is built exactly as ``python/dev.sh env`` builds the editable install (same cargo
-target directory, release profile, features and interpreter, which pyo3's build script keys
+target directory, cargo profile, features and interpreter, which pyo3's build script keys
 on), so it reuses that build: no dependency (pyo3, numpy, the physicskit core ...) is compiled
 again. The test checks that, so CI never compiles them twice. The extension crate itself may
 be recompiled (about 30 s of one core): ``cargo build --example reference_run`` (``dev.sh
@@ -38,10 +38,10 @@ def _env() -> dict[str, str]:
     return env
 
 
-def test_wheel_builds_from_the_dev_build_installs_and_runs(tmp_path):
+def test_wheel_builds_from_the_dev_build_installs_and_runs(tmp_path, cargo_profile):
     dist = tmp_path / "dist"
     build = subprocess.run(
-        [str(VENV / "bin" / "maturin"), "build", "--release", "--out", str(dist)],
+        [str(VENV / "bin" / "maturin"), "build", *cargo_profile, "--out", str(dist)],
         cwd=PYTHON_DIR, env=_env(), capture_output=True, text=True, timeout=BUILD_TIMEOUT)
     assert build.returncode == 0, build.stderr
     compiled = set(re.findall(r"^\s*Compiling (\S+)", build.stderr, re.M))

@@ -13,6 +13,7 @@ use physicskit::classical::analysis::lyapunov::DEFAULT_RENORMALIZE_EVERY;
 use physicskit::classical::analysis::sali::CHAOS_THRESHOLD;
 use physicskit::classical::catalog::{self, SYSTEMS};
 use physicskit::classical::core::SystemEntry;
+use physicskit::classical::Tolerances;
 
 use crate::params;
 
@@ -35,7 +36,7 @@ pub enum Action {
     /// The output format follows the extension of --out: .npz (numpy.load), .csv or .json.
     /// Run `physicskit simulate SYSTEM --help` for a system's parameters.
     #[command(
-        override_usage = "physicskit simulate SYSTEM [--PARAM VALUE ...] [--method M] [--rtol R --atol A] --dt DT --t1 T1 [--t0 T0] --out FILE"
+        override_usage = "physicskit simulate SYSTEM [--PARAM VALUE ...] [--method M] [--rtol R --atol A --max-steps N] --dt DT --t1 T1 [--t0 T0] --out FILE"
     )]
     Simulate(Box<SimulateArgs>),
     /// Lyapunov spectrum of one orbit (Benettin et al. 1980, QR every K steps): the exponents
@@ -258,18 +259,43 @@ impl RunKind for Simulate {
             Some("1"),
             "store every K-th step (and the last)",
         ),
-        Flag::optional(
-            "rtol",
-            "RTOL",
-            None,
-            "relative tolerance of an adaptive method (dop853), > 0; default 1e-10",
-        ),
-        Flag::optional(
-            "atol",
-            "ATOL",
-            None,
-            "absolute tolerance of an adaptive method (dop853), > 0; default 1e-12",
-        ),
+        Flag {
+            name: "rtol",
+            value_name: "RTOL",
+            default: None,
+            required: false,
+            help: Text::Made(|| {
+                format!(
+                    "relative tolerance of an adaptive method (dop853), > 0; default {:e}",
+                    Tolerances::default().rtol
+                )
+            }),
+        },
+        Flag {
+            name: "atol",
+            value_name: "ATOL",
+            default: None,
+            required: false,
+            help: Text::Made(|| {
+                format!(
+                    "absolute tolerance of an adaptive method (dop853), > 0; default {:e}",
+                    Tolerances::default().atol
+                )
+            }),
+        },
+        Flag {
+            name: "max-steps",
+            value_name: "N",
+            default: None,
+            required: false,
+            help: Text::Made(|| {
+                format!(
+                    "most steps (accepted and rejected) an adaptive method may attempt before it \
+                     stops with an error, >= 1; default {}",
+                    Tolerances::default().max_steps
+                )
+            }),
+        },
     ];
 }
 

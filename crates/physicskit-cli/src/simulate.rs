@@ -19,18 +19,22 @@ use crate::prepare::{count, number, Call, RunObserver};
 use crate::progress::OBSERVE_EVERY;
 use crate::signals::Stop;
 
-/// The tolerances of `--rtol` and `--atol`, checked for `method` (an error naming the flag for
-/// a value that is not a number > 0, or for a fixed-step method).
+/// The tolerances of `--rtol`, `--atol` and `--max-steps`, checked for `method` (an error naming
+/// the flag for a value that is not a number > 0 (an integer >= 1 for `--max-steps`), or for a
+/// fixed-step method).
 fn tolerances(checked: &Call<'_, Simulate>, method: Method) -> Result<Option<Tolerances>> {
-    let (rtol_text, atol_text) = (checked.option("rtol"), checked.option("atol"));
-    let rtol = rtol_text.map(|t| number("rtol", t)).transpose()?;
-    let atol = atol_text.map(|t| number("atol", t)).transpose()?;
-    Tolerances::for_method(rtol, atol, method).map_err(|e| match e {
+    let text = |library_name: &str| checked.option(&library_name.replace('_', "-"));
+    let rtol = text("rtol").map(|t| number("rtol", t)).transpose()?;
+    let atol = text("atol").map(|t| number("atol", t)).transpose()?;
+    let max_steps = text("max_steps")
+        .map(|t| count("max-steps", t, 1).map(|n| n as u64))
+        .transpose()?;
+    Tolerances::for_method(rtol, atol, max_steps, method).map_err(|e| match e {
         Error::InvalidParameter { name, reason, .. } | Error::InvalidArgument { name, reason } => {
-            let text = if name == "rtol" { rtol_text } else { atol_text };
             anyhow!(
-                "invalid value `{}` for `--{name}`: {reason}",
-                text.unwrap_or_default()
+                "invalid value `{}` for `--{}`: {reason}",
+                text(&name).unwrap_or_default(),
+                name.replace('_', "-")
             )
         }
         other => other.into(),

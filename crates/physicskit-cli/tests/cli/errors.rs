@@ -410,6 +410,31 @@ fn tolerances_with_a_fixed_step_method() {
 }
 
 #[test]
+fn a_step_budget_with_a_fixed_step_method() {
+    let err = pendulum("0.1", "1", "a.csv", &["--max-steps", "100"]);
+    assert!(
+        err.contains("`--max-steps`") && err.contains("fixed-step") && err.contains("dop853"),
+        "{err}"
+    );
+}
+
+#[test]
+fn step_budgets_that_are_not_counts() {
+    for value in ["0", "-1", "1.5", "x", "nan", "18446744073709551616"] {
+        let err = pendulum(
+            "0.1",
+            "1",
+            "a.csv",
+            &["--method", "dop853", "--max-steps", value],
+        );
+        assert!(
+            err.contains("`--max-steps`") && err.contains(value),
+            "{err}"
+        );
+    }
+}
+
+#[test]
 fn tolerances_that_are_not_positive_numbers() {
     for (flag, value) in [
         ("--rtol", "0"),

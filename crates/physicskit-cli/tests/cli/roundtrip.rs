@@ -450,3 +450,33 @@ fn tolerances_reach_dop853() {
         .zip(default.q().unwrap().iter())
         .any(|(a, b)| a.to_bits() != b.to_bits()));
 }
+
+/// `--max-steps` reaches the adaptive method: a budget of exactly the attempts (accepted and
+/// rejected steps) the run needs gives the library's run bit for bit, one fewer stops it with
+/// an error naming the budget and leaves no file.
+#[test]
+fn the_step_budget_reaches_dop853() {
+    let dir = scratch();
+    let want = pendulum_reference(Method::Dop853);
+    let attempts =
+        want.extra_scalar("accepted_steps").unwrap() + want.extra_scalar("rejected_steps").unwrap();
+    // Non-trivial: the run takes many steps, so the budget below it is a real budget.
+    assert!(attempts > 10.0, "{attempts}");
+    let enough = format!("{attempts}");
+    let mut args = pendulum_args("dop853");
+    args.extend_from_slice(&["--max-steps", &enough]);
+    let path = simulate(dir.path(), "run.npz", &args);
+    let mut npz = NpzReader::new(File::open(&path).unwrap()).unwrap();
+    let q: Array2<f64> = npz.by_name("q").unwrap();
+    same_bits("q", q.iter().copied(), want.q().unwrap().iter().copied());
+
+    let short = format!("{}", attempts - 1.0);
+    let mut args = vec!["simulate"];
+    args.extend(pendulum_args("dop853"));
+    args.extend_from_slice(&["--max-steps", &short, "--out", "short.npz"]);
+    let out = run_in(dir.path(), &args);
+    let err = stderr(&out);
+    assert_ne!(out.status.code(), Some(0), "{err}");
+    assert!(err.contains(&format!("budget of {short} steps")), "{err}");
+    assert!(!dir.path().join("short.npz").exists());
+}

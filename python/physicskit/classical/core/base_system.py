@@ -140,6 +140,7 @@ class _Sampling(NamedTuple):
     """``progress(step, n_steps)``, called every few thousand steps, or None."""
     rtol: Optional[float] = None
     atol: Optional[float] = None
+    max_steps: Optional[int] = None
 
 
 _EVERY_SAMPLE = _Sampling()
@@ -184,6 +185,7 @@ class DynamicalSystem(ABC):
         self, t_span, dt: float, method: Optional[str] = None, *, stride: int = 1,
         final_only: bool = False, energy: bool = True, progress: bool = False,
         rtol: Optional[float] = None, atol: Optional[float] = None,
+        max_steps: Optional[int] = None,
     ) -> SimulationResult:
         """Integrate like :meth:`integrate`, storing only some samples (not in the spec).
 
@@ -222,6 +224,12 @@ class DynamicalSystem(ABC):
             at ``t1``); ``result.extra`` then also holds ``accepted_steps`` and
             ``rejected_steps``. A fixed-step method has no tolerances: giving either with one
             is a ``ValueError``.
+        max_steps : int, keyword-only, optional
+            The most steps, accepted and rejected, an adaptive method may attempt in this run
+            before it stops with ``ConvergenceError`` (an integer >= 1; ``None``, the default,
+            means ten million): a guard against runs that would not end, to raise for a long
+            span at tight tolerances or to lower for a quick look. Like ``rtol`` and ``atol``,
+            a ``ValueError`` with a fixed-step method, whose steps ``dt`` sets.
 
         Returns
         -------
@@ -235,12 +243,13 @@ class DynamicalSystem(ABC):
         ------
         ValueError
             ``stride`` not an integer >= 1, ``stride > 1`` with ``final_only=True``, a
-            non-boolean flag, ``rtol`` or ``atol`` not a finite number > 0 or given with a
-            fixed-step method, every ``ValueError`` of ``integrate``, and a run whose stored
+            non-boolean flag, ``rtol`` or ``atol`` not a finite number > 0, ``max_steps`` not
+            an integer >= 1, any of the three given with a fixed-step method, every ``ValueError`` of ``integrate``, and a run whose stored
             samples would not fit in memory (checked before anything is allocated).
         ConvergenceError
             An adaptive method found no step meeting its tolerances (the step size fell to the
-            rounding of ``t``, or the right-hand side returned NaN), naming ``t``.
+            rounding of ``t``, or the right-hand side returned NaN) or spent ``max_steps``,
+            naming ``t``.
         NotImplementedError
             For a Python subclass of ``DynamicalSystem`` itself that implements its own
             ``integrate`` (there is no integrator to pass the sampling to). Subclasses of
@@ -253,6 +262,7 @@ class DynamicalSystem(ABC):
         progress = as_flag("progress", progress)
         rtol = None if rtol is None else as_scalar("rtol", rtol)
         atol = None if atol is None else as_scalar("atol", atol)
+        max_steps = None if max_steps is None else as_int("max_steps", max_steps, minimum=1)
         if final_only and stride > 1:
             raise ValueError(
                 f"stride={stride} and final_only=True cannot be combined: pass one or the other"
@@ -264,7 +274,7 @@ class DynamicalSystem(ABC):
             from .progress import progress_reporter
 
             reporter = progress_reporter()
-        sampling = _Sampling(stride, final_only, energy, reporter, rtol, atol)
+        sampling = _Sampling(stride, final_only, energy, reporter, rtol, atol, max_steps)
         try:
             result = self._integrate(t_span, dt, method, sampling)
         except BaseException:

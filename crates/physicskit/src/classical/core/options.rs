@@ -111,29 +111,43 @@ impl Tolerances {
         Ok(tol)
     }
 
-    /// The tolerances of a front end's optional `rtol` and `atol` arguments for `method`:
-    /// `None` when neither is given, otherwise the given ones with the defaults for the other,
-    /// validated.
+    /// The tolerances of a front end's optional `rtol`, `atol` and `max_steps` arguments for
+    /// `method`: `None` when none is given, otherwise the given ones with the defaults for the
+    /// others, validated.
     ///
     /// # Errors
-    /// [`Error::InvalidArgument`] naming `rtol` (or `atol` when only it is given) for a
-    /// fixed-step method, which takes no tolerances; [`Error::InvalidParameter`] naming an
-    /// invalid one.
+    /// [`Error::InvalidArgument`] naming the first given of `rtol`, `atol` and `max_steps` for a
+    /// fixed-step method, which takes no tolerances and no step budget (its steps are set by
+    /// `dt`); [`Error::InvalidParameter`] naming an invalid one.
+    ///
+    /// # Example
+    /// ```
+    /// use physicskit::classical::{Method, Tolerances};
+    /// let tol = Tolerances::for_method(None, None, Some(500), Method::Dop853).unwrap().unwrap();
+    /// assert_eq!((tol.rtol, tol.max_steps), (1e-10, 500));
+    /// assert!(Tolerances::for_method(None, None, None, Method::Dop853).unwrap().is_none());
+    /// assert!(Tolerances::for_method(None, None, Some(500), Method::Rk4).is_err());
+    /// ```
     pub fn for_method(
         rtol: Option<f64>,
         atol: Option<f64>,
+        max_steps: Option<u64>,
         method: Method,
     ) -> Result<Option<Self>> {
-        if rtol.is_none() && atol.is_none() {
+        let given = [
+            ("rtol", rtol.is_some()),
+            ("atol", atol.is_some()),
+            ("max_steps", max_steps.is_some()),
+        ];
+        let Some(&(name, _)) = given.iter().find(|(_, is_given)| *is_given) else {
             return Ok(None);
-        }
-        let name = if rtol.is_some() { "rtol" } else { "atol" };
+        };
         check_adaptive(name, method)?;
         let default = Self::default();
         let tol = Self {
             rtol: rtol.unwrap_or(default.rtol),
             atol: atol.unwrap_or(default.atol),
-            ..default
+            max_steps: max_steps.unwrap_or(default.max_steps),
         };
         tol.validate()?;
         Ok(Some(tol))
@@ -167,8 +181,8 @@ pub(crate) fn check_adaptive(name: &str, method: Method) -> Result<()> {
     Err(Error::InvalidArgument {
         name: name.into(),
         reason: format!(
-            "`{method}` is a fixed-step method (dt is its step) and takes no tolerances; only \
-             the adaptive methods do: {}",
+            "`{method}` is a fixed-step method (dt is its step) and takes no tolerances or step \
+             budget; only the adaptive methods do: {}",
             adaptive.join(", ")
         ),
     })

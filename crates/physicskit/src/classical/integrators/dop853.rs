@@ -606,7 +606,8 @@ impl Dop853 {
                 return Err(self.failure(
                     self.h,
                     &format!(
-                        "the budget of {} steps is spent; loosen rtol/atol or split the span",
+                        "the budget of {} steps (max_steps) is spent; raise it, loosen rtol/atol \
+                         or split the span",
                         self.tolerances.max_steps
                     ),
                 ));

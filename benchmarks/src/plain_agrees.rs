@@ -3,7 +3,7 @@
 //! same trajectory and energies up to rounding. Otherwise the speed comparison would compare
 //! different work.
 
-use physicskit_benchmarks::{plain, workloads};
+use crate::{plain, workloads};
 
 #[test]
 fn plain_loops_match_the_library() {
