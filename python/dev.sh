@@ -20,9 +20,9 @@ venv="${PHYSICSKIT_VENV:-$repo/.venv}"
 py="$venv/bin/python"
 export CARGO_BUILD_JOBS="${CARGO_BUILD_JOBS:-2}"
 # The cargo profile of the extension and of the Rust programs the tests run (the bit-identity
-# reference, the CLI): release unless told otherwise. scripts/test sets `test`, which `cargo
-# test` has built just before (opt-level 3, debug assertions and overflow checks on), so CI
-# does not compile the workspace a second time with LTO; the tests read the same variable.
+# reference, the CLI): release unless told otherwise. scripts/test sets `ci` (Cargo.toml), in
+# which its `cargo test` has just built the workspace, so CI does not compile it a second time
+# with LTO; the tests read the same variable.
 profile="${PHYSICSKIT_PROFILE:-release}"
 
 need_venv() {

@@ -32,7 +32,7 @@ def make_systems():
 def cargo_profile():
     """``["--profile", name]`` for the cargo and maturin commands of the tests: the profile
     ``python/dev.sh env`` built the extension and the Rust programs in (``PHYSICSKIT_PROFILE``,
-    default ``release``; ``scripts/test`` uses ``test``), so that they reuse that build."""
+    default ``release``; ``scripts/test`` uses ``ci``), so that they reuse that build."""
     return ["--profile", os.environ.get("PHYSICSKIT_PROFILE", "release")]
 
 
