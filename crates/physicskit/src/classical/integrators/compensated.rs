@@ -23,6 +23,11 @@
 //! path.) The state between steps is plain `[q, p]`: nothing is carried from one step to the
 //! next, so continuing a run (a second `integrate`, a session, a section) repeats its bits.
 //!
+//! Only the compositions of more than three drifts use the corrections: `verlet` and
+//! `yoshida4` take the `PLAIN` update, `p ← p + k h F; q ← q + dm p`, whose rounding is far
+//! below their truncation error at any useful step, and for which the corrections cost 1.3x to
+//! 2.7x per step (benchmarks/README.md).
+//!
 //! The drift is arranged for a short critical path. With `p` the momentum before the kick
 //! and `dm = d h M⁻¹`, the new position is
 //!
@@ -50,12 +55,22 @@ use crate::classical::core::MassInv;
 /// more to the call than it gained (figures in `benchmarks/README.md`), so it stays inline.
 pub(crate) const DISPATCH_MIN: usize = 64;
 
+/// Which update a kick–drift pass performs ([`kick_drift`]'s `KIND`): a compensated drift
+/// that is not the step's last, the compensated last drift (which absorbs the corrections), or
+/// the plain `p ← p + kick f; q ← q + dm p` of the low-order methods (see the module docs).
+pub(crate) const MIDDLE: u8 = 0;
+/// The step's last compensated drift.
+pub(crate) const LAST: u8 = 1;
+/// A plain kick and drift, no corrections.
+pub(crate) const PLAIN: u8 = 2;
+
 /// One coordinate's kick `p ← p + kick f` and drift `q ← q + dm p_new = (q + dm p) + g f`
 /// (`g = dm kick`), the errors of the three additions summed into `eq` and `ep`. In the step's
-/// last drift (`LAST`), `q` absorbs `eq` instead (see the module docs).
+/// last drift (`KIND == LAST`), `q` absorbs `eq` instead (see the module docs); `PLAIN`
+/// updates `p` then `q` with one rounding each and leaves the corrections alone.
 #[inline(always)]
 #[allow(clippy::too_many_arguments)]
-fn update<const LAST: bool>(
+fn update<const KIND: u8>(
     q: &mut f64,
     p: &mut f64,
     eq: &mut f64,
@@ -66,10 +81,16 @@ fn update<const LAST: bool>(
     g: f64,
 ) {
     let (q0, p0) = (*q, *p);
+    if KIND == PLAIN {
+        let s = p0 + kick * f;
+        *p = s;
+        *q = q0 + dm * s;
+        return;
+    }
     let v = dm * p0;
     let c = q0 + v;
     let w = g * f;
-    if LAST {
+    if KIND == LAST {
         *q = c + (w + (((q0 - c) + v) + *eq));
     } else {
         let s = c + w;
@@ -90,8 +111,8 @@ fn close(p: &mut f64, ep: f64, f: f64, k: f64) {
 }
 
 /// `p += kick F; q += drift M⁻¹ p` on every coordinate, compensated (corrections `eq`, `ep`,
-/// zero at the start of a step), in one pass; in the step's last drift (`LAST`) `q` absorbs its
-/// correction.
+/// zero at the start of a step), in one pass; in the step's last drift (`KIND == LAST`) `q`
+/// absorbs its correction; `KIND == PLAIN` sums plainly.
 ///
 /// Up to three coordinates with uniform masses (Kepler, Hénon–Heiles, the projectile, a
 /// pendulum) take a fixed-length copy of the loop: a runtime-length loop over two elements
@@ -100,7 +121,7 @@ fn close(p: &mut f64, ep: f64, f: f64, k: f64) {
 /// the same operations, so the length decides nothing but speed.
 #[inline(always)]
 #[allow(clippy::too_many_arguments)]
-pub(crate) fn kick_drift<const LAST: bool>(
+pub(crate) fn kick_drift<const KIND: u8>(
     mass_inv: MassInv<'_>,
     q: &mut [f64],
     p: &mut [f64],
@@ -112,24 +133,57 @@ pub(crate) fn kick_drift<const LAST: bool>(
 ) {
     match (q.len(), mass_inv) {
         (1, MassInv::Uniform(m)) => {
-            fixed::<1, LAST>(q, p, eq, ep, force, kick, drift * m);
+            fixed::<1, KIND>(q, p, eq, ep, force, kick, drift * m);
         }
         (2, MassInv::Uniform(m)) => {
-            fixed::<2, LAST>(q, p, eq, ep, force, kick, drift * m);
+            fixed::<2, KIND>(q, p, eq, ep, force, kick, drift * m);
         }
         (3, MassInv::Uniform(m)) => {
-            fixed::<3, LAST>(q, p, eq, ep, force, kick, drift * m);
+            fixed::<3, KIND>(q, p, eq, ep, force, kick, drift * m);
         }
         (n, MassInv::Uniform(m)) if n >= DISPATCH_MIN => {
-            uniform_long(LAST, q, p, eq, ep, force, kick, drift * m);
+            uniform_long(KIND, q, p, eq, ep, force, kick, drift * m);
         }
-        (_, MassInv::Uniform(m)) => uniform::<LAST>(q, p, eq, ep, force, kick, drift * m),
+        (_, MassInv::Uniform(m)) => uniform::<KIND>(q, p, eq, ep, force, kick, drift * m),
         (n, MassInv::PerCoordinate(m)) if n >= DISPATCH_MIN => {
-            per_coordinate_long(LAST, q, p, eq, ep, force, m, kick, drift);
+            per_coordinate_long(KIND, q, p, eq, ep, force, m, kick, drift);
         }
         (_, MassInv::PerCoordinate(m)) => {
-            per_coordinate::<LAST>(q, p, eq, ep, force, m, kick, drift);
+            per_coordinate::<KIND>(q, p, eq, ep, force, m, kick, drift);
         }
+    }
+}
+
+/// Compositions of at most this many drifts (`verlet`, `yoshida4`) sum plainly. Their
+/// truncation error at any step worth taking is far above the rounding the compensated sums
+/// remove, and the sums cost them 1.3x to 2.7x per step (benchmarks/README.md, the peer
+/// comparison of 2026-11-28); issue 13 allowed limiting compensation to the high orders.
+pub(crate) const PLAIN_MAX_DRIFTS: usize = 3;
+
+/// Kick–drift pass `i` of a step of `S` drifts, as [`SplittingStepper`] and the tangent
+/// stepper both take it: [`PLAIN`] for `S <= PLAIN_MAX_DRIFTS`, otherwise [`MIDDLE`] and, for
+/// the last pass, [`LAST`].
+///
+/// [`SplittingStepper`]: super::splitting::SplittingStepper
+#[inline(always)]
+#[allow(clippy::too_many_arguments)]
+pub(crate) fn substep<const S: usize>(
+    i: usize,
+    mass_inv: MassInv<'_>,
+    q: &mut [f64],
+    p: &mut [f64],
+    eq: &mut [f64],
+    ep: &mut [f64],
+    force: &[f64],
+    kick: f64,
+    drift: f64,
+) {
+    if S <= PLAIN_MAX_DRIFTS {
+        kick_drift::<PLAIN>(mass_inv, q, p, eq, ep, force, kick, drift);
+    } else if i + 1 == S {
+        kick_drift::<LAST>(mass_inv, q, p, eq, ep, force, kick, drift);
+    } else {
+        kick_drift::<MIDDLE>(mass_inv, q, p, eq, ep, force, kick, drift);
     }
 }
 
@@ -161,7 +215,7 @@ pub(crate) fn closing_kick(p: &mut [f64], ep: &[f64], force: &[f64], k: f64) {
 /// [`kick_drift`] with uniform masses on exactly `N` coordinates (all slices of length `N`,
 /// which the caller has checked).
 #[inline(always)]
-fn fixed<const N: usize, const LAST: bool>(
+fn fixed<const N: usize, const KIND: u8>(
     q: &mut [f64],
     p: &mut [f64],
     eq: &mut [f64],
@@ -181,14 +235,14 @@ fn fixed<const N: usize, const LAST: bool>(
     };
     let g = dm * kick;
     for i in 0..N {
-        update::<LAST>(
+        update::<KIND>(
             &mut q[i], &mut p[i], &mut eq[i], &mut ep[i], force[i], kick, dm, g,
         );
     }
 }
 
 #[inline(always)]
-fn uniform<const LAST: bool>(
+fn uniform<const KIND: u8>(
     q: &mut [f64],
     p: &mut [f64],
     eq: &mut [f64],
@@ -205,13 +259,13 @@ fn uniform<const LAST: bool>(
         .zip(ep.iter_mut())
         .zip(force)
     {
-        update::<LAST>(qi, pi, eqi, epi, *fi, kick, dm, g);
+        update::<KIND>(qi, pi, eqi, epi, *fi, kick, dm, g);
     }
 }
 
 #[inline(always)]
 #[allow(clippy::too_many_arguments)]
-fn per_coordinate<const LAST: bool>(
+fn per_coordinate<const KIND: u8>(
     q: &mut [f64],
     p: &mut [f64],
     eq: &mut [f64],
@@ -230,7 +284,7 @@ fn per_coordinate<const LAST: bool>(
         .zip(m)
     {
         let dm = drift * mi;
-        update::<LAST>(qi, pi, eqi, epi, *fi, kick, dm, dm * kick);
+        update::<KIND>(qi, pi, eqi, epi, *fi, kick, dm, dm * kick);
     }
 }
 
@@ -248,7 +302,7 @@ fn closing_kick_body(p: &mut [f64], ep: &[f64], force: &[f64], k: f64) {
 #[multiversion(targets("x86_64+avx512f+avx512dq+avx512vl+avx2", "x86_64+avx2"))]
 #[allow(clippy::too_many_arguments)]
 fn uniform_long(
-    last: bool,
+    kind: u8,
     q: &mut [f64],
     p: &mut [f64],
     eq: &mut [f64],
@@ -257,17 +311,17 @@ fn uniform_long(
     kick: f64,
     dm: f64,
 ) {
-    if last {
-        uniform::<true>(q, p, eq, ep, force, kick, dm);
-    } else {
-        uniform::<false>(q, p, eq, ep, force, kick, dm);
+    match kind {
+        LAST => uniform::<LAST>(q, p, eq, ep, force, kick, dm),
+        PLAIN => uniform::<PLAIN>(q, p, eq, ep, force, kick, dm),
+        _ => uniform::<MIDDLE>(q, p, eq, ep, force, kick, dm),
     }
 }
 
 #[multiversion(targets("x86_64+avx512f+avx512dq+avx512vl+avx2", "x86_64+avx2"))]
 #[allow(clippy::too_many_arguments)]
 fn per_coordinate_long(
-    last: bool,
+    kind: u8,
     q: &mut [f64],
     p: &mut [f64],
     eq: &mut [f64],
@@ -277,10 +331,10 @@ fn per_coordinate_long(
     kick: f64,
     drift: f64,
 ) {
-    if last {
-        per_coordinate::<true>(q, p, eq, ep, force, m, kick, drift);
-    } else {
-        per_coordinate::<false>(q, p, eq, ep, force, m, kick, drift);
+    match kind {
+        LAST => per_coordinate::<LAST>(q, p, eq, ep, force, m, kick, drift),
+        PLAIN => per_coordinate::<PLAIN>(q, p, eq, ep, force, m, kick, drift),
+        _ => per_coordinate::<MIDDLE>(q, p, eq, ep, force, m, kick, drift),
     }
 }
 
@@ -315,26 +369,36 @@ mod tests {
             let uniform_mass = MassInv::Uniform(0.5);
             let masses = MassInv::PerCoordinate(&m);
             // -0.7 * 0.5 = -0.35 exactly, the uniform mass folded into the drift.
-            let cases: [(&str, Kernel<'_>, Kernel<'_>); 5] = [
+            let cases: [(&str, Kernel<'_>, Kernel<'_>); 7] = [
                 (
                     "uniform",
-                    &|q, p, eq, ep| kick_drift::<false>(uniform_mass, q, p, eq, ep, &f, 0.3, -0.7),
-                    &|q, p, eq, ep| uniform::<false>(q, p, eq, ep, &f, 0.3, -0.35),
+                    &|q, p, eq, ep| kick_drift::<MIDDLE>(uniform_mass, q, p, eq, ep, &f, 0.3, -0.7),
+                    &|q, p, eq, ep| uniform::<MIDDLE>(q, p, eq, ep, &f, 0.3, -0.35),
                 ),
                 (
                     "uniform, last drift",
-                    &|q, p, eq, ep| kick_drift::<true>(uniform_mass, q, p, eq, ep, &f, 0.3, -0.7),
-                    &|q, p, eq, ep| uniform::<true>(q, p, eq, ep, &f, 0.3, -0.35),
+                    &|q, p, eq, ep| kick_drift::<LAST>(uniform_mass, q, p, eq, ep, &f, 0.3, -0.7),
+                    &|q, p, eq, ep| uniform::<LAST>(q, p, eq, ep, &f, 0.3, -0.35),
                 ),
                 (
                     "masses",
-                    &|q, p, eq, ep| kick_drift::<false>(masses, q, p, eq, ep, &f, 0.3, -0.7),
-                    &|q, p, eq, ep| per_coordinate::<false>(q, p, eq, ep, &f, &m, 0.3, -0.7),
+                    &|q, p, eq, ep| kick_drift::<MIDDLE>(masses, q, p, eq, ep, &f, 0.3, -0.7),
+                    &|q, p, eq, ep| per_coordinate::<MIDDLE>(q, p, eq, ep, &f, &m, 0.3, -0.7),
                 ),
                 (
                     "masses, last drift",
-                    &|q, p, eq, ep| kick_drift::<true>(masses, q, p, eq, ep, &f, 0.3, -0.7),
-                    &|q, p, eq, ep| per_coordinate::<true>(q, p, eq, ep, &f, &m, 0.3, -0.7),
+                    &|q, p, eq, ep| kick_drift::<LAST>(masses, q, p, eq, ep, &f, 0.3, -0.7),
+                    &|q, p, eq, ep| per_coordinate::<LAST>(q, p, eq, ep, &f, &m, 0.3, -0.7),
+                ),
+                (
+                    "uniform, plain",
+                    &|q, p, eq, ep| kick_drift::<PLAIN>(uniform_mass, q, p, eq, ep, &f, 0.3, -0.7),
+                    &|q, p, eq, ep| uniform::<PLAIN>(q, p, eq, ep, &f, 0.3, -0.35),
+                ),
+                (
+                    "masses, plain",
+                    &|q, p, eq, ep| kick_drift::<PLAIN>(masses, q, p, eq, ep, &f, 0.3, -0.7),
+                    &|q, p, eq, ep| per_coordinate::<PLAIN>(q, p, eq, ep, &f, &m, 0.3, -0.7),
                 ),
                 (
                     "closing kick",
@@ -358,7 +422,7 @@ mod tests {
         let (mut q, mut p, mut eq, mut ep) = ([0.0], [1.0], [0.0], [0.0]);
         let mut plain = 1.0_f64;
         for _ in 0..10_000 {
-            kick_drift::<false>(
+            kick_drift::<MIDDLE>(
                 MassInv::Uniform(1.0),
                 &mut q,
                 &mut p,

@@ -27,8 +27,9 @@
 //! Short slices (up to three coordinates) run a fixed-length copy of that pass, long ones
 //! (from 64) the SSE2/AVX2/AVX-512 clone the CPU supports.
 //!
-//! **Rounding.** Within a step the kicks and drifts are summed with compensated summation
-//! ([`compensated`] module; Hairer, Lubich & Wanner, *Geometric Numerical
+//! **Rounding.** In the compositions of more than three drifts (`verlet` and `yoshida4` sum
+//! plainly: `compensated::PLAIN_MAX_DRIFTS`) the kicks and drifts of a step are summed with compensated
+//! summation ([`compensated`] module; Hairer, Lubich & Wanner, *Geometric Numerical
 //! Integration*, 2nd ed., §VIII.5): the `2 s + 1` additions of a step round the state once,
 //! where plain sums round it `2 s + 1` times (35 for `kahan_li8`), so the rounding random walk
 //! of a long run is about `sqrt(2 s + 1)` times smaller. The corrections enter `q` in the last
@@ -306,15 +307,7 @@ impl<const S: usize, B: AsRef<[f64]> + AsMut<[f64]>> SplittingStepper<S, B> {
         let mut v = None;
         for i in 0..S {
             let (force, kick, drift) = (self.force.as_ref(), self.kicks[i] * h, self.drifts[i] * h);
-            if i + 1 == S {
-                compensated::kick_drift::<true>(
-                    mass_inv, q, p, carry_q, carry_p, force, kick, drift,
-                );
-            } else {
-                compensated::kick_drift::<false>(
-                    mass_inv, q, p, carry_q, carry_p, force, kick, drift,
-                );
-            }
+            compensated::substep::<S>(i, mass_inv, q, p, carry_q, carry_p, force, kick, drift);
             let t_force = t + self.ends[i] * h;
             if potential && i + 1 == S {
                 v = system.force_and_potential(q, t_force, self.force.as_mut())?;

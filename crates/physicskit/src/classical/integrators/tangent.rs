@@ -323,11 +323,7 @@ impl<S: HamiltonianSystem + ?Sized, const N: usize> Flow for SplittingFlow<'_, S
             let (a, b) = (c.kicks[i] * h, c.drifts[i] * h);
             self.kick_vectors(w, a);
             let (carry_q, carry_p, force) = (&mut self.carry_q, &mut self.carry_p, &self.force);
-            if i + 1 == N {
-                compensated::kick_drift::<true>(mass_inv, q, p, carry_q, carry_p, force, a, b);
-            } else {
-                compensated::kick_drift::<false>(mass_inv, q, p, carry_q, carry_p, force, a, b);
-            }
+            compensated::substep::<N>(i, mass_inv, q, p, carry_q, carry_p, force, a, b);
             for v in w.chunks_exact_mut(2 * n) {
                 let (dq, dp) = v.split_at_mut(n);
                 drift(mass_inv, dq, dp, b);
