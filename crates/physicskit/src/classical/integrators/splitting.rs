@@ -27,12 +27,12 @@
 //! Short slices (up to three coordinates) run a fixed-length copy of that pass, long ones
 //! (from 64) the SSE2/AVX2/AVX-512 clone the CPU supports.
 //!
-//! **Rounding.** In the compositions of more than three drifts (`verlet` and `yoshida4` sum
-//! plainly: `compensated::PLAIN_MAX_DRIFTS`) the kicks and drifts of a step are summed with compensated
-//! summation ([`compensated`] module; Hairer, Lubich & Wanner, *Geometric Numerical
-//! Integration*, 2nd ed., §VIII.5): the `2 s + 1` additions of a step round the state once,
-//! where plain sums round it `2 s + 1` times (35 for `kahan_li8`), so the rounding random walk
-//! of a long run is about `sqrt(2 s + 1)` times smaller. The corrections enter `q` in the last
+//! **Rounding.** In the compositions of more than three drifts, the kicks and drifts of a
+//! step are summed with compensated summation ([`compensated`] module; Hairer, Lubich &
+//! Wanner, *Geometric Numerical Integration*, 2nd ed., §VIII.5); `verlet` and `yoshida4` sum
+//! plainly (`compensated::PLAIN_MAX_DRIFTS`). The `2 s + 1` additions of a step round the
+//! state once, where plain sums round it `2 s + 1` times (35 for `kahan_li8`), so the rounding
+//! random walk of a long run is about `sqrt(2 s + 1)` times smaller. The corrections enter `q` in the last
 //! drift (so the last force, reused by the next step, is the force of the `q` returned) and
 //! `p` in the last kick: between steps the state is just `[q, p]`, and a run continued by a
 //! second call, a session or a section repeats one long run's bits.
