@@ -104,10 +104,14 @@ fn update<const KIND: u8>(
 }
 
 /// The step's closing kick of one coordinate: `p ← p + (k f + ep)`, the momentum's one
-/// rounding of the step.
+/// rounding of the step; `p ← p + k f` in a plain step (`PLAIN`), whose `ep` is unused.
 #[inline(always)]
-fn close(p: &mut f64, ep: f64, f: f64, k: f64) {
-    *p += k * f + ep;
+fn close<const PLAIN: bool>(p: &mut f64, ep: f64, f: f64, k: f64) {
+    if PLAIN {
+        *p += k * f;
+    } else {
+        *p += k * f + ep;
+    }
 }
 
 /// `p += kick F; q += drift M⁻¹ p` on every coordinate, compensated (corrections `eq`, `ep`,
@@ -187,28 +191,50 @@ pub(crate) fn substep<const S: usize>(
     }
 }
 
-/// The step's closing kick `p += k F + ep` on every coordinate, fixed-length for up to three
-/// coordinates and dispatched to a SIMD clone from [`DISPATCH_MIN`] on, as in [`kick_drift`].
+/// Starts a step of `S` drifts: the corrections of a compensated step start at `-0.0` (the
+/// first `-0.0 + e` is `e` for every `e`, so the compiler can drop it); a plain step has none.
 #[inline(always)]
-pub(crate) fn closing_kick(p: &mut [f64], ep: &[f64], force: &[f64], k: f64) {
+pub(crate) fn begin_step<const S: usize>(eq: &mut [f64], ep: &mut [f64]) {
+    if S > PLAIN_MAX_DRIFTS {
+        eq.fill(-0.0);
+        ep.fill(-0.0);
+    }
+}
+
+/// Ends a step of `S` drifts with its closing kick `p += k F`, plus the momentum corrections
+/// `ep` in a compensated step (see [`substep`]).
+#[inline(always)]
+pub(crate) fn end_step<const S: usize>(p: &mut [f64], ep: &[f64], force: &[f64], k: f64) {
+    if S <= PLAIN_MAX_DRIFTS {
+        closing_kick::<true>(p, ep, force, k);
+    } else {
+        closing_kick::<false>(p, ep, force, k);
+    }
+}
+
+/// The step's closing kick `p += k F + ep` (`p += k F` if `PLAIN`) on every coordinate,
+/// fixed-length for up to three coordinates and dispatched to a SIMD clone from
+/// [`DISPATCH_MIN`] on, as in [`kick_drift`].
+#[inline(always)]
+fn closing_kick<const PLAIN: bool>(p: &mut [f64], ep: &[f64], force: &[f64], k: f64) {
     #[inline(always)]
-    fn fixed<const N: usize>(p: &mut [f64], ep: &[f64], force: &[f64], k: f64) {
+    fn fixed<const N: usize, const PLAIN: bool>(p: &mut [f64], ep: &[f64], force: &[f64], k: f64) {
         if let (Ok(p), Ok(ep), Ok(force)) = (
             <&mut [f64; N]>::try_from(p),
             <&[f64; N]>::try_from(ep),
             <&[f64; N]>::try_from(force),
         ) {
             for i in 0..N {
-                close(&mut p[i], ep[i], force[i], k);
+                close::<PLAIN>(&mut p[i], ep[i], force[i], k);
             }
         }
     }
     match p.len() {
-        1 => fixed::<1>(p, ep, force, k),
-        2 => fixed::<2>(p, ep, force, k),
-        3 => fixed::<3>(p, ep, force, k),
-        n if n >= DISPATCH_MIN => closing_kick_long(p, ep, force, k),
-        _ => closing_kick_body(p, ep, force, k),
+        1 => fixed::<1, PLAIN>(p, ep, force, k),
+        2 => fixed::<2, PLAIN>(p, ep, force, k),
+        3 => fixed::<3, PLAIN>(p, ep, force, k),
+        n if n >= DISPATCH_MIN => closing_kick_long(PLAIN, p, ep, force, k),
+        _ => closing_kick_body::<PLAIN>(p, ep, force, k),
     }
 }
 
@@ -289,9 +315,9 @@ fn per_coordinate<const KIND: u8>(
 }
 
 #[inline(always)]
-fn closing_kick_body(p: &mut [f64], ep: &[f64], force: &[f64], k: f64) {
+fn closing_kick_body<const PLAIN: bool>(p: &mut [f64], ep: &[f64], force: &[f64], k: f64) {
     for ((pi, epi), fi) in p.iter_mut().zip(ep).zip(force) {
-        close(pi, *epi, *fi, k);
+        close::<PLAIN>(pi, *epi, *fi, k);
     }
 }
 
@@ -339,8 +365,12 @@ fn per_coordinate_long(
 }
 
 #[multiversion(targets("x86_64+avx512f+avx512dq+avx512vl+avx2", "x86_64+avx2"))]
-fn closing_kick_long(p: &mut [f64], ep: &[f64], force: &[f64], k: f64) {
-    closing_kick_body(p, ep, force, k);
+fn closing_kick_long(plain: bool, p: &mut [f64], ep: &[f64], force: &[f64], k: f64) {
+    if plain {
+        closing_kick_body::<true>(p, ep, force, k);
+    } else {
+        closing_kick_body::<false>(p, ep, force, k);
+    }
 }
 
 #[cfg(test)]
@@ -369,7 +399,7 @@ mod tests {
             let uniform_mass = MassInv::Uniform(0.5);
             let masses = MassInv::PerCoordinate(&m);
             // -0.7 * 0.5 = -0.35 exactly, the uniform mass folded into the drift.
-            let cases: [(&str, Kernel<'_>, Kernel<'_>); 7] = [
+            let cases: [(&str, Kernel<'_>, Kernel<'_>); 8] = [
                 (
                     "uniform",
                     &|q, p, eq, ep| kick_drift::<MIDDLE>(uniform_mass, q, p, eq, ep, &f, 0.3, -0.7),
@@ -402,8 +432,13 @@ mod tests {
                 ),
                 (
                     "closing kick",
-                    &|_, p, _, ep| closing_kick(p, ep, &f, 0.3),
-                    &|_, p, _, ep| closing_kick_body(p, ep, &f, 0.3),
+                    &|_, p, _, ep| closing_kick::<false>(p, ep, &f, 0.3),
+                    &|_, p, _, ep| closing_kick_body::<false>(p, ep, &f, 0.3),
+                ),
+                (
+                    "closing kick, plain",
+                    &|_, p, _, ep| closing_kick::<true>(p, ep, &f, 0.3),
+                    &|_, p, _, ep| closing_kick_body::<true>(p, ep, &f, 0.3),
                 ),
             ];
             for (name, dispatched, body) in cases {
@@ -415,28 +450,45 @@ mod tests {
     /// The corrections make a sum of many small increments exact to their own rounding: ten
     /// thousand kicks of 1e-3 onto 1, then the closing kick, land on 11 to within the
     /// increments' representation error (1e4 * |fl(1e-3) - 1e-3| = 2.1e-16) plus one rounding
-    /// of 11 (8.9e-16): 1.2e-15; the plain sum is checked to be off by more, so that the test
-    /// sees the compensation.
+    /// of 11 (8.9e-16): 1.2e-15. The same kicks through the `PLAIN` kernels must equal the
+    /// naive loop `p += 1e-3` bit for bit and be off by more, so that the test sees the
+    /// compensation and that plain steps do not compensate.
     #[test]
     fn a_compensated_sum_of_small_kicks_is_exact_to_one_rounding() {
-        let (mut q, mut p, mut eq, mut ep) = ([0.0], [1.0], [0.0], [0.0]);
-        let mut plain = 1.0_f64;
-        for _ in 0..10_000 {
-            kick_drift::<MIDDLE>(
-                MassInv::Uniform(1.0),
-                &mut q,
-                &mut p,
-                &mut eq,
-                &mut ep,
-                &[1e-3],
-                1.0,
-                0.0,
-            );
-            plain += 1e-3;
+        fn run<const KIND: u8>() -> f64 {
+            let (mut q, mut p, mut eq, mut ep) = ([0.0], [1.0], [-0.0], [-0.0]);
+            for _ in 0..10_000 {
+                kick_drift::<KIND>(
+                    MassInv::Uniform(1.0),
+                    &mut q,
+                    &mut p,
+                    &mut eq,
+                    &mut ep,
+                    &[1e-3],
+                    1.0,
+                    0.0,
+                );
+            }
+            if KIND == PLAIN {
+                closing_kick::<true>(&mut p, &ep, &[0.0], 0.0);
+            } else {
+                closing_kick::<false>(&mut p, &ep, &[0.0], 0.0);
+            }
+            p[0]
         }
-        closing_kick(&mut p, &ep, &[0.0], 0.0);
-        println!("compensated {:e}, plain {:e}", p[0] - 11.0, plain - 11.0);
-        assert!((p[0] - 11.0).abs() <= 1.2e-15, "{:e}", p[0] - 11.0);
+        let (compensated, plain) = (run::<MIDDLE>(), run::<PLAIN>());
+        let naive = (0..10_000).fold(1.0_f64, |p, _| p + 1e-3);
+        println!(
+            "compensated {:e}, plain {:e}",
+            compensated - 11.0,
+            plain - 11.0
+        );
+        assert!(
+            (compensated - 11.0).abs() <= 1.2e-15,
+            "{:e}",
+            compensated - 11.0
+        );
+        assert_eq!(plain.to_bits(), naive.to_bits());
         assert!((plain - 11.0).abs() > 1.2e-15, "plain {:e}", plain - 11.0);
     }
 }

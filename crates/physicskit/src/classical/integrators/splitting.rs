@@ -301,9 +301,7 @@ impl<const S: usize, B: AsRef<[f64]> + AsMut<[f64]>> SplittingStepper<S, B> {
         self.force_valid = false;
         let mass_inv = system.mass_inv();
         let (carry_q, carry_p) = (self.carry_q.as_mut(), self.carry_p.as_mut());
-        // -0.0: the first `-0.0 + e` is `e` for every `e`, so the compiler can drop it.
-        carry_q.fill(-0.0);
-        carry_p.fill(-0.0);
+        compensated::begin_step::<S>(carry_q, carry_p);
         let mut v = None;
         for i in 0..S {
             let (force, kick, drift) = (self.force.as_ref(), self.kicks[i] * h, self.drifts[i] * h);
@@ -316,7 +314,7 @@ impl<const S: usize, B: AsRef<[f64]> + AsMut<[f64]>> SplittingStepper<S, B> {
             }
         }
         self.force_evaluations += S as u64;
-        compensated::closing_kick(p, carry_p, self.force.as_ref(), self.last_kick * h);
+        compensated::end_step::<S>(p, carry_p, self.force.as_ref(), self.last_kick * h);
         self.force_valid = true;
         Ok(v)
     }

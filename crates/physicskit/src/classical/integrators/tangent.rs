@@ -317,8 +317,7 @@ impl<S: HamiltonianSystem + ?Sized, const N: usize> Flow for SplittingFlow<'_, S
         // The orbit takes exactly the operations of `SplittingStepper::step` (the same
         // compensated kernels in the same order), so it is the orbit of a run without vectors,
         // bit for bit.
-        self.carry_q.fill(-0.0);
-        self.carry_p.fill(-0.0);
+        compensated::begin_step::<N>(&mut self.carry_q, &mut self.carry_p);
         for i in 0..N {
             let (a, b) = (c.kicks[i] * h, c.drifts[i] * h);
             self.kick_vectors(w, a);
@@ -332,7 +331,7 @@ impl<S: HamiltonianSystem + ?Sized, const N: usize> Flow for SplittingFlow<'_, S
         }
         let a = c.last_kick * h;
         self.kick_vectors(w, a);
-        compensated::closing_kick(p, &self.carry_p, &self.force, a);
+        compensated::end_step::<N>(p, &self.carry_p, &self.force, a);
         self.cached = true;
         Ok(())
     }
