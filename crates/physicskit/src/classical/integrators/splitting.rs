@@ -151,7 +151,8 @@ pub struct SplittingStepper<const S: usize, B = Vec<f64>> {
     ends: [f64; S],
     force: B,
     /// The compensated sums' corrections of `q` and `p`: work space of one step (reset at its
-    /// start, nothing in them outlives it).
+    /// start, nothing in them outlives it; unused by the plain steps of `verlet` and
+    /// `yoshida4`).
     carry_q: B,
     carry_p: B,
     /// The cached force belongs to the current `q` (first same as last).

@@ -228,7 +228,7 @@ struct SplittingFlow<'a, S: ?Sized, const N: usize> {
     force: Vec<f64>,
     jac: Vec<f64>,
     /// The compensated sums' corrections of the orbit's `q` and `p` within a step, as in the
-    /// orbit's [`SplittingStepper`].
+    /// orbit's [`SplittingStepper`] (unused by plain steps).
     carry_q: Vec<f64>,
     carry_p: Vec<f64>,
     /// Force and Jacobian belong to the current `q` (first same as last).

@@ -73,16 +73,18 @@ fn textbook(yoshida: bool, steps: usize, dt: f64) -> [f64; 4] {
 }
 
 /// Largest state difference allowed between the library and the plain loops below over 1e4
-/// steps: rounding only. Each step rounds differently in the two (merged half-kicks,
-/// compensated sums), a few 1e-17 to 1e-16 per step, and on a regular orbit such differences
-/// grow at most linearly (a phase shift): 1e4 steps times 1e-16 is 1e-12; 1e-11 leaves a
-/// factor ten (measured: 5.6e-15 for verlet, 1.1e-13 for yoshida4, whose truncation errors here
-/// are 6.7e-5 and 2.2e-8). A wrong weight or force would differ at the truncation error.
+/// steps: rounding only. A yoshida4 step rounds differently in the two (the library merges
+/// the half-kicks between substeps; the bound also holds the compensated sums the two methods
+/// had before 1a14b4b), a few 1e-17 to 1e-16 per step, and on a regular orbit such differences
+/// grow at most linearly (a phase shift): 1e4 steps times 1e-16 is 1e-12; 1e-11 leaves a factor
+/// ten (measured: 0 for verlet, 1.7e-13 for yoshida4, whose truncation errors here are 6.7e-5
+/// and 2.2e-8; with the compensated sums 5.6e-15 and 1.1e-13). A wrong weight or force would
+/// differ at the truncation error.
 const ROUNDING: f64 = 1e-11;
 
-/// The spec's `verlet` and `yoshida4` are the textbook methods: with compensated sums their
-/// states differ from the plain loop's only by rounding ([`ROUNDING`]), and far inside their
-/// truncation error (estimated against the same method at dt/2): unchanged as methods.
+/// The spec's `verlet` and `yoshida4` are the textbook methods: their states differ from the
+/// plain loop's only by rounding ([`ROUNDING`]), and far inside their truncation error
+/// (estimated against the same method at dt/2): unchanged as methods.
 #[test]
 fn verlet_and_yoshida4_are_the_textbook_methods_to_rounding() {
     let (steps, dt) = (10_000, 1e-2);
