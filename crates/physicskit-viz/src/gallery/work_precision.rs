@@ -28,7 +28,9 @@ pub(crate) fn render(ctx: &Ctx) -> Result<Demo> {
             "log₁₀ wall time (s)",
             format!("log₁₀ {}", problem.error_label()),
         )
-        .legend(Legend::UpperRight);
+        // Lower left is fast and accurate, the corner no method reaches: the legend hides no
+        // line there (upper right covered the slow methods' ends).
+        .legend(Legend::LowerLeft);
         for method in problem.methods() {
             let mut pts = Vec::new();
             for dt in problem.steps(method, points) {
