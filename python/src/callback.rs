@@ -15,7 +15,7 @@
 use std::cell::RefCell;
 
 use numpy::{PyArray1, PyReadonlyArray1};
-use physicskit::classical::core::separable_derivatives;
+use physicskit::classical::integrators::separable_derivatives;
 use physicskit::classical::{
     DynamicalSystem, Error, HamiltonianSystem, IntegrateOptions, MassInv, Method, OdeSystem, Phase,
     Result, SimulationResult, Tolerances,

@@ -7,10 +7,10 @@
 //! catalogue, so no list of systems, parameters or defaults exists in the extension.
 
 use physicskit::classical::catalog as core_catalog;
-use physicskit::classical::core::catalog::{
+use physicskit::classical::explanations;
+use physicskit::classical::model::entry::{
     Bound as Limit, Default, Length, Literal, ParamKind, ParamSpec, SystemEntry,
 };
-use physicskit::classical::explanations;
 use physicskit::classical::Method;
 use pyo3::prelude::*;
 use pyo3::types::{PyDict, PyList};

@@ -68,7 +68,7 @@ fn event(index: usize, kind: &str, value: f64) -> PyResult<Reduction> {
 /// The system whose members an ensemble builds.
 enum System {
     /// A catalogue entry, with the common values.
-    Catalogue(&'static physicskit::classical::core::catalog::SystemEntry),
+    Catalogue(&'static physicskit::classical::model::entry::SystemEntry),
     /// A SymPy engine's expression system.
     Expression(ExprSpec),
 }
@@ -80,7 +80,7 @@ impl System {
     fn from_py(
         system: &Bound<'_, PyAny>,
         common: &Bound<'_, PyDict>,
-        given: &mut Vec<(String, physicskit::classical::core::Value)>,
+        given: &mut Vec<(String, physicskit::classical::model::Value)>,
     ) -> PyResult<Self> {
         if let Ok(name) = system.cast::<PyString>() {
             let entry = core_catalog::find(&name.to_string()).py()?;

@@ -1,15 +1,14 @@
 //! The SymPy engines' native half: a Lagrangian, a Hamiltonian or the components of an ODE
-//! given as prefix S-expressions (`physicskit::classical::lagrangian::Expr`) become a
+//! given as prefix S-expressions (`physicskit::classical::symbolic::Expr`) become a
 //! [`LagrangianModel`], an [`ExprHamiltonian`] or an [`ExprOde`] behind the core's
 //! type-erased wrappers, a [`NativeSystem`] like any built-in system. [`ExprSpec`] holds what
 //! builds one (the expressions, named parameters, a state), for ensembles, which build one
 //! system per member.
 
 use numpy::{PyArray2, PyReadonlyArray1};
-use physicskit::classical::core::erased::{DynSystem, Hamiltonian, Lagrangian, Ode};
-use physicskit::classical::lagrangian::{
-    Expr, ExprHamiltonian, ExprLagrangian, ExprOde, LagrangianModel,
-};
+use physicskit::classical::lagrangian::LagrangianModel;
+use physicskit::classical::model::erased::{DynSystem, Hamiltonian, Lagrangian, Ode};
+use physicskit::classical::symbolic::{Expr, ExprHamiltonian, ExprLagrangian, ExprOde};
 use physicskit::classical::{Error, HamiltonianSystem};
 use pyo3::exceptions::PyValueError;
 use pyo3::prelude::*;
@@ -277,7 +276,7 @@ pub fn force_jacobian<'py>(
     square_array(py, "force_jacobian", answer, reason, out, n)
 }
 
-/// A Lagrangian system from a prefix S-expression (see `physicskit::classical::lagrangian::Expr`)
+/// A Lagrangian system from a prefix S-expression (see `physicskit::classical::symbolic::Expr`)
 /// with `ndof` coordinates and parameter values `params`, starting at `(q0, qdot0)`.
 #[pyfunction]
 pub fn expr_lagrangian(

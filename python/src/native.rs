@@ -10,8 +10,8 @@
 //! system without it. Nothing here knows a concrete system type.
 
 use numpy::{IntoPyArray, PyArray1, PyArray2, PyReadonlyArray1};
-use physicskit::classical::core::catalog::{SystemEntry, Values};
-use physicskit::classical::core::erased::{missing, offered, Capabilities, DynSystem};
+use physicskit::classical::model::entry::{SystemEntry, Values};
+use physicskit::classical::model::erased::{missing, offered, Capabilities, DynSystem};
 use physicskit::classical::{
     Error, HamiltonianSystem, IntegrateOptions, LagrangianSystem, Method, Result, Sampling,
     Tolerances,

@@ -23,7 +23,7 @@
 //! catalogue refuses them with its own message.
 
 use numpy::{PyArray1, PyArrayMethods};
-use physicskit::classical::core::catalog::{Default, ParamKind, ParamSpec, Value, Values};
+use physicskit::classical::model::entry::{Default, ParamKind, ParamSpec, Value, Values};
 use physicskit::classical::Error;
 use pyo3::exceptions::{PyOverflowError, PyTypeError};
 use pyo3::prelude::*;

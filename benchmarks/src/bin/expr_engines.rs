@@ -17,7 +17,7 @@
 
 use std::time::Instant;
 
-use physicskit::classical::lagrangian::{Backend, Expr, ExprHamiltonian, ExprOde};
+use physicskit::classical::symbolic::{Backend, Expr, ExprHamiltonian, ExprOde};
 use physicskit::classical::systems::HenonHeilesSystem;
 use physicskit::classical::{
     DynamicalSystem, HamiltonianSystem, IntegrateOptions, Method, OdeSystem, Phase, Result,

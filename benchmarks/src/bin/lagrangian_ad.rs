@@ -15,9 +15,8 @@
 
 use std::time::Instant;
 
-use physicskit::classical::lagrangian::{
-    AutoDiff, Expr, ExprLagrangian, Lagrangian, LagrangianModel,
-};
+use physicskit::classical::lagrangian::{AutoDiff, Lagrangian, LagrangianModel};
+use physicskit::classical::symbolic::{Expr, ExprLagrangian};
 use physicskit::classical::systems::{DoublePendulumParams, HoopParams, SymmetricTopParams};
 use physicskit::classical::{DynamicalSystem, LagrangianSystem, Method, Result, SimulationResult};
 

@@ -21,9 +21,9 @@
 use std::hint::black_box;
 
 use physicskit::classical::analysis::lyapunov::max_lyapunov;
-use physicskit::classical::core::erased::Lagrangian as Erased;
 use physicskit::classical::integrators::tangent::{central_difference, lagrangian_flow};
 use physicskit::classical::lagrangian::{AutoDiff, CentralDifferences, LagrangianEngine};
+use physicskit::classical::model::erased::Lagrangian as Erased;
 use physicskit::classical::systems::{DoublePendulum, DoublePendulumParams};
 use physicskit::classical::{DynamicalSystem, Error, LagrangianSystem, Method, Result};
 
@@ -68,7 +68,7 @@ fn central(
 
 fn lyapunov<S>(system: S, method: Method, n: usize) -> Result<f64>
 where
-    S: LagrangianSystem + physicskit::classical::core::Capabilities + Send + Sync + 'static,
+    S: LagrangianSystem + physicskit::classical::model::Capabilities + Send + Sync + 'static,
 {
     let mut s = Erased(system);
     Ok(max_lyapunov(&mut s, (0.0, n as f64 * DT), DT, Some(method), 10)?.exponents[0])

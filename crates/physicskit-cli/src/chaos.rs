@@ -12,7 +12,7 @@ use physicskit::classical::analysis::lyapunov::{check_vectors, lyapunov_on_flow}
 use physicskit::classical::analysis::poincare::Direction;
 use physicskit::classical::analysis::section::{section_on_flow, SurfaceOfSection};
 use physicskit::classical::analysis::watch::AnalysisOptions;
-use physicskit::classical::core::Value;
+use physicskit::classical::model::Value;
 
 use crate::cli::{Lyapunov, Poincare, SystemCall};
 use crate::output::{Arrays, Named};

@@ -12,7 +12,7 @@ use clap::{Arg, ArgAction, ArgMatches, Args, Command, FromArgMatches, Parser, Su
 use physicskit::classical::analysis::lyapunov::DEFAULT_RENORMALIZE_EVERY;
 use physicskit::classical::analysis::sali::CHAOS_THRESHOLD;
 use physicskit::classical::catalog::{self, SYSTEMS};
-use physicskit::classical::core::SystemEntry;
+use physicskit::classical::model::SystemEntry;
 use physicskit::classical::Tolerances;
 
 use crate::params;

@@ -12,8 +12,9 @@ use std::ops::ControlFlow;
 use anyhow::{anyhow, bail, Context, Result};
 use physicskit::classical::analysis::lyapunov::DEFAULT_RENORMALIZE_EVERY;
 use physicskit::classical::catalog;
-use physicskit::classical::core::{check_items_fit, SystemEntry, Value};
+use physicskit::classical::core::check_items_fit;
 use physicskit::classical::ensemble::{self, Members, Plan, Reduction, Sweep};
+use physicskit::classical::model::{SystemEntry, Value};
 use physicskit::classical::Observer;
 
 use crate::cli::EnsembleArgs;

@@ -12,8 +12,9 @@
 //! [`ParamSpec`]s: placeholder, unit, range and default.
 
 use anyhow::{anyhow, bail, Result};
-use physicskit::classical::core::catalog::{Default, Length, Literal, ParamKind, Range};
-use physicskit::classical::core::{DynSystem, Error, ParamSpec, SystemEntry, Value, Values};
+use physicskit::classical::core::Error;
+use physicskit::classical::model::entry::{Default, Length, Literal, ParamKind, Range};
+use physicskit::classical::model::{DynSystem, ParamSpec, SystemEntry, Value, Values};
 use physicskit::classical::Method;
 
 /// The placeholder shown after `--name` in help texts: `X`, `N`, `X1,X2`, `kink|antikink`.

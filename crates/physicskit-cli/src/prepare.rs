@@ -10,7 +10,7 @@ use std::ops::ControlFlow;
 
 use anyhow::{anyhow, Result};
 use physicskit::classical::catalog;
-use physicskit::classical::core::{DynSystem, SystemEntry, Values};
+use physicskit::classical::model::{DynSystem, SystemEntry, Values};
 use physicskit::classical::{Method, Observer, TimeGrid};
 
 use crate::cli::SystemCall;

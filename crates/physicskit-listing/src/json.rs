@@ -24,7 +24,7 @@
 //!   `{"value": x, "inclusive": bool}`; `null` for vectors and choices (entries must be
 //!   finite). Every number must be finite.
 //! - `capabilities`: the optional accessors the system built from its defaults offers
-//!   (`physicskit::classical::core::erased::CAPABILITY_NAMES`).
+//!   (`physicskit::classical::model::erased::CAPABILITY_NAMES`).
 //! - `physics`: the paragraph of the gallery demonstration showing the system
 //!   (`physicskit::classical::explanations::for_system`), the lab's caption; `null` if none.
 //! - `methods` per system: those that can integrate it, as `simulate --method` takes them.
@@ -32,10 +32,10 @@
 use std::io::{self, Write};
 
 use physicskit::classical::catalog::SYSTEMS;
-use physicskit::classical::core::catalog::{Bound, Default, Length, Literal, ParamKind, Range};
-use physicskit::classical::core::erased::offered;
-use physicskit::classical::core::{ParamSpec, SystemEntry};
 use physicskit::classical::explanations;
+use physicskit::classical::model::entry::{Bound, Default, Length, Literal, ParamKind, Range};
+use physicskit::classical::model::erased::offered;
+use physicskit::classical::model::{ParamSpec, SystemEntry};
 use serde::Serialize;
 
 use crate::{method_rows, MethodRow};

@@ -14,9 +14,10 @@
 
 use physicskit::classical::analysis::poincare::{Direction, HenonWork, Section};
 use physicskit::classical::catalog;
-use physicskit::classical::core::erased::DynSystem;
-use physicskit::classical::core::SystemEntry;
-use physicskit::classical::integrators::{FirstOrder, Session};
+use physicskit::classical::integrators::FirstOrder;
+use physicskit::classical::model::erased::DynSystem;
+use physicskit::classical::model::Session;
+use physicskit::classical::model::SystemEntry;
 use physicskit::classical::Method;
 
 use crate::params::values_from_json;

@@ -5,7 +5,7 @@
 //! - [`Lab`] is one running system: built by name from the catalogue
 //!   (`classical::catalog::SYSTEMS`) with parameters given as JSON, stepped `n` steps at a
 //!   time with any method of the method table through the type-erased
-//!   [`DynSystem`](physicskit::classical::core::erased::DynSystem), and read: state, time,
+//!   [`DynSystem`](physicskit::classical::model::erased::DynSystem), and read: state, time,
 //!   energy and its relative error `|E - E0| / |E0|`, drawing positions (the `positions`
 //!   capability) and the crossings of a Poincaré section (located by Hénon's trick,
 //!   `analysis::poincare::henon_step`). It is plain safe Rust and runs natively too: the

@@ -1,9 +1,9 @@
 //! Parameters given as a JSON object, turned into catalogue [`Value`]s by each parameter's
-//! kind; [`SystemEntry::values`](physicskit::classical::core::SystemEntry::values) then checks
+//! kind; [`SystemEntry::values`](physicskit::classical::model::SystemEntry::values) then checks
 //! ranges, lengths and unknown names, as for the command line and Python.
 
-use physicskit::classical::core::catalog::{ParamKind, Value};
-use physicskit::classical::core::SystemEntry;
+use physicskit::classical::model::entry::{ParamKind, Value};
+use physicskit::classical::model::SystemEntry;
 use serde_json::Value as Json;
 
 /// The `(name, value)` pairs of the JSON object `text` for `entry`.

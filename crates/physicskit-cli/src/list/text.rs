@@ -4,7 +4,7 @@
 use std::io::{self, Write};
 
 use physicskit::classical::catalog::SYSTEMS;
-use physicskit::classical::core::SystemEntry;
+use physicskit::classical::model::SystemEntry;
 
 use super::{method_rows, MethodRow};
 use crate::params;

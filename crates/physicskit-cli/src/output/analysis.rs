@@ -13,7 +13,8 @@
 use std::fs::File;
 use std::io::{self, Write};
 
-use physicskit::classical::core::{Family, Value, Values};
+use physicskit::classical::integrators::Family;
+use physicskit::classical::model::{Value, Values};
 
 use super::arrays::{write_npz as write_npz_entries, Entry};
 use super::csv;

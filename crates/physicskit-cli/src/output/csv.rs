@@ -9,7 +9,7 @@
 
 use std::io::{self, Write};
 
-use physicskit::classical::core::Value;
+use physicskit::classical::model::Value;
 
 use super::number::push_f64;
 use super::Record;

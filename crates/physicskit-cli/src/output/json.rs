@@ -4,7 +4,7 @@
 
 use std::io::{self, Write};
 
-use physicskit::classical::core::{Value, Values};
+use physicskit::classical::model::{Value, Values};
 use physicskit::classical::ExtraValue;
 
 use super::number::push_f64;

@@ -28,7 +28,8 @@ use std::path::{Path, PathBuf};
 
 use anyhow::{bail, Context, Result};
 use ndarray::{Array1, ArrayView2};
-use physicskit::classical::core::{Family, Values};
+use physicskit::classical::integrators::Family;
+use physicskit::classical::model::Values;
 use physicskit::classical::SimulationResult;
 
 /// An output format.

@@ -10,7 +10,7 @@ use ndarray_npy::NpzReader;
 use physicskit::classical::analysis::lyapunov::{lyapunov_spectrum, DEFAULT_RENORMALIZE_EVERY};
 use physicskit::classical::analysis::poincare::Direction;
 use physicskit::classical::analysis::section::{poincare_section, SurfaceOfSection};
-use physicskit::classical::core::erased::Hamiltonian;
+use physicskit::classical::model::erased::Hamiltonian;
 use physicskit::classical::systems::HenonHeilesSystem;
 
 use crate::common::{run_in, scratch, stderr};

@@ -157,7 +157,7 @@ fn chaos_reductions_are_the_library_ones() {
     let members = Members {
         common: vec![(
             "p0".into(),
-            physicskit::classical::core::Value::Vector(vec![0.4, 0.1]),
+            physicskit::classical::model::Value::Vector(vec![0.4, 0.1]),
         )],
         sweeps: vec![Sweep::new("q0[1]", vec![-0.2, 0.0, 0.2])],
         states: None,

@@ -5,7 +5,7 @@
 
 use crate::common::{run_in, scratch, stdout};
 use physicskit::classical::catalog::SYSTEMS;
-use physicskit::classical::core::catalog::{Default, Literal, ParamKind};
+use physicskit::classical::model::entry::{Default, Literal, ParamKind};
 use physicskit::classical::Method;
 use serde_json::{json, Value as Json};
 

@@ -9,7 +9,7 @@
 
 use physicskit::classical::analysis::chaos_map::{chaos_map, Indicator, MapRun};
 use physicskit::classical::analysis::lyapunov::DEFAULT_RENORMALIZE_EVERY;
-use physicskit::classical::core::erased::Lagrangian;
+use physicskit::classical::model::erased::Lagrangian;
 use physicskit::classical::systems::{DoublePendulum, DoublePendulumParams};
 use physicskit::classical::Method;
 use plotters::prelude::WHITE;

@@ -7,8 +7,8 @@
 use std::f64::consts::PI;
 
 use physicskit::classical::catalog;
-use physicskit::classical::core::Value;
 use physicskit::classical::ensemble::{self, Condition, Event, Members, Plan, Reduction, Sweep};
+use physicskit::classical::model::Value;
 use physicskit::classical::systems::DoublePendulumParams;
 use physicskit::classical::Method;
 use plotters::prelude::BLACK;

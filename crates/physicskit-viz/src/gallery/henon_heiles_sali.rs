@@ -10,7 +10,7 @@ use physicskit::classical::analysis::lyapunov::DEFAULT_RENORMALIZE_EVERY;
 use physicskit::classical::analysis::poincare::Direction;
 use physicskit::classical::analysis::sali::CHAOS_THRESHOLD;
 use physicskit::classical::analysis::section::{poincare_section, SurfaceOfSection};
-use physicskit::classical::core::erased::Hamiltonian;
+use physicskit::classical::model::erased::Hamiltonian;
 use physicskit::classical::systems::HenonHeilesSystem;
 use physicskit::classical::Method;
 

@@ -14,7 +14,7 @@
 
 use physicskit::classical::analysis::chaos_map::{chaos_map_by, Indicator, MapRun};
 use physicskit::classical::analysis::lyapunov::DEFAULT_RENORMALIZE_EVERY;
-use physicskit::classical::core::erased::{DynSystem, Lagrangian};
+use physicskit::classical::model::erased::{DynSystem, Lagrangian};
 use physicskit::classical::systems::{BeadOnRotatingHoop, HoopBranch, HoopParams};
 use physicskit::classical::Method;
 

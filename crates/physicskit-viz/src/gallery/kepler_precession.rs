@@ -10,8 +10,8 @@
 use std::f64::consts::{PI, TAU};
 
 use physicskit::classical::catalog;
-use physicskit::classical::core::Value;
 use physicskit::classical::ensemble::{self, Members, Plan, Sweep};
+use physicskit::classical::model::Value;
 use physicskit::classical::Method;
 
 use super::common::unwrap;

@@ -5,13 +5,13 @@
 //! that apply and a builder into the type-erased [`DynSystem`]. The command line (`list`,
 //! `simulate`, `--help`, `list --json`), the Python extension (`_core.build`,
 //! `_core.catalog`) and the lab iterate over [`SYSTEMS`] (kept in `systems/mod.rs`, next to the
-//! `mod` line of each system's file); none of them lists systems or defaults of its own. See [`core::catalog`](crate::classical::core::catalog) for the
+//! `mod` line of each system's file); none of them lists systems or defaults of its own. See [`core::catalog`](crate::classical::model::entry) for the
 //! vocabulary and where values are checked.
 //!
 //! # Example
 //! ```
 //! use physicskit::classical::catalog;
-//! use physicskit::classical::core::catalog::Value;
+//! use physicskit::classical::model::entry::Value;
 //!
 //! let entry = catalog::find("double-pendulum")?;
 //! let mut system = entry.build_from([("m2".to_string(), Value::Scalar(2.0))])?;
@@ -20,7 +20,8 @@
 //! # Ok::<(), physicskit::classical::Error>(())
 //! ```
 
-use crate::classical::core::{DynSystem, Error, Result, SystemEntry};
+use crate::classical::core::{Error, Result};
+use crate::classical::model::{DynSystem, SystemEntry};
 
 pub use crate::classical::systems::SYSTEMS;
 
@@ -49,7 +50,7 @@ pub fn find(name: &str) -> Result<&'static SystemEntry> {
 /// As [`find`] and [`SystemEntry::build_from`].
 pub fn build(
     name: &str,
-    given: impl IntoIterator<Item = (String, crate::classical::core::Value)>,
+    given: impl IntoIterator<Item = (String, crate::classical::model::Value)>,
 ) -> Result<Box<dyn DynSystem>> {
     find(name)?.build_from(given)
 }
@@ -57,7 +58,7 @@ pub fn build(
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::classical::core::catalog::{Bound, Default, ParamKind, Value};
+    use crate::classical::model::entry::{Bound, Default, ParamKind, Value};
     use crate::classical::{IntegrateOptions, Method};
 
     #[test]
@@ -125,7 +126,7 @@ mod tests {
                 // cannot move alone: the default vectors would no longer fit it.
                 let counts_a_vector = entry.params.iter().any(|p| {
                     p.kind
-                        == ParamKind::Vector(crate::classical::core::catalog::Length::Count(
+                        == ParamKind::Vector(crate::classical::model::entry::Length::Count(
                             spec.name,
                         ))
                 });

@@ -2,11 +2,12 @@
 //!
 //! They are deliberately minimal: the full systems of the spec live in `systems`.
 
-use crate::classical::core::catalog::{Default as D, Family, ParamSpec as P, Range, SystemEntry};
-use crate::classical::core::erased::{fill, Capabilities, Hamiltonian};
 use crate::classical::core::error::check_len;
 use crate::classical::core::error::{check_finite_scalar, check_positive};
-use crate::classical::core::{HamiltonianSystem, MassInv, Method, Phase, Result};
+use crate::classical::core::{Phase, Result};
+use crate::classical::integrators::{HamiltonianSystem, MassInv, Method};
+use crate::classical::model::entry::{Default as D, Family, ParamSpec as P, Range, SystemEntry};
+use crate::classical::model::erased::{fill, Capabilities, Hamiltonian};
 
 /// The simple pendulum `H = p^2/2 - (g/l) cos q` (unit `m l^2`).
 #[derive(Debug, Clone)]

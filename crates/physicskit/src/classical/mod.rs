@@ -1,16 +1,23 @@
 //! `physicskit::classical`: the Rust counterpart of the Python module `physicskit.classical`.
 //!
-//! * [`core`]: the system traits ([`DynamicalSystem`], [`HamiltonianSystem`],
-//!   [`LagrangianSystem`], [`OdeSystem`]), the state-and-clock [`Phase`], the validated
-//!   [`TimeGrid`], [`SimulationResult`] and the [`Error`] type.
-//! * [`integrators`]: `verlet`, `yoshida4`, `rk4` and `implicit_midpoint`, one file each
-//!   declaring its facts ([`methods`] lists them), and the drivers that run them over a time
-//!   grid.
-//! * [`lagrangian`]: the engine deriving equations of motion from `L(q, qdot, t)`.
-//! * [`systems`]: the spec's systems; [`analysis`]: functions on states and trajectories.
-//! * [`examples`]: small reference systems (pendulum, harmonic oscillator) used in docs, tests
-//!   and benchmarks.
-//! * [`explanations`]: the physics paragraphs shared by the gallery and the lab.
+//! Its modules are layers; each uses only those listed before it (`scripts/check-layers`
+//! fails the tests on a path that points up):
+//!
+//! 1. [`core`]: errors, the state-and-clock [`Phase`], the validated [`TimeGrid`],
+//!    [`SimulationResult`], memory budgets, lane sums, linear algebra, vectorized
+//!    trigonometry, and the facts a method declares ([`MethodInfo`]).
+//! 2. [`integrators`]: the system traits ([`DynamicalSystem`], [`HamiltonianSystem`],
+//!    [`LagrangianSystem`], [`OdeSystem`]) with their `integrate`, the methods (one file each,
+//!    [`methods`] lists them), the steppers and drivers that run them, the tangent [`integrators::Flow`]
+//!    and the parallel ensemble of decoupled members.
+//! 3. [`model`]: a system as front ends see it: [`DynSystem`], its capabilities, the frame
+//!    by frame [`model::Session`], and the catalogue's vocabulary ([`SystemEntry`]).
+//! 4. [`lagrangian`]: the engine deriving equations of motion from `L(q, qdot, t)`.
+//! 5. [`symbolic`]: expressions, tapes and their JIT, and the engines built on them.
+//! 6. [`systems`] and [`examples`]: the built-in systems, each with its catalogue entry.
+//! 7. [`catalog`]: the list of every system, and [`explanations`], their physics paragraphs.
+//! 8. [`analysis`]: functions on states, trajectories and flows (action–angle, chaos).
+//! 9. [`ensemble`]: ensembles and sweeps of any catalogue entry on all cores.
 
 pub mod analysis;
 pub mod catalog;
@@ -20,11 +27,13 @@ pub mod examples;
 pub mod explanations;
 pub mod integrators;
 pub mod lagrangian;
+pub mod model;
+pub mod symbolic;
 pub mod systems;
 
-pub use self::core::{
-    split, DynSystem, DynamicalSystem, Error, ExtraValue, HamiltonianSystem, IntegrateOptions,
-    LagrangianSystem, MassInv, Method, MethodInfo, Observer, OdeSystem, Phase, Result, Sampling,
-    SimulationResult, TimeGrid, Tolerances,
+pub use self::core::{Error, ExtraValue, MethodInfo, Phase, Result, SimulationResult, TimeGrid};
+pub use self::integrators::{
+    methods, split, DynamicalSystem, HamiltonianSystem, IntegrateOptions, LagrangianSystem,
+    MassInv, Method, Observer, OdeSystem, Sampling, Tolerances,
 };
-pub use self::integrators::methods;
+pub use self::model::{DynSystem, SystemEntry};

@@ -5,10 +5,10 @@
 // comparison is intended.
 #![allow(clippy::float_cmp)]
 
-use physicskit::classical::core::erased::Capabilities;
-use physicskit::classical::core::{
+use physicskit::classical::integrators::{
     hamiltonian_energy, lagrangian_derivatives, separable_derivatives,
 };
+use physicskit::classical::model::erased::Capabilities;
 use physicskit::classical::systems::HenonHeilesSystem;
 use physicskit::classical::{
     DynamicalSystem, Error, HamiltonianSystem, LagrangianSystem, Method, OdeSystem, Phase, Result,

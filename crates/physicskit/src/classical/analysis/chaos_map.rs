@@ -17,9 +17,10 @@ use super::lyapunov::max_exponent_on_flow;
 use super::sali::sali_on_flow;
 use super::section::{section_on_flow, SurfaceOfSection};
 use super::watch::AnalysisOptions;
-use crate::classical::core::erased::DynSystem;
 use crate::classical::core::error::check_vector;
-use crate::classical::core::{Error, Method, Result, TimeGrid};
+use crate::classical::core::{Error, Result, TimeGrid};
+use crate::classical::integrators::Method;
+use crate::classical::model::erased::DynSystem;
 
 /// Points per parallel task.
 pub const MAP_CHUNK: usize = 4;
@@ -138,7 +139,7 @@ where
 ///
 /// ```
 /// use physicskit::classical::analysis::chaos_map::{chaos_map, Indicator, MapRun};
-/// use physicskit::classical::core::erased::Hamiltonian;
+/// use physicskit::classical::model::erased::Hamiltonian;
 /// use physicskit::classical::systems::HenonHeilesSystem;
 ///
 /// let hh = Hamiltonian(HenonHeilesSystem::new(&[0.0, 0.0], &[0.5, 0.0]).unwrap());

@@ -31,10 +31,11 @@
 
 use super::section::Continuation;
 use super::watch::AnalysisOptions;
-use crate::classical::core::erased::DynSystem;
 use crate::classical::core::error::check_finite;
-use crate::classical::core::{Error, Method, Result, TimeGrid};
+use crate::classical::core::{Error, Result, TimeGrid};
 use crate::classical::integrators::Flow;
+use crate::classical::integrators::Method;
+use crate::classical::model::erased::DynSystem;
 
 /// Steps between re-orthonormalizations (Lyapunov) or evaluations of the index (SALI, GALI)
 /// when the caller names none: the default of every front end (Python's `renormalize_every`,
@@ -232,7 +233,7 @@ pub(crate) fn max_exponent_on_flow(
 ///
 /// ```
 /// use physicskit::classical::analysis::lyapunov::lyapunov_spectrum;
-/// use physicskit::classical::core::erased::Hamiltonian;
+/// use physicskit::classical::model::erased::Hamiltonian;
 /// use physicskit::classical::examples::Pendulum;
 ///
 /// let mut pendulum = Hamiltonian(Pendulum::new(1.0, 0.0, 1.0).unwrap());

@@ -21,11 +21,12 @@
 //! `[x, y, px, py]`, value 0, direction [`Direction::Increasing`] (since `dy/dt = p_y`).
 
 use crate::classical::core::error::{check_finite, check_finite_scalar};
-use crate::classical::core::{Error, HamiltonianSystem, Method, Result};
+use crate::classical::core::{Error, Result};
 use crate::classical::integrators::{
     splitting, splitting::Coefficients, AdaptiveStepper, Dispatch, FieldStepper, FirstOrder, Rk4,
     SplittingStepper, VectorField,
 };
+use crate::classical::integrators::{HamiltonianSystem, Method};
 
 /// Which way through the section a crossing must go to count.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]

@@ -22,10 +22,11 @@
 use super::lyapunov::{check_vectors, gram_schmidt, initial_vectors};
 use super::section::Continuation;
 use super::watch::AnalysisOptions;
-use crate::classical::core::erased::DynSystem;
 use crate::classical::core::error::check_finite;
-use crate::classical::core::{Method, Result, TimeGrid};
+use crate::classical::core::{Result, TimeGrid};
 use crate::classical::integrators::Flow;
+use crate::classical::integrators::Method;
+use crate::classical::model::erased::DynSystem;
 
 /// The index below which an orbit is called chaotic (see the module docs).
 pub const CHAOS_THRESHOLD: f64 = 1e-8;

@@ -26,10 +26,11 @@
 
 use super::poincare::{Direction, PoincareSection};
 use super::watch::AnalysisOptions;
-use crate::classical::core::erased::DynSystem;
 use crate::classical::core::error::{check_finite, check_finite_scalar};
-use crate::classical::core::{Error, Method, Result, TimeGrid};
+use crate::classical::core::{Error, Result, TimeGrid};
 use crate::classical::integrators::Flow;
+use crate::classical::integrators::Method;
+use crate::classical::model::erased::DynSystem;
 
 /// Iteration cap of the crossing search; the Illinois iteration needs about ten.
 const MAX_ITERATIONS: usize = 100;
@@ -283,7 +284,7 @@ fn locate(
 /// ```
 /// use physicskit::classical::analysis::poincare::Direction;
 /// use physicskit::classical::analysis::section::{poincare_section, SurfaceOfSection};
-/// use physicskit::classical::core::erased::Hamiltonian;
+/// use physicskit::classical::model::erased::Hamiltonian;
 /// use physicskit::classical::examples::HarmonicOscillator;
 /// use physicskit::classical::Method;
 ///

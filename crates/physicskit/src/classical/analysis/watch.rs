@@ -11,7 +11,8 @@
 use std::ops::ControlFlow;
 
 use crate::classical::core::memory_check;
-use crate::classical::core::{Error, Observer, Result};
+use crate::classical::core::{Error, Result};
+use crate::classical::integrators::Observer;
 
 /// Steps between observer calls when [`AnalysisOptions::observe_every`] is 0, as for
 /// `integrate`.

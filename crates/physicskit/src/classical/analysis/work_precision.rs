@@ -18,7 +18,7 @@
 //! registry that accepts the system, so a new method appears without editing this file) and a
 //! ladder of steps, or of tolerances for an adaptive method ([`Problem::steps`]).
 
-use crate::classical::core::options::{IntegrateOptions, Sampling, Tolerances};
+use crate::classical::integrators::options::{IntegrateOptions, Sampling, Tolerances};
 use crate::classical::systems::KeplerPerturbations;
 use crate::classical::systems::{DoublePendulum, HenonHeilesSystem, KeplerSystem};
 use crate::classical::{HamiltonianSystem, LagrangianSystem, Method, Result, SimulationResult};

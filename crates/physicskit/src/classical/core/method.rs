@@ -1,23 +1,17 @@
 //! What a method is, as data: [`MethodInfo`] (the facts each integrator's file declares about
 //! itself) and [`Scheme`] (the kind of loop that runs it).
 //!
-//! The [`Method`] enum itself is generated from the one registry list in
-//! [`integrators`](crate::classical::integrators), next to the integrators' files; it is
-//! re-exported here because the system traits name a default method.
-
-use std::fmt;
-use std::str::FromStr;
-
-use super::error::Error;
-pub use crate::classical::integrators::{methods, Method};
+//! The [`Method`](crate::classical::integrators::Method) enum that names them is generated
+//! from the one registry list in [`integrators`](crate::classical::integrators), next to the
+//! integrators' files.
 
 /// The facts about one integrator, declared as `pub const INFO: MethodInfo` in the
-/// integrator's own file and listed by [`methods`] (what `physicskit list` and Python's
+/// integrator's own file and listed by [`methods`](crate::classical::integrators::methods) (what `physicskit list` and Python's
 /// `physicskit.classical.methods()` show).
 #[derive(Debug, Clone, Copy, PartialEq)]
 #[non_exhaustive]
 pub struct MethodInfo {
-    /// The spec's name (`"yoshida4"`), which [`Method`]'s `FromStr` parses.
+    /// The spec's name (`"yoshida4"`), which [`Method`](crate::classical::integrators::Method)'s `FromStr` parses.
     pub name: &'static str,
     /// One line for listings.
     pub summary: &'static str,
@@ -27,7 +21,7 @@ pub struct MethodInfo {
     pub symplectic: bool,
     /// Needs a separable Hamiltonian `H = T(p) + V(q)` with conservative forces (the splitting
     /// methods); such a method refuses every other system with
-    /// [`Error::UnsupportedMethod`].
+    /// [`Error::UnsupportedMethod`](super::error::Error::UnsupportedMethod).
     pub separable_only: bool,
     /// Evaluations of the force (splitting methods) or of the right-hand side `f(t, y)` (the
     /// others) per step. For explicit methods the exact count; for implicit methods, whose
@@ -45,7 +39,7 @@ pub struct MethodInfo {
 }
 
 impl MethodInfo {
-    /// True for the [`Scheme::Adaptive`] kind (see [`Method::is_adaptive`]).
+    /// True for the [`Scheme::Adaptive`] kind (see [`Method::is_adaptive`](crate::classical::integrators::Method::is_adaptive)).
     pub fn is_adaptive(&self) -> bool {
         matches!(self.scheme, Scheme::Adaptive)
     }
@@ -82,61 +76,4 @@ pub enum Scheme {
     /// the adaptive steps; tolerances from
     /// [`IntegrateOptions::tolerances`](crate::classical::IntegrateOptions::tolerances).
     Adaptive,
-}
-
-impl Method {
-    /// The spec's name of the method.
-    pub fn name(self) -> &'static str {
-        self.info().name
-    }
-
-    /// Order of accuracy of the global error.
-    pub fn order(self) -> u32 {
-        self.info().order
-    }
-
-    /// True for the splitting methods that need `H = T(p) + V(q)` and conservative forces.
-    pub fn needs_separable(self) -> bool {
-        self.info().separable_only
-    }
-
-    /// True if the method is symplectic (on the systems it accepts).
-    pub fn is_symplectic(self) -> bool {
-        self.info().symplectic
-    }
-
-    /// True if the method adapts its step to tolerances ([`Scheme::Adaptive`]): `dt` is then
-    /// the output spacing, and the frame-by-frame sessions of the lab do not run it.
-    pub fn is_adaptive(self) -> bool {
-        self.info().is_adaptive()
-    }
-
-    /// Comma-separated list of valid names, for messages.
-    pub fn valid_names() -> String {
-        Self::ALL.map(Method::name).join(", ")
-    }
-}
-
-impl fmt::Display for Method {
-    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
-        f.write_str(self.name())
-    }
-}
-
-impl FromStr for Method {
-    type Err = Error;
-
-    /// Parses a spec name such as `"yoshida4"`.
-    ///
-    /// # Errors
-    /// [`Error::UnknownMethod`] listing the valid names.
-    fn from_str(name: &str) -> Result<Self, Error> {
-        Self::ALL
-            .into_iter()
-            .find(|m| m.name() == name)
-            .ok_or_else(|| Error::UnknownMethod {
-                name: name.to_string(),
-                valid: Self::valid_names(),
-            })
-    }
 }

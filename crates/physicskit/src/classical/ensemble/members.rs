@@ -4,8 +4,9 @@
 //! a closure builds from named real parameters ([`FromParameters`](super::FromParameters),
 //! the SymPy engines' systems).
 
-use crate::classical::core::catalog::{Default as ParamDefault, Literal, ParamKind};
-use crate::classical::core::{DynSystem, Error, Result, SystemEntry, Value};
+use crate::classical::core::{Error, Result};
+use crate::classical::model::entry::{Default as ParamDefault, Literal, ParamKind};
+use crate::classical::model::{DynSystem, SystemEntry, Value};
 
 /// One swept parameter: `values[i]` is member `i`'s value of `target`.
 ///

@@ -30,7 +30,7 @@
 //!
 //! **Early stop.** When every requested output is a first-event time (no final state, no
 //! trajectory, no other reduction) and the method has a fixed step, a member is stepped one
-//! step at a time by a [`Session`](crate::classical::integrators::Session) (the same bits as
+//! step at a time by a [`Session`](crate::classical::model::Session) (the same bits as
 //! `integrate`), each event is checked as its step completes, and the member stops once all
 //! have happened: a flip-time map then costs the time to each member's flip, not the whole
 //! span. The times are those of the full run, bit for bit; [`EnsembleResult::steps`] says
@@ -55,10 +55,9 @@ pub use members::{FromCatalogue, MemberSource, Members, Sweep};
 pub use parameters::FromParameters;
 pub use reduction::{Condition, Direction, Event, MemberRun, Reduction};
 
-use crate::classical::core::{
-    memory_check, DynSystem, Error, IntegrateOptions, Method, Observer, Result, Sampling,
-    SystemEntry, TimeGrid,
-};
+use crate::classical::core::{memory_check, Error, Result, TimeGrid};
+use crate::classical::integrators::{IntegrateOptions, Method, Observer, Sampling};
+use crate::classical::model::{DynSystem, SystemEntry};
 
 /// Members per parallel chunk: enough to make scheduling negligible, few enough that 1e3
 /// members balance over many cores.

@@ -11,7 +11,8 @@
 //! alone from the same numbers, bit for bit.
 
 use super::members::{check_counts, state_row, MemberSource, Members};
-use crate::classical::core::{DynSystem, Error, Result, Value};
+use crate::classical::core::{Error, Result};
+use crate::classical::model::{DynSystem, Value};
 
 /// Members built by `build(params, state)` from named real parameters (see the module
 /// documentation).
@@ -44,7 +45,7 @@ where
     /// # Example
     /// ```
     /// use physicskit::classical::catalog;
-    /// use physicskit::classical::core::Value;
+    /// use physicskit::classical::model::Value;
     /// use physicskit::classical::ensemble::{self, FromParameters, Members, Plan, Sweep};
     ///
     /// // Harmonic oscillators of three stiffnesses, built from the catalogue by a closure.

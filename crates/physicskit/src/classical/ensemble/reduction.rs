@@ -46,9 +46,9 @@
 use crate::classical::analysis::lyapunov::{check_vectors, max_exponent_on_flow};
 use crate::classical::analysis::sali::sali_on_flow;
 use crate::classical::analysis::watch::AnalysisOptions;
-use crate::classical::core::{
-    DynSystem, Error, Method, Observer, Result, SimulationResult, TimeGrid,
-};
+use crate::classical::core::{Error, Result, SimulationResult, TimeGrid};
+use crate::classical::integrators::{Method, Observer};
+use crate::classical::model::DynSystem;
 
 /// Which way a [`Condition::Crosses`] event must cross.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]

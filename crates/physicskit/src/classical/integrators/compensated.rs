@@ -47,7 +47,7 @@
 
 use multiversion::multiversion;
 
-use crate::classical::core::MassInv;
+use crate::classical::integrators::MassInv;
 
 /// Shortest slices worth the indirect call into the SIMD clones below (the generic integrator
 /// itself is compiled for the baseline, SSE2). Chosen by measurement: the 100-site sine-Gordon

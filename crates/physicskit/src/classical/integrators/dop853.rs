@@ -55,7 +55,8 @@ use std::collections::BTreeMap;
 use super::field::VectorField;
 use super::stepper::{AdaptiveStepper, FieldStepper, Report};
 use crate::classical::core::method::{MethodInfo, Scheme};
-use crate::classical::core::{Error, ExtraValue, Result, Tolerances};
+use crate::classical::core::{Error, ExtraValue, Result};
+use crate::classical::integrators::Tolerances;
 
 /// The facts about `dop853`.
 pub const INFO: MethodInfo = MethodInfo {

@@ -16,11 +16,13 @@ use std::ops::ControlFlow;
 use super::field::{Canonical, FirstOrder, VectorField};
 use super::splitting::{check_system, Coefficients, SplittingStepper};
 use super::stepper::{splitting_refused, AdaptiveStepper, Dispatch, FieldStepper, Report, Stepper};
-use crate::classical::core::catalog::Family;
-use crate::classical::core::options::check_adaptive;
 use crate::classical::core::{
-    error::check_finite, DynamicalSystem, Error, ExtraValue, HamiltonianSystem, IntegrateOptions,
-    LagrangianSystem, Method, OdeSystem, Recorder, Result, SimulationResult, TimeGrid,
+    error::check_finite, Error, ExtraValue, Recorder, Result, SimulationResult, TimeGrid,
+};
+use crate::classical::integrators::options::check_adaptive;
+use crate::classical::integrators::system::Family;
+use crate::classical::integrators::{
+    DynamicalSystem, HamiltonianSystem, IntegrateOptions, LagrangianSystem, Method, OdeSystem,
 };
 
 /// Integrates a Hamiltonian system (see [`HamiltonianSystem::integrate`]).

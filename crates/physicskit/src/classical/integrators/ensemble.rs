@@ -18,10 +18,8 @@ use std::time::Duration;
 
 use rayon::prelude::*;
 
-use crate::classical::core::{
-    Error, ExtraValue, HamiltonianSystem, IntegrateOptions, Method, Observer, Result,
-    SimulationResult, TimeGrid,
-};
+use crate::classical::core::{Error, ExtraValue, Result, SimulationResult, TimeGrid};
+use crate::classical::integrators::{HamiltonianSystem, IntegrateOptions, Method, Observer};
 use ndarray::{s, Array1, Array2};
 
 /// Members per parallel chunk: large enough that the per-chunk set-up (one small allocation

@@ -1,7 +1,8 @@
 //! [`VectorField`]: the `dy/dt = f(t, y)` view that `rk4` and `implicit_midpoint` integrate,
 //! with zero-cost adapters from the system traits.
 
-use crate::classical::core::{DynamicalSystem, LagrangianSystem, Result};
+use crate::classical::core::Result;
+use crate::classical::integrators::{DynamicalSystem, LagrangianSystem};
 
 /// A first-order right-hand side `f(t, y)` with an optional Jacobian.
 pub trait VectorField {

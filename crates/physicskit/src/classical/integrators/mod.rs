@@ -44,9 +44,11 @@ pub mod driver;
 pub mod ensemble;
 pub mod field;
 pub mod implicit_solve;
-pub mod session;
+mod method;
+pub mod options;
 pub mod splitting;
 pub mod stepper;
+pub mod system;
 pub mod tangent;
 
 pub use dop853::Dop853;
@@ -56,8 +58,13 @@ pub use gauss_legendre4::GaussLegendre4;
 pub use gauss_legendre6::GaussLegendre6;
 pub use implicit_midpoint::ImplicitMidpoint;
 pub use implicit_solve::{ButcherTableau, ImplicitRk, SolverSettings, SolverStats, Tableau};
+pub use options::{IntegrateOptions, Observer, Sampling, Tolerances};
 pub use rk4::Rk4;
-pub use session::{Refused, Session};
 pub use splitting::{SplittingStepper, VerletStepper, Yoshida4Stepper};
 pub use stepper::{AdaptiveStepper, Dispatch, FieldStepper, Report, Stepper};
+pub use system::{
+    hamiltonian_energy, lagrangian_derivatives, quadratic_kinetic_energy, separable_derivatives,
+    separable_jacobian, split, DynamicalSystem, Family, HamiltonianSystem, LagrangianSystem,
+    MassInv, OdeSystem,
+};
 pub use tangent::{hamiltonian_flow, lagrangian_flow, ode_flow, Flow};

@@ -41,7 +41,8 @@ use std::collections::BTreeMap;
 
 use super::compensated;
 use super::stepper::{Report, Stepper};
-use crate::classical::core::{Error, ExtraValue, HamiltonianSystem, Method, Result};
+use crate::classical::core::{Error, ExtraValue, Result};
+use crate::classical::integrators::{HamiltonianSystem, Method};
 
 /// The weights of a splitting method with `S` drifts: `kicks[i]` before `drifts[i]`, and
 /// `last_kick` after the last drift (see the module docs). Built at compile time from a

@@ -24,8 +24,9 @@ use std::collections::BTreeMap;
 
 use super::field::VectorField;
 use super::splitting::Coefficients;
-use crate::classical::core::catalog::Family;
-use crate::classical::core::{Error, ExtraValue, Method, Result, Tolerances};
+use crate::classical::core::{Error, ExtraValue, Result};
+use crate::classical::integrators::system::Family;
+use crate::classical::integrators::{Method, Tolerances};
 
 /// A stepper's statistics over the steps so far (evaluations, solver iterations), reported
 /// into `result.extra`.

@@ -50,9 +50,10 @@ use super::compensated;
 use super::field::{Canonical, FirstOrder, VectorField};
 use super::splitting::{check_system, Coefficients, SplittingStepper};
 use super::stepper::{splitting_refused, AdaptiveStepper, Dispatch, FieldStepper};
-use crate::classical::core::catalog::Family;
-use crate::classical::core::{
-    Error, HamiltonianSystem, LagrangianSystem, MassInv, Method, OdeSystem, Result,
+use crate::classical::core::{Error, Result};
+use crate::classical::integrators::system::Family;
+use crate::classical::integrators::{
+    HamiltonianSystem, LagrangianSystem, MassInv, Method, OdeSystem,
 };
 
 /// The relative step of the central differences: `ε^(1/3)` (see the module docs).

@@ -38,9 +38,9 @@ use num_dual::DualSVec64;
 
 use super::engine::Scalar;
 use crate::classical::core::trig::{sin_cos, sin_cos_array};
-use crate::classical::core::{
-    Capabilities, DynamicalSystem, LagrangianSystem, Method, Phase, Result,
-};
+use crate::classical::core::{Phase, Result};
+use crate::classical::integrators::{DynamicalSystem, LagrangianSystem, Method};
+use crate::classical::model::Capabilities;
 
 /// The number types the generic closed forms are evaluated on: `f64` for the integrators and
 /// num-dual's `DualSVec64<M>` for their Jacobians. Sine and cosine go through the crate's

@@ -10,9 +10,9 @@
 //! canonical form, with the engine's exact canonical Jacobian available to its Newton solve.
 
 use super::engine::{Lagrangian, LagrangianEngine};
-#[cfg(doc)]
-use crate::classical::core::{DynamicalSystem, LagrangianSystem};
 use crate::classical::core::{Phase, Result};
+#[cfg(doc)]
+use crate::classical::integrators::{DynamicalSystem, LagrangianSystem};
 
 /// Implements [`DynamicalSystem`](crate::classical::DynamicalSystem) and
 /// [`LagrangianSystem`](crate::classical::LagrangianSystem) for a struct with fields
@@ -123,7 +123,7 @@ macro_rules! impl_lagrangian_dynamics {
 }
 
 /// A [`LagrangianSystem`] from any [`Lagrangian`], for user-defined systems (including
-/// [`ExprLagrangian`](super::ExprLagrangian) expressions from Python).
+/// [`ExprLagrangian`](crate::classical::symbolic::ExprLagrangian) expressions from Python).
 ///
 /// # Example
 /// ```
@@ -171,4 +171,4 @@ impl<L: Lagrangian> LagrangianModel<L> {
 crate::impl_lagrangian_dynamics!(impl [L: Lagrangian] LagrangianModel<L>);
 
 /// A user's Lagrangian offers no capabilities beyond the family's.
-impl<L: Lagrangian> crate::classical::core::Capabilities for LagrangianModel<L> {}
+impl<L: Lagrangian> crate::classical::model::Capabilities for LagrangianModel<L> {}

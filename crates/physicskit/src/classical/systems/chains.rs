@@ -33,16 +33,15 @@
 
 use std::f64::consts::PI;
 
-use crate::classical::core::catalog::{
-    Default as D, Family, Length, Literal, ParamSpec as P, Range, SystemEntry,
-};
-use crate::classical::core::erased::{Capabilities, Hamiltonian};
 use crate::classical::core::error::{check_finite_scalar, check_positive, check_vector};
 use crate::classical::core::sum::lane_sum_map2;
 use crate::classical::core::trig::{sin_into, sin_into_sum_cos, sum_cos};
-use crate::classical::core::{
-    check_items_fit, Error, HamiltonianSystem, MassInv, Method, Phase, Result,
+use crate::classical::core::{check_items_fit, Error, Phase, Result};
+use crate::classical::integrators::{HamiltonianSystem, MassInv, Method};
+use crate::classical::model::entry::{
+    Default as D, Family, Length, Literal, ParamSpec as P, Range, SystemEntry,
 };
+use crate::classical::model::erased::{Capabilities, Hamiltonian};
 
 /// Angular frequency of normal mode `j` (`1..=n`) of `n` masses `m` joined by springs `k`
 /// between fixed walls: `omega_j = 2 sqrt(k/m) sin(j pi / (2 (n + 1)))`.

@@ -28,15 +28,16 @@
 //! They work on the slices in place for any `n`, without buffers.
 
 use super::chains::{fixed_end_force, fixed_end_potential};
-use crate::classical::core::catalog::{
-    Default as D, Family, Length, ParamSpec as P, Range, SystemEntry,
-};
-use crate::classical::core::erased::{Capabilities, Lagrangian as Erased};
 use crate::classical::core::error::check_positive;
 use crate::classical::core::linalg::negligible_pivot;
 use crate::classical::core::sum::lane_sum_map;
-use crate::classical::core::{check_items_fit, Error, Method, Phase, Result};
+use crate::classical::core::{check_items_fit, Error, Phase, Result};
+use crate::classical::integrators::Method;
 use crate::classical::lagrangian::{singular_mass_matrix, Lagrangian, LagrangianEngine, Scalar};
+use crate::classical::model::entry::{
+    Default as D, Family, Length, ParamSpec as P, Range, SystemEntry,
+};
+use crate::classical::model::erased::{Capabilities, Lagrangian as Erased};
 
 /// Size, mass and spring constant of a [`CoupledOscillators`] chain; its [`Lagrangian`].
 #[derive(Debug, Clone, Copy, PartialEq)]

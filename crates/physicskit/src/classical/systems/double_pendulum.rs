@@ -70,19 +70,19 @@
 //! < 1` (Heyl's `3 cos theta1 + cos theta2 < 2`, *The double pendulum fractal*, 2008, is for
 //! uniform rods, whose moments differ).
 
-use crate::classical::core::catalog::{
-    Default as D, Family, Length, ParamSpec as P, Range, SystemEntry,
-};
-use crate::classical::core::erased::{fill, Capabilities, Lagrangian as Erased};
 use crate::classical::core::error::check_finite_scalar;
 use crate::classical::core::error::check_positive;
 use crate::classical::core::linalg::negligible_pivot;
 use crate::classical::core::trig::sin_cos;
-use crate::classical::core::Method;
 use crate::classical::core::{Error, Phase, Result};
+use crate::classical::integrators::Method;
 use crate::classical::lagrangian::{
     singular_mass_matrix, FieldScalar, Lagrangian, LagrangianEngine, Scalar,
 };
+use crate::classical::model::entry::{
+    Default as D, Family, Length, ParamSpec as P, Range, SystemEntry,
+};
+use crate::classical::model::erased::{fill, Capabilities, Lagrangian as Erased};
 
 /// Masses, rod lengths and gravity of a [`DoublePendulum`]; its [`Lagrangian`].
 #[derive(Debug, Clone, Copy, PartialEq)]

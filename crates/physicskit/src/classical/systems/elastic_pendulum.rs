@@ -73,16 +73,16 @@
 //! lives in the factor `r` of the swing energy
 //! ([`ElasticPendulum::mode_energies`]).
 
-use crate::classical::core::catalog::{
-    Default as D, Family, Length, ParamSpec as P, Range, SystemEntry,
-};
-use crate::classical::core::erased::{fill, Capabilities, Lagrangian as Erased};
 use crate::classical::core::error::{check_finite_scalar, check_non_negative, check_positive};
 use crate::classical::core::linalg::negligible_pivot;
 use crate::classical::core::trig::sin_cos;
-use crate::classical::core::Method;
 use crate::classical::core::{Error, Phase, Result};
+use crate::classical::integrators::Method;
 use crate::classical::lagrangian::{FieldScalar, Lagrangian, LagrangianEngine, Scalar};
+use crate::classical::model::entry::{
+    Default as D, Family, Length, ParamSpec as P, Range, SystemEntry,
+};
+use crate::classical::model::erased::{fill, Capabilities, Lagrangian as Erased};
 
 /// Mass, spring constant, rest length and gravity of an [`ElasticPendulum`]; its
 /// [`Lagrangian`].

@@ -9,10 +9,11 @@
 //! `(x, p_x)` at `y = 0` is dominated by KAM tori; near and above it they break into a chaotic
 //! sea. Reference: M. Hénon and C. Heiles, Astron. J. 69 (1964) 73–79.
 
-use crate::classical::core::catalog::{Default as D, Family, Length, ParamSpec as P, SystemEntry};
-use crate::classical::core::erased::{fill, Capabilities, Hamiltonian};
 use crate::classical::core::error::{check_len, check_vector};
-use crate::classical::core::{HamiltonianSystem, Method, Phase, Result};
+use crate::classical::core::{Phase, Result};
+use crate::classical::integrators::{HamiltonianSystem, Method};
+use crate::classical::model::entry::{Default as D, Family, Length, ParamSpec as P, SystemEntry};
+use crate::classical::model::erased::{fill, Capabilities, Hamiltonian};
 
 /// The Hénon–Heiles Hamiltonian `H = |p|^2/2 + (x^2 + y^2)/2 + x^2 y - y^3/3` (unit masses).
 #[derive(Debug, Clone)]

@@ -32,17 +32,17 @@
 //! energy        E = R^2 w^2 / 2 - R^2 omega^2 s^2 / 2 - g R (c - 1)
 //! ```
 
-use crate::classical::core::catalog::{Default as D, Family, ParamSpec as P, Range, SystemEntry};
-use crate::classical::core::erased::{fill, Capabilities, Lagrangian as Erased};
 use crate::classical::core::error::check_len;
 use crate::classical::core::error::{check_finite_scalar, check_positive};
 use crate::classical::core::linalg::negligible_pivot;
 use crate::classical::core::trig::sin_cos;
-use crate::classical::core::Method;
 use crate::classical::core::{Phase, Result};
+use crate::classical::integrators::Method;
 use crate::classical::lagrangian::{
     singular_mass_matrix, FieldScalar, Lagrangian, LagrangianEngine, Scalar,
 };
+use crate::classical::model::entry::{Default as D, Family, ParamSpec as P, Range, SystemEntry};
+use crate::classical::model::erased::{fill, Capabilities, Lagrangian as Erased};
 
 /// Radius, rotation rate and gravity of a [`BeadOnRotatingHoop`]; its [`Lagrangian`].
 #[derive(Debug, Clone, Copy, PartialEq)]

@@ -19,13 +19,14 @@
 //! `T = 2 pi sqrt(mu a^3 / k)`. Reference: H. Goldstein, C. Poole and J. Safko, *Classical
 //! Mechanics* (3rd ed., 2002), §3.7–3.9.
 
-use crate::classical::core::catalog::{
-    Default as D, Family, Length, ParamSpec as P, Range, SystemEntry, Values,
-};
-use crate::classical::core::erased::{fill, Capabilities, Hamiltonian};
 use crate::classical::core::error::check_len;
 use crate::classical::core::error::{check_finite_scalar, check_non_negative, check_positive};
-use crate::classical::core::{Error, HamiltonianSystem, MassInv, Method, Phase, Result};
+use crate::classical::core::{Error, Phase, Result};
+use crate::classical::integrators::{HamiltonianSystem, MassInv, Method};
+use crate::classical::model::entry::{
+    Default as D, Family, Length, ParamSpec as P, Range, SystemEntry, Values,
+};
+use crate::classical::model::erased::{fill, Capabilities, Hamiltonian};
 
 /// The optional perturbations of [`KeplerSystem`]; `Default` is the pure two-body problem.
 #[derive(Debug, Clone, Copy, PartialEq, Default)]

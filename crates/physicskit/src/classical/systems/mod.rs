@@ -5,7 +5,7 @@
 //! Lagrangian and rigid bodies (issue 4): `double_pendulum`, `hoop`, `coupled_oscillators`,
 //! `symmetric_top`, `rigid_body`; and the `elastic_pendulum`.
 
-use crate::classical::core::SystemEntry;
+use crate::classical::model::SystemEntry;
 
 mod kepler;
 pub use kepler::*;

@@ -13,16 +13,17 @@
 //! `implicit_midpoint` integrate the full right-hand side. Reference: J. R. Taylor,
 //! *Classical Mechanics* (2005), ch. 2.
 
-use crate::classical::core::catalog::{
-    Default as D, Family, Length, ParamSpec as P, Range, SystemEntry,
-};
-use crate::classical::core::erased::{fill, Capabilities, Hamiltonian};
 use crate::classical::core::error::{
     check_finite_scalar, check_len, check_non_negative, check_positive, check_vector,
 };
-use crate::classical::core::{
-    hamiltonian_energy, DynamicalSystem, HamiltonianSystem, MassInv, Method, Phase, Result,
+use crate::classical::core::{Phase, Result};
+use crate::classical::integrators::{
+    hamiltonian_energy, DynamicalSystem, HamiltonianSystem, MassInv, Method,
 };
+use crate::classical::model::entry::{
+    Default as D, Family, Length, ParamSpec as P, Range, SystemEntry,
+};
+use crate::classical::model::erased::{fill, Capabilities, Hamiltonian};
 
 /// A point projectile `H = |p|^2/(2m) + m g y` with optional drag force `-c |v| v`.
 ///

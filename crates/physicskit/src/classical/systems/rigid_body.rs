@@ -16,12 +16,13 @@
 //! near the intermediate axis tumbles periodically (the intermediate-axis theorem) with a
 //! period given by a complete elliptic integral (Landau & Lifshitz §37).
 
-use crate::classical::core::catalog::{
+use crate::classical::core::error::{check_positive, check_vector};
+use crate::classical::core::{Error, Phase, Result};
+use crate::classical::integrators::{DynamicalSystem, Method, OdeSystem};
+use crate::classical::model::entry::{
     Default as D, Family, Length, ParamSpec as P, Range, SystemEntry,
 };
-use crate::classical::core::erased::{Capabilities, Ode};
-use crate::classical::core::error::{check_positive, check_vector};
-use crate::classical::core::{DynamicalSystem, Error, Method, OdeSystem, Phase, Result};
+use crate::classical::model::erased::{Capabilities, Ode};
 
 /// Principal moments of inertia of an [`EulerTop`].
 #[derive(Debug, Clone, Copy, PartialEq)]

@@ -12,17 +12,15 @@
 //! faithful proxy while the patch stays convex. Reference: V. I. Arnold, *Mathematical Methods
 //! of Classical Mechanics* (2nd ed., 1989), §16.
 
-use crate::classical::core::catalog::{
-    Default as D, Family, Length, ParamSpec as P, Range, SystemEntry,
-};
-use crate::classical::core::erased::{Capabilities, Hamiltonian};
 use crate::classical::core::error::{check_finite_scalar, check_non_negative, check_positive};
 use crate::classical::core::trig::{sin_into_scaled, sin_into_sum_cos, sum_cos};
-use crate::classical::core::{
-    check_items_fit, Error, HamiltonianSystem, IntegrateOptions, Method, Phase, Result,
-    SimulationResult,
-};
+use crate::classical::core::{check_items_fit, Error, Phase, Result, SimulationResult};
 use crate::classical::integrators::Ensemble;
+use crate::classical::integrators::{HamiltonianSystem, IntegrateOptions, Method};
+use crate::classical::model::entry::{
+    Default as D, Family, Length, ParamSpec as P, Range, SystemEntry,
+};
+use crate::classical::model::erased::{Capabilities, Hamiltonian};
 
 /// `N` decoupled pendulums `H_i = p_i^2/2 - (g/l) cos q_i`, state `[q_1..q_N, p_1..p_N]`.
 ///

@@ -43,19 +43,19 @@
 //! The mass matrix counts as singular where the pivot `I1 s^2` (the Schur complement of the
 //! `psi` row) is negligible against its largest entry, the criterion of partial-pivoting LU.
 
-use crate::classical::core::catalog::{
-    Default as D, Family, Length, ParamSpec as P, Range, SystemEntry,
-};
-use crate::classical::core::erased::{fill, Capabilities, Lagrangian as Erased};
 use crate::classical::core::error::check_len;
 use crate::classical::core::error::{check_finite_scalar, check_positive};
 use crate::classical::core::linalg::negligible_pivot;
 use crate::classical::core::trig::sin_cos;
-use crate::classical::core::Method;
 use crate::classical::core::{Error, Phase, Result};
+use crate::classical::integrators::Method;
 use crate::classical::lagrangian::{
     singular_mass_matrix, FieldScalar, Lagrangian, LagrangianEngine, Scalar,
 };
+use crate::classical::model::entry::{
+    Default as D, Family, Length, ParamSpec as P, Range, SystemEntry,
+};
+use crate::classical::model::erased::{fill, Capabilities, Lagrangian as Erased};
 
 /// Inertia, mass, lever arm and gravity of a [`HeavySymmetricTop`]; its [`Lagrangian`].
 #[derive(Debug, Clone, Copy, PartialEq)]

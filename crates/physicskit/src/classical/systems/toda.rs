@@ -53,12 +53,13 @@
 
 use nalgebra::{DMatrix, SymmetricEigen};
 
-use crate::classical::core::catalog::{
+use crate::classical::core::error::{check_positive, check_vector};
+use crate::classical::core::{Error, Phase, Result};
+use crate::classical::integrators::{HamiltonianSystem, MassInv, Method};
+use crate::classical::model::entry::{
     Default as D, Family, Length, ParamSpec as P, Range, SystemEntry,
 };
-use crate::classical::core::erased::{Capabilities, Hamiltonian};
-use crate::classical::core::error::{check_positive, check_vector};
-use crate::classical::core::{Error, HamiltonianSystem, MassInv, Method, Phase, Result};
+use crate::classical::model::erased::{Capabilities, Hamiltonian};
 
 /// The periodic Toda lattice `H = sum p_i^2/2 + (a/b) sum exp(-b (q_{i+1} - q_i))` (see the
 /// module documentation). Unit masses; state `[q, p]`; default method `yoshida4`.

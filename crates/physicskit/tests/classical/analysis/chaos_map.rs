@@ -6,7 +6,7 @@ use physicskit::classical::analysis::chaos_map::{chaos_map, Indicator, MapRun};
 use physicskit::classical::analysis::lyapunov::max_lyapunov;
 use physicskit::classical::analysis::poincare::Direction;
 use physicskit::classical::analysis::section::SurfaceOfSection;
-use physicskit::classical::core::erased::DynSystem;
+use physicskit::classical::model::erased::DynSystem;
 
 /// A line of initial states across the Hénon–Heiles section at E = 1/8 (x = 0, y from -0.3
 /// to 0.3, p_x = 0, p_y from the energy).

@@ -5,7 +5,7 @@
 use crate::checks::loglog_slope;
 use crate::fixtures::{henon_heiles_at, Lorenz};
 use physicskit::classical::analysis::lyapunov::{lyapunov_spectrum, max_lyapunov};
-use physicskit::classical::core::erased::{DynSystem, Hamiltonian, Ode};
+use physicskit::classical::model::erased::{DynSystem, Hamiltonian, Ode};
 use physicskit::classical::{Error, Method};
 
 /// A chaotic Hénon–Heiles orbit at E = 1/6 (in the chaotic sea: λ1 ≈ 0.15, SALI at the

@@ -3,7 +3,7 @@
 use crate::analysis::lyapunov::chaotic_orbit;
 use crate::fixtures::henon_heiles_at;
 use physicskit::classical::analysis::sali::{alignment_index, Alignment, Verdict};
-use physicskit::classical::core::erased::Hamiltonian;
+use physicskit::classical::model::erased::Hamiltonian;
 use physicskit::classical::Method;
 
 fn regular_orbit() -> Hamiltonian<physicskit::classical::systems::HenonHeilesSystem> {

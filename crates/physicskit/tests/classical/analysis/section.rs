@@ -6,8 +6,8 @@ use crate::checks::loglog_slope;
 use crate::fixtures::henon_heiles_at;
 use physicskit::classical::analysis::poincare::Direction;
 use physicskit::classical::analysis::section::{poincare_section, SurfaceOfSection};
-use physicskit::classical::core::erased::{DynSystem, Hamiltonian};
 use physicskit::classical::examples::HarmonicOscillator;
+use physicskit::classical::model::erased::{DynSystem, Hamiltonian};
 use physicskit::classical::{Error, Method};
 
 /// Hénon–Heiles at E = 1/8 with yoshida4, dt = 0.002: every crossing of y = 0 (p_y > 0) has

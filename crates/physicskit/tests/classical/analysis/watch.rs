@@ -10,7 +10,7 @@ use physicskit::classical::analysis::poincare::Direction;
 use physicskit::classical::analysis::sali::{alignment_on_flow, Alignment};
 use physicskit::classical::analysis::section::{section_on_flow, SurfaceOfSection};
 use physicskit::classical::analysis::watch::AnalysisOptions;
-use physicskit::classical::core::erased::DynSystem;
+use physicskit::classical::model::erased::DynSystem;
 use physicskit::classical::{Error, Method, Observer, TimeGrid};
 
 /// Stops after `stop_at` steps; counts its calls.

@@ -5,8 +5,8 @@
 use physicskit::classical::analysis::lyapunov::max_lyapunov;
 use physicskit::classical::analysis::sali::{alignment_index, Alignment};
 use physicskit::classical::catalog;
-use physicskit::classical::core::Value;
 use physicskit::classical::ensemble::{self, EnsembleResult, Members, Plan, Reduction, Sweep};
+use physicskit::classical::model::Value;
 use physicskit::classical::{Error, IntegrateOptions, Method};
 
 /// Hénon–Heiles at `E = 1/8` from the section `x = 0`, `p_x >= 0`: 18 points on a line of

@@ -4,10 +4,10 @@
 use std::ops::ControlFlow;
 
 use physicskit::classical::catalog;
-use physicskit::classical::core::Value;
 use physicskit::classical::ensemble::{
     self, Condition, EnsembleResult, Event, Members, Plan, Reduction, Sweep,
 };
+use physicskit::classical::model::Value;
 use physicskit::classical::{Error, IntegrateOptions, Observer, Sampling};
 
 /// A 6 x 6 grid of the double pendulum's initial angles (36 members: two full chunks and a
@@ -267,7 +267,7 @@ impl ensemble::MemberSource for OddMemberOut {
         &self,
         index: usize,
         _t0: f64,
-    ) -> physicskit::classical::Result<Box<dyn physicskit::classical::core::erased::DynSystem>>
+    ) -> physicskit::classical::Result<Box<dyn physicskit::classical::model::erased::DynSystem>>
     {
         let name = if index == 5 {
             "double-pendulum"

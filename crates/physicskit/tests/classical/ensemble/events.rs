@@ -97,7 +97,7 @@ fn members_of_an_events_only_plan_stop_at_their_last_event_with_the_same_times()
     let members = Members {
         common: vec![(
             "thetadot0".into(),
-            physicskit::classical::core::Value::Vector(vec![0.0, 0.0]),
+            physicskit::classical::model::Value::Vector(vec![0.0, 0.0]),
         )],
         sweeps: vec![
             Sweep::new("theta0[0]", theta.clone()),

@@ -4,12 +4,12 @@
 //! call (tangent dynamics by automatic differentiation), and the refusals.
 
 use physicskit::classical::analysis::lyapunov::max_lyapunov;
-use physicskit::classical::core::erased::{DynSystem, Ode};
-use physicskit::classical::core::Value;
 use physicskit::classical::ensemble::{
     self, EnsembleResult, FromParameters, Members, Plan, Reduction, Sweep,
 };
-use physicskit::classical::lagrangian::{Expr, ExprOde};
+use physicskit::classical::model::erased::{DynSystem, Ode};
+use physicskit::classical::model::Value;
+use physicskit::classical::symbolic::{Expr, ExprOde};
 use physicskit::classical::{Error, IntegrateOptions, Method, Result};
 
 /// The Lorenz system `(sigma, rho, beta)` as expressions.

@@ -5,7 +5,7 @@
 
 use crate::fixtures::henon_heiles_at;
 use physicskit::classical::analysis::lyapunov::lyapunov_spectrum;
-use physicskit::classical::core::erased::{DynSystem, Hamiltonian};
+use physicskit::classical::model::erased::{DynSystem, Hamiltonian};
 use physicskit::classical::systems::HenonHeilesSystem;
 use physicskit::classical::{DynamicalSystem, HamiltonianSystem, Method};
 

@@ -30,7 +30,7 @@ fn lagrangian_and_hamiltonian_pendulum_agree() {
 fn splitting_methods_are_refused_alike_by_every_loop() {
     use physicskit::classical::analysis::poincare::Direction;
     use physicskit::classical::analysis::section::{poincare_section, SurfaceOfSection};
-    use physicskit::classical::core::erased::{DynSystem, Lagrangian};
+    use physicskit::classical::model::erased::{DynSystem, Lagrangian};
     use physicskit::classical::systems::DoublePendulum;
     use physicskit::classical::Error;
 

@@ -3,7 +3,7 @@
 //! and a refusal by one is a refusal by the other.
 
 use physicskit::classical::catalog::SYSTEMS;
-use physicskit::classical::core::DynSystem;
+use physicskit::classical::model::DynSystem;
 use physicskit::classical::{Error, IntegrateOptions, Method};
 
 /// Steps compared per system and method: enough for the splitting methods' cached force and
@@ -16,7 +16,7 @@ const FRAMES: [usize; 5] = [1, 16, 0, 7, 16];
 /// A step small enough for every catalogue system's defaults to stay finite over [`STEPS`].
 const DT: f64 = 1e-3;
 
-fn build(entry: &physicskit::classical::core::SystemEntry) -> Box<dyn DynSystem> {
+fn build(entry: &physicskit::classical::model::SystemEntry) -> Box<dyn DynSystem> {
     entry
         .build_from([])
         .unwrap_or_else(|e| panic!("{}: {e}", entry.name))

@@ -9,9 +9,9 @@
 //! Lagrangian, singular mass matrices, and expression Lagrangians.
 
 use physicskit::classical::lagrangian::{
-    AutoDiff, Expr, ExprLagrangian, Lagrangian, LagrangianEngine, LagrangianModel, Scalar,
-    MAX_STACK_NDOF,
+    AutoDiff, Lagrangian, LagrangianEngine, LagrangianModel, Scalar, MAX_STACK_NDOF,
 };
+use physicskit::classical::symbolic::{Expr, ExprLagrangian};
 use physicskit::classical::systems::{
     CoupledOscillatorsParams, DoublePendulum, DoublePendulumParams, HeavySymmetricTop, HoopParams,
     SymmetricTopParams,
@@ -539,7 +539,7 @@ fn expression_display_round_trips() {
     let again = Expr::parse(&expr.to_string()).unwrap();
     assert_eq!(expr, again);
     let built = (Expr::qdot(0).powi(2) * Expr::constant(0.1)) - Expr::q(0).cos()
-        + (-Expr::T).apply(physicskit::classical::lagrangian::Func::Exp)
+        + (-Expr::T).apply(physicskit::classical::symbolic::Func::Exp)
         + Expr::q(0).powf(1.5)
         + Expr::Pow(Box::new(Expr::q(0)), Box::new(Expr::T))
         + Expr::param(0) / Expr::q(1).sin();

@@ -8,7 +8,7 @@
 // are intended where noted.
 #![allow(clippy::float_cmp)]
 
-use physicskit::classical::lagrangian::{Expr, ExprHamiltonian, ExprOde, Tape, Var};
+use physicskit::classical::symbolic::{Expr, ExprHamiltonian, ExprOde, Tape, Var};
 use physicskit::classical::systems::HenonHeilesSystem;
 use physicskit::classical::{
     DynamicalSystem, Error, HamiltonianSystem, MassInv, Method, OdeSystem,
@@ -219,17 +219,17 @@ fn symbolic_derivatives_of_every_function_match_central_differences() {
     let cases: Vec<Expr> = vec![
         x().sin() * y(),
         x().cos().powi(3),
-        Expr::Func(physicskit::classical::lagrangian::Func::Tan, Box::new(x())),
-        (x() * y()).apply(physicskit::classical::lagrangian::Func::Exp),
-        (x() + Expr::constant(2.0)).apply(physicskit::classical::lagrangian::Func::Ln),
-        (x() + Expr::constant(2.0)).apply(physicskit::classical::lagrangian::Func::Sqrt),
-        x().apply(physicskit::classical::lagrangian::Func::Sinh),
-        x().apply(physicskit::classical::lagrangian::Func::Cosh),
-        x().apply(physicskit::classical::lagrangian::Func::Tanh),
-        (x() * Expr::constant(0.5)).apply(physicskit::classical::lagrangian::Func::Asin),
-        (x() * Expr::constant(0.5)).apply(physicskit::classical::lagrangian::Func::Acos),
-        x().apply(physicskit::classical::lagrangian::Func::Atan),
-        (x() - Expr::constant(0.01)).apply(physicskit::classical::lagrangian::Func::Abs),
+        Expr::Func(physicskit::classical::symbolic::Func::Tan, Box::new(x())),
+        (x() * y()).apply(physicskit::classical::symbolic::Func::Exp),
+        (x() + Expr::constant(2.0)).apply(physicskit::classical::symbolic::Func::Ln),
+        (x() + Expr::constant(2.0)).apply(physicskit::classical::symbolic::Func::Sqrt),
+        x().apply(physicskit::classical::symbolic::Func::Sinh),
+        x().apply(physicskit::classical::symbolic::Func::Cosh),
+        x().apply(physicskit::classical::symbolic::Func::Tanh),
+        (x() * Expr::constant(0.5)).apply(physicskit::classical::symbolic::Func::Asin),
+        (x() * Expr::constant(0.5)).apply(physicskit::classical::symbolic::Func::Acos),
+        x().apply(physicskit::classical::symbolic::Func::Atan),
+        (x() - Expr::constant(0.01)).apply(physicskit::classical::symbolic::Func::Abs),
         (x() + Expr::constant(2.0)).powf(1.7),
         Expr::Pow(Box::new(x() + Expr::constant(2.0)), Box::new(y())),
         y() / (x() * x() + Expr::constant(1.0)),

@@ -4,7 +4,7 @@
 //! Cranelift cannot compile. Without the feature every tape is interpreted, which the tests
 //! then check instead (`native()` below).
 
-use physicskit::classical::lagrangian::{
+use physicskit::classical::symbolic::{
     Backend, Expr, ExprHamiltonian, ExprOde, Tape, COMPILE_AFTER,
 };
 use physicskit::classical::{

@@ -8,7 +8,7 @@
 use std::f64::consts::PI;
 
 use physicskit::classical::analysis::lyapunov::max_lyapunov;
-use physicskit::classical::core::erased::Lagrangian;
+use physicskit::classical::model::erased::Lagrangian;
 use physicskit::classical::systems::{BeadOnRotatingHoop, HoopBranch, HoopParams};
 use physicskit::classical::{DynamicalSystem, LagrangianSystem, Method};
 

@@ -2,7 +2,7 @@
 
 use std::f64::consts::PI;
 
-use physicskit::classical::core::erased::Capabilities;
+use physicskit::classical::model::erased::Capabilities;
 use physicskit::classical::systems::{convex_hull_area, polygon_area, PendulumSwarm};
 use physicskit::classical::{HamiltonianSystem, Method};
 

@@ -1,7 +1,7 @@
 //! The heavy symmetric top's symmetry axis against the z-x-z rotation built from elementary
 //! rotations (Goldstein, *Classical Mechanics*, 3rd ed., §4.4).
 
-use physicskit::classical::core::erased::Capabilities;
+use physicskit::classical::model::erased::Capabilities;
 use physicskit::classical::systems::{HeavySymmetricTop, SymmetricTopParams};
 use physicskit::classical::Error;
 

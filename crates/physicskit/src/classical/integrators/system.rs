@@ -5,13 +5,35 @@
 //! trait provides `integrate`, which is generic over the concrete system: the integrators are
 //! monomorphized for it, so its force or right-hand side is inlined into the step loop.
 
-use super::error::{Error, Result};
-use super::method::Method;
+use super::driver;
 use super::options::IntegrateOptions;
-use super::phase::Phase;
-use super::result::SimulationResult;
-use super::sum::{lane_sum_map, lane_sum_map2};
-use crate::classical::integrators::driver;
+use super::Method;
+use crate::classical::core::error::{Error, Result};
+use crate::classical::core::phase::Phase;
+use crate::classical::core::result::SimulationResult;
+use crate::classical::core::sum::{lane_sum_map, lane_sum_map2};
+
+/// The family of a system, which fixes its state layout and the methods that apply.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
+pub enum Family {
+    /// `HamiltonianSystem`: state `[q, p]`.
+    Hamiltonian,
+    /// `LagrangianSystem`: state `[q, qdot]` (results hold `qdot` in `p`, as the spec says).
+    Lagrangian,
+    /// `ODESystem`: the system's own state layout.
+    Ode,
+}
+
+impl Family {
+    /// Lower-case name, as written in output files and `list --json`.
+    pub fn name(self) -> &'static str {
+        match self {
+            Family::Hamiltonian => "hamiltonian",
+            Family::Lagrangian => "lagrangian",
+            Family::Ode => "ode",
+        }
+    }
+}
 
 /// Any system with a state vector evolving in time (the spec's `DynamicalSystem`).
 pub trait DynamicalSystem {
@@ -300,11 +322,11 @@ macro_rules! impl_separable_dynamics {
                 state: &[f64],
                 out: &mut [f64],
             ) -> $crate::classical::Result<()> {
-                $crate::classical::core::separable_derivatives(self, t, state, out)
+                $crate::classical::integrators::separable_derivatives(self, t, state, out)
             }
             #[inline]
             fn energy(&self, state: &[f64]) -> f64 {
-                $crate::classical::core::hamiltonian_energy(self, state)
+                $crate::classical::integrators::hamiltonian_energy(self, state)
             }
             fn jacobian(
                 &self,
@@ -312,7 +334,7 @@ macro_rules! impl_separable_dynamics {
                 state: &[f64],
                 out: &mut [f64],
             ) -> Option<$crate::classical::Result<()>> {
-                $crate::classical::core::separable_jacobian(self, t, state, out)
+                $crate::classical::integrators::separable_jacobian(self, t, state, out)
             }
             fn default_method(&self) -> $crate::classical::Method {
                 $crate::classical::Method::Yoshida4
@@ -329,7 +351,7 @@ pub fn hamiltonian_energy<S: HamiltonianSystem + ?Sized>(system: &S, state: &[f6
 }
 
 /// `sum_i mass_inv_i p_i^2 / 2`, summed in the fixed order of
-/// [`lane_sum`](super::sum::lane_sum).
+/// [`lane_sum`](crate::classical::core::sum::lane_sum).
 #[inline]
 pub fn quadratic_kinetic_energy(mass_inv: MassInv<'_>, p: &[f64]) -> f64 {
     match mass_inv {

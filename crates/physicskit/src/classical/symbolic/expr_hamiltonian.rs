@@ -25,7 +25,7 @@
 //! solve and the tangent dynamics of chaos indicators.
 //!
 //! ```
-//! use physicskit::classical::lagrangian::{Expr, ExprHamiltonian};
+//! use physicskit::classical::symbolic::{Expr, ExprHamiltonian};
 //! use physicskit::classical::{HamiltonianSystem, Method};
 //!
 //! // Hénon–Heiles: H = (p0^2 + p1^2)/2 + (q0^2 + q1^2)/2 + q0^2 q1 - q1^3/3.
@@ -46,10 +46,12 @@ use super::expr::Expr;
 use super::expr_diff::{negate, sum, Var};
 use super::tape::{Backend, Tape};
 use crate::classical::core::error::{check_len, check_vector};
-use crate::classical::core::{
-    hamiltonian_energy, separable_derivatives, separable_jacobian, Capabilities, DynamicalSystem,
-    Error, HamiltonianSystem, MassInv, Method, Phase, Result,
+use crate::classical::core::{Error, Phase, Result};
+use crate::classical::integrators::{
+    hamiltonian_energy, separable_derivatives, separable_jacobian, DynamicalSystem,
+    HamiltonianSystem, MassInv, Method,
 };
+use crate::classical::model::Capabilities;
 
 #[derive(Debug, Clone, PartialEq)]
 enum Kind {
@@ -325,10 +327,12 @@ impl HamiltonianSystem for ExprHamiltonian {
     /// energy does not split.
     fn kinetic_energy(&self, p: &[f64]) -> f64 {
         match &self.kind {
-            Kind::Separable { mass_inv, .. } => crate::classical::core::quadratic_kinetic_energy(
-                MassInv::PerCoordinate(mass_inv),
-                p,
-            ),
+            Kind::Separable { mass_inv, .. } => {
+                crate::classical::integrators::quadratic_kinetic_energy(
+                    MassInv::PerCoordinate(mass_inv),
+                    p,
+                )
+            }
             Kind::General { .. } => f64::NAN,
         }
     }

@@ -14,16 +14,15 @@
 
 use std::ops::{Deref, DerefMut};
 
-use super::catalog::Family;
-use super::error::{Error, Result};
-use super::method::Method;
-use super::options::IntegrateOptions;
-use super::result::SimulationResult;
-use super::system::{DynamicalSystem, HamiltonianSystem, LagrangianSystem, OdeSystem};
-use crate::classical::integrators::session::{
-    Refused, Session, StartHamiltonian, StartLagrangian, StartOde,
+use super::session::{Refused, Session, StartHamiltonian, StartLagrangian, StartOde};
+use crate::classical::core::error::{Error, Result};
+use crate::classical::core::result::SimulationResult;
+use crate::classical::integrators::options::IntegrateOptions;
+use crate::classical::integrators::system::{
+    DynamicalSystem, Family, HamiltonianSystem, LagrangianSystem, OdeSystem,
 };
 use crate::classical::integrators::tangent::{self, Flow};
+use crate::classical::integrators::Method;
 
 /// What only some systems offer. Every method returns `None` unless the system overrides it;
 /// `Some(Err(..))` reports bad arguments (wrong lengths).

@@ -27,7 +27,8 @@
 //! literal, a real power for any other literal and `exp(n ln a)` otherwise.
 //!
 //! ```
-//! use physicskit::classical::lagrangian::{Expr, ExprLagrangian, LagrangianEngine};
+//! use physicskit::classical::symbolic::{Expr, ExprLagrangian};
+//! use physicskit::classical::lagrangian::LagrangianEngine;
 //!
 //! // A pendulum: L = qdot0^2 / 2 + g cos q0, with g = param0.
 //! let expr = Expr::parse("(+ (* 0.5 (^ qdot0 2)) (* param0 (cos q0)))").unwrap();
@@ -39,8 +40,8 @@
 
 use std::fmt;
 
-use super::engine::{Lagrangian, Scalar};
 use crate::classical::core::{Error, Result};
+use crate::classical::lagrangian::{Lagrangian, Scalar};
 
 /// Deepest nesting accepted (by [`Expr::parse`] and [`ExprLagrangian::new`]): evaluation
 /// recurses once per level, and 256 levels stay far inside any thread's stack while no sensible

@@ -3,10 +3,10 @@
 
 use std::ops::ControlFlow;
 
-use super::error::{Error, Result};
-use super::method::Method;
+use super::Method;
+use crate::classical::core::error::{Error, Result};
 
-/// Which steps of the grid are stored in the [`SimulationResult`](super::SimulationResult).
+/// Which steps of the grid are stored in the [`SimulationResult`](crate::classical::core::SimulationResult).
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
 pub enum Sampling {
     /// Every step: `n_steps + 1` samples, as the spec documents.
@@ -158,8 +158,8 @@ impl Tolerances {
     /// # Errors
     /// [`Error::InvalidParameter`] naming the offending field.
     pub fn validate(&self) -> Result<()> {
-        super::error::check_positive("rtol", self.rtol)?;
-        super::error::check_positive("atol", self.atol)?;
+        crate::classical::core::error::check_positive("rtol", self.rtol)?;
+        crate::classical::core::error::check_positive("atol", self.atol)?;
         if self.max_steps == 0 {
             return Err(Error::invalid("max_steps", 0.0, "must be >= 1"));
         }

@@ -24,14 +24,17 @@
 
 use std::ops::DerefMut;
 
-use super::field::{Canonical, FirstOrder, VectorField};
-use super::splitting::Coefficients;
-use super::splitting::{check_system, SplittingStepper};
-use super::stepper::{splitting_refused, AdaptiveStepper, Dispatch, FieldStepper};
-use crate::classical::core::catalog::Family;
-use crate::classical::core::{
-    error::check_finite, DynSystem, DynamicalSystem, Error, HamiltonianSystem, LagrangianSystem,
-    Method, OdeSystem, Result, TimeGrid,
+use super::DynSystem;
+use crate::classical::core::{error::check_finite, Error, Result, TimeGrid};
+use crate::classical::integrators::field::{Canonical, FirstOrder, VectorField};
+use crate::classical::integrators::splitting::Coefficients;
+use crate::classical::integrators::splitting::{check_system, SplittingStepper};
+use crate::classical::integrators::stepper::{
+    splitting_refused, AdaptiveStepper, Dispatch, FieldStepper,
+};
+use crate::classical::integrators::Family;
+use crate::classical::integrators::{
+    DynamicalSystem, HamiltonianSystem, LagrangianSystem, Method, OdeSystem,
 };
 
 /// A run in progress: a system, a method and a step, advanced `n` steps at a time.

@@ -16,30 +16,9 @@
 
 use std::fmt;
 
-use super::error::{Error, Result};
-use super::method::Method;
-
-/// The family of a system, which fixes its state layout and the methods that apply.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
-pub enum Family {
-    /// `HamiltonianSystem`: state `[q, p]`.
-    Hamiltonian,
-    /// `LagrangianSystem`: state `[q, qdot]` (results hold `qdot` in `p`, as the spec says).
-    Lagrangian,
-    /// `ODESystem`: the system's own state layout.
-    Ode,
-}
-
-impl Family {
-    /// Lower-case name, as written in output files and `list --json`.
-    pub fn name(self) -> &'static str {
-        match self {
-            Family::Hamiltonian => "hamiltonian",
-            Family::Lagrangian => "lagrangian",
-            Family::Ode => "ode",
-        }
-    }
-}
+use crate::classical::core::error::{Error, Result};
+pub use crate::classical::integrators::Family;
+use crate::classical::integrators::Method;
 
 /// The length of a vector parameter.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]

@@ -13,7 +13,7 @@
 //! stores no energies (`result.energy` is `None`).
 //!
 //! ```
-//! use physicskit::classical::lagrangian::{Expr, ExprOde};
+//! use physicskit::classical::symbolic::{Expr, ExprOde};
 //! use physicskit::classical::{DynamicalSystem, Method, OdeSystem};
 //!
 //! // The Lorenz system, sigma = 10, rho = 28, beta = 8/3 as parameters 0, 1, 2.
@@ -29,11 +29,10 @@
 use super::expr::Expr;
 use super::tape::{Backend, Tape};
 use crate::classical::core::error::check_len;
-use crate::classical::core::{
-    Capabilities, DynamicalSystem, Error, IntegrateOptions, Method, OdeSystem, Phase, Result,
-    SimulationResult,
-};
+use crate::classical::core::{Error, Phase, Result, SimulationResult};
 use crate::classical::integrators::driver;
+use crate::classical::integrators::{DynamicalSystem, IntegrateOptions, Method, OdeSystem};
+use crate::classical::model::Capabilities;
 
 /// A first-order system given by expressions (see the module documentation).
 #[derive(Debug, Clone)]

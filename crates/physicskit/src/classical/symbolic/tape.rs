@@ -24,9 +24,9 @@ use std::collections::HashMap;
 
 use num_dual::{Dual64, DualNum};
 
-use super::engine::Scalar;
 use super::expr::{Expr, Func, MAX_EXPR_DEPTH};
 use crate::classical::core::{Error, Result};
+use crate::classical::lagrangian::Scalar;
 
 #[cfg(all(feature = "jit", not(target_arch = "wasm32")))]
 mod jit;

@@ -1,0 +1,15 @@
+//! Systems written as expressions (the SymPy bridge): expression trees and their symbolic
+//! derivatives, tapes (straight-line programs compiled once from them, with Cranelift with
+//! the feature `jit`), and the engines on them: expression Lagrangians (through the
+//! Lagrangian engine), Hamiltonians and first-order ODEs.
+
+mod expr;
+mod expr_diff;
+mod expr_hamiltonian;
+mod expr_ode;
+mod tape;
+pub use expr::*;
+pub use expr_diff::*;
+pub use expr_hamiltonian::*;
+pub use expr_ode::*;
+pub use tape::*;
