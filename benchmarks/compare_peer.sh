@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# Compares physicskit with the Numba peer (physicskit 0.4.0 from PyPI) on the issue-7 workloads.
+# Compares physicskit with the Numba peer (physicskit 0.4.0 from PyPI) on its canonical workloads.
 #
 #   bash benchmarks/compare_peer.sh [--steps N] [--repeats R] [--cases A B ...]
 #   bash benchmarks/compare_peer.sh --same-accuracy [...]   # time to the peer's own accuracy

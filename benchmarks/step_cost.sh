@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
 # Instructions per step of the splitting methods on SciML's Hénon–Heiles case and the
-# 1000-pendulum swarm (benchmarks/README.md, issue 13 (a)). Counts are callgrind's
+# 1000-pendulum swarm (benchmarks/README.md). Counts are callgrind's
 # (load-independent): (I(2N steps) - I(N steps)) / N, so set-up and process start cancel.
 #
 #   bash benchmarks/step_cost.sh [N] [METHOD...]   (N defaults to 10000; methods default to

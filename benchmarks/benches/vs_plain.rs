@@ -1,6 +1,6 @@
 //! The library against a hand-written loop of the same scheme, system and storage.
 //!
-//! `cargo bench -p physicskit-benchmarks --bench vs_plain`. Issue 7's target: each separable
+//! `cargo bench -p physicskit-benchmarks --bench vs_plain`. The target: each separable
 //! case within 1.25x of its plain loop. Both sides run 10^4 yoshida4 steps storing t, q, p and
 //! the energy of every sample.
 

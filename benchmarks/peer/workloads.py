@@ -1,4 +1,4 @@
-"""The issue-7 workloads through the spec's Python API, runnable against any implementation.
+"""The peer-comparison workloads through the spec's Python API, runnable against any implementation.
 
 Both physicskit (this repository) and the Numba peer (physicskit 0.4.0 on PyPI) expose
 `physicskit.classical` with the spec's names, so this one file serves both; the driver runs it

@@ -5,7 +5,7 @@
 //! preallocated vectors; the potential of a stored sample comes from its step's last force
 //! evaluation (the same `q`), as a careful hand-written loop would take it, and each force
 //! loop is written without values carried from one site to the next, so it vectorizes. The
-//! library must come within 1.25x of these (issue 7). The force and energy are closures, which
+//! library must come within 1.25x of these. The force and energy are closures, which
 //! monomorphization inlines exactly like hand-written code. The trig-bound loops use libm
 //! unless `PHYSICSKIT_PLAIN_SLICE_TRIG` is set (see [`case`]).
 

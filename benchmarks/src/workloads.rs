@@ -1,5 +1,5 @@
-//! The issue-7 workloads through the Rust API: the peer's canonical cases, 10^5 steps at the
-//! peer's dt, full trajectory and energy stored. Initial conditions are those of issues 3 and 4.
+//! The peer-comparison workloads through the Rust API: the peer's canonical cases, 10^5 steps
+//! at the peer's dt, full trajectory and energy stored, from the peer's initial conditions.
 
 use physicskit::classical::systems::*;
 use physicskit::classical::{

@@ -72,7 +72,7 @@ def test_python_signature_matches_catalogue(entry):
     check_against_catalogue(params_of(resolve(entry["python"])), entry)
 
 
-#: Systems the package offers beyond the spec (issue 12's proof of the catalogue); the spec
+#: Systems the package offers beyond the spec (added through the catalogue alone); the spec
 #: table has no row for them, everything else about them is checked like the spec's.
 BEYOND_SPEC = {"TodaLattice", "ElasticPendulum"}
 SPEC_ENTRIES = [e for e in ENTRIES if e["python"].split(".")[0] not in BEYOND_SPEC]

@@ -1,4 +1,4 @@
-"""``dop853`` (issue 13, part 3) from Python: against SciPy's DOP853 on a pendulum and on the
+"""``dop853`` from Python: against SciPy's DOP853 on a pendulum and on the
 projectile with drag, its tolerances ``rtol``/``atol`` (validated, refused for fixed-step
 methods), its step budget ``max_steps`` (likewise), its step counts in ``result.extra``, and
 its step failure as ``ConvergenceError``.

@@ -1,5 +1,5 @@
 """Every system integrates with its default method through Python, meets the conservation
-bars of the Hamiltonian (issue 3) and Lagrangian (issue 4) specs, and returns arrays of the
+acceptance bars of the Hamiltonian and Lagrangian systems, and returns arrays of the
 documented dtype, shape and layout."""
 
 import numpy as np
@@ -48,7 +48,7 @@ def test_default_method_and_result_arrays(system_name):
     assert np.array_equal(r.y[0], make_systems()[system_name]().state)
 
 
-# Conservation cases of the issue-3 and issue-4 acceptance lists, run through Python.
+# Conservation cases of the Hamiltonian and Lagrangian acceptance lists, run through Python.
 # (factory, t1, dt, method, bar): bar is the relative energy drift the issue sets.
 LAGRANGIAN_BARS = {
     "DoublePendulum": (lambda: pc.DoublePendulum([2.0, 1.0], [0.5, -0.3]), 3e-5),
@@ -65,7 +65,7 @@ def test_lagrangian_and_rigid_body_energy_bar(name):
     s = factory()
     r = s.integrate((0.0, 1e5 * dt), dt)  # 1e5 implicit_midpoint steps (the issue's case)
     assert r.t.shape == (100_001,)
-    # Issue 4's bar: relative energy drift below 1e-6 over 1e5 steps.
+    # The Lagrangian acceptance bar: relative energy drift below 1e-6 over 1e5 steps.
     assert rel_drift(r.energy) < 1e-6, rel_drift(r.energy)
 
 
@@ -74,7 +74,7 @@ def test_euler_top_quadratic_invariants():
     l0 = s.angular_momentum_squared()
     r = s.integrate((0.0, 100.0), 1e-3)
     # Implicit midpoint keeps quadratic invariants up to the solver tolerance and rounding
-    # accumulated over 1e5 steps: issue 4 sets 1e-12 relative.
+    # accumulated over 1e5 steps: the Lagrangian acceptance bar is 1e-12 relative.
     assert rel_drift(r.energy) < 1e-12
     lf = s.angular_momentum_squared()
     # Quadratic invariants of implicit midpoint: rounding only (~1e-14 over 1e5 steps); the
@@ -91,13 +91,13 @@ def test_euler_top_quadratic_invariants():
 def test_henon_heiles_bar():
     s = pc.HenonHeilesSystem([0.0, 0.3], [0.3, 0.0])
     r = s.integrate((0.0, 500.0), 5e-3)  # 1e5 yoshida4 steps
-    assert rel_drift(r.energy) < 1e-9  # issue 3's bar
+    assert rel_drift(r.energy) < 1e-9  # the Hamiltonian acceptance bar
 
 
 def test_fput_bar():
     s = pc.FPUTChain(n=32, beta=0.7, mode=1, amplitude=0.5)
     r = s.integrate((0.0, 5000.0), 0.05)  # 1e5 yoshida4 steps
-    assert rel_drift(r.energy) < 1e-6  # issue 3's bar
+    assert rel_drift(r.energy) < 1e-6  # the Hamiltonian acceptance bar
     e = s.modal_energies(r.q[0], r.p[0])
     assert e.shape == (32,) and e[0] / e.sum() > 0.999  # all energy starts in mode 1
 
@@ -106,13 +106,13 @@ def test_kepler_energy_and_lrl():
     s = pc.KeplerSystem.from_orbital_elements(1.0, 0.5)
     a0 = s.lrl_vector()
     l0 = s.angular_momentum()
-    # 100 orbits (period 2 pi) at 8000 steps per orbit, dt = 7.9e-4, inside issue 3's
+    # 100 orbits (period 2 pi) at 8000 steps per orbit, dt = 7.9e-4, inside the acceptance bar's
     # dt = 1e-3 (a whole number of steps per orbit, so the LRL vector is compared at perihelion).
     r = s.integrate((0.0, 200 * np.pi), 2 * np.pi / 8000)
     # Symplectic yoshida4, e = 0.5: the energy error stays bounded, ~1e-11 here.
     assert rel_drift(r.energy) < 1e-8
     a1 = s.lrl_vector()
-    assert np.linalg.norm(a1 - a0) / np.linalg.norm(a0) < 1e-8  # issue 3's LRL bar
+    assert np.linalg.norm(a1 - a0) / np.linalg.norm(a0) < 1e-8  # the Hamiltonian acceptance bar for the LRL vector
     assert abs(s.angular_momentum() - l0) / abs(l0) < 1e-12  # exact for central forces (up to rounding)
 
 
@@ -120,7 +120,7 @@ def test_projectile_matches_parabola():
     s = pc.ProjectileMotion.from_launch(20.0, 45.0)
     r = s.integrate((0.0, 2.0), 1e-3)
     x, y = pc.ProjectileMotion.analytic_trajectory(20.0, 45.0, 9.81, r.t)
-    # Constant force: yoshida4 is exact up to rounding; issue 3's bar is 1e-9.
+    # Constant force: yoshida4 is exact up to rounding; the acceptance bar is 1e-9.
     assert np.max(np.abs(r.q[:, 0] - x)) < 1e-9 and np.max(np.abs(r.q[:, 1] - y)) < 1e-9
     rng, h = pc.ProjectileMotion.range_and_max_height(20.0, 45.0, 9.81)
     # Closed forms v^2 sin(2a)/g and (v sin a)^2/(2g): a few roundings.
@@ -134,7 +134,7 @@ def test_swarm_per_particle_energy_and_area():
     s.integrate((0.0, 5.0), 1e-3)
     # yoshida4 at dt 1e-3: energy error ~ (dt w)^4 ~ 1e-12 per pendulum, bounded; 1e-10 margin.
     assert np.max(np.abs(s.per_particle_energy() - e0)) < 1e-10
-    assert abs(s.phase_space_area() - a0) / a0 < 0.05  # issue 3's 5% bar
+    assert abs(s.phase_space_area() - a0) / a0 < 0.05  # the acceptance bar: 5%
 
 
 def test_all_methods_on_a_separable_system():

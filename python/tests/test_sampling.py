@@ -1,5 +1,5 @@
-"""``integrate_sampled``: stride, final-state-only and energy-free runs (issue 7, memory), and
-the first-call time of a fresh process (issue 7, start-up).
+"""``integrate_sampled``: stride, final-state-only and energy-free runs (memory), and
+the first-call time of a fresh process (start-up).
 
 A sampled run takes exactly the steps of the full run and only stores fewer of them, so every
 stored row must equal the corresponding row of ``integrate`` bit for bit: the comparisons below
@@ -217,7 +217,7 @@ def test_direct_dynamical_system_subclass_is_not_implemented():
 
 
 def test_large_swarm_final_only_equals_stride_run():
-    # Issue 7's run is n = 1e6 for 1000 steps; here it takes ~19 s per run on the 2 shared
+    # The memory target's run is n = 1e6 for 1000 steps; here it takes ~19 s per run on the 2 shared
     # cores (measured), and this test needs two runs, so it uses the brief's smaller size:
     # 2e5 pendulums (parallel path, >= 16384 members) x 200 yoshida4 steps.
     n, steps, dt = 200_000, 200, 1e-3
@@ -301,7 +301,7 @@ print(time.perf_counter() - t0)
 
 
 def test_first_call_in_fresh_process_is_fast():
-    # Issue 7's target is < 0.1 s for import + construct + 1e3 steps (measured ~0.08 s here,
+    # The start-up target is < 0.1 s for import + construct + 1e3 steps (measured ~0.08 s here,
     # see python/README.md). The assertion is 10x looser so that a loaded CI machine (this one
     # is shared by several builds) does not fail it; it still catches any JIT-like or
     # import-time work of the order of the peer's 1.4-20 s.

@@ -1,5 +1,5 @@
 //! One run of a splitting-method case, for instruction counts under callgrind
-//! (`benchmarks/step_cost.sh`, numbers in `benchmarks/README.md`, issue 13 (a)):
+//! (`benchmarks/step_cost.sh`, numbers in `benchmarks/README.md`):
 //!
 //! ```text
 //! step_cost CASE METHOD STEPS

@@ -1,4 +1,4 @@
-//! Work–precision of every applicable method, and the issue-13 benchmarks of the high-order
+//! Work–precision of every applicable method, and the benchmarks of the high-order
 //! methods (numbers in `benchmarks/README.md`).
 //!
 //! - `workprecision [quick]`: for each problem of

@@ -63,11 +63,9 @@ const PRINT_ENV: &str = "PHYSICSKIT_PRINT_DIGESTS";
 /// The digest of a case whose method the system refuses with `Error::UnsupportedMethod`.
 const REFUSED: &str = "refused";
 
-/// Stored digests, generated on x86-64 Linux (glibc) at the commit that added this file; the
-/// cases of the methods added since (issue 13) were added unchanged from their first run; the
-/// splitting methods' cases regenerated when their steps started summing kicks and drifts with
-/// compensation (perf13, `integrators/compensated.rs`); the `verlet` and `yoshida4` cases
-/// returned to their earlier digests, exactly, when those two went back to plain sums.
+/// Stored digests, generated on x86-64 Linux (glibc); a case changes only with a deliberate
+/// change of a method's arithmetic, named in the commit that regenerates it (the history of
+/// each change is in the git log of this file).
 const DIGESTS: &[(&str, &str)] = &[
     ("coupled_oscillators/blanes_moan6/all", "refused"),
     ("coupled_oscillators/dop853/all", "f03eea310a7aa040"),

@@ -160,8 +160,8 @@ pub(crate) fn kick_drift<const KIND: u8>(
 
 /// Compositions of at most this many drifts (`verlet`, `yoshida4`) sum plainly. Their
 /// truncation error at any step worth taking is far above the rounding the compensated sums
-/// remove, and the sums cost them 1.3x to 2.7x per step (benchmarks/README.md, the peer
-/// comparison of 2026-11-28); issue 13 allowed limiting compensation to the high orders.
+/// remove, and the sums would multiply their cost per step (measured in
+/// benchmarks/README.md, the peer comparison).
 pub(crate) const PLAIN_MAX_DRIFTS: usize = 3;
 
 /// Kick–drift pass `i` of a step of `S` drifts, as [`SplittingStepper`] and the tangent

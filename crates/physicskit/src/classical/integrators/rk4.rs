@@ -115,11 +115,10 @@ impl Report for Rk4 {
 /// `out = y + a x`.
 ///
 /// On x86-64 in explicit SSE2 pairs: the field evaluation that follows reads the state back
-/// in 16-byte pairs, and a 16-byte load of two 8-byte stores is not forwarded but stalls
-/// (with scalar stores here, which the compiler chose once the stepper was inlined into the
-/// generic loop, `rk4` on the double pendulum took 19% longer for the same instructions;
-/// `benchmarks/README.md`, issue 12). Each lane computes `y + a x` exactly as the scalar
-/// code does, so results are bit-identical.
+/// in 16-byte pairs, and a 16-byte load of two 8-byte stores is not forwarded but stalls (the
+/// compiler chooses scalar stores once the stepper is inlined into the generic loop; the
+/// measured cost is in `benchmarks/README.md`). Each lane computes `y + a x` exactly as the
+/// scalar code does, so results are bit-identical.
 #[inline(always)]
 #[allow(unsafe_code)]
 pub(crate) fn axpy(out: &mut [f64], y: &[f64], a: f64, x: &[f64]) {

@@ -13,6 +13,45 @@ use crate::classical::core::phase::Phase;
 use crate::classical::core::result::SimulationResult;
 use crate::classical::core::sum::{lane_sum_map, lane_sum_map2};
 
+/// The provided `integrate` and `integrate_with` of a family trait, which differ only in the
+/// driver they run and in what their errors add to [`HamiltonianSystem::integrate`]'s.
+macro_rules! provided_integrate {
+    ($driver:path, $errors:literal) => {
+        /// Integrates over `t_span` with step `dt`, storing every sample and the energy.
+        ///
+        /// # Errors
+        #[doc = $errors]
+        fn integrate(
+            &mut self,
+            t_span: (f64, f64),
+            dt: f64,
+            method: Method,
+        ) -> Result<SimulationResult>
+        where
+            Self: Sized,
+        {
+            self.integrate_with(t_span, dt, method, IntegrateOptions::default())
+        }
+
+        /// [`integrate`](Self::integrate) with sampling and observer options.
+        ///
+        /// # Errors
+        /// As [`integrate`](Self::integrate).
+        fn integrate_with(
+            &mut self,
+            t_span: (f64, f64),
+            dt: f64,
+            method: Method,
+            options: IntegrateOptions<'_>,
+        ) -> Result<SimulationResult>
+        where
+            Self: Sized,
+        {
+            $driver(self, t_span, dt, method, options)
+        }
+    };
+}
+
 /// The family of a system, which fixes its state layout and the methods that apply.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
 pub enum Family {
@@ -216,34 +255,11 @@ pub trait HamiltonianSystem: DynamicalSystem {
         &self.state()[self.ndof()..]
     }
 
-    /// Integrates over `t_span` with step `dt`, storing every sample and the energy.
-    ///
-    /// # Errors
-    /// Invalid time span or step, a method the system cannot honour (splitting methods on a
-    /// non-separable or non-conservative system), non-finite states, solver failure.
-    fn integrate(&mut self, t_span: (f64, f64), dt: f64, method: Method) -> Result<SimulationResult>
-    where
-        Self: Sized,
-    {
-        driver::integrate_hamiltonian(self, t_span, dt, method, IntegrateOptions::default())
-    }
-
-    /// [`integrate`](Self::integrate) with sampling and observer options.
-    ///
-    /// # Errors
-    /// As [`integrate`](Self::integrate).
-    fn integrate_with(
-        &mut self,
-        t_span: (f64, f64),
-        dt: f64,
-        method: Method,
-        options: IntegrateOptions<'_>,
-    ) -> Result<SimulationResult>
-    where
-        Self: Sized,
-    {
-        driver::integrate_hamiltonian(self, t_span, dt, method, options)
-    }
+    provided_integrate!(
+        driver::integrate_hamiltonian,
+        "Invalid time span or step, a method the system cannot honour (splitting methods on a \
+         non-separable or non-conservative system), non-finite states, solver failure."
+    );
 }
 
 /// `[dq/dt, dp/dt] = [mass_inv * p, force(q, t)]`: the derivatives of a separable system.
@@ -414,33 +430,10 @@ pub trait LagrangianSystem: DynamicalSystem {
         &self.state()[self.ndof()..]
     }
 
-    /// Integrates over `t_span` with step `dt`, storing every sample and the energy.
-    ///
-    /// # Errors
-    /// As [`HamiltonianSystem::integrate`]; `verlet` and `yoshida4` are refused.
-    fn integrate(&mut self, t_span: (f64, f64), dt: f64, method: Method) -> Result<SimulationResult>
-    where
-        Self: Sized,
-    {
-        driver::integrate_lagrangian(self, t_span, dt, method, IntegrateOptions::default())
-    }
-
-    /// [`integrate`](Self::integrate) with sampling and observer options.
-    ///
-    /// # Errors
-    /// As [`integrate`](Self::integrate).
-    fn integrate_with(
-        &mut self,
-        t_span: (f64, f64),
-        dt: f64,
-        method: Method,
-        options: IntegrateOptions<'_>,
-    ) -> Result<SimulationResult>
-    where
-        Self: Sized,
-    {
-        driver::integrate_lagrangian(self, t_span, dt, method, options)
-    }
+    provided_integrate!(
+        driver::integrate_lagrangian,
+        "As [`HamiltonianSystem::integrate`]; the splitting methods are refused."
+    );
 }
 
 /// `[dq/dt, dqdot/dt] = [qdot, acceleration(q, qdot, t)]`: the first-order form of a
@@ -464,31 +457,8 @@ pub fn lagrangian_derivatives<S: LagrangianSystem + ?Sized>(
 /// A general first-order system `dy/dt = f(t, y)`, possibly non-conservative (the spec's
 /// `ODESystem`): rigid bodies, drag. Integrated with `rk4` or `implicit_midpoint`.
 pub trait OdeSystem: DynamicalSystem {
-    /// Integrates over `t_span` with step `dt`, storing every sample and the energy.
-    ///
-    /// # Errors
-    /// As [`HamiltonianSystem::integrate`]; `verlet` and `yoshida4` are refused.
-    fn integrate(&mut self, t_span: (f64, f64), dt: f64, method: Method) -> Result<SimulationResult>
-    where
-        Self: Sized,
-    {
-        driver::integrate_ode(self, t_span, dt, method, IntegrateOptions::default())
-    }
-
-    /// [`integrate`](Self::integrate) with sampling and observer options.
-    ///
-    /// # Errors
-    /// As [`integrate`](Self::integrate).
-    fn integrate_with(
-        &mut self,
-        t_span: (f64, f64),
-        dt: f64,
-        method: Method,
-        options: IntegrateOptions<'_>,
-    ) -> Result<SimulationResult>
-    where
-        Self: Sized,
-    {
-        driver::integrate_ode(self, t_span, dt, method, options)
-    }
+    provided_integrate!(
+        driver::integrate_ode,
+        "As [`HamiltonianSystem::integrate`]; the splitting methods are refused."
+    );
 }

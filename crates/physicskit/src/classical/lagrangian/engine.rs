@@ -73,10 +73,10 @@
 //! | [`acceleration`](LagrangianEngine::acceleration) | 1 | hyper-dual vector, `e1 = v`, `e2 = (q, v, t)`: `1 + 3n + 1 + n(2n+1)` |
 //! | [`canonical_derivatives`](LagrangianEngine::canonical_derivatives), [`velocity`](LagrangianEngine::velocity) | 2 per call for a Lagrangian quadratic in `v` | second-order dual vector in `v` (`1 + n + n^2`), then dual vector in `(q, v)` (`1 + 2n`) |
 //!
-//! The hand-written duals stay because they beat num-dual's vector duals on these kernels: a
-//! quarter to four fifths fewer instructions per step for a 2- or 3-dof Lagrangian written in
-//! Rust, the same for 1 dof (`benchmarks/README.md`, "Hand-written dual numbers vs
-//! num-dual"). The crate feature `num-dual-kernels` builds the three kernels on num-dual's
+//! The hand-written duals stay because they take fewer instructions per step than num-dual's
+//! vector duals on these kernels for 2- and 3-dof Lagrangians, and as many for 1 dof
+//! (measured in `benchmarks/README.md`, "Hand-written dual numbers vs num-dual"). The crate
+//! feature `num-dual-kernels` builds the three kernels on num-dual's
 //! `DualSVec64`/`Dual2SVec64`/`HyperDualSVec64` instead, for that comparison only.
 //!
 //! Larger systems, and the rarely used paths (`mass_matrix`, the Newton re-linearization of a

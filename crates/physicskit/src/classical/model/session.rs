@@ -379,6 +379,27 @@ fn no_adaptive(method: Method) -> Error {
     }
 }
 
+/// What every family's dispatch does alike: a session on the first-order field, and the
+/// refusals.
+type Started = std::result::Result<Box<dyn Session>, Refused>;
+
+/// A session of the field stepper `St` on `dy/dt = derivatives(t, y)`.
+fn on_first_order<W, St>(system: Box<W>, method: Method, dt: f64) -> Started
+where
+    W: DynSystem + DerefMut + 'static,
+    W::Target: DynamicalSystem + Sized,
+    St: FieldStepper,
+{
+    Running::start(system, method, dt, |s, _| {
+        Ok(Field(St::new(FirstOrder(s).dim())))
+    })
+}
+
+/// The system back, with the reason.
+fn refuse<W: DynSystem + 'static>(system: Box<W>, error: Error) -> Started {
+    Err(Refused { error, system })
+}
+
 /// The Hamiltonian family's sessions.
 pub(crate) struct StartHamiltonian<W> {
     pub(crate) system: Box<W>,
@@ -390,7 +411,7 @@ where
     W: DynSystem + DerefMut + 'static,
     W::Target: HamiltonianSystem + Sized,
 {
-    type Output = std::result::Result<Box<dyn Session>, Refused>;
+    type Output = Started;
 
     fn splitting<const N: usize>(
         self,
@@ -407,24 +428,19 @@ where
     }
 
     fn explicit_rk<St: FieldStepper>(self, method: Method) -> Self::Output {
-        Running::start(self.system, method, self.dt, |s, _| {
-            Ok(Field(St::new(FirstOrder(s).dim())))
-        })
+        on_first_order::<W, St>(self.system, method, self.dt)
     }
 
     fn implicit_rk<St: FieldStepper>(self, method: Method) -> Self::Output {
-        self.explicit_rk::<St>(method)
+        on_first_order::<W, St>(self.system, method, self.dt)
     }
 
     fn adaptive<St: AdaptiveStepper>(self, method: Method) -> Self::Output {
-        Err(Refused {
-            error: no_adaptive(method),
-            system: self.system,
-        })
+        refuse(self.system, no_adaptive(method))
     }
 }
 
-/// The Lagrangian family's sessions.
+/// The Lagrangian family's sessions: implicit methods on the canonical form `[q, p]`.
 pub(crate) struct StartLagrangian<W> {
     pub(crate) system: Box<W>,
     pub(crate) dt: f64,
@@ -435,23 +451,14 @@ where
     W: DynSystem + DerefMut + 'static,
     W::Target: LagrangianSystem + Sized,
 {
-    type Output = std::result::Result<Box<dyn Session>, Refused>;
+    type Output = Started;
 
-    fn splitting<const N: usize>(
-        self,
-        method: Method,
-        _coefficients: Coefficients<N>,
-    ) -> Self::Output {
-        Err(Refused {
-            error: splitting_refused(method, Family::Lagrangian),
-            system: self.system,
-        })
+    fn splitting<const N: usize>(self, method: Method, _: Coefficients<N>) -> Self::Output {
+        refuse(self.system, splitting_refused(method, Family::Lagrangian))
     }
 
     fn explicit_rk<St: FieldStepper>(self, method: Method) -> Self::Output {
-        Running::start(self.system, method, self.dt, |s, _| {
-            Ok(Field(St::new(FirstOrder(s).dim())))
-        })
+        on_first_order::<W, St>(self.system, method, self.dt)
     }
 
     fn implicit_rk<St: FieldStepper>(self, method: Method) -> Self::Output {
@@ -461,10 +468,7 @@ where
     }
 
     fn adaptive<St: AdaptiveStepper>(self, method: Method) -> Self::Output {
-        Err(Refused {
-            error: no_adaptive(method),
-            system: self.system,
-        })
+        refuse(self.system, no_adaptive(method))
     }
 }
 
@@ -479,33 +483,21 @@ where
     W: DynSystem + DerefMut + 'static,
     W::Target: OdeSystem + Sized,
 {
-    type Output = std::result::Result<Box<dyn Session>, Refused>;
+    type Output = Started;
 
-    fn splitting<const N: usize>(
-        self,
-        method: Method,
-        _coefficients: Coefficients<N>,
-    ) -> Self::Output {
-        Err(Refused {
-            error: splitting_refused(method, Family::Ode),
-            system: self.system,
-        })
+    fn splitting<const N: usize>(self, method: Method, _: Coefficients<N>) -> Self::Output {
+        refuse(self.system, splitting_refused(method, Family::Ode))
     }
 
     fn explicit_rk<St: FieldStepper>(self, method: Method) -> Self::Output {
-        Running::start(self.system, method, self.dt, |s, _| {
-            Ok(Field(St::new(FirstOrder(s).dim())))
-        })
+        on_first_order::<W, St>(self.system, method, self.dt)
     }
 
     fn implicit_rk<St: FieldStepper>(self, method: Method) -> Self::Output {
-        self.explicit_rk::<St>(method)
+        on_first_order::<W, St>(self.system, method, self.dt)
     }
 
     fn adaptive<St: AdaptiveStepper>(self, method: Method) -> Self::Output {
-        Err(Refused {
-            error: no_adaptive(method),
-            system: self.system,
-        })
+        refuse(self.system, no_adaptive(method))
     }
 }

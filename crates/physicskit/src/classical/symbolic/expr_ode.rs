@@ -197,17 +197,6 @@ impl DynamicalSystem for ExprOde {
 
 impl OdeSystem for ExprOde {
     /// As the provided method, storing no energies when the system has none.
-    fn integrate(
-        &mut self,
-        t_span: (f64, f64),
-        dt: f64,
-        method: Method,
-    ) -> Result<SimulationResult> {
-        let options = self.options(IntegrateOptions::default());
-        driver::integrate_ode(self, t_span, dt, method, options)
-    }
-
-    /// As the provided method, storing no energies when the system has none.
     fn integrate_with(
         &mut self,
         t_span: (f64, f64),

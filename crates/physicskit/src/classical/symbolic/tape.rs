@@ -39,11 +39,11 @@ mod jit;
 pub const STACK_SLOTS: usize = 256;
 
 /// Interpreted `f64` evaluations after which a tape is compiled to machine code (feature
-/// `jit`). Compiling a tape takes a fraction of a millisecond to a few milliseconds and saves
-/// 20-30 ns per evaluation on small tapes (figures in benchmarks/README.md, "Expression
-/// engines"): some 10 000 to 100 000 evaluations pay it back.
-/// Compiling once the interpreter has run about that many (the rent-or-buy rule) costs any
-/// run at most about twice what the better choice in hindsight would have.
+/// `jit`). Compiling costs about as much as this many interpreted evaluations of a small
+/// tape save once compiled (benchmarks/README.md, "Expression engines", has the measured
+/// compile times and savings). Compiling once the interpreter has run about that many (the
+/// rent-or-buy rule) costs any run at most about twice what the better choice in hindsight
+/// would have.
 pub const COMPILE_AFTER: u32 = 10_000;
 
 /// One operation; operands are slot indices (`a`, `b`) or constants (`c`).
@@ -111,7 +111,7 @@ impl Op {
 
     /// The operation on registers `r`, operands read at `index & mask` (`r.len() - 1`, a
     /// power of two minus one: on a fixed-size array the compiler then drops the bounds
-    /// checks, which were a third of an operation's instructions).
+    /// checks).
     #[inline(always)]
     fn apply<D: Scalar>(self, r: &[D], mask: usize) -> D {
         let at = |i: u32| r[i as usize & mask];

@@ -1,9 +1,8 @@
-//! The spec's systems, one file per family.
+//! The built-in systems, one file per family, each with its catalogue entry.
 //!
-//! Hamiltonian (issue 3): `kepler`, `henon_heiles`, `swarm`, `projectile`, `chains`; and
-//! the integrable `toda` lattice.
-//! Lagrangian and rigid bodies (issue 4): `double_pendulum`, `hoop`, `coupled_oscillators`,
-//! `symmetric_top`, `rigid_body`; and the `elastic_pendulum`.
+//! Hamiltonian: `kepler`, `henon_heiles`, `swarm`, `projectile`, `chains`, and the integrable
+//! `toda` lattice. Lagrangian and rigid bodies: `double_pendulum`, `hoop`,
+//! `coupled_oscillators`, `symmetric_top`, `rigid_body`, `elastic_pendulum`.
 
 use crate::classical::model::SystemEntry;
 

@@ -294,15 +294,6 @@ impl HamiltonianSystem for PendulumSwarm {
         }
     }
 
-    fn integrate(
-        &mut self,
-        t_span: (f64, f64),
-        dt: f64,
-        method: Method,
-    ) -> Result<SimulationResult> {
-        self.integrate_with(t_span, dt, method, IntegrateOptions::default())
-    }
-
     /// Diagonal `-(g/l) cos q_i`, written as a dense `N x N` matrix (used only when the
     /// implicit-midpoint fixed point fails to contract, and only for swarms small enough for a
     /// dense Newton solve).

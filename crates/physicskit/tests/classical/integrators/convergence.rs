@@ -15,7 +15,7 @@ fn fixed_step_methods() -> impl Iterator<Item = Method> {
 }
 
 /// Acceptance band for a measured slope around the theoretical order: +-0.15 up to order 4
-/// (issue 12's band, which those methods meet with room), +-0.2 above (issue 13's band: the
+/// (which those methods meet with room), +-0.2 above (the
 /// fits of orders 6 to 10 span at most a factor 4 in step between ~1e-7 and the floor, where
 /// the next term of the error expansion still moves the slope by ~0.1).
 fn slope_tolerance(order: u32) -> f64 {
