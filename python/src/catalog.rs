@@ -105,6 +105,7 @@ fn param_info<'py>(py: Python<'py>, p: &ParamSpec) -> PyResult<Bound<'py, PyDict
     d.set_item("choices", choices)?;
     d.set_item("expectation", p.expectation())?;
     d.set_item("help", p.help)?;
+    d.set_item("initial_state", p.initial_state)?;
     Ok(d)
 }
 
@@ -134,7 +135,7 @@ fn entry_info<'py>(py: Python<'py>, e: &SystemEntry) -> PyResult<Bound<'py, PyDi
 /// `default_method`, `note`, `physics` (the paragraph of [`explanations::for_system`], as in
 /// `physicskit list --json`, or `None`) and `params` (each with `name`, `kind`, `default`,
 /// `default_kind`, `spec_default`, `unit`, `range`, `length`, `choices`, `expectation`,
-/// `help`).
+/// `help`, `initial_state`).
 ///
 /// # Errors
 /// Python allocation failures.

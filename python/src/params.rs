@@ -172,22 +172,38 @@ fn real_array(rules: &Rules<'_>, name: &str, obj: &Bound<'_, PyAny>) -> PyResult
     }
 }
 
-/// A scalar parameter: a real number, or anything array-like holding exactly one in at most
-/// one dimension (numpy 0-d arrays, `[0.3]`).
+/// A scalar parameter: a real number (a Python or numpy number, or a 0-d numpy array); a
+/// scalar part of the initial state (`initial_state`: a one-dimensional system's `theta0`)
+/// also as a sequence of one number, the state vector it is, as the peer takes it.
 ///
 /// # Errors
-/// ValueError naming the parameter: bools, complex numbers or arrays, strings, ints too large
-/// for a float, arrays of another size or of more dimensions.
-pub fn scalar(name: &str, obj: &Bound<'_, PyAny>) -> PyResult<Value> {
+/// ValueError naming the parameter: bools, complex numbers, strings, ints too large for a
+/// float, sequences of more than one number, and, for a constant of the system, a sequence of
+/// one (`R=[1.0]` is refused, not read as `1.0`: a list where a number is wanted is a mistake
+/// worth naming).
+pub fn scalar(name: &str, obj: &Bound<'_, PyAny>, initial_state: bool) -> PyResult<Value> {
     let rules = Rules::new(obj.py())?;
     if let Some(x) = real_number(&rules, name, obj)? {
         return Ok(Value::Scalar(x));
     }
-    match real_array(&rules, name, obj)?.as_slice() {
-        [x] => Ok(Value::Scalar(*x)),
-        other => Err(refuse(
+    let values = real_array(&rules, name, obj)?;
+    let ndim: usize = rules.asarray.call1((obj,))?.getattr("ndim")?.extract()?;
+    match (ndim, values.as_slice()) {
+        (0, [x]) => Ok(Value::Scalar(*x)),
+        (_, [x]) if initial_state => Ok(Value::Scalar(*x)),
+        (_, [x]) => Err(refuse(
             name,
-            format!("expected one real number, got {} numbers", other.len()),
+            format!(
+                "expected one real number, got a sequence of length 1 ({}); pass {x}",
+                show(obj)
+            ),
+        )),
+        (_, other) => Err(refuse(
+            name,
+            format!(
+                "expected one real number, got a sequence of {} numbers",
+                other.len()
+            ),
         )),
     }
 }
@@ -261,7 +277,7 @@ pub fn to_value(spec: &ParamSpec, obj: &Bound<'_, PyAny>) -> PyResult<Option<Val
         };
     }
     let value = match spec.kind {
-        ParamKind::Scalar => scalar(spec.name, obj)?,
+        ParamKind::Scalar => scalar(spec.name, obj, spec.initial_state)?,
         ParamKind::Integer => integer(spec.name, obj)?,
         ParamKind::Vector(_) => vector(spec.name, obj)?,
         ParamKind::Choice(_) => choice(spec.name, obj)?,

@@ -238,6 +238,7 @@ mod tests {
             unit: "",
             range: Range::ANY,
             help: "",
+            initial_state: false,
         }
     }
 

@@ -5,7 +5,8 @@
 //!  "systems": [{"name", "python", "summary", "family", "separable", "methods": [..],
 //!               "default_method", "note", "physics", "capabilities": [..],
 //!               "params": [{"name", "kind", "length", "choices", "default",
-//!                           "default_origin", "unit", "range", "help"}, ..]}, ..],
+//!                           "default_origin", "unit", "range", "help",
+//!                           "initial_state"}, ..]}, ..],
 //!  "methods": [{"name", "order", "symplectic", "separable_only", "adaptive",
 //!               "evaluations_per_step",
 //!               "evaluations", "reference"}, ..]}
@@ -23,6 +24,8 @@
 //! - `range`: for scalars and integers `{"min": B, "max": B}` with `B` `null` (unbounded) or
 //!   `{"value": x, "inclusive": bool}`; `null` for vectors and choices (entries must be
 //!   finite). Every number must be finite.
+//! - `initial_state`: the parameter is part of the initial state (`q0`, `theta0`), not a
+//!   constant of the system; its unit is a state component's.
 //! - `capabilities`: the optional accessors the system built from its defaults offers
 //!   (`physicskit::classical::model::erased::CAPABILITY_NAMES`).
 //! - `physics`: the paragraph of the gallery demonstration showing the system
@@ -73,6 +76,7 @@ struct Param {
     unit: &'static str,
     range: Option<RangeJson>,
     help: &'static str,
+    initial_state: bool,
 }
 
 #[derive(Serialize)]
@@ -182,6 +186,7 @@ fn param(spec: &ParamSpec) -> Param {
         unit: spec.unit,
         range,
         help: spec.help,
+        initial_state: spec.initial_state,
     }
 }
 

@@ -27,5 +27,6 @@ def catalog() -> list[dict[str, Any]]:
     ``methods``, ``default_method``, ``note``, ``physics`` (the paragraph on the system's physics
     that the gallery and ``physicskit list --json`` show, or None) and ``params`` (each with
     ``name``, ``kind``, ``default``, ``default_kind``, ``spec_default``, ``unit``, ``range``,
-    ``length``, ``choices``, ``expectation`` and ``help``)."""
+    ``length``, ``choices``, ``expectation``, ``help`` and ``initial_state``: part of the
+    initial state, not a constant of the system)."""
     return [dict(e) for e in _core.catalog()]

@@ -136,14 +136,16 @@ pub static PENDULUM_ENTRY: SystemEntry = SystemEntry {
             "rad",
             Range::ANY,
             "initial angle",
-        ),
+        )
+        .initial_state(),
         P::scalar(
             "p0",
             D::demo_scalar(0.0),
             "rad/s",
             Range::ANY,
             "initial momentum (unit m l^2)",
-        ),
+        )
+        .initial_state(),
         P::scalar(
             "g_over_l",
             D::scalar(1.0),
@@ -177,14 +179,16 @@ pub static HARMONIC_OSCILLATOR_ENTRY: SystemEntry = SystemEntry {
             "m",
             Range::ANY,
             "initial position",
-        ),
+        )
+        .initial_state(),
         P::scalar(
             "p0",
             D::demo_scalar(0.0),
             "kg m/s",
             Range::ANY,
             "initial momentum",
-        ),
+        )
+        .initial_state(),
         P::scalar("m", D::scalar(1.0), "kg", Range::POSITIVE, "mass"),
         P::scalar(
             "k",

@@ -24,7 +24,16 @@ from typing import Any, NamedTuple, Optional
 
 import numpy as np
 
-from .._native import _core, as_array, as_flag, as_int, as_scalar, as_t_span, as_vector
+from .._native import (
+    _core,
+    as_array,
+    as_flag,
+    as_int,
+    as_real,
+    as_scalar,
+    as_t_span,
+    as_vector,
+)
 
 __all__ = [
     "SimulationResult",
@@ -33,6 +42,20 @@ __all__ = [
     "HamiltonianSystem",
     "LagrangianSystem",
 ]
+
+
+def _float_array(name: str, value: Any, ndim: int) -> np.ndarray:
+    """``value`` as a float64 array of ``ndim`` dimensions: the array itself when it already is
+    one (C-contiguous), else a converted copy, or ValueError naming ``name``."""
+    if not (
+        isinstance(value, np.ndarray)
+        and value.dtype == np.float64
+        and value.flags.c_contiguous
+    ):
+        value = np.ascontiguousarray(as_array(name, value))
+    if value.ndim != ndim:
+        raise ValueError(f"{name} must have {ndim} dimension(s), got shape {value.shape}")
+    return value
 
 
 @dataclass(repr=False)
@@ -64,6 +87,51 @@ class SimulationResult:
     extra: dict = field(default_factory=dict)
     """Additional diagnostics (``n_steps``, ``dt``, force or solver evaluation counts ...;
     ``stride`` after ``integrate_sampled``)."""
+
+    def __post_init__(self) -> None:
+        """Checks a result built by hand as the integrators' results are: ``t`` a vector of
+        finite, non-decreasing times; ``y`` one row of finite-or-not states per time; ``energy``
+        one value per time; ``q`` and ``p`` both or neither, of one shape, one row per time,
+        whose widths add up to ``y``'s. Arrays already float64 and C-contiguous (what the
+        integrators return) are kept without a copy; others are converted or refused by
+        :func:`~physicskit.classical._native.as_array`'s rules."""
+        if self.t is None or self.y is None:
+            raise ValueError("SimulationResult needs t and y (got None)")
+        t = _float_array("t", self.t, 1)
+        n = t.shape[0]
+        if not np.all(np.isfinite(t)):
+            raise ValueError("t contains NaN or infinity")
+        if n > 1 and not np.all(np.diff(t) >= 0):
+            raise ValueError("t must not decrease")
+        y = _float_array("y", self.y, 2)
+        if y.shape[0] != n:
+            raise ValueError(f"y has {y.shape[0]} rows for {n} times; expected one row per time")
+        self.t, self.y = t, y
+        if self.energy is not None:
+            energy = _float_array("energy", self.energy, 1)
+            if energy.shape[0] != n:
+                raise ValueError(f"energy has {energy.shape[0]} values for {n} times")
+            self.energy = energy
+        # A split-on-access result keeps q and p out of its fields until they are read.
+        given = {name: self.__dict__.get(name) for name in ("q", "p")}
+        if (given["q"] is None) != (given["p"] is None):
+            raise ValueError("q and p go together: pass both or neither")
+        if given["q"] is not None:
+            q = _float_array("q", given["q"], 2)
+            p = _float_array("p", given["p"], 2)
+            if q.shape != p.shape:
+                raise ValueError(f"q has shape {q.shape} and p {p.shape}; they must match")
+            if q.shape[0] != n:
+                raise ValueError(f"q and p have {q.shape[0]} rows for {n} times")
+            if 2 * q.shape[1] != y.shape[1]:
+                raise ValueError(
+                    f"q and p have {q.shape[1]} columns each, y has {y.shape[1]}: y is [q, p]"
+                )
+            self.q, self.p = q, p
+        if not isinstance(self.method, str):
+            raise ValueError(f"method must be a string, got {self.method!r}")
+        if not isinstance(self.extra, dict):
+            raise ValueError(f"extra must be a dict, got {type(self.extra).__name__}")
 
     def plot(self, system: Any = None, **kwargs: Any) -> Any:
         """``q(t)``, ``p(t)`` (or ``qdot``) and the relative energy error on a log scale, one
@@ -490,7 +558,10 @@ class HamiltonianSystem(DynamicalSystem):
         if self._native is not None:
             return self._native.energy(state)
         q, p = self.split(state, self.ndof)
-        return float(self.kinetic_energy(p)) + float(self.potential_energy(q))
+        # The package's converter, not float(): a callback returning 10**400 or a complex
+        # number is a ValueError naming the callback and the value, not an OverflowError.
+        kinetic = as_real("value returned by kinetic_energy(p)", self.kinetic_energy(p))
+        return kinetic + as_real("value returned by potential_energy(q)", self.potential_energy(q))
 
     def integrate(self, t_span, dt: float, method: str = "yoshida4") -> SimulationResult:
         """Integrate with fixed step ``dt`` over ``t_span = (t0, t1)``.

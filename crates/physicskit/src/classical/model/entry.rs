@@ -273,6 +273,9 @@ pub struct ParamSpec {
     pub range: Range,
     /// One-line description.
     pub help: &'static str,
+    /// Part of the initial state (`q0`, `theta0`, ...), not a constant of the system: its unit
+    /// is a state component's, and front ends may accept it in the shapes a state takes.
+    pub initial_state: bool,
 }
 
 impl ParamSpec {
@@ -291,6 +294,15 @@ impl ParamSpec {
             unit,
             range,
             help,
+            initial_state: false,
+        }
+    }
+
+    /// The same parameter, marked as part of the initial state.
+    pub const fn initial_state(self) -> Self {
+        Self {
+            initial_state: true,
+            ..self
         }
     }
 
@@ -308,6 +320,7 @@ impl ParamSpec {
             unit: "",
             range,
             help,
+            initial_state: false,
         }
     }
 
@@ -326,6 +339,7 @@ impl ParamSpec {
             unit,
             range: Range::ANY,
             help,
+            initial_state: false,
         }
     }
 
@@ -343,6 +357,7 @@ impl ParamSpec {
             unit: "",
             range: Range::ANY,
             help,
+            initial_state: false,
         }
     }
 

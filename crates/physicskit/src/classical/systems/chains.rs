@@ -798,14 +798,16 @@ pub static HARMONIC_CHAIN_ENTRY: SystemEntry = SystemEntry {
             D::demo_vector(&[0.1, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0]),
             "length",
             "initial displacements; the chain has one mass per entry",
-        ),
+        )
+        .initial_state(),
         P::vector(
             "p0",
             Length::SameAs("q0"),
             D::DemoAbsent,
             "mass length/time",
             "initial momenta, one per mass (left out: zeros)",
-        ),
+        )
+        .initial_state(),
         MASS,
         SPRING,
     ],
@@ -903,14 +905,16 @@ pub static SINE_GORDON_STATE_ENTRY: SystemEntry = SystemEntry {
             D::Absent,
             "rad",
             "initial displacements, length n (left out: zeros)",
-        ),
+        )
+        .initial_state(),
         P::vector(
             "p0",
             Length::Count("n"),
             D::Absent,
             "",
             "initial momenta, length n (left out: zeros)",
-        ),
+        )
+        .initial_state(),
     ],
     separable: true,
     default_method: Method::Yoshida4,

@@ -218,14 +218,16 @@ pub static COUPLED_OSCILLATORS_ENTRY: SystemEntry = SystemEntry {
             D::demo_vector(&[0.1, -0.2, 0.15]),
             "m",
             "initial displacements, length n",
-        ),
+        )
+        .initial_state(),
         P::vector(
             "qdot0",
             Length::Count("n"),
             D::DemoAbsent,
             "m/s",
             "initial velocities, length n (left out: zeros)",
-        ),
+        )
+        .initial_state(),
         P::integer("n", D::integer(3), Range::at_least(1.0), "number of masses"),
         P::scalar(
             "m",

@@ -398,14 +398,16 @@ pub static DOUBLE_PENDULUM_ENTRY: SystemEntry = SystemEntry {
             D::demo_vector(&[2.0, 1.0]),
             "rad",
             "initial angles",
-        ),
+        )
+        .initial_state(),
         P::vector(
             "thetadot0",
             Length::Fixed(2),
             D::demo_vector(&[0.5, -0.3]),
             "rad/s",
             "initial angular velocities",
-        ),
+        )
+        .initial_state(),
         P::scalar("m1", D::scalar(1.0), "kg", Range::POSITIVE, "upper mass"),
         P::scalar("m2", D::scalar(1.0), "kg", Range::POSITIVE, "lower mass"),
         P::scalar(

@@ -423,14 +423,16 @@ pub static ELASTIC_PENDULUM_ENTRY: SystemEntry = SystemEntry {
             D::demo_vector(&[1.3, 0.3]),
             "m, rad",
             "initial (r, theta)",
-        ),
+        )
+        .initial_state(),
         P::vector(
             "qdot0",
             Length::Fixed(2),
             D::demo_vector(&[0.0, 0.0]),
             "m/s, rad/s",
             "initial (rdot, thetadot)",
-        ),
+        )
+        .initial_state(),
         P::scalar("m", D::scalar(1.0), "kg", Range::POSITIVE, "bob mass"),
         P::scalar(
             "k",

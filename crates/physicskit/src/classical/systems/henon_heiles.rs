@@ -85,14 +85,16 @@ pub static HENON_HEILES_ENTRY: SystemEntry = SystemEntry {
             D::demo_vector(&[0.0, 0.3]),
             "",
             "initial position (x, y)",
-        ),
+        )
+        .initial_state(),
         P::vector(
             "p0",
             Length::Fixed(2),
             D::demo_vector(&[0.3, 0.0]),
             "",
             "initial momentum (p_x, p_y)",
-        ),
+        )
+        .initial_state(),
     ],
     separable: true,
     default_method: Method::Yoshida4,

@@ -358,14 +358,16 @@ pub static HOOP_ENTRY: SystemEntry = SystemEntry {
             "rad",
             Range::ANY,
             "initial polar angle on the hoop",
-        ),
+        )
+        .initial_state(),
         P::scalar(
             "thetadot0",
             D::demo_scalar(0.0),
             "rad/s",
             Range::ANY,
             "initial angular velocity",
-        ),
+        )
+        .initial_state(),
         P::scalar("R", D::scalar(1.0), "m", Range::POSITIVE, "hoop radius"),
         P::scalar(
             "omega",

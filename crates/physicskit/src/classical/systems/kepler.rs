@@ -366,14 +366,16 @@ pub static KEPLER_STATE_ENTRY: SystemEntry = SystemEntry {
             D::demo_vector(&[1.0, 0.0]),
             "length",
             "initial relative position (x, y)",
-        ),
+        )
+        .initial_state(),
         P::vector(
             "p0",
             Length::Fixed(2),
             D::demo_vector(&[0.0, 1.0]),
             "mass length/time",
             "initial momentum (p_x, p_y)",
-        ),
+        )
+        .initial_state(),
         COUPLING,
         REDUCED_MASS,
         PERTURBATION_PARAMS[0],

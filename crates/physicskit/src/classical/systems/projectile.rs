@@ -289,14 +289,16 @@ pub static PROJECTILE_STATE_ENTRY: SystemEntry = SystemEntry {
             D::demo_vector(&[0.0, 0.0]),
             "m",
             "initial position (x, y)",
-        ),
+        )
+        .initial_state(),
         P::vector(
             "p0",
             Length::Fixed(2),
             D::demo_vector(&[10.0, 10.0]),
             "kg m/s",
             "initial momentum m v",
-        ),
+        )
+        .initial_state(),
         PROJECTILE_PARAMS[0],
         PROJECTILE_PARAMS[1],
         PROJECTILE_PARAMS[2],

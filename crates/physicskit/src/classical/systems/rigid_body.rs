@@ -345,7 +345,8 @@ pub static EULER_TOP_ENTRY: SystemEntry = SystemEntry {
             D::demo_vector(&[0.01, 1.0, 0.01]),
             "rad/s",
             "initial body angular velocity",
-        ),
+        )
+        .initial_state(),
         P::scalar(
             "I1",
             D::scalar(1.0),
@@ -373,7 +374,8 @@ pub static EULER_TOP_ENTRY: SystemEntry = SystemEntry {
             D::Absent,
             "",
             "initial orientation (w, x, y, z) (left out: identity)",
-        ),
+        )
+        .initial_state(),
     ],
     separable: false,
     default_method: Method::ImplicitMidpoint,

@@ -357,14 +357,16 @@ pub static SWARM_STATE_ENTRY: SystemEntry = SystemEntry {
             D::demo_vector(&[1.0, 1.05, 1.0, 1.05]),
             "rad",
             "initial angles",
-        ),
+        )
+        .initial_state(),
         P::vector(
             "p0",
             Length::SameAs("q0"),
             D::demo_vector(&[0.0, 0.0, 0.05, 0.05]),
             "rad/s",
             "initial momenta, one per angle",
-        ),
+        )
+        .initial_state(),
         G_OVER_L,
     ],
     separable: true,

@@ -366,14 +366,16 @@ pub static HEAVY_TOP_ENTRY: SystemEntry = SystemEntry {
             D::demo_vector(&[0.0, 0.5, 0.0]),
             "rad",
             "initial (phi, theta, psi)",
-        ),
+        )
+        .initial_state(),
         P::vector(
             "angledots0",
             Length::Fixed(3),
             D::demo_vector(&[0.0, 0.0, 20.0]),
             "rad/s",
             "initial rates (phidot, thetadot, psidot)",
-        ),
+        )
+        .initial_state(),
         P::scalar(
             "I1",
             D::scalar(1.0),

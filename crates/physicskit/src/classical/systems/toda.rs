@@ -325,14 +325,16 @@ pub static TODA_ENTRY: SystemEntry = SystemEntry {
             D::demo_vector(&[0.0; 8]),
             "length",
             "initial positions; the ring has one particle per entry (>= 2)",
-        ),
+        )
+        .initial_state(),
         P::vector(
             "p0",
             Length::SameAs("q0"),
             D::demo_vector(&[1.5, 0.0, 0.0, 0.0, -0.5, 0.0, 0.0, -1.0]),
             "momentum",
             "initial momenta, one per particle",
-        ),
+        )
+        .initial_state(),
         P::scalar(
             "a",
             D::scalar(1.0),
