@@ -78,6 +78,26 @@ class _ParamInfo(TypedDict):
     choices: list[str] | None
     expectation: str
     help: str
+    initial_state: bool
+    """Part of the initial state (``q0``, ``theta0``), not a constant of the system."""
+
+class _DrawingInfo(TypedDict, total=False):
+    kind: Literal[
+        "bobs", "hoop", "swarm", "chain", "orbit", "inertia_box", "top_axis", "plots"
+    ]
+    fixed_ends: bool
+    """Chains: both ends held by walls."""
+    central_body: bool
+    """Orbits: a central body at the origin."""
+
+class _PresentationInfo(TypedDict):
+    symbols: list[str]
+    """TeX symbols of the coordinates: one each, or one for all (a chain's), or none."""
+    time_unit: str
+    """``"s"``, ``"time"`` (the user's own units) or ``""`` (dimensionless)."""
+    state_units: list[str] | None
+    """Units of a coordinate and a momentum or velocity, where no parameter gives them."""
+    drawing: _DrawingInfo
 
 class _SystemInfo(TypedDict):
     name: str
@@ -89,6 +109,7 @@ class _SystemInfo(TypedDict):
     default_method: str
     note: str | None
     physics: str | None
+    presentation: _PresentationInfo
     params: list[_ParamInfo]
 
 class _MethodInfo(TypedDict):

@@ -7,9 +7,9 @@
 //! catalogue, so no list of systems, parameters or defaults exists in the extension.
 
 use physicskit::classical::catalog as core_catalog;
-use physicskit::classical::explanations;
 use physicskit::classical::model::entry::{
-    Bound as Limit, Default, Length, Literal, ParamKind, ParamSpec, SystemEntry,
+    Bound as Limit, Default, Drawing, Length, Literal, ParamKind, ParamSpec, Presentation,
+    SystemEntry,
 };
 use physicskit::classical::Method;
 use pyo3::prelude::*;
@@ -109,6 +109,24 @@ fn param_info<'py>(py: Python<'py>, p: &ParamSpec) -> PyResult<Bound<'py, PyDict
     Ok(d)
 }
 
+/// How front ends show a system, as a dict: `symbols`, `time_unit`, `state_units` (`None` or
+/// a pair) and `drawing` (`kind`, and `fixed_ends` for chains, `central_body` for orbits).
+fn presentation_info<'py>(py: Python<'py>, p: &Presentation) -> PyResult<Bound<'py, PyDict>> {
+    let d = PyDict::new(py);
+    d.set_item("symbols", p.symbols.to_vec())?;
+    d.set_item("time_unit", p.time_unit)?;
+    d.set_item("state_units", p.state_units.map(|(q, p)| vec![q, p]))?;
+    let drawing = PyDict::new(py);
+    drawing.set_item("kind", p.drawing.name())?;
+    match p.drawing {
+        Drawing::Chain { fixed_ends } => drawing.set_item("fixed_ends", fixed_ends)?,
+        Drawing::Orbit { central_body } => drawing.set_item("central_body", central_body)?,
+        _ => {}
+    }
+    d.set_item("drawing", drawing)?;
+    Ok(d)
+}
+
 /// One catalogue entry as a dict (see `_core.pyi`, `SystemInfo`).
 fn entry_info<'py>(py: Python<'py>, e: &SystemEntry) -> PyResult<Bound<'py, PyDict>> {
     let d = PyDict::new(py);
@@ -120,7 +138,8 @@ fn entry_info<'py>(py: Python<'py>, e: &SystemEntry) -> PyResult<Bound<'py, PyDi
     d.set_item("methods", e.methods().map(Method::name).collect::<Vec<_>>())?;
     d.set_item("default_method", e.default_method.name())?;
     d.set_item("note", e.note)?;
-    d.set_item("physics", explanations::for_system(e.name))?;
+    d.set_item("physics", e.physics)?;
+    d.set_item("presentation", presentation_info(py, &e.presentation)?)?;
     let params = e
         .params
         .iter()
@@ -132,7 +151,7 @@ fn entry_info<'py>(py: Python<'py>, e: &SystemEntry) -> PyResult<Bound<'py, PyDi
 
 /// Every system of the catalogue, in listing order, as dicts: `name`, `python` (the class or
 /// `Class.classmethod`, or `None`), `summary`, `family`, `separable`, `methods`,
-/// `default_method`, `note`, `physics` (the paragraph of [`explanations::for_system`], as in
+/// `default_method`, `note`, `physics` (the system's physics paragraph, as in
 /// `physicskit list --json`, or `None`) and `params` (each with `name`, `kind`, `default`,
 /// `default_kind`, `spec_default`, `unit`, `range`, `length`, `choices`, `expectation`,
 /// `help`, `initial_state`).

@@ -3,7 +3,8 @@
 //! ```text
 //! {"version": "0.1.0",
 //!  "systems": [{"name", "python", "summary", "family", "separable", "methods": [..],
-//!               "default_method", "note", "physics", "capabilities": [..],
+//!               "default_method", "note", "physics", "presentation": {..},
+//!               "capabilities": [..],
 //!               "params": [{"name", "kind", "length", "choices", "default",
 //!                           "default_origin", "unit", "range", "help",
 //!                           "initial_state"}, ..]}, ..],
@@ -28,17 +29,19 @@
 //!   constant of the system; its unit is a state component's.
 //! - `capabilities`: the optional accessors the system built from its defaults offers
 //!   (`physicskit::classical::model::erased::CAPABILITY_NAMES`).
-//! - `physics`: the paragraph of the gallery demonstration showing the system
-//!   (`physicskit::classical::explanations::for_system`), the lab's caption; `null` if none.
+//! - `physics`: the system's physics paragraph (`SystemEntry::physics`), the lab's caption and
+//!   the opening of the gallery demonstration that shows it; `null` if none.
+//! - `presentation`: how front ends show the system (`SystemEntry::presentation`):
+//!   `{"symbols": [TeX, ..], "time_unit", "state_units": null or [coordinate, momentum],
+//!   "drawing": {"kind", "fixed_ends" (chains), "central_body" (orbits)}}`.
 //! - `methods` per system: those that can integrate it, as `simulate --method` takes them.
 
 use std::io::{self, Write};
 
 use physicskit::classical::catalog::SYSTEMS;
-use physicskit::classical::explanations;
 use physicskit::classical::model::entry::{Bound, Default, Length, Literal, ParamKind, Range};
 use physicskit::classical::model::erased::offered;
-use physicskit::classical::model::{ParamSpec, SystemEntry};
+use physicskit::classical::model::{Drawing, ParamSpec, Presentation, SystemEntry};
 use serde::Serialize;
 
 use crate::{method_rows, MethodRow};
@@ -61,8 +64,26 @@ struct System {
     default_method: &'static str,
     note: Option<&'static str>,
     physics: Option<&'static str>,
+    presentation: PresentationJson,
     capabilities: Vec<&'static str>,
     params: Vec<Param>,
+}
+
+#[derive(Serialize)]
+struct PresentationJson {
+    symbols: &'static [&'static str],
+    time_unit: &'static str,
+    state_units: Option<[&'static str; 2]>,
+    drawing: DrawingJson,
+}
+
+#[derive(Serialize)]
+struct DrawingJson {
+    kind: &'static str,
+    #[serde(skip_serializing_if = "Option::is_none")]
+    fixed_ends: Option<bool>,
+    #[serde(skip_serializing_if = "Option::is_none")]
+    central_body: Option<bool>,
 }
 
 #[derive(Serialize)]
@@ -144,7 +165,8 @@ fn system(entry: &SystemEntry) -> System {
         methods: entry.methods().map(|m| m.name()).collect(),
         default_method: entry.default_method.name(),
         note: entry.note,
-        physics: explanations::for_system(entry.name),
+        physics: entry.physics,
+        presentation: presentation(&entry.presentation),
         // Every entry builds from its defaults (the catalogue's own tests check it); should
         // one not, it offers nothing rather than breaking the listing.
         capabilities: entry
@@ -152,6 +174,24 @@ fn system(entry: &SystemEntry) -> System {
             .map(|s| offered(s.as_ref()))
             .unwrap_or_default(),
         params: entry.params.iter().map(param).collect(),
+    }
+}
+
+fn presentation(p: &Presentation) -> PresentationJson {
+    let (fixed_ends, central_body) = match p.drawing {
+        Drawing::Chain { fixed_ends } => (Some(fixed_ends), None),
+        Drawing::Orbit { central_body } => (None, Some(central_body)),
+        _ => (None, None),
+    };
+    PresentationJson {
+        symbols: p.symbols,
+        time_unit: p.time_unit,
+        state_units: p.state_units.map(|(q, p)| [q, p]),
+        drawing: DrawingJson {
+            kind: p.drawing.name(),
+            fixed_ends,
+            central_body,
+        },
     }
 }
 

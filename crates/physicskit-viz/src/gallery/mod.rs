@@ -106,7 +106,7 @@ impl Ctx<'_> {
         Demo {
             slug: slug.into(),
             title: format!("{}. {title}", self.number),
-            explanation: explanation.map(|e| e.text.to_owned()).unwrap_or_default(),
+            explanation: explanation.map(|e| e.text().to_owned()).unwrap_or_default(),
             figure: explanation.map(|e| e.figure.to_owned()).unwrap_or_default(),
             files: Vec::new(),
         }

@@ -7,6 +7,7 @@ use crate::classical::core::error::{check_finite_scalar, check_positive};
 use crate::classical::core::{Phase, Result};
 use crate::classical::integrators::{HamiltonianSystem, MassInv, Method};
 use crate::classical::model::entry::{Default as D, Family, ParamSpec as P, Range, SystemEntry};
+use crate::classical::model::entry::{Drawing, Presentation};
 use crate::classical::model::erased::{fill, Capabilities, Hamiltonian};
 
 /// The simple pendulum `H = p^2/2 - (g/l) cos q` (unit `m l^2`).
@@ -123,6 +124,16 @@ impl Capabilities for Pendulum {
 
 impl Capabilities for HarmonicOscillator {}
 
+/// The physics of the system, true for any parameters: its catalogue entry's
+/// [`physics`](crate::classical::model::SystemEntry::physics).
+const PENDULUM_PHYSICS: &str =
+    "The symplectic methods (verlet, yoshida4 and the higher-order compositions) and the \
+         implicit midpoint rule conserve a modified energy exactly, so their energy error \
+         oscillates but never grows, however long the run; rk4 is more accurate per step than \
+         verlet but not symplectic, and its energy error grows steadily. The order p of a \
+         method shows in the slope of its error at a fixed time against the step size (error \
+         ∝ dt^p): 2 for verlet and implicit_midpoint, 4 for yoshida4 and rk4.";
+
 /// The catalogue entry of [`Pendulum`].
 pub static PENDULUM_ENTRY: SystemEntry = SystemEntry {
     name: "pendulum",
@@ -157,6 +168,13 @@ pub static PENDULUM_ENTRY: SystemEntry = SystemEntry {
     separable: true,
     default_method: Method::Yoshida4,
     note: None,
+    physics: Some(PENDULUM_PHYSICS),
+    presentation: Presentation {
+        symbols: &["\\theta"],
+        time_unit: "s",
+        state_units: None,
+        drawing: Drawing::Plots,
+    },
     build: |v| {
         Ok(Box::new(Hamiltonian(Pendulum::new(
             v.scalar("q0")?,
@@ -201,6 +219,13 @@ pub static HARMONIC_OSCILLATOR_ENTRY: SystemEntry = SystemEntry {
     separable: true,
     default_method: Method::Yoshida4,
     note: None,
+    physics: None,
+    presentation: Presentation {
+        symbols: &["x"],
+        time_unit: "s",
+        state_units: None,
+        drawing: Drawing::Plots,
+    },
     build: |v| {
         Ok(Box::new(Hamiltonian(HarmonicOscillator::new(
             v.scalar("q0")?,

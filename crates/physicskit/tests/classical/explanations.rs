@@ -3,7 +3,7 @@
 //! number of the setup.
 
 use physicskit::classical::catalog;
-use physicskit::classical::explanations::{for_demo, for_system, EXPLANATIONS};
+use physicskit::classical::explanations::{for_demo, Text, EXPLANATIONS};
 
 /// The numbers written in `s`: runs of ASCII digits with inner `.` or `/` (`9.81`, `1/6`),
 /// not glued to a preceding letter, digit, subscript or `_` (so `rk4`, `θ₁`, `kahan_li8` are
@@ -50,9 +50,9 @@ fn numbers_reads_values_not_names() {
 fn the_physics_states_no_number_of_the_setup() {
     assert!(!EXPLANATIONS.is_empty());
     for e in EXPLANATIONS {
-        assert!(e.text.len() > 200, "{}: text too short", e.slug);
+        assert!(e.text().len() > 200, "{}: text too short", e.slug);
         assert!(!e.figure.is_empty(), "{}: no setup", e.slug);
-        let text = numbers(e.text);
+        let text = numbers(e.text());
         let setup: Vec<String> = numbers(e.figure)
             .into_iter()
             .filter(|n| n.len() > 1)
@@ -67,25 +67,28 @@ fn the_physics_states_no_number_of_the_setup() {
     }
 }
 
-/// Slugs are unique, every named system is in the catalogue and in at most one paragraph,
-/// and `for_system` gives that paragraph's physics only (the lab never shows a setup).
+/// Slugs are unique; a demonstration of a system opens with that system's own physics, which
+/// is the catalogue entry's (what the lab and `list --json` show); every system with a
+/// paragraph is in the catalogue, and every catalogue system but the harmonic oscillator has
+/// one.
 #[test]
-fn each_system_has_at_most_one_paragraph_and_the_lab_gets_its_physics() {
+fn each_system_has_its_physics_and_the_gallery_opens_with_it() {
     for (i, e) in EXPLANATIONS.iter().enumerate() {
         assert!(
             EXPLANATIONS[..i].iter().all(|o| o.slug != e.slug),
             "{}",
             e.slug
         );
-        assert_eq!(for_demo(e.slug), Some(e));
-        for name in e.systems {
-            assert!(catalog::find(name).is_ok(), "{name}");
-            let owners = EXPLANATIONS
-                .iter()
-                .filter(|o| o.systems.contains(name))
-                .count();
-            assert_eq!(owners, 1, "{name}");
-            assert_eq!(for_system(name), Some(e.text));
+        assert!(std::ptr::eq(for_demo(e.slug).unwrap(), e));
+        if let Text::OfSystem(entry) = e.text {
+            assert!(catalog::find(entry.name).is_ok(), "{}", entry.name);
+            assert_eq!(Some(e.text()), entry.physics, "{}", e.slug);
         }
     }
+    let without: Vec<&str> = catalog::SYSTEMS
+        .iter()
+        .filter(|entry| entry.physics.is_none())
+        .map(|entry| entry.name)
+        .collect();
+    assert_eq!(without, ["harmonic-oscillator"]);
 }

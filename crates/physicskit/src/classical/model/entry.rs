@@ -20,6 +20,69 @@ use crate::classical::core::error::{Error, Result};
 pub use crate::classical::integrators::Family;
 use crate::classical::integrators::Method;
 
+/// How front ends show a system: the symbols of its coordinates, its unit of time and the
+/// picture an animation draws. Python's plots and animations read it from `catalog()`, the
+/// command line and the lab from `list --json`.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Presentation {
+    /// The coordinates' symbols in TeX math (`\theta_1`): one per coordinate, or a single one
+    /// for every coordinate of a chain or a swarm (shown as `q_i`, `\theta_i`); empty when the
+    /// state is not `[q, p]` (front ends then write `q_i` or the state's own names).
+    pub symbols: &'static [&'static str],
+    /// The unit of time: `"s"`, `"time"` where lengths and masses are in the user's own
+    /// units, `""` for dimensionless time.
+    pub time_unit: &'static str,
+    /// Units of a coordinate and of a momentum (Hamiltonian) or velocity (Lagrangian), for an
+    /// entry with no initial-state parameters; otherwise `None`, and those parameters'
+    /// units ([`ParamSpec::initial_state`]) are the state's.
+    pub state_units: Option<(&'static str, &'static str)>,
+    /// The picture an animation draws.
+    pub drawing: Drawing,
+}
+
+/// The picture of a system in an animation.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Drawing {
+    /// Bobs on rods or springs from a fixed pivot, at the system's `positions`.
+    Bobs,
+    /// A bead on a hoop that turns about its vertical diameter.
+    Hoop,
+    /// The members as points in their common phase plane, with the separatrix.
+    Swarm,
+    /// Masses along a line, each displaced across it; walls at both ends when they are fixed.
+    Chain {
+        /// Both ends are held by walls (otherwise free or periodic).
+        fixed_ends: bool,
+    },
+    /// A body moving in the plane of its first two coordinates, with a trail.
+    Orbit {
+        /// A central body at the origin (a central force).
+        central_body: bool,
+    },
+    /// A rigid body as the box of its principal moments, turned by its rotation matrix.
+    InertiaBox,
+    /// A top's symmetry axis from its pivot, the tip tracing the unit sphere.
+    TopAxis,
+    /// No picture beyond the plots of the state.
+    Plots,
+}
+
+impl Drawing {
+    /// The kind's name, as front ends read it (`"chain"`).
+    pub fn name(self) -> &'static str {
+        match self {
+            Drawing::Bobs => "bobs",
+            Drawing::Hoop => "hoop",
+            Drawing::Swarm => "swarm",
+            Drawing::Chain { .. } => "chain",
+            Drawing::Orbit { .. } => "orbit",
+            Drawing::InertiaBox => "inertia_box",
+            Drawing::TopAxis => "top_axis",
+            Drawing::Plots => "plots",
+        }
+    }
+}
+
 /// The length of a vector parameter.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub enum Length {
@@ -620,6 +683,12 @@ pub struct SystemEntry {
     pub default_method: Method,
     /// A remark for listings (which parameters show what).
     pub note: Option<&'static str>,
+    /// The physics of the system, true whatever its parameters (plain text, Unicode): the
+    /// lab's caption, `list --json`'s and Python `catalog()`'s `physics`, and the opening of
+    /// the gallery demonstration that shows it. `None` for a system no page explains.
+    pub physics: Option<&'static str>,
+    /// How front ends show the system: symbols, unit of time, the picture it is drawn as.
+    pub presentation: Presentation,
     /// The constructor.
     pub build: Builder,
 }

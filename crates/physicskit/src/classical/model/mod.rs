@@ -10,6 +10,6 @@ pub mod entry;
 pub mod erased;
 pub mod session;
 
-pub use entry::{Family, ParamSpec, SystemEntry, Value, Values};
+pub use entry::{Drawing, Family, ParamSpec, Presentation, SystemEntry, Value, Values};
 pub use erased::{Capabilities, DynSystem};
 pub use session::{Refused, Session};

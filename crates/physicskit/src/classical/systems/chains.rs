@@ -41,6 +41,7 @@ use crate::classical::integrators::{HamiltonianSystem, MassInv, Method};
 use crate::classical::model::entry::{
     Default as D, Family, Length, Literal, ParamSpec as P, Range, SystemEntry,
 };
+use crate::classical::model::entry::{Drawing, Presentation};
 use crate::classical::model::erased::{Capabilities, Hamiltonian};
 
 /// Angular frequency of normal mode `j` (`1..=n`) of `n` masses `m` joined by springs `k`
@@ -785,6 +786,37 @@ const SPRING: P = P::scalar(
 );
 const SITES: Range = Range::at_least(1.0);
 
+/// The physics of the system, true for any parameters: its catalogue entry's
+/// [`physics`](crate::classical::model::SystemEntry::physics).
+const FPUT_PHYSICS: &str =
+    "A chain of unit masses joined by springs with a weak quartic non-linearity (V(r) = \
+         r²/2 + β r⁴/4, fixed ends) starts in its lowest normal mode. Fermi, Pasta, Ulam and \
+         Tsingou expected the non-linearity to share the energy out evenly among all modes \
+         (equipartition). Instead the energy flows into a few neighbouring modes and then \
+         comes back almost entirely to mode 1: the FPUT recurrence, an early hint of solitons \
+         and of KAM stability. (The quartic force keeps the chain's left–right symmetry, so \
+         the even modes are never excited.)";
+
+/// The physics of the system, true for any parameters: its catalogue entry's
+/// [`physics`](crate::classical::model::SystemEntry::physics).
+const SINE_GORDON_PHYSICS: &str =
+    "A chain of pendulums on a torsion spring (the Frenkel–Kontorova model) is the \
+         lattice form of the sine-Gordon equation q_tt = c² q_xx − sin q. A kink is a \
+         travelling twist by 2π in which the pendulums turn over one after another; an \
+         antikink twists back. They behave like particles: sent towards each other, they \
+         collide, pass through each other and re-emerge with their shapes intact, the \
+         signature of a soliton (the lattice sheds only a little radiation).";
+
+/// The physics of the system, true for any parameters: its catalogue entry's
+/// [`physics`](crate::classical::model::SystemEntry::physics).
+pub(super) const CHAINS_PHYSICS: &str =
+    "Masses joined by identical springs between two walls move, for small oscillations, \
+         as a superposition of normal modes: standing waves in which every mass oscillates at \
+         the same frequency ωⱼ = 2√(k/m) sin(jπ/2(N+1)). Started in a mode shape, the chain \
+         stays in it. Started in a superposition of two modes of close frequencies, each mode \
+         keeps its own energy, yet a single mass swells and falls silent at the difference \
+         frequency, cos(ω₁t) + cos(ω₂t) = 2 cos(Δω t/2) cos(ω̄ t): beats are interference.";
+
 /// The catalogue entry of [`HarmonicChain`].
 pub static HARMONIC_CHAIN_ENTRY: SystemEntry = SystemEntry {
     name: "harmonic-chain",
@@ -814,6 +846,13 @@ pub static HARMONIC_CHAIN_ENTRY: SystemEntry = SystemEntry {
     separable: true,
     default_method: Method::Yoshida4,
     note: None,
+    physics: Some(CHAINS_PHYSICS),
+    presentation: Presentation {
+        symbols: &["q"],
+        time_unit: "time",
+        state_units: None,
+        drawing: Drawing::Chain { fixed_ends: true },
+    },
     build: |v| {
         let q0 = v.vector("q0")?;
         let zeros = vec![0.0; q0.len()];
@@ -861,6 +900,13 @@ pub static FPUT_ENTRY: SystemEntry = SystemEntry {
     separable: true,
     default_method: Method::Yoshida4,
     note: Some("the recurrence shows with e.g. --beta 0.7 --amplitude 0.5"),
+    physics: Some(FPUT_PHYSICS),
+    presentation: Presentation {
+        symbols: &["q"],
+        time_unit: "time",
+        state_units: Some(("length", "mass length/time")),
+        drawing: Drawing::Chain { fixed_ends: true },
+    },
     build: |v| {
         Ok(Box::new(Hamiltonian(FPUTChain::new(
             v.count("n")?,
@@ -919,6 +965,13 @@ pub static SINE_GORDON_STATE_ENTRY: SystemEntry = SystemEntry {
     separable: true,
     default_method: Method::Yoshida4,
     note: None,
+    physics: Some(SINE_GORDON_PHYSICS),
+    presentation: Presentation {
+        symbols: &["\\phi"],
+        time_unit: "",
+        state_units: None,
+        drawing: Drawing::Chain { fixed_ends: false },
+    },
     build: |v| {
         Ok(Box::new(Hamiltonian(SineGordonChain::new(
             v.count("n")?,
@@ -980,6 +1033,13 @@ pub static SINE_GORDON_KINK_ENTRY: SystemEntry = SystemEntry {
     separable: true,
     default_method: Method::Yoshida4,
     note: None,
+    physics: Some(SINE_GORDON_PHYSICS),
+    presentation: Presentation {
+        symbols: &["\\phi"],
+        time_unit: "",
+        state_units: None,
+        drawing: Drawing::Chain { fixed_ends: false },
+    },
     build: |v| {
         let n = v.count("n")?;
         let (m, k) = (v.scalar("m")?, v.scalar("k")?);

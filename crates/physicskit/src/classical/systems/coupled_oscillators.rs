@@ -37,6 +37,7 @@ use crate::classical::lagrangian::{singular_mass_matrix, Lagrangian, LagrangianE
 use crate::classical::model::entry::{
     Default as D, Family, Length, ParamSpec as P, Range, SystemEntry,
 };
+use crate::classical::model::entry::{Drawing, Presentation};
 use crate::classical::model::erased::{Capabilities, Lagrangian as Erased};
 
 /// Size, mass and spring constant of a [`CoupledOscillators`] chain; its [`Lagrangian`].
@@ -247,6 +248,13 @@ pub static COUPLED_OSCILLATORS_ENTRY: SystemEntry = SystemEntry {
     separable: false,
     default_method: Method::ImplicitMidpoint,
     note: Some("p holds qdot, as in the spec"),
+    physics: Some(super::chains::CHAINS_PHYSICS),
+    presentation: Presentation {
+        symbols: &["x"],
+        time_unit: "s",
+        state_units: None,
+        drawing: Drawing::Chain { fixed_ends: true },
+    },
     build: |v| {
         let q0 = v.vector("q0")?;
         let zeros = vec![0.0; q0.len()];

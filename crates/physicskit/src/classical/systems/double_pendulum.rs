@@ -82,6 +82,7 @@ use crate::classical::lagrangian::{
 use crate::classical::model::entry::{
     Default as D, Family, Length, ParamSpec as P, Range, SystemEntry,
 };
+use crate::classical::model::entry::{Drawing, Presentation};
 use crate::classical::model::erased::{fill, Capabilities, Lagrangian as Erased};
 
 /// Masses, rod lengths and gravity of a [`DoublePendulum`]; its [`Lagrangian`].
@@ -385,6 +386,19 @@ impl Capabilities for DoublePendulum {
     }
 }
 
+/// The physics of the system, true for any parameters: its catalogue entry's
+/// [`physics`](crate::classical::model::SystemEntry::physics).
+const DOUBLE_PENDULUM_PHYSICS: &str =
+    "Two rigid rods, each with a bob at its end, hanging from a fixed pivot. Given enough \
+         energy the motion is deterministic yet chaotic: two runs whose starting angles \
+         differ by a billionth of a radian separate exponentially (a straight rise of the log \
+         of their separation, whose slope is the largest Lyapunov exponent) until the \
+         difference is as large as the motion itself, and the lower bob's angle θ₂ against \
+         its canonical momentum p₂ fills a region instead of tracing a closed curve. Its \
+         Hamiltonian is not separable (the mass matrix depends on θ₁ − θ₂), so the symplectic \
+         choices are the implicit methods (implicit midpoint, Gauss–Legendre): their energy \
+         error stays bounded, while rk4's drifts.";
+
 /// The catalogue entry of [`DoublePendulum`].
 pub static DOUBLE_PENDULUM_ENTRY: SystemEntry = SystemEntry {
     name: "double-pendulum",
@@ -435,6 +449,13 @@ pub static DOUBLE_PENDULUM_ENTRY: SystemEntry = SystemEntry {
     separable: false,
     default_method: Method::ImplicitMidpoint,
     note: Some("p holds thetadot, as in the spec"),
+    physics: Some(DOUBLE_PENDULUM_PHYSICS),
+    presentation: Presentation {
+        symbols: &["\\theta_1", "\\theta_2"],
+        time_unit: "s",
+        state_units: None,
+        drawing: Drawing::Bobs,
+    },
     build: |v| {
         let params = DoublePendulumParams {
             m1: v.scalar("m1")?,

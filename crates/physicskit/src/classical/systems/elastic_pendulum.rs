@@ -82,6 +82,7 @@ use crate::classical::lagrangian::{FieldScalar, Lagrangian, LagrangianEngine, Sc
 use crate::classical::model::entry::{
     Default as D, Family, Length, ParamSpec as P, Range, SystemEntry,
 };
+use crate::classical::model::entry::{Drawing, Presentation};
 use crate::classical::model::erased::{fill, Capabilities, Lagrangian as Erased};
 
 /// Mass, spring constant, rest length and gravity of an [`ElasticPendulum`]; its
@@ -409,6 +410,19 @@ impl Capabilities for ElasticPendulum {
     }
 }
 
+/// The physics of the system, true for any parameters: its catalogue entry's
+/// [`physics`](crate::classical::model::SystemEntry::physics).
+const ELASTIC_PENDULUM_PHYSICS: &str =
+    "A bob on a spring swings and bounces. Small bounces have the frequency ω_s = √(k/m), \
+         small swings ω_p = √(g/r_eq), where r_eq = l0 + mg/k is the stretched length it \
+         hangs at. When ω_s = 2ω_p the bob bounces twice per swing, rising at each end of the \
+         swing and dropping at the bottom (as a child pumps a swing by standing and \
+         crouching), and the energy passes almost completely from bounce to swing and back: \
+         the Fermi resonance of the CO₂ molecule in a classroom toy. The condition is often \
+         quoted as k/m = 4g/l0, but the swing sees the stretched length; solving k/m = \
+         4g/r_eq gives k = 3mg/l0. The energies are split exactly: E − E_eq = [m ṙ²/2 + k(r − \
+         r_eq)²/2] + [m r² θ̇²/2 + m g r (1 − cos θ)].";
+
 /// The catalogue entry of [`ElasticPendulum`].
 pub static ELASTIC_PENDULUM_ENTRY: SystemEntry = SystemEntry {
     name: "elastic-pendulum",
@@ -461,6 +475,13 @@ pub static ELASTIC_PENDULUM_ENTRY: SystemEntry = SystemEntry {
     note: Some(
         "exact 2:1 resonance (bounce twice the swing frequency) at k = 3 m g / l0; p holds qdot",
     ),
+    physics: Some(ELASTIC_PENDULUM_PHYSICS),
+    presentation: Presentation {
+        symbols: &["r", "\\theta"],
+        time_unit: "s",
+        state_units: None,
+        drawing: Drawing::Bobs,
+    },
     build: |v| {
         let params = ElasticPendulumParams {
             m: v.scalar("m")?,

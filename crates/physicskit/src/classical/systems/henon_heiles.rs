@@ -13,6 +13,7 @@ use crate::classical::core::error::{check_len, check_vector};
 use crate::classical::core::{Phase, Result};
 use crate::classical::integrators::{HamiltonianSystem, Method};
 use crate::classical::model::entry::{Default as D, Family, Length, ParamSpec as P, SystemEntry};
+use crate::classical::model::entry::{Drawing, Presentation};
 use crate::classical::model::erased::{fill, Capabilities, Hamiltonian};
 
 /// The Hénon–Heiles Hamiltonian `H = |p|^2/2 + (x^2 + y^2)/2 + x^2 y - y^3/3` (unit masses).
@@ -72,6 +73,17 @@ impl Capabilities for HenonHeilesSystem {
     }
 }
 
+/// The physics of the system, true for any parameters: its catalogue entry's
+/// [`physics`](crate::classical::model::SystemEntry::physics).
+const HENON_HEILES_PHYSICS: &str =
+    "A star in an axisymmetric galaxy (Hénon & Heiles 1964), H = (px² + py²)/2 + (x² + \
+         y²)/2 + x²y − y³/3. A Poincaré section records each crossing of the plane y = 0 with \
+         py > 0 (located exactly with Hénon's trick, not taken from the nearest time step). \
+         At low energy almost every orbit's crossings lie on a smooth closed curve, the \
+         section of an invariant (KAM) torus: the motion is regular. As the energy rises, the \
+         tori between the islands dissolve into a chaotic sea of scattered dots, and at E = \
+         1/6, the energy of the saddle points of the potential, almost all tori are gone.";
+
 /// The catalogue entry of [`HenonHeilesSystem`].
 pub static HENON_HEILES_ENTRY: SystemEntry = SystemEntry {
     name: "henon-heiles",
@@ -99,6 +111,15 @@ pub static HENON_HEILES_ENTRY: SystemEntry = SystemEntry {
     separable: true,
     default_method: Method::Yoshida4,
     note: Some("orbits are bounded for E < 1/6"),
+    physics: Some(HENON_HEILES_PHYSICS),
+    presentation: Presentation {
+        symbols: &["x", "y"],
+        time_unit: "",
+        state_units: None,
+        drawing: Drawing::Orbit {
+            central_body: false,
+        },
+    },
     build: |v| {
         Ok(Box::new(Hamiltonian(HenonHeilesSystem::new(
             v.vector("q0")?,

@@ -42,6 +42,7 @@ use crate::classical::lagrangian::{
     singular_mass_matrix, FieldScalar, Lagrangian, LagrangianEngine, Scalar,
 };
 use crate::classical::model::entry::{Default as D, Family, ParamSpec as P, Range, SystemEntry};
+use crate::classical::model::entry::{Drawing, Presentation};
 use crate::classical::model::erased::{fill, Capabilities, Lagrangian as Erased};
 
 /// Radius, rotation rate and gravity of a [`BeadOnRotatingHoop`]; its [`Lagrangian`].
@@ -345,6 +346,17 @@ impl Capabilities for BeadOnRotatingHoop {
     }
 }
 
+/// The physics of the system, true for any parameters: its catalogue entry's
+/// [`physics`](crate::classical::model::SystemEntry::physics).
+const HOOP_PHYSICS: &str =
+    "A bead slides without friction on a vertical hoop of radius R spun at a fixed rate ω \
+         about its vertical diameter. In the rotating frame gravity pulls the bead down and \
+         the centrifugal force pushes it out. Below the critical rate ω_c = √(g/R) the bottom \
+         θ = 0 is the only stable rest point; above it the bottom becomes unstable and two \
+         new stable equilibria appear at cos θ = g/(Rω²), climbing the hoop as ω grows: a \
+         pitchfork bifurcation, the textbook example of spontaneous symmetry breaking. In \
+         phase space the single centre turns into a saddle between two centres.";
+
 /// The catalogue entry of [`BeadOnRotatingHoop`].
 pub static HOOP_ENTRY: SystemEntry = SystemEntry {
     name: "hoop",
@@ -387,6 +399,13 @@ pub static HOOP_ENTRY: SystemEntry = SystemEntry {
     separable: false,
     default_method: Method::ImplicitMidpoint,
     note: Some("critical speed omega_c = sqrt(g/R); p holds thetadot"),
+    physics: Some(HOOP_PHYSICS),
+    presentation: Presentation {
+        symbols: &["\\theta"],
+        time_unit: "s",
+        state_units: None,
+        drawing: Drawing::Hoop,
+    },
     build: |v| {
         let params = HoopParams {
             r: v.scalar("R")?,

@@ -26,6 +26,7 @@ use crate::classical::integrators::{HamiltonianSystem, MassInv, Method};
 use crate::classical::model::entry::{
     Default as D, Family, Length, ParamSpec as P, Range, SystemEntry, Values,
 };
+use crate::classical::model::entry::{Drawing, Presentation};
 use crate::classical::model::erased::{fill, Capabilities, Hamiltonian};
 
 /// The optional perturbations of [`KeplerSystem`]; `Default` is the pure two-body problem.
@@ -353,6 +354,17 @@ const REDUCED_MASS: P = P::scalar(
     "reduced mass",
 );
 
+/// The physics of the system, true for any parameters: its catalogue entry's
+/// [`physics`](crate::classical::model::SystemEntry::physics).
+const KEPLER_PHYSICS: &str =
+    "A planet in an inverse-square force traces the same closed ellipse for ever: besides \
+         energy and angular momentum, the Laplace–Runge–Lenz vector, which points at the \
+         perihelion, is conserved, a symmetry special to 1/r². Adding a small attractive 1/r³ \
+         term, the effective post-Newtonian correction of general relativity, breaks that \
+         symmetry: the ellipse turns a little every orbit into a rosette, and the LRL \
+         vector's angle grows at a steady rate, the perihelion precession (43 arc-seconds per \
+         century for Mercury).";
+
 /// The catalogue entry of [`KeplerSystem::new`].
 pub static KEPLER_STATE_ENTRY: SystemEntry = SystemEntry {
     name: "kepler-state",
@@ -386,6 +398,13 @@ pub static KEPLER_STATE_ENTRY: SystemEntry = SystemEntry {
     separable: true,
     default_method: Method::Yoshida4,
     note: None,
+    physics: Some(KEPLER_PHYSICS),
+    presentation: Presentation {
+        symbols: &["x", "y"],
+        time_unit: "time",
+        state_units: None,
+        drawing: Drawing::Orbit { central_body: true },
+    },
     build: |v| {
         Ok(Box::new(Hamiltonian(KeplerSystem::new(
             v.vector("q0")?,
@@ -429,6 +448,13 @@ pub static KEPLER_ENTRY: SystemEntry = SystemEntry {
     separable: true,
     default_method: Method::Yoshida4,
     note: Some("period 2 pi sqrt(mu a^3 / k); c_pn != 0 makes the orbit precess"),
+    physics: Some(KEPLER_PHYSICS),
+    presentation: Presentation {
+        symbols: &["x", "y"],
+        time_unit: "time",
+        state_units: None,
+        drawing: Drawing::Orbit { central_body: true },
+    },
     build: |v| {
         Ok(Box::new(Hamiltonian(KeplerSystem::from_orbital_elements(
             v.scalar("a")?,

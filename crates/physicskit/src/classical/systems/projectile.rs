@@ -23,6 +23,7 @@ use crate::classical::integrators::{
 use crate::classical::model::entry::{
     Default as D, Family, Length, ParamSpec as P, Range, SystemEntry,
 };
+use crate::classical::model::entry::{Drawing, Presentation};
 use crate::classical::model::erased::{fill, Capabilities, Hamiltonian};
 
 /// A point projectile `H = |p|^2/(2m) + m g y` with optional drag force `-c |v| v`.
@@ -276,6 +277,15 @@ const PROJECTILE_PARAMS: [P; 3] = [
 const DRAG_NOTE: &str =
     "with drag_coeff > 0 only rk4 (then the default), implicit_midpoint and dop853 apply";
 
+/// The physics of the system, true for any parameters: its catalogue entry's
+/// [`physics`](crate::classical::model::SystemEntry::physics).
+const PROJECTILE_PHYSICS: &str =
+    "Without air resistance every trajectory is Galileo's parabola and the range v² \
+         sin(2θ)/g is largest at 45°, with complementary angles (30° and 60°) landing at the \
+         same spot. Quadratic air drag (force −c|v|v) takes energy out of the flight: the \
+         paths become lopsided, steeper on the way down, the range shrinks a lot, and the \
+         best launch angle drops below 45°.";
+
 /// The catalogue entry of [`ProjectileMotion::new`].
 pub static PROJECTILE_STATE_ENTRY: SystemEntry = SystemEntry {
     name: "projectile-state",
@@ -306,6 +316,15 @@ pub static PROJECTILE_STATE_ENTRY: SystemEntry = SystemEntry {
     separable: true,
     default_method: Method::Yoshida4,
     note: Some(DRAG_NOTE),
+    physics: Some(PROJECTILE_PHYSICS),
+    presentation: Presentation {
+        symbols: &["x", "y"],
+        time_unit: "s",
+        state_units: None,
+        drawing: Drawing::Orbit {
+            central_body: false,
+        },
+    },
     build: |v| {
         Ok(Box::new(Hamiltonian(ProjectileMotion::new(
             v.vector("q0")?,
@@ -347,6 +366,15 @@ pub static PROJECTILE_ENTRY: SystemEntry = SystemEntry {
     separable: true,
     default_method: Method::Yoshida4,
     note: Some(DRAG_NOTE),
+    physics: Some(PROJECTILE_PHYSICS),
+    presentation: Presentation {
+        symbols: &["x", "y"],
+        time_unit: "s",
+        state_units: None,
+        drawing: Drawing::Orbit {
+            central_body: false,
+        },
+    },
     build: |v| {
         Ok(Box::new(Hamiltonian(ProjectileMotion::from_launch(
             v.scalar("speed")?,

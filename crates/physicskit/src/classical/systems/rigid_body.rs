@@ -22,6 +22,7 @@ use crate::classical::integrators::{DynamicalSystem, Method, OdeSystem};
 use crate::classical::model::entry::{
     Default as D, Family, Length, ParamSpec as P, Range, SystemEntry,
 };
+use crate::classical::model::entry::{Drawing, Presentation};
 use crate::classical::model::erased::{Capabilities, Ode};
 
 /// Principal moments of inertia of an [`EulerTop`].
@@ -331,6 +332,19 @@ impl Capabilities for EulerTop {
     }
 }
 
+/// The physics of the system, true for any parameters: its catalogue entry's
+/// [`physics`](crate::classical::model::SystemEntry::physics).
+const EULER_TOP_PHYSICS: &str =
+    "A free rigid body with three different principal moments I₁ < I₂ < I₃ rotates stably \
+         about its smallest and its largest axis, but not about the intermediate one: spun \
+         almost exactly about it, the spin ω₂ periodically reverses, the body flipping over \
+         while angular momentum stays fixed in space (the effect the cosmonaut Dzhanibekov \
+         saw with a wing nut). In the body frame the angular momentum L moves on a sphere |L| \
+         = const along its intersections with the energy ellipsoid, the polhodes: closed \
+         loops around the stable axes 1 and 3, and separatrices through the unstable axis 2. \
+         The implicit midpoint rule keeps energy and |L| exactly, so the computed curves \
+         close.";
+
 /// The catalogue entry of [`EulerTop`].
 pub static EULER_TOP_ENTRY: SystemEntry = SystemEntry {
     name: "euler-top",
@@ -380,6 +394,13 @@ pub static EULER_TOP_ENTRY: SystemEntry = SystemEntry {
     separable: false,
     default_method: Method::ImplicitMidpoint,
     note: Some("y columns: w1, w2, w3, qw, qx, qy, qz; spin near axis 2 to see the flips"),
+    physics: Some(EULER_TOP_PHYSICS),
+    presentation: Presentation {
+        symbols: &[],
+        time_unit: "s",
+        state_units: None,
+        drawing: Drawing::InertiaBox,
+    },
     build: |v| {
         let params = EulerTopParams {
             i1: v.scalar("I1")?,

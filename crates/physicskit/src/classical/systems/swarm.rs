@@ -20,6 +20,7 @@ use crate::classical::integrators::{HamiltonianSystem, IntegrateOptions, Method}
 use crate::classical::model::entry::{
     Default as D, Family, Length, ParamSpec as P, Range, SystemEntry,
 };
+use crate::classical::model::entry::{Drawing, Presentation};
 use crate::classical::model::erased::{Capabilities, Hamiltonian};
 
 /// `N` decoupled pendulums `H_i = p_i^2/2 - (g/l) cos q_i`, state `[q_1..q_N, p_1..p_N]`.
@@ -344,6 +345,16 @@ const G_OVER_L: P = P::scalar(
     "g / l",
 );
 
+/// The physics of the system, true for any parameters: its catalogue entry's
+/// [`physics`](crate::classical::model::SystemEntry::physics).
+const SWARM_PHYSICS: &str =
+    "A cloud of identical, independent pendulums starts as a small rectangle in phase \
+         space (angle q, momentum p). Near the separatrix, the boundary between swinging and \
+         whirling motion, the swing period depends strongly on the energy, so the patch is \
+         sheared and wound into a long thin filament; yet by Liouville's theorem the \
+         Hamiltonian flow preserves phase-space area, so the area enclosed by the patch's \
+         boundary stays at its initial value.";
+
 /// The catalogue entry of [`PendulumSwarm::new`].
 pub static SWARM_STATE_ENTRY: SystemEntry = SystemEntry {
     name: "pendulum-swarm-state",
@@ -372,6 +383,13 @@ pub static SWARM_STATE_ENTRY: SystemEntry = SystemEntry {
     separable: true,
     default_method: Method::Yoshida4,
     note: None,
+    physics: Some(SWARM_PHYSICS),
+    presentation: Presentation {
+        symbols: &["\\theta"],
+        time_unit: "s",
+        state_units: None,
+        drawing: Drawing::Swarm,
+    },
     build: |v| {
         Ok(Box::new(Hamiltonian(PendulumSwarm::new(
             v.vector("q0")?,
@@ -433,6 +451,13 @@ pub static SWARM_ENTRY: SystemEntry = SystemEntry {
     separable: true,
     default_method: Method::Yoshida4,
     note: Some("q and p have one column per pendulum; use --stride for long runs"),
+    physics: Some(SWARM_PHYSICS),
+    presentation: Presentation {
+        symbols: &["\\theta"],
+        time_unit: "s",
+        state_units: None,
+        drawing: Drawing::Swarm,
+    },
     build: |v| {
         Ok(Box::new(Hamiltonian(PendulumSwarm::from_box(
             v.scalar("q_center")?,

@@ -55,6 +55,7 @@ use crate::classical::lagrangian::{
 use crate::classical::model::entry::{
     Default as D, Family, Length, ParamSpec as P, Range, SystemEntry,
 };
+use crate::classical::model::entry::{Drawing, Presentation};
 use crate::classical::model::erased::{fill, Capabilities, Lagrangian as Erased};
 
 /// Inertia, mass, lever arm and gravity of a [`HeavySymmetricTop`]; its [`Lagrangian`].
@@ -352,6 +353,17 @@ impl Capabilities for HeavySymmetricTop {
     }
 }
 
+/// The physics of the system, true for any parameters: its catalogue entry's
+/// [`physics`](crate::classical::model::SystemEntry::physics).
+const HEAVY_TOP_PHYSICS: &str =
+    "A spinning top with its tip fixed precesses slowly about the vertical while its axis \
+         nods up and down (nutation). Because the angles φ and ψ do not appear in the \
+         Lagrangian, their momenta are conserved and the tilt θ moves like a particle in the \
+         effective potential V_eff(θ): it oscillates between the two turning points where \
+         V_eff equals the energy, so θ against its rate is the revealing phase portrait. \
+         Depending on the start, the tip of the axis draws waves, loops or, started from rest \
+         in φ, cusps on the unit sphere.";
+
 /// The catalogue entry of [`HeavySymmetricTop`].
 pub static HEAVY_TOP_ENTRY: SystemEntry = SystemEntry {
     name: "heavy-top",
@@ -409,6 +421,13 @@ pub static HEAVY_TOP_ENTRY: SystemEntry = SystemEntry {
     separable: false,
     default_method: Method::ImplicitMidpoint,
     note: Some("p holds the angle rates, as in the spec"),
+    physics: Some(HEAVY_TOP_PHYSICS),
+    presentation: Presentation {
+        symbols: &["\\phi", "\\theta", "\\psi"],
+        time_unit: "s",
+        state_units: None,
+        drawing: Drawing::TopAxis,
+    },
     build: |v| {
         let params = SymmetricTopParams {
             i1: v.scalar("I1")?,

@@ -59,6 +59,7 @@ use crate::classical::integrators::{HamiltonianSystem, MassInv, Method};
 use crate::classical::model::entry::{
     Default as D, Family, Length, ParamSpec as P, Range, SystemEntry,
 };
+use crate::classical::model::entry::{Drawing, Presentation};
 use crate::classical::model::erased::{Capabilities, Hamiltonian};
 
 /// The periodic Toda lattice `H = sum p_i^2/2 + (a/b) sum exp(-b (q_{i+1} - q_i))` (see the
@@ -311,6 +312,19 @@ impl Capabilities for TodaLattice {
     }
 }
 
+/// The physics of the system, true for any parameters: its catalogue entry's
+/// [`physics`](crate::classical::model::SystemEntry::physics).
+const TODA_PHYSICS: &str =
+    "Unit masses on a ring joined by exponential springs, V(r) = (a/b) e^(−b r) (stiff \
+         under compression, soft under stretching), the lattice Morikazu Toda found in 1967. \
+         A kick launches a compression pulse (a lattice soliton) that runs around the ring, \
+         and the energy sloshes from particle to particle. Yet the motion is completely \
+         integrable: Flaschka's Lax matrix L (diagonal pᵢ, off-diagonal √(a/b) e^(−b rᵢ/2), \
+         corners closing the ring) only rotates as time goes on, so its eigenvalues are \
+         conserved (the sum of their squares is twice the energy). The FPUT chain is the same \
+         kind of lattice with a polynomial spring: it is only close to integrable, which is \
+         why its energy nearly, but not exactly, returns.";
+
 /// The catalogue entry of [`TodaLattice`].
 pub static TODA_ENTRY: SystemEntry = SystemEntry {
     name: "toda",
@@ -353,6 +367,13 @@ pub static TODA_ENTRY: SystemEntry = SystemEntry {
     separable: true,
     default_method: Method::Yoshida4,
     note: Some("conserved_quantities: the n eigenvalues of Flaschka's Lax matrix"),
+    physics: Some(TODA_PHYSICS),
+    presentation: Presentation {
+        symbols: &["q"],
+        time_unit: "time",
+        state_units: None,
+        drawing: Drawing::Chain { fixed_ends: false },
+    },
     build: |v| {
         Ok(Box::new(Hamiltonian(TodaLattice::new(
             v.vector("q0")?,
