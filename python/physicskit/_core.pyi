@@ -114,6 +114,8 @@ class _SystemInfo(TypedDict):
 
 class _MethodInfo(TypedDict):
     name: str
+    label: str
+    """The name in words, for titles and legends (``"implicit midpoint"``)."""
     order: int
     symplectic: bool
     separable_only: bool

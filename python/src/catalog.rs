@@ -167,7 +167,7 @@ pub fn catalog(py: Python<'_>) -> PyResult<Vec<Bound<'_, PyDict>>> {
 }
 
 /// Every integrator, as dicts: `name`, `order`, `symplectic`, `separable_only`, `adaptive`,
-/// `evaluations_per_step`, `evaluations`, `reference` and `summary`.
+/// `label`, `evaluations_per_step`, `evaluations`, `reference` and `summary`.
 ///
 /// # Errors
 /// Python allocation failures.
@@ -178,6 +178,7 @@ pub fn methods(py: Python<'_>) -> PyResult<Vec<Bound<'_, PyDict>>> {
         .map(|m| {
             let d = PyDict::new(py);
             d.set_item("name", m.name)?;
+            d.set_item("label", m.label)?;
             d.set_item("order", m.order)?;
             d.set_item("symplectic", m.symplectic)?;
             d.set_item("separable_only", m.separable_only)?;

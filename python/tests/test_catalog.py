@@ -120,8 +120,8 @@ def test_catalogue_listing_shape():
 
 
 def test_physics_is_one_whole_paragraph_per_class():
-    # `physics` is the paragraph of the gallery demonstration that shows the system (Rust's
-    # explanations::for_system), which the lab shows as its caption: passed through whole (a
+    # `physics` is the system's physics paragraph (its catalogue entry's, which its gallery
+    # demonstration opens with), which the lab shows as its caption: passed through whole (a
     # paragraph of sentences, the last ending with a full stop, no stray whitespace from the Rust
     # string's line continuations) and found by system, so the entries that build one Python
     # class two ways (KeplerSystem and KeplerSystem.from_orbital_elements, ...) carry the same
@@ -260,7 +260,7 @@ def test_capabilities_are_listed_and_missing_ones_are_not_implemented():
 # -- methods() ---------------------------------------------------------------------------------
 
 KEYS = {
-    "name", "order", "symplectic", "separable_only", "adaptive", "evaluations_per_step",
+    "name", "label", "order", "symplectic", "separable_only", "adaptive", "evaluations_per_step",
     "evaluations", "reference",
 }
 
@@ -329,10 +329,12 @@ def test_methods_and_catalogue_agree_with_the_command_line(cargo_profile):
         assert system["methods"] == ours["methods"], system["name"]
         assert system["default_method"] == ours["default_method"], system["name"]
         assert [p["name"] for p in system["params"]] == [p["name"] for p in ours["params"]]
-        # The physics paragraph: the one text of classical/explanations.rs, through both.
+        # The physics paragraph and the presentation: the catalogue entry's, through both.
         assert system["physics"] == ours["physics"], system["name"]
+        assert system["presentation"] == ours["presentation"], system["name"]
         for p, q in zip(system["params"], ours["params"]):
-            assert (p["unit"], p["default"]) == (q["unit"], q["default"]), (system["name"], p["name"])
+            assert (p["unit"], p["default"], p["initial_state"]) == (
+                q["unit"], q["default"], q["initial_state"]), (system["name"], p["name"])
     # The gallery shows (and so explains) most systems; the harmonic oscillator it does not.
     assert py_systems["double-pendulum"]["physics"].startswith("Two rigid rods")
     assert py_systems["harmonic-oscillator"]["physics"] is None

@@ -8,7 +8,7 @@
 //!               "params": [{"name", "kind", "length", "choices", "default",
 //!                           "default_origin", "unit", "range", "help",
 //!                           "initial_state"}, ..]}, ..],
-//!  "methods": [{"name", "order", "symplectic", "separable_only", "adaptive",
+//!  "methods": [{"name", "label", "order", "symplectic", "separable_only", "adaptive",
 //!               "evaluations_per_step",
 //!               "evaluations", "reference"}, ..]}
 //! ```

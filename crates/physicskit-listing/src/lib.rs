@@ -20,6 +20,8 @@ pub use json::{catalogue_json, write_json};
 pub struct MethodRow {
     /// Name, as `--method` takes it.
     pub name: &'static str,
+    /// The name in words, for titles and legends.
+    pub label: &'static str,
     /// Order of accuracy.
     pub order: u32,
     /// Whether it preserves the symplectic form.
@@ -43,6 +45,7 @@ pub fn method_rows() -> Vec<MethodRow> {
         .iter()
         .map(|m| MethodRow {
             name: m.name,
+            label: m.label,
             order: m.order,
             symplectic: m.symplectic,
             separable_only: m.separable_only,

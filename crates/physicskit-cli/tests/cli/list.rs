@@ -122,6 +122,16 @@ fn list_json_holds_the_whole_catalogue() {
         );
         assert_eq!(s["note"], json!(entry.note), "{name}");
         assert_eq!(s["physics"], json!(entry.physics), "{name}");
+        let shown = &s["presentation"];
+        let p = &entry.presentation;
+        assert_eq!(shown["symbols"], json!(p.symbols), "{name}");
+        assert_eq!(shown["time_unit"], json!(p.time_unit), "{name}");
+        assert_eq!(
+            shown["state_units"],
+            json!(p.state_units.map(|(q, p)| [q, p])),
+            "{name}"
+        );
+        assert_eq!(shown["drawing"]["kind"], json!(p.drawing.name()), "{name}");
         assert!(s["capabilities"].is_array(), "{name}");
         let params = s["params"].as_array().expect("a `params` array");
         assert_eq!(params.len(), entry.params.len(), "{name}");
@@ -131,6 +141,7 @@ fn list_json_holds_the_whole_catalogue() {
             assert_eq!(p["kind"], json!(spec.kind.name()), "{what}");
             assert_eq!(p["unit"], json!(spec.unit), "{what}");
             assert_eq!(p["help"], json!(spec.help), "{what}");
+            assert_eq!(p["initial_state"], json!(spec.initial_state), "{what}");
             let (default, origin) = default_json(spec.default);
             assert_eq!(p["default"], default, "{what}");
             assert_eq!(p["default_origin"], json!(origin), "{what}");
@@ -154,6 +165,7 @@ fn list_json_holds_the_whole_catalogue() {
     assert_eq!(methods.len(), table.len());
     for (m, row) in table.iter().zip(methods) {
         assert_eq!(row["name"], json!(m.name));
+        assert_eq!(row["label"], json!(m.label));
         assert_eq!(row["order"], json!(m.order));
         assert_eq!(row["symplectic"], json!(m.symplectic));
         assert_eq!(row["separable_only"], json!(m.separable_only));

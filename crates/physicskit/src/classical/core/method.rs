@@ -13,6 +13,9 @@
 pub struct MethodInfo {
     /// The spec's name (`"yoshida4"`), which [`Method`](crate::classical::integrators::Method)'s `FromStr` parses.
     pub name: &'static str,
+    /// The method's name in words, for titles and legends (`"implicit midpoint"`,
+    /// `"Gauss–Legendre 4"`).
+    pub label: &'static str,
     /// One line for listings.
     pub summary: &'static str,
     /// Order of accuracy of the global error.

@@ -48,6 +48,7 @@ pub const DRIFTS: [f64; 10] = mirrored(&DRIFTS_HALF);
 /// The facts about `blanes_moan6`.
 pub const INFO: MethodInfo = MethodInfo {
     name: "blanes_moan6",
+    label: "Blanes–Moan 6",
     summary: "Blanes–Moan optimized sixth-order symplectic partitioned Runge–Kutta (S6)",
     order: 6,
     symplectic: true,

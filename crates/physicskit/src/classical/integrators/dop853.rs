@@ -61,6 +61,7 @@ use crate::classical::integrators::Tolerances;
 /// The facts about `dop853`.
 pub const INFO: MethodInfo = MethodInfo {
     name: "dop853",
+    label: "DOP853",
     summary: "Dormand–Prince 8(5,3): adaptive steps to rtol/atol, samples from its \
               7th-order dense output; energy drifts",
     order: 8,

@@ -28,6 +28,7 @@ use crate::classical::core::method::{MethodInfo, Scheme};
 /// The facts about `gauss_legendre4`.
 pub const INFO: MethodInfo = MethodInfo {
     name: "gauss_legendre4",
+    label: "Gauss–Legendre 4",
     summary: "two-stage Gauss–Legendre collocation; symplectic for any Hamiltonian, keeps \
               quadratic invariants",
     order: 4,

@@ -28,6 +28,7 @@ use crate::classical::core::method::{MethodInfo, Scheme};
 /// The facts about `gauss_legendre6`.
 pub const INFO: MethodInfo = MethodInfo {
     name: "gauss_legendre6",
+    label: "Gauss–Legendre 6",
     summary: "three-stage Gauss–Legendre collocation; symplectic for any Hamiltonian, keeps \
               quadratic invariants",
     order: 6,

@@ -24,6 +24,7 @@ use crate::classical::core::method::{MethodInfo, Scheme};
 /// The facts about `implicit_midpoint`.
 pub const INFO: MethodInfo = MethodInfo {
     name: "implicit_midpoint",
+    label: "implicit midpoint",
     summary: "implicit midpoint rule; symplectic for any Hamiltonian, keeps quadratic invariants",
     order: 2,
     symplectic: true,

@@ -33,6 +33,7 @@ pub const KICKS: [f64; 10] = composition_kicks(&DRIFTS);
 /// The facts about `kahan_li6`.
 pub const INFO: MethodInfo = MethodInfo {
     name: "kahan_li6",
+    label: "Kahan–Li 6",
     summary: "Kahan–Li optimized sixth-order composition of Störmer–Verlet (s9odr6a, 9 substeps)",
     order: 6,
     symplectic: true,

@@ -40,6 +40,7 @@ pub const KICKS: [f64; 18] = composition_kicks(&DRIFTS);
 /// The facts about `kahan_li8`.
 pub const INFO: MethodInfo = MethodInfo {
     name: "kahan_li8",
+    label: "Kahan–Li 8",
     summary: "Kahan–Li optimized eighth-order composition of Störmer–Verlet (s17odr8a, 17 \
               substeps)",
     order: 8,

@@ -19,6 +19,7 @@ use crate::classical::core::{ExtraValue, Result};
 /// The facts about `rk4`.
 pub const INFO: MethodInfo = MethodInfo {
     name: "rk4",
+    label: "RK4",
     summary: "classical fourth-order Runge–Kutta; energy drifts",
     order: 4,
     symplectic: false,

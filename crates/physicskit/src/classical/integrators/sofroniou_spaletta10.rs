@@ -48,6 +48,7 @@ pub const KICKS: [f64; 36] = composition_kicks(&DRIFTS);
 /// The facts about `sofroniou_spaletta10`.
 pub const INFO: MethodInfo = MethodInfo {
     name: "sofroniou_spaletta10",
+    label: "Sofroniou–Spaletta 10",
     summary: "Sofroniou–Spaletta tenth-order composition of Störmer–Verlet (s35odr10, 35 \
               substeps)",
     order: 10,

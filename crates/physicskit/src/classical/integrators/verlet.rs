@@ -23,6 +23,7 @@ pub const KICKS: [f64; 2] = composition_kicks(&DRIFTS);
 /// The facts about `verlet`.
 pub const INFO: MethodInfo = MethodInfo {
     name: "verlet",
+    label: "Störmer–Verlet",
     summary: "Störmer–Verlet leapfrog, kick–drift–kick",
     order: 2,
     symplectic: true,

@@ -30,6 +30,7 @@ pub const KICKS: [f64; 4] = composition_kicks(&DRIFTS);
 /// The facts about `yoshida4`.
 pub const INFO: MethodInfo = MethodInfo {
     name: "yoshida4",
+    label: "Yoshida 4",
     summary: "Yoshida's fourth-order triple-jump composition of Störmer–Verlet",
     order: 4,
     symplectic: true,

@@ -34,6 +34,7 @@ pub const KICKS: [f64; 8] = composition_kicks(&DRIFTS);
 /// The facts about `yoshida6`.
 pub const INFO: MethodInfo = MethodInfo {
     name: "yoshida6",
+    label: "Yoshida 6",
     summary: "Yoshida's sixth-order composition of Störmer–Verlet (solution A, 7 substeps)",
     order: 6,
     symplectic: true,
