@@ -82,7 +82,10 @@ def test_result_plot_has_q_p_and_energy_error_with_units(double):
     a_q, a_p, a_e = fig.axes
     assert [len(a.lines) for a in fig.axes] == [2, 2, 1]
     np.testing.assert_array_equal(a_q.lines[1].get_ydata(), result.q[:, 1])
-    assert "(rad)" in a_q.get_ylabel() and "(rad/s)" in a_p.get_ylabel()
+    # The system's own symbols and units, from its catalogue entry; the method in words.
+    assert a_q.get_ylabel() == r"$\theta_1$, $\theta_2$ (rad)"
+    assert a_p.get_ylabel() == r"$\dot{\theta_1}$, $\dot{\theta_2}$ (rad/s)"
+    assert a_q.get_title() == "implicit midpoint"
     assert a_e.get_yscale() == "log" and a_e.get_xlabel() == "$t$ (s)"
     err = a_e.lines[0].get_ydata()
     expected = np.abs(result.energy - result.energy[0]) / abs(result.energy[0])
@@ -114,7 +117,8 @@ def test_energy_error_compares_methods():
     lines = pl.energy_error(runs, system=kep, ax=ax)
     assert_drawn(fig)
     assert len(lines) == 3 and ax.get_yscale() == "log"
-    assert [t.get_text() for t in ax.get_legend().get_texts()] == ["verlet", "yoshida4", "rk4"]
+    assert [t.get_text() for t in ax.get_legend().get_texts()] == [
+        "Störmer–Verlet", "Yoshida 4", "RK4"]
     assert ax.get_xlabel() == "$t$ (time)"
     # Yoshida-4's error is far below Verlet's at this step (orders 4 and 2): the lines are the
     # runs' own, in order.

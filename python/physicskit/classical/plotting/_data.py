@@ -81,8 +81,12 @@ def given_labels(labels: Sequence[str] | None, n: int) -> list[str] | None:
 
 
 def labels_for(results: Sequence[Any], labels: Sequence[str] | None) -> list[str]:
-    """Legend labels: the given ones (see ``given_labels``), else each run's method name."""
+    """Legend labels: the given ones (see ``given_labels``), else each run's method in words
+    (``"implicit midpoint"``)."""
+    from ._labels import method_words
+
     given = given_labels(labels, len(results))
     if given is None:
-        return [getattr(r, "method", "") or f"run {i}" for i, r in enumerate(results)]
+        return [method_words(getattr(r, "method", "")) or f"run {i}"
+                for i, r in enumerate(results)]
     return given

@@ -1,38 +1,21 @@
 """Axis labels with units, from the system catalogue (``physicskit.classical.catalog()``).
 
-A system's state units are those the catalogue gives its initial-condition parameters (its
-class's entry's ``q0``/``theta0``/``angles0`` and ``p0``/``thetadot0``/...); the symbols are
-presentation only and live here.
+Everything a label says comes from the system's catalogue entry: the coordinates' symbols and
+the unit of time from its ``presentation``, the state's units from its initial-state
+parameters (``initial_state``: ``q0``/``theta0``/... and ``p0``/``thetadot0``/...) or, for an
+entry without them, from ``presentation["state_units"]``. Nothing here names a system.
 """
 
 from __future__ import annotations
 
 from typing import Any, Optional
 
-from ..listings import catalog
-
-#: Coordinate symbols (mathtext) of the systems whose coordinates have names.
-_Q_SYMBOLS: dict[str, list[str]] = {
-    "KeplerSystem": ["x", "y"],
-    "HenonHeilesSystem": ["x", "y"],
-    "ProjectileMotion": ["x", "y"],
-    "DoublePendulum": [r"\theta_1", r"\theta_2"],
-    "BeadOnRotatingHoop": [r"\theta"],
-    "ElasticPendulum": ["r", r"\theta"],
-    "HeavySymmetricTop": [r"\phi", r"\theta", r"\psi"],
-    "PendulumSwarm": [r"\theta"],
-    "SineGordonChain": [r"\phi"],
-}
-
-#: Names of the initial-condition parameters, whose catalogue units are the state's.
-_Q_PARAMS = ("q0", "theta0", "angles0", "omega0")
-_P_PARAMS = ("p0", "thetadot0", "qdot0", "angledots0")
-
-#: Classes whose catalogue entry has no state-vector parameters, and the entry that has them.
-_STATE_ENTRY_OF = {"FPUTChain": "HarmonicChain"}
-
+from ..listings import catalog, methods
 
 _ENTRIES: dict[str, dict[str, Any]] = {}
+
+#: The catalogue's units of time in the words the axes use.
+_TIME_WORDS = {"s": "s", "time": "time", "": "dimensionless"}
 
 
 def _entries() -> dict[str, dict[str, Any]]:
@@ -46,13 +29,31 @@ def _entries() -> dict[str, dict[str, Any]]:
     return _ENTRIES
 
 
-def _entry(system: Any) -> Optional[dict[str, Any]]:
+def entry_of(system: Any) -> Optional[dict[str, Any]]:
+    """The catalogue entry of ``system``'s class (or of its nearest built-in base class),
+    or None for a system the catalogue does not hold (a user's own subclass)."""
+    if system is None:
+        return None
     entries = _entries()
     for cls in type(system).__mro__:
-        name = _STATE_ENTRY_OF.get(cls.__name__, cls.__name__)
-        if name in entries:
-            return entries[name]
+        if cls.__name__ in entries:
+            return entries[cls.__name__]
     return None
+
+
+def drawing_of(system: Any) -> Optional[dict[str, Any]]:
+    """The catalogue's ``presentation["drawing"]`` of ``system`` (``{"kind": ...}``), or None."""
+    entry = entry_of(system)
+    return entry["presentation"]["drawing"] if entry is not None else None
+
+
+def method_words(name: str) -> str:
+    """A method's name in words (``"implicit midpoint"``), from ``methods()``; the name as
+    given for one the table does not hold."""
+    for m in methods():
+        if m["name"] == name:
+            return str(m["label"])
+    return name
 
 
 def _unit_words(unit: str, i: int) -> str:
@@ -62,32 +63,41 @@ def _unit_words(unit: str, i: int) -> str:
     return u if u else "dimensionless"
 
 
+def _state_units(entry: dict[str, Any]) -> tuple[Optional[str], Optional[str]]:
+    """Units of the coordinates and of the momenta (or velocities) of an entry's state."""
+    units = [p["unit"] for p in entry["params"] if p["initial_state"]]
+    if not units and entry["presentation"]["state_units"] is not None:
+        units = list(entry["presentation"]["state_units"])
+    q = units[0] if units else None
+    p = units[1] if len(units) > 1 else None
+    return q, p
+
+
 class Labels:
     """Axis labels of one system (or of an unknown one: generic symbols, state units)."""
 
     def __init__(self, system: Any = None, ndof: int = 1) -> None:
-        entry = _entry(system) if system is not None else None
+        entry = entry_of(system)
         cls_names = [c.__name__ for c in type(system).__mro__] if system is not None else []
-        lagrangian = any(n == "LagrangianSystem" for n in cls_names)
         self.known = entry is not None
-        params = {p["name"]: p["unit"] for p in entry["params"]} if entry else {}
-        self._q_unit = next((params[n] for n in _Q_PARAMS if n in params), None)
-        self._p_unit = next((params[n] for n in _P_PARAMS if n in params), None)
-        symbols = next((_Q_SYMBOLS[n] for n in cls_names if n in _Q_SYMBOLS), None)
-        self._symbols = symbols
-        #: An Euler top (state = body rates, then the orientation quaternion).
-        self.rigid_body = "EulerTop" in cls_names
+        if entry is not None:
+            lagrangian = entry["family"] == "lagrangian"
+            self._q_unit, self._p_unit = _state_units(entry)
+            symbols = entry["presentation"]["symbols"]
+            self._symbols = list(symbols) if symbols else None
+            drawing = entry["presentation"]["drawing"]["kind"]
+            self.time_unit = _TIME_WORDS.get(entry["presentation"]["time_unit"], "time units")
+        else:
+            lagrangian = "LagrangianSystem" in cls_names
+            self._q_unit = self._p_unit = None
+            self._symbols = None
+            drawing = None
+            self.time_unit = "time units"
+        #: A rigid body drawn as its inertia box (state = body rates, then the orientation
+        #: quaternion).
+        self.rigid_body = drawing == "inertia_box"
         self._dot = lagrangian
         self.ndof = ndof
-        units = " ".join(p["unit"] for p in entry["params"]) if entry else ""
-        if "/s" in units or "s^" in units:
-            self.time_unit = "s"
-        elif "time" in units:
-            self.time_unit = "time"
-        elif entry is not None:
-            self.time_unit = "dimensionless"
-        else:
-            self.time_unit = "time units"
 
     def symbol(self, i: int) -> str:
         """Mathtext symbol (no dollars) of coordinate ``i``."""
@@ -128,18 +138,38 @@ class Labels:
             return self._symbols[0]
         return None
 
+    def _named(self) -> bool:
+        """True when each coordinate has a symbol of its own (``\\theta_1``, ``\\theta_2``)."""
+        return self._symbols is not None and 1 < self.ndof <= len(self._symbols)
+
     def q_all(self) -> str:
-        """Label of all coordinates on one axis."""
+        """Label of all coordinates on one axis: their symbols (``θ₁, θ₂``), the family's
+        (``q_i``), or the word."""
         unit = _unit_words(self._q_unit, 0) if self._q_unit is not None else "state units"
         sym = self._family()
-        return f"${sym}$ ({unit})" if sym else f"coordinates ({unit})"
+        if sym:
+            index = "_i" if self.ndof > 1 else ""
+            return f"${sym}{index}$ ({unit})"
+        if self._named():
+            names = ", ".join(f"${self.symbol(i)}$" for i in range(self.ndof))
+            return f"{names} ({unit})"
+        return f"coordinates ({unit})"
 
     def p_all(self) -> str:
-        """Label of all momenta / velocities on one axis."""
+        """Label of all momenta / velocities on one axis, as :meth:`q_all`."""
         unit = _unit_words(self._p_unit, 0) if self._p_unit is not None else "state units"
         sym = self._family()
         if sym:
-            return rf"$\dot{{{sym}}}$ ({unit})" if self._dot else f"$p_{{{sym}}}$ ({unit})"
+            index = "_i" if self.ndof > 1 else ""
+            if self._dot:
+                return rf"$\dot{{{sym}}}{index}$ ({unit})"
+            return f"$p_{{{sym}{',i' if index else ''}}}$ ({unit})"
+        if self._named():
+            if self._dot:
+                names = ", ".join(rf"$\dot{{{self.symbol(i)}}}$" for i in range(self.ndof))
+            else:
+                names = ", ".join(f"$p_{{{self.symbol(i)}}}$" for i in range(self.ndof))
+            return f"{names} ({unit})"
         word = "velocities" if self._dot else "momenta"
         return f"{word} ({unit})"
 

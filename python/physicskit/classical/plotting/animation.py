@@ -17,7 +17,7 @@ import numpy as np
 
 from .._native import as_int
 from ._data import frame_indices, has_qp
-from ._labels import Labels
+from ._labels import Labels, drawing_of
 from ._mpl import new_axes
 
 #: Update function of a frame (its position in the frame list) -> artists changed.
@@ -93,7 +93,7 @@ def _hoop(system: Any, result: Any, idx: np.ndarray, ax: Any, trail: int) -> _Up
     return update
 
 
-def _chain(system: Any, result: Any, idx: np.ndarray, ax: Any) -> _Update:
+def _chain(system: Any, result: Any, idx: np.ndarray, ax: Any, walls: bool) -> _Update:
     """Masses at their sites ``i``, displaced by ``q_i`` (drawn across the chain), joined by
     the springs; fixed walls at both ends where the chain has them."""
     q = result.q[idx]
@@ -104,10 +104,6 @@ def _chain(system: Any, result: Any, idx: np.ndarray, ax: Any) -> _Update:
     ax.set_xlim(0, n + 1)
     ax.set_ylim(-top, top)
     ax.axhline(0.0, color="0.8", lw=0.8)
-    from ..systems.chains import HarmonicChain, FPUTChain
-
-    walls = isinstance(system, (HarmonicChain, FPUTChain)) or type(system).__name__ == \
-        "CoupledOscillators"
     if walls:
         ax.axvline(0, color="k", lw=3)
         ax.axvline(n + 1, color="k", lw=3)
@@ -146,12 +142,13 @@ def _cloud(system: Any, result: Any, idx: np.ndarray, ax: Any) -> _Update:
     return update
 
 
-def _orbit(system: Any, result: Any, idx: np.ndarray, ax: Any, trail: int) -> _Update:
+def _orbit(system: Any, result: Any, idx: np.ndarray, ax: Any, trail: int,
+           central_body: bool) -> _Update:
     """A point moving in the ``(q_1, q_2)`` plane with a fading trail."""
     xy = result.q[idx][:, :2]
     lab = Labels(system, 2)
     ax.plot(result.q[:, 0], result.q[:, 1], color="0.85", lw=0.6)
-    if type(system).__name__ == "KeplerSystem":
+    if central_body:
         ax.plot([0.0], [0.0], marker="*", color="orange", ms=12)
         ax.set_aspect("equal", adjustable="datalim")
     (body,) = ax.plot([], [], "o", color="C0", ms=7)
@@ -258,38 +255,35 @@ def animate(system: Any, result: Any, *, stride: int = 1, frames: int | None = N
     """
     from matplotlib.animation import FuncAnimation
 
-    from ..systems import chains, hamiltonian, lagrangian, newtonian, rotations
-
     fps = as_int("fps", fps, minimum=1, maximum=1000)
     trail = as_int("trail", trail, minimum=0)
     idx = frame_indices(len(result.t), stride, frames)
-    three_d = isinstance(system, (rotations.EulerTop, rotations.HeavySymmetricTop))
+    # What to draw is the catalogue's `presentation["drawing"]` of the system's class.
+    drawing = drawing_of(system) or {"kind": "plots"}
+    kind = drawing["kind"]
+    three_d = kind in ("inertia_box", "top_axis")
     if not three_d and not has_qp(result):
         raise ValueError("the result has no q and p to animate")
-    ax = new_axes(ax, projection="3d" if three_d else None)
-    update: _Update
-    if isinstance(system, (lagrangian.DoublePendulum, lagrangian.ElasticPendulum)):
-        update = _bobs(system, result, idx, ax, trail)
-    elif isinstance(system, lagrangian.BeadOnRotatingHoop):
-        update = _hoop(system, result, idx, ax, trail)
-    elif isinstance(system, hamiltonian.PendulumSwarm):
-        update = _cloud(system, result, idx, ax)
-    elif isinstance(system, (chains._ChainBase, chains.TodaLattice,
-                             lagrangian.CoupledOscillators)):
-        update = _chain(system, result, idx, ax)
-    elif isinstance(system, (newtonian.KeplerSystem, newtonian.ProjectileMotion,
-                             hamiltonian.HenonHeilesSystem)):
-        update = _orbit(system, result, idx, ax, trail)
-    elif isinstance(system, rotations.EulerTop):
-        update = _box(system, result, idx, ax)
-    elif isinstance(system, rotations.HeavySymmetricTop):
-        update = _top(system, result, idx, ax, trail)
-    else:
+    if kind == "plots":
         raise ValueError(
-            f"animate cannot draw a {type(system).__name__}; it draws the pendulum family, "
-            "chains, the pendulum swarm, orbits (Kepler, projectile, Hénon–Heiles) and the "
-            "two tops"
+            f"animate cannot draw a {type(system).__name__}: the catalogue gives it no picture "
+            "(it draws the pendulum family, the hoop, chains, the pendulum swarm, orbits and "
+            "the tops; plot_result draws any run)"
         )
+    ax = new_axes(ax, projection="3d" if three_d else None)
+    builders: dict[str, Callable[[], _Update]] = {
+        "bobs": lambda: _bobs(system, result, idx, ax, trail),
+        "hoop": lambda: _hoop(system, result, idx, ax, trail),
+        "swarm": lambda: _cloud(system, result, idx, ax),
+        "chain": lambda: _chain(system, result, idx, ax, bool(drawing.get("fixed_ends"))),
+        "orbit": lambda: _orbit(system, result, idx, ax, trail,
+                                bool(drawing.get("central_body"))),
+        "inertia_box": lambda: _box(system, result, idx, ax),
+        "top_axis": lambda: _top(system, result, idx, ax, trail),
+    }
+    if kind not in builders:
+        raise ValueError(f"animate has no picture of kind {kind!r}")
+    update = builders[kind]()
     title = ax.set_title("")
     t = result.t[idx]
     unit = Labels(system).time_unit

@@ -7,7 +7,7 @@ from typing import Any, Sequence
 import numpy as np
 
 from ._data import as_results, given_labels, has_qp
-from ._labels import Labels
+from ._labels import Labels, drawing_of
 from ._mpl import new_axes, orbit_colours
 
 #: Grid of the separatrix contour (its level set is drawn by matplotlib's contouring): fine
@@ -19,14 +19,12 @@ _GRID_PER_POINT = (121, 81)
 def _pendulum_energy_grid(system: Any, qq: np.ndarray, pp: np.ndarray) -> np.ndarray | None:
     """The system's energy on the ``(q, p)`` grid, for the one-degree-of-freedom pendulum
     family (the swarm's pendulum, the bead on the hoop); None for other systems."""
-    from ..systems.hamiltonian import PendulumSwarm
-    from ..systems.lagrangian import BeadOnRotatingHoop
-
-    if isinstance(system, PendulumSwarm):
+    kind = (drawing_of(system) or {}).get("kind")
+    if kind == "swarm":
         # One library call for the whole grid: a swarm of one pendulum per grid point.
-        grid = PendulumSwarm(qq.ravel(), pp.ravel(), g_over_l=system.g_over_l)
+        grid = type(system)(qq.ravel(), pp.ravel(), g_over_l=system.g_over_l)
         return grid.per_particle_energy().reshape(qq.shape)
-    if isinstance(system, BeadOnRotatingHoop):
+    if kind == "hoop":
         e = np.empty(qq.size)
         for i, (q, p) in enumerate(zip(qq.ravel(), pp.ravel())):
             e[i] = system.energy(np.array([q, p]))
@@ -51,9 +49,8 @@ def draw_separatrix(ax: Any, system: Any, linewidth: float = 1.0) -> Any:
         return None
     x0, x1 = ax.get_xlim()
     y0, y1 = ax.get_ylim()
-    from ..systems.hamiltonian import PendulumSwarm
-
-    nx, ny = _GRID if isinstance(system, PendulumSwarm) else _GRID_PER_POINT
+    swarm = (drawing_of(system) or {}).get("kind") == "swarm"
+    nx, ny = _GRID if swarm else _GRID_PER_POINT
     qq, pp = np.meshgrid(np.linspace(x0, x1, nx), np.linspace(y0, y1, ny))
     e = _pendulum_energy_grid(system, qq, pp)
     if e is None:  # a separatrix, but no vectorized energy to contour it with

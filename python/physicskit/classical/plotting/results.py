@@ -5,7 +5,7 @@ from __future__ import annotations
 from typing import Any, Sequence
 
 from ._data import as_results, has_qp, labels_for, relative_energy_error
-from ._labels import ENERGY_ERROR, Labels
+from ._labels import ENERGY_ERROR, Labels, method_words
 from ._mpl import pyplot
 
 
@@ -79,7 +79,7 @@ def plot_result(result: Any, system: Any = None, *, ax: Any = None, max_lines: i
                       va="center", transform=axes[-1].transAxes)
     axes[-1].set_xlabel(lab.t)
     method = getattr(result, "method", "")
-    axes[0].set_title(f"{type(system).__name__ + ', ' if system is not None else ''}{method}")
+    axes[0].set_title(method_words(method) if method else "")
     fig.align_ylabels(axes)
     return fig
 

@@ -8,6 +8,7 @@ from typing import Any, Sequence
 import numpy as np
 
 from ._data import as_results, given_labels
+from ._labels import drawing_of
 from ._mpl import new_axes, orbit_colours
 
 
@@ -29,10 +30,8 @@ def top_axis(system: Any, result: Any, *, ax: Any = None) -> Any:
 
     Returns the tip's ``Line3D``.
     """
-    from ..systems.rotations import HeavySymmetricTop
-
-    if not isinstance(system, HeavySymmetricTop):
-        raise ValueError(f"top_axis draws a HeavySymmetricTop, got {type(system).__name__}")
+    if (drawing_of(system) or {}).get("kind") != "top_axis":
+        raise ValueError(f"top_axis draws a heavy symmetric top, got {type(system).__name__}")
     ax = new_axes(ax, projection="3d")
     _sphere(ax, 1.0)
     tip = axis_tip(system, result)
@@ -57,10 +56,8 @@ def polhodes(system: Any, results: Any, *, labels: Sequence[str] | None = None,
 
     Returns one ``Line3D`` per run.
     """
-    from ..systems.rotations import EulerTop
-
-    if not isinstance(system, EulerTop):
-        raise ValueError(f"polhodes draws an EulerTop, got {type(system).__name__}")
+    if (drawing_of(system) or {}).get("kind") != "inertia_box":
+        raise ValueError(f"polhodes draws a free rigid body (EulerTop), got {type(system).__name__}")
     runs = as_results(results)
     given = given_labels(labels, len(runs))
     names: list[str | None] = [None] * len(runs) if given is None else list(given)
