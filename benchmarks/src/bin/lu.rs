@@ -18,7 +18,7 @@ use physicskit::classical::core::linalg::{lu_factor, lu_solve};
 fn problem(n: usize) -> (Vec<f64>, Vec<f64>) {
     let mut x = 0.123_456_789_f64;
     let mut next = || {
-        x = (x * 3.987_654_321 + 0.318_309_886).fract();
+        x = (x * 3.987_654_321 + 0.271_828_182).fract();
         x - 0.5
     };
     let mut a = vec![0.0; n * n];

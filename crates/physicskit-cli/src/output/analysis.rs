@@ -13,12 +13,16 @@
 use std::fs::File;
 use std::io::{self, Write};
 
+use ndarray::ArrayView2;
+use serde::ser::{SerializeMap, Serializer};
+use serde::Serialize;
+
 use physicskit::classical::integrators::Family;
 use physicskit::classical::model::{Value, Values};
 
 use super::arrays::{write_npz as write_npz_entries, Entry};
 use super::csv;
-use super::json::{push_list, push_parameters, push_value, quote};
+use super::json::{self, Numbers, ParamValue, Parameters, Rows};
 use super::number::push_f64;
 
 /// One named array: C-order data and its shape (`[n]` or `[n, m]`).
@@ -115,34 +119,35 @@ pub(super) fn write_npz(file: &File, record: &Arrays<'_>) -> io::Result<()> {
     write_npz_entries(file, &entries)
 }
 
-pub(super) fn write_json(w: &mut impl Write, record: &Arrays<'_>) -> io::Result<()> {
-    let mut s = String::from("{\n");
-    for (name, text) in record.texts() {
-        s.push_str(&format!("  \"{name}\": {},\n", quote(text)));
-    }
-    for (name, value) in &record.settings {
-        s.push_str(&format!("  \"{name}\": "));
-        push_value(&mut s, Some(value));
-        s.push_str(",\n");
-    }
-    push_parameters(&mut s, record.params);
-    w.write_all(s.as_bytes())?;
-    for a in &record.arrays {
-        w.write_all(format!(",\n  \"{}\": ", a.name).as_bytes())?;
-        s.clear();
-        if a.shape.len() == 1 {
-            push_list(&mut s, a.data.iter().copied());
-        } else {
-            s.push('[');
-            for (i, row) in a.data.chunks_exact(a.width()).enumerate() {
-                s.push_str(if i == 0 { "\n    " } else { ",\n    " });
-                push_list(&mut s, row.iter().copied());
-            }
-            s.push_str("\n  ]");
+/// The analysis document of the module docs, for [`json::write_document`].
+struct Document<'a, 'r>(&'a Arrays<'r>);
+
+impl Serialize for Document<'_, '_> {
+    fn serialize<S: Serializer>(&self, s: S) -> Result<S::Ok, S::Error> {
+        let record = self.0;
+        let mut map = s.serialize_map(None)?;
+        for (name, text) in record.texts() {
+            map.serialize_entry(name, text)?;
         }
-        w.write_all(s.as_bytes())?;
+        for (name, value) in &record.settings {
+            map.serialize_entry(name, &ParamValue(Some(value)))?;
+        }
+        map.serialize_entry("parameters", &Parameters(record.params))?;
+        for a in &record.arrays {
+            if a.shape.len() == 1 {
+                map.serialize_entry(a.name, &Numbers(a.data.iter().copied()))?;
+            } else {
+                let rows = ArrayView2::from_shape((a.shape[0], a.width()), &a.data)
+                    .map_err(serde::ser::Error::custom)?;
+                map.serialize_entry(a.name, &Rows(rows))?;
+            }
+        }
+        map.end()
     }
-    w.write_all(b"\n}\n")
+}
+
+pub(super) fn write_json(w: &mut impl Write, record: &Arrays<'_>) -> io::Result<()> {
+    json::write_document(w, &Document(record))
 }
 
 pub(super) fn write_csv(w: &mut impl Write, record: &Arrays<'_>) -> io::Result<()> {

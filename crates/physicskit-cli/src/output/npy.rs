@@ -6,6 +6,10 @@
 //! the raw little-endian data in C order. Only the dtypes the command line writes are
 //! supported: `<f8`, `<i8` and unicode strings `<U{n}` (UTF-32LE), none of which need pickle,
 //! so `numpy.load(..., allow_pickle=False)` reads them.
+//!
+//! Written here rather than by a crate: ndarray-npy writes no unicode strings (`<U{n}`: the
+//! `system`, `family` and `method` entries), and npyz, which does, brings a second, older
+//! `zip` and num-bigint into the tree; the archive itself is the `zip` crate's (`arrays.rs`).
 
 use std::io::{self, Write};
 
