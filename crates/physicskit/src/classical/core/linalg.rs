@@ -3,7 +3,9 @@
 //! The implicit-midpoint Newton solve and the Lagrangian engine's mass-matrix solve need
 //! `LU` factorizations of matrices of a handful of rows, once or more per step. General crates
 //! (nalgebra, faer) allocate a new matrix per factorization; these routines factor in place so
-//! that the step loop stays allocation-free. Matrices are row-major `n x n` slices.
+//! that the step loop stays allocation-free, and their rounding is what the stored digests of
+//! the implicit methods hold (nalgebra's LU differs in the last bits; benchmarks/README.md
+//! compares the two). Matrices are row-major `n x n` slices.
 
 /// Pivots smaller than this times the largest entry of the matrix count as zero: an LU pivot
 /// that small means the matrix is singular to working precision (about 50 ulps of the scale).
