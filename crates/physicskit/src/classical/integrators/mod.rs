@@ -48,6 +48,7 @@ pub mod session;
 pub mod splitting;
 pub mod stepper;
 pub mod tangent;
+pub mod taylor;
 
 pub use dop853::Dop853;
 pub use ensemble::{integrate_ensemble, Ensemble, ENSEMBLE_CHUNK};
