@@ -1,13 +1,16 @@
 //! # physicskit-viz
 //!
-//! Figures and animations of the physicskit demonstrations, drawn with
-//! [plotters](https://docs.rs/plotters) into PNG files and animated GIFs, with the DejaVu Sans
-//! font embedded (no system font is needed; see [`font`]).
+//! Figures and animations of the physicskit demonstrations: SVG figures drawn with
+//! [plotters](https://docs.rs/plotters) and this crate's own data, legend and colour-bar
+//! elements, text set in the bundled DejaVu Sans (see [`font`]); animated GIFs rendered from
+//! the same SVG drawing by [resvg](https://docs.rs/resvg).
 //!
-//! * [`figure`]: line/dot panels with titles, axis labels with units and legends; multi-panel
-//!   PNG files.
-//! * [`heatmap`]: space–time heat maps with a colour bar.
+//! * [`figure`]: line/dot panels with wrapped titles, axis labels with units and legends placed
+//!   where they hide no data; multi-panel SVG files.
+//! * [`heatmap`]: heat maps with a colour bar.
 //! * [`animation`]: animated GIFs.
+//! * [`layout`]: the checks every gallery figure passes (text inside the figure and apart,
+//!   legends off the data).
 //! * [`gallery`]: the demonstrations and [`render_gallery`], which writes them all and
 //!   an offline `index.html` explaining the physics of each.
 //!
@@ -21,6 +24,9 @@ pub mod font;
 pub mod gallery;
 pub mod heatmap;
 mod html;
+pub mod layout;
+pub mod svg;
+pub mod text;
 
 pub use error::{Result, VizError};
 pub use gallery::{demo_count, render_gallery, Demo, GalleryFile, GalleryReport};

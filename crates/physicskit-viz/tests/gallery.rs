@@ -1,5 +1,7 @@
 //! Renders the whole gallery in quick mode into a temporary directory and checks every promised
-//! file: it exists, has a sensible size, is not blank, and every GIF is animated.
+//! file: it exists, has a sensible size, is not blank, every GIF is animated, and every SVG
+//! figure passes the layout checks of `physicskit_viz::layout` (text inside the figure, no two
+//! text boxes overlapping, no legend over its own data).
 
 use std::fs::File;
 use std::path::{Path, PathBuf};
@@ -21,31 +23,10 @@ impl Drop for TempDir {
     }
 }
 
-/// Grey levels of a PNG (RGB or RGBA, 8 bit) as 0..255 luminance per pixel.
-fn png_luma(path: &Path) -> (u32, u32, Vec<f64>) {
-    let decoder = png::Decoder::new(File::open(path).unwrap());
-    let mut reader = decoder.read_info().unwrap();
-    let mut buf = vec![0; reader.output_buffer_size()];
-    let info = reader.next_frame(&mut buf).unwrap();
-    let channels = info.color_type.samples();
-    assert!(channels >= 3, "{}: expected colour PNG", path.display());
-    assert_eq!(info.bit_depth, png::BitDepth::Eight);
-    let luma = buf[..info.buffer_size()]
-        .chunks_exact(channels)
-        .map(|p| 0.299 * f64::from(p[0]) + 0.587 * f64::from(p[1]) + 0.114 * f64::from(p[2]))
-        .collect();
-    (info.width, info.height, luma)
-}
-
 fn variance(v: &[f64]) -> f64 {
     let n = v.len() as f64;
     let mean = v.iter().sum::<f64>() / n;
     v.iter().map(|x| (x - mean).powi(2)).sum::<f64>() / n
-}
-
-/// Fraction of pixels that are not (near) white.
-fn ink(v: &[f64]) -> f64 {
-    v.iter().filter(|&&l| l < 240.0).count() as f64 / v.len() as f64
 }
 
 /// Frames of a GIF and the luminance variance of its last frame.
@@ -163,28 +144,32 @@ fn quick_gallery_renders_every_promised_file() {
             );
         }
     }
-    assert!(html.contains(&format!("<p>{count} demonstrations")));
+    assert!(html.contains(&format!(">{count} demonstrations of")));
     lab_captions_are_the_gallery_paragraphs(&report.demos, &html);
     let mut gifs = 0;
+    let mut problems = Vec::new();
     for f in &report.files {
         assert!(f.path.starts_with(&dir.0));
         assert!(!f.description.is_empty());
         let size = std::fs::metadata(&f.path).map(|m| m.len()).unwrap_or(0);
         let name = f.path.file_name().unwrap().to_string_lossy().to_string();
         match f.path.extension().and_then(|e| e.to_str()) {
-            Some("png") => {
-                // A plotted figure with axes, text and data is tens of kB; a blank 800x500
-                // PNG compresses to ~2 kB. Keep figures below 2 MB so the gallery stays light.
-                assert!((10_000..2_000_000).contains(&size), "{name}: {size} bytes");
-                let (w, h, luma) = png_luma(&f.path);
-                assert!(w >= 400 && h >= 300, "{name}: {w}x{h}");
-                // A blank or single-colour image has luminance variance 0. Ink (luminance ~50)
-                // on a fraction f of white (255) pixels gives f (1 - f) 205^2, about 1200 at
-                // f = 3 %, so 100 fails only an (almost) empty picture.
-                let var = variance(&luma);
-                assert!(var > 100.0, "{name}: luminance variance {var}");
-                assert!(ink(&luma) > 0.01, "{name}: almost no ink");
+            Some("svg") => {
+                // A figure with axes, text and data is several kB (a blank one about 1 kB); keep each below 3 MB so the
+                // page stays light (dense Poincaré sections are the largest).
+                assert!((4_000..3_000_000).contains(&size), "{name}: {size} bytes");
+                let svg = std::fs::read_to_string(&f.path).unwrap();
+                // Not blank: some data group or image with drawn content.
+                assert!(
+                    svg.contains("<g class=\"pk-data\"")
+                        || svg.contains("<image ")
+                        || svg.matches("<polygon").count() > 3,
+                    "{name}: no plotted data"
+                );
                 assert!(html.contains(&name), "index.html does not show {name}");
+                for p in physicskit_viz::layout::check(&svg, &f.path).expect("SVG parses") {
+                    problems.push(format!("{name}: {p}"));
+                }
             }
             Some("gif") => {
                 gifs += 1;
@@ -198,6 +183,11 @@ fn quick_gallery_renders_every_promised_file() {
             other => panic!("unexpected file type {other:?} for {name}"),
         }
     }
+    assert!(
+        problems.is_empty(),
+        "layout problems:\n{}",
+        problems.join("\n")
+    );
     // The issue promises animations for the double pendulum, the swarm, the sine-Gordon chain
     // and the Euler top.
     assert!(gifs >= 4, "{gifs} GIFs");

@@ -8,7 +8,7 @@ use physicskit::classical::{HamiltonianSystem, LagrangianSystem, Method};
 use super::common::{column, nonempty};
 use super::{Ctx, Demo};
 use crate::error::Result;
-use crate::figure::{color, save_panel, save_png, Legend, Mark, Panel, Series};
+use crate::figure::{color, save_panel, save_svg, Legend, Mark, Panel, Series};
 
 /// Sites of the chain whose mode shapes are drawn.
 const N: usize = 8;
@@ -24,7 +24,7 @@ pub(crate) fn render(ctx: &Ctx) -> Result<Demo> {
         "displacement qᵢ (m, mode normalised)",
     )
     .x_range(0.0, (N + 1) as f64)
-    .legend(Legend::LowerLeft);
+    .legend(Legend::Auto);
     for j in 0..4 {
         // The sine transform is its own inverse: the coordinates of the unit modal vector e_j
         // are the mode shape.
@@ -50,7 +50,7 @@ pub(crate) fn render(ctx: &Ctx) -> Result<Demo> {
                 .unlabeled(),
         );
     }
-    let path = ctx.path("chain_modes.png");
+    let path = ctx.path("chain_modes.svg");
     save_panel(&path, (1000, 600), &panel)?;
     d.add(path, "shapes of the four lowest normal modes of an 8-mass chain; dots: minus the simulated displacement half a period later");
 
@@ -100,7 +100,7 @@ pub(crate) fn render(ctx: &Ctx) -> Result<Demo> {
         "displacement of mass 1 (m)",
     )
     .y_range(-1.3, 1.3)
-    .legend(Legend::UpperRight)
+    .legend(Legend::Auto)
     .with(Series::xy("simulated q₁(t)", &t, &q1, color(0)))
     .with(Series::xy(
         format!("envelope ±2a|cos(Δω t/2)|, beat period 2π/Δω = {beat_period:.0} s"),
@@ -128,12 +128,12 @@ pub(crate) fn render(ctx: &Ctx) -> Result<Demo> {
         "t (s)",
         "modal energy (J)",
     )
-    .legend(Legend::UpperRight)
+    .legend(Legend::Auto)
     .with(Series::xy(format!("mode {ja}"), &t, &ea, color(2)))
     .with(Series::xy(format!("mode {jb}"), &t, &eb, color(3)));
-    let path = ctx.path("coupled_beats.png");
+    let path = ctx.path("coupled_beats.svg");
     let panels = [top, bottom];
-    save_png(&path, (1000, 800), None, (2, 1), |i, area| {
+    save_svg(&path, (1000, 800), None, (2, 1), |i, area| {
         panels[i].draw(area, &path).map(|_| ())
     })?;
     d.add(path, "beats: one mass of a 12-mass chain started in its two highest modes, with the analytic envelope, and the constant modal energies");

@@ -50,14 +50,14 @@ pub(crate) fn render(ctx: &Ctx) -> Result<Demo> {
         title: format!("Largest Lyapunov exponent at t = {t_max} s, {n} × {n} orbits"),
         x_label: "θ₁ (rad)".into(),
         y_label: "θ₂ (rad)".into(),
-        value_label: "λ_max (1/s)".into(),
+        value_label: "λ_{max} (1/s)".into(),
         x_range: (theta[0], theta[n - 1]),
         y_range: (theta[0], theta[n - 1]),
         nx: n,
         ny: n,
         values,
     };
-    let path = ctx.path("double_pendulum_lyapunov.png");
+    let path = ctx.path("double_pendulum_lyapunov.svg");
     save_with_no_flip_contour(&path, &map, &params, (WHITE, "white"))?;
     d.add(path, "largest Lyapunov exponent over the plane of initial angles, with the energy contour inside which no arm can flip");
     Ok(d)

@@ -10,7 +10,7 @@ use physicskit::classical::systems::DoublePendulumParams;
 use plotters::prelude::*;
 
 use crate::error::{DrawContext, Result};
-use crate::figure::save_png;
+use crate::figure::save_svg;
 use crate::heatmap::HeatMap;
 
 /// `n` cell centres from `-pi` to `pi` (the edges, where an arm stands inverted, left out).
@@ -53,7 +53,7 @@ fn no_flip_contour(params: &DoublePendulumParams, n: usize) -> Vec<(f64, f64)> {
 /// `colour` (named `colour_name` in the map's title; the figure's title states the parameters).
 ///
 /// # Errors
-/// As [`save_png`].
+/// As [`save_svg`].
 pub(super) fn save_with_no_flip_contour(
     path: &Path,
     map: &HeatMap,
@@ -66,7 +66,7 @@ pub(super) fn save_with_no_flip_contour(
     let mut map = map.clone();
     map.title = format!("{}; none flips inside the {colour_name} curve", map.title);
     let contour = no_flip_contour(params, 720);
-    save_png(path, (860, 760), Some(&title), (1, 1), |_, area| {
+    save_svg(path, (860, 760), Some(&title), (1, 1), |_, area| {
         map.draw_with(area, path, |chart| {
             chart
                 .draw_series(LineSeries::new(

@@ -7,7 +7,7 @@ use physicskit::classical::{DynamicalSystem, LagrangianSystem, Method};
 use super::common::stride;
 use super::{Ctx, Demo};
 use crate::error::Result;
-use crate::figure::{color, save_png, Legend, Panel, Series};
+use crate::figure::{color, save_svg, Legend, Panel, Series};
 
 /// Initial stretch beyond the hanging length (m) and initial swing angle (rad): almost pure
 /// bouncing.
@@ -55,30 +55,30 @@ pub(crate) fn render(ctx: &Ctx) -> Result<Demo> {
         let energies = Panel::new(
             format!("{label}: energy in each mode (k = {k:.2} N/m)"),
             "t (s)",
-            "share of the energy E − E_eq",
+            "share of the energy E − E_{eq}",
         )
         // Head room above 1 for the legend.
         .y_range(0.0, 1.35)
-        .legend(Legend::UpperRight)
+        .legend(Legend::Auto)
         .with(Series::line("bounce (spring)", bounce, color(1)))
         .with(Series::line("swing (pendulum)", swing, color(2)));
         panels.push((trajectory, energies));
     }
-    let path = ctx.path("elastic_pendulum.png");
+    let path = ctx.path("elastic_pendulum.svg");
     let (res, det) = (panels.remove(0), panels.remove(0));
     let grid = [res.0, res.1, det.0, det.1];
-    save_png(
+    save_svg(
         &path,
         (1500, 900),
         Some(
-            "Elastic pendulum (m = 1 kg, l0 = 1 m): bounce and swing trade energy only at ωₛ = 2ωₚ",
+            "Elastic pendulum (m = 1 kg, ℓ₀ = 1 m): bounce and swing trade energy only at ωₛ = 2ωₚ",
         ),
         (2, 2),
         |i, area| grid[i].draw(area, &path).map(|_| ()),
     )?;
     d.add(
         path,
-        "bob trajectories and the energy in the bounce and swing modes against time, at the exact 2:1 resonance k = 3mg/l0 (top) and at k = 40 N/m (bottom)",
+        "bob trajectories and the energy in the bounce and swing modes against time, at the exact 2:1 resonance k = 3mg/ℓ₀ (top) and at k = 40 N/m (bottom)",
     );
     Ok(d)
 }

@@ -9,7 +9,7 @@ use super::common::{project, stride, ycol};
 use super::{Ctx, Demo};
 use crate::animation::save_gif;
 use crate::error::{DrawContext, Result};
-use crate::figure::{color, save_panel, Legend, Mark, Panel, Series};
+use crate::figure::{color, save_panel, Legend, Panel, Series};
 use crate::font::FAMILY;
 
 const OMEGA0: [f64; 3] = [0.01, 1.0, 0.01];
@@ -36,110 +36,74 @@ pub(crate) fn render(ctx: &Ctx) -> Result<Demo> {
         "t (s)",
         "body-frame angular velocity (rad/s)",
     )
-    .legend(Legend::UpperRight);
+    .legend(Legend::Auto);
     for (j, name) in ["ω₁ (I₁ = 1)", "ω₂ (I₂ = 2)", "ω₃ (I₃ = 3)"]
         .iter()
         .enumerate()
     {
         panel = panel.with(Series::xy(*name, &t, &ycol(&r.y, j), color(j)));
     }
-    let path = ctx.path("euler_omega.png");
+    let path = ctx.path("euler_omega.svg");
     save_panel(&path, (1000, 520), &panel)?;
     d.add(
         path,
         "body-frame ω components against time: ω₂ reverses periodically (the Dzhanibekov flips)",
     );
 
-    // Polhodes on the unit angular-momentum sphere.
+    // Polhodes on the unit angular-momentum sphere, drawn as a shaded sphere.
     let inertia = [params.i1, params.i2, params.i3];
-    let mut starts: Vec<[f64; 3]> = Vec::new();
-    for a in [0.25_f64, 0.5, 0.8, 1.1] {
-        starts.push([a.cos(), a.sin(), 0.0]); // loops around axis 1
-        starts.push([0.0, a.sin(), a.cos()]); // loops around axis 3
-        starts.push([0.0, a.sin(), -a.cos()]);
-        starts.push([-a.cos(), a.sin(), 0.0]);
-    }
-    starts.push([0.02, 1.0, 0.02]); // next to the separatrix
-    let mut sphere = Panel::new("Polhodes: L/|L| in the body frame (oblique view)", "", "")
-        .x_range(-1.25, 1.25)
-        .y_range(-1.25, 1.25)
-        .legend(Legend::LowerRight)
-        .equal_aspect();
-    let outline = (0..=200)
-        .map(|k| {
-            let a = std::f64::consts::TAU * k as f64 / 200.0;
-            (a.cos(), a.sin())
-        })
-        .collect();
-    sphere = sphere.with(
-        Series::line("", outline, RGBColor(150, 150, 150))
-            .with_mark(Mark::Line(1))
-            .unlabeled(),
-    );
-    for (k, l0) in starts.iter().enumerate() {
-        let norm = (l0[0] * l0[0] + l0[1] * l0[1] + l0[2] * l0[2]).sqrt();
-        let w0: Vec<f64> = (0..3).map(|i| l0[i] / norm / inertia[i]).collect();
-        let mut body = EulerTop::new(&w0, params, None)?;
-        let r = body.integrate_with(
-            (0.0, ctx.pick(40.0, 60.0)),
-            0.02,
-            Method::ImplicitMidpoint,
-            stride(2),
-        )?;
-        let (mut front, mut back) = (Vec::new(), Vec::new());
-        for row in r.y.rows() {
-            let l = [
-                inertia[0] * row[0],
-                inertia[1] * row[1],
-                inertia[2] * row[2],
-            ];
-            let n = (l[0] * l[0] + l[1] * l[1] + l[2] * l[2]).sqrt();
-            let (u, v, depth) = project([l[0] / n, l[1] / n, l[2] / n], AZ, EL);
-            if depth >= 0.0 {
-                front.push((u, v))
-            } else {
-                back.push((u, v))
-            }
+    let mut loops: Vec<(Family, Vec<[f64; 3]>)> = Vec::new();
+    for a in [0.3_f64, 0.6, 0.9, 1.2] {
+        for (family, l0) in [
+            (Family::Axis1, [a.cos(), a.sin(), 0.0]),
+            (Family::Axis1, [-a.cos(), a.sin(), 0.0]),
+            (Family::Axis3, [0.0, a.sin(), a.cos()]),
+            (Family::Axis3, [0.0, a.sin(), -a.cos()]),
+        ] {
+            let w0: Vec<f64> = (0..3).map(|i| l0[i] / inertia[i]).collect();
+            let mut body = EulerTop::new(&w0, params, None)?;
+            let r = body.integrate_with(
+                (0.0, ctx.pick(40.0, 60.0)),
+                0.02,
+                Method::ImplicitMidpoint,
+                stride(2),
+            )?;
+            let pts =
+                r.y.rows()
+                    .into_iter()
+                    .map(|row| {
+                        let l = [
+                            inertia[0] * row[0],
+                            inertia[1] * row[1],
+                            inertia[2] * row[2],
+                        ];
+                        let n = (l[0] * l[0] + l[1] * l[1] + l[2] * l[2]).sqrt();
+                        [l[0] / n, l[1] / n, l[2] / n]
+                    })
+                    .collect();
+            loops.push((family, pts));
         }
-        let c = if k + 1 == starts.len() {
-            color(1)
-        } else {
-            color(0)
-        };
-        sphere = sphere.with(Series::dots("", back, c).with_alpha(0.15).unlabeled());
-        sphere = sphere.with(Series::dots("", front, c).unlabeled());
     }
-    for (i, name) in ["1", "2", "3"].iter().enumerate() {
-        let mut e = [0.0; 3];
-        e[i] = 1.12;
-        let (u, v, _) = project(e, AZ, EL);
-        sphere = sphere.with(
-            Series::line(
-                format!("axis {name}"),
-                vec![(0.0, 0.0), (u, v)],
-                color(2 + i),
-            )
-            .unlabeled(),
-        );
+    // The separatrix: where 2E I₂ = L², i.e. L₃ = ±k L₁ with k² = (1/I₁ − 1/I₂)/(1/I₂ − 1/I₃),
+    // two great circles through ±axis 2.
+    let k = ((1.0 / inertia[0] - 1.0 / inertia[1]) / (1.0 / inertia[1] - 1.0 / inertia[2])).sqrt();
+    for sign in [1.0, -1.0] {
+        let n = (1.0 + k * k).sqrt();
+        let u = [1.0 / n, 0.0, sign * k / n];
+        let circle = (0..=360)
+            .map(|j| {
+                let s = std::f64::consts::TAU * f64::from(j) / 360.0;
+                let (sn, cs) = s.sin_cos();
+                [cs * u[0], sn, cs * u[2]]
+            })
+            .collect();
+        loops.push((Family::Separatrix, circle));
     }
-    let path = ctx.path("euler_polhodes.png");
-    crate::figure::save_png(&path, (760, 760), None, (1, 1), |_, area| {
-        let mut chart = sphere.draw(area, &path)?;
-        for (i, name) in ["axis 1", "axis 2 (unstable)", "axis 3"].iter().enumerate() {
-            let mut e = [0.0; 3];
-            e[i] = 1.15;
-            let (u, v, _) = project(e, AZ, EL);
-            chart
-                .draw_series(std::iter::once(Text::new(
-                    name.to_string(),
-                    (u, v),
-                    (FAMILY, 16).into_font().color(&color(2 + i)),
-                )))
-                .at(&path)?;
-        }
-        Ok(())
+    let path = ctx.path("euler_polhodes.svg");
+    crate::svg::save(&path, (760, 700), |root| {
+        crate::svg::place(root, polhode_svg((760.0, 700.0), &loops), &path)
     })?;
-    d.add(path, "polhodes on the angular-momentum sphere: loops around the stable axes 1 and 3, the separatrix (orange) through axis 2");
+    d.add(path, "polhodes, the paths of the angular momentum L/|L| in the body frame, on the sphere |L| = 1 seen obliquely: closed loops around the stable axes 1 and 3, and the separatrix (two great circles crossing at the unstable axis 2) between the two families");
 
     // Tumbling plate: half-extents from I1 : I2 : I3 = (b²+c²) : (a²+c²) : (a²+b²).
     let half = {
@@ -154,6 +118,7 @@ pub(crate) fn render(ctx: &Ctx) -> Result<Demo> {
     };
     let frames = ctx.pick(48, 140);
     let t_anim = ctx.pick(35.0, 70.0);
+    let inertia = [params.i1, params.i2, params.i3];
     let mut spin = EulerTop::new(&OMEGA0, params, None)?;
     let ra = spin.integrate_with((0.0, t_anim), 0.01, Method::ImplicitMidpoint, stride(1))?;
     let per = (ra.t.len() / frames).max(1);
@@ -162,10 +127,200 @@ pub(crate) fn render(ctx: &Ctx) -> Result<Demo> {
         let i = (k * per).min(ra.t.len() - 1);
         let state = ra.y.row(i).to_vec();
         let rot = spin.rotation_matrix(Some(&state))?;
-        draw_box(root, &path, &rot, half, ra.t[i])
+        // The angular momentum in space, R (I ω): the same direction in every frame.
+        let l_body = [
+            inertia[0] * state[0],
+            inertia[1] * state[1],
+            inertia[2] * state[2],
+        ];
+        let mut l = [0.0; 3];
+        for (o, row) in l.iter_mut().zip(&rot) {
+            *o = row[0] * l_body[0] + row[1] * l_body[1] + row[2] * l_body[2];
+        }
+        draw_box(root, &path, &rot, half, l, ra.t[i])
     })?;
     d.add(path, "animation: the plate spun about its intermediate axis flips over and over (orientation in the space frame)");
     Ok(d)
+}
+
+/// Which family a polhode belongs to.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+enum Family {
+    /// Loops around the axis of least inertia.
+    Axis1,
+    /// Loops around the axis of greatest inertia.
+    Axis3,
+    /// The separatrix through the intermediate axis.
+    Separatrix,
+}
+
+/// View of the polhode sphere: from between axes 1 and 2, above the 1–2 plane, so loops around
+/// axes 1 and 3 are both seen open and the separatrix's crossing at axis 2 faces the reader.
+const POLHODE_AZ: f64 = 0.85;
+const POLHODE_EL: f64 = 0.45;
+
+/// The polhode figure: a shaded sphere, the curves (their hidden halves faint and dashed), the
+/// three body axes as arrows with labels outside the sphere, a title and a legend in the
+/// lower left corner, which the sphere leaves empty.
+fn polhode_svg(size: (f64, f64), loops: &[(Family, Vec<[f64; 3]>)]) -> String {
+    use crate::svg::{hex, num, text};
+    use std::fmt::Write as _;
+    let r = 0.34 * size.0.min(size.1);
+    let (cx, cy) = (0.5 * size.0, 0.53 * size.1);
+    let px = |p: [f64; 3]| {
+        let (u, v, depth) = project(p, POLHODE_AZ, POLHODE_EL);
+        (cx + r * u, cy - r * v, depth)
+    };
+    let mut s = String::new();
+    s.push_str(&crate::figure::title_svg(
+        &["Polhodes on the angular-momentum sphere".to_string()],
+        crate::figure::FIGURE_TITLE_SIZE,
+        cx,
+        6.0,
+    ));
+    let _ = writeln!(
+        s,
+        "<defs><radialGradient id=\"pkshade\" cx=\"0.38\" cy=\"0.32\" r=\"0.75\">\
+         <stop offset=\"0\" stop-color=\"#FFFFFF\"/><stop offset=\"1\" stop-color=\"#C9D3DD\"/>\
+         </radialGradient></defs>\n<circle cx=\"{}\" cy=\"{}\" r=\"{}\" fill=\"url(#pkshade)\" stroke=\"#8A949E\" stroke-width=\"1\"/>",
+        num(cx),
+        num(cy),
+        num(r)
+    );
+    let style = |f: Family| match f {
+        Family::Axis1 => (hex(color(0)), 1.6),
+        Family::Axis3 => (hex(color(2)), 1.6),
+        Family::Separatrix => (hex(color(1)), 2.6),
+    };
+    // Hidden halves first, then the visible ones on top.
+    for front in [false, true] {
+        for (family, pts) in loops {
+            let (c, w) = style(*family);
+            let mut d = String::new();
+            let mut pen_up = true;
+            for p in pts {
+                let (x, y, depth) = px(*p);
+                if (depth >= 0.0) == front {
+                    let _ = write!(d, "{}{} {}", if pen_up { 'M' } else { 'L' }, num(x), num(y));
+                    pen_up = false;
+                } else {
+                    pen_up = true;
+                }
+            }
+            if d.is_empty() {
+                continue;
+            }
+            let look = if front {
+                format!("stroke-width=\"{w}\"")
+            } else {
+                format!(
+                    "stroke-width=\"{}\" stroke-opacity=\"0.35\" stroke-dasharray=\"3 3\"",
+                    w * 0.7
+                )
+            };
+            let _ = writeln!(
+                s,
+                "<path d=\"{d}\" fill=\"none\" stroke=\"{c}\" stroke-linejoin=\"round\" {look}/>"
+            );
+        }
+    }
+    // Body axes: an arrow from the surface outwards, the label beyond its tip.
+    for (i, name) in [
+        "axis 1 (I₁ = 1)",
+        "axis 2 (I₂ = 2, unstable)",
+        "axis 3 (I₃ = 3)",
+    ]
+    .iter()
+    .enumerate()
+    {
+        let mut a = [0.0; 3];
+        let mut b = [0.0; 3];
+        let mut l = [0.0; 3];
+        a[i] = 1.0;
+        b[i] = 1.22;
+        l[i] = 1.3;
+        let (x0, y0, depth) = px(a);
+        let (x1, y1, _) = px(b);
+        let (lx, ly, _) = px(l);
+        let dash = if depth < 0.0 {
+            " stroke-dasharray=\"3 3\""
+        } else {
+            ""
+        };
+        let _ = writeln!(
+            s,
+            "<path d=\"M{} {}L{} {}\" stroke=\"#333333\" stroke-width=\"1.5\"{dash}/>\n<circle cx=\"{}\" cy=\"{}\" r=\"3\" fill=\"#333333\"/>",
+            num(x0),
+            num(y0),
+            num(x1),
+            num(y1),
+            num(x1),
+            num(y1)
+        );
+        let anchor = if lx < cx - 0.2 * r {
+            "end"
+        } else if lx > cx + 0.2 * r {
+            "start"
+        } else {
+            "middle"
+        };
+        let ty = if ly < cy { ly - 2.0 } else { ly + 12.0 };
+        s.push_str(&text(lx, ty, 14.0, false, anchor, "#222222", name));
+    }
+    // Legend: lower left, below the sphere's lowest point's left tangent.
+    let entries = [
+        (Family::Axis1, "loops around axis 1 (stable)"),
+        (Family::Axis3, "loops around axis 3 (stable)"),
+        (Family::Separatrix, "separatrix through axis 2"),
+        (Family::Axis1, "hidden side (dashed, faint)"),
+    ];
+    let lw = 10.0
+        + 26.0
+        + 8.0
+        + entries
+            .iter()
+            .map(|e| crate::text::width(e.1, 13.0, false))
+            .fold(0.0, f64::max)
+        + 10.0;
+    let lh = 8.0 + 19.0 * entries.len() as f64;
+    let (x0, y0) = (10.0, size.1 - 10.0 - lh);
+    let _ = writeln!(
+        s,
+        "<g class=\"pk-legend\"><rect x=\"{}\" y=\"{}\" width=\"{}\" height=\"{}\" rx=\"3\" fill=\"#FFFFFF\" fill-opacity=\"0.92\" stroke=\"#B4B4B4\" stroke-width=\"1\"/>",
+        num(x0),
+        num(y0),
+        num(lw),
+        num(lh)
+    );
+    for (k, (family, label)) in entries.iter().enumerate() {
+        let y = y0 + 4.0 + (k as f64 + 0.5) * 19.0;
+        let (c, w) = style(*family);
+        let look = if k == 3 {
+            format!(
+                "stroke-width=\"{}\" stroke-opacity=\"0.35\" stroke-dasharray=\"3 3\"",
+                w * 0.7
+            )
+        } else {
+            format!("stroke-width=\"{w}\"")
+        };
+        let _ = writeln!(
+            s,
+            "<path d=\"M{} {}h26\" fill=\"none\" stroke=\"{c}\" {look}/>",
+            num(x0 + 10.0),
+            num(y)
+        );
+        s.push_str(&text(
+            x0 + 44.0,
+            y + 4.5,
+            13.0,
+            false,
+            "start",
+            "#222222",
+            label,
+        ));
+    }
+    s.push_str("</g>\n");
+    s
 }
 
 /// Draws the box with half-extents `half` rotated by `rot` (body to world), faces shaded and
@@ -175,6 +330,7 @@ fn draw_box(
     path: &std::path::Path,
     rot: &[[f64; 3]; 3],
     half: [f64; 3],
+    l: [f64; 3],
     t: f64,
 ) -> Result<()> {
     let (w, h) = root.dim_in_pixel();
@@ -215,12 +371,24 @@ fn draw_box(
     ))
     .at(path)?;
     root.draw(&Text::new(
-        "space frame; the angular momentum stays fixed".to_string(),
+        "space frame; the angular momentum L stays fixed".to_string(),
         (12, 36),
         (FAMILY, 13).into_font().color(&RGBColor(90, 90, 90)),
     ))
     .at(path)?;
     let face_colors = [color(0), color(1), color(4)];
+    // The L arrow through the plate's centre: its hidden part (behind the plate) is drawn
+    // first, the part in front of the plate after the faces.
+    let n = (l[0] * l[0] + l[1] * l[1] + l[2] * l[2]).sqrt().max(1e-300);
+    let tip = [0.95 * l[0] / n, 0.95 * l[1] / n, 0.95 * l[2] / n];
+    let ((tx, ty), _) = to_px(tip);
+    let ((ox, oy), _) = to_px([0.0; 3]);
+    let arrow = RGBColor(30, 30, 30);
+    root.draw(&PathElement::new(
+        vec![(ox, oy), (tx, ty)],
+        arrow.mix(0.35).stroke_width(2),
+    ))
+    .at(path)?;
     for (_, axis, poly) in &faces {
         root.draw(&Polygon::new(poly.to_vec(), face_colors[*axis].filled()))
             .at(path)?;
@@ -229,5 +397,36 @@ fn draw_box(
         root.draw(&PathElement::new(closed, BLACK.stroke_width(1)))
             .at(path)?;
     }
+    // The visible stretch: from the plate's outline along L to the tip, with a head.
+    let start = [0.5 * tip[0], 0.5 * tip[1], 0.5 * tip[2]];
+    let ((sx, sy), _) = to_px(start);
+    root.draw(&PathElement::new(
+        vec![(sx, sy), (tx, ty)],
+        arrow.stroke_width(3),
+    ))
+    .at(path)?;
+    let (dx, dy) = (f64::from(tx - sx), f64::from(ty - sy));
+    let len = dx.hypot(dy).max(1e-9);
+    let (ux, uy) = (dx / len, dy / len);
+    let head = |side: f64| {
+        (
+            (f64::from(tx) - 12.0 * ux + side * 6.0 * uy) as i32,
+            (f64::from(ty) - 12.0 * uy - side * 6.0 * ux) as i32,
+        )
+    };
+    root.draw(&Polygon::new(
+        vec![(tx, ty), head(1.0), head(-1.0)],
+        arrow.filled(),
+    ))
+    .at(path)?;
+    root.draw(&Text::new(
+        "L".to_string(),
+        (
+            (f64::from(tx) + 10.0 * ux + 6.0) as i32,
+            (f64::from(ty) + 10.0 * uy - 8.0) as i32,
+        ),
+        (FAMILY, 20).into_font().style(FontStyle::Bold),
+    ))
+    .at(path)?;
     Ok(())
 }

@@ -75,14 +75,14 @@ pub(crate) fn render(ctx: &Ctx) -> Result<Demo> {
         title: format!("Time to first flip, {n} × {n} members, run to t = {t_max} s"),
         x_label: "θ₁ (rad)".into(),
         y_label: "θ₂ (rad)".into(),
-        value_label: "log₁₀ (t_flip / √(l₁/g))".into(),
+        value_label: "log₁₀ (t_{flip} / √(l₁/g))".into(),
         x_range: (theta[0], theta[n - 1]),
         y_range: (theta[0], theta[n - 1]),
         nx: n,
         ny: n,
         values,
     };
-    let path = ctx.path("flip_fractal.png");
+    let path = ctx.path("flip_fractal.svg");
     save_with_no_flip_contour(&path, &map, &params, (BLACK, "black"))?;
     d.add(path, "time to first flip over the plane of initial angles: fractal boundaries between flip times, and the curve inside which the energy forbids a flip");
     Ok(d)

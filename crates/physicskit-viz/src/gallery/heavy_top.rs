@@ -8,7 +8,7 @@ use physicskit::classical::{DynamicalSystem, LagrangianSystem, Method};
 use super::common::{column, nonempty};
 use super::{Ctx, Demo};
 use crate::error::Result;
-use crate::figure::{color, save_png, Legend, Mark, Panel, Series};
+use crate::figure::{color, save_svg, Legend, Mark, Panel, Series};
 
 /// Initial tilt (rad), precession rate and spin (rad/s): a fast top given a small backward
 /// push in phi, so the axis traces loops.
@@ -53,7 +53,7 @@ pub(crate) fn render(ctx: &Ctx) -> Result<Demo> {
         "x (unit sphere)",
         "y (unit sphere)",
     )
-    .legend(Legend::UpperRight)
+    .legend(Legend::Auto)
     .equal_aspect()
     .with(
         Series::line(
@@ -73,9 +73,20 @@ pub(crate) fn render(ctx: &Ctx) -> Result<Demo> {
     )
     .with(Series::line("axis path", axis, color(0)));
 
-    let theta_panel = Panel::new("Nutation: tilt against time", "t (s)", "θ (rad)")
-        .legend(Legend::None)
-        .with(Series::xy("θ(t)", &t, &theta, color(0)));
+    // A window of four nutation periods (the run holds dozens, which would print as a solid
+    // band): up to the fifth minimum of θ, the periods counted from the data.
+    let minima: Vec<usize> = (1..theta.len().saturating_sub(1))
+        .filter(|&i| theta[i] < theta[i - 1] && theta[i] <= theta[i + 1])
+        .collect();
+    let end = minima.get(4).map_or(theta.len(), |&i| i + 1);
+    let periods = minima.len().saturating_sub(1).min(4);
+    let theta_panel = Panel::new(
+        format!("Nutation: tilt over {periods} periods"),
+        "t (s)",
+        "θ (rad)",
+    )
+    .legend(Legend::None)
+    .with(Series::xy("θ(t)", &t[..end], &theta[..end], color(0)));
 
     let lo = (th_min - 0.35).max(0.05);
     let hi = (th_max + 0.35).min(std::f64::consts::PI - 0.05);
@@ -99,12 +110,12 @@ pub(crate) fn render(ctx: &Ctx) -> Result<Demo> {
     let v_top = e0 + 1.5 * (e0 - v_at_turn).abs().max(0.5);
     veff.retain(|p| p.1 <= v_top);
     let veff_panel = Panel::new("Effective potential of the tilt", "θ (rad)", "energy (J)")
-        .legend(Legend::UpperRight)
+        .legend(Legend::Auto)
         .y_range(
             v_at_turn - 0.2 * (e0 - v_at_turn).abs().max(0.5),
             e0 + 1.5 * (e0 - v_at_turn).abs().max(0.5),
         )
-        .with(Series::line("V_eff(θ)", veff, color(1)))
+        .with(Series::line("V_{eff}(θ)", veff, color(1)))
         .with(
             Series::line("total energy E", vec![(lo, e0), (hi, e0)], color(6))
                 .with_mark(Mark::Dashed(2)),
@@ -113,16 +124,16 @@ pub(crate) fn render(ctx: &Ctx) -> Result<Demo> {
             Series::dots("turning points", vec![(th_min, e0), (th_max, e0)], color(2))
                 .with_mark(Mark::Dots(5)),
         );
-    let path = ctx.path("heavy_top.png");
+    let path = ctx.path("heavy_top.svg");
     let panels = [path_panel, theta_panel, veff_panel];
-    save_png(
+    save_svg(
         &path,
         (1500, 540),
         Some("Heavy symmetric top: θ(0) = 0.8 rad, dφ/dt(0) = −1.5 rad/s, dψ/dt(0) = 30 rad/s"),
         (1, 3),
         |i, area| panels[i].draw(area, &path).map(|_| ()),
     )?;
-    d.add(path, "the symmetry axis drawing nutation loops between two turning circles; θ(t); V_eff(θ) with the energy line and turning points");
+    d.add(path, "the symmetry axis drawing nutation loops between two turning circles; θ(t) over four nutation periods; the effective potential with the energy line and turning points");
     Ok(d)
 }
 

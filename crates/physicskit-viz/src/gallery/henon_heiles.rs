@@ -9,7 +9,7 @@ use physicskit::classical::{Error, Method};
 use super::henon_heiles_starts::SectionStarts;
 use super::{Ctx, Demo};
 use crate::error::Result;
-use crate::figure::{color, save_png, Legend, Mark, Panel, Series};
+use crate::figure::{ramp, save_svg, Legend, Mark, Panel, Series};
 
 /// Crossings of one orbit started on the section at `y0 = [x, y, p_x, p_y]`; `None` if the
 /// orbit escapes over a saddle.
@@ -33,7 +33,7 @@ pub(crate) fn render(ctx: &Ctx) -> Result<Demo> {
     // One crossing per ~6-7 time units; the time limit only guards against stuck orbits.
     let run = SectionRun::new(0.02, 10.0 * crossings as f64, crossings);
     let energies: [(f64, &str); 3] = [(1.0 / 12.0, "1/12"), (1.0 / 8.0, "1/8"), (1.0 / 6.0, "1/6")];
-    let path = ctx.path("henon_heiles_sections.png");
+    let path = ctx.path("henon_heiles_sections.svg");
     let mut panels = Vec::new();
     for (e, label) in energies {
         // The section y = 0, py > 0: its plane is (x, px).
@@ -44,18 +44,19 @@ pub(crate) fn render(ctx: &Ctx) -> Result<Demo> {
                 continue;
             };
             if let Some(pts) = orbit(y0, &run, &section)? {
-                panel = panel.with(Series::dots("", pts, color(k)).with_mark(Mark::Dots(1)));
+                panel =
+                    panel.with(Series::dots("", pts, ramp(k, n_orbits)).with_mark(Mark::Dots(1)));
             }
         }
         panels.push(panel.equal_aspect());
     }
-    save_png(
+    save_svg(
         &path,
         (1500, 560),
-        Some("Hénon–Heiles Poincaré sections at y = 0, py > 0 (dimensionless units)"),
+        Some("Hénon–Heiles Poincaré sections at y = 0, p_{y} > 0 (dimensionless units)"),
         (1, 3),
         |i, area| panels[i].draw(area, &path).map(|_| ()),
     )?;
-    d.add(path, "Poincaré sections (x, pₓ) at y = 0, py > 0 for E = 1/12, 1/8 and 1/6, one colour per orbit: regular tori giving way to chaos");
+    d.add(path, "Poincaré sections (x, pₓ) at y = 0, p_y > 0 for E = 1/12, 1/8 and 1/6, one colour per orbit along viridis: regular tori giving way to chaos");
     Ok(d)
 }

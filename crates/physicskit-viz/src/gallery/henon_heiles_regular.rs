@@ -93,7 +93,7 @@ pub(crate) fn render(ctx: &Ctx) -> Result<Demo> {
         "energy E",
         "fraction of regular orbits",
     )
-    .legend(Legend::LowerLeft)
+    .legend(Legend::Auto)
     .x_range(0.0, 1.0 / 6.0)
     .y_range(0.0, 1.05)
     .with(Series::line("", fraction.clone(), color(0)).unlabeled())
@@ -101,7 +101,7 @@ pub(crate) fn render(ctx: &Ctx) -> Result<Demo> {
         Series::dots("ensemble of SALI runs (one per cell)", fraction, color(0))
             .with_mark(Mark::Dots(5)),
     );
-    let path = ctx.path("henon_heiles_regular_fraction.png");
+    let path = ctx.path("henon_heiles_regular_fraction.svg");
     save_panel(&path, (900, 600), &panel)?;
     d.add(
         path,

@@ -17,7 +17,7 @@ use physicskit::classical::Method;
 use super::henon_heiles_starts::SectionStarts;
 use super::{Ctx, Demo};
 use crate::error::Result;
-use crate::figure::{color, save_png, Legend, Mark, Panel, Series};
+use crate::figure::{ramp, save_svg, Legend, Mark, Panel, Series};
 use crate::heatmap::HeatMap;
 
 /// The energy of the section.
@@ -116,11 +116,11 @@ pub(crate) fn render(ctx: &Ctx) -> Result<Demo> {
             crossings,
         )?;
         let pts = cut.component(1).into_iter().zip(cut.component(3)).collect();
-        section = section.with(Series::dots("", pts, color(k)).with_mark(Mark::Dots(1)));
+        section = section.with(Series::dots("", pts, ramp(k, n_orbits)).with_mark(Mark::Dots(1)));
     }
 
-    let path = ctx.path("henon_heiles_sali.png");
-    save_png(
+    let path = ctx.path("henon_heiles_sali.svg");
+    save_svg(
         &path,
         (1500, 640),
         Some("Hénon–Heiles at E = 1/8: section x = 0, pₓ > 0 (dimensionless units)"),

@@ -7,7 +7,7 @@ use physicskit::classical::{LagrangianSystem, Method};
 use super::common::{column, nonempty};
 use super::{Ctx, Demo};
 use crate::error::Result;
-use crate::figure::{color, save_png, Legend, Mark, Panel, Series};
+use crate::figure::{color, ramp, save_svg, Legend, Mark, Panel, Series};
 
 /// Largest rotation rate of the pitchfork diagrams (this demonstration's and demonstration
 /// 20's), in units of `omega_c`.
@@ -50,8 +50,8 @@ pub(super) fn pitchfork_panel(params0: HoopParams) -> Panel {
         }
     }
     let mut panel = Panel::new(
-        format!("Equilibria (ω_c = √(g/R) = {wc:.2} rad/s)"),
-        "ω / ω_c",
+        format!("Equilibria (Ω_{{c}} = √(g/R) = {wc:.2} rad/s)"),
+        "ω / Ω_{c}",
         "equilibrium angle θ* (degrees)",
     );
     let (mut stable_named, mut unstable_named) = (false, false);
@@ -83,7 +83,7 @@ pub(super) fn pitchfork_panel(params0: HoopParams) -> Panel {
             start = end;
         }
     }
-    panel.y_range(-200.0, 200.0).legend(Legend::LowerLeft)
+    panel.y_range(-200.0, 200.0).legend(Legend::Auto)
 }
 
 pub(crate) fn render(ctx: &Ctx) -> Result<Demo> {
@@ -100,7 +100,7 @@ pub(crate) fn render(ctx: &Ctx) -> Result<Demo> {
             ..params0
         };
         let mut panel = Panel::new(
-            format!("Phase portrait at ω = {ratio} ω_c"),
+            format!("Phase portrait at ω = {ratio} Ω_{{c}}"),
             "θ (rad)",
             "dθ/dt (rad/s)",
         )
@@ -119,7 +119,7 @@ pub(crate) fn render(ctx: &Ctx) -> Result<Demo> {
                     .map(|&a| super::common::wrap(a))
                     .zip(om.iter().copied())
                     .collect();
-                panel = panel.with(Series::dots("", pts, color(k)).with_mark(Mark::Dots(1)));
+                panel = panel.with(Series::dots("", pts, ramp(k, starts)).with_mark(Mark::Dots(1)));
             }
         }
         let eq = params
@@ -131,9 +131,9 @@ pub(crate) fn render(ctx: &Ctx) -> Result<Demo> {
             panel.with(Series::dots("stable equilibria", eq, color(6)).with_mark(Mark::Dots(5)));
         portraits.push(panel);
     }
-    let path = ctx.path("hoop_bifurcation.png");
+    let path = ctx.path("hoop_bifurcation.svg");
     let panels = [diagram, portraits.remove(0), portraits.remove(0)];
-    save_png(
+    save_svg(
         &path,
         (1500, 540),
         Some(&title(&params0)),

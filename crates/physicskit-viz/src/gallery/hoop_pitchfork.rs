@@ -21,7 +21,7 @@ use physicskit::classical::Method;
 use super::hoop::{pitchfork_panel, title, MAX_RATIO};
 use super::{Ctx, Demo};
 use crate::error::Result;
-use crate::figure::{color, save_png, Legend, Mark, Panel, Series};
+use crate::figure::{color, save_svg, Legend, Mark, Panel, Series};
 /// Step: the fastest saddle rate here is 7.2/s, so `h lambda` <= 0.007.
 const DT: f64 = 1e-3;
 
@@ -87,13 +87,17 @@ pub(crate) fn render(ctx: &Ctx) -> Result<Demo> {
     let zip = |v: &[f64]| ratios.iter().copied().zip(v.iter().copied()).collect();
     let lyapunov = Panel::new(
         "Largest Lyapunov exponent at the bottom θ = 0",
-        "ω / ω_c",
-        "λ_max (1/s)",
+        "ω / Ω_{c}",
+        "λ_{max} (1/s)",
     )
-    .legend(Legend::UpperLeft)
+    .legend(Legend::Auto)
     .with(
-        Series::line("linearization: √(ω² − g/R), 0 below ω_c", linear, color(0))
-            .with_mark(Mark::Line(2)),
+        Series::line(
+            "linearization: √(ω² − g/R), 0 below Ω_{c}",
+            linear,
+            color(0),
+        )
+        .with_mark(Mark::Line(2)),
     )
     .with(
         Series::dots(
@@ -112,9 +116,9 @@ pub(crate) fn render(ctx: &Ctx) -> Result<Demo> {
         .with_mark(Mark::Dots(4)),
     );
 
-    let path = ctx.path("hoop_pitchfork.png");
+    let path = ctx.path("hoop_pitchfork.svg");
     let panels = [diagram, lyapunov];
-    save_png(
+    save_svg(
         &path,
         (1400, 560),
         Some(&title(&params0)),

@@ -5,6 +5,7 @@ use physicskit::classical::analysis::convergence::fit_order;
 use physicskit::classical::examples::Pendulum;
 use physicskit::classical::{HamiltonianSystem, Method};
 
+use super::work_precision::words;
 use super::{Ctx, Demo};
 use crate::error::Result;
 use crate::figure::{color, save_panel, Legend, Mark, Panel, Series};
@@ -39,6 +40,31 @@ pub(crate) fn window_max(t: &[f64], v: &[f64], windows: usize) -> Vec<(f64, f64)
         .collect()
 }
 
+/// The running maximum of `|v|` sampled at `n` times spaced evenly in log t, as
+/// `(log10 t, log10 max over [0, t])`: on these axes an error that stays bounded is a plateau
+/// and one that drifts like t^k a line of slope k, with no oscillation to read through.
+pub(crate) fn log_envelope(t: &[f64], v: &[f64], n: usize) -> Vec<(f64, f64)> {
+    let len = t.len().min(v.len());
+    let Some(first) = t.iter().position(|&x| x > 0.0) else {
+        return Vec::new();
+    };
+    let (a, b) = (t[first].log10(), t[len - 1].log10());
+    let mut out = Vec::with_capacity(n);
+    let mut m = 0.0_f64;
+    let mut i = 0;
+    for k in 0..n {
+        let tk = 10f64.powf(a + (b - a) * k as f64 / (n.max(2) - 1) as f64);
+        while i < len && t[i] <= tk * (1.0 + 1e-12) {
+            m = m.max(v[i].abs());
+            i += 1;
+        }
+        if i > first {
+            out.push((tk.log10(), log10_rel(m)));
+        }
+    }
+    out
+}
+
 pub(crate) fn render(ctx: &Ctx) -> Result<Demo> {
     let mut d = ctx.demo("integrators", "Integrators compared");
 
@@ -53,7 +79,7 @@ pub(crate) fn render(ctx: &Ctx) -> Result<Demo> {
             t1 / 200.0
         ),
     )
-    .legend(Legend::LowerRight);
+    .legend(Legend::Auto);
     for (i, &m) in METHODS.iter().enumerate() {
         let mut p = Pendulum::new(Q0, 0.0, 1.0)?;
         let r = p.integrate((0.0, t1), dt, m)?;
@@ -61,11 +87,11 @@ pub(crate) fn render(ctx: &Ctx) -> Result<Demo> {
         let e0 = e.first().copied().unwrap_or(1.0);
         let rel: Vec<f64> = e.iter().map(|&ei| (ei - e0) / e0).collect();
         let pts = window_max(r.t.as_slice().unwrap_or(&[]), &rel, 200);
-        energy = energy.with(Series::line(m.name(), pts, color(i)));
+        energy = energy.with(Series::line(words(m.name()), pts, color(i)));
     }
-    let path = ctx.path("integrators_energy.png");
+    let path = ctx.path("integrators_energy.svg");
     save_panel(&path, (1000, 560), &energy)?;
-    d.add(path, "relative energy error against time for verlet, yoshida4, rk4 and implicit_midpoint on a pendulum (log scale)");
+    d.add(path, "relative energy error against time for Verlet, Yoshida 4, RK4 and the implicit midpoint rule on a pendulum (log scale)");
 
     // Convergence: error of the state at t = 10 s against a fine-step reference.
     let t_end = 10.0;
@@ -87,7 +113,7 @@ pub(crate) fn render(ctx: &Ctx) -> Result<Demo> {
         "log₁₀ dt (dt in s)",
         "log₁₀ |error of (q, p) at t = 10 s|",
     )
-    .legend(Legend::LowerRight);
+    .legend(Legend::Auto);
     for (i, &m) in METHODS.iter().enumerate() {
         let mut errs = Vec::with_capacity(dts.len());
         for &h in &dts {
@@ -112,7 +138,7 @@ pub(crate) fn render(ctx: &Ctx) -> Result<Demo> {
             .map(|(h, e)| (h.log10(), e.log10()))
             .collect();
         conv = conv.with(Series::line(
-            format!("{} (p = {:.2})", m.name(), fit.order),
+            format!("{} (p = {:.2})", words(m.name()), fit.order),
             pts.clone(),
             color(i),
         ));
@@ -122,7 +148,7 @@ pub(crate) fn render(ctx: &Ctx) -> Result<Demo> {
                 .unlabeled(),
         );
     }
-    let path = ctx.path("integrators_convergence.png");
+    let path = ctx.path("integrators_convergence.svg");
     save_panel(&path, (900, 620), &conv)?;
     d.add(path, "log–log error against step size for the four methods, with the measured orders (2, 4, 4, 2)");
     Ok(d)

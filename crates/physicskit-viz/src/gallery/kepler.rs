@@ -26,14 +26,14 @@ pub(crate) fn render(ctx: &Ctx) -> Result<Demo> {
         "x (units of a)",
         "y (units of a)",
     )
-    .legend(Legend::UpperRight)
+    .legend(Legend::Auto)
     .equal_aspect();
     let mut angles = Panel::new(
         "Direction of the Laplace–Runge–Lenz vector (the perihelion)",
         "t (orbital periods)",
         "LRL angle (degrees)",
     )
-    .legend(Legend::UpperLeft);
+    .legend(Legend::Auto);
     let cases = [
         (
             "Newtonian 1/r² (closed ellipse)",
@@ -69,10 +69,10 @@ pub(crate) fn render(ctx: &Ctx) -> Result<Demo> {
                 .collect();
         angles = angles.with(Series::line(label, pts, color(if i == 0 { 6 } else { 1 })));
     }
-    let path = ctx.path("kepler_orbits.png");
+    let path = ctx.path("kepler_orbits.svg");
     save_panel(&path, (820, 720), &panel)?;
     d.add(path, "the closed Newtonian ellipse against the precessing rosette with a post-Newtonian 1/r³ term");
-    let path = ctx.path("kepler_lrl.png");
+    let path = ctx.path("kepler_lrl.svg");
     save_panel(&path, (900, 520), &angles)?;
     d.add(path, "angle of the Laplace–Runge–Lenz vector against time: constant for 1/r², growing steadily with the correction");
     Ok(d)

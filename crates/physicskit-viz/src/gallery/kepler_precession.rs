@@ -34,7 +34,7 @@ fn lrl_angle(s: &[f64]) -> f64 {
 pub(crate) fn render(ctx: &Ctx) -> Result<Demo> {
     let mut d = ctx.demo(
         "kepler-precession",
-        "Kepler: perihelion precession against c_pn",
+        "Kepler: perihelion precession against c_{pn}",
     );
     let n = ctx.pick(12, 40);
     let c_pn: Vec<f64> = (0..n).map(|i| -0.01 * (i + 1) as f64 / n as f64).collect();
@@ -93,18 +93,18 @@ pub(crate) fn render(ctx: &Ctx) -> Result<Demo> {
         .collect();
     let panel = Panel::new(
         format!("Precession per orbit, {n} orbits of a = {A}, e = {E} over {orbits} periods"),
-        "−c_pn (units of 10⁻³ k a²)",
+        "−c_{pn} (units of 10⁻³ k a²)",
         "precession per orbit (degrees)",
     )
-    .legend(Legend::UpperLeft)
+    .legend(Legend::Auto)
     .with(Series::line(
-        "first-order theory −6π c_pn μ²k/L⁴",
+        "first-order theory −6π c_{pn} μ²k/L⁴",
         theory,
         color(0),
     ))
     .with(Series::dots("measured (ensemble)", measured, color(1)).with_mark(Mark::Dots(4)));
-    let path = ctx.path("kepler_precession.png");
+    let path = ctx.path("kepler_precession.svg");
     save_panel(&path, (900, 600), &panel)?;
-    d.add(path, "precession per orbit against c_pn: the ensemble's measurement beside first-order perturbation theory");
+    d.add(path, "precession per orbit against the post-Newtonian coefficient c_pn: the ensemble's measurement beside first-order perturbation theory");
     Ok(d)
 }

@@ -7,11 +7,14 @@
 //! animation frames so the whole gallery renders in well under a minute on two cores.
 //!
 //! A demonstration's number is its place in the list below: `Ctx` numbers its title
-//! (`"17. Work–precision"`) and prefixes its files (`17_work_precision_1.png`), so no page
+//! (`"17. Work–precision"`) and prefixes its files (`17_work_precision_1.svg`), so no page
 //! types its own number.
 
 use std::path::{Path, PathBuf};
 use std::time::Instant;
+
+use physicskit::classical::model::Value;
+use physicskit::classical::Method;
 
 use crate::error::{Result, VizError};
 
@@ -64,6 +67,49 @@ pub struct Demo {
     pub figure: String,
     /// Figures and animations, in display order.
     pub files: Vec<GalleryFile>,
+    /// The lab's share link of the demonstration's main run, if the lab can run it.
+    pub lab: Option<LabLink>,
+}
+
+/// A link that opens the browser lab (`lab/index.html`) on a demonstration's setup, in the
+/// lab's share-link format: `#system=NAME&method=M&dt=DT&params=JSON`, optionally `&state=...`
+/// (comma-separated numbers), each value percent-encoded (`web/lab.js`, `applyHash`).
+#[derive(Debug, Clone, PartialEq, Eq)]
+pub struct LabLink {
+    /// The URL fragment, from `#`.
+    pub hash: String,
+    /// What the link sets up, in words.
+    pub what: String,
+}
+
+/// Percent-encodes everything but unreserved characters (what `URLSearchParams` decodes).
+fn url_encode(s: &str) -> String {
+    let mut out = String::with_capacity(s.len());
+    for b in s.bytes() {
+        if b.is_ascii_alphanumeric() || b"-._~".contains(&b) {
+            out.push(char::from(b));
+        } else {
+            out.push_str(&format!("%{b:02X}"));
+        }
+    }
+    out
+}
+
+/// A catalogue value as JSON (numbers in Rust's shortest round-trip form, as the lab writes
+/// them).
+fn json(v: &Value) -> String {
+    match v {
+        Value::Scalar(x) => format!("{x:?}"),
+        Value::Integer(i) => i.to_string(),
+        Value::Vector(xs) => format!(
+            "[{}]",
+            xs.iter()
+                .map(|x| format!("{x:?}"))
+                .collect::<Vec<_>>()
+                .join(",")
+        ),
+        Value::Choice(c) => format!("\"{}\"", c.replace('\\', "\\\\").replace('"', "\\\"")),
+    }
 }
 
 /// What [`render_gallery`] wrote.
@@ -91,7 +137,7 @@ pub(crate) struct Ctx<'a> {
 
 impl Ctx<'_> {
     /// Path of a gallery file of this demonstration: `name` prefixed with its two-digit number
-    /// (`"flip_fractal.png"` becomes `15_flip_fractal.png`).
+    /// (`"flip_fractal.svg"` becomes `15_flip_fractal.svg`).
     pub fn path(&self, name: &str) -> PathBuf {
         self.out_dir.join(format!("{:02}_{name}", self.number))
     }
@@ -109,7 +155,58 @@ impl Ctx<'_> {
             explanation: explanation.map(|e| e.text().to_owned()).unwrap_or_default(),
             figure: explanation.map(|e| e.figure.to_owned()).unwrap_or_default(),
             files: Vec::new(),
+            lab: None,
         }
+    }
+
+    /// The lab link of a run of catalogue system `system` with parameter values `params` (the
+    /// values the demonstration itself runs with), `method` and step `dt`, and optionally the
+    /// initial `state`. The values are checked by the catalogue entry, as the lab checks them.
+    ///
+    /// # Errors
+    /// [`VizError::Physics`] if the system is unknown or a value is refused by its entry.
+    pub fn lab_link(
+        &self,
+        system: &str,
+        params: &[(&str, Value)],
+        method: Method,
+        dt: f64,
+        state: Option<&[f64]>,
+    ) -> Result<LabLink> {
+        let entry = physicskit::classical::catalog::find(system)?;
+        entry.values(params.iter().map(|(k, v)| ((*k).to_string(), v.clone())))?;
+        let object = params
+            .iter()
+            .map(|(k, v)| format!("\"{k}\":{}", json(v)))
+            .collect::<Vec<_>>()
+            .join(",");
+        let mut hash = format!(
+            "#system={}&method={}&dt={}&params={}",
+            url_encode(system),
+            url_encode(method.name()),
+            url_encode(&format!("{dt:?}")),
+            url_encode(&format!("{{{object}}}"))
+        );
+        if let Some(state) = state {
+            let s = state
+                .iter()
+                .map(|x| format!("{x:?}"))
+                .collect::<Vec<_>>()
+                .join(",");
+            hash.push_str(&format!("&state={}", url_encode(&s)));
+        }
+        Ok(LabLink {
+            hash,
+            what: format!(
+                "{system} with {}, dt = {dt}{}",
+                method.name().replace('_', " "),
+                if state.is_some() {
+                    ", from the figure's start"
+                } else {
+                    ""
+                }
+            ),
+        })
     }
 
     /// `quick` value in quick mode, `full` otherwise.

@@ -7,7 +7,7 @@ use physicskit::classical::{HamiltonianSystem, Method};
 use super::common::column;
 use super::{Ctx, Demo};
 use crate::error::Result;
-use crate::figure::{color, save_png, Legend, Mark, Panel, Series};
+use crate::figure::{color, save_svg, Legend, Mark, Panel, Series};
 
 const SPEED: f64 = 40.0;
 const G: f64 = 9.81;
@@ -43,7 +43,7 @@ pub(crate) fn render(ctx: &Ctx) -> Result<Demo> {
         "x (m)",
         "y (m)",
     )
-    .legend(Legend::UpperRight)
+    .legend(Legend::Auto)
     .y_range(0.0, 85.0);
     for (i, angle) in [15.0, 30.0, 45.0, 60.0, 75.0].into_iter().enumerate() {
         traj = traj.with(Series::line(
@@ -81,7 +81,7 @@ pub(crate) fn render(ctx: &Ctx) -> Result<Demo> {
         "launch angle (degrees)",
         "range (m)",
     )
-    .legend(Legend::UpperRight)
+    .legend(Legend::Auto)
     .x_range(0.0, 90.0)
     .with(Series::line("analytic v² sin 2θ / g", exact, color(6)).with_mark(Mark::Line(1)))
     .with(Series::dots("simulated, no drag", vac, color(0)).with_mark(Mark::Dots(4)))
@@ -90,9 +90,9 @@ pub(crate) fn render(ctx: &Ctx) -> Result<Demo> {
         air,
         color(1),
     ));
-    let path = ctx.path("projectile.png");
+    let path = ctx.path("projectile.svg");
     let panels = [traj, range];
-    save_png(
+    save_svg(
         &path,
         (1400, 560),
         Some("Projectile launched at 40 m/s, g = 9.81 m/s², drag c = 0.02 kg/m"),

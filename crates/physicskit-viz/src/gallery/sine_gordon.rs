@@ -7,7 +7,7 @@ use super::common::stride;
 use super::{Ctx, Demo};
 use crate::animation::save_gif;
 use crate::error::Result;
-use crate::figure::{color, save_png, Legend, Panel, Series};
+use crate::figure::{color, save_svg, Legend, Panel, Series};
 use crate::heatmap::HeatMap;
 
 /// Coupling: the kink is sqrt(K) = 4 sites wide, so the lattice is close to the continuum.
@@ -40,6 +40,7 @@ pub(crate) fn render(ctx: &Ctx) -> Result<Demo> {
     let ny = q.nrows();
     let values: Vec<f64> = q.iter().map(|v| v / std::f64::consts::TAU).collect();
     let map = HeatMap {
+        values: values.clone(),
         title: "Kink–antikink collision on a sine-Gordon chain".into(),
         x_label: "site i".into(),
         y_label: "t (dimensionless: 1/ω₀ of one pendulum)".into(),
@@ -48,14 +49,21 @@ pub(crate) fn render(ctx: &Ctx) -> Result<Demo> {
         y_range: (r.t[0], r.t[ny - 1]),
         nx: n,
         ny,
-        values,
     };
-    let path = ctx.path("sine_gordon_spacetime.png");
-    save_png(&path, (900, 700), None, (1, 1), |_, area| {
+    let path = ctx.path("sine_gordon_spacetime.svg");
+    save_svg(&path, (900, 700), None, (1, 1), |_, area| {
         map.draw(area, &path)
     })?;
     d.add(path, "space–time plot of the twist q/2π along the chain: the kink and antikink approach, pass through each other and separate");
 
+    // One y range for every frame, from the whole run: after the collision the chain rings
+    // down to the -1 plateau between the separating pair.
+    let (lo, hi) = values
+        .iter()
+        .fold((f64::INFINITY, f64::NEG_INFINITY), |(a, b), &v| {
+            (a.min(v), b.max(v))
+        });
+    let pad = 0.06 * (hi - lo);
     let frames = ctx.pick(40, 120);
     let per = (ny / frames).max(1);
     let path = ctx.path("sine_gordon.gif");
@@ -73,7 +81,7 @@ pub(crate) fn render(ctx: &Ctx) -> Result<Demo> {
             "twist qᵢ / 2π",
         )
         .x_range(0.0, (n - 1) as f64)
-        .y_range(-0.3, 1.3)
+        .y_range(lo - pad, hi + pad)
         .legend(Legend::None)
         .with(Series::line("", pts, color(0)))
         .draw(root, &path)

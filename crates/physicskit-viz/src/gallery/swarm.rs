@@ -7,7 +7,7 @@ use physicskit::classical::{HamiltonianSystem, IntegrateOptions, Method, Samplin
 use super::{Ctx, Demo};
 use crate::animation::save_gif;
 use crate::error::Result;
-use crate::figure::{color, save_png, Legend, Mark, Panel, Series};
+use crate::figure::{color, save_svg, Legend, Mark, Panel, Series};
 
 /// Patch centre and size in (q, p): just inside the separatrix top at (0, 2), where the
 /// libration period grows without bound, so neighbouring pendulums drift apart fastest.
@@ -94,7 +94,7 @@ pub(crate) fn render(ctx: &Ctx) -> Result<Demo> {
         )
         .x_range(-std::f64::consts::PI, std::f64::consts::PI)
         .y_range(-2.6, 2.6)
-        .legend(Legend::LowerRight);
+        .legend(Legend::Auto);
         for s in separatrix(&cloud) {
             panel = panel.with(s);
         }
@@ -108,8 +108,8 @@ pub(crate) fn render(ctx: &Ctx) -> Result<Demo> {
         ));
         panels.push(panel);
     }
-    let path = ctx.path("swarm_liouville.png");
-    save_png(
+    let path = ctx.path("swarm_liouville.svg");
+    save_svg(
         &path,
         (1300, 900),
         Some("Liouville's theorem: a pendulum swarm shears but keeps its phase-space area"),

@@ -7,7 +7,7 @@ use physicskit::classical::{HamiltonianSystem, Method};
 use super::common::stride;
 use super::{Ctx, Demo};
 use crate::error::Result;
-use crate::figure::{color, save_png, Legend, Panel, Series};
+use crate::figure::{color, ramp, save_svg, Legend, Panel, Series};
 use crate::heatmap::HeatMap;
 
 /// Particles on the ring.
@@ -56,7 +56,7 @@ pub(crate) fn render(ctx: &Ctx) -> Result<Demo> {
         title: "Energy per particle eᵢ − a/b".into(),
         x_label: "particle i".into(),
         y_label: "t (units of 1/√(ab))".into(),
-        value_label: "eᵢ − a/b".into(),
+        value_label: "e_{i} − a/b".into(),
         x_range: (1.0, N as f64),
         y_range: (t[0], t[ny - 1]),
         nx: N,
@@ -66,23 +66,23 @@ pub(crate) fn render(ctx: &Ctx) -> Result<Demo> {
     let mut sloshing = Panel::new(
         "Two particles: energy comes and goes",
         "t (units of 1/√(ab))",
-        "eᵢ − a/b (units of a/b)",
+        "e_{i} − a/b (units of a/b)",
     )
-    .legend(Legend::UpperRight);
+    .legend(Legend::Auto);
     for (k, (trace, &i)) in traces.into_iter().zip(&watched).enumerate() {
         sloshing = sloshing.with(Series::line(format!("particle {}", i + 1), trace, color(k)));
     }
     let mut spectrum = Panel::new(
         format!("The {N} Lax eigenvalues (largest change in the run: {drift:.0e})"),
         "t (units of 1/√(ab))",
-        "eigenvalue λⱼ of L (momentum units)",
+        "eigenvalue λ_{j} of L (momentum units)",
     )
     .legend(Legend::None);
     for (j, line) in eigen.into_iter().enumerate() {
-        spectrum = spectrum.with(Series::line("", line, color(j % 7)).unlabeled());
+        spectrum = spectrum.with(Series::line("", line, ramp(j, N)).unlabeled());
     }
-    let path = ctx.path("toda.png");
-    save_png(
+    let path = ctx.path("toda.svg");
+    save_svg(
         &path,
         (1800, 640),
         Some(

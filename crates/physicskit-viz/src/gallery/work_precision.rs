@@ -10,7 +10,21 @@ use physicskit::classical::Method;
 use super::integrators::log10_rel;
 use super::{Ctx, Demo};
 use crate::error::Result;
-use crate::figure::{color_of_many, save_panel, Legend, Mark, Panel, Series};
+use crate::figure::{save_panel, styled_dots, styled_line, Legend, Panel, Series};
+
+/// A problem's name as a reader writes it (the library's are identifiers).
+fn title(problem: Problem) -> &'static str {
+    match problem {
+        Problem::Kepler { .. } => "Kepler orbit, e = 0.5",
+        Problem::HenonHeiles { .. } => "Hénon–Heiles",
+        Problem::DoublePendulum { .. } => "Double pendulum",
+    }
+}
+
+/// A method's registry name as words: `implicit_midpoint` becomes `implicit midpoint`.
+pub(crate) fn words(name: &str) -> String {
+    name.replace('_', " ")
+}
 
 /// Errors below this are rounding: smaller steps would only add time.
 const ROUNDING: f64 = 1e-14;
@@ -24,13 +38,11 @@ pub(crate) fn render(ctx: &Ctx) -> Result<Demo> {
             _ => Vec::new(),
         };
         let mut panel = Panel::new(
-            format!("{}, t = {:.0}", problem.name(), problem.t_end()),
+            format!("{}, t = {:.0}", title(problem), problem.t_end()),
             "log₁₀ wall time (s)",
             format!("log₁₀ {}", problem.error_label()),
         )
-        // Lower left is fast and accurate, the corner no method reaches: the legend hides no
-        // line there (upper right covered the slow methods' ends).
-        .legend(Legend::LowerLeft);
+        .legend(Legend::Auto);
         for method in problem.methods() {
             let mut pts = Vec::new();
             for dt in problem.steps(method, points) {
@@ -47,15 +59,19 @@ pub(crate) fn render(ctx: &Ctx) -> Result<Demo> {
                     break;
                 }
             }
+            // Colour and line style and marker by the method's place in the registry, so a
+            // method looks the same in all three panels.
             let i = Method::ALL.iter().position(|m| *m == method).unwrap_or(0);
-            panel = panel.with(Series::line(method.name(), pts.clone(), color_of_many(i)));
+            let (colour, line) = styled_line(i);
+            panel =
+                panel.with(Series::line(words(method.name()), pts.clone(), colour).with_mark(line));
             panel = panel.with(
-                Series::dots("", pts, color_of_many(i))
-                    .with_mark(Mark::Dots(3))
+                Series::dots("", pts, colour)
+                    .with_mark(styled_dots(i, 3))
                     .unlabeled(),
             );
         }
-        let path = ctx.path(&format!("work_precision_{}.png", k + 1));
+        let path = ctx.path(&format!("work_precision_{}.svg", k + 1));
         save_panel(&path, (1000, 640), &panel)?;
         let what = format!(
             "log–log {} against wall time on {}, one line per method",

@@ -36,8 +36,10 @@
 //! span. The times are those of the full run, bit for bit; [`EnsembleResult::steps`] says
 //! how many steps each member took.
 //!
-//! The observer ([`Observer`]) is told `(members done, members, NaN)` about every 20 ms from
-//! the calling thread and may stop the run (Ctrl-C): running members stop within 1024 steps.
+//! The observer ([`Observer`]) is told `(members done, members, NaN)` from the calling thread
+//! every [`PROGRESS_PERIOD`] while members run and once when they have finished, and may stop
+//! the run (Ctrl-C): running members stop within 1024 steps. The calling thread waits on the
+//! workers (not a sleep), so a short ensemble costs only its work.
 
 mod members;
 mod parameters;
@@ -45,7 +47,6 @@ pub mod reduction;
 
 use std::ops::ControlFlow;
 use std::sync::atomic::{AtomicBool, AtomicUsize, Ordering};
-use std::time::Duration;
 
 use ndarray::{Array1, Array2, Array3};
 use rayon::prelude::*;
@@ -56,6 +57,9 @@ pub use parameters::FromParameters;
 pub use reduction::{Condition, Direction, Event, MemberRun, Reduction};
 
 use crate::classical::core::{memory_check, Error, Result, TimeGrid};
+use crate::classical::integrators::ensemble::watched;
+#[cfg(doc)]
+use crate::classical::integrators::ensemble::PROGRESS_PERIOD;
 use crate::classical::integrators::{IntegrateOptions, Method, Observer, Sampling};
 use crate::classical::model::{DynSystem, SystemEntry};
 
@@ -403,24 +407,19 @@ fn run_prepared<S: MemberSource + ?Sized>(
     };
     match observer {
         None => work((&mut out, &mut steps))?,
-        Some(observer) => std::thread::scope(|scope| {
+        Some(observer) => {
             let buffers = (&mut out[..], &mut steps[..]);
             let work = &work;
-            let handle = scope.spawn(move || work(buffers));
-            while !handle.is_finished() {
-                std::thread::sleep(Duration::from_millis(20));
-                let members_done = done.load(Ordering::Relaxed);
-                if observer.observe(members_done, n, f64::NAN).is_break() {
-                    stop.store(true, Ordering::Relaxed);
-                }
-            }
-            handle.join().unwrap_or_else(|_| {
-                Err(Error::Unsupported {
-                    operation: "ensemble integration".into(),
-                    reason: "a worker thread panicked".into(),
-                })
-            })
-        })?,
+            watched(
+                move || work(buffers),
+                || {
+                    let members_done = done.load(Ordering::Relaxed);
+                    if observer.observe(members_done, n, f64::NAN).is_break() {
+                        stop.store(true, Ordering::Relaxed);
+                    }
+                },
+            )?
+        }
     }
     assemble(prepared, plan, out, steps)
 }

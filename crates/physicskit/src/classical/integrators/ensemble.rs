@@ -14,6 +14,7 @@
 
 use std::ops::ControlFlow;
 use std::sync::atomic::{AtomicBool, AtomicU64, Ordering};
+use std::sync::mpsc;
 use std::time::Duration;
 
 use rayon::prelude::*;
@@ -42,8 +43,9 @@ pub trait Ensemble: HamiltonianSystem + Sized + Send + Sync {
 /// iterates its own solve to the rounding floor, so the result may differ from the serial run
 /// in the last bits, but it is the same on any number of threads.
 ///
-/// The observer in `options`, if any, is called from the calling thread about every 20 ms with
-/// the mean progress of the chunks; a `Break` stops every chunk.
+/// The observer in `options`, if any, is called from the calling thread every
+/// [`PROGRESS_PERIOD`] while the chunks run and once when they have finished, with the mean
+/// progress of the chunks; a `Break` stops every chunk.
 ///
 /// # Errors
 /// As [`HamiltonianSystem::integrate`], and [`Error::TrajectoryTooLarge`] when the assembled
@@ -96,22 +98,12 @@ pub fn integrate_ensemble<S: Ensemble>(
     };
     let results = match options.observer {
         None => work()?,
-        Some(observer) => std::thread::scope(|scope| {
-            let handle = scope.spawn(work);
-            while !handle.is_finished() {
-                std::thread::sleep(Duration::from_millis(20));
-                let done = (progress.load(Ordering::Relaxed) / n_chunks) as usize;
-                let t = grid.time(done.min(grid.n_steps()));
-                if observer.observe(done, grid.n_steps(), t).is_break() {
-                    stop.store(true, Ordering::Relaxed);
-                }
+        Some(observer) => watched(work, || {
+            let done = (progress.load(Ordering::Relaxed) / n_chunks) as usize;
+            let t = grid.time(done.min(grid.n_steps()));
+            if observer.observe(done, grid.n_steps(), t).is_break() {
+                stop.store(true, Ordering::Relaxed);
             }
-            handle.join().unwrap_or_else(|_| {
-                Err(Error::Unsupported {
-                    operation: "ensemble integration".into(),
-                    reason: "a worker thread panicked".into(),
-                })
-            })
         })?,
     };
     let first = results
@@ -159,6 +151,39 @@ pub fn integrate_ensemble<S: Ensemble>(
         energy,
         method: method.name().to_string(),
         extra,
+    })
+}
+
+/// How often a watched run's observer is called while the work runs.
+pub const PROGRESS_PERIOD: Duration = Duration::from_millis(20);
+
+/// Runs `work` on a scoped thread and calls `tick` from the calling thread every
+/// [`PROGRESS_PERIOD`] while it runs and once after it ends. The calling thread waits on a
+/// channel the worker signals when done, so a run shorter than the period costs only its
+/// work (a sleep-and-poll loop would round it up to a whole period). A worker that panics
+/// drops its sender, which ends the wait too; its panic becomes an error.
+pub(crate) fn watched<R: Send>(
+    work: impl FnOnce() -> Result<R> + Send,
+    mut tick: impl FnMut(),
+) -> Result<R> {
+    std::thread::scope(|scope| {
+        let (finished, wait) = mpsc::channel::<()>();
+        let handle = scope.spawn(move || {
+            let out = work();
+            // The receiver lives until this scope ends; a failed send cannot happen.
+            let _ = finished.send(());
+            out
+        });
+        while let Err(mpsc::RecvTimeoutError::Timeout) = wait.recv_timeout(PROGRESS_PERIOD) {
+            tick();
+        }
+        tick();
+        handle.join().unwrap_or_else(|_| {
+            Err(Error::Unsupported {
+                operation: "ensemble integration".into(),
+                reason: "a worker thread panicked".into(),
+            })
+        })
     })
 }
 

@@ -50,6 +50,7 @@ pub mod splitting;
 pub mod stepper;
 pub mod system;
 pub mod tangent;
+pub mod taylor;
 
 pub use dop853::Dop853;
 pub use ensemble::{integrate_ensemble, Ensemble, ENSEMBLE_CHUNK};

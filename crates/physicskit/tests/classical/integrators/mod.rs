@@ -1,7 +1,7 @@
 //! The integrators and their drivers: measured convergence orders, bounded vs drifting energy,
 //! time reversibility, quadratic invariants, the implicit-midpoint solve, ensembles, the stored
 //! energy of splitting methods and their compensated sums, the Lagrangian path, the adaptive
-//! dop853.
+//! dop853 and the adaptive Taylor method.
 
 // Bit-identical reproducibility and exact clock values are claims of their own here, so exact
 // float comparisons are intended.
@@ -13,6 +13,7 @@ mod convergence;
 mod dop853;
 mod energy_behaviour;
 mod ensemble;
+mod ensemble_wait;
 mod fused_potential;
 mod implicit_midpoint;
 mod invariants;
@@ -20,3 +21,4 @@ mod lagrangian_path;
 mod methods;
 mod reversibility;
 mod session;
+mod taylor;

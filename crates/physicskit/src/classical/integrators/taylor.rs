@@ -1,0 +1,413 @@
+//! `taylor`: an adaptive Taylor method of high order.
+//!
+//! Each step expands the solution through the current state as a truncated Taylor series,
+//! `y(t + τ) = Σ_k y^[k] τ^k` for `k = 0..=p`, whose normalized coefficients
+//! `y^[k] = y^(k)/k!` a [`TaylorField`] computes exactly (to rounding) by automatic
+//! differentiation of truncated power series: one recurrence per operation of the field
+//! (`taylor_tape.rs` in `lagrangian/` generates them from expression trees).
+//!
+//! **Order and step** (Jorba & Zou, *Exp. Math.* 14 (2005) 99, with the safety factor of
+//! heyoka, Biscani & Izzo, *MNRAS* 504 (2021) 2614): the order is fixed for a run from the
+//! tighter tolerance `ε = min(rtol, atol)`, `p = ⌈-ln(ε)/2 + 1⌉`; each step takes
+//! `h = ρ/e² · exp(-0.7/(p - 1))` with `ρ = min((s/‖y^[p-1]‖∞)^(1/(p-1)), (s/‖y^[p]‖∞)^(1/p))`,
+//! where `s = 1` while `rtol ‖y‖∞ ≤ atol` (absolute control) and `s = ‖y‖∞` otherwise
+//! (relative control). The truncation error of such a step is about `s e^{-2p} ≤ s ε`: no
+//! step is rejected, and the step follows the radius of convergence of the series.
+//!
+//! **Dense output**: a step's polynomial is the solution over the whole step, so outputs on
+//! the grid (`dt` is the output spacing, as for `dop853`) are the polynomial evaluated at the
+//! output time; the last step is shortened to land on `t1` exactly. Steps do not depend on the
+//! output spacing.
+//!
+//! **Long runs**: the polynomial is evaluated by compensated Horner (Graillat, Langlois &
+//! Louvet 2005: error-free products and sums, the rounding errors summed alongside and added
+//! once at the end), so the new state carries about one rounding, not `p`; the clock is a
+//! double-double (its rounding errors kept in a second word), so it does not drift over
+//! millions of steps.
+
+use std::collections::BTreeMap;
+
+use ndarray::{Array1, Array2};
+
+use crate::classical::core::method::{MethodInfo, Scheme};
+use crate::classical::core::{Error, ExtraValue, Result, SimulationResult, TimeGrid};
+use crate::classical::integrators::Tolerances;
+
+/// The method's facts (not yet in the registry: see [`integrate_taylor`]).
+pub const INFO: MethodInfo = MethodInfo {
+    name: "taylor",
+    label: "Taylor",
+    summary: "adaptive Taylor series method: order from the tolerance, step from the last \
+              two Taylor coefficients (Jorba-Zou), dense output from the step polynomial",
+    order: 0,
+    symplectic: false,
+    separable_only: false,
+    evaluations_per_step: 1,
+    evaluations: "Taylor expansions of the field to order p per step (each costs about p^2/2 \
+                  times an evaluation of the field's operations)",
+    reference: "A. Jorba and M. Zou, Exp. Math. 14 (2005) 99; F. Biscani and D. Izzo, \
+                MNRAS 504 (2021) 2614",
+    scheme: Scheme::Adaptive,
+};
+
+/// Highest order the method uses: `ε = 1e-18` needs 22; tighter tolerances than double
+/// precision can deliver gain nothing from more terms.
+pub const MAX_ORDER: usize = 24;
+
+/// A vector field that can expand the solution through a point as a Taylor series.
+pub trait TaylorField {
+    /// Dimension of the state.
+    fn dim(&self) -> usize;
+
+    /// Fills `coefficients` (`dim` rows of `order + 1`, row `i` holding `y_i^[0..=order]`)
+    /// with the normalized Taylor coefficients of the solution through `(t, y)`:
+    /// `y_i^[0] = y_i`, `y_i^[k+1] = f_i^[k] / (k + 1)`.
+    ///
+    /// # Errors
+    /// If the expansion is not defined at `(t, y)` (a division by a series with zero
+    /// constant term, a logarithm of zero ...), or `order` exceeds what the field was built
+    /// for.
+    fn coefficients(
+        &mut self,
+        t: f64,
+        y: &[f64],
+        order: usize,
+        coefficients: &mut [f64],
+    ) -> Result<()>;
+}
+
+/// The order the method uses for tolerances `rtol`, `atol`: `⌈-ln(min(rtol, atol))/2 + 1⌉`,
+/// at least 2, at most [`MAX_ORDER`].
+pub fn order_for(tolerances: &Tolerances) -> usize {
+    let eps = tolerances.rtol.min(tolerances.atol);
+    let p = (-eps.ln() / 2.0 + 1.0).ceil();
+    // A non-finite order (never for validated tolerances) falls to the cap.
+    if p.is_finite() {
+        (p as usize).clamp(2, MAX_ORDER)
+    } else {
+        MAX_ORDER
+    }
+}
+
+/// `a + b = s + e` exactly (Knuth's TwoSum).
+#[inline(always)]
+fn two_sum(a: f64, b: f64) -> (f64, f64) {
+    let s = a + b;
+    let bb = s - a;
+    (s, (a - (s - bb)) + (b - bb))
+}
+
+/// Veltkamp's split of `a` into two halves of 26 bits (exact for `|a| < 2^996`).
+#[inline(always)]
+fn split(a: f64) -> (f64, f64) {
+    let c = 134_217_729.0 * a; // 2^27 + 1
+    let hi = c - (c - a);
+    (hi, a - hi)
+}
+
+/// `a b = p + e` exactly (Dekker's TwoProduct, without FMA: the same bits on every target).
+#[inline(always)]
+fn two_product(a: f64, b: f64) -> (f64, f64) {
+    let p = a * b;
+    let (ah, al) = split(a);
+    let (bh, bl) = split(b);
+    (p, al * bl - (((p - ah * bh) - al * bh) - ah * bl))
+}
+
+/// `Σ_k c_k x^k` by compensated Horner: as accurate as Horner in twice the working precision,
+/// then rounded once.
+#[inline]
+pub fn compensated_horner(c: &[f64], x: f64) -> f64 {
+    let Some((&last, rest)) = c.split_last() else {
+        return 0.0;
+    };
+    let mut s = last;
+    let mut err = 0.0;
+    for &ck in rest.iter().rev() {
+        let (p, pi) = two_product(s, x);
+        let (sum, sigma) = two_sum(p, ck);
+        s = sum;
+        err = err * x + (pi + sigma);
+    }
+    s + err
+}
+
+/// The adaptive Taylor stepper: its own steps, the last step's polynomial kept for output.
+#[derive(Debug, Clone)]
+pub struct Taylor {
+    dim: usize,
+    order: usize,
+    tolerances: Tolerances,
+    /// The current step's Taylor coefficients (`dim` rows of `order + 1`).
+    coefficients: Vec<f64>,
+    /// Start of the current polynomial's step, as a double-double `(hi, lo)`.
+    start: (f64, f64),
+    /// The clock after the last step (the end of the current polynomial's step).
+    t: (f64, f64),
+    /// The state at `t`.
+    y: Vec<f64>,
+    /// Length of the current polynomial's step (signed); 0 before the first step.
+    h: f64,
+    /// The end of the integration: the last step lands on it exactly.
+    t_bound: f64,
+    accepted: u64,
+    smallest: f64,
+    largest: f64,
+}
+
+impl Taylor {
+    /// A stepper for `dim` components at `(t0, y0)` towards `t_bound`.
+    ///
+    /// # Errors
+    /// [`Error::InvalidParameter`] for a state of the wrong length or not finite, or
+    /// tolerances that are not finite and positive.
+    pub fn new(
+        dim: usize,
+        tolerances: Tolerances,
+        t0: f64,
+        y0: &[f64],
+        t_bound: f64,
+    ) -> Result<Self> {
+        tolerances.validate()?;
+        if y0.len() != dim {
+            return Err(Error::invalid(
+                "y0",
+                y0.len() as f64,
+                format!("needs {dim} components"),
+            ));
+        }
+        if let Some(bad) = y0.iter().find(|v| !v.is_finite()) {
+            return Err(Error::invalid("y0", *bad, "must be finite"));
+        }
+        let order = order_for(&tolerances);
+        Ok(Self {
+            dim,
+            order,
+            tolerances,
+            coefficients: vec![0.0; dim * (order + 1)],
+            start: (t0, 0.0),
+            t: (t0, 0.0),
+            y: y0.to_vec(),
+            h: 0.0,
+            t_bound,
+            accepted: 0,
+            smallest: f64::INFINITY,
+            largest: 0.0,
+        })
+    }
+
+    /// The order of the series (fixed by the tolerances).
+    pub fn order(&self) -> usize {
+        self.order
+    }
+
+    /// Steps taken so far.
+    pub fn steps(&self) -> u64 {
+        self.accepted
+    }
+
+    /// Signed time from the current step's start to `t`, in double-double.
+    #[inline]
+    fn offset(&self, t: f64) -> f64 {
+        (t - self.t.0) - self.t.1
+    }
+
+    /// Expands at the current state and chooses the step toward `t_bound` (not yet taken).
+    fn expand<F: TaylorField + ?Sized>(&mut self, field: &mut F) -> Result<f64> {
+        let (p, n1) = (self.order, self.order + 1);
+        let t = self.t.0;
+        let fail = |step: f64, reason: String| Error::StepSizeTooSmall { t, step, reason };
+        if self.accepted >= self.tolerances.max_steps {
+            return Err(fail(
+                self.h,
+                format!(
+                    "the step budget max_steps = {} is spent; raise max_steps or loosen the \
+                     tolerances",
+                    self.tolerances.max_steps
+                ),
+            ));
+        }
+        field.coefficients(t, &self.y, p, &mut self.coefficients)?;
+        let (mut norm, mut last, mut second_last) = (0.0_f64, 0.0_f64, 0.0_f64);
+        for row in self.coefficients.chunks_exact(n1) {
+            norm = norm.max(row[0].abs());
+            second_last = second_last.max(row[p - 1].abs());
+            last = last.max(row[p].abs());
+        }
+        let scale = if self.tolerances.rtol * norm <= self.tolerances.atol {
+            1.0
+        } else {
+            norm
+        };
+        let radius = |c: f64, k: usize| {
+            if c > 0.0 {
+                (scale / c).powf(1.0 / k as f64)
+            } else {
+                f64::INFINITY
+            }
+        };
+        let rho = radius(second_last, p - 1).min(radius(last, p));
+        let remaining = self.offset(self.t_bound);
+        // A series that ends before order p - 1 (a polynomial solution) is exact: one step.
+        let h = if rho.is_infinite() {
+            remaining.abs()
+        } else {
+            rho / std::f64::consts::E.powi(2) * (-0.7 / (p - 1) as f64).exp()
+        };
+        if !h.is_finite() || !self.coefficients.iter().all(|c| c.is_finite()) {
+            return Err(fail(
+                h,
+                "the Taylor coefficients are not finite (a singularity of the field?)".into(),
+            ));
+        }
+        if h <= f64::EPSILON * t.abs().max(remaining.abs()) * 4.0 && h < remaining.abs() {
+            return Err(fail(
+                h,
+                "the step size underflowed (the solution's radius of convergence shrinks to \
+                 zero: a singularity?)"
+                    .into(),
+            ));
+        }
+        Ok(h.min(remaining.abs()).copysign(remaining))
+    }
+
+    /// Takes one step on the current expansion of length `h`, moving the clock.
+    fn take(&mut self, h: f64, lands: bool) {
+        let n1 = self.order + 1;
+        for (yi, row) in self.y.iter_mut().zip(self.coefficients.chunks_exact(n1)) {
+            *yi = compensated_horner(row, h);
+        }
+        self.start = self.t;
+        if lands {
+            self.t = (self.t_bound, 0.0);
+        } else {
+            let (hi, lo) = two_sum(self.t.0, h);
+            let (hi, lo2) = two_sum(hi, lo + self.t.1);
+            self.t = (hi, lo2);
+        }
+        self.h = h;
+        self.accepted += 1;
+        self.smallest = self.smallest.min(h.abs());
+        self.largest = self.largest.max(h.abs());
+    }
+
+    /// Steps until the current polynomial covers `t_out` (between the step's start and
+    /// `t_bound`) and writes the solution there into `y_out`.
+    ///
+    /// # Errors
+    /// As [`TaylorField::coefficients`]; [`Error::StepSizeTooSmall`] for a step size that
+    /// underflows, non-finite coefficients, or the `max_steps` budget spent.
+    // Exact comparisons: the clock lands on `t_bound` exactly, and the first output may be the
+    // start itself.
+    #[allow(clippy::float_cmp)]
+    pub fn advance<F: TaylorField + ?Sized>(
+        &mut self,
+        field: &mut F,
+        t_out: f64,
+        y_out: &mut [f64],
+    ) -> Result<()> {
+        if y_out.len() != self.dim || field.dim() != self.dim {
+            return Err(Error::invalid(
+                "y",
+                y_out.len() as f64,
+                format!(
+                    "the stepper, the field and the output must have {} components",
+                    self.dim
+                ),
+            ));
+        }
+        let direction = (self.t_bound - self.t.0).signum();
+        let n1 = self.order + 1;
+        loop {
+            // The current polynomial (from the last step's start) covers t_out?
+            if self.h != 0.0 {
+                let from_start = (t_out - self.start.0) - self.start.1;
+                if from_start * direction <= self.h.abs() {
+                    for (yo, row) in y_out.iter_mut().zip(self.coefficients.chunks_exact(n1)) {
+                        *yo = compensated_horner(row, from_start);
+                    }
+                    return Ok(());
+                }
+            } else if t_out == self.t.0 {
+                y_out.copy_from_slice(&self.y);
+                return Ok(());
+            }
+            if self.t.0 == self.t_bound {
+                return Err(Error::invalid(
+                    "t",
+                    t_out,
+                    "lies beyond the end of the integration",
+                ));
+            }
+            let h = self.expand(field)?;
+            let lands = h == self.offset(self.t_bound);
+            self.take(h, lands);
+        }
+    }
+}
+
+impl Taylor {
+    /// The step statistics, as `result.extra` entries.
+    fn report(&self, extra: &mut BTreeMap<String, ExtraValue>) {
+        extra.insert("steps".into(), ExtraValue::Scalar(self.accepted as f64));
+        extra.insert("order".into(), ExtraValue::Scalar(self.order as f64));
+        extra.insert(
+            "smallest_step".into(),
+            ExtraValue::Scalar(if self.accepted > 0 {
+                self.smallest
+            } else {
+                0.0
+            }),
+        );
+        extra.insert("largest_step".into(), ExtraValue::Scalar(self.largest));
+    }
+}
+
+/// Integrates `field` from `y0` over `t_span`, with outputs every `dt` (the grid of
+/// [`TimeGrid`]: `round((t1 - t0)/dt)` intervals, the last landing on `t1`), by the adaptive
+/// Taylor method at `tolerances`.
+///
+/// The method is not yet one of [`Method`](crate::classical::Method)'s: the catalogue's
+/// systems do not yet expose their fields as Taylor expansions. Expression systems do, through
+/// `TaylorProgram` (`lagrangian/taylor_tape.rs`).
+///
+/// # Errors
+/// As [`TimeGrid::new`] and [`Taylor::advance`]; [`Error::InvalidParameter`] for `y0` of
+/// the wrong length or not finite, or invalid tolerances.
+pub fn integrate_taylor<F: TaylorField + ?Sized>(
+    field: &mut F,
+    y0: &[f64],
+    t_span: (f64, f64),
+    dt: f64,
+    tolerances: Tolerances,
+) -> Result<SimulationResult> {
+    let grid = TimeGrid::new(t_span, dt)?;
+    let dim = field.dim();
+    let mut stepper = Taylor::new(dim, tolerances, grid.t0(), y0, grid.t_end())?;
+    let n = grid.n_steps() + 1;
+    crate::classical::core::memory_check(n, 1 + dim)?;
+    let mut y = Array2::<f64>::zeros((n, dim));
+    let mut t = Array1::<f64>::zeros(n);
+    for (i, mut row) in y.rows_mut().into_iter().enumerate() {
+        let ti = grid.time(i);
+        t[i] = ti;
+        let out = row
+            .as_slice_mut()
+            .ok_or_else(|| Error::invalid("dim", dim as f64, "rows must be contiguous"))?;
+        if i == 0 {
+            out.copy_from_slice(y0);
+        } else {
+            stepper.advance(field, ti, out)?;
+        }
+    }
+    let mut extra = BTreeMap::new();
+    stepper.report(&mut extra);
+    Ok(SimulationResult {
+        t,
+        y,
+        ndof: None,
+        energy: None,
+        method: INFO.name.to_string(),
+        extra,
+    })
+}

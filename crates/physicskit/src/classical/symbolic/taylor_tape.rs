@@ -1,0 +1,645 @@
+//! [`TaylorProgram`]: an expression-defined vector field compiled into Taylor-coefficient
+//! recurrences, the field of the adaptive Taylor method
+//! ([`integrators::taylor`](crate::classical::integrators::taylor)).
+//!
+//! Compilation walks the expression trees bottom-up, as the [`Tape`](super::Tape) does: every
+//! distinct operation gets one node (hash-consing, so a subexpression shared between
+//! components, such as `cos(q0 - q1)` or `r^-3`, is expanded once), operations on constants
+//! are folded and parameters become constants. Each node holds a truncated power series;
+//! order `k` of every node follows from orders `< k` of its operands by one recurrence per
+//! operation (automatic differentiation of truncated series; Jorba & Zou, *Exp. Math.* 14
+//! (2005) 99, §3; Griewank & Walther, *Evaluating Derivatives*, ch. 13):
+//!
+//! - `a ± b`, `c a`: term by term; `a b`: the Cauchy product; `a / b`, `√a`: the product
+//!   solved for the new term;
+//! - `a^α` (`α` real): from `a c' = α a' c`; integer powers are products (exact at `a = 0`);
+//!   `a^b = exp(b ln a)`;
+//! - `exp a`: from `c' = a' c`; `ln a`, `atan a`, `asin a`, `acos a`: from `d c' = ±a'` with
+//!   `d = a`, `1 + a²`, `√(1 - a²)`;
+//! - `sin`/`cos` (and `sinh`/`cosh`) as a pair, each from the other's lower orders; `tan`,
+//!   `tanh` are their quotients; `|a|` is `±a` by the sign of `a`'s value.
+//!
+//! The state's coefficients then follow from the field's: `y^[k+1] = f^[k] / (k + 1)`.
+//! A series that is undefined at the point (division by a zero value, a power or logarithm of
+//! zero) gives non-finite coefficients, which the stepper refuses with an error.
+
+use std::collections::HashMap;
+
+use super::expr::{Expr, Func};
+use super::expr_diff::Var;
+use super::expr_hamiltonian::ExprHamiltonian;
+use super::expr_ode::ExprOde;
+use crate::classical::core::{Error, Result};
+use crate::classical::integrators::taylor::{TaylorField, MAX_ORDER};
+use crate::classical::integrators::HamiltonianSystem;
+
+/// An operand: a node's series or a constant.
+#[derive(Debug, Clone, Copy, PartialEq)]
+enum Val {
+    Node(u32),
+    Const(f64),
+}
+
+/// One operation of the recurrences; operands are node indices.
+#[derive(Debug, Clone, Copy, PartialEq)]
+enum Node {
+    /// A state component (its series comes from the field's outputs).
+    State,
+    /// The time: `t + τ`.
+    Time,
+    Add(u32, u32),
+    Sub(u32, u32),
+    Mul(u32, u32),
+    Div(u32, u32),
+    AddC(u32, f64),
+    /// `c - a`
+    CSub(f64, u32),
+    MulC(u32, f64),
+    /// `c / a`
+    CDiv(f64, u32),
+    Neg(u32),
+    Square(u32),
+    Sqrt(u32),
+    Powf(u32, f64),
+    Exp(u32),
+    /// `c` with `d c' = sign a'`: `ln` (`d = a`), `atan` (`1 + a²`), `asin`, `acos`
+    /// (`√(1 - a²)`, `acos` with sign −1); `Func` gives the value.
+    Integral {
+        a: u32,
+        d: u32,
+        sign: f64,
+        func: Func,
+    },
+    /// `sin a` here, `cos a` in the next node (or `sinh`/`cosh` when `hyperbolic`).
+    SinCos(u32, bool),
+    /// The second of a [`Node::SinCos`] pair: computed with it.
+    Partner,
+    /// `|a|`: `a` times the sign of its value.
+    Abs(u32),
+}
+
+/// Hash key of a node (floats by their bits).
+type Key = (u8, u32, u32, u64);
+
+fn key(node: Node) -> Key {
+    match node {
+        Node::State | Node::Time | Node::Partner => (0, 0, 0, 0),
+        Node::Add(a, b) => (1, a, b, 0),
+        Node::Sub(a, b) => (2, a, b, 0),
+        Node::Mul(a, b) => (3, a, b, 0),
+        Node::Div(a, b) => (4, a, b, 0),
+        Node::AddC(a, c) => (5, a, 0, c.to_bits()),
+        Node::CSub(c, a) => (6, a, 0, c.to_bits()),
+        Node::MulC(a, c) => (7, a, 0, c.to_bits()),
+        Node::CDiv(c, a) => (8, a, 0, c.to_bits()),
+        Node::Neg(a) => (9, a, 0, 0),
+        Node::Square(a) => (10, a, 0, 0),
+        Node::Sqrt(a) => (11, a, 0, 0),
+        Node::Powf(a, x) => (12, a, 0, x.to_bits()),
+        Node::Exp(a) => (13, a, 0, 0),
+        Node::Integral { a, d, sign, func } => (14 + func as u8, a, d, sign.to_bits()),
+        Node::SinCos(a, hyperbolic) => (40, a, u32::from(hyperbolic), 0),
+        Node::Abs(a) => (41, a, 0, 0),
+    }
+}
+
+/// An expression field compiled into Taylor recurrences (see the module documentation).
+#[derive(Debug, Clone)]
+pub struct TaylorProgram {
+    dim: usize,
+    nodes: Vec<Node>,
+    outputs: Vec<Val>,
+    /// Coefficients of every node, `stride` per node; sized at the first expansion of an
+    /// order and reused (no allocation per step).
+    work: Vec<f64>,
+}
+
+struct Builder<'a> {
+    n_first: usize,
+    n_second: usize,
+    params: &'a [f64],
+    nodes: Vec<Node>,
+    seen: HashMap<Key, u32>,
+}
+
+impl Builder<'_> {
+    fn node(&mut self, node: Node) -> u32 {
+        let k = key(node);
+        if let Some(&i) = self.seen.get(&k) {
+            return i;
+        }
+        let i = self.nodes.len() as u32;
+        self.nodes.push(node);
+        if let Node::SinCos(..) = node {
+            self.nodes.push(Node::Partner);
+        }
+        self.seen.insert(k, i);
+        i
+    }
+
+    fn add(&mut self, a: Val, b: Val) -> Val {
+        match (a, b) {
+            (Val::Const(x), Val::Const(y)) => Val::Const(x + y),
+            (Val::Node(a), Val::Const(c)) | (Val::Const(c), Val::Node(a)) => {
+                Val::Node(self.node(Node::AddC(a, c)))
+            }
+            (Val::Node(a), Val::Node(b)) => Val::Node(self.node(Node::Add(a, b))),
+        }
+    }
+
+    fn sub(&mut self, a: Val, b: Val) -> Val {
+        match (a, b) {
+            (Val::Const(x), Val::Const(y)) => Val::Const(x - y),
+            (Val::Node(a), Val::Const(c)) => Val::Node(self.node(Node::AddC(a, -c))),
+            (Val::Const(c), Val::Node(a)) => Val::Node(self.node(Node::CSub(c, a))),
+            (Val::Node(a), Val::Node(b)) => Val::Node(self.node(Node::Sub(a, b))),
+        }
+    }
+
+    fn mul(&mut self, a: Val, b: Val) -> Val {
+        match (a, b) {
+            (Val::Const(x), Val::Const(y)) => Val::Const(x * y),
+            (Val::Node(a), Val::Const(c)) | (Val::Const(c), Val::Node(a)) => {
+                Val::Node(self.node(Node::MulC(a, c)))
+            }
+            (Val::Node(a), Val::Node(b)) if a == b => Val::Node(self.node(Node::Square(a))),
+            (Val::Node(a), Val::Node(b)) => Val::Node(self.node(Node::Mul(a, b))),
+        }
+    }
+
+    fn div(&mut self, a: Val, b: Val) -> Val {
+        match (a, b) {
+            (Val::Const(x), Val::Const(y)) => Val::Const(x / y),
+            (Val::Node(a), Val::Const(c)) => Val::Node(self.node(Node::MulC(a, 1.0 / c))),
+            (Val::Const(c), Val::Node(a)) => Val::Node(self.node(Node::CDiv(c, a))),
+            (Val::Node(a), Val::Node(b)) => Val::Node(self.node(Node::Div(a, b))),
+        }
+    }
+
+    fn unary(&mut self, a: Val, value: impl Fn(f64) -> f64, node: impl Fn(u32) -> Node) -> Val {
+        match a {
+            Val::Const(x) => Val::Const(value(x)),
+            Val::Node(a) => Val::Node(self.node(node(a))),
+        }
+    }
+
+    /// `a^n` by repeated squaring (products: exact where `a` vanishes).
+    fn powi(&mut self, a: Val, n: i32) -> Val {
+        if let Val::Const(x) = a {
+            return Val::Const(x.powi(n));
+        }
+        let mut m = n.unsigned_abs();
+        let mut result = Val::Const(1.0);
+        let mut base = a;
+        while m > 0 {
+            if m & 1 == 1 {
+                result = self.mul(result, base);
+            }
+            m >>= 1;
+            if m > 0 {
+                base = self.mul(base, base);
+            }
+        }
+        if n < 0 {
+            self.div(Val::Const(1.0), result)
+        } else {
+            result
+        }
+    }
+
+    // Exact comparisons: recognizing integer and half-integer exponents.
+    #[allow(clippy::float_cmp)]
+    fn powf(&mut self, a: Val, x: f64) -> Val {
+        if x == x.trunc() && x.abs() <= 64.0 {
+            return self.powi(a, x as i32);
+        }
+        if x == 0.5 {
+            return self.unary(a, f64::sqrt, Node::Sqrt);
+        }
+        self.unary(a, |v| v.powf(x), |a| Node::Powf(a, x))
+    }
+
+    fn exp(&mut self, a: Val) -> Val {
+        self.unary(a, f64::exp, Node::Exp)
+    }
+
+    fn integral(&mut self, a: Val, d: Val, sign: f64, func: Func) -> Val {
+        match (a, d) {
+            (Val::Node(a), Val::Node(d)) => {
+                Val::Node(self.node(Node::Integral { a, d, sign, func }))
+            }
+            (Val::Const(x), _) => Val::Const(func_value(func, x)),
+            // `d` is a function of `a`: constant only when `a` is.
+            (Val::Node(_), Val::Const(_)) => unreachable_const(),
+        }
+    }
+
+    fn sin_cos(&mut self, a: Val, hyperbolic: bool) -> (Val, Val) {
+        match a {
+            Val::Const(x) if hyperbolic => (Val::Const(x.sinh()), Val::Const(x.cosh())),
+            Val::Const(x) => (Val::Const(x.sin()), Val::Const(x.cos())),
+            Val::Node(a) => {
+                let s = self.node(Node::SinCos(a, hyperbolic));
+                (Val::Node(s), Val::Node(s + 1))
+            }
+        }
+    }
+
+    fn func(&mut self, f: Func, a: Val) -> Val {
+        match f {
+            Func::Sin => self.sin_cos(a, false).0,
+            Func::Cos => self.sin_cos(a, false).1,
+            Func::Sinh => self.sin_cos(a, true).0,
+            Func::Cosh => self.sin_cos(a, true).1,
+            Func::Tan | Func::Tanh => {
+                let (s, c) = self.sin_cos(a, f == Func::Tanh);
+                self.div(s, c)
+            }
+            Func::Exp => self.exp(a),
+            Func::Sqrt => self.unary(a, f64::sqrt, Node::Sqrt),
+            Func::Abs => self.unary(a, f64::abs, Node::Abs),
+            Func::Ln => self.integral(a, a, 1.0, Func::Ln),
+            Func::Atan => {
+                let a2 = self.mul(a, a);
+                let d = self.add(a2, Val::Const(1.0));
+                self.integral(a, d, 1.0, Func::Atan)
+            }
+            Func::Asin | Func::Acos => {
+                let a2 = self.mul(a, a);
+                let one_minus = self.sub(Val::Const(1.0), a2);
+                let d = self.unary(one_minus, f64::sqrt, Node::Sqrt);
+                let sign = if f == Func::Asin { 1.0 } else { -1.0 };
+                self.integral(a, d, sign, f)
+            }
+        }
+    }
+
+    fn compile(&mut self, e: &Expr) -> Result<Val> {
+        let bad = |kind: &str, i: usize, limit: usize| {
+            Err(Error::invalid(
+                "expression",
+                i as f64,
+                format!("refers to {kind}{i}, but there are only {limit}"),
+            ))
+        };
+        let (nf, ns) = (self.n_first, self.n_second);
+        Ok(match e {
+            Expr::Const(c) => Val::Const(*c),
+            Expr::Q(i) if *i < nf => Val::Node(*i as u32),
+            Expr::Q(i) => return bad("q", *i, nf),
+            Expr::Qdot(i) if *i < ns => Val::Node((nf + i) as u32),
+            Expr::Qdot(i) => return bad("qdot/p", *i, ns),
+            Expr::T => Val::Node((nf + ns) as u32),
+            Expr::Param(i) => match self.params.get(*i) {
+                Some(&p) => Val::Const(p),
+                None => return bad("param", *i, self.params.len()),
+            },
+            Expr::Add(v) => {
+                let mut acc = Val::Const(0.0);
+                for (i, term) in v.iter().enumerate() {
+                    let b = self.compile(term)?;
+                    acc = if i == 0 { b } else { self.add(acc, b) };
+                }
+                acc
+            }
+            Expr::Mul(v) => {
+                let mut acc = Val::Const(1.0);
+                for (i, factor) in v.iter().enumerate() {
+                    let b = self.compile(factor)?;
+                    acc = if i == 0 { b } else { self.mul(acc, b) };
+                }
+                acc
+            }
+            Expr::Sub(a, b) => {
+                let (a, b) = (self.compile(a)?, self.compile(b)?);
+                self.sub(a, b)
+            }
+            Expr::Div(a, b) => {
+                let (a, b) = (self.compile(a)?, self.compile(b)?);
+                self.div(a, b)
+            }
+            Expr::Neg(a) => {
+                let a = self.compile(a)?;
+                self.unary(a, |x| -x, Node::Neg)
+            }
+            Expr::Powi(a, n) => {
+                let a = self.compile(a)?;
+                self.powi(a, *n)
+            }
+            Expr::Powf(a, x) => {
+                let a = self.compile(a)?;
+                self.powf(a, *x)
+            }
+            Expr::Pow(a, b) => {
+                let (a, b) = (self.compile(a)?, self.compile(b)?);
+                match (a, b) {
+                    (_, Val::Const(x)) => self.powf(a, x),
+                    (Val::Const(c), _) => {
+                        let exponent = self.mul(b, Val::Const(c.ln()));
+                        self.exp(exponent)
+                    }
+                    _ => {
+                        let ln = self.func(Func::Ln, a);
+                        let exponent = self.mul(b, ln);
+                        self.exp(exponent)
+                    }
+                }
+            }
+            Expr::Func(f, a) => {
+                let a = self.compile(a)?;
+                self.func(*f, a)
+            }
+        })
+    }
+}
+
+/// `Σ_j a_j b_{n-1-j}` for slices of length `n`: the Cauchy product's term of order `n - 1`
+/// (zero for empty slices).
+#[inline(always)]
+fn cauchy(a: &[f64], b: &[f64]) -> f64 {
+    a.iter().zip(b.iter().rev()).map(|(x, y)| x * y).sum()
+}
+
+/// The value of an [`Node::Integral`]'s function.
+fn func_value(func: Func, x: f64) -> f64 {
+    match func {
+        Func::Atan => x.atan(),
+        Func::Asin => x.asin(),
+        Func::Acos => x.acos(),
+        _ => x.ln(),
+    }
+}
+
+/// A function of a non-constant operand folded to a constant cannot happen (the builder
+/// folds only operations whose operands are all constants); a NaN then makes the stepper
+/// refuse the run rather than panic.
+fn unreachable_const() -> Val {
+    Val::Const(f64::NAN)
+}
+
+impl TaylorProgram {
+    /// Compiles `outputs`, the components of `dy/dt` for the state
+    /// `y = (q_0..q_{n_first}, qdot_0/p_0..)` (`n_first + n_second` components, one output
+    /// each), in `t` and parameters with values `params`.
+    ///
+    /// # Errors
+    /// [`Error::InvalidParameter`] naming `expression` for a variable or parameter index out
+    /// of range, or naming `outputs` when there is not one output per state component.
+    pub fn new(outputs: &[Expr], n_first: usize, n_second: usize, params: &[f64]) -> Result<Self> {
+        let dim = n_first + n_second;
+        if outputs.len() != dim || dim == 0 {
+            return Err(Error::invalid(
+                "outputs",
+                outputs.len() as f64,
+                format!("needs one output per state component ({dim}), at least one"),
+            ));
+        }
+        let mut nodes = vec![Node::State; dim];
+        nodes.push(Node::Time);
+        let mut builder = Builder {
+            n_first,
+            n_second,
+            params,
+            nodes,
+            seen: HashMap::new(),
+        };
+        let outputs = outputs
+            .iter()
+            .map(|e| builder.compile(e))
+            .collect::<Result<Vec<_>>>()?;
+        Ok(Self {
+            dim,
+            nodes: builder.nodes,
+            outputs,
+            work: Vec::new(),
+        })
+    }
+
+    /// The recurrences of an [`ExprOde`]'s field `dy/dt = f(t, y)`.
+    ///
+    /// # Errors
+    /// As [`TaylorProgram::new`] (never, for a valid `ExprOde`).
+    pub fn ode(system: &ExprOde) -> Result<Self> {
+        Self::new(
+            system.components(),
+            system.components().len(),
+            0,
+            system.params(),
+        )
+    }
+
+    /// The recurrences of an [`ExprHamiltonian`]'s canonical equations
+    /// `dq/dt = ∂H/∂p`, `dp/dt = -∂H/∂q`, state `(q, p)`, from `H`'s symbolic derivatives.
+    ///
+    /// # Errors
+    /// As [`TaylorProgram::new`] (never, for a valid `ExprHamiltonian`).
+    pub fn hamiltonian(system: &ExprHamiltonian) -> Result<Self> {
+        let n = system.ndof();
+        let h = system.expr();
+        let outputs: Vec<Expr> = (0..n)
+            .map(|i| h.diff(Var::Second(i)))
+            .chain((0..n).map(|i| Expr::Neg(Box::new(h.diff(Var::First(i))))))
+            .collect();
+        Self::new(&outputs, n, n, system.params())
+    }
+
+    /// Number of recurrence nodes (state, time and operations).
+    pub fn nodes(&self) -> usize {
+        self.nodes.len()
+    }
+
+    /// Order `k` of every operation node, from orders `< k` of all nodes (the state's and
+    /// time's order `k` already set).
+    #[allow(clippy::too_many_lines)]
+    fn order_k(&mut self, k: usize, stride: usize) {
+        let w = &mut self.work[..];
+        let at = |n: u32, j: usize| n as usize * stride + j;
+        let kf = k as f64;
+        for (i, &node) in self.nodes.iter().enumerate() {
+            let me = i * stride;
+            let value = match node {
+                Node::State | Node::Time | Node::Partner => continue,
+                Node::Add(a, b) => w[at(a, k)] + w[at(b, k)],
+                Node::Sub(a, b) => w[at(a, k)] - w[at(b, k)],
+                Node::AddC(a, c) => {
+                    if k == 0 {
+                        w[at(a, 0)] + c
+                    } else {
+                        w[at(a, k)]
+                    }
+                }
+                Node::CSub(c, a) => {
+                    if k == 0 {
+                        c - w[at(a, 0)]
+                    } else {
+                        -w[at(a, k)]
+                    }
+                }
+                Node::MulC(a, c) => c * w[at(a, k)],
+                Node::Neg(a) => -w[at(a, k)],
+                Node::Abs(a) => {
+                    if w[at(a, 0)] < 0.0 {
+                        -w[at(a, k)]
+                    } else {
+                        w[at(a, k)]
+                    }
+                }
+                Node::Mul(a, b) => {
+                    let (a, b) = (a as usize * stride, b as usize * stride);
+                    cauchy(&w[a..=a + k], &w[b..=b + k])
+                }
+                Node::Square(a) => {
+                    let a = a as usize * stride;
+                    let mut s = 0.0;
+                    for j in 0..k.div_ceil(2) {
+                        s += w[a + j] * w[a + k - j];
+                    }
+                    s *= 2.0;
+                    if k.is_multiple_of(2) {
+                        s += w[a + k / 2] * w[a + k / 2];
+                    }
+                    s
+                }
+                Node::Div(a, b) => {
+                    let b = b as usize * stride;
+                    (w[at(a, k)] - cauchy(&w[b + 1..=b + k], &w[me..me + k])) / w[b]
+                }
+                Node::CDiv(c, a) => {
+                    let a = a as usize * stride;
+                    let s = if k == 0 { c } else { 0.0 };
+                    (s - cauchy(&w[a + 1..=a + k], &w[me..me + k])) / w[a]
+                }
+                Node::Sqrt(a) => {
+                    if k == 0 {
+                        w[at(a, 0)].sqrt()
+                    } else {
+                        let mut s = w[at(a, k)];
+                        for j in 1..k {
+                            s -= w[me + j] * w[me + k - j];
+                        }
+                        s / (2.0 * w[me])
+                    }
+                }
+                Node::Powf(a, alpha) => {
+                    let a = a as usize * stride;
+                    if k == 0 {
+                        w[a].powf(alpha)
+                    } else {
+                        let mut s = 0.0;
+                        for j in 0..k {
+                            s += (alpha * (k - j) as f64 - j as f64) * w[a + k - j] * w[me + j];
+                        }
+                        s / (kf * w[a])
+                    }
+                }
+                Node::Exp(a) => {
+                    let a = a as usize * stride;
+                    if k == 0 {
+                        w[a].exp()
+                    } else {
+                        let mut s = 0.0;
+                        for j in 1..=k {
+                            s += j as f64 * w[a + j] * w[me + k - j];
+                        }
+                        s / kf
+                    }
+                }
+                Node::Integral { a, d, sign, func } => {
+                    let (a, d) = (a as usize * stride, d as usize * stride);
+                    if k == 0 {
+                        func_value(func, w[a])
+                    } else {
+                        let mut s = sign * kf * w[a + k];
+                        for j in 1..k {
+                            s -= j as f64 * w[me + j] * w[d + k - j];
+                        }
+                        s / (kf * w[d])
+                    }
+                }
+                Node::SinCos(a, hyperbolic) => {
+                    let a = a as usize * stride;
+                    let partner = me + stride;
+                    if k == 0 {
+                        let x = w[a];
+                        let (s, c) = if hyperbolic {
+                            (x.sinh(), x.cosh())
+                        } else {
+                            x.sin_cos()
+                        };
+                        w[partner] = c;
+                        s
+                    } else {
+                        let (mut s, mut c) = (0.0, 0.0);
+                        for j in 1..=k {
+                            let ja = j as f64 * w[a + j];
+                            s += ja * w[partner + k - j];
+                            c += ja * w[me + k - j];
+                        }
+                        w[partner + k] = if hyperbolic { c / kf } else { -c / kf };
+                        s / kf
+                    }
+                }
+            };
+            w[me + k] = value;
+        }
+    }
+}
+
+impl TaylorField for TaylorProgram {
+    fn dim(&self) -> usize {
+        self.dim
+    }
+
+    fn coefficients(
+        &mut self,
+        t: f64,
+        y: &[f64],
+        order: usize,
+        coefficients: &mut [f64],
+    ) -> Result<()> {
+        let stride = order + 1;
+        if order > MAX_ORDER || y.len() != self.dim || coefficients.len() != self.dim * stride {
+            return Err(Error::invalid(
+                "order",
+                order as f64,
+                format!(
+                    "a Taylor expansion takes an order <= {MAX_ORDER}, a state of {} and room \
+                     for its coefficients",
+                    self.dim
+                ),
+            ));
+        }
+        let size = self.nodes.len() * stride;
+        if self.work.len() != size {
+            self.work = vec![0.0; size];
+        }
+        let dim = self.dim;
+        for (i, &yi) in y.iter().enumerate() {
+            self.work[i * stride] = yi;
+        }
+        let time = dim * stride;
+        self.work[time..time + stride].fill(0.0);
+        self.work[time] = t;
+        if order >= 1 {
+            self.work[time + 1] = 1.0;
+        }
+        for k in 0..=order {
+            self.order_k(k, stride);
+            if k < order {
+                let next = (k + 1) as f64;
+                for (i, out) in self.outputs.iter().enumerate() {
+                    let fk = match *out {
+                        Val::Node(n) => self.work[n as usize * stride + k],
+                        Val::Const(c) if k == 0 => c,
+                        Val::Const(_) => 0.0,
+                    };
+                    self.work[i * stride + k + 1] = fk / next;
+                }
+            }
+        }
+        for (i, row) in coefficients.chunks_exact_mut(stride).enumerate() {
+            row.copy_from_slice(&self.work[i * stride..(i + 1) * stride]);
+        }
+        Ok(())
+    }
+}

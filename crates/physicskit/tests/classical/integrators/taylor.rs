@@ -1,0 +1,415 @@
+//! `taylor`: every recurrence against quadrature of its function, the expression forms of
+//! Kepler, Hénon–Heiles and the double pendulum against their hand-written fields, the
+//! measured local order against the closed-form Kepler orbit, the error following the
+//! tolerance, the floor over 100 Kepler orbits, the energy error's growth over long runs,
+//! dense output independent of the output spacing, and failures as errors.
+
+use crate::checks::loglog_slope;
+use crate::fixtures::pseudo_random;
+use physicskit::classical::integrators::taylor::{
+    compensated_horner, integrate_taylor, order_for, TaylorField,
+};
+use physicskit::classical::symbolic::TaylorProgram;
+use physicskit::classical::symbolic::{Expr, ExprHamiltonian, ExprOde};
+use physicskit::classical::systems::{
+    DoublePendulum, DoublePendulumParams, HenonHeilesSystem, KeplerPerturbations, KeplerSystem,
+};
+use physicskit::classical::{
+    DynamicalSystem, Error, HamiltonianSystem, IntegrateOptions, LagrangianSystem, Method,
+    Tolerances,
+};
+
+const PERIOD: f64 = 2.0 * std::f64::consts::PI;
+
+/// The Kepler orbit `a = 1`, `e = 0.5`, `k = mu = 1` (period `2 pi`) from perihelion, by
+/// Kepler's equation `E - e sin E = t` solved by Newton's method to rounding: position and
+/// momentum.
+fn kepler_state(t: f64) -> [f64; 4] {
+    let e = 0.5;
+    let m = t.rem_euclid(PERIOD);
+    let mut ecc = m + e * m.sin();
+    for _ in 0..50 {
+        let step = (ecc - e * ecc.sin() - m) / (1.0 - e * ecc.cos());
+        ecc -= step;
+        if step.abs() < 1e-16 {
+            break;
+        }
+    }
+    let edot = 1.0 / (1.0 - e * ecc.cos());
+    let b = (1.0 - e * e).sqrt();
+    [
+        ecc.cos() - e,
+        b * ecc.sin(),
+        -ecc.sin() * edot,
+        b * ecc.cos() * edot,
+    ]
+}
+
+/// `H = |p|^2/2 - 1/|q|` (k = mu = 1).
+fn kepler_expr() -> ExprHamiltonian {
+    let h =
+        Expr::parse("(- (* 0.5 (+ (^ p0 2) (^ p1 2))) (^ (+ (^ q0 2) (^ q1 2)) -0.5))").unwrap();
+    let s = kepler_state(0.0);
+    ExprHamiltonian::new(h, 2, vec![], &s[..2], &s[2..]).unwrap()
+}
+
+fn kepler_energy(y: &[f64]) -> f64 {
+    0.5 * (y[2] * y[2] + y[3] * y[3]) - 1.0 / y[0].hypot(y[1])
+}
+
+/// `H = |p|^2/2 + |q|^2/2 + x^2 y - y^3/3`.
+fn henon_heiles_expr() -> ExprHamiltonian {
+    let h = Expr::parse(
+        "(+ (* 0.5 (+ (^ p0 2) (^ p1 2) (^ q0 2) (^ q1 2))) (* (^ q0 2) q1) (* -0.333333333333333333 (^ q1 3)))",
+    )
+    .unwrap();
+    ExprHamiltonian::new(h, 2, vec![], &[0.0, 0.1], &[0.3, 0.0]).unwrap()
+}
+
+/// The double pendulum's `H = p^T M^-1 p / 2 - g1 cos q0 - g2 cos q1` with
+/// `M = [[a, b cos D], [b cos D, d]]`, `D = q0 - q1` (the hand-written system's notation),
+/// parameters `(a, b, d, g1, g2)`.
+fn double_pendulum_expr(params: DoublePendulumParams) -> ExprHamiltonian {
+    let DoublePendulumParams { m1, m2, l1, l2, g } = params;
+    let values = vec![
+        (m1 + m2) * l1 * l1,
+        m2 * l1 * l2,
+        m2 * l2 * l2,
+        (m1 + m2) * g * l1,
+        m2 * g * l2,
+    ];
+    let h = Expr::parse(
+        "(- (- (/ (+ (* param2 (^ p0 2)) (* param0 (^ p1 2)) (* -2 param1 (cos (- q0 q1)) p0 p1)) \
+            (* 2 (- (* param0 param2) (^ (* param1 (cos (- q0 q1))) 2)))) \
+           (* param3 (cos q0))) (* param4 (cos q1)))",
+    )
+    .unwrap();
+    ExprHamiltonian::new(h, 2, values, &[1.0, 0.5], &[0.0, 0.0]).unwrap()
+}
+
+/// The field `f(t, y)`, as the order-0 term of the derivative coefficients: `y^[1]`.
+fn first_order(program: &mut TaylorProgram, y: &[f64]) -> Vec<f64> {
+    let n = y.len();
+    let mut c = vec![0.0; n * 2];
+    program.coefficients(0.0, y, 1, &mut c).unwrap();
+    (0..n).map(|i| c[2 * i + 1]).collect()
+}
+
+/// The expression forms give the hand-written fields (the double pendulum's canonical one, on
+/// `(q, p)`): at 50 pseudo-random states each, every
+/// component agrees to 1e-13 relative to the field's size (the two compute in different
+/// operation orders, ~10 roundings of quantities of the field's size).
+#[test]
+fn expression_forms_match_the_hand_written_fields() {
+    let params = DoublePendulumParams::default();
+    let kepler =
+        KeplerSystem::from_orbital_elements(1.0, 0.5, 1.0, 1.0, KeplerPerturbations::none())
+            .unwrap();
+    let henon = HenonHeilesSystem::new(&[0.0, 0.1], &[0.3, 0.0]).unwrap();
+    let pendulum = DoublePendulum::new(&[1.0, 0.5], &[0.0, 0.0], params).unwrap();
+    type Field<'a> = Box<dyn Fn(&[f64], &mut [f64]) + 'a>;
+    let cases: [(Field, ExprHamiltonian); 3] = [
+        (
+            Box::new(|y, dy| kepler.derivatives(0.0, y, dy).unwrap()),
+            kepler_expr(),
+        ),
+        (
+            Box::new(|y, dy| henon.derivatives(0.0, y, dy).unwrap()),
+            henon_heiles_expr(),
+        ),
+        (
+            Box::new(|y, dy| pendulum.canonical_derivatives(0.0, y, dy).unwrap()),
+            double_pendulum_expr(params),
+        ),
+    ];
+    for (k, (field, expr)) in cases.into_iter().enumerate() {
+        let mut program = TaylorProgram::hamiltonian(&expr).unwrap();
+        for s in 0..50 {
+            let y: Vec<f64> = pseudo_random(4, 1000 * k as u64 + s)
+                .iter()
+                .map(|v| 0.5 + 2.0 * v)
+                .collect();
+            let mut want = vec![0.0; 4];
+            field(&y, &mut want);
+            let got = first_order(&mut program, &y);
+            let size = want.iter().fold(1.0_f64, |m, v| m.max(v.abs()));
+            for (g, w) in got.iter().zip(&want) {
+                assert!(
+                    (g - w).abs() <= 1e-13 * size,
+                    "system {k}, {y:?}: {got:?} {want:?}"
+                );
+            }
+        }
+    }
+}
+
+/// Each function's recurrence: the ODE `y0' = f(y1)`, `y1' = 1` from `y1 = x0` has the
+/// Taylor polynomial of `∫ f` over the step; at order 24 and a step of 0.1 inside the radius
+/// of convergence (>= 0.4 from x0 for every function below) its truncation is below 1e-16,
+/// and Simpson's rule on 4000 intervals (truncation ~1e-20) gives the integral to its
+/// rounding. 2e-14 absolute bounds the sum of both roundings on integrals of size <= 1.
+#[test]
+fn every_recurrence_integrates_its_function() {
+    let cases = [
+        ("(sin q1)", 0.3),
+        ("(cos q1)", 0.3),
+        ("(tan q1)", 0.3),
+        ("(exp q1)", 0.3),
+        ("(ln q1)", 0.7),
+        ("(sqrt q1)", 0.7),
+        ("(sinh q1)", 0.3),
+        ("(cosh q1)", 0.3),
+        ("(tanh q1)", 0.3),
+        ("(asin q1)", 0.2),
+        ("(acos q1)", 0.2),
+        ("(atan q1)", 0.3),
+        ("(abs q1)", -0.7),
+        ("(^ q1 1.5)", 0.7),
+        ("(^ q1 -1.5)", 0.7),
+        ("(^ q1 3)", -0.3),
+        ("(^ q1 -2)", 0.7),
+        ("(^ q1 q1)", 0.7),
+        ("(^ 2 q1)", 0.3),
+        ("(/ 1 (+ 1 (^ q1 2)))", 0.3),
+        ("(/ (sin q1) (+ 2 (cos q1)))", 0.3),
+        ("(* (exp (neg q1)) (cos (* 3 q1)) (- 1 q1))", 0.3),
+        ("(- (sin (* 2 q1)) (* 2 (sin q1) (cos q1)))", 0.3),
+    ];
+    let (order, h) = (24, 0.1);
+    for (text, x0) in cases {
+        let f = Expr::parse(text).unwrap();
+        let y0 = [0.0, x0];
+        let ode = ExprOde::new(vec![f.clone(), Expr::constant(1.0)], vec![], &y0, None).unwrap();
+        let mut program = TaylorProgram::ode(&ode).unwrap();
+        let mut c = vec![0.0; 2 * (order + 1)];
+        program.coefficients(0.0, &y0, order, &mut c).unwrap();
+        let got = compensated_horner(&c[..order + 1], h);
+        let n = 4000;
+        let w = h / n as f64;
+        let value = |x: f64| f.eval(&[0.0, x], &[], 0.0, &[]);
+        let mut sum = value(x0) + value(x0 + h);
+        for i in 1..n {
+            sum += if i % 2 == 1 { 4.0 } else { 2.0 } * value(x0 + i as f64 * w);
+        }
+        let want = sum * w / 3.0;
+        assert!((got - want).abs() <= 2e-14, "{text}: {got:e} vs {want:e}");
+    }
+}
+
+/// One step of fixed order `p` from perihelion has a local error of order `h^(p+1)` against
+/// the closed-form orbit: the fitted slope over h = 0.4, 0.2, 0.1 is within 1 of p + 1
+/// (higher-order terms bend it by less than that at these steps; an order lost in any
+/// recurrence drops the slope by at least 1 more).
+#[test]
+fn the_local_error_has_the_order_of_the_series() {
+    let mut program = TaylorProgram::hamiltonian(&kepler_expr()).unwrap();
+    let y0 = kepler_state(0.0);
+    for order in [6, 10] {
+        let mut c = vec![0.0; 4 * (order + 1)];
+        program.coefficients(0.0, &y0, order, &mut c).unwrap();
+        let steps = [0.4, 0.2, 0.1];
+        let errors: Vec<f64> = steps
+            .iter()
+            .map(|&h| {
+                let exact = kepler_state(h);
+                (0..4)
+                    .map(|i| {
+                        (compensated_horner(&c[i * (order + 1)..(i + 1) * (order + 1)], h)
+                            - exact[i])
+                            .abs()
+                    })
+                    .fold(0.0, f64::max)
+            })
+            .collect();
+        let slope = loglog_slope(&steps, &errors);
+        println!("order {order}: errors {errors:?}, slope {slope:.2}");
+        assert!(
+            ((order + 1) as f64 - 1.0..=(order + 2) as f64).contains(&slope),
+            "{slope}"
+        );
+    }
+}
+
+/// Largest state error over `orbits` Kepler orbits (10 samples per orbit) against the closed
+/// form, its largest energy error and the steps taken.
+fn kepler_run(orbits: f64, tol: f64) -> (f64, f64, f64) {
+    let mut program = TaylorProgram::hamiltonian(&kepler_expr()).unwrap();
+    let y0 = kepler_state(0.0);
+    let r = integrate_taylor(
+        &mut program,
+        &y0,
+        (0.0, orbits * PERIOD),
+        PERIOD / 10.0,
+        Tolerances::new(tol, tol).unwrap(),
+    )
+    .unwrap();
+    let e0 = kepler_energy(&y0);
+    let (mut error, mut energy) = (0.0_f64, 0.0_f64);
+    for (&t, y) in r.t.iter().zip(r.y.rows()) {
+        let exact = kepler_state(t);
+        let y = y.to_vec();
+        for i in 0..4 {
+            error = error.max((y[i] - exact[i]).abs());
+        }
+        energy = energy.max((kepler_energy(&y) - e0).abs());
+    }
+    (error, energy, r.extra_scalar("steps").unwrap())
+}
+
+/// The error follows the tolerance: over 10 orbits, from 1e-6 to 1e-12, the global error falls
+/// by the tolerance's factor (the step keeps each local error near tol times the state; the
+/// slope in [0.8, 1.2]), below 1000 tol at each (10 orbits of phase error growing linearly
+/// from per-step errors of ~tol: measured in the tens of tol).
+#[test]
+fn the_error_follows_the_tolerance() {
+    let tols = [1e-6, 1e-8, 1e-10, 1e-12];
+    let runs: Vec<(f64, f64, f64)> = tols.iter().map(|&t| kepler_run(10.0, t)).collect();
+    for (tol, (error, energy, steps)) in tols.iter().zip(&runs) {
+        println!(
+            "tol {tol:e}: order {}, {steps} steps, error {error:e}, energy error {energy:e}",
+            order_for(&Tolerances::new(*tol, *tol).unwrap())
+        );
+        assert!(*error <= 1000.0 * tol, "tol {tol:e}: {error:e}");
+    }
+    let errors: Vec<f64> = runs.iter().map(|r| r.0).collect();
+    let slope = loglog_slope(&tols, &errors);
+    println!("slope {slope:.3}");
+    assert!((0.8..=1.2).contains(&slope), "{slope}");
+}
+
+/// The floor: 100 orbits of e = 0.5 at tolerance 1e-16 stay within 1e-11 of the closed form.
+/// The floor is rounding: one rounding of the state per step (3 775 steps) leaves an energy
+/// error of ~3e-15, which shifts the phase by `1.5 dE/|E| t` ≈ 6e-12 over `t = 200 pi`
+/// (measured 5.5e-12). A state update rounded per term of the polynomial (20 roundings a step)
+/// or a clock summed plainly drifts several times further and fails.
+#[test]
+fn one_hundred_kepler_orbits_to_the_floor() {
+    let (error, energy, steps) = kepler_run(100.0, 1e-16);
+    println!("100 orbits at 1e-16: {steps} steps, error {error:e}, energy error {energy:e}");
+    assert!(error <= 1e-11, "{error:e}");
+}
+
+/// The energy error does not drift: over 10, 100 and 1000 orbits at tolerance 1e-16 its
+/// maximum grows with an exponent of the step count below 0.75 (rounding errors of about one
+/// ulp per step that do not correlate grow like the square root, Brouwer's law; a bias, such
+/// as truncation above the rounding or a drifting clock, grows linearly, exponent 1).
+#[test]
+fn the_energy_error_does_not_drift() {
+    let runs: Vec<(f64, f64, f64)> = [10.0, 100.0, 1000.0]
+        .iter()
+        .map(|&n| kepler_run(n, 1e-16))
+        .collect();
+    let steps: Vec<f64> = runs.iter().map(|r| r.2).collect();
+    let energy: Vec<f64> = runs.iter().map(|r| r.1.max(1e-17)).collect();
+    let slope = loglog_slope(&steps, &energy);
+    println!("steps {steps:?}: energy errors {energy:?}, exponent {slope:.2}");
+    assert!(slope < 0.75, "{slope}");
+}
+
+/// Steps do not depend on the output spacing: the samples the grids of dt and dt / 4 share
+/// come from the same step polynomials at the same arguments, bit for bit.
+#[test]
+fn samples_do_not_depend_on_the_output_spacing() {
+    let y0 = kepler_state(0.0);
+    let tol = Tolerances::new(1e-12, 1e-12).unwrap();
+    let run = |dt: f64| {
+        let mut program = TaylorProgram::hamiltonian(&kepler_expr()).unwrap();
+        integrate_taylor(&mut program, &y0, (0.0, 3.0 * PERIOD), dt, tol).unwrap()
+    };
+    let coarse = run(PERIOD / 8.0);
+    let fine = run(PERIOD / 32.0);
+    for i in 0..coarse.n_samples() {
+        assert_eq!(coarse.t[i], fine.t[4 * i]);
+        assert_eq!(coarse.y.row(i), fine.y.row(4 * i), "sample {i}");
+    }
+    assert_eq!(
+        coarse.extra_scalar("steps"),
+        fine.extra_scalar("steps"),
+        "the output grid changed the steps"
+    );
+}
+
+/// Hénon–Heiles (a regular orbit at E = 1/12, t = 100) and the double pendulum (10 s from
+/// rest at (1, 0.5) rad) agree with dop853 at rtol 1e-13 on the hand-written fields to 1e-9:
+/// both are within ~1e-10 of the solution there (dop853's global error at that tolerance,
+/// measured in its own tests, amplified by these spans), so a wrong expansion of either field
+/// (differences of 1e-3 and more) fails.
+#[test]
+fn henon_heiles_and_the_double_pendulum_agree_with_dop853() {
+    let options = || IntegrateOptions {
+        tolerances: Some(Tolerances::new(1e-13, 1e-15).unwrap()),
+        ..IntegrateOptions::default()
+    };
+    let tol = Tolerances::new(1e-15, 1e-15).unwrap();
+    // Hénon–Heiles.
+    let y0 = [0.0, 0.1, 0.3, 0.0];
+    let mut henon = HenonHeilesSystem::new(&y0[..2], &y0[2..]).unwrap();
+    let reference = henon
+        .integrate_with((0.0, 100.0), 1.0, Method::Dop853, options())
+        .unwrap();
+    let mut program = TaylorProgram::hamiltonian(&henon_heiles_expr()).unwrap();
+    let ours = integrate_taylor(&mut program, &y0, (0.0, 100.0), 1.0, tol).unwrap();
+    let diff = (&ours.y - &reference.y).fold(0.0_f64, |m, v| m.max(v.abs()));
+    println!("Hénon–Heiles: largest difference {diff:e}");
+    assert!(diff <= 1e-9, "{diff:e}");
+    // The double pendulum, state (q, p).
+    let params = DoublePendulumParams::default();
+    let mut pendulum = DoublePendulum::new(&[1.0, 0.5], &[0.0, 0.0], params).unwrap();
+    // Canonical start: p = M(q) qdot = 0 from rest.
+    let y0 = [1.0, 0.5, 0.0, 0.0];
+    let reference = LagrangianSystem::integrate_with(
+        &mut pendulum,
+        (0.0, 10.0),
+        0.1,
+        Method::Dop853,
+        options(),
+    )
+    .unwrap();
+    let mut program = TaylorProgram::hamiltonian(&double_pendulum_expr(params)).unwrap();
+    let ours = integrate_taylor(&mut program, &y0, (0.0, 10.0), 0.1, tol).unwrap();
+    // The angles (the reference stores (q, qdot), ours (q, p)).
+    let diff = (&ours.y.slice(ndarray::s![.., ..2]) - &reference.y.slice(ndarray::s![.., ..2]))
+        .fold(0.0_f64, |m, v| m.max(v.abs()));
+    println!("double pendulum: largest difference {diff:e}");
+    assert!(diff <= 1e-9, "{diff:e}");
+}
+
+/// A field whose solution blows up (`y' = y^2`, `y = 1/(1 - t)`) stops with a step failure
+/// before t = 1, not a panic or a hang; the step budget stops a run; a bad order, a state of
+/// the wrong size and an expression for the wrong number of components are refused.
+#[test]
+fn failures_are_errors() {
+    let f = Expr::parse("(^ q0 2)").unwrap();
+    let ode = ExprOde::new(vec![f.clone()], vec![], &[1.0], None).unwrap();
+    let mut program = TaylorProgram::ode(&ode).unwrap();
+    let tol = Tolerances::new(1e-12, 1e-12).unwrap();
+    let err = integrate_taylor(&mut program, &[1.0], (0.0, 2.0), 0.5, tol).unwrap_err();
+    match err {
+        // The computed solution's pole moves with the state's accumulated relative error
+        // (~1e-14 after the growth to 1e13): 1e-9 past t = 1 leaves room for that, and a
+        // stepper that jumped the pole would report a time of order 1 past it or none.
+        Error::StepSizeTooSmall { t, .. } => assert!(t > 0.99 && t < 1.0 + 1e-9, "{t}"),
+        e => panic!("{e}"),
+    }
+    let budget = Tolerances {
+        max_steps: 5,
+        ..tol
+    };
+    let mut program = TaylorProgram::hamiltonian(&kepler_expr()).unwrap();
+    let err =
+        integrate_taylor(&mut program, &kepler_state(0.0), (0.0, 100.0), 1.0, budget).unwrap_err();
+    assert!(matches!(err, Error::StepSizeTooSmall { .. }), "{err}");
+    let mut c = vec![0.0; 2 * 40];
+    assert!(program.coefficients(0.0, &[0.0; 4], 39, &mut c).is_err());
+    assert!(program.coefficients(0.0, &[0.0; 3], 4, &mut c).is_err());
+    assert!(integrate_taylor(&mut program, &[1.0], (0.0, 1.0), 0.5, tol).is_err());
+    assert!(TaylorProgram::new(&[f], 2, 0, &[]).is_err());
+    // At the origin the Kepler field's series is not finite: an error naming the time.
+    let mut program = TaylorProgram::hamiltonian(&kepler_expr()).unwrap();
+    let err =
+        integrate_taylor(&mut program, &[0.0, 0.0, 1.0, 0.0], (0.0, 1.0), 0.5, tol).unwrap_err();
+    assert!(
+        matches!(err, Error::StepSizeTooSmall { t, .. } if t == 0.0),
+        "{err}"
+    );
+}
