@@ -143,13 +143,12 @@ class Labels:
         return self._symbols is not None and 1 < self.ndof <= len(self._symbols)
 
     def q_all(self) -> str:
-        """Label of all coordinates on one axis: their symbols (``θ₁, θ₂``), the family's
-        (``q_i``), or the word."""
+        """Label of all coordinates on one axis: the family's symbol (a chain's ``q``, a
+        swarm's ``θ``), their own symbols (``θ₁, θ₂``), or the word."""
         unit = _unit_words(self._q_unit, 0) if self._q_unit is not None else "state units"
         sym = self._family()
         if sym:
-            index = "_i" if self.ndof > 1 else ""
-            return f"${sym}{index}$ ({unit})"
+            return f"${sym}$ ({unit})"
         if self._named():
             names = ", ".join(f"${self.symbol(i)}$" for i in range(self.ndof))
             return f"{names} ({unit})"
@@ -160,10 +159,7 @@ class Labels:
         unit = _unit_words(self._p_unit, 0) if self._p_unit is not None else "state units"
         sym = self._family()
         if sym:
-            index = "_i" if self.ndof > 1 else ""
-            if self._dot:
-                return rf"$\dot{{{sym}}}{index}$ ({unit})"
-            return f"$p_{{{sym}{',i' if index else ''}}}$ ({unit})"
+            return rf"$\dot{{{sym}}}$ ({unit})" if self._dot else f"$p_{{{sym}}}$ ({unit})"
         if self._named():
             if self._dot:
                 names = ", ".join(rf"$\dot{{{self.symbol(i)}}}$" for i in range(self.ndof))
