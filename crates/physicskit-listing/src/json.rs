@@ -2,10 +2,12 @@
 //!
 //! ```text
 //! {"version": "0.1.0",
-//!  "systems": [{"name", "python", "summary", "family", "separable", "methods": [..],
-//!               "default_method", "note", "physics", "capabilities": [..],
+//!  "systems": [{"name", "python", "title", "summary", "summary_text", "family", "separable",
+//!               "methods": [..], "default_method", "note", "note_text", "physics",
+//!               "physics_text", "capabilities": [..],
 //!               "params": [{"name", "kind", "length", "choices", "default",
-//!                           "default_origin", "unit", "range", "help"}, ..]}, ..],
+//!                           "default_origin", "unit", "range", "help", "label",
+//!                           "unit_text", "help_text"}, ..]}, ..],
 //!  "methods": [{"name", "order", "symplectic", "separable_only", "adaptive",
 //!               "evaluations_per_step",
 //!               "evaluations", "reference"}, ..]}
@@ -28,6 +30,11 @@
 //! - `physics`: the paragraph of the gallery demonstration showing the system
 //!   (`physicskit::classical::explanations::for_system`), the lab's caption; `null` if none.
 //! - `methods` per system: those that can integrate it, as `simulate --method` takes them.
+//! - `title`, `summary_text`, `note_text`, `physics_text` (the paragraph's powers as
+//!   superscripts), and per parameter `label`, `unit_text`, `help_text`: the
+//!   same text for people (the lab's), in Unicode mathematics, without class names, flags or
+//!   remarks about state columns (`crate::people`); `note_text` is `null` when nothing is
+//!   left.
 
 use std::io::{self, Write};
 
@@ -38,7 +45,7 @@ use physicskit::classical::core::{ParamSpec, SystemEntry};
 use physicskit::classical::explanations;
 use serde::Serialize;
 
-use crate::{method_rows, MethodRow};
+use crate::{method_rows, people, MethodRow};
 
 #[derive(Serialize)]
 struct Catalogue {
@@ -51,13 +58,17 @@ struct Catalogue {
 struct System {
     name: &'static str,
     python: Option<&'static str>,
+    title: String,
     summary: &'static str,
+    summary_text: String,
     family: &'static str,
     separable: bool,
     methods: Vec<&'static str>,
     default_method: &'static str,
     note: Option<&'static str>,
+    note_text: Option<String>,
     physics: Option<&'static str>,
+    physics_text: Option<String>,
     capabilities: Vec<&'static str>,
     params: Vec<Param>,
 }
@@ -73,6 +84,9 @@ struct Param {
     unit: &'static str,
     range: Option<RangeJson>,
     help: &'static str,
+    label: String,
+    unit_text: String,
+    help_text: String,
 }
 
 #[derive(Serialize)]
@@ -134,13 +148,17 @@ fn system(entry: &SystemEntry) -> System {
     System {
         name: entry.name,
         python: entry.python,
+        title: people::title(entry.name),
         summary: entry.summary,
+        summary_text: people::text(entry.summary),
         family: entry.family.name(),
         separable: entry.separable,
         methods: entry.methods().map(|m| m.name()).collect(),
         default_method: entry.default_method.name(),
         note: entry.note,
+        note_text: entry.note.and_then(people::note),
         physics: explanations::for_system(entry.name),
+        physics_text: explanations::for_system(entry.name).map(people::powers),
         // Every entry builds from its defaults (the catalogue's own tests check it); should
         // one not, it offers nothing rather than breaking the listing.
         capabilities: entry
@@ -182,6 +200,9 @@ fn param(spec: &ParamSpec) -> Param {
         unit: spec.unit,
         range,
         help: spec.help,
+        label: people::label(spec.name),
+        unit_text: people::text(spec.unit),
+        help_text: people::text(spec.help),
     }
 }
 
