@@ -31,6 +31,8 @@ mod rigid_body;
 pub use rigid_body::*;
 mod elastic_pendulum;
 pub use elastic_pendulum::*;
+mod rolling;
+pub use rolling::*;
 
 /// Every built-in system of the catalogue, in the order listings show them: one line per
 /// entry, each written next to its system.
@@ -55,4 +57,7 @@ pub static SYSTEMS: &[&SystemEntry] = &[
     &EULER_TOP_ENTRY,
     &TODA_ENTRY,
     &ELASTIC_PENDULUM_ENTRY,
+    &ROLLING_RATTLEBACK_ENTRY,
+    &ROLLING_DISK_ENTRY,
+    &ROLLING_DISK_STEADY_ENTRY,
 ];

@@ -10,6 +10,7 @@ mod kepler;
 mod lagrangian;
 mod projectile;
 mod rigid_body;
+mod rolling;
 mod sizes;
 mod swarm;
 mod symmetric_top;
