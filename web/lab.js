@@ -221,7 +221,7 @@ function kind() {
   const n = app.entry.name, caps = app.entry.capabilities, pos = app.lab.positions();
   if (pos.length === 3) return "top";
   if (n === "euler-top") return "rigid";
-  if (caps.includes("per_particle_energy") || caps.includes("phase_space_area")) return "swarm";
+  if (n.includes("swarm") && (caps.includes("per_particle_energy") || caps.includes("phase_space_area"))) return "swarm";
   if (n.startsWith("sine-gordon")) return "sites";
   if (!pos.length && family() !== "ode") return "chain";
   if (n.startsWith("projectile")) return "projectile";
@@ -948,7 +948,9 @@ function drawEnergy() {
   for (const [, y] of pts) if (y > -17) { lo = Math.min(lo, y); hi = Math.max(hi, y); }
   if (!Number.isFinite(lo)) { lo = -17; hi = -15; }
   lo = Math.floor(lo); hi = Math.max(Math.ceil(hi), lo + 2);
-  const t0 = 0, t1 = Math.max(pts.length ? pts[pts.length - 1][0] : 0, 1e-9);
+  // At least ten frames' time: a fresh run's axis is not a sliver.
+  const least = 10 * Number($("dt").value) * Number($("speed").value);
+  const t0 = 0, t1 = Math.max(pts.length ? pts[pts.length - 1][0] : 0, least || 1);
   const v = plotView(w, h, { x0: t0, x1: t1 > t0 ? t1 : t0 + 1, y0: lo, y1: hi }, false);
   // Decades, labelled 10⁻ⁿ, thinned to fit the height.
   const every = Math.max(1, Math.ceil((hi - lo) / Math.max(2, Math.floor((v.rect.y1 - v.rect.y0) / (2.2 * fontSize())))));
