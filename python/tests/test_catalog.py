@@ -74,7 +74,7 @@ def test_python_signature_matches_catalogue(entry):
 
 #: Systems the package offers beyond the spec (issue 12's proof of the catalogue); the spec
 #: table has no row for them, everything else about them is checked like the spec's.
-BEYOND_SPEC = {"TodaLattice", "ElasticPendulum"}
+BEYOND_SPEC = {"TodaLattice", "ElasticPendulum", "FoucaultPendulum", "EulersDisk", "Rattleback"}
 SPEC_ENTRIES = [e for e in ENTRIES if e["python"].split(".")[0] not in BEYOND_SPEC]
 
 
@@ -119,6 +119,10 @@ def test_catalogue_listing_shape():
             assert p["help"] and p["expectation"]
 
 
+#: Classes whose gallery demonstration (and so whose physics paragraph) is still to come.
+AWAITING_DEMONSTRATION = {"FoucaultPendulum", "EulersDisk", "Rattleback"}
+
+
 def test_physics_is_one_whole_paragraph_per_class():
     # `physics` is the paragraph of the gallery demonstration that shows the system (Rust's
     # explanations::for_system), which the lab shows as its caption: passed through whole (a
@@ -130,6 +134,10 @@ def test_physics_is_one_whole_paragraph_per_class():
     for e in _core.catalog():
         text = e["physics"]
         if e["python"] is None and text is None:
+            continue
+        if e["python"] in AWAITING_DEMONSTRATION:
+            # No gallery demonstration yet, so no paragraph; once one exists, leave this set.
+            assert text is None, (e["name"], "has a paragraph now: remove it from the set")
             continue
         assert isinstance(text, str), e["name"]
         # The last sentence may stand in parentheses: "... (... excited.)".

@@ -31,6 +31,12 @@ mod rigid_body;
 pub use rigid_body::*;
 mod elastic_pendulum;
 pub use elastic_pendulum::*;
+mod foucault;
+pub use foucault::*;
+mod eulers_disk;
+pub use eulers_disk::*;
+mod rattleback;
+pub use rattleback::*;
 mod rolling;
 pub use rolling::*;
 

@@ -9,6 +9,7 @@ mod hoop;
 mod kepler;
 mod lagrangian;
 mod projectile;
+mod reduced_models;
 mod rigid_body;
 mod rolling;
 mod sizes;
