@@ -324,8 +324,8 @@ impl Contact for Ellipsoid {
 }
 
 /// Geometry and mass of a [`RollingRattleback`]. The defaults are Kane & Levinson's body
-/// (Int. J. Non-Linear Mech. 17 (1982) 175; also the body of Lindberg & Longman's and many
-/// later no-slip studies): semi-axes 20, 3 and 2 cm, centre of mass 1 cm below the
+/// (Int. J. Non-Linear Mech. 17 (1982) 175, the body many later no-slip studies reuse):
+/// semi-axes 20, 3 and 2 cm, centre of mass 1 cm below the
 /// ellipsoid's centre, 1 kg, and in the geometric axes the inertia tensor
 /// `[[A, D, 0], [D, B, 0], [0, 0, C]]` with `A = 2e-4`, `B = 1.6e-3`, `C = 1.7e-3`,
 /// `D = -2e-5` kg m², written here as its principal moments and the angle `delta` that turns
@@ -414,8 +414,8 @@ fn check_moments(moments: [f64; 3]) -> Result<()> {
 /// equations (module docs), no reduced model. Its spin about the vertical reverses when it is
 /// spun one way, because the misalignment `delta` couples the spin to the pitching and rolling
 /// oscillations; spun the other way it keeps its sense (over the times in which the first
-/// reverses; without dissipation both senses eventually wobble, Garcia & Hubbard, Proc. R.
-/// Soc. Lond. A 418 (1988) 165).
+/// reverses; without dissipation both senses eventually reverse, as Kondo & Nakanishi, Phys.
+/// Rev. E 95 (2017) 062207, recall of the no-slip model).
 ///
 /// # Example
 /// ```

@@ -167,8 +167,8 @@ fn first_reversal(spin: f64, t_end: f64) -> Option<f64> {
 /// Kane & Levinson's body started 0.5° off in roll and pitch. Spun at -5 rad/s (clockwise
 /// seen from above) it rattles and reverses within 3 s; spun at +5 rad/s it keeps its sense
 /// over three times that long. (Without dissipation the "stable" sense drifts too and turns
-/// over after ~11 s, as Lindberg & Longman and Garcia & Hubbard found for the no-slip
-/// model; the test's window, 8 s, sits between the two.)
+/// over after ~11 s: without dissipation the no-slip model reverses both ways, as Kondo &
+/// Nakanishi, Phys. Rev. E 95 (2017) 062207, recall; the test's window, 8 s, sits between.)
 ///
 /// The measured reversal, 2.762 s, is the first sign change on a 1 ms grid at rtol 1e-12 (the
 /// default rtol 1e-10 on a 10 ms grid gave 2.77 s); the 0.05 s window allows for grids and
