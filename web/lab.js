@@ -1,28 +1,90 @@
 // The lab page: pickers and sliders generated from the catalogue (the JSON `physicskit list
-// --json` prints, read from the WebAssembly module), a frame loop stepping the Rust
-// integrators, and the views: the scene with trails, a phase-space panel, the energy error
-// on a log scale and, for two-degree-of-freedom separable Hamiltonians, a Poincaré section
-// that launches orbits where it is clicked. Nothing here names a system or a method, but for
-// the one system whose section is shown unasked (SECTION_BY_DEFAULT).
+// --json` prints, read from the WebAssembly module; the lab shows its text for people:
+// `summary_text`, `note_text`, `label`, `unit_text`, `help_text`), a frame loop stepping the
+// Rust integrators, and the views, each with axes, ticks and units from a view fixed when a
+// run starts: the scene (each kind of body drawn as what it is, with a trail sampled inside
+// each frame), a phase-space panel, the energy error on a log scale and, for two-degree-of-
+// freedom separable Hamiltonians, a Poincaré section whose launched orbits accumulate.
+//
+// A share link is untrusted input: every field is checked, what is refused is named in one
+// line, and the page always opens the linked system (or the default) with valid values.
 import { load } from "./physicskit.js";
 
 const $ = (id) => document.getElementById(id);
 const DTS = [1e-4, 2e-4, 5e-4, 1e-3, 2e-3, 5e-3, 1e-2, 2e-2, 5e-2, 0.1];
 const DEFAULT_DT = 1e-3;
 const DEFAULT_STEPS = 25;
-const TRAIL = 600, PHASE_TRAIL = 4000, ENERGY_POINTS = 3000, MAX_ROWS = 100000;
+// The step sizes a link may ask for: the menu's range. Outside it a frame either crawls or
+// blows up, so a link's dt there is refused rather than offered.
+const MIN_DT = DTS[0], MAX_DT = DTS[DTS.length - 1];
+// Trail samples per frame: the frame's steps are run in this many pieces (the bits of the
+// run do not depend on how its steps are grouped), so a fast orbit draws as a curve.
+const SAMPLES_PER_FRAME = 8;
+const TRAIL = 2400, PHASE_TRAIL = 6000, ENERGY_POINTS = 3000, MAX_ROWS = 100000;
+const TAU = 2 * Math.PI;
+// The system shown when no link names one: the chaotic double pendulum, running on load.
+const DEFAULT_SYSTEM = "double-pendulum";
 
 const app = {
   core: null, catalogue: null, entry: null, lab: null, params: {},
   running: false, trails: [], phase: [], energy: [], rows: [],
-  sceneBox: null, phaseBox: null, sectionBox: null, drag: null, frames: 0,
+  sceneBox: null, phaseBox: null, sectionBox: null, boundary: null, drag: null, frames: 0,
+  // The tick labels each canvas drew last, for the tests: {x: [..], y: [..], xLabel, yLabel}.
+  ticks: {},
+  extent: null,
 };
+
+// ---------- words ----------
+
+function systemTitle(entry) { return entry.title ?? entry.name; }
+
+function methodTitle(name) { return name.replace(/_/g, " "); }
+
+// The unit of a state coordinate from the parameter giving its initial value (the spec names
+// them q0, theta0, p0, qdot0, thetadot0, omega0): one unit for all, or one per entry.
+function stateParam(kind) {
+  const names = kind === "q" ? ["q0", "theta0"] : ["p0", "qdot0", "thetadot0", "v0", "omega0"];
+  return app.entry.params.find((p) => names.includes(p.name));
+}
+function unitOf(kind, i, count) {
+  const p = stateParam(kind);
+  if (!p || !p.unit_text) return "";
+  const parts = p.unit_text.split(/,\s*/);
+  return parts.length === count ? parts[i] : parts.length === 1 ? parts[0] : "";
+}
+function lengthUnit() {
+  return app.entry.params.some((p) => p.unit_text === "m") ? "m" : "";
+}
+function timeUnit() {
+  return app.entry.params.some((p) => /(^|[^a-z])s([⁻²]|$|\b)/.test(p.unit_text) || p.unit_text.includes("/s")) ? "s" : "";
+}
+function withUnit(name, unit) { return unit ? `${name} [${unit}]` : name; }
+
+const SUB = "₀₁₂₃₄₅₆₇₈₉";
+function subscript(n) { return String(n).split("").map((d) => SUB[Number(d)]).join(""); }
+
+// Symbols of the state's entries: θ₁, θ̇₁ for a Lagrangian state whose start is theta0,
+// q₁, p₁ for a Hamiltonian, y₁ for an ODE; no index for one degree of freedom.
+function stateLabels() {
+  const n = app.lab.state().length;
+  if (family() === "ode") return Array.from({ length: n }, (_, i) => `y${subscript(i + 1)}`);
+  const k = n / 2;
+  const q = stateParam("q")?.name === "theta0" ? "θ" : "q";
+  const v = family() === "lagrangian" ? `${q}\u0307` : "p";
+  const ix = (i) => (k === 1 ? "" : subscript(i + 1));
+  return [...Array.from({ length: k }, (_, i) => q + ix(i)), ...Array.from({ length: k }, (_, i) => v + ix(i))];
+}
+function stateUnits() {
+  const n = app.lab.state().length;
+  if (family() === "ode") return new Array(n).fill("");
+  const k = n / 2;
+  return [...Array.from({ length: k }, (_, i) => unitOf("q", i, k)), ...Array.from({ length: k }, (_, i) => unitOf("p", i, k))];
+}
 
 // ---------- catalogue-driven controls ----------
 
 function fillSystems() {
-  const sel = $("system");
-  sel.replaceChildren(...app.catalogue.systems.map((s) => new Option(s.name, s.name)));
+  $("system").replaceChildren(...app.catalogue.systems.map((s) => new Option(systemTitle(s), s.name)));
 }
 
 function sliderRange(p) {
@@ -40,54 +102,61 @@ function sliderRange(p) {
   return [lo, hi];
 }
 
+let controlId = 0;
 function paramControl(p) {
   const div = document.createElement("div");
   div.className = "param";
+  const id = `param-${controlId++}`;
   const label = document.createElement("label");
-  label.textContent = `${p.name}${p.unit ? ` [${p.unit}]` : ""}`;
-  label.title = p.help;
+  label.htmlFor = id;
+  label.className = "param-name";
+  label.textContent = p.label;
+  if (p.unit_text) { const u = document.createElement("span"); u.className = "unit"; u.textContent = ` [${p.unit_text}]`; label.append(u); }
   const help = document.createElement("div");
   help.className = "help";
-  help.textContent = p.help;
-  div.append(label);
+  help.textContent = p.help_text;
+  const row = document.createElement("div");
+  row.className = "param-row";
+  div.append(label, row, help);
   const set = (v) => { if (v === null || v === "") delete app.params[p.name]; else app.params[p.name] = v; rebuildSoon(); };
   if (p.kind === "choice") {
     const sel = document.createElement("select");
+    sel.id = id;
     sel.dataset.param = p.name;
     sel.append(...p.choices.map((c) => new Option(c, c)));
     if (p.default !== null) sel.value = p.default;
     sel.onchange = () => set(sel.value);
-    label.append(" ", sel);
+    row.append(sel);
   } else if (p.kind === "vector") {
     const inp = document.createElement("input");
     inp.type = "text";
+    inp.id = id;
     inp.dataset.param = p.name;
     inp.value = Array.isArray(p.default) ? p.default.join(", ") : "";
-    inp.placeholder = p.default === null ? "constructor's default" : "";
+    inp.placeholder = p.default === null ? "automatic" : "";
     inp.onchange = () => {
       const t = inp.value.trim();
       set(t === "" ? null : t.split(/[\s,]+/).filter(Boolean).map(Number));
     };
-    label.append(" ", inp);
+    row.append(inp);
   } else {
-    const num = document.createElement("input");
-    num.type = "number";
-    num.dataset.param = p.name;
-    num.step = p.kind === "integer" ? "1" : "any";
-    num.value = p.default ?? "";
     const [lo, hi] = sliderRange(p);
     const slider = document.createElement("input");
     slider.type = "range";
     slider.min = lo; slider.max = hi;
     slider.step = p.kind === "integer" ? 1 : (hi - lo) / 1000;
     slider.value = p.default ?? (lo + hi) / 2;
-    slider.setAttribute("aria-label", p.name);
-    slider.oninput = () => { num.value = slider.value; set(Number(slider.value)); };
+    slider.setAttribute("aria-label", `${p.label} (slider)`);
+    const num = document.createElement("input");
+    num.type = "number";
+    num.id = id;
+    num.dataset.param = p.name;
+    num.step = p.kind === "integer" ? "1" : "any";
+    num.value = p.default ?? "";
+    slider.oninput = () => { num.value = Number(slider.value).toPrecision(4).replace(/\.?0+$/, "").replace(/\.?0+e/, "e"); set(Number(num.value)); };
     num.onchange = () => { if (num.value !== "") slider.value = num.value; set(num.value === "" ? null : Number(num.value)); };
-    label.append(" ", num);
-    div.append(slider);
+    row.append(slider, num);
   }
-  div.append(help);
   return div;
 }
 
@@ -98,24 +167,36 @@ function fillParams() {
 function setControlValues() {
   for (const el of $("params").querySelectorAll("[data-param]")) {
     const v = app.params[el.dataset.param];
-    if (v !== undefined) el.value = Array.isArray(v) ? v.join(", ") : v;
+    if (v !== undefined) {
+      el.value = Array.isArray(v) ? v.join(", ") : v;
+      const slider = el.parentElement.querySelector("input[type=range]");
+      if (slider && !Array.isArray(v)) slider.value = v;
+    }
   }
 }
 
+// The lab steps frame by frame, which an adaptive method (dop853: it steps onto the end of a
+// known span) cannot: only the fixed-step methods are offered.
+function offeredMethods() {
+  return app.entry.methods.filter((m) => !app.catalogue.methods.find((x) => x.name === m)?.adaptive);
+}
+
 function fillMethods(keep) {
-  const sel = $("method");
-  // The lab steps frame by frame, which an adaptive method (dop853: it steps onto the end of a
-  // known span) cannot: only the fixed-step methods are offered.
-  const fixed = app.entry.methods.filter((m) => !app.catalogue.methods.find((x) => x.name === m)?.adaptive);
-  sel.replaceChildren(...fixed.map((m) => new Option(m, m)));
-  sel.value = fixed.includes(keep) ? keep : app.entry.default_method;
+  const sel = $("method"), fixed = offeredMethods();
+  sel.replaceChildren(...fixed.map((m) => new Option(methodTitle(m), m)));
+  sel.value = fixed.includes(keep) ? keep : fixed.includes(app.entry.default_method) ? app.entry.default_method : fixed[0];
   describeMethod();
 }
 
 function describeMethod() {
   const m = app.catalogue.methods.find((x) => x.name === $("method").value);
-  $("method-info").textContent = m ? `order ${m.order}, ${m.symplectic ? "symplectic" : "not symplectic"}, ` +
-    `${m.evaluations_per_step} ${m.evaluations} per step — ${m.reference}` : "";
+  if (!m) { $("method-info").textContent = ""; $("method-ref").textContent = ""; return; }
+  // What is counted, without the catalogue's remarks after it.
+  const what = m.evaluations.split(/[,:;(]/)[0].trim();
+  const ev = m.evaluations_per_step === 1 ? what.replace(/s$/, "") : what;
+  $("method-info").textContent = `order ${m.order} · ${m.symplectic ? "symplectic" : "not symplectic"} · ` +
+    `${m.evaluations_per_step} ${ev} per step`;
+  $("method-ref").textContent = m.reference;
 }
 
 // ---------- building and running ----------
@@ -132,88 +213,193 @@ function ndof() { const n = app.lab.state().length; return family() === "ode" ? 
 // The Poincaré section panel. A section (q2 = 0, p2 > 0) of the 3-D energy surface is a 2-D
 // picture for a separable Hamiltonian of two degrees of freedom, so it is offered (a checkbox)
 // for those only; it is on by default only where it is the picture that matters: Hénon–Heiles,
-// bounded and chaotic at its energies (islands and a chaotic sea). Elsewhere the reader
-// chooses: a Kepler orbit is closed (one crossing, a point; a drifting point when perturbed),
-// a projectile crosses once if ever.
+// bounded and chaotic at its energies (islands and a chaotic sea).
 const SECTION_BY_DEFAULT = new Set(["henon-heiles"]);
 function sectionOffered() { return family() === "hamiltonian" && app.entry.separable && ndof() === 2; }
 function hasSection() { return sectionOffered() && $("section-on").checked; }
-
-function stateLabels() {
-  const n = app.lab.state().length;
-  if (family() === "ode") return Array.from({ length: n }, (_, i) => `y${i + 1}`);
-  const k = n / 2, v = family() === "lagrangian" ? "q̇" : "p";
-  return [...Array.from({ length: k }, (_, i) => `q${i + 1}`), ...Array.from({ length: k }, (_, i) => `${v}${i + 1}`)];
+function kind() {
+  const n = app.entry.name, caps = app.entry.capabilities, pos = app.lab.positions();
+  if (pos.length === 3) return "top";
+  if (n === "euler-top") return "rigid";
+  if (n.includes("swarm") && (caps.includes("per_particle_energy") || caps.includes("phase_space_area"))) return "swarm";
+  if (n.startsWith("sine-gordon")) return "sites";
+  if (!pos.length && family() !== "ode") return "chain";
+  if (n.startsWith("projectile")) return "projectile";
+  if (n.startsWith("kepler")) return "orbit";
+  if (n === "hoop") return "hoop";
+  if (n === "elastic-pendulum") return "spring";
+  if (n.includes("pendulum")) return "pendulum";
+  return pos.length ? "bodies" : "series";
 }
+function draggable() { return ["projectile", "orbit", "hoop", "spring", "pendulum", "bodies"].includes(kind()); }
 
-function rebuild(state0 = null) {
+function rebuild(state0 = null, keepMessage = false) {
   let lab;
   try {
     lab = app.core.build(app.entry.name, app.params);
     if (state0) lab.setState(state0);
   } catch (e) {
+    lab?.free();
     message(e.message);
     return false;
   }
   app.lab?.free();
   app.lab = lab;
   try { lab.setMethod($("method").value); } catch (e) { message(e.message); }
-  const labels = stateLabels();
-  // The phase panel starts at (q1, p1) for each new system and keeps the reader's choice
-  // while the same system is rebuilt.
+  const labels = stateLabels(), units = stateUnits();
+  // The phase panel starts at (q, p) of one site (the middle one of a chain, where a wave or
+  // a kink passes) for each new system and keeps the reader's choice while it is rebuilt.
   const same = app.phaseSystem === app.entry.name;
   app.phaseSystem = app.entry.name;
   if (!same) $("section-on").checked = SECTION_BY_DEFAULT.has(app.entry.name);
   $("section-choice").hidden = !sectionOffered();
-  for (const [id, def] of [["phase-x", 0], ["phase-y", family() === "ode" ? 1 : labels.length / 2]]) {
+  const k = family() === "ode" ? 0 : labels.length / 2;
+  // The site that moves most over the probe run (a chain's wave or kink passes there).
+  app.extent = probeExtent();
+  let site = 0;
+  if (family() !== "ode" && k > 2 && app.extent) {
+    for (let i = 1; i < k; i++) if (app.extent.hi[i] - app.extent.lo[i] > app.extent.hi[site] - app.extent.lo[site]) site = i;
+  }
+  for (const [id, def] of [["phase-x", site], ["phase-y", family() === "ode" ? 1 : k + site]]) {
     const sel = $(id), old = sel.value;
-    sel.replaceChildren(...labels.map((l, i) => new Option(l, i)));
+    sel.replaceChildren(...labels.map((l, i) => new Option(withUnit(l, units[i]), i)));
     sel.value = same && old !== "" && Number(old) < labels.length ? old : Math.min(def, labels.length - 1);
   }
   $("section-figure").hidden = !hasSection();
   if (hasSection()) {
     lab.setSection(1, 0, 1);
-    $("section-name").textContent = `${labels[1]} = 0, ${labels[3]} > 0: (${labels[0]}, ${labels[2]})`;
+    $("section-name").textContent = `${labels[1]} = 0, ${labels[3]} > 0`;
   }
-  clearViews();
-  message("");
+  $("drag-hint").hidden = !draggable();
+  startViews(app.extent);
+  if (!keepMessage) message("");
   draw();
   return true;
 }
 
+// A new run (a new system, a reset, a drag let go): views fixed from the run's own extent.
+function startViews(extent = null) {
+  clearViews();
+  app.extent = extent ?? probeExtent();
+  app.sceneBox = sceneBoxFrom(app.extent);
+  app.phaseBox = null;
+  app.boundary = hasSection() ? sectionBoundary() : null;
+  app.sectionBox = app.boundary?.box ?? null;
+}
+
 function clearViews() {
   app.trails = []; app.phase = []; app.energy = []; app.rows = [];
-  app.sceneBox = null; app.phaseBox = null; app.sectionBox = null; app.frames = 0;
+  app.frames = 0;
   record();
+}
+
+// The extent of the run ahead: a copy of the lab runs PROBE_STEPS steps, noting the box of the
+// drawing positions and of every state entry. The views are set from it once, so they stay put
+// while the run goes on (a view that follows the data keeps zooming and drifting).
+// The probe's cost is bounded by PROBE_WORK state entries stepped (a 1000-pendulum swarm
+// probes 1000 steps, a double pendulum 8000).
+const PROBE_STEPS = 8000, PROBE_SAMPLES = 200, PROBE_MAX_STATE = 4096, PROBE_WORK = 2e6;
+function probeExtent() {
+  const lab = app.lab, s0 = Array.from(lab.state());
+  if (s0.length > PROBE_MAX_STATE) return null;
+  let probe;
+  try {
+    probe = app.core.build(app.entry.name, app.params);
+    probe.setState(s0);
+    probe.setMethod($("method").value);
+  } catch { probe?.free(); return null; }
+  const dt = Number($("dt").value) || DEFAULT_DT;
+  const ext = { pos: null, lo: s0.slice(), hi: s0.slice(), samples: [] };
+  const note = () => {
+    const s = probe.state();
+    for (let i = 0; i < s.length; i++) { if (s[i] < ext.lo[i]) ext.lo[i] = s[i]; if (s[i] > ext.hi[i]) ext.hi[i] = s[i]; }
+    const p = probe.positions();
+    if (p.length === 3) return;
+    for (let i = 0; i + 1 < p.length; i += 2) ext.pos = grow(ext.pos, p[i], p[i + 1]);
+  };
+  note();
+  for (let k = 0; k < PROBE_SAMPLES; k++) {
+    const steps = Math.max(1, Math.floor(Math.min(PROBE_STEPS, PROBE_WORK / s0.length) / PROBE_SAMPLES));
+    try { probe.step(steps, dt); } catch { break; }
+    // A projectile's path ends at the ground.
+    if (kind() === "projectile" && probe.positions()[1] < 0) break;
+    note();
+  }
+  probe.free();
+  return ext;
+}
+
+function sceneBoxFrom(ext) {
+  const pos = app.lab.positions();
+  let box = null;
+  for (let i = 0; i + 1 < pos.length && pos.length !== 3; i += 2) box = grow(box, pos[i], pos[i + 1]);
+  if (ext?.pos) box = grow(grow(box, ext.pos.x0, ext.pos.y0), ext.pos.x1, ext.pos.y1);
+  const k = kind();
+  if (["pendulum", "spring", "hoop", "orbit", "bodies"].includes(k)) box = grow(box, 0, 0);
+  if (k === "pendulum" || k === "hoop") {
+    // Pivot-centred, as far as the arms reach: a drag anywhere stays in view.
+    const reach = reachOf(pos);
+    box = grow(grow(box, -reach, -reach), reach, reach);
+  }
+  if (k === "projectile") box = grow(box, box ? box.x0 : 0, 0);
+  if (!box) return null;
+  return pad(box, 0.08);
+}
+
+function reachOf(pos) {
+  let r = 0, x = 0, y = 0;
+  for (let i = 0; i + 1 < pos.length; i += 2) { r += Math.hypot(pos[i] - x, pos[i + 1] - y); x = pos[i]; y = pos[i + 1]; }
+  return r || 1;
+}
+
+function pad(b, f) {
+  const w = b.x1 - b.x0 || Math.abs(b.x0) || 1, h = b.y1 - b.y0 || Math.abs(b.y0) || 1;
+  return { x0: b.x0 - f * w, x1: b.x1 + f * w, y0: b.y0 - f * h, y1: b.y1 + f * h };
 }
 
 function record() {
   const lab = app.lab, s = lab.state();
   const t = lab.time(), err = lab.energyError();
-  const pos = lab.positions();
-  if (pos.length) {
-    app.trails.push(Array.from(pos));
-    if (app.trails.length > TRAIL) app.trails.shift();
-  }
-  const ix = Number($("phase-x").value), iy = Number($("phase-y").value);
-  app.phase.push([s[ix], s[iy]]);
-  if (app.phase.length > PHASE_TRAIL) app.phase.shift();
+  sample();
   app.energy.push([t, err]);
   if (app.energy.length > ENERGY_POINTS) app.energy.splice(0, app.energy.length - ENERGY_POINTS / 2);
   app.rows.push([t, lab.energy(), err, ...s]);
   if (app.rows.length > MAX_ROWS) app.rows.shift();
 }
 
+// One trail and phase sample of the current state.
+function sample() {
+  const lab = app.lab, s = lab.state(), pos = lab.positions();
+  if (pos.length) {
+    app.trails.push(Float64Array.from(pos));
+    if (app.trails.length > TRAIL) app.trails.splice(0, app.trails.length - TRAIL);
+  } else if (kind() === "rigid") {
+    app.trails.push(Float64Array.from(s));
+    if (app.trails.length > TRAIL) app.trails.splice(0, app.trails.length - TRAIL);
+  }
+  const ix = Number($("phase-x").value), iy = Number($("phase-y").value);
+  app.phase.push([s[ix], s[iy]]);
+  if (app.phase.length > PHASE_TRAIL) app.phase.splice(0, app.phase.length - PHASE_TRAIL);
+}
+
 function frame() {
+  const n = Number($("speed").value), dt = Number($("dt").value);
   try {
-    app.lab.step(Number($("speed").value), Number($("dt").value));
+    // The frame's steps in pieces, a trail sample after each: the same bits as one call.
+    const pieces = Math.min(SAMPLES_PER_FRAME, n);
+    let done = 0;
+    for (let k = 1; k <= pieces; k++) {
+      const upto = Math.round((k * n) / pieces);
+      app.lab.step(upto - done, dt);
+      done = upto;
+      if (k < pieces) sample();
+    }
   } catch (e) {
     setRunning(false);
     message(e.message);
     return false;
   }
   app.frames++;
-  app.sceneFrozen = false;
   record();
   return true;
 }
@@ -221,6 +407,7 @@ function frame() {
 function setRunning(on) {
   app.running = on;
   $("run").textContent = on ? "Pause" : "Run";
+  $("run").setAttribute("aria-pressed", String(on));
 }
 
 function loop() {
@@ -230,7 +417,7 @@ function loop() {
 
 function message(text) { $("message").textContent = text; }
 
-// ---------- drawing ----------
+// ---------- drawing: views and axes ----------
 
 function grow(box, x, y) {
   if (!Number.isFinite(x) || !Number.isFinite(y)) return box;
@@ -238,63 +425,325 @@ function grow(box, x, y) {
   return { x0: Math.min(box.x0, x), x1: Math.max(box.x1, x), y0: Math.min(box.y0, y), y1: Math.max(box.y1, y) };
 }
 
-// A transform from a box to the canvas, square (equal scales) if `square`, with a margin.
-function view(canvas, box, square) {
-  const w = canvas.width, h = canvas.height, m = 24;
+// A canvas sized to its box on screen (device pixels), drawn in CSS pixels.
+function surface(id) {
+  const c = $(id), ctx = c.getContext("2d");
+  const w = c.clientWidth || 640, h = c.clientHeight || 400, dpr = window.devicePixelRatio || 1;
+  const W = Math.round(w * dpr), H = Math.round(h * dpr);
+  if (c.width !== W || c.height !== H) { c.width = W; c.height = H; }
+  ctx.setTransform(dpr, 0, 0, dpr, 0, 0);
+  ctx.fillStyle = "#fff";
+  ctx.fillRect(0, 0, w, h);
+  ctx.font = `${fontSize()}px system-ui, sans-serif`;
+  ctx.lineJoin = "round"; ctx.lineCap = "round";
+  return { c, ctx, w, h };
+}
+
+function fontSize() { return document.body.classList.contains("large") ? 17 : 12; }
+
+// A transform from a box of the data to the plot area (inside the axes' margins), with equal
+// scales if `square` (the box then grows about its centre to fill the area).
+function plotView(w, h, box, square) {
+  const f = fontSize();
+  const r = { x0: 4.6 * f + 6, x1: w - 10, y0: 10, y1: h - 2.9 * f - 6 };
   let { x0, x1, y0, y1 } = box;
-  if (x1 - x0 < 1e-12) { x0 -= 1; x1 += 1; }
-  if (y1 - y0 < 1e-12) { y0 -= 1; y1 += 1; }
-  let sx = (w - 2 * m) / (x1 - x0), sy = (h - 2 * m) / (y1 - y0);
-  if (square) sx = sy = Math.min(sx, sy);
-  const cx = (x0 + x1) / 2, cy = (y0 + y1) / 2;
-  return {
-    X: (x) => w / 2 + (x - cx) * sx,
-    Y: (y) => h / 2 - (y - cy) * sy,
-    inv: (px, py) => [cx + (px - w / 2) / sx, cy - (py - h / 2) / sy],
+  // A coordinate that barely moves gets a span of a millionth of its size (ticks that tell
+  // their values apart), one that does not move at all a span of 2.
+  const widen = (a, b) => {
+    const least = 1e-6 * Math.max(Math.abs(a), Math.abs(b));
+    if (b - a >= least && b - a > 1e-300) return [a, b];
+    const c = (a + b) / 2, half = least > 0 ? least : 1;
+    return [c - half, c + half];
   };
+  [x0, x1] = widen(x0, x1);
+  [y0, y1] = widen(y0, y1);
+  let sx = (r.x1 - r.x0) / (x1 - x0), sy = (r.y1 - r.y0) / (y1 - y0);
+  if (square) sx = sy = Math.min(sx, sy);
+  const cx = (x0 + x1) / 2, cy = (y0 + y1) / 2, mx = (r.x0 + r.x1) / 2, my = (r.y0 + r.y1) / 2;
+  const X = (x) => mx + (x - cx) * sx, Y = (y) => my - (y - cy) * sy;
+  const inv = (px, py) => [cx + (px - mx) / sx, cy - (py - my) / sy];
+  const [bx0, by1] = inv(r.x0, r.y0), [bx1, by0] = inv(r.x1, r.y1);
+  return { X, Y, inv, rect: r, box: { x0: bx0, x1: bx1, y0: by0, y1: by1 } };
 }
 
-const SWARM_BANDS = 12;
-
-// The view of 3-D points (a top): turned by AZIMUTH about the vertical, then tilted by
-// ELEVATION towards the viewer; x across, z up. Returns [screen x, screen y, depth].
-const AZIMUTH = 0.6, ELEVATION = 0.35;
-function project3([x, y, z]) {
-  const ca = Math.cos(AZIMUTH), sa = Math.sin(AZIMUTH), ce = Math.cos(ELEVATION), se = Math.sin(ELEVATION);
-  const u = ca * x + sa * y, w = -sa * x + ca * y;
-  return [u, ce * z - se * w, ce * w + se * z];
+function niceStep(span, count) {
+  const raw = span / count, p = 10 ** Math.floor(Math.log10(raw)), f = raw / p;
+  return (f < 1.5 ? 1 : f < 3 ? 2 : f < 7 ? 5 : 10) * p;
 }
 
-// The heavy top: the ground's axes and a unit square of floor, the symmetry axis from the
-// pivot to the centre of mass with a disc across it, its shadow on the floor, and the path
-// of the axis tip (the nutation loops).
-function drawTop(c, ctx, tip) {
-  const l = Math.hypot(tip[0], tip[1], tip[2]) || 1;
-  app.sceneBox = { x0: -1.3 * l, x1: 1.3 * l, y0: -0.7 * l, y1: 1.3 * l };
-  const v = view(c, app.sceneBox, true);
-  app.sceneView = v;
-  const P = (p) => { const [x, y] = project3(p); return [v.X(x), v.Y(y)]; };
-  const line = (a, b) => { ctx.beginPath(); ctx.moveTo(...P(a)); ctx.lineTo(...P(b)); ctx.stroke(); };
-  ctx.strokeStyle = "#ccc"; ctx.lineWidth = 1;
+function tickValues(lo, hi, count) {
+  const step = niceStep(hi - lo, count), out = [];
+  for (let k = Math.ceil(lo / step - 1e-9); k * step <= hi + step * 1e-9; k++) out.push(k * step);
+  return { step, values: out };
+}
+
+function tickText(x, step) {
+  const d = Math.max(0, -Math.floor(Math.log10(step) + 1e-9));
+  if (Math.abs(x) < step * 1e-6) x = 0;
+  // Fixed decimals while they are few; else enough significant digits to tell ticks apart.
+  const exp = Math.abs(x) >= 1e5 || d > 6;
+  const k = Math.max(1, Math.min(12, Math.ceil(Math.log10(Math.max(Math.abs(x), step) / step))));
+  const s = exp ? (x === 0 ? "0" : x.toExponential(k)) : x.toFixed(d);
+  return s.replace("e+", "e").replaceAll("-", "−");
+}
+
+function superscriptInt(n) {
+  const SUP = { "-": "⁻", 0: "⁰", 1: "¹", 2: "²", 3: "³", 4: "⁴", 5: "⁵", 6: "⁶", 7: "⁷", 8: "⁸", 9: "⁹" };
+  return String(n).split("").map((c) => SUP[c]).join("");
+}
+
+// Axes on the plot area of `v`: a frame, light grid lines, ticks with labels and the axis
+// names. `yTicks` overrides the y ticks ([[value, text], ...]). Records what it drew.
+function drawAxes(id, ctx, v, xLabel, yLabel, { yTicks = null, xTicks = null } = {}) {
+  const r = v.rect, f = fontSize();
+  const xt = xTicks ?? (() => { const t = tickValues(v.box.x0, v.box.x1, Math.max(3, Math.floor((r.x1 - r.x0) / (7 * f)))); return t.values.map((x) => [x, tickText(x, t.step)]); })();
+  const yt = yTicks ?? (() => { const t = tickValues(v.box.y0, v.box.y1, Math.max(3, Math.floor((r.y1 - r.y0) / (3.5 * f)))); return t.values.map((y) => [y, tickText(y, t.step)]); })();
+  ctx.save();
+  ctx.lineWidth = 1;
+  ctx.strokeStyle = "#e6e6e6";
   ctx.beginPath();
-  for (const [a, b] of [[[-l, -l, 0], [l, -l, 0]], [[l, -l, 0], [l, l, 0]], [[l, l, 0], [-l, l, 0]], [[-l, l, 0], [-l, -l, 0]]]) {
-    ctx.moveTo(...P(a)); ctx.lineTo(...P(b));
+  for (const [x] of xt) { const px = Math.round(v.X(x)) + 0.5; ctx.moveTo(px, r.y0); ctx.lineTo(px, r.y1); }
+  for (const [y] of yt) { const py = Math.round(v.Y(y)) + 0.5; ctx.moveTo(r.x0, py); ctx.lineTo(r.x1, py); }
+  ctx.stroke();
+  ctx.strokeStyle = "#555";
+  ctx.strokeRect(r.x0 + 0.5, r.y0 + 0.5, r.x1 - r.x0 - 1, r.y1 - r.y0 - 1);
+  ctx.fillStyle = "#333";
+  ctx.textAlign = "center"; ctx.textBaseline = "top";
+  ctx.beginPath();
+  for (const [x, text] of xt) {
+    const px = Math.round(v.X(x)) + 0.5;
+    ctx.moveTo(px, r.y1); ctx.lineTo(px, r.y1 + 4);
+    ctx.fillText(text, px, r.y1 + 6);
+  }
+  ctx.textAlign = "right"; ctx.textBaseline = "middle";
+  for (const [y, text] of yt) {
+    const py = Math.round(v.Y(y)) + 0.5;
+    ctx.moveTo(r.x0 - 4, py); ctx.lineTo(r.x0, py);
+    ctx.fillText(text, r.x0 - 6, py);
   }
   ctx.stroke();
-  ctx.fillStyle = "#555";
-  for (const [axis, name] of [[[l, 0, 0], "x"], [[0, l, 0], "y"], [[0, 0, l], "z"]]) {
-    ctx.strokeStyle = "#999"; line([0, 0, 0], axis);
-    const [px, py] = P(axis.map((a) => 1.08 * a)); ctx.fillText(name, px - 4, py + 4);
+  ctx.textAlign = "center"; ctx.textBaseline = "bottom";
+  ctx.fillText(xLabel, (r.x0 + r.x1) / 2, r.y1 + 2.9 * f + 4);
+  ctx.translate(f * 0.9, (r.y0 + r.y1) / 2);
+  ctx.rotate(-Math.PI / 2);
+  ctx.textBaseline = "middle";
+  ctx.fillText(yLabel, 0, 0);
+  ctx.restore();
+  app.ticks[id] = { x: xt.map(([, t]) => t), y: yt.map(([, t]) => t), xLabel, yLabel };
+}
+
+function clip(ctx, v) {
+  ctx.save();
+  ctx.beginPath();
+  ctx.rect(v.rect.x0, v.rect.y0, v.rect.x1 - v.rect.x0, v.rect.y1 - v.rect.y0);
+  ctx.clip();
+}
+
+function bodiesOf(p) {
+  const out = [];
+  for (let i = 0; i + 1 < p.length; i += 2) out.push([p[i], p[i + 1]]);
+  return out;
+}
+
+function massOf(i) {
+  const m = app.params[`m${i + 1}`] ?? app.entry.params.find((p) => p.name === `m${i + 1}`)?.default
+    ?? app.params.m ?? app.entry.params.find((p) => p.name === "m")?.default ?? 1;
+  return Number(m) || 1;
+}
+
+// A body's radius in pixels: its area in proportion to its mass (between 6 and 16 px).
+function bobRadius(i) {
+  const masses = bodiesOf(app.lab.positions()).map((_, k) => massOf(k)), top = Math.max(...masses);
+  return Math.max(6, 14 * Math.sqrt(massOf(i) / top));
+}
+
+function trailPaths(ctx, v, count, colour = [40, 90, 200]) {
+  const T = app.trails, n = T.length;
+  if (n < 2) return;
+  ctx.lineWidth = 1.6;
+  // In 8 bands fading with age: one path per band and body.
+  const bands = 8;
+  for (let b = 0; b < bands; b++) {
+    const k0 = Math.floor((b * (n - 1)) / bands), k1 = Math.floor(((b + 1) * (n - 1)) / bands);
+    ctx.strokeStyle = `rgba(${colour.join(",")}, ${0.12 + (0.75 * (b + 1)) / bands})`;
+    ctx.beginPath();
+    for (let body = 0; body < count; body++) {
+      for (let k = k0; k <= k1; k++) {
+        const x = v.X(T[k][2 * body]), y = v.Y(T[k][2 * body + 1]);
+        if (k === k0) ctx.moveTo(x, y); else ctx.lineTo(x, y);
+      }
+    }
+    ctx.stroke();
   }
-  // The tip's path, fading with age.
+}
+
+function pivot(ctx, x, y) {
+  ctx.fillStyle = "#333";
+  ctx.fillRect(x - 14, y - 3, 28, 3);
+  ctx.beginPath(); ctx.arc(x, y, 4, 0, TAU); ctx.fill();
+}
+
+function bob(ctx, x, y, r, i) {
+  ctx.beginPath(); ctx.arc(x, y, r, 0, TAU);
+  ctx.fillStyle = app.drag?.body === i ? "#e07000" : "#c0392b"; ctx.fill();
+  ctx.strokeStyle = "#5a1a12"; ctx.lineWidth = 1.2; ctx.stroke();
+}
+
+// A coil spring from (x0, y0) to (x1, y1) with `turns` turns of half-width `a` pixels.
+function coil(ctx, x0, y0, x1, y1, turns, a) {
+  const dx = x1 - x0, dy = y1 - y0, L = Math.hypot(dx, dy) || 1, ux = dx / L, uy = dy / L;
+  const lead = Math.min(10, L * 0.15);
+  ctx.beginPath(); ctx.moveTo(x0, y0); ctx.lineTo(x0 + ux * lead, y0 + uy * lead);
+  const n = turns * 2, body = L - 2 * lead;
+  for (let k = 1; k <= n; k++) {
+    const s = lead + (body * (k - 0.5)) / n, side = k % 2 ? a : -a;
+    ctx.lineTo(x0 + ux * s - uy * side, y0 + uy * s + ux * side);
+  }
+  ctx.lineTo(x1 - ux * lead, y1 - uy * lead); ctx.lineTo(x1, y1);
+  ctx.stroke();
+}
+
+function param(name) {
+  const v = app.params[name] ?? app.entry.params.find((p) => p.name === name)?.default;
+  return typeof v === "number" ? v : NaN;
+}
+
+function drawScene() {
+  const { ctx, w, h } = surface("scene");
+  const k = kind(), pos = app.lab.positions(), L = lengthUnit();
+  if (k === "top") return drawTop(ctx, w, h, pos);
+  if (k === "rigid") return drawRigid(ctx, w, h);
+  if (k === "swarm") return drawSwarm(ctx, w, h);
+  if (k === "chain" || k === "sites") return drawChain(ctx, w, h, k);
+  if (k === "series") return drawSeries(ctx, w, h);
+  if (!app.sceneBox) app.sceneBox = sceneBoxFrom(null) ?? { x0: -1, x1: 1, y0: -1, y1: 1 };
+  const v = plotView(w, h, app.sceneBox, true);
+  app.sceneView = v;
+  drawAxes("scene", ctx, v, withUnit("x", L), withUnit("y", L));
+  clip(ctx, v);
+  const bodies = bodiesOf(pos);
+  if (k === "projectile") {
+    // The ground, the path so far, its apex and where it meets the ground (the range).
+    ctx.fillStyle = "#e9e2cf"; ctx.fillRect(v.rect.x0, v.Y(0), v.rect.x1 - v.rect.x0, v.rect.y1 - v.Y(0));
+    ctx.strokeStyle = "#8a7a50"; ctx.lineWidth = 1.5; ctx.beginPath(); ctx.moveTo(v.rect.x0, v.Y(0)); ctx.lineTo(v.rect.x1, v.Y(0)); ctx.stroke();
+    trailPaths(ctx, v, 1);
+    let apex = null, land = null;
+    for (let i = 0; i < app.trails.length; i++) {
+      const [x, y] = app.trails[i];
+      if (!apex || y > apex[1]) apex = [x, y];
+      if (i && !land && y < 0 && app.trails[i - 1][1] >= 0) {
+        const [xa, ya] = app.trails[i - 1];
+        land = [xa + ((x - xa) * ya) / (ya - y), 0];
+      }
+    }
+    ctx.fillStyle = "#333"; ctx.textAlign = "center";
+    if (apex && apex[1] > app.trails[0][1] + 1e-9 && app.trails[app.trails.length - 1][1] < apex[1]) {
+      ctx.beginPath(); ctx.arc(v.X(apex[0]), v.Y(apex[1]), 3, 0, TAU); ctx.fill();
+      ctx.fillText(`apex ${apex[1].toFixed(2)} ${L}`, v.X(apex[0]), v.Y(apex[1]) - 8);
+    }
+    if (land) {
+      ctx.beginPath(); ctx.moveTo(v.X(land[0]), v.Y(0) - 6); ctx.lineTo(v.X(land[0]), v.Y(0) + 6); ctx.stroke();
+      ctx.fillText(`range ${(land[0] - app.trails[0][0]).toFixed(2)} ${L}`, v.X(land[0]), v.Y(0) + 18);
+    }
+    bodies.forEach(([x, y], i) => bob(ctx, v.X(x), v.Y(y), 7, i));
+  } else if (k === "orbit") {
+    // The focus (the attracting centre), the orbit traced so far, the body, and the
+    // Laplace–Runge–Lenz vector (towards the perihelion; constant for a pure 1/r potential).
+    trailPaths(ctx, v, 1);
+    ctx.fillStyle = "#e0a800"; ctx.beginPath(); ctx.arc(v.X(0), v.Y(0), 7, 0, TAU); ctx.fill();
+    const s = app.lab.state(), [x, y, px, py] = s, r = Math.hypot(x, y);
+    const mu = param("mu"), kk = param("k");
+    const m = Number.isFinite(mu) ? mu : 1, kc = Number.isFinite(kk) ? kk : 1;
+    const Lz = x * py - y * px;
+    const A = [py * Lz - m * kc * x / r, -px * Lz - m * kc * y / r];
+    const e = Math.hypot(...A) / (m * kc);
+    if (e > 1e-3 && e < 1) {
+      const rp = (Lz * Lz) / (m * kc * (1 + e)), ux = A[0] / Math.hypot(...A), uy = A[1] / Math.hypot(...A);
+      arrow(ctx, v.X(0), v.Y(0), v.X(rp * ux), v.Y(rp * uy), "#1e7d32");
+      ctx.fillStyle = "#1e7d32"; ctx.fillText("LRL vector", v.X(rp * ux) + 6, v.Y(rp * uy) - 6);
+    }
+    bodies.forEach(([bx, by], i) => bob(ctx, v.X(bx), v.Y(by), 7, i));
+  } else if (k === "hoop") {
+    // The hoop seen from the side while it turns at Ω about its vertical diameter: an ellipse
+    // of half-width R |cos Ωt|; the bead rides on it.
+    const R = param("R"), W = param("omega"), t = app.lab.time(), c = Math.cos(W * t);
+    const [bx, by] = bodies[0];
+    ctx.strokeStyle = "#666"; ctx.lineWidth = 3;
+    ctx.beginPath(); ctx.ellipse(v.X(0), v.Y(0), Math.max(1, Math.abs(R * c) * (v.X(1) - v.X(0))), R * (v.X(1) - v.X(0)), 0, 0, TAU); ctx.stroke();
+    ctx.setLineDash([5, 5]); ctx.lineWidth = 1; ctx.beginPath(); ctx.moveTo(v.X(0), v.Y(-1.08 * R)); ctx.lineTo(v.X(0), v.Y(1.08 * R)); ctx.stroke(); ctx.setLineDash([]);
+    bob(ctx, v.X(bx * c), v.Y(by), 8, 0);
+    ctx.fillStyle = "#333"; ctx.textAlign = "left";
+    ctx.fillText(`Ω t = ${((W * t) % TAU).toFixed(2)} rad`, v.rect.x0 + 8, v.rect.y0 + 16);
+  } else {
+    // Pendulums: the path of each bob, the pivot, rods (a coil for a spring), bobs by mass.
+    // Free bodies (a particle in a potential): the path and the body.
+    trailPaths(ctx, v, bodies.length);
+    if (k === "bodies") { bodies.forEach(([x, y], i) => bob(ctx, v.X(x), v.Y(y), 8, i)); ctx.restore(); return; }
+    ctx.strokeStyle = "#333"; ctx.lineWidth = 3;
+    let [x0, y0] = [v.X(0), v.Y(0)];
+    bodies.forEach(([x, y]) => {
+      if (k === "spring") { ctx.lineWidth = 1.8; coil(ctx, x0, y0, v.X(x), v.Y(y), 12, 7); }
+      else { ctx.beginPath(); ctx.moveTo(x0, y0); ctx.lineTo(v.X(x), v.Y(y)); ctx.stroke(); }
+      [x0, y0] = [v.X(x), v.Y(y)];
+    });
+    pivot(ctx, v.X(0), v.Y(0));
+    bodies.forEach(([x, y], i) => bob(ctx, v.X(x), v.Y(y), bobRadius(i), i));
+  }
+  ctx.restore();
+}
+
+function arrow(ctx, x0, y0, x1, y1, colour) {
+  const a = Math.atan2(y1 - y0, x1 - x0);
+  ctx.strokeStyle = colour; ctx.fillStyle = colour; ctx.lineWidth = 2;
+  ctx.beginPath(); ctx.moveTo(x0, y0); ctx.lineTo(x1, y1); ctx.stroke();
+  ctx.beginPath(); ctx.moveTo(x1, y1);
+  ctx.lineTo(x1 - 9 * Math.cos(a - 0.4), y1 - 9 * Math.sin(a - 0.4));
+  ctx.lineTo(x1 - 9 * Math.cos(a + 0.4), y1 - 9 * Math.sin(a + 0.4));
+  ctx.fill();
+}
+
+// The view of 3-D points: turned by AZIMUTH about the vertical, tilted by ELEVATION towards
+// the viewer, seen in perspective from DISTANCE (in units of the body's size). Returns
+// [screen x, screen y, depth].
+const AZIMUTH = 0.6, ELEVATION = 0.35, DISTANCE = 6;
+function project3([x, y, z], size = 1) {
+  const ca = Math.cos(AZIMUTH), sa = Math.sin(AZIMUTH), ce = Math.cos(ELEVATION), se = Math.sin(ELEVATION);
+  const u = ca * x + sa * y, w = -sa * x + ca * y;
+  const depth = ce * w + se * z, f = DISTANCE / (DISTANCE + depth / size);
+  return [u * f, (ce * z - se * w) * f, depth];
+}
+
+// The heavy top in perspective: the floor with its axes (ticks in metres), the symmetry
+// axis from the pivot to the centre of mass with a disc across it, its shadow, and the path
+// of the axis tip (precession and nutation).
+function drawTop(ctx, w, h, tip) {
+  const l = Math.hypot(tip[0], tip[1], tip[2]) || 1, L = lengthUnit();
+  const v = plotView(w, h, { x0: -1.3 * l, x1: 1.3 * l, y0: -0.9 * l, y1: 1.3 * l }, true);
+  app.sceneView = v;
+  const P = (p) => { const [x, y] = project3(p, l); return [v.X(x), v.Y(y)]; };
+  const line = (a, b) => { ctx.beginPath(); ctx.moveTo(...P(a)); ctx.lineTo(...P(b)); ctx.stroke(); };
+  // The floor: a grid with tick labels along two edges.
+  const t = tickValues(-l, l, 4);
+  ctx.strokeStyle = "#ddd"; ctx.lineWidth = 1;
+  for (const g of t.values) { line([g, -l, 0], [g, l, 0]); line([-l, g, 0], [l, g, 0]); }
+  ctx.fillStyle = "#555"; ctx.textAlign = "center"; ctx.textBaseline = "top";
+  const xs = t.values.map((g) => tickText(g, t.step)), ys = xs.slice();
+  t.values.forEach((g, i) => { const [px, py] = P([g, -l * 1.08, 0]); ctx.fillText(xs[i], px, py); });
+  t.values.forEach((g, i) => { const [px, py] = P([l * 1.1, g, 0]); ctx.fillText(ys[i], px, py); });
+  const [xlx, xly] = P([0, -l * 1.3, 0]), [ylx, yly] = P([l * 1.35, 0, 0]);
+  ctx.fillText(withUnit("x", L), xlx, xly); ctx.fillText(withUnit("y", L), ylx, yly);
+  app.ticks.scene = { x: xs, y: ys, xLabel: withUnit("x", L), yLabel: withUnit("y", L) };
+  ctx.strokeStyle = "#999"; line([0, 0, 0], [0, 0, 1.15 * l]);
+  ctx.textBaseline = "alphabetic";
+  const [zx, zy] = P([0, 0, 1.2 * l]); ctx.fillText("z", zx, zy);
   ctx.lineWidth = 1.5;
-  for (let k = 1; k < app.trails.length; k++) {
-    ctx.strokeStyle = `rgba(40, 90, 200, ${0.1 + 0.7 * k / app.trails.length})`;
-    line(app.trails[k - 1], app.trails[k]);
+  const T = app.trails;
+  for (let k = 1; k < T.length; k++) {
+    ctx.strokeStyle = `rgba(40, 90, 200, ${0.1 + (0.7 * k) / T.length})`;
+    line(T[k - 1], T[k]);
   }
   ctx.setLineDash([4, 4]); ctx.strokeStyle = "#aaa"; line([0, 0, 0], [tip[0], tip[1], 0]); ctx.setLineDash([]);
   ctx.strokeStyle = "#333"; ctx.lineWidth = 3; line([0, 0, 0], tip);
-  // The disc: a circle of radius l/2 about the tip, across the axis.
   const a = tip.map((x) => x / l);
   let e1 = [a[1], -a[0], 0];
   const n1 = Math.hypot(...e1);
@@ -302,195 +751,303 @@ function drawTop(c, ctx, tip) {
   const e2 = [a[1] * e1[2] - a[2] * e1[1], a[2] * e1[0] - a[0] * e1[2], a[0] * e1[1] - a[1] * e1[0]];
   ctx.beginPath();
   for (let k = 0; k <= 48; k++) {
-    const th = (2 * Math.PI * k) / 48, r = 0.5 * l;
-    const p = [0, 1, 2].map((i) => tip[i] + r * (Math.cos(th) * e1[i] + Math.sin(th) * e2[i]));
-    const [x, y] = P(p);
+    const th = (TAU * k) / 48, r = 0.5 * l;
+    const [x, y] = P([0, 1, 2].map((i) => tip[i] + r * (Math.cos(th) * e1[i] + Math.sin(th) * e2[i])));
     if (k) ctx.lineTo(x, y); else ctx.moveTo(x, y);
   }
   ctx.fillStyle = "rgba(192, 57, 43, 0.35)"; ctx.fill();
   ctx.strokeStyle = "#c0392b"; ctx.lineWidth = 2; ctx.stroke();
-  ctx.fillStyle = "#333"; ctx.fillRect(v.X(0) - 4, v.Y(0) - 4, 8, 8);
-  ctx.lineWidth = 1;
-  ctx.fillText("symmetry axis, pivot at the origin; its tip's path: precession and nutation", 8, 20);
+  const [ox, oy] = P([0, 0, 0]);
+  ctx.fillStyle = "#333"; ctx.beginPath(); ctx.arc(ox, oy, 4, 0, TAU); ctx.fill();
 }
 
-function project(p) {
-  // The 3D positions (a top's axis tip) as drawTop shows them.
-  if (p.length === 3) { const [x, y] = project3(p); return [[x, y]]; }
-  const out = [];
-  for (let i = 0; i + 1 < p.length; i += 2) out.push([p[i], p[i + 1]]);
-  return out;
+// Rotates `v` by the unit quaternion [w, x, y, z].
+function rotate([w, x, y, z], v) {
+  const [a, b, c] = v;
+  const tx = 2 * (y * c - z * b), ty = 2 * (z * a - x * c), tz = 2 * (x * b - y * a);
+  return [a + w * tx + (y * tz - z * ty), b + w * ty + (z * tx - x * tz), c + w * tz + (x * ty - y * tx)];
 }
 
-function clear(ctx) {
-  ctx.fillStyle = "#fff";
-  ctx.fillRect(0, 0, ctx.canvas.width, ctx.canvas.height);
-}
-
-function font(ctx) {
-  ctx.font = `${document.body.classList.contains("large") ? 22 : 14}px system-ui, sans-serif`;
-}
-
-function drawScene() {
-  const c = $("scene"), ctx = c.getContext("2d");
-  clear(ctx); font(ctx);
-  const lab = app.lab, pos = lab.positions(), caps = app.entry.capabilities;
-  if (pos.length) {
-    if (pos.length === 3) { drawTop(c, ctx, pos); return; }
-    const bodies = project(pos), linked = family() === "lagrangian";
-    let box = grow(app.sceneBox, 0, 0);
-    // While a body is dragged, and until the next frame, the view does not move under it.
-    if (!app.sceneFrozen || !app.sceneBox) for (const [x, y] of bodies) box = grow(box, x, y);
-    app.sceneBox = box;
-    const v = view(c, box, true);
-    app.sceneView = v;
-    // Trails: every body's path, fading with age.
-    const paths = app.trails.map(project);
-    ctx.lineWidth = 1.5;
-    for (let k = 1; k < paths.length; k++) {
-      ctx.strokeStyle = `rgba(40, 90, 200, ${0.1 + 0.7 * k / paths.length})`;
-      ctx.beginPath();
-      paths[k].forEach(([x, y], b) => {
-        const [x0, y0] = paths[k - 1][b] ?? [x, y];
-        ctx.moveTo(v.X(x0), v.Y(y0)); ctx.lineTo(v.X(x), v.Y(y));
-      });
-      ctx.stroke();
-    }
-    ctx.strokeStyle = "#333"; ctx.lineWidth = 3;
-    if (linked) {
-      ctx.beginPath(); ctx.moveTo(v.X(0), v.Y(0));
-      for (const [x, y] of bodies) ctx.lineTo(v.X(x), v.Y(y));
-      ctx.stroke();
-    }
-    ctx.fillStyle = "#333";
-    ctx.fillRect(v.X(0) - 4, v.Y(0) - 4, 8, 8);
-    bodies.forEach(([x, y], i) => {
-      ctx.beginPath(); ctx.arc(v.X(x), v.Y(y), 10, 0, 2 * Math.PI);
-      ctx.fillStyle = app.drag?.body === i ? "#e07000" : "#c0392b"; ctx.fill();
-    });
-  } else if (caps.includes("per_particle_energy") || caps.includes("phase_space_area")) {
-    // A swarm: every member as a point of its own (q, p) plane.
-    const s = lab.state(), n = s.length / 2;
-    let box = app.sceneBox;
-    for (let i = 0; i < n; i++) box = grow(box, s[i], s[n + i]);
-    app.sceneBox = box;
-    const v = view(c, box, false);
-    // One path and one fill per colour band (not a fillStyle per member): members keep
-    // their hue along the swarm, in SWARM_BANDS steps.
-    for (let b = 0; b < SWARM_BANDS; b++) {
-      ctx.fillStyle = `hsl(${(300 * b) / SWARM_BANDS}, 70%, 45%)`;
-      ctx.beginPath();
-      const i1 = Math.round(((b + 1) * n) / SWARM_BANDS);
-      for (let i = Math.round((b * n) / SWARM_BANDS); i < i1; i++) ctx.rect(v.X(s[i]) - 1.5, v.Y(s[n + i]) - 1.5, 3, 3);
-      ctx.fill();
-    }
-    ctx.fillStyle = "#333";
-    ctx.fillText(`${n} members: angle (across) and momentum (up)`, 8, 20);
-  } else if (family() === "ode") {
-    // A free rigid body: the angular momentum in the body frame traces the polhode.
-    const s = lab.state();
-    app.trails.push([s[0] - 0.45 * s[1], s[2] - 0.25 * s[1]]);
-    if (app.trails.length > TRAIL) app.trails.shift();
-    let box = app.sceneBox;
-    for (const [x, y] of app.trails) box = grow(box, x, y);
-    app.sceneBox = box = grow(grow(box, 0, 0), 0, 0);
-    const v = view(c, box, true);
-    ctx.strokeStyle = "#2860c8"; ctx.beginPath();
-    app.trails.forEach(([x, y], k) => (k ? ctx.lineTo(v.X(x), v.Y(y)) : ctx.moveTo(v.X(x), v.Y(y))));
-    ctx.stroke();
-    const [x, y] = app.trails[app.trails.length - 1];
-    ctx.strokeStyle = "#c0392b"; ctx.lineWidth = 3;
-    ctx.beginPath(); ctx.moveTo(v.X(0), v.Y(0)); ctx.lineTo(v.X(x), v.Y(y)); ctx.stroke();
-    ctx.lineWidth = 1; ctx.fillStyle = "#333";
-    ctx.fillText("angular momentum in the body frame (its path: the polhode)", 8, 20);
-  } else {
-    // A chain: each site's displacement, sites left to right.
-    const s = lab.state(), n = ndof();
-    let box = grow(app.sceneBox, 0, 0);
-    for (let i = 0; i < n; i++) box = grow(grow(box, i + 1, s[i]), i + 1, -s[i]);
-    app.sceneBox = box = grow(box, n + 1, 0);
-    const v = view(c, box, false);
-    ctx.strokeStyle = "#999"; ctx.beginPath(); ctx.moveTo(v.X(0), v.Y(0)); ctx.lineTo(v.X(n + 1), v.Y(0)); ctx.stroke();
-    ctx.strokeStyle = "#333"; ctx.beginPath(); ctx.moveTo(v.X(0), v.Y(0));
-    for (let i = 0; i < n; i++) ctx.lineTo(v.X(i + 1), v.Y(s[i]));
-    ctx.lineTo(v.X(n + 1), v.Y(0)); ctx.stroke();
-    ctx.fillStyle = "#c0392b";
-    const r = n > 60 ? 2 : 5;
-    for (let i = 0; i < n; i++) { ctx.beginPath(); ctx.arc(v.X(i + 1), v.Y(s[i]), r, 0, 2 * Math.PI); ctx.fill(); }
-    ctx.fillStyle = "#333";
-    ctx.fillText(`${n} sites: displacement (up) against site`, 8, 20);
+// The free rigid body (state: body angular velocity ω, then the orientation quaternion): a
+// box with the proportions of its inertia ellipsoid, its body axes, and the angular momentum
+// L = I ω turned into the space frame (fixed in space: no torque).
+function drawRigid(ctx, w, h) {
+  const s = app.lab.state(), q = s.slice(3, 7), I = [param("I1"), param("I2"), param("I3")].map((x) => (Number.isFinite(x) ? x : 1));
+  const v = plotView(w, h, { x0: -1.6, x1: 1.6, y0: -1.4, y1: 1.4 }, true);
+  app.sceneView = v;
+  // Half-sides of the uniform box with these principal moments: I1 ∝ b² + c², ...
+  const sum = I[0] + I[1] + I[2];
+  let half = [0, 1, 2].map((i) => Math.sqrt(Math.max(1e-3, sum / 2 - I[i])));
+  const big = Math.max(...half); half = half.map((x) => (0.7 * x) / big);
+  const P = (p) => { const [x, y] = project3(p, 1.2); return [v.X(x), v.Y(y)]; };
+  const corners = [];
+  for (const sx of [-1, 1]) for (const sy of [-1, 1]) for (const sz of [-1, 1]) corners.push(rotate(q, [sx * half[0], sy * half[1], sz * half[2]]));
+  ctx.strokeStyle = "#7a2a1e"; ctx.fillStyle = "rgba(192, 57, 43, 0.12)"; ctx.lineWidth = 1.5;
+  ctx.beginPath();
+  for (let i = 0; i < 8; i++) for (let j = i + 1; j < 8; j++) {
+    if ([1, 2, 4].includes(i ^ j)) { ctx.moveTo(...P(corners[i])); ctx.lineTo(...P(corners[j])); }
   }
+  ctx.stroke();
+  const names = ["1", "2", "3"], colours = ["#c0392b", "#1e7d32", "#2860c8"];
+  for (let i = 0; i < 3; i++) {
+    const e = [0, 0, 0]; e[i] = 1.05;
+    const tip = rotate(q, e), [x0, y0] = P([0, 0, 0]), [x1, y1] = P(tip);
+    arrow(ctx, x0, y0, x1, y1, colours[i]);
+    ctx.fillText(`e${subscript(i + 1)}`, x1 + 4, y1 - 4);
+  }
+  const Lb = [I[0] * s[0], I[1] * s[1], I[2] * s[2]], Ls = rotate(q, Lb), Ln = Math.hypot(...Ls) || 1;
+  const Lt = Ls.map((x) => (1.35 * x) / Ln), [x0, y0] = P([0, 0, 0]), [x1, y1] = P(Lt);
+  arrow(ctx, x0, y0, x1, y1, "#e07000");
+  ctx.fillStyle = "#e07000"; ctx.fillText("L", x1 + 5, y1);
+  // The path of the tip of body axis 3, fading with age.
+  ctx.lineWidth = 1;
+  const T = app.trails;
+  for (let k = 1; k < T.length; k++) {
+    ctx.strokeStyle = `rgba(40, 90, 200, ${0.05 + (0.5 * k) / T.length})`;
+    const a = rotate(T[k - 1].slice(3, 7), [0, 0, 1.05]), b = rotate(T[k].slice(3, 7), [0, 0, 1.05]);
+    ctx.beginPath(); ctx.moveTo(...P(a)); ctx.lineTo(...P(b)); ctx.stroke();
+  }
+  ctx.fillStyle = "#333"; ctx.textAlign = "left";
+  ctx.fillText(`|L| = ${Ln.toPrecision(4)} kg m²/s, fixed in space; body axes e₁ e₂ e₃`, 8, h - 10);
+  app.ticks.scene = { x: [], y: [], xLabel: "body axes e₁ e₂ e₃", yLabel: "L" };
+  // Its own little scale: |ω| of the body.
+  app.ticks.scene.x = [`|ω| = ${Math.hypot(s[0], s[1], s[2]).toPrecision(4)} rad/s`];
+  app.ticks.scene.y = [`|L| = ${Ln.toPrecision(4)}`];
 }
 
-function drawCurve(canvasId, points, boxKey, square, labels) {
-  const c = $(canvasId), ctx = c.getContext("2d");
-  clear(ctx); font(ctx);
+// A swarm of pendulums: every member a point of the (angle, momentum) plane, coloured along
+// the swarm, with the separatrix p = ±2 √(g/l) cos(q/2) between swinging and turning.
+const SWARM_BANDS = 12;
+function drawSwarm(ctx, w, h) {
+  const s = app.lab.state(), n = s.length / 2, k2 = param("g_over_l"), g = Number.isFinite(k2) ? k2 : 1;
+  const pmax = Math.max(2.6 * Math.sqrt(g), ...(app.extent ? app.extent.hi.slice(n).map(Math.abs) : [0]));
+  const v = plotView(w, h, { x0: -Math.PI, x1: Math.PI, y0: -1.1 * pmax, y1: 1.1 * pmax }, false);
+  app.sceneView = v;
+  const piTicks = [[-Math.PI, "−π"], [-Math.PI / 2, "−π/2"], [0, "0"], [Math.PI / 2, "π/2"], [Math.PI, "π"]];
+  drawAxes("scene", ctx, v, "angle q [rad]", "momentum p [rad/s]", { xTicks: piTicks });
+  clip(ctx, v);
+  ctx.strokeStyle = "#888"; ctx.setLineDash([6, 4]); ctx.lineWidth = 1.2;
+  for (const sign of [1, -1]) {
+    ctx.beginPath();
+    for (let k = 0; k <= 120; k++) { const q = -Math.PI + (TAU * k) / 120, p = sign * 2 * Math.sqrt(g) * Math.cos(q / 2); if (k) ctx.lineTo(v.X(q), v.Y(p)); else ctx.moveTo(v.X(q), v.Y(p)); }
+    ctx.stroke();
+  }
+  ctx.setLineDash([]);
+  const wrapQ = (q) => q - TAU * Math.ceil((q - Math.PI) / TAU);
+  for (let b = 0; b < SWARM_BANDS; b++) {
+    ctx.fillStyle = `hsl(${(300 * b) / SWARM_BANDS}, 70%, 42%)`;
+    ctx.beginPath();
+    const i1 = Math.round(((b + 1) * n) / SWARM_BANDS);
+    for (let i = Math.round((b * n) / SWARM_BANDS); i < i1; i++) ctx.rect(v.X(wrapQ(s[i])) - 1.5, v.Y(s[n + i]) - 1.5, 3, 3);
+    ctx.fill();
+  }
+  ctx.fillStyle = "#555"; ctx.textAlign = "right";
+  ctx.fillText(`${n} pendulums · dashed: the separatrix`, v.rect.x1 - 6, v.rect.y0 + 14);
+  ctx.restore();
+}
+
+// A chain: masses on springs drawn along a line (each displaced by its coordinate, to scale
+// with the spacing), walls at fixed ends, and below, each site's displacement against the
+// site with axes. Sine–Gordon: only the sites on a line with their displacement (an angle).
+function drawChain(ctx, w, h, k) {
+  const s = app.lab.state(), n = ndof(), ring = app.entry.name === "toda";
+  const unit = unitOf("q", 0, n), f = fontSize();
+  let amp = 0;
+  if (app.extent) for (let i = 0; i < n; i++) amp = Math.max(amp, Math.abs(app.extent.lo[i]), Math.abs(app.extent.hi[i]));
+  for (let i = 0; i < n; i++) amp = Math.max(amp, Math.abs(s[i]));
+  amp = amp || 1;
+  const top = k === "chain" ? Math.min(110, h * 0.32) : 0;
+  const v = plotView(w, h - top, { x0: 0.5, x1: n + 0.5, y0: -1.1 * amp, y1: 1.1 * amp }, false);
+  ctx.save(); ctx.translate(0, top);
+  drawAxes("scene", ctx, v, "site", withUnit(k === "sites" ? "φ" : "displacement q", unit));
+  clip(ctx, v);
+  ctx.strokeStyle = "#999"; ctx.lineWidth = 1; ctx.beginPath(); ctx.moveTo(v.rect.x0, v.Y(0)); ctx.lineTo(v.rect.x1, v.Y(0)); ctx.stroke();
+  ctx.strokeStyle = "#2860c8"; ctx.lineWidth = 1.5; ctx.beginPath();
+  for (let i = 0; i < n; i++) (i ? ctx.lineTo(v.X(i + 1), v.Y(s[i])) : ctx.moveTo(v.X(i + 1), v.Y(s[i])));
+  ctx.stroke();
+  ctx.fillStyle = "#c0392b";
+  const r = n > 60 ? 1.8 : 4;
+  for (let i = 0; i < n; i++) { ctx.beginPath(); ctx.arc(v.X(i + 1), v.Y(s[i]), r, 0, TAU); ctx.fill(); }
+  ctx.restore(); ctx.restore();
+  if (k !== "chain") return;
+  // The masses on their springs, displacements to scale: a displacement of `amp` moves a
+  // mass 0.4 of the spacing, so neighbours never cross.
+  const x0 = v.rect.x0, x1 = v.rect.x1, y = top * 0.55, gap = (x1 - x0) / (n + 1), gain = (0.4 * gap) / amp;
+  const X = (i) => x0 + gap * (i + 1) + gain * s[i];
+  ctx.strokeStyle = "#555"; ctx.lineWidth = 1.2;
+  const half = Math.max(3, Math.min(8, gap / 3));
+  if (!ring) {
+    ctx.fillStyle = "#bbb"; ctx.fillRect(x0 - 8, y - 18, 8, 36); ctx.fillRect(x1, y - 18, 8, 36);
+    coil(ctx, x0, y, X(0) - half, y, 5, 4);
+    coil(ctx, X(n - 1) + half, y, x1, y, 5, 4);
+  }
+  for (let i = 0; i + 1 < n; i++) coil(ctx, X(i) + half, y, X(i + 1) - half, y, Math.max(2, Math.min(6, Math.round(gap / 8))), Math.min(4, half * 0.6));
+  ctx.fillStyle = "#c0392b";
+  for (let i = 0; i < n; i++) ctx.fillRect(X(i) - half, y - half, 2 * half, 2 * half);
+  ctx.fillStyle = "#555"; ctx.textAlign = "left";
+  ctx.fillText(`${n} masses on springs${ring ? " (a ring: the last is joined to the first)" : ", fixed walls at both ends"}; displacements to scale`, x0, Math.max(f + 2, y - 22));
+}
+
+// A system with nothing to draw as bodies (a reduced model's ODE): each state entry against
+// time, over the recorded run, in a colour of its own.
+function drawSeries(ctx, w, h) {
+  const rows = app.rows, labels = stateLabels(), n = labels.length;
+  let box = app.sceneBox;
+  if (!box && app.extent) box = pad({ x0: 0, x1: 1, y0: Math.min(...app.extent.lo), y1: Math.max(...app.extent.hi) }, 0.05);
+  for (const r of rows) for (let i = 0; i < n; i++) box = grow(box, r[0], r[3 + i]);
+  const t1 = rows.length ? rows[rows.length - 1][0] : 1;
+  box = { ...box, x0: 0, x1: Math.max(t1, 1e-9) };
+  app.sceneBox = { ...box };
+  const v = plotView(w, h, box, false);
+  app.sceneView = v;
+  drawAxes("scene", ctx, v, withUnit("t", timeUnit()), `state: ${labels.join(", ")}`);
+  clip(ctx, v);
+  for (let i = 0; i < n; i++) {
+    ctx.strokeStyle = orbitColour(i); ctx.lineWidth = 1.5; ctx.beginPath();
+    rows.forEach((r, k) => (k ? ctx.lineTo(v.X(r[0]), v.Y(r[3 + i])) : ctx.moveTo(v.X(r[0]), v.Y(r[3 + i]))));
+    ctx.stroke();
+  }
+  ctx.restore();
+}
+
+function drawCurve(id, points, boxKey, labels) {
+  const { ctx, w, h } = surface(id);
   let box = app[boxKey];
-  for (const [x, y] of points) box = grow(box, x, y);
+  // The view: the probe run's extent of these coordinates, widened only when the run leaves
+  // it (never narrowed mid-run).
+  if (!box && app.extent && points.length) {
+    const ix = Number($("phase-x").value), iy = Number($("phase-y").value);
+    box = pad({ x0: app.extent.lo[ix], x1: app.extent.hi[ix], y0: app.extent.lo[iy], y1: app.extent.hi[iy] }, 0.08);
+  }
+  let outside = false;
+  for (const [x, y] of points) if (box && (x < box.x0 || x > box.x1 || y < box.y0 || y > box.y1)) { outside = true; break; }
+  if (!box || outside) { for (const [x, y] of points) box = grow(box, x, y); if (box && outside) box = pad(box, 0.1); }
   app[boxKey] = box;
   if (!box) return null;
-  const v = view(c, box, square);
-  ctx.strokeStyle = "#2860c8"; ctx.lineWidth = 1.5; ctx.beginPath();
+  const v = plotView(w, h, box, false);
+  drawAxes(id, ctx, v, labels[0], labels[1]);
+  clip(ctx, v);
+  ctx.strokeStyle = "#2860c8"; ctx.lineWidth = 1.3; ctx.beginPath();
   points.forEach(([x, y], k) => (k ? ctx.lineTo(v.X(x), v.Y(y)) : ctx.moveTo(v.X(x), v.Y(y))));
   ctx.stroke();
-  ctx.fillStyle = "#333";
-  ctx.fillText(labels[0], c.width - ctx.measureText(labels[0]).width - 8, c.height - 8);
-  ctx.fillText(labels[1], 8, 20);
+  const last = points[points.length - 1];
+  if (last) { ctx.fillStyle = "#c0392b"; ctx.beginPath(); ctx.arc(v.X(last[0]), v.Y(last[1]), 3.5, 0, TAU); ctx.fill(); }
+  ctx.restore();
   return v;
 }
 
 function drawPhase() {
-  const labels = stateLabels();
-  drawCurve("phase", app.phase, "phaseBox", false, [labels[$("phase-x").value], labels[$("phase-y").value]]);
+  const labels = stateLabels(), units = stateUnits(), ix = $("phase-x").value, iy = $("phase-y").value;
+  drawCurve("phase", app.phase, "phaseBox", [withUnit(labels[ix], units[ix]), withUnit(labels[iy], units[iy])]);
 }
 
 function drawEnergy() {
-  const c = $("energy"), ctx = c.getContext("2d");
-  clear(ctx); font(ctx);
+  const { ctx, w, h } = surface("energy");
   const pts = app.energy.map(([t, e]) => [t, Math.log10(Math.max(e, 1e-17))]);
-  let lo = -17, hi = -15;
-  for (const [, y] of pts) { if (y > -17) { lo = Math.min(lo === -17 ? y : lo, y); hi = Math.max(hi, y); } }
-  lo = Math.floor(Math.min(lo, hi - 1)); hi = Math.ceil(hi);
-  const t0 = pts.length ? pts[0][0] : 0, t1 = pts.length ? pts[pts.length - 1][0] : 1;
-  const v = view(c, { x0: t0, x1: t1 > t0 ? t1 : t0 + 1, y0: lo, y1: hi }, false);
-  ctx.strokeStyle = "#ddd"; ctx.fillStyle = "#555";
-  for (let d = lo; d <= hi; d++) {
-    ctx.beginPath(); ctx.moveTo(0, v.Y(d)); ctx.lineTo(c.width, v.Y(d)); ctx.stroke();
-    ctx.fillText(`1e${d}`, 4, v.Y(d) - 2);
-  }
+  let lo = Infinity, hi = -Infinity;
+  for (const [, y] of pts) if (y > -17) { lo = Math.min(lo, y); hi = Math.max(hi, y); }
+  if (!Number.isFinite(lo)) { lo = -17; hi = -15; }
+  lo = Math.floor(lo); hi = Math.max(Math.ceil(hi), lo + 2);
+  // At least ten frames' time: a fresh run's axis is not a sliver.
+  const least = 10 * Number($("dt").value) * Number($("speed").value);
+  const t0 = 0, t1 = Math.max(pts.length ? pts[pts.length - 1][0] : 0, least || 1);
+  const v = plotView(w, h, { x0: t0, x1: t1 > t0 ? t1 : t0 + 1, y0: lo, y1: hi }, false);
+  // Decades, labelled 10⁻ⁿ, thinned to fit the height.
+  const every = Math.max(1, Math.ceil((hi - lo) / Math.max(2, Math.floor((v.rect.y1 - v.rect.y0) / (2.2 * fontSize())))));
+  const yTicks = [];
+  for (let d = lo; d <= hi; d++) if ((d - lo) % every === 0) yTicks.push([d, `10${superscriptInt(d)}`]);
+  drawAxes("energy", ctx, v, withUnit("t", timeUnit()), "|E − E₀| / |E₀|", { yTicks });
+  clip(ctx, v);
   ctx.strokeStyle = "#c0392b"; ctx.lineWidth = 1.5; ctx.beginPath();
   pts.forEach(([x, y], k) => (k ? ctx.lineTo(v.X(x), v.Y(y)) : ctx.moveTo(v.X(x), v.Y(y))));
   ctx.stroke();
-  ctx.fillStyle = "#333";
-  ctx.fillText("t", c.width - 16, c.height - 8);
+  ctx.restore();
 }
+
+// The edge of the section on the energy surface: the points (q1, p1) with q2 = 0, p2 = 0 at
+// the run's energy, traced with the lab's own energy function by bisection in p1 at each q1;
+// its extent is the section's view. `null` where the edge is not closed (an unbounded orbit).
+const BOUNDARY_POINTS = 160;
+function sectionBoundary() {
+  const lab = app.lab, E = lab.energy0();
+  const H = (x, px) => { try { return lab.energyOf([x, 0, px, 0]) - E; } catch { return NaN; } };
+  const scale = Math.sqrt(2 * Math.abs(E)) || 1;
+  const x00 = lab.initialState()[0];
+  const start = H(x00, 0) <= 0 ? x00 : 0;
+  if (!(H(start, 0) <= 0)) return null;
+  const edge = (dir) => {
+    let inside = start, step = scale / 50, out = null;
+    for (let k = 0; k < 400 && out === null; k++) {
+      const x = inside + dir * step;
+      if (!(H(x, 0) <= 0)) out = x; else { inside = x; step *= 1.1; }
+    }
+    if (out === null) return null;
+    for (let k = 0; k < 60; k++) { const m = (inside + out) / 2; if (H(m, 0) <= 0) inside = m; else out = m; }
+    return inside;
+  };
+  const xl = edge(-1), xr = edge(1);
+  if (xl === null || xr === null) return null;
+  const pAt = (x, sign) => {
+    let lo = 0, hi = scale;
+    for (let k = 0; k < 60 && H(x, sign * hi) <= 0; k++) hi *= 2;
+    if (!(H(x, sign * hi) > 0)) return NaN;
+    for (let k = 0; k < 60; k++) { const m = (lo + hi) / 2; if (H(x, sign * m) <= 0) lo = m; else hi = m; }
+    return sign * lo;
+  };
+  const upper = [], lower = [];
+  for (let k = 0; k <= BOUNDARY_POINTS; k++) {
+    // Points crowd at the ends, where the edge turns.
+    const x = xl + ((xr - xl) * (1 - Math.cos((Math.PI * k) / BOUNDARY_POINTS))) / 2;
+    upper.push([x, pAt(x, 1)]); lower.push([x, pAt(x, -1)]);
+  }
+  const curve = [...upper, ...lower.reverse()].filter(([, p]) => Number.isFinite(p));
+  let box = null;
+  for (const [x, p] of curve) box = grow(box, x, p);
+  return box ? { curve, box: pad(box, 0.06) } : null;
+}
+
+// A colour of its own for each orbit: hues a golden angle apart.
+function orbitColour(k) { return `hsl(${(k * 137.508) % 360}, 70%, 40%)`; }
 
 function drawSection() {
   if (!hasSection()) return;
-  const c = $("section"), ctx = c.getContext("2d");
-  clear(ctx); font(ctx);
-  const x = app.lab.crossings(), n = app.lab.state().length;
+  const { ctx, w, h } = surface("section");
+  const x = app.lab.crossings(), orbits = app.lab.crossingOrbits(), n = app.lab.state().length;
   if (!app.sectionBox) {
-    // Start from the box the energy allows a harmonic well: |x|, |px| <= sqrt(2|E|).
     const r = Math.sqrt(2 * Math.abs(app.lab.energy0())) * 1.2 || 1;
     app.sectionBox = { x0: -r, x1: r, y0: -r, y1: r };
   }
-  for (let i = 0; i < x.length; i += n) app.sectionBox = grow(app.sectionBox, x[i], x[i + 2]);
-  const v = view(c, app.sectionBox, false);
+  // Without a closed edge the view widens to take in crossings outside it.
+  if (!app.boundary) for (let i = 0; i < x.length; i += n) app.sectionBox = grow(app.sectionBox, x[i], x[i + 2]);
+  const v = plotView(w, h, app.sectionBox, false);
   app.sectionView = v;
-  ctx.strokeStyle = "#eee";
-  ctx.beginPath(); ctx.moveTo(v.X(0), 0); ctx.lineTo(v.X(0), c.height); ctx.moveTo(0, v.Y(0)); ctx.lineTo(c.width, v.Y(0)); ctx.stroke();
-  ctx.fillStyle = "#1b4fa0";
-  for (let i = 0; i < x.length; i += n) ctx.fillRect(v.X(x[i]) - 1.5, v.Y(x[i + 2]) - 1.5, 3, 3);
-  const labels = stateLabels();
-  ctx.fillStyle = "#333";
-  ctx.fillText(labels[0], c.width - ctx.measureText(labels[0]).width - 8, c.height - 8);
-  ctx.fillText(labels[2], 8, 20);
+  const labels = stateLabels(), units = stateUnits();
+  drawAxes("section", ctx, v, withUnit(labels[0], units[0]), withUnit(labels[2], units[2]));
+  clip(ctx, v);
+  if (app.boundary) {
+    ctx.strokeStyle = "#444"; ctx.lineWidth = 1.5; ctx.beginPath();
+    app.boundary.curve.forEach(([bx, bp], k) => (k ? ctx.lineTo(v.X(bx), v.Y(bp)) : ctx.moveTo(v.X(bx), v.Y(bp))));
+    ctx.closePath(); ctx.stroke();
+  }
+  // One path per run of crossings of one orbit (they come in orbit order).
+  let i = 0;
+  const count = orbits.length, ids = [];
+  while (i < count) {
+    const o = orbits[i];
+    if (!ids.includes(o)) ids.push(o);
+    ctx.fillStyle = orbitColour(ids.indexOf(o));
+    ctx.beginPath();
+    for (; i < count && orbits[i] === o; i++) ctx.rect(v.X(x[i * n]) - 1.75, v.Y(x[i * n + 2]) - 1.75, 3.5, 3.5);
+    ctx.fill();
+  }
+  ctx.restore();
   $("section-energy").textContent = app.lab.energy0().toPrecision(6);
+  $("section-count").textContent = `${ids.length} orbit${ids.length === 1 ? "" : "s"}, ${count} crossings`;
 }
 
 function draw() {
-  $("time").textContent = app.lab.time().toFixed(3);
+  const tu = timeUnit();
+  $("time").textContent = `${app.lab.time().toFixed(2)}${tu ? ` ${tu}` : ""}`;
   $("energy-error").textContent = app.lab.energyError().toExponential(3);
   drawScene(); drawPhase(); drawEnergy(); drawSection();
 }
@@ -499,82 +1056,119 @@ function draw() {
 
 function canvasPoint(c, ev) {
   const r = c.getBoundingClientRect();
-  return [((ev.clientX - r.left) * c.width) / r.width, ((ev.clientY - r.top) * c.height) / r.height];
+  return [ev.clientX - r.left, ev.clientY - r.top];
 }
 
-// Solves positions(q)[body] = target for q by Gauss–Newton with finite differences, from
-// the current configuration: a small Levenberg term keeps coordinates the dragged body does
-// not depend on where they are (dragging the upper bob leaves the lower rod's angle), and a
-// target out of reach ends at the nearest reachable point.
-function solveConfiguration(q0, body, target) {
-  const q = Array.from(q0), n = q.length;
+// Into (−π, π].
+function wrapAngle(x) { return x - TAU * Math.ceil((x - Math.PI) / TAU); }
+
+// The coordinates that are angles: a turn of 2π leaves every drawn position where it was.
+function angleCoordinates(q) {
+  const p0 = app.lab.positionsOf(q);
+  return q.map((_, j) => {
+    const qq = Array.from(q); qq[j] += TAU;
+    const p = app.lab.positionsOf(qq);
+    // 1e-9 of the size: a turn of 2π costs a few roundings of sin and cos.
+    return p.length === p0.length && p.every((x, i) => Math.abs(x - p0[i]) <= 1e-9 * (1 + Math.abs(p0[i])));
+  });
+}
+
+// The pose whose dragged body is nearest the pointer: Levenberg–Marquardt on |positions(q)
+// [body] − target|² with finite-difference Jacobians, from the current pose, each step
+// accepted only if it brings the body nearer, angles wrapped into (−π, π]. Within reach the
+// body lands on the pointer; out of reach, at the nearest reachable point (arms stretched
+// towards the pointer), never at a wound-up or bent pose.
+function solveConfiguration(q0, body, target, angles) {
+  let q = Array.from(q0).map((x, j) => (angles[j] ? wrapAngle(x) : x));
+  const n = q.length;
   const residual = (qq) => {
-    const [x, y] = project(app.lab.positionsOf(qq))[body];
+    const [x, y] = bodiesOf(app.lab.positionsOf(qq))[body];
     return [x - target[0], y - target[1]];
   };
-  for (let it = 0; it < 20; it++) {
-    const r = residual(q), J = [];
+  const cost = (r) => r[0] * r[0] + r[1] * r[1];
+  let r = residual(q), c = cost(r), mu = 1e-3;
+  for (let it = 0; it < 100 && c > 1e-26; it++) {
+    const J = [];
     for (let j = 0; j < n; j++) {
-      const h = 1e-6 * Math.max(1, Math.abs(q[j]));
-      const qq = q.slice(); qq[j] += h;
+      const hh = 1e-7 * Math.max(1, Math.abs(q[j]));
+      const qq = q.slice(); qq[j] += hh;
       const rr = residual(qq);
-      J.push(rr.map((v, k) => (v - r[k]) / h));
+      J.push(rr.map((v, k) => (v - r[k]) / hh));
     }
-    // Normal equations (J^T J + mu I) dq = -J^T r, solved by Gaussian elimination.
-    const A = Array.from({ length: n }, (_, a) => Array.from({ length: n }, (_, b) =>
-      J[a].reduce((s, v, k) => s + v * J[b][k], 0) + (a === b ? 1e-9 : 0)));
-    const g = Array.from({ length: n }, (_, a) => -J[a].reduce((s, v, k) => s + v * r[k], 0));
-    for (let i = 0; i < n; i++) {
-      for (let k = i + 1; k < n; k++) {
-        const f = A[k][i] / A[i][i];
-        for (let j = i; j < n; j++) A[k][j] -= f * A[i][j];
-        g[k] -= f * g[i];
-      }
+    const JTJ = Array.from({ length: n }, (_, a) => Array.from({ length: n }, (_, b) => J[a][0] * J[b][0] + J[a][1] * J[b][1]));
+    const g = Array.from({ length: n }, (_, a) => -(J[a][0] * r[0] + J[a][1] * r[1]));
+    let improved = false;
+    for (let tries = 0; tries < 30 && !improved; tries++) {
+      const A = JTJ.map((row, a) => row.map((x, b) => x + (a === b ? mu * (1 + JTJ[a][a]) : 0)));
+      const dq = solveLinear(A, g.slice());
+      if (!dq) { mu *= 10; continue; }
+      const qn = q.map((x, j) => (angles[j] ? wrapAngle(x + dq[j]) : x + dq[j]));
+      const rn = residual(qn), cn = cost(rn);
+      if (cn < c) { q = qn; r = rn; mu = Math.max(mu / 5, 1e-12); improved = c - cn > 1e-30; c = cn; if (!improved) break; }
+      else mu *= 5;
     }
-    const dq = new Array(n).fill(0);
-    for (let i = n - 1; i >= 0; i--) {
-      let s = g[i];
-      for (let j = i + 1; j < n; j++) s -= A[i][j] * dq[j];
-      dq[i] = s / A[i][i];
-    }
-    if (!dq.every(Number.isFinite)) break;
-    dq.forEach((d, j) => (q[j] += d));
-    if (Math.hypot(...dq) < 1e-12) break;
+    if (!improved) break;
   }
   return q;
 }
 
+function solveLinear(A, b) {
+  const n = b.length;
+  for (let i = 0; i < n; i++) {
+    let p = i;
+    for (let k = i + 1; k < n; k++) if (Math.abs(A[k][i]) > Math.abs(A[p][i])) p = k;
+    [A[i], A[p]] = [A[p], A[i]]; [b[i], b[p]] = [b[p], b[i]];
+    if (!(Math.abs(A[i][i]) > 1e-300)) return null;
+    for (let k = i + 1; k < n; k++) {
+      const f = A[k][i] / A[i][i];
+      for (let j = i; j < n; j++) A[k][j] -= f * A[i][j];
+      b[k] -= f * b[i];
+    }
+  }
+  const x = new Array(n).fill(0);
+  for (let i = n - 1; i >= 0; i--) {
+    let s = b[i];
+    for (let j = i + 1; j < n; j++) s -= A[i][j] * x[j];
+    x[i] = s / A[i][i];
+  }
+  return x.every(Number.isFinite) ? x : null;
+}
+
 function onScenePointer(ev) {
   const c = $("scene"), v = app.sceneView, pos = app.lab.positions();
-  if (!v || !pos.length || pos.length === 3 || family() === "ode") return;
+  if (!v || !draggable()) return;
   const [px, py] = canvasPoint(c, ev);
   if (ev.type === "pointerdown") {
-    const bodies = project(pos);
+    const bodies = bodiesOf(pos);
     let best = -1, bestD = 30;
     bodies.forEach(([x, y], i) => {
-      const d = Math.hypot(v.X(x) - px, v.Y(y) - py);
+      const bx = kind() === "hoop" ? x * Math.cos(param("omega") * app.lab.time()) : x;
+      const d = Math.hypot(v.X(bx) - px, v.Y(y) - py);
       if (d < bestD) { best = i; bestD = d; }
     });
     if (best < 0) return;
-    c.setPointerCapture(ev.pointerId);
-    app.drag = { body: best };
-    app.sceneFrozen = true;
+    c.setPointerCapture?.(ev.pointerId);
+    const n = ndof();
+    app.drag = { body: best, angles: angleCoordinates(Array.from(app.lab.state().slice(0, n))) };
+    ev.preventDefault();
   } else if (ev.type === "pointermove" && app.drag) {
-    const s = app.lab.state(), n = ndof();
-    const q = solveConfiguration(s.slice(0, n), app.drag.body, v.inv(px, py));
+    const s = app.lab.state(), n = ndof(), target = v.inv(px, py);
+    // The hoop is drawn turned by Ωt: the bead's place on it is the pointer's x over cos Ωt.
+    if (kind() === "hoop") { const c = Math.cos(param("omega") * app.lab.time()); if (Math.abs(c) > 0.2) target[0] /= c; }
+    const q = solveConfiguration(s.slice(0, n), app.drag.body, target, app.drag.angles);
     // A pendulum is let go from rest; an orbiting body keeps its momentum.
     const rest = family() === "lagrangian" ? new Array(n).fill(0) : Array.from(s.slice(n));
     try { app.lab.setState([...q, ...rest]); message(""); } catch (e) { message(e.message); }
     // The view stays put while dragging, so the body stays under the pointer.
-    const box = app.sceneBox;
     clearViews();
-    app.sceneBox = box;
     draw();
   } else if ((ev.type === "pointerup" || ev.type === "pointercancel") && app.drag) {
     app.drag = null;
-    const box = app.sceneBox;
     clearViews();
-    app.sceneBox = box;
+    const box = app.sceneBox;
+    startViews();
+    // A pivot-centred scene keeps its frame; others refit to the new run.
+    if (kind() === "pendulum" || kind() === "hoop") app.sceneBox = box;
     draw();
   }
 }
@@ -590,9 +1184,8 @@ function onSectionClick(ev) {
     message(e.message);
     return;
   }
-  const keep = app.sectionBox;
-  app.trails = []; app.phase = []; app.energy = []; app.rows = []; app.sceneBox = null; app.phaseBox = null;
-  app.sectionBox = keep;
+  app.trails = []; app.phase = []; app.energy = []; app.rows = [];
+  app.extent = probeExtent(); app.sceneBox = sceneBoxFrom(app.extent); app.phaseBox = null;
   record();
   draw();
 }
@@ -611,20 +1204,71 @@ function shareHash() {
   return `#${h.toString()}`;
 }
 
+function quoted(text) {
+  const t = String(text);
+  return `“${t.length > 40 ? `${t.slice(0, 40)}…` : t}”`;
+}
+
+// Opens a share link. Every field is checked; a refused one is named in one line and left
+// at its default. The linked system opens if it exists (else the default, said so).
 function applyHash(hash) {
-  const h = new URLSearchParams(hash.replace(/^#/, ""));
-  const entry = app.catalogue.systems.find((s) => s.name === h.get("system"));
-  if (!entry) return false;
-  selectSystem(entry.name, JSON.parse(h.get("params") || "{}"), false);
-  if (h.get("method")) fillMethods(h.get("method"));
-  if (h.get("dt")) {
-    const dt = Number(h.get("dt"));
-    if (![...$("dt").options].some((o) => Number(o.value) === dt)) $("dt").append(new Option(String(dt), String(dt)));
-    $("dt").value = String(dt);
+  let h;
+  try { h = new URLSearchParams(hash.replace(/^#/, "")); } catch { h = new URLSearchParams(); }
+  const refused = [];
+  const fallback = app.catalogue.systems.find((s) => s.name === DEFAULT_SYSTEM) ?? app.catalogue.systems[0];
+  let entry = app.catalogue.systems.find((s) => s.name === h.get("system"));
+  if (!entry) {
+    if (h.has("system")) refused.push(`no system called ${quoted(h.get("system"))}, so ${systemTitle(fallback).toLowerCase()} opened`);
+    entry = fallback;
   }
-  if (h.get("steps")) { $("speed").value = h.get("steps"); $("speed-out").textContent = $("speed").value; }
-  const state = h.get("state") ? h.get("state").split(",").map(Number) : null;
-  return rebuild(state);
+  // Parameters: kept one by one, each only if the system builds with it.
+  let params = {};
+  const raw = h.get("params");
+  if (raw !== null && raw !== "") {
+    let parsed;
+    try { parsed = JSON.parse(raw); } catch { refused.push("the parameters (not readable)"); }
+    if (parsed !== undefined && (parsed === null || typeof parsed !== "object" || Array.isArray(parsed))) {
+      refused.push("the parameters (not a set of named values)");
+    } else if (parsed !== undefined) {
+      for (const [k, val] of Object.entries(parsed)) {
+        const trial = { ...params, [k]: val };
+        try { app.core.build(entry.name, trial).free(); params = trial; } catch (e) { refused.push(`${quoted(k)}: ${e.message}`); }
+      }
+    }
+  }
+  selectSystem(entry.name, params, false);
+  const method = h.get("method");
+  if (method !== null) {
+    if (offeredMethods().includes(method)) fillMethods(method);
+    else refused.push(`method ${quoted(method)} (not one this system runs in the lab)`);
+  }
+  const dtText = h.get("dt");
+  if (dtText !== null) {
+    const dt = Number(dtText);
+    if (dtText.trim() !== "" && Number.isFinite(dt) && dt >= MIN_DT && dt <= MAX_DT) {
+      if (![...$("dt").options].some((o) => Number(o.value) === dt)) $("dt").append(new Option(String(dt), String(dt)));
+      $("dt").value = String(dt);
+    } else refused.push(`dt = ${quoted(dtText)} (a step from ${MIN_DT} to ${MAX_DT})`);
+  }
+  const stepsText = h.get("steps");
+  if (stepsText !== null) {
+    const n = Number(stepsText), max = Number($("speed").max);
+    if (Number.isInteger(n) && n >= 1 && n <= max) { $("speed").value = n; $("speed-out").textContent = n; }
+    else refused.push(`steps = ${quoted(stepsText)} (a whole number from 1 to ${max})`);
+  }
+  let state = null;
+  const stateText = h.get("state");
+  if (stateText !== null && stateText !== "") {
+    const values = stateText.split(",").map((x) => (x.trim() === "" ? NaN : Number(x)));
+    if (!values.every(Number.isFinite)) refused.push(`the start (${quoted(stateText)} holds a value that is not a finite number)`);
+    else state = values;
+  }
+  if (!rebuild(state, true)) {
+    refused.push(`the start (${$("message").textContent})`);
+    rebuild(null, true);
+  }
+  message(refused.length ? `From the link, refused: ${refused.join("; ")}.` : "");
+  return refused.length === 0;
 }
 
 function download(name, text, type) {
@@ -640,16 +1284,33 @@ function runData() {
   return { columns, rows: app.rows };
 }
 
+// The run as JSON: setup, the recorded rows and, with a section, every crossing with the
+// number of the orbit it belongs to.
+function exportData() {
+  const { columns, rows } = runData();
+  const out = {
+    system: app.entry.name, params: app.params, method: $("method").value, dt: Number($("dt").value),
+    initial_state: Array.from(app.lab.initialState()), columns, rows,
+  };
+  if (hasSection()) {
+    const x = Array.from(app.lab.crossings()), o = Array.from(app.lab.crossingOrbits()), n = app.lab.state().length;
+    out.section = {
+      coordinate: 1, value: 0, energy: app.lab.energy0(), columns: stateLabels(),
+      crossings: o.map((orbit, i) => ({ orbit, state: x.slice(i * n, (i + 1) * n) })),
+    };
+  }
+  return out;
+}
+
 // ---------- wiring ----------
 
 function selectSystem(name, params = {}, build = true) {
   app.entry = app.catalogue.systems.find((s) => s.name === name);
   $("system").value = name;
   app.params = { ...params };
-  const note = app.entry.note ? ` ${app.entry.note}` : "";
-  $("caption").textContent = `${app.entry.summary}.${note}`;
+  $("caption").textContent = `${app.entry.summary_text}.${app.entry.note_text ? ` ${app.entry.note_text[0].toUpperCase()}${app.entry.note_text.slice(1)}.` : ""}`;
   // The physics paragraph: the gallery's text for this system, from the catalogue JSON.
-  $("physics").textContent = app.entry.physics ?? "";
+  $("physics").textContent = app.entry.physics_text ?? app.entry.physics ?? "";
   $("about").hidden = !app.entry.physics;
   fillParams();
   setControlValues();
@@ -657,6 +1318,8 @@ function selectSystem(name, params = {}, build = true) {
   fillMethods(null);
   if (build) rebuild();
 }
+
+function restartRun() { app.lab.reset(); startViews(); draw(); }
 
 async function main() {
   const bytes = await (await fetch("physicskit_wasm.wasm")).arrayBuffer();
@@ -670,13 +1333,13 @@ async function main() {
   $("system").onchange = () => selectSystem($("system").value);
   $("method").onchange = () => {
     describeMethod();
-    try { app.lab.setMethod($("method").value); app.lab.reset(); clearViews(); draw(); } catch (e) { message(e.message); }
+    try { app.lab.setMethod($("method").value); restartRun(); } catch (e) { message(e.message); }
   };
-  $("dt").onchange = () => { app.lab.reset(); clearViews(); draw(); };
+  $("dt").onchange = () => restartRun();
   $("speed").oninput = () => { $("speed-out").textContent = $("speed").value; };
   $("run").onclick = () => setRunning(!app.running);
   $("step").onclick = () => { setRunning(false); frame(); draw(); };
-  $("reset").onclick = () => { app.lab.reset(); clearViews(); draw(); };
+  $("reset").onclick = () => restartRun();
   $("share").onclick = async () => {
     const url = `${location.href.split("#")[0]}${shareHash()}`;
     history.replaceState(null, "", url);
@@ -686,19 +1349,26 @@ async function main() {
     const { columns, rows } = runData();
     download(`${app.entry.name}.csv`, [columns.join(","), ...rows.map((r) => r.join(","))].join("\n") + "\n", "text/csv");
   };
-  $("json").onclick = () => {
-    const { columns, rows } = runData();
-    download(`${app.entry.name}.json`, JSON.stringify({ system: app.entry.name, params: app.params,
-      method: $("method").value, dt: Number($("dt").value), initial_state: Array.from(app.lab.initialState()),
-      columns, rows }), "application/json");
-  };
+  $("json").onclick = () => download(`${app.entry.name}.json`, JSON.stringify(exportData()), "application/json");
   $("large").onchange = () => { document.body.classList.toggle("large", $("large").checked); draw(); };
-  $("phase-x").onchange = $("phase-y").onchange = () => { app.phase = []; app.phaseBox = null; record(); draw(); };
+  $("phase-x").onchange = $("phase-y").onchange = () => { app.phase = []; app.phaseBox = null; sample(); draw(); };
   $("section-clear").onclick = () => { app.lab.clearCrossings(); draw(); };
-  $("section-on").onchange = () => rebuild(Array.from(app.lab.state()));
+  $("section-on").onchange = () => rebuild(Array.from(app.lab.initialState()));
   for (const t of ["pointerdown", "pointermove", "pointerup", "pointercancel"]) $("scene").addEventListener(t, onScenePointer);
   $("section").addEventListener("click", onSectionClick);
-  if (!(location.hash && applyHash(location.hash))) selectSystem(app.catalogue.systems[0].name);
+  // Space runs and pauses, unless a control that takes typing or space has the focus.
+  document.addEventListener("keydown", (ev) => {
+    const tag = ev.target?.tagName;
+    if (ev.code === "Space" && !["INPUT", "SELECT", "TEXTAREA", "BUTTON", "SUMMARY"].includes(tag)) {
+      ev.preventDefault();
+      setRunning(!app.running);
+    }
+  });
+  new ResizeObserver(() => { if (app.lab) draw(); }).observe($("views"));
+  if (location.hash) applyHash(location.hash);
+  else selectSystem((app.catalogue.systems.find((s) => s.name === DEFAULT_SYSTEM) ?? app.catalogue.systems[0]).name);
+  // The page opens running.
+  setRunning(true);
   requestAnimationFrame(loop);
 }
 
@@ -707,15 +1377,23 @@ window.physicskitLab = {
   app,
   ready: main().catch((e) => { message(`Could not start: ${e.message}`); throw e; }),
   select: (name) => { setRunning(false); selectSystem(name); },
+  pause: () => setRunning(false),
+  restart: () => { setRunning(false); restartRun(); },
   runFrames: (n) => { setRunning(false); for (let i = 0; i < n; i++) if (!frame()) return false; draw(); return true; },
   shareHash: () => shareHash(),
   openHash: (hash) => { setRunning(false); return applyHash(hash); },
+  exportJson: () => JSON.parse(JSON.stringify(exportData())),
+  ticks: () => JSON.parse(JSON.stringify(app.ticks)),
   bodiesOnScreen: () => {
     const c = $("scene"), r = c.getBoundingClientRect(), v = app.sceneView;
-    return project(app.lab.positions()).map(([x, y]) => [r.left + (v.X(x) * r.width) / c.width, r.top + (v.Y(y) * r.height) / c.height]);
+    return bodiesOf(app.lab.positions()).map(([x, y]) => [r.left + v.X(x), r.top + v.Y(y)]);
+  },
+  sceneAt: (clientX, clientY) => {
+    const r = $("scene").getBoundingClientRect();
+    return app.sceneView.inv(clientX - r.left, clientY - r.top);
   },
   sectionToScreen: (x, px) => {
-    const c = $("section"), r = c.getBoundingClientRect(), v = app.sectionView;
-    return [r.left + (v.X(x) * r.width) / c.width, r.top + (v.Y(px) * r.height) / c.height];
+    const r = $("section").getBoundingClientRect(), v = app.sectionView;
+    return [r.left + v.X(x), r.top + v.Y(px)];
   },
 };

@@ -95,6 +95,18 @@ class Lab {
     const x = this.core.x;
     return this.core.f64(x.pk_crossings_ptr(this.h), x.pk_crossings_len(this.h));
   }
+  /** The orbit number of each crossing (equal numbers: one orbit). */
+  crossingOrbits() {
+    const x = this.core.x;
+    return new Uint32Array(x.memory.buffer, x.pk_crossing_orbits_ptr(this.h), x.pk_crossing_orbits_len(this.h));
+  }
+  /** The energy of any state of this system. */
+  energyOf(values) {
+    this.core.putF64(values);
+    const e = this.core.x.pk_energy_of(this.h, values.length);
+    if (Number.isNaN(e)) throw new Error(this.core.error());
+    return e;
+  }
   time() {
     return this.core.x.pk_time(this.h);
   }

@@ -23,9 +23,11 @@ __all__ = [
     "ensemble",
     "expr_lagrangian",
     "expr_ode",
+    "eulers_disk_theta_analytic",
     "expr_validate",
     "find_theta_equilibrium",
     "force_jacobian",
+    "foucault_analytic_solution",
     "integrate_hamiltonian",
     "integrate_ode",
     "methods",
@@ -83,7 +85,8 @@ class _ParamInfo(TypedDict):
 
 class _DrawingInfo(TypedDict, total=False):
     kind: Literal[
-        "bobs", "hoop", "swarm", "chain", "orbit", "inertia_box", "top_axis", "plots"
+        "bobs", "hoop", "swarm", "chain", "orbit", "inertia_box", "top_axis", "swing",
+        "contact_spiral", "spin", "plots",
     ]
     fixed_ends: bool
     """Chains: both ends held by walls."""
@@ -270,6 +273,12 @@ def pendulum_action_angle(E: float, g_over_l: float) -> tuple[float, float]:
 
 def precession_frequency(p_phi: float, p_psi: float, I1: float, theta_eq: float) -> float:
     """Steady-precession rate at `theta_eq`."""
+
+def foucault_analytic_solution(q0: _ArrayF64, v0: _ArrayF64, omega0: float, omega_z: float, t: _ArrayF64) -> tuple[_ArrayF64, _ArrayF64]:
+    """The exact (x(t), y(t)) of Foucault's pendulum (`FoucaultPendulum::analytic_solution`)."""
+
+def eulers_disk_theta_analytic(t: _ArrayF64, theta0: float, decay_rate: float) -> _ArrayF64:
+    """theta(t) of the reduced Euler's disk, zero after the collapse."""
 
 def projectile_analytic_trajectory(speed: float, angle_deg: float, g: float, t: _ArrayF64, height: float) -> tuple[_ArrayF64, _ArrayF64]:
     """Galileo's parabola `(x(t), y(t))`."""

@@ -1,11 +1,14 @@
 //! Functions that take no system: closed forms and analyses of the built-in systems
 //! (pendulum action-angle variables, the heavy top's effective potential, the projectile's
-//! vacuum trajectory, sine-Gordon kink initial data). Each is a thin shell: numpy in, slices
+//! vacuum trajectory, Foucault's pendulum, the reduced Euler's disk, sine-Gordon kink initial
+//! data). Each is a thin shell: numpy in, slices
 //! to the core function, numpy out.
 
 use numpy::{PyArray1, PyReadonlyArray1};
 use physicskit::classical::analysis;
-use physicskit::classical::systems::{ProjectileMotion, SineGordonChain};
+use physicskit::classical::systems::{
+    eulers_disk_theta_analytic as disk_theta, FoucaultPendulum, ProjectileMotion, SineGordonChain,
+};
 use pyo3::prelude::*;
 
 use crate::convert::to_vec;
@@ -28,6 +31,42 @@ pub fn projectile_analytic_trajectory<'py>(
     let (x, y) =
         ProjectileMotion::analytic_trajectory(speed, angle_deg, g, &to_vec(&t), height).py()?;
     Ok((PyArray1::from_vec(py, x), PyArray1::from_vec(py, y)))
+}
+
+/// `FoucaultPendulum.analytic_solution`: the exact `(x(t), y(t))` of the pendulum's
+/// equations.
+#[pyfunction]
+pub fn foucault_analytic_solution<'py>(
+    py: Python<'py>,
+    q0: Arr<'_>,
+    v0: Arr<'_>,
+    omega0: f64,
+    omega_z: f64,
+    t: Arr<'_>,
+) -> PyResult<Pair<'py>> {
+    let (x, y) = FoucaultPendulum::analytic_solution(
+        &to_vec(&q0),
+        &to_vec(&v0),
+        omega0,
+        omega_z,
+        &to_vec(&t),
+    )
+    .py()?;
+    Ok((PyArray1::from_vec(py, x), PyArray1::from_vec(py, y)))
+}
+
+/// `eulers_disk_theta_analytic`: the reduced Euler's disk's `theta(t)`.
+#[pyfunction]
+pub fn eulers_disk_theta_analytic<'py>(
+    py: Python<'py>,
+    t: Arr<'_>,
+    theta0: f64,
+    decay_rate: f64,
+) -> PyResult<Bound<'py, PyArray1<f64>>> {
+    Ok(PyArray1::from_vec(
+        py,
+        disk_theta(&to_vec(&t), theta0, decay_rate).py()?,
+    ))
 }
 
 /// Vacuum range and maximum height.
@@ -134,6 +173,8 @@ pub fn register(m: &Bound<'_, PyModule>) -> PyResult<()> {
     add!(
         projectile_analytic_trajectory,
         projectile_range_and_max_height,
+        foucault_analytic_solution,
+        eulers_disk_theta_analytic,
         sine_gordon_kink,
         pendulum_action_angle,
         effective_potential_symmetric_top,

@@ -81,7 +81,22 @@ GOOD_CALLS = {
                           dict(I1=1.0, I3=0.5, M=1.0, l=1.0, g=9.81)),
     "TodaLattice": (pc.TodaLattice, ([0.0, 0.3, -0.2], [0.5, 0.0, -0.5]), dict(a=1.0, b=1.0)),
     "ElasticPendulum": (pc.ElasticPendulum, ([1.2, 0.3], [0.0, 0.1]),
-                        dict(m=1.0, k=40.0, l0=1.0, g=9.81)),
+                        dict(m=1.0, k=40.0, L0=1.0, g=9.81)),
+    "FoucaultPendulum": (pc.FoucaultPendulum, ([1.0, 0.0], [0.0, 0.1]),
+                         dict(length=67.0, g=9.81, latitude_deg=48.85, omega_earth=7.3e-5)),
+    "FoucaultPendulum.from_deflection": (pc.FoucaultPendulum.from_deflection, (1.0, 30.0),
+                                         dict(length=67.0, g=9.81, latitude_deg=48.85,
+                                              omega_earth=7.3e-5)),
+    "FoucaultPendulum.analytic_solution": (pc.FoucaultPendulum.analytic_solution,
+                                           ([1.0, 0.0], [0.0, 0.1], 0.4, 5e-5, [0.0, 1.0]), {}),
+    "EulersDisk": (pc.EulersDisk, (0.5,),
+                   dict(phi0=0.0, decay_rate=0.05, precession_const=1.0, theta_floor=1e-3)),
+    "eulers_disk_theta_analytic": (pc.eulers_disk_theta_analytic, ([0.0, 1.0], 0.5, 0.05), {}),
+    "Rattleback": (pc.Rattleback, ([0.01, 0.01, 3.0],),
+                   dict(I1=1.0, I2=1.5, I3=2.0, gamma=1.0, mu=0.01, eta=0.01)),
+    "RollingRattleback": (pc.RollingRattleback, ([0.0, 0.0, -5.0],),
+                          dict(a=0.2, b=0.03, c=0.02, h=0.01, m=1.0)),
+    "RollingDisk": (pc.RollingDisk, ([0.0, 0.0, 10.0],), dict(a=0.05, m=1.0, g=9.81)),
     "effective_potential_symmetric_top": (pc.effective_potential_symmetric_top,
                                           ([0.3, 0.5], 1.0, 2.0, 1.0, 0.5, 1.0), {}),
     "find_theta_equilibrium": (pc.find_theta_equilibrium, (1.0, 2.0, 1.0, 0.5, 1.0), {}),
@@ -154,7 +169,7 @@ INT_PARAMS = {"n", "mode", "seed", "polarity", "stride", "coordinate", "directio
 BOOL_PARAMS = {"energy_error", "progress", "max_lyapunov", "sali", "final_state"}
 
 #: Parameters that take an array; the rest take a real number.
-ARRAY_PARAMS = {"q0", "p0", "qdot0", "theta0", "thetadot0", "omega0", "quat0", "state0",
+ARRAY_PARAMS = {"q0", "p0", "v0", "n0", "qdot0", "theta0", "thetadot0", "omega0", "quat0", "state0",
                 "state", "q", "p", "qdot", "theta", "t", "y0"}
 
 

@@ -72,7 +72,7 @@ def test_toda_refuses_bad_input():
 
 def test_elastic_pendulum_equations_and_positions():
     m, k, l0, g = 1.3, 25.0, 0.8, 9.81
-    bob = pc.ElasticPendulum([1.1, 0.4], [0.2, -0.5], m=m, k=k, l0=l0, g=g)
+    bob = pc.ElasticPendulum([1.1, 0.4], [0.2, -0.5], m=m, k=k, L0=l0, g=g)
     (r, th), (rd, thd) = bob.q, bob.qdot
     # Hand-derived Euler-Lagrange equations of L = m (rd^2 + r^2 thd^2)/2 + m g r cos th
     # - k (r - l0)^2/2.

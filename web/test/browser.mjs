@@ -5,10 +5,16 @@
 //   - the energy-error readout against the native run (the text, and the number behind it
 //     within the wasm/native bound of node_compare.mjs);
 //   - the scene canvas is not blank and changes between frames;
-//   - the physics paragraph shown is the catalogue's `physics` text (hidden when none);
+//   - the physics paragraph shown is the catalogue's `physics_text` (hidden when none);
+//   - axes on every canvas shown (the tick labels the page drew, which it exposes);
+//   - no code in the page's text (a denylist: `::`, `--`, `^`, `thetadot`, "as in the spec");
 // then: a share link round trip (a dragged start, reopened in a new page, runs to the same
-// bits), one drag of the double pendulum's lower bob, one click on the Hénon–Heiles section,
-// and no console errors. Screenshots of three systems go to the given directory.
+// bits), hostile share links (each opens a valid page and names what it refused), a drag of
+// the double pendulum's lower bob within reach and one far out of reach (a reachable pose,
+// angles in (−π, π]), three orbits launched on the Hénon–Heiles section (the crossings of all
+// three stay, read from the JSON export), the keyboard, the page at 390 px wide (no sideways
+// scroll, the scene and Run on the first screen), and no console errors. Screenshots of
+// every system, desktop and phone, go to the given directory.
 //
 //   node web/test/browser.mjs SITE_DIR NATIVE_OUTPUT SCREENSHOT_DIR
 import { readFileSync, mkdirSync } from "node:fs";
@@ -50,11 +56,43 @@ const sceneInk = (page) => page.evaluate(() => {
 
 const page = await open();
 const systems = await page.evaluate(() => window.physicskitLab.app.catalogue.systems.map((s) => [s.name, s.default_method]));
-const SHOTS = ["double-pendulum", "henon-heiles", "pendulum-swarm", "heavy-top"];
-for (const [name, method] of systems) {
+// Text a person should never meet in the page: code, flags, ASCII powers, notes to developers.
+const DENYLIST = ["::", "--", "^", "thetadot", "as in the spec"];
+const pageText = (p) => p.evaluate(() => {
+  const parts = [document.body.innerText];
+  for (const o of document.querySelectorAll("option")) parts.push(o.textContent);
+  for (const e of document.querySelectorAll("[aria-label], [title], [placeholder]")) {
+    parts.push(e.getAttribute("aria-label") ?? "", e.getAttribute("title") ?? "", e.getAttribute("placeholder") ?? "");
+  }
+  for (const t of Object.values(window.physicskitLab.ticks())) parts.push(t.xLabel, t.yLabel, ...t.x, ...t.y);
+  return parts.join("\n");
+});
+// Axes: every canvas shown has tick labels on both axes (a plot at least two a side).
+async function checkAxes(p, name) {
+  const { ticks, shown } = await p.evaluate(() => ({
+    ticks: window.physicskitLab.ticks(),
+    shown: [...document.querySelectorAll("canvas")].filter((c) => c.offsetParent !== null).map((c) => c.id),
+  }));
+  for (const id of shown) {
+    const t = ticks[id], least = id === "scene" ? 1 : 2;
+    if (!t || t.x.length < least || t.y.length < least || !t.xLabel || !t.yLabel) fail(`${name}: no axes on the ${id} canvas (${JSON.stringify(t)})`);
+  }
+}
+async function checkWords(p, name) {
+  const text = await pageText(p);
+  for (const bad of DENYLIST) {
+    const at = text.indexOf(bad);
+    if (at >= 0) fail(`${name}: the page shows ${JSON.stringify(bad)} in ${JSON.stringify(text.slice(Math.max(0, at - 40), at + 40))}`);
+  }
+}
+const DRAGGABLE = [];
+for (let [name, method] of systems) {
   await page.evaluate((n) => window.physicskitLab.select(n), name);
   const before = await sceneInk(page);
   const ok = await page.evaluate(() => window.physicskitLab.runFrames(4));
+  // The page runs the catalogue's default method, or the first fixed-step one if that is
+  // adaptive (a frame-by-frame run cannot take an adaptive step).
+  method = await page.evaluate(() => document.getElementById("method").value);
   const after = await sceneInk(page);
   const readout = await page.locator("#energy-error").textContent();
   const exact = await page.evaluate(() => window.physicskitLab.app.lab.energyError());
@@ -71,16 +109,18 @@ for (const [name, method] of systems) {
   // A system at rest (the sine-Gordon chain's zero state) has nothing to move.
   const atRest = await page.evaluate(() => window.physicskitLab.app.lab.state().every((x) => x === 0));
   if (after.hash === before.hash && !atRest) fail(`${name}: scene did not change between frames`);
-  // The physics paragraph shown is the catalogue's (the gallery's text for the system, checked
+  // The physics paragraph shown is the catalogue's, with its powers as superscripts (the
+  // gallery's text for the system, checked
   // against the rendered gallery in crates/physicskit-viz/tests/gallery.rs), shown only if any.
-  const physics = await page.evaluate(() => window.physicskitLab.app.entry.physics);
+  const physics = await page.evaluate(() => window.physicskitLab.app.entry.physics_text);
   const shown = await page.locator("#about").isVisible() ? await page.locator("#physics").textContent() : null;
   if (shown !== physics) fail(`${name}: physics paragraph ${JSON.stringify(shown)?.slice(0, 60)} vs catalogue ${JSON.stringify(physics)?.slice(0, 60)}`);
-  console.log(`ok ${name} (${method}): energy error ${readout}, ${after.ink} inked pixels`);
-  if (SHOTS.includes(name)) {
-    await page.evaluate(() => window.physicskitLab.runFrames(120));
-    await page.screenshot({ path: join(shots, `${name}.png`), fullPage: true });
-  }
+  await checkAxes(page, name);
+  await checkWords(page, name);
+  console.log(`ok ${name} (${method}): energy error ${readout}, ${after.ink} inked pixels, axes, words`);
+  await page.evaluate(() => window.physicskitLab.runFrames(120));
+  await page.screenshot({ path: join(shots, `${name}.png`), fullPage: true });
+  if (await page.locator("#drag-hint").isVisible()) DRAGGABLE.push(name);
 }
 
 // Drag the double pendulum's lower bob 80 px to the left (towards the pivot, within reach): the state must change, the
@@ -111,7 +151,8 @@ const first = await page.evaluate(() => [Array.from(window.physicskitLab.app.lab
 const page2 = await open(hash);
 const opened = await page2.evaluate(() => [window.physicskitLab.app.entry.name, document.getElementById("method").value,
   Array.from(window.physicskitLab.app.lab.initialState())]);
-await page2.evaluate(() => window.physicskitLab.runFrames(4));
+// The page opens running: pause and start the run over before stepping it.
+await page2.evaluate(() => { window.physicskitLab.restart(); window.physicskitLab.runFrames(4); });
 const second = await page2.evaluate(() => [Array.from(window.physicskitLab.app.lab.state()), window.physicskitLab.app.lab.energyError()]);
 if (opened[0] !== "double-pendulum" || opened[1] !== "rk4") fail(`share: opened ${opened[0]} with ${opened[1]}`);
 if (JSON.stringify(opened[2]) !== JSON.stringify(q1)) fail("share: initial state differs");
@@ -119,38 +160,160 @@ if (JSON.stringify(second) !== JSON.stringify(first)) fail("share: the reopened 
 console.log(`ok share link: ${hash.length} characters, reopened run identical`);
 await page2.close();
 
-// Hénon–Heiles: a click on the section at (x, px) = (0.1, 0) launches an orbit there at the
-// same energy (y = 0, py > 0 solved), and its crossings accumulate.
+// Drag out of reach: the lower bob pulled to a point farther from the pivot than the two
+// rods reach. The pose must be the nearest reachable one: both rods in line, pointing at the
+// pointer, the bob at distance l1 + l2 = 2 m (the defaults), angles in (−π, π].
+await page.evaluate(() => window.physicskitLab.select("double-pendulum"));
+{
+  const [, b] = await page.evaluate(() => window.physicskitLab.bodiesOnScreen());
+  const box = await page.locator("#scene").boundingBox();
+  // The plot's upper-left corner region: about 3 m from the pivot in the 2.4 m-high view.
+  const target = [box.x + 70, box.y + 12];
+  await page.mouse.move(b[0], b[1]);
+  await page.mouse.down();
+  await page.mouse.move((b[0] + target[0]) / 2, (b[1] + target[1]) / 2, { steps: 5 });
+  await page.mouse.move(target[0], target[1], { steps: 5 });
+  const want = await page.evaluate(([x, y]) => window.physicskitLab.sceneAt(x, y), target);
+  await page.mouse.up();
+  const q = await page.evaluate(() => Array.from(window.physicskitLab.app.lab.state()));
+  const pos = await page.evaluate(() => Array.from(window.physicskitLab.app.lab.positions()));
+  const reach = Math.hypot(pos[2], pos[3]), dist = Math.hypot(...want);
+  if (!(dist > 2.2)) fail(`drag out of reach: the target ${want} is only ${dist} m from the pivot`);
+  // The nearest reachable point: the solve stops when a step no longer lowers the distance,
+  // which at the stretched pose leaves ~1e-8 of the 2 m (finite-difference Jacobian).
+  if (Math.abs(reach - 2) > 1e-6) fail(`drag out of reach: bob ${reach} m from the pivot, not 2 m`);
+  const dir = Math.atan2(want[1], want[0]) - Math.atan2(pos[3], pos[2]);
+  if (Math.abs(Math.atan2(Math.sin(dir), Math.cos(dir))) > 1e-5) fail(`drag out of reach: bob not towards the pointer (${dir} rad off)`);
+  for (const a of q.slice(0, 2)) if (!(a > -Math.PI && a <= Math.PI)) fail(`drag out of reach: angle ${a} outside (−π, π]`);
+  if (Math.abs(Math.atan2(Math.sin(q[0] - q[1]), Math.cos(q[0] - q[1]))) > 1e-5) fail(`drag out of reach: rods bent (${q[0]}, ${q[1]})`);
+  const link = await page.evaluate(() => window.physicskitLab.shareHash());
+  const linkState = new URLSearchParams(link.slice(1)).get("state").split(",").map(Number);
+  if (linkState.slice(0, 2).some((a) => !(a > -Math.PI && a <= Math.PI))) fail(`drag out of reach: the link carries ${linkState}`);
+  console.log(`ok drag out of reach: angles ${q.slice(0, 2).map((x) => x.toFixed(4))}, bob ${reach.toFixed(9)} m from the pivot`);
+  await page.screenshot({ path: join(shots, "double-pendulum-dragged-out-of-reach.png"), fullPage: true });
+}
+
+// Hostile share links: each opens a page with controls, the linked system if it exists (else
+// the default), valid values, and one line naming what was refused.
+const HOSTILE = [
+  ["#system=henon-heiles&params=not-json", "henon-heiles", "parameters"],
+  ["#system=double-pendulum&state=NaN,1,2,3", "double-pendulum", "start"],
+  ["#system=pendulum-swarm&params=%7B%22n%22%3A1e12%7D", "pendulum-swarm", "“n”"],
+  ["#system=double-pendulum&dt=-1", "double-pendulum", "dt"],
+  ["#system=no-such-system", "double-pendulum", "no system called"],
+  ["#system=double-pendulum&state=0.1,0.2", "double-pendulum", "start"],
+  ["#system=double-pendulum&steps=1000000000", "double-pendulum", "steps"],
+  ["#system=double-pendulum&method=warp-drive", "double-pendulum", "method"],
+  ["#system=kepler&params=%7B%22%3Cimg%20src%3Dx%20onerror%3Dalert(1)%3E%22%3A1%7D", "kepler", "<img src=x"],
+];
+for (const [hash, system, named] of HOSTILE) {
+  const p = await open(hash);
+  const got = await p.evaluate(() => {
+    const lab = window.physicskitLab.app.lab;
+    return {
+      system: window.physicskitLab.app.entry.name,
+      message: document.getElementById("message").textContent,
+      controls: document.querySelectorAll("#params .param").length + document.querySelectorAll("#method option").length,
+      dtOptions: [...document.getElementById("dt").options].map((o) => Number(o.value)),
+      steps: Number(document.getElementById("speed").value),
+      state: Array.from(lab.state()),
+      images: document.querySelectorAll("img").length,
+    };
+  });
+  const why = `link ${hash}`;
+  if (got.system !== system) fail(`${why}: opened ${got.system}, not ${system}`);
+  if (!got.message.includes(named)) fail(`${why}: the message ${JSON.stringify(got.message)} does not name ${named}`);
+  if (got.message.split("\n").length !== 1 || !got.message.startsWith("From the link, refused")) fail(`${why}: message ${JSON.stringify(got.message)}`);
+  if (got.controls < 2) fail(`${why}: a page without controls`);
+  if (got.dtOptions.some((d) => !(d > 0 && Number.isFinite(d)))) fail(`${why}: the dt menu offers ${got.dtOptions}`);
+  if (!(got.steps >= 1 && got.steps <= 400)) fail(`${why}: ${got.steps} steps a frame`);
+  if (!got.state.every(Number.isFinite)) fail(`${why}: state ${got.state}`);
+  if (got.images) fail(`${why}: HTML from the link became ${got.images} image element(s)`);
+  // And it runs.
+  const ran = await p.evaluate(() => { window.physicskitLab.restart(); return window.physicskitLab.runFrames(3); });
+  if (!ran) fail(`${why}: the opened page does not run`);
+  console.log(`ok hostile link ${hash.slice(0, 60)}: ${got.message.slice(0, 110)}`);
+  await p.close();
+}
+
+// Hénon–Heiles: three clicks on the section launch three orbits at the same energy (y = 0,
+// py > 0 solved); each runs 80 time units. The crossings of all three stay, each orbit with
+// its own number, read from the JSON export.
 await page.evaluate(() => window.physicskitLab.select("henon-heiles"));
 const e0 = await page.evaluate(() => window.physicskitLab.app.lab.energy0());
-const [cx, cy] = await page.evaluate(() => window.physicskitLab.sectionToScreen(0.1, 0.0));
-await page.mouse.click(cx, cy);
-const s = await page.evaluate(() => Array.from(window.physicskitLab.app.lab.state()));
-const [lx, ly] = await page.evaluate(([x, px]) => window.physicskitLab.sectionToScreen(x, px), [s[0], s[2]]);
-// The orbit starts where the click was, to a screen pixel (the mouse position is whole CSS
-// pixels); y exactly on the section, py > 0 (the section's direction).
-if (Math.hypot(lx - cx, ly - cy) > 1 || s[1] !== 0 || !(s[3] > 0)) fail(`section: launched at ${s}, on screen ${[lx, ly]} vs click ${[cx, cy]}`);
-const e1 = await page.evaluate(() => window.physicskitLab.app.lab.energy());
-// The solved py puts the energy on E0 to the last bits of the bisection.
-if (Math.abs(e1 - e0) > 1e-14) fail(`section: energy ${e1} vs ${e0}`);
-// 200 frames of 400 steps of 1e-3: 80 time units, about 12 periods of the x oscillation
-// (2 pi), so about a dozen upward crossings of y = 0.
-await page.evaluate(() => { document.getElementById("speed").value = 400; window.physicskitLab.runFrames(200); });
-const crossings = await page.evaluate(() => window.physicskitLab.app.lab.crossings().length / 4);
-if (crossings < 5) fail(`section: ${crossings} crossings after 80 time units`);
-console.log(`ok section click: launched at x = ${s[0].toFixed(4)}, px = ${s[2].toFixed(4)}, ${crossings} crossings`);
-await page.screenshot({ path: join(shots, "henon-heiles-section.png"), fullPage: true });
+const clicks = [[0.1, 0.0], [-0.2, 0.05], [0.0, 0.25]];
+for (const [k, [x, px]] of clicks.entries()) {
+  await page.locator("#section").scrollIntoViewIfNeeded();
+  const [cx, cy] = await page.evaluate(([a, b]) => window.physicskitLab.sectionToScreen(a, b), [x, px]);
+  await page.mouse.click(cx, cy);
+  const s = await page.evaluate(() => Array.from(window.physicskitLab.app.lab.state()));
+  const [lx, ly] = await page.evaluate(([a, b]) => window.physicskitLab.sectionToScreen(a, b), [s[0], s[2]]);
+  // The orbit starts where the click was, to a screen pixel (the mouse position is whole CSS
+  // pixels, truncated: under √2 px off); y exactly on the section, py > 0 (the section's
+  // direction).
+  if (Math.hypot(lx - cx, ly - cy) > 1.5 || s[1] !== 0 || !(s[3] > 0)) fail(`section click ${k}: launched at ${s}, on screen ${[lx, ly]} vs click ${[cx, cy]}`);
+  const e1 = await page.evaluate(() => window.physicskitLab.app.lab.energy());
+  // The solved py puts the energy on E0 to the last bits of the bisection.
+  if (Math.abs(e1 - e0) > 1e-14) fail(`section click ${k}: energy ${e1} vs ${e0}`);
+  // 200 frames of 400 steps of 1e-3: 80 time units, about 12 periods of the x oscillation
+  // (2 pi), so about a dozen upward crossings of y = 0.
+  await page.evaluate(() => { document.getElementById("speed").value = 400; window.physicskitLab.runFrames(200); });
+}
+{
+  const section = await page.evaluate(() => window.physicskitLab.exportJson().section);
+  const byOrbit = new Map();
+  for (const c of section?.crossings ?? []) byOrbit.set(c.orbit, [...(byOrbit.get(c.orbit) ?? []), c.state]);
+  if (byOrbit.size !== 3) fail(`section: ${byOrbit.size} orbits in the export after three clicks`);
+  for (const [orbit, states] of byOrbit) {
+    if (states.length < 5) fail(`section: orbit ${orbit} kept ${states.length} crossings`);
+    // On the section (Hénon's step lands on y = 0 to rounding), upwards.
+    if (states.some((st) => Math.abs(st[1]) > 1e-12 || !(st[3] > 0))) fail(`section: orbit ${orbit} has a crossing off the section`);
+  }
+  if (section && Math.abs(section.energy - e0) > 0) fail(`section: energy ${section.energy} vs ${e0}`);
+  console.log(`ok section: ${byOrbit.size} orbits kept, ${[...byOrbit.values()].map((v) => v.length).join(" + ")} crossings`);
+  await page.screenshot({ path: join(shots, "henon-heiles-section.png"), fullPage: true });
+  await page.click("#section-clear");
+  const left = await page.evaluate(() => window.physicskitLab.exportJson().section.crossings.length);
+  if (left !== 0) fail(`section: ${left} crossings after Clear`);
+}
 
-// A phone-sized screen with the large-text option: one column, nothing wider than the screen.
+// The keyboard: space runs and pauses the page.
+{
+  await page.evaluate(() => { window.physicskitLab.pause(); document.activeElement?.blur(); });
+  await page.keyboard.press("Space");
+  const on = await page.evaluate(() => window.physicskitLab.app.running);
+  await page.keyboard.press("Space");
+  const off = await page.evaluate(() => window.physicskitLab.app.running);
+  if (!on || off) fail(`keyboard: space gave running ${on}, then ${off}`);
+  const unlabelled = await page.evaluate(() => [...document.querySelectorAll("input, select, button")].filter((e) => e.offsetParent !== null &&
+    !(e.labels?.length || e.getAttribute("aria-label") || (e.tagName === "BUTTON" && e.textContent.trim()))).map((e) => e.id || e.outerHTML.slice(0, 60)));
+  if (unlabelled.length) fail(`controls without a label: ${unlabelled.join(", ")}`);
+  console.log("ok keyboard: space runs and pauses; every control has a label");
+}
+
+// A phone-sized screen (390 px): one column, nothing wider than the screen, the scene and the
+// Run button on the first screen; with the large-text option too. Every system is shown.
 const phone = await browser.newPage({ viewport: { width: 390, height: 844 } });
 phone.on("pageerror", (e) => errors.push(String(e)));
-await phone.goto(`${url}#system=double-pendulum`);
+await phone.goto(url);
 await phone.evaluate(() => window.physicskitLab.ready);
-await phone.evaluate(() => { document.getElementById("large").click(); window.physicskitLab.runFrames(60); });
+for (const [name] of systems) {
+  await phone.evaluate((n) => { window.physicskitLab.select(n); window.physicskitLab.runFrames(60); }, name);
+  const m = await phone.evaluate(() => ({
+    overflow: document.documentElement.scrollWidth - window.innerWidth,
+    scene: document.getElementById("scene").getBoundingClientRect().bottom,
+    run: document.getElementById("run").getBoundingClientRect().bottom,
+    height: window.innerHeight,
+  }));
+  if (m.overflow > 0) fail(`phone ${name}: the page is ${m.overflow} px wider than the screen`);
+  if (m.scene > m.height || m.run > m.height) fail(`phone ${name}: scene ends at ${m.scene} px, Run at ${m.run} px, screen ${m.height} px`);
+  await phone.screenshot({ path: join(shots, `phone-${name}.png`) });
+}
+await phone.evaluate(() => { document.getElementById("large").click(); window.physicskitLab.select("double-pendulum"); window.physicskitLab.runFrames(60); });
 const overflow = await phone.evaluate(() => document.documentElement.scrollWidth - window.innerWidth);
-if (overflow > 0) fail(`phone: the page is ${overflow} px wider than the screen`);
-await phone.screenshot({ path: join(shots, "phone-double-pendulum.png"), fullPage: true });
-console.log(`ok phone layout (${overflow} px overflow)`);
+if (overflow > 0) fail(`phone (large text): the page is ${overflow} px wider than the screen`);
+await phone.screenshot({ path: join(shots, "phone-double-pendulum-large.png"), fullPage: true });
+console.log(`ok phone layout: every system at 390 px, no overflow, scene and Run on the first screen`);
 
 if (errors.length) fail(`console errors: ${errors.join(" | ")}`);
 await browser.close();

@@ -2,12 +2,12 @@
 //!
 //! ```text
 //! {"version": "0.1.0",
-//!  "systems": [{"name", "python", "summary", "family", "separable", "methods": [..],
-//!               "default_method", "note", "physics", "presentation": {..},
-//!               "capabilities": [..],
+//!  "systems": [{"name", "python", "title", "summary", "summary_text", "family", "separable",
+//!               "methods": [..], "default_method", "note", "note_text", "physics",
+//!               "physics_text", "presentation": {..}, "capabilities": [..],
 //!               "params": [{"name", "kind", "length", "choices", "default",
-//!                           "default_origin", "unit", "range", "help",
-//!                           "initial_state"}, ..]}, ..],
+//!                           "default_origin", "unit", "range", "help", "initial_state",
+//!                           "label", "unit_text", "help_text"}, ..]}, ..],
 //!  "methods": [{"name", "label", "order", "symplectic", "separable_only", "adaptive",
 //!               "evaluations_per_step",
 //!               "evaluations", "reference"}, ..]}
@@ -35,6 +35,11 @@
 //!   `{"symbols": [TeX, ..], "time_unit", "state_units": null or [coordinate, momentum],
 //!   "drawing": {"kind", "fixed_ends" (chains), "central_body" (orbits)}}`.
 //! - `methods` per system: those that can integrate it, as `simulate --method` takes them.
+//! - `title`, `summary_text`, `note_text`, `physics_text` (the paragraph's powers as
+//!   superscripts), and per parameter `label`, `unit_text`, `help_text`: the
+//!   same text for people (the lab's), in Unicode mathematics, without class names, flags or
+//!   remarks about state columns (`crate::people`); `note_text` is `null` when nothing is
+//!   left.
 
 use std::io::{self, Write};
 
@@ -44,7 +49,7 @@ use physicskit::classical::model::erased::offered;
 use physicskit::classical::model::{Drawing, ParamSpec, Presentation, SystemEntry};
 use serde::Serialize;
 
-use crate::{method_rows, MethodRow};
+use crate::{method_rows, people, MethodRow};
 
 #[derive(Serialize)]
 struct Catalogue {
@@ -57,13 +62,17 @@ struct Catalogue {
 struct System {
     name: &'static str,
     python: Option<&'static str>,
+    title: String,
     summary: &'static str,
+    summary_text: String,
     family: &'static str,
     separable: bool,
     methods: Vec<&'static str>,
     default_method: &'static str,
     note: Option<&'static str>,
+    note_text: Option<String>,
     physics: Option<&'static str>,
+    physics_text: Option<String>,
     presentation: PresentationJson,
     capabilities: Vec<&'static str>,
     params: Vec<Param>,
@@ -98,6 +107,9 @@ struct Param {
     range: Option<RangeJson>,
     help: &'static str,
     initial_state: bool,
+    label: String,
+    unit_text: String,
+    help_text: String,
 }
 
 #[derive(Serialize)]
@@ -159,13 +171,17 @@ fn system(entry: &SystemEntry) -> System {
     System {
         name: entry.name,
         python: entry.python,
+        title: people::title(entry.name),
         summary: entry.summary,
+        summary_text: people::text(entry.summary),
         family: entry.family.name(),
         separable: entry.separable,
         methods: entry.methods().map(|m| m.name()).collect(),
         default_method: entry.default_method.name(),
         note: entry.note,
+        note_text: entry.note.and_then(people::note),
         physics: entry.physics,
+        physics_text: entry.physics.map(people::powers),
         presentation: presentation(&entry.presentation),
         // Every entry builds from its defaults (the catalogue's own tests check it); should
         // one not, it offers nothing rather than breaking the listing.
@@ -227,6 +243,9 @@ fn param(spec: &ParamSpec) -> Param {
         range,
         help: spec.help,
         initial_state: spec.initial_state,
+        label: people::label(spec.name),
+        unit_text: people::text(spec.unit),
+        help_text: people::text(spec.help),
     }
 }
 

@@ -9,6 +9,7 @@
 //! [`method_rows`].
 
 mod json;
+pub mod people;
 
 use physicskit::classical::methods;
 use serde::Serialize;

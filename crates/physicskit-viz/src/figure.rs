@@ -206,7 +206,7 @@ impl Series {
 ///
 /// Where it goes is computed from the data: the first corner of the plot (upper right, upper
 /// left, lower right, lower left) that no plotted point or line segment enters, else outside
-/// the plot on its right.
+/// the plot: on its right, or above it for an equal-aspect plot (which would lose width).
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
 pub enum Legend {
     /// A legend of the labelled series, placed where it hides no data.
@@ -552,7 +552,20 @@ impl Panel {
                     y1: y + lh,
                 })
                 .find(|r| r.x0 >= plot.x0 && r.y1 <= plot.y1 && !pixels.iter().any(|p| p.meets(r)));
-            if legend_rect.is_none() {
+            if legend_rect.is_none() && self.equal_aspect {
+                // Above the plot: beside it, an equal-aspect plot would lose its width.
+                let (c, m) = self.build(area, top + lh + 8.0, 0.0, path)?;
+                chart = c;
+                mapping = m;
+                pixels = self.pixels(&mapping);
+                let plot = mapping.plot();
+                legend_rect = Some(Rect {
+                    x0: plot.x0,
+                    y0: oy + top + 2.0,
+                    x1: plot.x0 + lw,
+                    y1: oy + top + 2.0 + lh,
+                });
+            } else if legend_rect.is_none() {
                 let (c, m) = self.build(area, top, lw + 12.0, path)?;
                 chart = c;
                 mapping = m;

@@ -23,6 +23,24 @@ pub(crate) fn escape(s: &str) -> String {
     out
 }
 
+/// [`escape`], with subscript markup (`c_{pn}`, as in the figures) as `<sub>`.
+pub(crate) fn rich(s: &str) -> String {
+    let mut out = String::with_capacity(s.len());
+    let mut rest = s;
+    while let Some(start) = rest.find("_{") {
+        let Some(len) = rest[start + 2..].find('}') else {
+            break;
+        };
+        out.push_str(&escape(&rest[..start]));
+        out.push_str("<sub>");
+        out.push_str(&escape(&rest[start + 2..start + 2 + len]));
+        out.push_str("</sub>");
+        rest = &rest[start + 2 + len + 1..];
+    }
+    out.push_str(&escape(rest));
+    out
+}
+
 /// The stylesheet: a readable measure for text (about 70 characters), figures up to the page's
 /// width on a white card (they are drawn on white, also in the dark scheme), a modular type
 /// scale (1.25), and colours from custom properties switched by `prefers-color-scheme`.
@@ -112,7 +130,7 @@ pub(crate) fn index_html(demos: &[Demo], quick: bool) -> String {
             "<li><a href=\"#{slug}\"><img src=\"{thumb}\" alt=\"\" loading=\"lazy\"><span>{title}</span></a></li>",
             slug = escape(&d.slug),
             thumb = escape(&thumb),
-            title = escape(&d.title)
+            title = rich(&d.title)
         );
     }
     h.push_str("</ol></nav>\n");
@@ -121,7 +139,7 @@ pub(crate) fn index_html(demos: &[Demo], quick: bool) -> String {
         let _ = writeln!(
             h,
             "<section id=\"{slug}\">\n<h2>{}<a class=\"anchor\" href=\"#{slug}\" aria-label=\"Link to this section\">#</a></h2>",
-            escape(&d.title)
+            rich(&d.title)
         );
         let _ = writeln!(h, "<p>{}</p>", escape(&d.explanation));
         if !d.figure.is_empty() {
@@ -145,10 +163,11 @@ pub(crate) fn index_html(demos: &[Demo], quick: bool) -> String {
             };
             let _ = writeln!(
                 h,
-                "<figure><a href=\"{name}\"><img src=\"{name}\" alt=\"{desc}\" loading=\"lazy\"></a>\
+                "<figure><a href=\"{name}\"><img src=\"{name}\" alt=\"{alt}\" loading=\"lazy\"></a>\
                  <figcaption><b>{kind}</b> {desc}.{live} <a href=\"{name}\">{name}</a></figcaption></figure>",
                 kind = if animated { "Animation." } else { "Figure." },
-                desc = escape(f.description.trim_end_matches('.'))
+                desc = rich(f.description.trim_end_matches('.')),
+                alt = escape(&f.description.replace("_{", "").replace('}', ""))
             );
         }
         h.push_str("</section>\n");
@@ -164,5 +183,6 @@ mod tests {
     #[test]
     fn escaping() {
         assert_eq!(escape("a<b & \"c\">"), "a&lt;b &amp; &quot;c&quot;&gt;");
+        assert_eq!(rich("c_{pn} < 1"), "c<sub>pn</sub> &lt; 1");
     }
 }

@@ -273,6 +273,34 @@ pub extern "C" fn pk_crossings_len(h: u32) -> usize {
     read(h, 0, |lab| lab.crossings().len())
 }
 
+/// Address of the orbit numbers of lab `h`'s crossings (`u32`, one per crossing).
+#[no_mangle]
+pub extern "C" fn pk_crossing_orbits_ptr(h: u32) -> usize {
+    read(h, 0, |lab| lab.crossing_orbits().as_ptr() as usize)
+}
+
+/// Number of lab `h`'s crossings.
+#[no_mangle]
+pub extern "C" fn pk_crossing_orbits_len(h: u32) -> usize {
+    read(h, 0, |lab| lab.crossing_orbits().len())
+}
+
+/// The energy of the state in the first `len` numbers of the input buffer, for lab `h`'s
+/// system (NaN on failure, with the message at [`pk_error_ptr`]).
+#[no_mangle]
+pub extern "C" fn pk_energy_of(h: u32, len: usize) -> f64 {
+    let mut energy = f64::NAN;
+    on_lab(h, |lab, r| {
+        let state = r
+            .input_f64
+            .get(..len)
+            .ok_or("state past the input buffer")?;
+        energy = lab.energy_of(state)?;
+        Ok(())
+    });
+    energy
+}
+
 /// Lab `h`'s clock (NaN if there is no such lab).
 #[no_mangle]
 pub extern "C" fn pk_time(h: u32) -> f64 {

@@ -10,7 +10,14 @@
 //! The energy error is `|E - E0| / |E0|` with `E0` the energy of the run's initial state
 //! (absolute when `E0 = 0`). What the page reads lives in buffers the lab owns (`positions`,
 //! `crossings`), refilled in place each frame (`Capabilities::positions_into`); the crossings
-//! grow by doubling up to [`MAX_CROSSINGS`], then stay.
+//! grow by doubling up to [`MAX_CROSSINGS`], then drop the oldest first.
+//!
+//! Crossings accumulate over orbits: each run carries an orbit number, recorded with each of
+//! its crossings, so the page colours orbits apart. A launch on the section
+//! ([`Lab::launch_at_energy`]) starts a new orbit on the same energy surface and keeps the
+//! earlier orbits' crossings; a new state of another energy ([`Lab::set_state`]), a new
+//! section or [`Lab::clear_crossings`] forgets them; [`Lab::reset`] forgets only the current
+//! orbit's (its rerun records them again).
 
 use physicskit::classical::analysis::poincare::{Direction, HenonWork, Section};
 use physicskit::classical::catalog;
@@ -46,6 +53,10 @@ pub struct Lab {
     section: Option<Section>,
     /// Crossing states, one after another (`state_len` values each).
     crossings: Vec<f64>,
+    /// The orbit number of each crossing.
+    crossing_orbits: Vec<u32>,
+    /// The current run's orbit number.
+    orbit: u32,
     crossing: Vec<f64>,
     /// The state before the step being checked for a crossing.
     before: Vec<f64>,
@@ -54,7 +65,7 @@ pub struct Lab {
 
 impl Lab {
     /// Builds the catalogue entry `name` from its defaults overridden by the JSON object
-    /// `params`, with its default method.
+    /// `params`, with its default method (if that is adaptive, its first fixed-step one).
     ///
     /// # Errors
     /// The catalogue's message for an unknown system or a refused value.
@@ -65,8 +76,19 @@ impl Lab {
         let state0 = system.dynamical().state().to_vec();
         let energy0 = system.dynamical().energy(&state0);
         let n = state0.len();
+        // A session steps frame by frame, which an adaptive method cannot (it steps onto the
+        // end of a known span): a system whose default is adaptive starts with the first
+        // fixed-step method it takes.
+        let method = if entry.default_method.is_adaptive() {
+            entry
+                .methods()
+                .find(|m| !m.is_adaptive())
+                .ok_or_else(|| format!("`{}` has no fixed-step method", entry.name))?
+        } else {
+            entry.default_method
+        };
         let session = system
-            .start(entry.default_method, INITIAL_DT)
+            .start(method, INITIAL_DT)
             .map_err(|r| r.error.to_string())?;
         let mut lab = Self {
             entry,
@@ -77,6 +99,8 @@ impl Lab {
             probe: Vec::new(),
             section: None,
             crossings: Vec::with_capacity(n * 1024),
+            crossing_orbits: Vec::with_capacity(1024),
+            orbit: 0,
             crossing: vec![0.0; n],
             before: vec![0.0; n],
             henon: HenonWork::new(n),
@@ -208,10 +232,12 @@ impl Lab {
                 )
                 .is_ok()
             {
-                if self.crossings.len() >= MAX_CROSSINGS * self.crossing.len() {
+                if self.crossing_orbits.len() >= MAX_CROSSINGS {
                     self.crossings.drain(..self.crossing.len());
+                    self.crossing_orbits.remove(0);
                 }
                 self.crossings.extend_from_slice(&self.crossing);
+                self.crossing_orbits.push(self.orbit);
             }
         }
         self.refresh_positions();
@@ -278,22 +304,50 @@ impl Lab {
     }
 
     /// Starts a new run from `state` at `t = 0`: it becomes the initial state that `reset`
-    /// returns to and the energy reference.
+    /// returns to and the energy reference. The recorded crossings are forgotten (they lie
+    /// on another energy surface).
+    ///
+    /// # Errors
+    /// A state of the wrong length or with non-finite entries; the lab is then unchanged.
+    pub fn set_state(&mut self, state: &[f64]) -> Result<(), String> {
+        self.start_run(state)?;
+        self.clear_crossings();
+        Ok(())
+    }
+
+    /// The energy of any `state` of this system (the page traces the energy surface's edge
+    /// on a section with it).
     ///
     /// # Errors
     /// A state of the wrong length or with non-finite entries.
-    pub fn set_state(&mut self, state: &[f64]) -> Result<(), String> {
+    pub fn energy_of(&self, state: &[f64]) -> Result<f64, String> {
+        let n = self.state0.len();
+        if state.len() != n {
+            return Err(format!(
+                "a state of this system has {n} entries, not {}",
+                state.len()
+            ));
+        }
+        if !state.iter().all(|x| x.is_finite()) {
+            return Err("a state must be finite".into());
+        }
+        Ok(self.system().dynamical().energy(state))
+    }
+
+    fn start_run(&mut self, state: &[f64]) -> Result<(), String> {
         self.session_mut()
             .restart(Some(state), 0.0)
             .map_err(|e| e.to_string())?;
         self.state0.clear();
         self.state0.extend_from_slice(state);
         self.energy0 = self.system().dynamical().energy(state);
+        self.orbit = self.orbit.wrapping_add(1);
         self.refresh_positions();
         Ok(())
     }
 
-    /// Returns to the run's initial state at `t = 0`.
+    /// Returns to the run's initial state at `t = 0`, forgetting the current orbit's
+    /// crossings (the rerun records them again).
     ///
     /// # Errors
     /// None in practice (the initial state was accepted before).
@@ -305,6 +359,13 @@ impl Lab {
         session
             .restart(Some(&self.state0), 0.0)
             .map_err(|e| e.to_string())?;
+        let kept = self
+            .crossing_orbits
+            .iter()
+            .rposition(|&o| o != self.orbit)
+            .map_or(0, |i| i + 1);
+        self.crossing_orbits.truncate(kept);
+        self.crossings.truncate(kept * self.crossing.len());
         self.refresh_positions();
         Ok(())
     }
@@ -337,25 +398,32 @@ impl Lab {
             _ => Direction::Both,
         };
         self.section = Some(Section::new(coordinate, value, direction).map_err(|e| e.to_string())?);
-        self.crossings.clear();
+        self.clear_crossings();
         Ok(())
     }
 
-    /// The crossings recorded, one state after another.
+    /// The crossings recorded, one state after another, oldest first.
     pub fn crossings(&self) -> &[f64] {
         &self.crossings
+    }
+
+    /// The orbit number of each crossing (one per state in [`crossings`](Self::crossings)):
+    /// equal numbers, one orbit.
+    pub fn crossing_orbits(&self) -> &[u32] {
+        &self.crossing_orbits
     }
 
     /// Forgets the recorded crossings.
     pub fn clear_crossings(&mut self) {
         self.crossings.clear();
+        self.crossing_orbits.clear();
     }
 
     /// Starts a new run (as [`set_state`](Self::set_state)) at the energy of the current
     /// run's initial state: entries `assign` of the current state are replaced, and entry
     /// `solve` (a momentum, entering the energy as a quadratic kinetic term) is chosen `>= 0`
     /// so that the energy is `E0`. For the Hénon–Heiles section: `x, px` clicked, `y = 0`,
-    /// `py` solved.
+    /// `py` solved. The new run is a new orbit: the crossings recorded so far stay.
     ///
     /// # Errors
     /// No such state at this energy (the point lies outside the energy surface's section), or
@@ -408,11 +476,9 @@ impl Lab {
             }
         }
         state[solve] = lo;
-        let energy0 = target;
-        self.set_state(&state)?;
+        self.start_run(&state)?;
         // The run stays on the chosen energy surface: keep E0, not the bisection's rounding.
-        self.energy0 = energy0;
-        self.crossings.clear();
+        self.energy0 = target;
         Ok(())
     }
 

@@ -8,13 +8,17 @@
 //!   [`DynSystem`](physicskit::classical::model::erased::DynSystem), and read: state, time,
 //!   energy and its relative error `|E - E0| / |E0|`, drawing positions (the `positions`
 //!   capability) and the crossings of a Poincaré section (located by Hénon's trick,
-//!   `analysis::poincare::henon_step`). It is plain safe Rust and runs natively too: the
+//!   `analysis::poincare::henon_step`), each with the number of its orbit: orbits launched
+//!   on the section at the run's energy accumulate; the energy of any state (the page traces
+//!   the section's edge with it). It is plain safe Rust and runs natively too: the
 //!   native run of the same setup is what the wasm build is compared with
 //!   (`src/bin/lab_reference.rs`, `web/test/node_compare.mjs`).
 //! - [`exports`] are the `extern "C"` functions the page calls: handles into a slab of
 //!   [`Lab`]s, buffers the handle owns, read by the page as typed-array views of the linear
 //!   memory, and errors returned as status codes with a message the page reads (every path
 //!   is a `Result`: a panic would abort the module).
+//! - Parameters come as JSON from the page or a share link, untrusted: a count `n` above
+//!   [`MAX_LAB_COUNT`] is refused before anything is allocated.
 //! - The catalogue JSON the page builds its pickers from is
 //!   [`physicskit_listing::catalogue_json`], the string `physicskit list --json` prints.
 //!
@@ -28,4 +32,4 @@ mod lab;
 mod params;
 
 pub use lab::Lab;
-pub use params::values_from_json;
+pub use params::{values_from_json, MAX_LAB_COUNT};

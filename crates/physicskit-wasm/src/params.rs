@@ -6,6 +6,16 @@ use physicskit::classical::model::entry::{ParamKind, Value};
 use physicskit::classical::model::SystemEntry;
 use serde_json::Value as Json;
 
+/// The largest count the lab accepts: the parameter `n` (as the spec names every count of
+/// masses, sites or members). A page stepping a state of `2 * 10^5` numbers a few hundred
+/// times a frame is already slow, and a count of `10^12` from a hostile link would ask the
+/// browser for terabytes (an allocation failure aborts the WebAssembly module, leaving a
+/// dead page).
+pub const MAX_LAB_COUNT: i64 = 100_000;
+
+/// The parameter name of a count.
+const COUNT: &str = "n";
+
 /// The `(name, value)` pairs of the JSON object `text` for `entry`.
 ///
 /// A number is read as the parameter's kind asks (an integer must be whole), an array as a
@@ -13,8 +23,8 @@ use serde_json::Value as Json;
 /// does not declare is passed on by its JSON type, for the catalogue to refuse by name.
 ///
 /// # Errors
-/// A message naming the parameter, for text that is not a JSON object or a value of the
-/// wrong type.
+/// A message naming the parameter, for text that is not a JSON object, a value of the
+/// wrong type, or a count `n` above [`MAX_LAB_COUNT`].
 pub fn values_from_json(entry: &SystemEntry, text: &str) -> Result<Vec<(String, Value)>, String> {
     let json: Json =
         serde_json::from_str(text).map_err(|e| format!("parameters are not JSON: {e}"))?;
@@ -28,6 +38,13 @@ pub fn values_from_json(entry: &SystemEntry, text: &str) -> Result<Vec<(String, 
         }
         let kind = entry.param(&name).map(|spec| spec.kind);
         let converted = convert(&name, kind, &value)?;
+        if let (COUNT, Value::Integer(n)) = (name.as_str(), &converted) {
+            if *n > MAX_LAB_COUNT {
+                return Err(format!(
+                    "`{name}` = {n} is more than the lab runs (at most {MAX_LAB_COUNT})"
+                ));
+            }
+        }
         out.push((name, converted));
     }
     Ok(out)

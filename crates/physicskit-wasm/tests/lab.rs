@@ -92,3 +92,65 @@ fn a_frame_with_a_section_allocates_nothing() {
     assert!(lab.crossings().len() > crossings0, "no crossing recorded");
     assert_eq!(allocations() - before, 0);
 }
+
+/// Launches on a Hénon–Heiles section add orbits: the crossings of earlier orbits stay, each
+/// crossing carries its orbit's number, every crossing lies on the section (`y = 0`, `py >
+/// 0`) at the launch energy, and a new state of another energy forgets them.
+#[test]
+fn section_crossings_accumulate_over_launched_orbits() {
+    let mut lab = Lab::new("henon-heiles", "{}").unwrap();
+    lab.set_method("yoshida4").unwrap();
+    lab.set_section(1, 0.0, 1).unwrap();
+    let e0 = lab.energy0();
+    let mut orbits = Vec::new();
+    for x in [0.0, 0.1, -0.15] {
+        lab.launch_at_energy(&[(0, x), (2, 0.0), (1, 0.0)], 3)
+            .unwrap();
+        // 40 time units: about six periods of the x oscillation (2 pi), so several upward
+        // crossings of y = 0 per orbit.
+        for _ in 0..40 {
+            lab.step(1000, 1e-3).unwrap();
+        }
+        orbits.push(*lab.crossing_orbits().last().unwrap());
+    }
+    let numbers = lab.crossing_orbits();
+    assert_eq!(numbers.len() * 4, lab.crossings().len());
+    for o in &orbits {
+        let count = numbers.iter().filter(|&n| n == o).count();
+        assert!(count >= 3, "orbit {o}: {count} crossings");
+    }
+    assert!(orbits[0] != orbits[1] && orbits[1] != orbits[2]);
+    for s in lab.crossings().chunks_exact(4) {
+        // Hénon's step lands on y = 0 to rounding. The energy: yoshida4 at dt = 1e-3 errs by
+        // O(dt^4) ~ 1e-12 relative at these amplitudes (E0 = 0.081, the default start), and
+        // the crossing's two RK4 substeps by less; 1e-9 leaves three decades of margin.
+        assert!(s[1].abs() < 1e-12, "crossing off the section: {s:?}");
+        assert!(s[3] > 0.0);
+        let e = lab.energy_of(s).unwrap();
+        assert!(
+            (e - e0).abs() < 1e-9 * e0.abs(),
+            "crossing at energy {e}, E0 {e0}"
+        );
+    }
+    // A reset forgets only the current orbit's crossings.
+    let before = numbers.len();
+    lab.reset().unwrap();
+    let kept = lab.crossing_orbits().len();
+    assert!(kept < before && kept > 0);
+    assert!(lab.crossing_orbits().iter().all(|&n| n != orbits[2]));
+    // A state of another energy: the section starts empty.
+    lab.set_state(&[0.05, 0.0, 0.0, 0.2]).unwrap();
+    assert!(lab.crossings().is_empty() && lab.crossing_orbits().is_empty());
+    assert!(lab.energy_of(&[0.0; 3]).is_err());
+}
+
+/// A count from a hostile link is refused before anything is allocated, with a message
+/// naming it; a count the lab runs is accepted.
+#[test]
+fn a_huge_count_is_refused_by_name() {
+    let error = Lab::new("pendulum-swarm", r#"{"n": 1e12}"#).err().unwrap();
+    assert!(error.contains("`n`"), "{error}");
+    let limit = physicskit_wasm::MAX_LAB_COUNT;
+    assert!(Lab::new("pendulum-swarm", &format!(r#"{{"n": {}}}"#, limit + 1)).is_err());
+    assert!(Lab::new("pendulum-swarm", r#"{"n": 2000}"#).is_ok());
+}

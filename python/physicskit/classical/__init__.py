@@ -22,6 +22,7 @@ from .systems.lagrangian import *  # noqa: F401,F403
 from .systems.hamiltonian import *  # noqa: F401,F403
 from .systems.chains import *  # noqa: F401,F403
 from .systems.rotations import *  # noqa: F401,F403
+from .systems.rolling import *  # noqa: F401,F403
 from .listings import catalog, methods
 from .ensembles import EnsembleResult, abs_above, crossing, ensemble
 from .chaos import *  # noqa: F401,F403

@@ -1,6 +1,7 @@
 //! Demonstration 8, Euler top: the `omega` components with the Dzhanibekov flips, polhodes on the
 //! angular-momentum sphere, and an animated tumbling plate.
 
+use physicskit::classical::model::Value;
 use physicskit::classical::systems::{EulerTop, EulerTopParams};
 use physicskit::classical::{Method, OdeSystem};
 use plotters::prelude::*;
@@ -27,6 +28,19 @@ pub(crate) fn render(ctx: &Ctx) -> Result<Demo> {
     let t1 = ctx.pick(60.0, 120.0);
     let mut top = EulerTop::new(&OMEGA0, params, None)?;
     let r = top.integrate_with((0.0, t1), dt, Method::ImplicitMidpoint, stride(5))?;
+    // The lab opens on this run: the same spin, moments of inertia, method and step.
+    d.lab = Some(ctx.lab_link(
+        "euler-top",
+        &[
+            ("omega0", Value::Vector(OMEGA0.to_vec())),
+            ("I1", Value::Scalar(params.i1)),
+            ("I2", Value::Scalar(params.i2)),
+            ("I3", Value::Scalar(params.i3)),
+        ],
+        Method::ImplicitMidpoint,
+        dt,
+        None,
+    )?);
     let t = r.t.to_vec();
     let mut panel = Panel::new(
         format!(

@@ -1,5 +1,6 @@
 //! Demonstration 4, FPUT: energies of the first five normal modes against time, showing the recurrence.
 
+use physicskit::classical::model::Value;
 use physicskit::classical::systems::{FPUTChain, NormalModes};
 use physicskit::classical::{HamiltonianSystem, Method};
 
@@ -17,7 +18,23 @@ pub(crate) fn render(ctx: &Ctx) -> Result<Demo> {
     let mut d = ctx.demo("fput", "Fermi–Pasta–Ulam–Tsingou recurrence");
     let dt = 0.05;
     let t1 = ctx.pick(10000.0, 20000.0);
-    let mut chain = FPUTChain::new(N, 1.0, 1.0, BETA, 1, AMPLITUDE)?;
+    let (m, k, mode) = (1.0, 1.0, 1);
+    let mut chain = FPUTChain::new(N, m, k, BETA, mode, AMPLITUDE)?;
+    // The lab opens on this chain, method and step.
+    d.lab = Some(ctx.lab_link(
+        "fput",
+        &[
+            ("n", Value::Integer(N as i64)),
+            ("m", Value::Scalar(m)),
+            ("k", Value::Scalar(k)),
+            ("beta", Value::Scalar(BETA)),
+            ("mode", Value::Integer(mode as i64)),
+            ("amplitude", Value::Scalar(AMPLITUDE)),
+        ],
+        Method::Yoshida4,
+        dt,
+        None,
+    )?);
     let every = ctx.pick(200, 100);
     let r = chain.integrate_with((0.0, t1), dt, Method::Yoshida4, stride(every))?;
     let (q, p) = match (r.q(), r.p()) {

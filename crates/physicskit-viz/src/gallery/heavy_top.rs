@@ -57,29 +57,27 @@ pub(crate) fn render(ctx: &Ctx) -> Result<Demo> {
     .equal_aspect()
     .with(
         Series::line(
-            format!("θ = {:.2} rad (turning circle)", th_min),
+            format!("turning circles θ = {th_min:.2}, {th_max:.2}"),
             ring(th_min),
             GREY,
         )
         .with_mark(Mark::Dashed(1)),
     )
     .with(
-        Series::line(
-            format!("θ = {:.2} rad (turning circle)", th_max),
-            ring(th_max),
-            GREY,
-        )
-        .with_mark(Mark::Dashed(1)),
+        Series::line("", ring(th_max), GREY)
+            .with_mark(Mark::Dashed(1))
+            .unlabeled(),
     )
     .with(Series::line("axis path", axis, color(0)));
 
     // A window of four nutation periods (the run holds dozens, which would print as a solid
-    // band): up to the fifth minimum of θ, the periods counted from the data.
+    // band): the top starts at its smallest tilt (at rest in θ), so up to the fourth minimum
+    // after the start, found in the data.
     let minima: Vec<usize> = (1..theta.len().saturating_sub(1))
         .filter(|&i| theta[i] < theta[i - 1] && theta[i] <= theta[i + 1])
         .collect();
-    let end = minima.get(4).map_or(theta.len(), |&i| i + 1);
-    let periods = minima.len().saturating_sub(1).min(4);
+    let end = minima.get(3).map_or(theta.len(), |&i| i + 1);
+    let periods = minima.len().min(4);
     let theta_panel = Panel::new(
         format!("Nutation: tilt over {periods} periods"),
         "t (s)",

@@ -1,5 +1,7 @@
-"""Base classes (:mod:`physicskit.classical.core.base_system`)."""
+"""Base classes (:mod:`physicskit.classical.core.base_system`) and the functional integrator
+API on plain callables (:mod:`physicskit.classical.core.integrators`)."""
 
+from . import integrators
 from .base_system import (
     DynamicalSystem,
     HamiltonianSystem,
@@ -8,4 +10,11 @@ from .base_system import (
     SimulationResult,
 )
 
-__all__ = ["DynamicalSystem", "ODESystem", "HamiltonianSystem", "LagrangianSystem", "SimulationResult"]
+__all__ = [
+    "DynamicalSystem",
+    "ODESystem",
+    "HamiltonianSystem",
+    "LagrangianSystem",
+    "SimulationResult",
+    "integrators",
+]

@@ -218,6 +218,14 @@ def _as_stride(value) -> int:
     return as_int("stride", value, minimum=1)
 
 
+def _readonly_message(system, name: str) -> str:
+    cls = type(system).__name__
+    return (
+        f"{cls}.{name} is read-only: the system was built from it; construct a new {cls} "
+        f"with {name}=... instead"
+    )
+
+
 class DynamicalSystem(ABC):
     """Any system whose state vector evolves in time; the root of the hierarchy.
 
@@ -232,6 +240,18 @@ class DynamicalSystem(ABC):
     def __init__(self, state0):
         self.state = as_vector("state0", state0)
         self.t = 0.0
+
+    def __setattr__(self, name: str, value: Any) -> None:
+        # A built-in system's parameters (``ProjectileMotion.g`` ...) are read-only: its
+        # numerics were built from them, so a new value would be silently ignored.
+        if name in self.__dict__.get("_readonly", ()):
+            raise AttributeError(_readonly_message(self, name))
+        object.__setattr__(self, name, value)
+
+    def __delattr__(self, name: str) -> None:
+        if name in self.__dict__.get("_readonly", ()):
+            raise AttributeError(_readonly_message(self, name))
+        object.__delattr__(self, name)
 
     @abstractmethod
     def derivatives(self, t: float, state: np.ndarray) -> np.ndarray:

@@ -3,7 +3,9 @@
 What is drawn depends on the system: the pendulum family as bobs on rods (the double
 pendulum's lower bob with a fading trail), chains as moving masses, the pendulum swarm as a
 cloud in phase space, orbits with a trail, the Euler top as a tumbling box (its orientation
-from the system's ``rotation_matrix``), the heavy top as its axis on the unit sphere.
+from the system's ``rotation_matrix``), the heavy top as its axis on the unit sphere,
+Foucault's pendulum from above (its rosette), the reduced Euler's disk as its contact point
+seen from above, the reduced rattleback as its spin against time.
 
 In Jupyter: ``HTML(anim.to_jshtml())`` (or ``%matplotlib`` widget backends play it directly);
 ``save_animation(anim, "run.gif")`` writes a GIF with pillow (``.mp4`` with ffmpeg).
@@ -224,6 +226,81 @@ def _top(system: Any, result: Any, idx: np.ndarray, ax: Any, trail: int) -> _Upd
     return update
 
 
+def _swing(system: Any, result: Any, idx: np.ndarray, ax: Any, trail: int) -> _Update:
+    """Foucault's pendulum seen from above: the bob's horizontal displacement (east, north)
+    with a fading trail, so the turning swing plane shows as a rosette."""
+    xy = np.ascontiguousarray(result.y[idx, :2])
+    reach = 1.1 * max(float(np.abs(result.y[:, :2]).max()), np.finfo(float).tiny)
+    ax.set_xlim(-reach, reach)
+    ax.set_ylim(-reach, reach)
+    ax.set_aspect("equal")
+    ax.plot([0.0], [0.0], "k+", ms=8)
+    (rod,) = ax.plot([], [], "-", color="0.5", lw=1)
+    (bob,) = ax.plot([], [], "o", color="C0", ms=9)
+    fade = _fading_trail(ax, "C3")
+    ax.set_xlabel("$x$, east (m)")
+    ax.set_ylabel("$y$, north (m)")
+
+    def update(k: int) -> list[Any]:
+        rod.set_data([0.0, xy[k, 0]], [0.0, xy[k, 1]])
+        bob.set_data([xy[k, 0]], [xy[k, 1]])
+        _set_trail(fade, xy[max(0, k - trail) : k + 1], "C3")
+        return [rod, bob, fade]
+
+    return update
+
+
+def _disk(system: Any, result: Any, idx: np.ndarray, ax: Any, trail: int,
+          radius: float = 1.0) -> _Update:
+    """The reduced Euler's disk from above: its contact point at azimuth ``phi`` and at
+    ``radius cos(theta)`` from the point under the disk's centre (a disk of that radius
+    inclined by ``theta`` touches the table there), so the path spirals out to the full
+    radius as the disk flattens, ever faster; with a trail."""
+    theta, phi = result.y[idx, 0], result.y[idx, 1]
+    xy = np.column_stack([radius * np.cos(theta) * np.cos(phi),
+                          radius * np.cos(theta) * np.sin(phi)])
+    reach = 1.15 * radius
+    ax.set_xlim(-reach, reach)
+    ax.set_ylim(-reach, reach)
+    ax.set_aspect("equal")
+    (rim,) = ax.plot(radius * np.cos(np.linspace(0, 2 * np.pi, 121)),
+                     radius * np.sin(np.linspace(0, 2 * np.pi, 121)), ":", color="0.6", lw=1)
+    (spoke,) = ax.plot([], [], "-", color="0.4", lw=1)
+    (dot,) = ax.plot([], [], "o", color="C0", ms=8)
+    fade = _fading_trail(ax, "C3")
+    ax.set_xlabel("$x$ (disk radii)")
+    ax.set_ylabel("$y$ (disk radii)")
+
+    def update(k: int) -> list[Any]:
+        spoke.set_data([0.0, xy[k, 0]], [0.0, xy[k, 1]])
+        dot.set_data([xy[k, 0]], [xy[k, 1]])
+        _set_trail(fade, xy[max(0, k - trail) : k + 1], "C3")
+        return [spoke, dot, fade]
+
+    return update
+
+
+def _spin(system: Any, result: Any, idx: np.ndarray, ax: Any) -> _Update:
+    """The reduced rattleback's spin ``n3`` against time, drawn as it goes: a reversal is
+    the curve crossing zero."""
+    t, n3 = result.t[idx], result.y[idx, 2]
+    span = max(float(np.abs(n3).max()), np.finfo(float).tiny)
+    ax.set_xlim(float(t[0]), float(t[-1]) if t[-1] > t[0] else float(t[0]) + 1.0)
+    ax.set_ylim(-1.1 * span, 1.1 * span)
+    ax.axhline(0.0, color="0.6", lw=0.8)
+    (line,) = ax.plot([], [], "-", color="C0", lw=1.5)
+    (dot,) = ax.plot([], [], "o", color="C3", ms=7)
+    ax.set_xlabel(Labels(system).t)
+    ax.set_ylabel("spin $n_3$ (rad/s)")
+
+    def update(k: int) -> list[Any]:
+        line.set_data(t[: k + 1], n3[: k + 1])
+        dot.set_data([t[k]], [n3[k]])
+        return [line, dot]
+
+    return update
+
+
 def animate(system: Any, result: Any, *, stride: int = 1, frames: int | None = None,
             fps: int = 30, trail: int = 40, ax: Any = None) -> Any:
     """Animate a run of a built-in system.
@@ -262,7 +339,9 @@ def animate(system: Any, result: Any, *, stride: int = 1, frames: int | None = N
     drawing = drawing_of(system) or {"kind": "plots"}
     kind = drawing["kind"]
     three_d = kind in ("inertia_box", "top_axis")
-    if not three_d and not has_qp(result):
+    # Pictures drawn from the state itself, not from q and p.
+    by_state = three_d or kind in ("swing", "contact_spiral", "spin")
+    if not by_state and not has_qp(result):
         raise ValueError("the result has no q and p to animate")
     if kind == "plots":
         raise ValueError(
@@ -280,6 +359,9 @@ def animate(system: Any, result: Any, *, stride: int = 1, frames: int | None = N
                                 bool(drawing.get("central_body"))),
         "inertia_box": lambda: _box(system, result, idx, ax),
         "top_axis": lambda: _top(system, result, idx, ax, trail),
+        "swing": lambda: _swing(system, result, idx, ax, trail),
+        "contact_spiral": lambda: _disk(system, result, idx, ax, trail),
+        "spin": lambda: _spin(system, result, idx, ax),
     }
     if kind not in builders:
         raise ValueError(f"animate has no picture of kind {kind!r}")

@@ -4,11 +4,12 @@ The public names are those of the submodules' ``__all__`` lists, in this order; 
 listed twice.
 """
 
-from . import chains, hamiltonian, lagrangian, newtonian, rotations
+from . import chains, hamiltonian, lagrangian, newtonian, rolling, rotations
 from .chains import *  # noqa: F401,F403
 from .hamiltonian import *  # noqa: F401,F403
 from .lagrangian import *  # noqa: F401,F403
 from .newtonian import *  # noqa: F401,F403
+from .rolling import *  # noqa: F401,F403
 from .rotations import *  # noqa: F401,F403
 
 # `+=` of each submodule's list (not one literal list of names) so that type checkers expand
@@ -19,3 +20,4 @@ __all__ += lagrangian.__all__
 __all__ += hamiltonian.__all__
 __all__ += chains.__all__
 __all__ += rotations.__all__
+__all__ += rolling.__all__

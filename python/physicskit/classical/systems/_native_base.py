@@ -5,7 +5,8 @@ Every built-in class constructs through :func:`build`, which hands all of its ar
 ``physicskit._core.build`` under the catalogue entry's name. The catalogue converts and checks
 every value (kind, finiteness, range, vector lengths) and fills in defaults; the classes check
 nothing themselves and take the attributes they expose (``self.m1`` ...) from the checked
-values.
+values, through :func:`keep`, which makes them read-only: the native system was built from
+them, so assigning a new value could only make the attribute lie about the numerics.
 """
 
 from __future__ import annotations
@@ -32,6 +33,14 @@ def adopt(system, nat) -> dict[str, Any]:
     if nat.ndof is not None:
         system.ndof = nat.ndof
     return nat.params
+
+
+def keep(system, **values: Any) -> None:
+    """Set ``values`` (constructor arguments as the catalogue checked them, and quantities
+    derived from them) as read-only attributes of ``system``: assigning or deleting one later
+    raises ``AttributeError`` (``DynamicalSystem.__setattr__``)."""
+    system.__dict__.update(values)
+    system.__dict__["_readonly"] = system.__dict__.get("_readonly", frozenset()) | set(values)
 
 
 def from_native(cls, nat):

@@ -9,7 +9,7 @@ import numpy as np
 
 from .._native import as_scalar, as_vector, native
 from ..core.base_system import HamiltonianSystem
-from ._native_base import adopt, as_int, build
+from ._native_base import adopt, as_int, build, keep
 
 __all__ = ["HarmonicChain", "FPUTChain", "SineGordonChain", "TodaLattice"]
 
@@ -33,8 +33,7 @@ class _ChainBase(HamiltonianSystem):
 
     def _adopt(self, nat) -> dict:
         v = adopt(self, nat)
-        self.m, self.k = v["m"], v["k"]
-        self.mass_inv = 1.0 / self.m
+        keep(self, m=v["m"], k=v["k"], mass_inv=1.0 / v["m"])
         return v
 
     def kinetic_energy(self, p: np.ndarray) -> float:
@@ -94,7 +93,7 @@ class FPUTChain(_ChainBase):
 
     def __init__(self, n=32, m=1.0, k=1.0, beta=0.0, mode=1, amplitude=1.0):
         v = self._adopt(build("fput", n=n, m=m, k=k, beta=beta, mode=mode, amplitude=amplitude))
-        self.beta, self.mode, self.amplitude = v["beta"], v["mode"], v["amplitude"]
+        keep(self, beta=v["beta"], mode=v["mode"], amplitude=v["amplitude"])
 
     def potential_energy(self, q: np.ndarray) -> float:
         """Return ``V(q) = sum_bonds (k/2) r^2 + (beta/4) r^4``."""
@@ -160,8 +159,7 @@ class TodaLattice(HamiltonianSystem):
 
     def __init__(self, q0, p0, a=1.0, b=1.0):
         v = adopt(self, build("toda", q0=q0, p0=p0, a=a, b=b))
-        self.a, self.b = v["a"], v["b"]
-        self.mass_inv = 1.0
+        keep(self, a=v["a"], b=v["b"], mass_inv=1.0)
 
     def kinetic_energy(self, p: np.ndarray) -> float:
         """Return ``T(p) = |p|^2 / 2``."""

@@ -6,7 +6,7 @@ import numpy as np
 
 from .._native import as_scalar, native
 from ..core.base_system import HamiltonianSystem
-from ._native_base import adopt, build, from_native
+from ._native_base import adopt, build, from_native, keep
 from ._native_base import kinetic_energy as _kinetic_energy, potential_energy as _potential_energy
 
 __all__ = ["HenonHeilesSystem", "PendulumSwarm", "pendulum_action_angle"]
@@ -53,7 +53,7 @@ class PendulumSwarm(HamiltonianSystem):
         self._adopt(build("pendulum-swarm-state", q0=q0, p0=p0, g_over_l=g_over_l))
 
     def _adopt(self, nat) -> None:
-        self.g_over_l = adopt(self, nat)["g_over_l"]
+        keep(self, g_over_l=adopt(self, nat)["g_over_l"], mass_inv=1.0)
 
     @classmethod
     def from_box(cls, q_center: float, p_center: float, dq: float, dp: float, n: int = 1000,

@@ -12,7 +12,7 @@ import numpy as np
 
 from .._native import as_vector
 from ..core.base_system import LagrangianSystem
-from ._native_base import adopt, build, energy as _energy
+from ._native_base import adopt, build, energy as _energy, keep
 
 __all__ = ["DoublePendulum", "BeadOnRotatingHoop", "CoupledOscillators", "ElasticPendulum"]
 
@@ -36,7 +36,7 @@ class DoublePendulum(LagrangianSystem):
     def __init__(self, theta0, thetadot0, m1=1.0, m2=1.0, l1=1.0, l2=1.0, g=9.81):
         v = adopt(self, build("double-pendulum", theta0=theta0, thetadot0=thetadot0, m1=m1,
                               m2=m2, l1=l1, l2=l2, g=g))
-        self.m1, self.m2, self.l1, self.l2, self.g = (v[n] for n in ("m1", "m2", "l1", "l2", "g"))
+        keep(self, **{n: v[n] for n in ("m1", "m2", "l1", "l2", "g")})
 
     def energy(self, state: Optional[np.ndarray] = None) -> float:
         """Return ``T + V`` of ``state`` (default: ``self.state``)."""
@@ -67,7 +67,7 @@ class BeadOnRotatingHoop(LagrangianSystem):
 
     def __init__(self, theta0, thetadot0, R=1.0, omega=2.0, g=9.81):
         v = adopt(self, build("hoop", theta0=theta0, thetadot0=thetadot0, R=R, omega=omega, g=g))
-        self.R, self.omega, self.g = v["R"], v["omega"], v["g"]
+        keep(self, R=v["R"], omega=v["omega"], g=v["g"])
 
     def energy(self, state: Optional[np.ndarray] = None) -> float:
         """Return the conserved energy (Jacobi integral) of ``state``."""
@@ -102,7 +102,7 @@ class CoupledOscillators(LagrangianSystem):
 
     def __init__(self, q0, qdot0, n=3, m=1.0, k=1.0):
         v = adopt(self, build("coupled-oscillators", q0=q0, qdot0=qdot0, n=n, m=m, k=k))
-        self.n_masses, self.m, self.k = v["n"], v["m"], v["k"]
+        keep(self, n_masses=v["n"], m=v["m"], k=v["k"])
 
     def energy(self, state: Optional[np.ndarray] = None) -> float:
         """Return ``T + V`` of ``state`` (default: ``self.state``)."""
@@ -111,10 +111,14 @@ class CoupledOscillators(LagrangianSystem):
 
 class ElasticPendulum(LagrangianSystem):
     """Spring pendulum: a bob of mass ``m`` on a spring of stiffness ``k`` and rest length
-    ``l0``; ``q = (r, theta)``, ``theta`` from the downward vertical,
-    ``L = m (rdot^2 + r^2 thetadot^2)/2 + m g r cos(theta) - k (r - l0)^2/2``. At the 2:1
-    resonance (bounce frequency twice the swing's, ``k = 3 m g / l0`` exactly) energy trades
-    between the bounce and the swing.
+    ``L0``; ``q = (r, theta)``, ``theta`` from the downward vertical,
+    ``L = m (rdot^2 + r^2 thetadot^2)/2 + m g r cos(theta) - k (r - L0)^2/2``. At the 2:1
+    resonance (bounce frequency twice the swing's, ``k = 3 m g / L0`` exactly, the swing
+    seeing the stretched length ``L0 + m g / k``) energy trades between the bounce and the
+    swing. The default ``k = 39.24`` is ``4 m g / L0``, the condition usually quoted, which
+    neglects that stretch: a frequency ratio of ``sqrt(5)``, near the resonance.
+
+    The first coordinate is the spring's length ``r``, not its stretch ``r - L0``.
 
     Parameters
     ----------
@@ -124,15 +128,15 @@ class ElasticPendulum(LagrangianSystem):
         Bob mass.
     k : float
         Spring constant.
-    l0 : float
+    L0 : float
         Rest length of the spring.
     g : float
         Gravitational acceleration.
     """
 
-    def __init__(self, q0, qdot0, m=1.0, k=40.0, l0=1.0, g=9.81):
-        v = adopt(self, build("elastic-pendulum", q0=q0, qdot0=qdot0, m=m, k=k, l0=l0, g=g))
-        self.m, self.k, self.l0, self.g = (v[n] for n in ("m", "k", "l0", "g"))
+    def __init__(self, q0, qdot0, m=1.0, k=39.24, L0=1.0, g=9.81):
+        v = adopt(self, build("elastic-pendulum", q0=q0, qdot0=qdot0, m=m, k=k, L0=L0, g=g))
+        keep(self, m=v["m"], k=v["k"], L0=v["L0"], g=v["g"])
 
     def energy(self, state: Optional[np.ndarray] = None) -> float:
         """Return ``T + V`` of ``state`` (default: ``self.state``)."""

@@ -63,6 +63,12 @@ pub enum Drawing {
     InertiaBox,
     /// A top's symmetry axis from its pivot, the tip tracing the unit sphere.
     TopAxis,
+    /// A pendulum bob's horizontal path seen from above (Foucault's rosette).
+    Swing,
+    /// A disk's contact point seen from above as it tilts and precesses.
+    ContactSpiral,
+    /// A body's vertical spin against time (a reversal crosses zero).
+    Spin,
     /// No picture beyond the plots of the state.
     Plots,
 }
@@ -78,6 +84,9 @@ impl Drawing {
             Drawing::Orbit { .. } => "orbit",
             Drawing::InertiaBox => "inertia_box",
             Drawing::TopAxis => "top_axis",
+            Drawing::Swing => "swing",
+            Drawing::ContactSpiral => "contact_spiral",
+            Drawing::Spin => "spin",
             Drawing::Plots => "plots",
         }
     }

@@ -1,5 +1,5 @@
 //! [`ElasticPendulum`]: a point mass `m` on a massless spring (stiffness `k`, rest length
-//! `l0`) swinging in a vertical plane: the spring pendulum.
+//! `L0`, field `l0`) swinging in a vertical plane: the spring pendulum.
 //!
 //! Coordinates `q = (r, theta)`: the spring's length and its angle from the downward
 //! vertical. With the pivot at the origin and `y` up, the bob is at
@@ -56,8 +56,10 @@
 //! ```
 //!
 //! ([`ElasticPendulumParams::resonant_k`]). With `m = l0 = 1`, `g = 9.81` that is
-//! `k = 29.43`, not `39.24`; at `k = 40` the frequency ratio is `2.25` and the exchange is
-//! small and fast.
+//! `k = 29.43`. The default `k = 39.24` is the often-quoted `4 m g / l0` (the physicskit 0.4.0
+//! peer's default, kept for users who move from it): there `r_eq = 5 l0 / 4` and the frequency
+//! ratio is `sqrt(k r_eq / (m g)) = sqrt(5)`, near the resonance but not on it, so the
+//! exchange is small and fast.
 //!
 //! # Energy of each mode
 //!
@@ -100,11 +102,11 @@ pub struct ElasticPendulumParams {
 }
 
 impl Default for ElasticPendulumParams {
-    /// The issue's defaults: `m = 1`, `k = 40`, `l0 = 1`, `g = 9.81`.
+    /// The Python class's defaults: `m = 1`, `k = 39.24` (`4 m g / l0`), `l0 = 1`, `g = 9.81`.
     fn default() -> Self {
         Self {
             m: 1.0,
-            k: 40.0,
+            k: 39.24,
             l0: 1.0,
             g: 9.81,
         }
@@ -115,7 +117,7 @@ impl ElasticPendulumParams {
     fn validate(self) -> Result<Self> {
         check_positive("m", self.m)?;
         check_positive("k", self.k)?;
-        check_non_negative("l0", self.l0)?;
+        check_non_negative("L0", self.l0)?;
         check_finite_scalar("g", self.g)?;
         Ok(self)
     }
@@ -138,7 +140,7 @@ impl ElasticPendulumParams {
     /// `k` is resonant: `omega_s / omega_p = sqrt(k r_eq/(m g)) = 1`).
     pub fn resonant_k(m: f64, l0: f64, g: f64) -> Result<f64> {
         let m = check_positive("m", m)?;
-        let l0 = check_positive("l0", l0)?;
+        let l0 = check_positive("L0", l0)?;
         let g = check_positive("g", g)?;
         Ok(3.0 * m * g / l0)
     }
@@ -324,7 +326,7 @@ impl ElasticPendulum {
     ///
     /// # Errors
     /// [`Error::DimensionMismatch`] for lengths other than 2; [`Error::NonFinite`];
-    /// [`Error::InvalidParameter`] for `r0 <= 0`, `m <= 0`, `k <= 0`, `l0 < 0` or a
+    /// [`Error::InvalidParameter`] for `r0 <= 0`, `m <= 0`, `k <= 0`, `L0 < 0` or a
     /// non-finite parameter.
     pub fn new(q0: &[f64], qdot0: &[f64], params: ElasticPendulumParams) -> Result<Self> {
         let engine = LagrangianEngine::new(params.validate()?)?;
@@ -450,13 +452,13 @@ pub static ELASTIC_PENDULUM_ENTRY: SystemEntry = SystemEntry {
         P::scalar("m", D::scalar(1.0), "kg", Range::POSITIVE, "bob mass"),
         P::scalar(
             "k",
-            D::scalar(40.0),
+            D::scalar(39.24),
             "N/m",
             Range::POSITIVE,
-            "spring constant",
+            "spring constant (default 4 m g / L0)",
         ),
         P::scalar(
-            "l0",
+            "L0",
             D::scalar(1.0),
             "m",
             Range::NON_NEGATIVE,
@@ -473,7 +475,7 @@ pub static ELASTIC_PENDULUM_ENTRY: SystemEntry = SystemEntry {
     separable: false,
     default_method: Method::ImplicitMidpoint,
     note: Some(
-        "exact 2:1 resonance (bounce twice the swing frequency) at k = 3 m g / l0; p holds qdot",
+        "exact 2:1 resonance (bounce twice the swing frequency) at k = 3 m g / L0; p holds qdot",
     ),
     physics: Some(ELASTIC_PENDULUM_PHYSICS),
     presentation: Presentation {
@@ -486,7 +488,7 @@ pub static ELASTIC_PENDULUM_ENTRY: SystemEntry = SystemEntry {
         let params = ElasticPendulumParams {
             m: v.scalar("m")?,
             k: v.scalar("k")?,
-            l0: v.scalar("l0")?,
+            l0: v.scalar("L0")?,
             g: v.scalar("g")?,
         };
         Ok(Box::new(Erased(ElasticPendulum::new(

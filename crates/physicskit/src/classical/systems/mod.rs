@@ -30,6 +30,14 @@ mod rigid_body;
 pub use rigid_body::*;
 mod elastic_pendulum;
 pub use elastic_pendulum::*;
+mod foucault;
+pub use foucault::*;
+mod eulers_disk;
+pub use eulers_disk::*;
+mod rattleback;
+pub use rattleback::*;
+mod rolling;
+pub use rolling::*;
 
 /// Every built-in system of the catalogue, in the order listings show them: one line per
 /// entry, each written next to its system.
@@ -54,4 +62,10 @@ pub static SYSTEMS: &[&SystemEntry] = &[
     &EULER_TOP_ENTRY,
     &TODA_ENTRY,
     &ELASTIC_PENDULUM_ENTRY,
+    &ROLLING_RATTLEBACK_ENTRY,
+    &ROLLING_DISK_ENTRY,
+    &ROLLING_DISK_STEADY_ENTRY,
+    &FOUCAULT_ENTRY,
+    &EULERS_DISK_ENTRY,
+    &RATTLEBACK_ENTRY,
 ];
