@@ -4,7 +4,7 @@
 //! pixels with resvg and the bundled font (for GIF frames).
 //!
 //! A fragment is placed by drawing a marker text (a private-use character and its index) through
-//! plotters, so it lands between whatever was drawn before and after it; [`document`] replaces
+//! plotters, so it lands between whatever was drawn before and after it; `document` replaces
 //! each marker by its fragment when the drawing is done.
 
 use std::cell::RefCell;
