@@ -323,7 +323,7 @@ fn bad_inputs_are_refused() {
         };
     invalid(ElasticPendulumParams { m: 0.0, ..ok }, [1.0, 0.0], "m");
     invalid(ElasticPendulumParams { k: -1.0, ..ok }, [1.0, 0.0], "k");
-    invalid(ElasticPendulumParams { l0: -0.1, ..ok }, [1.0, 0.0], "l0");
+    invalid(ElasticPendulumParams { l0: -0.1, ..ok }, [1.0, 0.0], "L0");
     invalid(ElasticPendulumParams { g: f64::NAN, ..ok }, [1.0, 0.0], "g");
     invalid(ok, [0.0, 0.3], "r0");
     invalid(ok, [-1.0, 0.3], "r0");
@@ -342,7 +342,7 @@ fn bad_inputs_are_refused() {
     ));
     for (m, l0, g, what) in [
         (0.0, 1.0, 9.81, "m"),
-        (1.0, 0.0, 9.81, "l0"),
+        (1.0, 0.0, 9.81, "L0"),
         (1.0, 1.0, -9.81, "g"),
     ] {
         match ElasticPendulumParams::resonant_k(m, l0, g) {
