@@ -427,7 +427,8 @@ fn check_moments(moments: [f64; 3]) -> Result<()> {
 /// let params = RollingRattlebackParams::default();
 /// let mut body = RollingRattleback::new(&[0.0, 0.0, -3.0], params, None).unwrap();
 /// let e0 = body.current_energy();
-/// body.integrate((0.0, 0.5), 1e-3, Method::Rk4).unwrap();
+/// // The rolling constraint does no work: rk4 at this step keeps the energy to ~1e-9.
+/// body.integrate((0.0, 0.5), 1e-4, Method::Rk4).unwrap();
 /// assert!((body.current_energy() - e0).abs() < 1e-8 * e0.abs());
 /// ```
 #[derive(Debug, Clone)]
