@@ -47,9 +47,9 @@ __all__ = [
 
 #: What the native drivers are asked to store: every sample, no energy (a bare right-hand
 #: side has none).
-_EVERY = dict(stride=1, final_only=False, energy=False, progress=None, rtol=None, atol=None,
+_EVERY: dict[str, Any] = dict(stride=1, final_only=False, energy=False, progress=None, rtol=None, atol=None,
               max_steps=None)
-_LAST = dict(_EVERY, final_only=True)
+_LAST: dict[str, Any] = dict(_EVERY, final_only=True)
 
 
 class _Field:

@@ -160,6 +160,9 @@ class FoucaultPendulum(ODESystem):
         Earth's rotation rate in rad/s (default: the sidereal rate ``2 pi / 86164.0905``).
     """
 
+    #: Vertical component of the Earth's rotation rate at the latitude, ``Omega sin(phi)`` (rad/s).
+    omega_z: float
+
     def __init__(self, q0, v0, length: float = 67.0, g: float = 9.81,
                  latitude_deg: float = 48.85, omega_earth: float = _OMEGA_EARTH):
         self._adopt(build("foucault-pendulum", q0=q0, v0=v0, length=length, g=g,

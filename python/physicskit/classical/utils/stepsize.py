@@ -11,7 +11,7 @@ its own ``integrate``, so each costs what a run of that length costs natively.
 from __future__ import annotations
 
 from dataclasses import dataclass
-from typing import Callable
+from typing import Any, Callable
 
 import numpy as np
 
@@ -98,7 +98,7 @@ def estimate_dt(system_factory: Callable[[], object], method: str, tol: float = 
     def drift(step: float, n: int) -> float:
         nonlocal evaluations
         evaluations += 1
-        system = system_factory()
+        system: Any = system_factory()
         t0 = float(getattr(system, "t", 0.0))
         try:
             result = system.integrate_sampled((t0, t0 + n * step), step, method)

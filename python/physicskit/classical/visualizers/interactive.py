@@ -16,7 +16,7 @@ _HINT = ("physicskit.classical.visualizers.interactive needs plotly: "
 
 def _go() -> Any:
     try:
-        import plotly.graph_objects as go
+        import plotly.graph_objects as go  # type: ignore[import-not-found]
     except ImportError as exc:
         raise ImportError(_HINT) from exc
     return go
