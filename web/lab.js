@@ -22,6 +22,18 @@ const MIN_DT = DTS[0], MAX_DT = DTS[DTS.length - 1];
 const SAMPLES_PER_FRAME = 8;
 const TRAIL = 2400, PHASE_TRAIL = 6000, ENERGY_POINTS = 3000, MAX_ROWS = 100000;
 const TAU = 2 * Math.PI;
+// The step a system opens with where the catalogue's default method is adaptive (dop853), which
+// a frame-by-frame run cannot take: the fixed-step method, step and steps per frame (1/60 s of
+// motion a frame: real time at 60 frames a second) that keep the energy error below 1e-8 over
+// the first 10 s, measured in the WebAssembly build (benchmarks/README.md, "The lab's step for
+// the rolling bodies"). Other systems open at DEFAULT_DT and DEFAULT_STEPS.
+const STEP_DEFAULTS = {};
+for (const [name, dt, steps] of [["rolling-rattleback", 1e-4, 167], ["rolling-disk", 1e-3, 17], ["rolling-disk-steady", 1e-3, 17]]) {
+  STEP_DEFAULTS[name] = {
+    method: "rk4", dt, steps,
+    note: `Step: rk4 at dt = ${dt} s, ${steps} steps a frame (real time at 60 frames a second), which keeps this rolling body's energy error below 10⁻⁸; the catalogue's own method, dop853, takes adaptive steps, which a frame-by-frame run cannot.`,
+  };
+}
 // The system shown when no link names one: the chaotic double pendulum, running on load.
 const DEFAULT_SYSTEM = "double-pendulum";
 
@@ -40,46 +52,141 @@ function systemTitle(entry) { return entry.title ?? entry.name; }
 
 function methodTitle(name) { return name.replace(/_/g, " "); }
 
-// The unit of a state coordinate from the parameter giving its initial value (the spec names
-// them q0, theta0, p0, qdot0, thetadot0, omega0): one unit for all, or one per entry.
-function stateParam(kind) {
-  const names = kind === "q" ? ["q0", "theta0"] : ["p0", "qdot0", "thetadot0", "v0", "omega0"];
-  return app.entry.params.find((p) => names.includes(p.name));
+// The catalogue's words for the state (`presentation`: the coordinates' symbols in TeX, the
+// unit of time; the initial-state parameters' units, else `presentation.state_units`), as
+// Python's plot labels read them. TeX becomes text in one place, `texRuns`: Greek letters,
+// `\dot{..}` as a combining dot, `_{..}` as a subscript run; the canvases draw subscript runs
+// lowered in a smaller font, page text uses Unicode subscripts where they exist.
+const GREEK = {
+  alpha: "α", beta: "β", gamma: "γ", delta: "δ", epsilon: "ε", zeta: "ζ", eta: "η", theta: "θ",
+  vartheta: "ϑ", kappa: "κ", lambda: "λ", mu: "μ", nu: "ν", xi: "ξ", pi: "π", rho: "ρ", sigma: "σ",
+  tau: "τ", phi: "φ", varphi: "φ", chi: "χ", psi: "ψ", omega: "ω", Gamma: "Γ", Delta: "Δ",
+  Theta: "Θ", Lambda: "Λ", Xi: "Ξ", Pi: "Π", Sigma: "Σ", Phi: "Φ", Psi: "Ψ", Omega: "Ω",
+};
+const SUBSCRIPT = {
+  0: "₀", 1: "₁", 2: "₂", 3: "₃", 4: "₄", 5: "₅", 6: "₆", 7: "₇", 8: "₈", 9: "₉", "+": "₊", "-": "₋",
+  a: "ₐ", e: "ₑ", h: "ₕ", i: "ᵢ", j: "ⱼ", k: "ₖ", l: "ₗ", m: "ₘ", n: "ₙ", o: "ₒ", p: "ₚ", r: "ᵣ",
+  s: "ₛ", t: "ₜ", u: "ᵤ", v: "ᵥ", x: "ₓ", "β": "ᵦ", "γ": "ᵧ", "ρ": "ᵨ", "φ": "ᵩ", "χ": "ᵪ",
+};
+const DOT = "\u0307";
+// TeX (as the catalogue writes symbols) into runs [{text, sub}].
+function texRuns(tex) {
+  const runs = [];
+  const put = (text, sub) => {
+    if (!text) return;
+    const last = runs[runs.length - 1];
+    if (last && last.sub === sub) last.text += text; else runs.push({ text, sub });
+  };
+  // One group: `{...}`, a command `\name`, or one character; returns [text, next index].
+  const group = (s, i) => {
+    if (s[i] === "{") {
+      let depth = 1, j = i + 1;
+      while (j < s.length && depth) { if (s[j] === "{") depth++; else if (s[j] === "}") depth--; j++; }
+      return [plain(s.slice(i + 1, j - 1)), j];
+    }
+    if (s[i] === "\\") {
+      const m = /^\\([A-Za-z]+)/.exec(s.slice(i));
+      if (m) return command(m[1], s, i + m[0].length);
+    }
+    return [s[i] ?? "", i + 1];
+  };
+  const command = (name, s, j) => {
+    if (name === "dot" || name === "ddot") {
+      const [inner, k] = group(s, j);
+      return [inner + (name === "dot" ? DOT : "\u0308"), k];
+    }
+    return [GREEK[name] ?? name, j];
+  };
+  const plain = (s) => {
+    let out = "";
+    for (let i = 0; i < s.length;) { const [t, j] = group(s, i); out += t; i = j; }
+    return out;
+  };
+  for (let i = 0; i < tex.length;) {
+    if (tex[i] === "_") { const [t, j] = group(tex, i + 1); put(t, true); i = j; continue; }
+    const [t, j] = group(tex, i);
+    put(t, false);
+    i = j;
+  }
+  return runs;
 }
-function unitOf(kind, i, count) {
-  const p = stateParam(kind);
-  if (!p || !p.unit_text) return "";
-  const parts = p.unit_text.split(/,\s*/);
-  return parts.length === count ? parts[i] : parts.length === 1 ? parts[0] : "";
+// Runs as page text: a subscript in Unicode subscripts if each of its characters has one,
+// else as it is.
+function runsText(runs) {
+  return runs.map((r) => (r.sub && [...r.text].every((c) => SUBSCRIPT[c]) ? [...r.text].map((c) => SUBSCRIPT[c]).join("") : r.text)).join("");
 }
-function lengthUnit() {
-  return app.entry.params.some((p) => p.unit_text === "m") ? "m" : "";
+function texText(tex) { return runsText(texRuns(tex)); }
+// The catalogue's unit words for people: powers as superscripts (`kg m^2`, as people.rs does
+// for parameter units).
+function unitWords(unit) {
+  const SUP = { "-": "⁻", 0: "⁰", 1: "¹", 2: "²", 3: "³", 4: "⁴", 5: "⁵", 6: "⁶", 7: "⁷", 8: "⁸", 9: "⁹" };
+  return (unit ?? "").replace(/\^\{?(-?\d+)\}?/g, (_, p) => [...p].map((c) => SUP[c]).join(""));
 }
-function timeUnit() {
-  return app.entry.params.some((p) => /(^|[^a-z])s([⁻²]|$|\b)/.test(p.unit_text) || p.unit_text.includes("/s")) ? "s" : "";
+
+// A label: TeX symbol and unit; `text` is what the page shows and the tests read.
+function label(tex, unit = "") {
+  const runs = texRuns(tex);
+  if (unit) runs.push({ text: ` [${unit}]`, sub: false });
+  return { runs, text: runsText(runs) };
 }
+function plainLabel(text) { return { runs: [{ text, sub: false }], text }; }
+
+function presentation() { return app.entry.presentation; }
+function timeUnit() { return presentation().time_unit === "s" ? "s" : ""; }
+function timeLabel() { return label("t", timeUnit()); }
+// Drawing positions are in metres where the system's lengths are.
+function lengthUnit() { return app.entry.params.some((p) => p.unit_text === "m") ? "m" : ""; }
+
+// The state's layout: `k` coordinates, then (for a Hamiltonian, a Lagrangian, or an ODE whose
+// symbols name half its entries) their momenta or velocities.
+function stateLayout() {
+  const n = app.lab.state().length, symbols = presentation().symbols ?? [];
+  if (family() !== "ode") return { k: n / 2, paired: true, dot: family() === "lagrangian" };
+  if (symbols.length && 2 * symbols.length === n) return { k: n / 2, paired: true, dot: true };
+  return { k: n, paired: false, dot: false };
+}
+function symbolOf(i, k) {
+  const symbols = presentation().symbols ?? [];
+  if (symbols.length >= k && symbols.length) return symbols[i];
+  if (symbols.length === 1) return k === 1 ? symbols[0] : `${symbols[0]}_{${i + 1}}`;
+  return family() === "ode" ? `y_{${i + 1}}` : k === 1 ? "q" : `q_{${i + 1}}`;
+}
+// A dotted or momentum symbol: \dot{θ}_1 keeps the index outside the dot.
+function momentumOf(sym, dot) {
+  const m = /^(.*?)(_\{[^}]*\}|_.)?$/.exec(sym);
+  if (dot) return `\\dot{${m[1]}}${m[2] ?? ""}`;
+  // An indexed coordinate's momentum takes its index (q₁, p₁); a named one's, its name (pₓ).
+  return m[2] ? `p${m[2]}` : `p_{${sym}}`;
+}
+// TeX symbols of the state's entries.
+function stateSymbols() {
+  const { k, paired, dot } = stateLayout(), q = Array.from({ length: k }, (_, i) => symbolOf(i, k));
+  return paired ? [...q, ...q.map((s) => momentumOf(s, dot))] : q;
+}
+// Units of the state's entries: one initial-state parameter per entry, or one for the
+// coordinates and one for the momenta (a unit list `m, rad` names one per coordinate), else
+// the presentation's state units.
+function stateUnits() {
+  const n = app.lab.state().length, { k, paired } = stateLayout();
+  const starts = app.entry.params.filter((p) => p.initial_state);
+  if (starts.length === n && starts.every((p) => p.kind !== "vector")) return starts.map((p) => p.unit_text ?? "");
+  let units = starts.map((p) => p.unit_text ?? "");
+  if (!starts.length && presentation().state_units) units = presentation().state_units.map(unitWords);
+  if (!units.length || (!paired && starts.length !== 1)) return new Array(n).fill("");
+  const pick = (u, i) => { const parts = (u ?? "").split(/,\s*/); return parts.length === k ? parts[i] : parts.length === 1 ? parts[0] : ""; };
+  const q = Array.from({ length: k }, (_, i) => pick(units[0], i));
+  return paired ? [...q, ...Array.from({ length: k }, (_, i) => pick(units[1], i))] : q;
+}
+// Labels of the state's entries for axes ({runs, text}), and their text for the page.
+function stateAxisLabels() {
+  const units = stateUnits();
+  return stateSymbols().map((s, i) => label(s, units[i]));
+}
+function stateLabels() { return stateSymbols().map(texText); }
 function withUnit(name, unit) { return unit ? `${name} [${unit}]` : name; }
 
 const SUB = "₀₁₂₃₄₅₆₇₈₉";
 function subscript(n) { return String(n).split("").map((d) => SUB[Number(d)]).join(""); }
-
-// Symbols of the state's entries: θ₁, θ̇₁ for a Lagrangian state whose start is theta0,
-// q₁, p₁ for a Hamiltonian, y₁ for an ODE; no index for one degree of freedom.
-function stateLabels() {
-  const n = app.lab.state().length;
-  if (family() === "ode") return Array.from({ length: n }, (_, i) => `y${subscript(i + 1)}`);
-  const k = n / 2;
-  const q = stateParam("q")?.name === "theta0" ? "θ" : "q";
-  const v = family() === "lagrangian" ? `${q}\u0307` : "p";
-  const ix = (i) => (k === 1 ? "" : subscript(i + 1));
-  return [...Array.from({ length: k }, (_, i) => q + ix(i)), ...Array.from({ length: k }, (_, i) => v + ix(i))];
-}
-function stateUnits() {
-  const n = app.lab.state().length;
-  if (family() === "ode") return new Array(n).fill("");
-  const k = n / 2;
-  return [...Array.from({ length: k }, (_, i) => unitOf("q", i, k)), ...Array.from({ length: k }, (_, i) => unitOf("p", i, k))];
-}
 
 // ---------- catalogue-driven controls ----------
 
@@ -219,6 +326,12 @@ function sectionOffered() { return family() === "hamiltonian" && app.entry.separ
 function hasSection() { return sectionOffered() && $("section-on").checked; }
 function kind() {
   const n = app.entry.name, caps = app.entry.capabilities, pos = app.lab.positions();
+  const drawing = presentation().drawing.kind;
+  if (drawing === "swing") return "swing";
+  if (drawing === "contact_spiral") return "disk";
+  if (drawing === "spin") return "spinner";
+  // The catalogue's rolling bodies are drawn as plots there; here, in 3-D on their plane.
+  if (n.startsWith("rolling-")) return "rolling";
   if (pos.length === 3) return "top";
   if (n === "euler-top") return "rigid";
   if (n.includes("swarm") && (caps.includes("per_particle_energy") || caps.includes("phase_space_area"))) return "swarm";
@@ -253,14 +366,14 @@ function rebuild(state0 = null, keepMessage = false) {
   app.phaseSystem = app.entry.name;
   if (!same) $("section-on").checked = SECTION_BY_DEFAULT.has(app.entry.name);
   $("section-choice").hidden = !sectionOffered();
-  const k = family() === "ode" ? 0 : labels.length / 2;
+  const { k: kk, paired } = stateLayout(), k = paired ? kk : 0;
   // The site that moves most over the probe run (a chain's wave or kink passes there).
   app.extent = probeExtent();
   let site = 0;
-  if (family() !== "ode" && k > 2 && app.extent) {
+  if (paired && k > 2 && app.extent) {
     for (let i = 1; i < k; i++) if (app.extent.hi[i] - app.extent.lo[i] > app.extent.hi[site] - app.extent.lo[site]) site = i;
   }
-  for (const [id, def] of [["phase-x", site], ["phase-y", family() === "ode" ? 1 : k + site]]) {
+  for (const [id, def] of [["phase-x", site], ["phase-y", paired ? k + site : 1]]) {
     const sel = $(id), old = sel.value;
     sel.replaceChildren(...labels.map((l, i) => new Option(withUnit(l, units[i]), i)));
     sel.value = same && old !== "" && Number(old) < labels.length ? old : Math.min(def, labels.length - 1);
@@ -289,6 +402,8 @@ function startViews(extent = null) {
 
 function clearViews() {
   app.trails = []; app.phase = []; app.energy = []; app.rows = [];
+  app.spinAngle = 0; app.rollingView = null; app.topScale = null;
+  sceneNote("");
   app.frames = 0;
   record();
 }
@@ -370,7 +485,14 @@ function record() {
 // One trail and phase sample of the current state.
 function sample() {
   const lab = app.lab, s = lab.state(), pos = lab.positions();
-  if (pos.length) {
+  if (["swing", "disk", "spinner", "rolling"].includes(kind())) {
+    // The state and its time.
+    const t = lab.time(), last = app.trails[app.trails.length - 1];
+    // The rattleback's drawn heading: its spin n₃ added up over the samples (trapezoids).
+    if (kind() === "spinner" && last) app.spinAngle = (app.spinAngle ?? 0) + 0.5 * (last[2] + s[2]) * (t - last[3]);
+    app.trails.push(Float64Array.from([...s, t]));
+    if (app.trails.length > TRAIL) app.trails.splice(0, app.trails.length - TRAIL);
+  } else if (pos.length) {
     app.trails.push(Float64Array.from(pos));
     if (app.trails.length > TRAIL) app.trails.splice(0, app.trails.length - TRAIL);
   } else if (kind() === "rigid") {
@@ -480,6 +602,7 @@ function tickValues(lo, hi, count) {
 function tickText(x, step) {
   const d = Math.max(0, -Math.floor(Math.log10(step) + 1e-9));
   if (Math.abs(x) < step * 1e-6) x = 0;
+  x = Math.round(x / step) * step === 0 ? 0 : x;
   // Fixed decimals while they are few; else enough significant digits to tell ticks apart.
   const exp = Math.abs(x) >= 1e5 || d > 6;
   const k = Math.max(1, Math.min(12, Math.ceil(Math.log10(Math.max(Math.abs(x), step) / step))));
@@ -522,14 +645,33 @@ function drawAxes(id, ctx, v, xLabel, yLabel, { yTicks = null, xTicks = null } =
     ctx.fillText(text, r.x0 - 6, py);
   }
   ctx.stroke();
-  ctx.textAlign = "center"; ctx.textBaseline = "bottom";
-  ctx.fillText(xLabel, (r.x0 + r.x1) / 2, r.y1 + 2.9 * f + 4);
+  const xl = typeof xLabel === "string" ? plainLabel(xLabel) : xLabel, yl = typeof yLabel === "string" ? plainLabel(yLabel) : yLabel;
+  ctx.textBaseline = "bottom";
+  fillRuns(ctx, xl.runs, (r.x0 + r.x1) / 2, r.y1 + 2.9 * f + 4, "center");
   ctx.translate(f * 0.9, (r.y0 + r.y1) / 2);
   ctx.rotate(-Math.PI / 2);
   ctx.textBaseline = "middle";
-  ctx.fillText(yLabel, 0, 0);
+  fillRuns(ctx, yl.runs, 0, 0, "center");
   ctx.restore();
-  app.ticks[id] = { x: xt.map(([, t]) => t), y: yt.map(([, t]) => t), xLabel, yLabel };
+  app.ticks[id] = { x: xt.map(([, t]) => t), y: yt.map(([, t]) => t), xLabel: xl.text, yLabel: yl.text };
+}
+
+// Text runs ({text, sub}) at (x, y), aligned left, center or right: a subscript run in a
+// font 0.72 the size, lowered by a third of the size.
+function fillRuns(ctx, runs, x, y, align = "left") {
+  ctx.save();
+  const size = parseFloat(ctx.font) || fontSize(), family = ctx.font.replace(/^[\d.]+px\s*/, "");
+  const fontOf = (sub) => `${sub ? Math.round(size * 0.72) : size}px ${family}`;
+  const widths = runs.map((r) => { ctx.font = fontOf(r.sub); return ctx.measureText(r.text).width; });
+  const total = widths.reduce((a, b) => a + b, 0);
+  let at = align === "center" ? x - total / 2 : align === "right" ? x - total : x;
+  ctx.textAlign = "left";
+  runs.forEach((r, i) => {
+    ctx.font = fontOf(r.sub);
+    ctx.fillText(r.text, at, r.sub ? y + size * 0.3 : y);
+    at += widths[i];
+  });
+  ctx.restore();
 }
 
 function clip(ctx, v) {
@@ -611,11 +753,15 @@ function param(name) {
 function drawScene() {
   const { ctx, w, h } = surface("scene");
   const k = kind(), pos = app.lab.positions(), L = lengthUnit();
-  if (k === "top") return drawTop(ctx, w, h, pos);
+  if (k === "top") return drawTop(ctx, w, h, Array.from(pos));
   if (k === "rigid") return drawRigid(ctx, w, h);
   if (k === "swarm") return drawSwarm(ctx, w, h);
   if (k === "chain" || k === "sites") return drawChain(ctx, w, h, k);
   if (k === "series") return drawSeries(ctx, w, h);
+  if (k === "swing") return drawSwing(ctx, w, h);
+  if (k === "disk") return drawTiltedDisk(ctx, w, h);
+  if (k === "spinner") return drawSpinner(ctx, w, h, app.lab.state());
+  if (k === "rolling") return drawRolling(ctx, w, h);
   if (!app.sceneBox) app.sceneBox = sceneBoxFrom(null) ?? { x0: -1, x1: 1, y0: -1, y1: 1 };
   const v = plotView(w, h, app.sceneBox, true);
   app.sceneView = v;
@@ -706,8 +852,8 @@ function arrow(ctx, x0, y0, x1, y1, colour) {
 // the viewer, seen in perspective from DISTANCE (in units of the body's size). Returns
 // [screen x, screen y, depth].
 const AZIMUTH = 0.6, ELEVATION = 0.35, DISTANCE = 6;
-function project3([x, y, z], size = 1) {
-  const ca = Math.cos(AZIMUTH), sa = Math.sin(AZIMUTH), ce = Math.cos(ELEVATION), se = Math.sin(ELEVATION);
+function project3([x, y, z], size = 1, elevation = ELEVATION) {
+  const ca = Math.cos(AZIMUTH), sa = Math.sin(AZIMUTH), ce = Math.cos(elevation), se = Math.sin(elevation);
   const u = ca * x + sa * y, w = -sa * x + ca * y;
   const depth = ce * w + se * z, f = DISTANCE / (DISTANCE + depth / size);
   return [u * f, (ce * z - se * w) * f, depth];
@@ -757,8 +903,38 @@ function drawTop(ctx, w, h, tip) {
   }
   ctx.fillStyle = "rgba(192, 57, 43, 0.35)"; ctx.fill();
   ctx.strokeStyle = "#c0392b"; ctx.lineWidth = 2; ctx.stroke();
+  const Lv = topMomentum(tip);
+  app.topL = Lv;
+  if (Lv) {
+    // Drawn to a scale fixed when the run starts: the start's |L| is 1.2 arm lengths.
+    const Ln = Math.hypot(...Lv);
+    if (!app.topScale) app.topScale = (1.2 * l) / (Ln || 1);
+    const [x0, y0] = P([0, 0, 0]), end = Lv.map((x) => x * app.topScale), [x1, y1] = P(end);
+    arrow(ctx, x0, y0, x1, y1, "#e07000");
+    ctx.fillStyle = "#e07000"; ctx.textAlign = "left"; ctx.fillText("L", x1 + 6, y1);
+    sceneNote(`The top's axis (black) with its disc, the path of its tip (blue), and its angular momentum about the pivot L (orange, |L| = ${Ln.toPrecision(4)} kg m²/s): gravity's torque turns L about the vertical, keeping its vertical part.`);
+  }
   const [ox, oy] = P([0, 0, 0]);
   ctx.fillStyle = "#333"; ctx.beginPath(); ctx.arc(ox, oy, 4, 0, TAU); ctx.fill();
+}
+
+// The heavy symmetric top's angular momentum about the pivot, L = I₁ e₃ × ė₃ + I₃ ω₃ e₃: the
+// axis e₃ (the drawn tip over l) turning at e₃ × ė₃, and the spin ω₃ = ω · e₃ = ψ̇ + φ̇ (ẑ · e₃)
+// about it (the angles named by the catalogue's symbols). ė₃ is a central difference of the
+// drawn tip along the velocity (1e-6 of a second: the tip is smooth, so the difference is
+// good to ~1e-12 of |ė₃|, far below a pixel).
+function topMomentum(tip) {
+  const s = Array.from(app.lab.state()), n = s.length / 2, sym = presentation().symbols ?? [];
+  const iphi = sym.indexOf("\\phi"), ipsi = sym.indexOf("\\psi"), l = param("l"), I1 = param("I1"), I3 = param("I3");
+  if (iphi < 0 || ipsi < 0 || !(Math.abs(l) > 0) || !Number.isFinite(I1) || !Number.isFinite(I3)) return null;
+  const e3 = tip.map((x) => x / l), eps = 1e-6;
+  const at = (sign) => Array.from(app.lab.positionsOf(s.slice(0, n).map((q, i) => q + sign * eps * s[n + i])));
+  const up = at(1), down = at(-1);
+  if (up.length !== 3 || down.length !== 3) return null;
+  const de3 = up.map((x, i) => (x - down[i]) / (2 * eps * l));
+  const w3 = s[n + ipsi] + s[n + iphi] * e3[2];
+  const cr = [e3[1] * de3[2] - e3[2] * de3[1], e3[2] * de3[0] - e3[0] * de3[2], e3[0] * de3[1] - e3[1] * de3[0]];
+  return [0, 1, 2].map((i) => I1 * cr[i] + I3 * w3 * e3[i]);
 }
 
 // Rotates `v` by the unit quaternion [w, x, y, z].
@@ -807,8 +983,7 @@ function drawRigid(ctx, w, h) {
     const a = rotate(T[k - 1].slice(3, 7), [0, 0, 1.05]), b = rotate(T[k].slice(3, 7), [0, 0, 1.05]);
     ctx.beginPath(); ctx.moveTo(...P(a)); ctx.lineTo(...P(b)); ctx.stroke();
   }
-  ctx.fillStyle = "#333"; ctx.textAlign = "left";
-  ctx.fillText(`|L| = ${Ln.toPrecision(4)} kg m²/s, fixed in space; body axes e₁ e₂ e₃`, 8, h - 10);
+  sceneNote(`The body's axes e₁, e₂, e₃ turn; its angular momentum L (orange, |L| = ${Ln.toPrecision(4)} kg m²/s) stays fixed in space (no torque). Blue: the path of the tip of e₃.`);
   app.ticks.scene = { x: [], y: [], xLabel: "body axes e₁ e₂ e₃", yLabel: "L" };
   // Its own little scale: |ω| of the body.
   app.ticks.scene.x = [`|ω| = ${Math.hypot(s[0], s[1], s[2]).toPrecision(4)} rad/s`];
@@ -824,7 +999,8 @@ function drawSwarm(ctx, w, h) {
   const v = plotView(w, h, { x0: -Math.PI, x1: Math.PI, y0: -1.1 * pmax, y1: 1.1 * pmax }, false);
   app.sceneView = v;
   const piTicks = [[-Math.PI, "−π"], [-Math.PI / 2, "−π/2"], [0, "0"], [Math.PI / 2, "π/2"], [Math.PI, "π"]];
-  drawAxes("scene", ctx, v, "angle q [rad]", "momentum p [rad/s]", { xTicks: piTicks });
+  const sym = presentation().symbols?.[0] ?? "q", units = stateUnits(), { dot } = stateLayout();
+  drawAxes("scene", ctx, v, label(sym, units[0]), label(momentumOf(sym, dot), units[n]), { xTicks: piTicks });
   clip(ctx, v);
   ctx.strokeStyle = "#888"; ctx.setLineDash([6, 4]); ctx.lineWidth = 1.2;
   for (const sign of [1, -1]) {
@@ -841,8 +1017,7 @@ function drawSwarm(ctx, w, h) {
     for (let i = Math.round((b * n) / SWARM_BANDS); i < i1; i++) ctx.rect(v.X(wrapQ(s[i])) - 1.5, v.Y(s[n + i]) - 1.5, 3, 3);
     ctx.fill();
   }
-  ctx.fillStyle = "#555"; ctx.textAlign = "right";
-  ctx.fillText(`${n} pendulums · dashed: the separatrix`, v.rect.x1 - 6, v.rect.y0 + 14);
+  sceneNote(`${n} pendulums, each a point of the phase plane, coloured along the swarm; dashed: the separatrix between swinging and turning over.`);
   ctx.restore();
 }
 
@@ -851,7 +1026,7 @@ function drawSwarm(ctx, w, h) {
 // site with axes. Sine–Gordon: only the sites on a line with their displacement (an angle).
 function drawChain(ctx, w, h, k) {
   const s = app.lab.state(), n = ndof(), ring = app.entry.name === "toda";
-  const unit = unitOf("q", 0, n), f = fontSize();
+  const unit = stateUnits()[0], f = fontSize(), sym = presentation().symbols?.[0] ?? "q";
   let amp = 0;
   if (app.extent) for (let i = 0; i < n; i++) amp = Math.max(amp, Math.abs(app.extent.lo[i]), Math.abs(app.extent.hi[i]));
   for (let i = 0; i < n; i++) amp = Math.max(amp, Math.abs(s[i]));
@@ -859,7 +1034,7 @@ function drawChain(ctx, w, h, k) {
   const top = k === "chain" ? Math.min(110, h * 0.32) : 0;
   const v = plotView(w, h - top, { x0: 0.5, x1: n + 0.5, y0: -1.1 * amp, y1: 1.1 * amp }, false);
   ctx.save(); ctx.translate(0, top);
-  drawAxes("scene", ctx, v, "site", withUnit(k === "sites" ? "φ" : "displacement q", unit));
+  drawAxes("scene", ctx, v, "site", label(sym, unit));
   clip(ctx, v);
   ctx.strokeStyle = "#999"; ctx.lineWidth = 1; ctx.beginPath(); ctx.moveTo(v.rect.x0, v.Y(0)); ctx.lineTo(v.rect.x1, v.Y(0)); ctx.stroke();
   ctx.strokeStyle = "#2860c8"; ctx.lineWidth = 1.5; ctx.beginPath();
@@ -884,8 +1059,7 @@ function drawChain(ctx, w, h, k) {
   for (let i = 0; i + 1 < n; i++) coil(ctx, X(i) + half, y, X(i + 1) - half, y, Math.max(2, Math.min(6, Math.round(gap / 8))), Math.min(4, half * 0.6));
   ctx.fillStyle = "#c0392b";
   for (let i = 0; i < n; i++) ctx.fillRect(X(i) - half, y - half, 2 * half, 2 * half);
-  ctx.fillStyle = "#555"; ctx.textAlign = "left";
-  ctx.fillText(`${n} masses on springs${ring ? " (a ring: the last is joined to the first)" : ", fixed walls at both ends"}; displacements to scale`, x0, Math.max(f + 2, y - 22));
+  sceneNote(`Above: ${n} masses on springs${ring ? " (a ring: the last is joined to the first)" : ", fixed walls at both ends"}, displacements to scale. Below: each mass's displacement against its place in the chain.`);
 }
 
 // A system with nothing to draw as bodies (a reduced model's ODE): each state entry against
@@ -900,7 +1074,7 @@ function drawSeries(ctx, w, h) {
   app.sceneBox = { ...box };
   const v = plotView(w, h, box, false);
   app.sceneView = v;
-  drawAxes("scene", ctx, v, withUnit("t", timeUnit()), `state: ${labels.join(", ")}`);
+  drawAxes("scene", ctx, v, timeLabel(), `state: ${labels.join(", ")}`);
   clip(ctx, v);
   for (let i = 0; i < n; i++) {
     ctx.strokeStyle = orbitColour(i); ctx.lineWidth = 1.5; ctx.beginPath();
@@ -908,6 +1082,288 @@ function drawSeries(ctx, w, h) {
     ctx.stroke();
   }
   ctx.restore();
+}
+
+// ---------- the newest bodies: Foucault's swing, Euler's disk, rattlebacks, rolling bodies ----------
+
+// A caption under the scene, in the page's text (it wraps on a phone; a canvas line would be
+// cut): what the picture shows and its live numbers.
+function sceneNote(text) { const el = $("scene-note"); if (el.textContent !== text) el.textContent = text; }
+
+// A floor grid in perspective with tick labels in metres along two edges, centred at
+// (cx, cy) with half-width `half`; records the scene's ticks for the tests.
+function drawFloor(ctx, P, cx, cy, half) {
+  const tx = tickValues(cx - half, cx + half, 4), ty = tickValues(cy - half, cy + half, 4), L = lengthUnit();
+  const line = (a, b) => { ctx.beginPath(); ctx.moveTo(...P(a)); ctx.lineTo(...P(b)); ctx.stroke(); };
+  ctx.strokeStyle = "#ddd"; ctx.lineWidth = 1;
+  for (const g of tx.values) line([g, cy - half, 0], [g, cy + half, 0]);
+  for (const g of ty.values) line([cx - half, g, 0], [cx + half, g, 0]);
+  ctx.fillStyle = "#555"; ctx.textAlign = "center"; ctx.textBaseline = "top";
+  const xs = tx.values.map((g) => tickText(g, tx.step)), ys = ty.values.map((g) => tickText(g, ty.step));
+  tx.values.forEach((g, i) => { const [px, py] = P([g, cy - half * 1.1, 0]); ctx.fillText(xs[i], px, py); });
+  ty.values.forEach((g, i) => { const [px, py] = P([cx + half * 1.12, g, 0]); ctx.fillText(ys[i], px, py); });
+  const [xlx, xly] = P([cx, cy - half * 1.32, 0]), [ylx, yly] = P([cx + half * 1.38, cy, 0]);
+  ctx.fillText(withUnit("x", L), xlx, xly); ctx.fillText(withUnit("y", L), ylx, yly);
+  ctx.textBaseline = "alphabetic";
+  app.ticks.scene = { x: xs, y: ys, xLabel: withUnit("x", L), yLabel: withUnit("y", L) };
+}
+
+// A curved arrow round the vertical through `centre` (radius `r` in metres): the sense and
+// size of a spin about the vertical. `spin` > 0 turns anticlockwise seen from above.
+function spinArrow(ctx, P, centre, r, spin, colour, reference) {
+  if (!(Math.abs(spin) > 1e-9)) return;
+  // The arc's length in proportion to the spin against `reference` (the run's starting spin).
+  const sweep = (0.25 + 1.3 * Math.PI * Math.min(1, Math.abs(spin) / Math.max(Math.abs(reference) || 0, Math.abs(spin)))) * Math.sign(spin), pts = [];
+  for (let k = 0; k <= 40; k++) { const a = (sweep * k) / 40; pts.push(P([centre[0] + r * Math.cos(a), centre[1] + r * Math.sin(a), centre[2]])); }
+  ctx.strokeStyle = colour; ctx.lineWidth = 2.2; ctx.beginPath();
+  pts.forEach(([x, y], k) => (k ? ctx.lineTo(x, y) : ctx.moveTo(x, y)));
+  ctx.stroke();
+  const [x1, y1] = pts[pts.length - 1], [x0, y0] = pts[pts.length - 3];
+  arrow(ctx, x0, y0, x1, y1, colour);
+}
+
+// Foucault's pendulum seen from above: the bob's path (a rosette), the swing plane it started
+// in (dashed) and where it swings now (the line through its farthest recent point), the bob,
+// and the turn of the plane beside the Earth's: −ω_z t with ω_z = Ω sin(latitude).
+function drawSwing(ctx, w, h) {
+  const s = app.lab.state(), units = stateUnits(), T = app.trails;
+  let amp = Math.hypot(s[0], s[1]);
+  if (app.extent) for (const i of [0, 1]) amp = Math.max(amp, Math.abs(app.extent.lo[i]), Math.abs(app.extent.hi[i]));
+  amp = 1.15 * (amp || 1);
+  const v = plotView(w, h, { x0: -amp, x1: amp, y0: -amp, y1: amp }, true);
+  app.sceneView = v;
+  const labels = stateSymbols();
+  drawAxes("scene", ctx, v, label(`${labels[0]}`, units[0]), label(`${labels[1]}`, units[1]));
+  clip(ctx, v);
+  ctx.fillStyle = "#777"; ctx.textAlign = "center"; ctx.textBaseline = "middle";
+  ctx.fillText("N", v.X(0), v.rect.y0 + 12); ctx.fillText("E", v.rect.x1 - 10, v.Y(0));
+  const s0 = app.lab.initialState();
+  const a0 = Math.hypot(s0[0], s0[1]) > 0 ? Math.atan2(s0[1], s0[0]) : Math.atan2(s0[3], s0[2]);
+  ctx.setLineDash([6, 5]); ctx.strokeStyle = "#999"; ctx.lineWidth = 1.2;
+  ctx.beginPath(); ctx.moveTo(v.X(-amp * Math.cos(a0)), v.Y(-amp * Math.sin(a0))); ctx.lineTo(v.X(amp * Math.cos(a0)), v.Y(amp * Math.sin(a0))); ctx.stroke();
+  ctx.setLineDash([]);
+  ctx.lineWidth = 1.3;
+  const n = T.length;
+  for (let b = 0; b < 8 && n > 1; b++) {
+    const k0 = Math.floor((b * (n - 1)) / 8), k1 = Math.floor(((b + 1) * (n - 1)) / 8);
+    ctx.strokeStyle = `rgba(40, 90, 200, ${0.15 + (0.7 * (b + 1)) / 8})`;
+    ctx.beginPath();
+    for (let k = k0; k <= k1; k++) (k === k0 ? ctx.moveTo(v.X(T[k][0]), v.Y(T[k][1])) : ctx.lineTo(v.X(T[k][0]), v.Y(T[k][1])));
+    ctx.stroke();
+  }
+  // The swing plane now: the farthest point of the last swing (a period's samples).
+  const omega0 = Math.sqrt(param("g") / param("length")), lat = (param("latitude_deg") * Math.PI) / 180;
+  const omegaZ = param("omega_earth") * Math.sin(lat), period = TAU / omega0;
+  let far = null;
+  for (let k = n - 1; k >= 0 && T[n - 1][4] - T[k][4] <= period; k--) if (!far || Math.hypot(T[k][0], T[k][1]) > Math.hypot(far[0], far[1])) far = T[k];
+  ctx.strokeStyle = "#1e7d32"; ctx.lineWidth = 2;
+  let turned = null;
+  if (far && Math.hypot(far[0], far[1]) > 0) {
+    const a = Math.atan2(far[1], far[0]);
+    ctx.beginPath(); ctx.moveTo(v.X(-amp * Math.cos(a)), v.Y(-amp * Math.sin(a))); ctx.lineTo(v.X(amp * Math.cos(a)), v.Y(amp * Math.sin(a))); ctx.stroke();
+    // A plane's direction is defined modulo π: the turn in (−90°, 90°].
+    turned = ((a - a0 + Math.PI / 2) % Math.PI + Math.PI) % Math.PI - Math.PI / 2;
+  }
+  ctx.fillStyle = "#333"; ctx.beginPath(); ctx.arc(v.X(0), v.Y(0), 3, 0, TAU); ctx.fill();
+  bob(ctx, v.X(s[0]), v.Y(s[1]), 8, 0);
+  ctx.restore();
+  const t = app.lab.time(), deg = (x) => `${((x * 180) / Math.PI).toFixed(3)}°`;
+  const day = Math.abs(omegaZ) > 0 ? `; a full turn takes ${(TAU / Math.abs(omegaZ) / 3600).toPrecision(3)} h` : "";
+  sceneNote(`Seen from above: the bob's path, the swing plane it started in (dashed) and its plane now (green)` +
+    `${turned === null ? "" : `, turned ${deg(turned)}`}. The Earth's rotation Ω turns it by −Ω sin(latitude) t = ${deg(-omegaZ * t)}${day}.`);
+}
+
+// Euler's disk (the reduced model: inclination θ and the contact point's azimuth φ): the
+// disk in perspective, tilted θ from the table and touching it at azimuth φ from below its
+// centre, with the contact point's path on the table (it spirals out to the rim's radius as
+// the disk flattens). Lengths in units of the disk's radius (the model has none).
+function drawTiltedDisk(ctx, w, h) {
+  const s = app.lab.state(), [th, ph] = s;
+  const v = plotView(w, h, { x0: -1.8, x1: 1.8, y0: -1.0, y1: 1.2 }, true);
+  app.sceneView = v;
+  const P = (p) => { const [x, y] = project3(p, 1.6, 0.55); return [v.X(x), v.Y(y)]; };
+  const t = tickValues(-1, 1, 4), line = (a, b) => { ctx.beginPath(); ctx.moveTo(...P(a)); ctx.lineTo(...P(b)); ctx.stroke(); };
+  ctx.strokeStyle = "#ddd"; ctx.lineWidth = 1;
+  for (const g of t.values) { line([g, -1.2, 0], [g, 1.2, 0]); line([-1.2, g, 0], [1.2, g, 0]); }
+  ctx.fillStyle = "#555"; ctx.textAlign = "center"; ctx.textBaseline = "top";
+  const xs = t.values.map((g) => tickText(g, t.step));
+  t.values.forEach((g, i) => { const [px, py] = P([g, -1.3, 0]); ctx.fillText(xs[i], px, py); });
+  t.values.forEach((g, i) => { const [px, py] = P([1.32, g, 0]); ctx.fillText(xs[i], px, py); });
+  const [xlx, xly] = P([0, -1.75, 0]), [ylx, yly] = P([1.85, 0, 0]);
+  ctx.fillText("x / radius", xlx, xly); ctx.fillText("y / radius", ylx, yly);
+  ctx.textBaseline = "alphabetic";
+  app.ticks.scene = { x: xs, y: xs.slice(), xLabel: "x / radius", yLabel: "y / radius" };
+  const contact = (a, b) => [Math.cos(a) * Math.cos(b), Math.cos(a) * Math.sin(b), 0];
+  // The contact point's path so far.
+  const T = app.trails;
+  ctx.lineWidth = 1.5;
+  for (let k = 1; k < T.length; k++) {
+    ctx.strokeStyle = `rgba(40, 90, 200, ${0.1 + (0.7 * k) / T.length})`;
+    line(contact(T[k - 1][0], T[k - 1][1]), contact(T[k][0], T[k][1]));
+  }
+  const c = [0, 0, Math.sin(th)], er = [-Math.cos(th) * Math.cos(ph), -Math.cos(th) * Math.sin(ph), Math.sin(th)], et = [-Math.sin(ph), Math.cos(ph), 0];
+  const rim = (a) => [0, 1, 2].map((i) => c[i] + Math.cos(a) * er[i] + Math.sin(a) * et[i]);
+  // Its shadow, straight below.
+  ctx.fillStyle = "rgba(0, 0, 0, 0.08)"; ctx.beginPath();
+  for (let k = 0; k <= 64; k++) { const p = rim((TAU * k) / 64); const [x, y] = P([p[0], p[1], 0]); k ? ctx.lineTo(x, y) : ctx.moveTo(x, y); }
+  ctx.fill();
+  ctx.beginPath();
+  for (let k = 0; k <= 64; k++) { const [x, y] = P(rim((TAU * k) / 64)); k ? ctx.lineTo(x, y) : ctx.moveTo(x, y); }
+  ctx.fillStyle = "rgba(160, 165, 175, 0.55)"; ctx.fill();
+  ctx.strokeStyle = "#555"; ctx.lineWidth = 2; ctx.stroke();
+  ctx.strokeStyle = "#888"; ctx.lineWidth = 1; line(c, rim(Math.PI));
+  const [px, py] = P(contact(th, ph));
+  ctx.fillStyle = "#c0392b"; ctx.beginPath(); ctx.arc(px, py, 5, 0, TAU); ctx.fill();
+  const rate = param("precession_const") / Math.max(th, param("theta_floor"));
+  sceneNote(`The disk tilted θ = ${th.toFixed(3)} rad from the table; its contact point (red) runs round at φ̇ = ${rate.toPrecision(3)} rad/s, ` +
+    `faster as the disk flattens (lengths in disk radii; the reduced model has no size).`);
+}
+
+// The rattleback's rates in a body: an ellipsoid seen in perspective, turned about the
+// vertical by its spin (the angle ∫ n₃ dt, added up over the drawn samples) and rocked in
+// proportion to the rocking rates n₁, n₂; a curved arrow shows the sense and size of the spin.
+// Proportions of a typical rattleback (the reduced model has no shape).
+function drawSpinner(ctx, w, h, s) {
+  const v = plotView(w, h, { x0: -1.3, x1: 1.3, y0: -0.8, y1: 1.0 }, true);
+  app.sceneView = v;
+  const P = (p) => { const [x, y] = project3(p, 1.4, 0.55); return [v.X(x), v.Y(y)]; };
+  const line = (a, b) => { ctx.beginPath(); ctx.moveTo(...P(a)); ctx.lineTo(...P(b)); ctx.stroke(); };
+  ctx.strokeStyle = "#ddd"; ctx.lineWidth = 1;
+  for (let g = -1; g <= 1.001; g += 0.5) { line([g, -1, 0], [g, 1, 0]); line([-1, g, 0], [1, g, 0]); }
+  const nmax = Math.max(1e-9, ...(app.extent ? [0, 1].map((i) => Math.max(Math.abs(app.extent.lo[i]), Math.abs(app.extent.hi[i]))) : [1]));
+  const roll = (0.25 * s[0]) / nmax, pitch = (0.25 * s[1]) / nmax, yaw = app.spinAngle ?? 0;
+  // Body axes turned: yaw about z, then small rocking about the body's x and y.
+  const R = (p) => {
+    let [x, y, z] = p;
+    [y, z] = [y * Math.cos(roll) - z * Math.sin(roll), y * Math.sin(roll) + z * Math.cos(roll)];
+    [x, z] = [x * Math.cos(pitch) + z * Math.sin(pitch), -x * Math.sin(pitch) + z * Math.cos(pitch)];
+    return [x * Math.cos(yaw) - y * Math.sin(yaw), x * Math.sin(yaw) + y * Math.cos(yaw), z + 0.12];
+  };
+  const semi = [1, 0.3, 0.12];
+  ctx.lineWidth = 1.2;
+  const ring = (f, colour) => {
+    ctx.strokeStyle = colour; ctx.beginPath();
+    for (let k = 0; k <= 64; k++) { const [x, y] = P(R(f((TAU * k) / 64))); k ? ctx.lineTo(x, y) : ctx.moveTo(x, y); }
+    ctx.stroke();
+  };
+  ctx.fillStyle = "rgba(192, 57, 43, 0.25)"; ctx.beginPath();
+  for (let k = 0; k <= 64; k++) { const a = (TAU * k) / 64, [x, y] = P(R([semi[0] * Math.cos(a), semi[1] * Math.sin(a), 0])); k ? ctx.lineTo(x, y) : ctx.moveTo(x, y); }
+  ctx.fill();
+  ring((a) => [semi[0] * Math.cos(a), semi[1] * Math.sin(a), 0], "#7a2a1e");
+  ring((a) => [semi[0] * Math.cos(a), 0, semi[2] * Math.sin(a)], "#c0392b");
+  ring((a) => [0, semi[1] * Math.cos(a), semi[2] * Math.sin(a)], "#c0392b");
+  ctx.strokeStyle = "#7a2a1e"; ctx.lineWidth = 2.5; line(R([-semi[0], 0, 0]), R([semi[0], 0, 0]));
+  spinArrow(ctx, P, [0, 0, 0.12], 1.15, s[2], "#1f5fbf", app.lab.initialState()[2]);
+  app.ticks.scene = { x: [`n₁ = ${s[0].toPrecision(3)}`, `n₂ = ${s[1].toPrecision(3)}`], y: [`n₃ = ${s[2].toPrecision(3)}`], xLabel: "rocking rates n₁, n₂ [rad/s]", yLabel: "spin n₃ [rad/s]" };
+  drawRateBars(ctx, w, h, s, nmax);
+  sceneNote(`A rattleback's rates: the spin n₃ = ${s[2].toFixed(3)} rad/s (blue arrow: its sense seen from above; it turns the body), ` +
+    `rocking n₁ = ${s[0].toFixed(3)}, n₂ = ${s[1].toFixed(3)} rad/s (the tilt, exaggerated). The reduced model has no shape: the body is drawn in a rattleback's proportions.`);
+}
+
+// Bars of the three rates, to the right of the body: the spin's reversal is the blue bar
+// crossing zero.
+function drawRateBars(ctx, w, h, s, nmax) {
+  const f = fontSize(), x0 = w - 3 * 2.2 * f - 10, y0 = 14 + f, y1 = h - 2 * f, mid = (y0 + y1) / 2;
+  const top = Math.max(nmax, Math.abs(app.lab.initialState()[2]) || 1, Math.abs(s[2]));
+  ctx.strokeStyle = "#999"; ctx.lineWidth = 1; ctx.beginPath(); ctx.moveTo(x0 - 4, mid); ctx.lineTo(w - 6, mid); ctx.stroke();
+  ["n₁", "n₂", "n₃"].forEach((name, i) => {
+    const x = x0 + i * 2.2 * f, hgt = ((y1 - y0) / 2) * (s[i] / top);
+    ctx.fillStyle = i === 2 ? "#1f5fbf" : "#c0392b";
+    ctx.fillRect(x, Math.min(mid, mid - hgt), 1.4 * f, Math.abs(hgt));
+    ctx.fillStyle = "#333"; ctx.textAlign = "center"; ctx.textBaseline = "top";
+    ctx.fillText(name, x + 0.7 * f, y1 + 4);
+  });
+  ctx.textBaseline = "alphabetic";
+}
+
+// Quaternion [w, x, y, z] (any norm) to the rows of its rotation matrix, normalised.
+function rotationRows(q) {
+  const [w, x, y, z] = q, n = w * w + x * x + y * y + z * z, k = 2 / n;
+  return [
+    [1 - k * (y * y + z * z), k * (x * y - w * z), k * (x * z + w * y)],
+    [k * (x * y + w * z), 1 - k * (x * x + z * z), k * (y * z - w * x)],
+    [k * (x * z - w * y), k * (y * z + w * x), 1 - k * (x * x + y * y)],
+  ];
+}
+const mulRows = (R, p) => R.map((row) => row[0] * p[0] + row[1] * p[1] + row[2] * p[2]);
+
+// The rolling bodies' shape: the vector from the centre of mass to the contact point in the
+// body frame for the upward vertical γ seen from the body, and points of the body's outline.
+// (The same geometry as the catalogue's systems: an ellipsoid of semi-axes a, b, c whose
+// centre is h above the centre of mass, or a thin disk's rim of radius a.)
+function rollingShape() {
+  if (app.entry.name === "rolling-rattleback") {
+    const a = param("a"), b = param("b"), c = param("c"), hh = param("h"), A = [a * a, b * b, c * c];
+    return {
+      size: a,
+      contact(g) { const ag = [A[0] * g[0], A[1] * g[1], A[2] * g[2]], s = Math.sqrt(ag[0] * g[0] + ag[1] * g[1] + ag[2] * g[2]); return [-ag[0] / s, -ag[1] / s, -ag[2] / s + hh]; },
+      rings: [
+        (t) => [a * Math.cos(t), b * Math.sin(t), hh],
+        (t) => [a * Math.cos(t), 0, hh + c * Math.sin(t)],
+        (t) => [0, b * Math.cos(t), hh + c * Math.sin(t)],
+      ],
+      outline: (t) => [a * Math.cos(t), b * Math.sin(t), hh],
+      mark: [[-a, 0, hh], [a, 0, hh]],
+    };
+  }
+  const a = param("a");
+  return {
+    size: a,
+    contact(g) { const n = Math.hypot(g[0], g[1]) || 1; return [(-a * g[0]) / n, (-a * g[1]) / n, 0]; },
+    rings: [(t) => [a * Math.cos(t), a * Math.sin(t), 0]],
+    outline: (t) => [a * Math.cos(t), a * Math.sin(t), 0],
+    mark: [[0, 0, 0], [a, 0, 0]],
+  };
+}
+
+// A body rolling on the plane: the floor with ticks in metres, the contact point's path on it
+// (fading), the body in perspective at its orientation with a mark that shows its turning,
+// the contact point, and the spin about the vertical (ω · ẑ) as a curved arrow; the spin
+// against time in the caption's numbers.
+function drawRolling(ctx, w, h) {
+  const s = app.lab.state(), shape = rollingShape(), T = app.trails;
+  const R = rotationRows(s.slice(3, 7)), gamma = [R[2][0], R[2][1], R[2][2]];
+  const r = shape.contact(gamma), rw = mulRows(R, r), cm = [s[7] - rw[0], s[8] - rw[1], -rw[2]];
+  const world = (p) => { const q = mulRows(R, p); return [cm[0] + q[0], cm[1] + q[1], cm[2] + q[2]]; };
+  // The view: centred on the run's contact path (the probe's extent), wide enough for the body.
+  if (!app.rollingView) {
+    const e = app.extent, lo = e ? [e.lo[7], e.lo[8]] : [s[7], s[8]], hi = e ? [e.hi[7], e.hi[8]] : [s[7], s[8]];
+    const half = Math.max(1.25 * shape.size, 0.6 * Math.max(hi[0] - lo[0], hi[1] - lo[1]) + 1.1 * shape.size);
+    app.rollingView = { cx: (lo[0] + hi[0]) / 2, cy: (lo[1] + hi[1]) / 2, half };
+  }
+  // It widens (never narrows) when the body rolls out of it.
+  const away = Math.max(Math.abs(s[7] - app.rollingView.cx), Math.abs(s[8] - app.rollingView.cy)) + shape.size;
+  if (away > app.rollingView.half) app.rollingView.half = 1.3 * away;
+  const { cx, cy, half } = app.rollingView;
+  const v = plotView(w, h, { x0: -1.5 * half, x1: 1.5 * half, y0: -0.95 * half, y1: 0.95 * half }, true);
+  app.sceneView = v;
+  const P = (p) => { const [x, y] = project3([p[0] - cx, p[1] - cy, p[2]], half, 0.6); return [v.X(x), v.Y(y)]; };
+  drawFloor(ctx, P, cx, cy, half);
+  ctx.lineWidth = 1.2;
+  for (let k = 1; k < T.length; k++) {
+    ctx.strokeStyle = `rgba(30, 125, 50, ${0.08 + (0.6 * k) / T.length})`;
+    ctx.beginPath(); ctx.moveTo(...P([T[k - 1][7], T[k - 1][8], 0])); ctx.lineTo(...P([T[k][7], T[k][8], 0])); ctx.stroke();
+  }
+  // The shadow, the body's outline filled, its rings and its mark.
+  const N = 72, path = (f) => { ctx.beginPath(); for (let k = 0; k <= N; k++) { const [x, y] = f((TAU * k) / N); k ? ctx.lineTo(x, y) : ctx.moveTo(x, y); } };
+  ctx.fillStyle = "rgba(0, 0, 0, 0.1)";
+  path((t) => { const p = world(shape.outline(t)); return P([p[0], p[1], 0]); }); ctx.fill();
+  ctx.fillStyle = "rgba(192, 57, 43, 0.3)";
+  path((t) => P(world(shape.outline(t)))); ctx.fill();
+  ctx.lineWidth = 1.4;
+  shape.rings.forEach((f, i) => { ctx.strokeStyle = i ? "#c0392b" : "#7a2a1e"; path((t) => P(world(f(t)))); ctx.stroke(); });
+  ctx.strokeStyle = "#333"; ctx.lineWidth = 2.5;
+  ctx.beginPath(); ctx.moveTo(...P(world(shape.mark[0]))); ctx.lineTo(...P(world(shape.mark[1]))); ctx.stroke();
+  const [px, py] = P([s[7], s[8], 0]);
+  ctx.fillStyle = "#1e7d32"; ctx.beginPath(); ctx.arc(px, py, 4.5, 0, TAU); ctx.fill();
+  const spin = s[0] * gamma[0] + s[1] * gamma[1] + s[2] * gamma[2];
+  const s0 = app.lab.initialState(), g0 = rotationRows(s0.slice(3, 7))[2];
+  spinArrow(ctx, P, [cm[0], cm[1], cm[2]], 1.15 * shape.size, spin, "#1f5fbf", s0[0] * g0[0] + s0[1] * g0[1] + s0[2] * g0[2]);
+  const tilt = Math.acos(Math.max(-1, Math.min(1, R[2][2])));
+  const what = app.entry.name === "rolling-rattleback" ? "The rattleback" : "The disk";
+  sceneNote(`${what} rolling without slipping; green: the contact point and its path on the table. ` +
+    `Spin about the vertical ω·ẑ = ${spin.toFixed(3)} rad/s (blue arrow, seen from above${app.entry.name === "rolling-rattleback" ? "; a reversal crosses zero" : ""}), ` +
+    `${app.entry.name === "rolling-rattleback" ? "tilt" : "normal"} ${((tilt * 180) / Math.PI).toFixed(1)}° from the vertical.`);
 }
 
 function drawCurve(id, points, boxKey, labels) {
@@ -937,8 +1393,8 @@ function drawCurve(id, points, boxKey, labels) {
 }
 
 function drawPhase() {
-  const labels = stateLabels(), units = stateUnits(), ix = $("phase-x").value, iy = $("phase-y").value;
-  drawCurve("phase", app.phase, "phaseBox", [withUnit(labels[ix], units[ix]), withUnit(labels[iy], units[iy])]);
+  const labels = stateAxisLabels(), ix = $("phase-x").value, iy = $("phase-y").value;
+  drawCurve("phase", app.phase, "phaseBox", [labels[ix], labels[iy]]);
 }
 
 function drawEnergy() {
@@ -956,7 +1412,7 @@ function drawEnergy() {
   const every = Math.max(1, Math.ceil((hi - lo) / Math.max(2, Math.floor((v.rect.y1 - v.rect.y0) / (2.2 * fontSize())))));
   const yTicks = [];
   for (let d = lo; d <= hi; d++) if ((d - lo) % every === 0) yTicks.push([d, `10${superscriptInt(d)}`]);
-  drawAxes("energy", ctx, v, withUnit("t", timeUnit()), "|E − E₀| / |E₀|", { yTicks });
+  drawAxes("energy", ctx, v, timeLabel(), "|E − E₀| / |E₀|", { yTicks });
   clip(ctx, v);
   ctx.strokeStyle = "#c0392b"; ctx.lineWidth = 1.5; ctx.beginPath();
   pts.forEach(([x, y], k) => (k ? ctx.lineTo(v.X(x), v.Y(y)) : ctx.moveTo(v.X(x), v.Y(y))));
@@ -1021,8 +1477,8 @@ function drawSection() {
   if (!app.boundary) for (let i = 0; i < x.length; i += n) app.sectionBox = grow(app.sectionBox, x[i], x[i + 2]);
   const v = plotView(w, h, app.sectionBox, false);
   app.sectionView = v;
-  const labels = stateLabels(), units = stateUnits();
-  drawAxes("section", ctx, v, withUnit(labels[0], units[0]), withUnit(labels[2], units[2]));
+  const labels = stateAxisLabels();
+  drawAxes("section", ctx, v, labels[0], labels[2]);
   clip(ctx, v);
   if (app.boundary) {
     ctx.strokeStyle = "#444"; ctx.lineWidth = 1.5; ctx.beginPath();
@@ -1314,9 +1770,19 @@ function selectSystem(name, params = {}, build = true) {
   $("about").hidden = !app.entry.physics;
   fillParams();
   setControlValues();
-  // A new system starts from its own default method (the catalogue's).
-  fillMethods(null);
+  // A new system starts from its own default method (the catalogue's) and the lab's step.
+  const step = STEP_DEFAULTS[name];
+  fillMethods(step?.method ?? null);
+  setStep(step?.dt ?? DEFAULT_DT, step?.steps ?? DEFAULT_STEPS);
+  $("step-note").textContent = step?.note ?? "";
   if (build) rebuild();
+}
+
+function setStep(dt, steps) {
+  if (![...$("dt").options].some((o) => Number(o.value) === dt)) $("dt").append(new Option(String(dt), String(dt)));
+  $("dt").value = String(dt);
+  $("speed").value = steps;
+  $("speed-out").textContent = steps;
 }
 
 function restartRun() { app.lab.reset(); startViews(); draw(); }
@@ -1379,6 +1845,7 @@ window.physicskitLab = {
   select: (name) => { setRunning(false); selectSystem(name); },
   pause: () => setRunning(false),
   restart: () => { setRunning(false); restartRun(); },
+  setStep: (dt, steps) => setStep(dt, steps),
   runFrames: (n) => { setRunning(false); for (let i = 0; i < n; i++) if (!frame()) return false; draw(); return true; },
   shareHash: () => shareHash(),
   openHash: (hash) => { setRunning(false); return applyHash(hash); },

@@ -87,7 +87,9 @@ async function checkWords(p, name) {
 }
 const DRAGGABLE = [];
 for (let [name, method] of systems) {
-  await page.evaluate((n) => window.physicskitLab.select(n), name);
+  // The native reference's setup (dt = 1e-3, 25 steps a frame), whatever the page's own
+  // default step for this system.
+  await page.evaluate((n) => { window.physicskitLab.select(n); window.physicskitLab.setStep(1e-3, 25); }, name);
   const before = await sceneInk(page);
   const ok = await page.evaluate(() => window.physicskitLab.runFrames(4));
   // The page runs the catalogue's default method, or the first fixed-step one if that is
@@ -117,10 +119,85 @@ for (let [name, method] of systems) {
   if (shown !== physics) fail(`${name}: physics paragraph ${JSON.stringify(shown)?.slice(0, 60)} vs catalogue ${JSON.stringify(physics)?.slice(0, 60)}`);
   await checkAxes(page, name);
   await checkWords(page, name);
+  // Only a body that can be dragged is said to be: no caption of the others says "drag".
+  const words = await page.evaluate(() => ({
+    draggable: !document.getElementById("drag-hint").hidden,
+    text: [...document.querySelectorAll("#views, #caption, #method-info")].map((e) => e.innerText).join("\n"),
+  }));
+  if (!words.draggable && /\bdrag/i.test(words.text)) fail(`${name}: cannot be dragged, yet the page says ${JSON.stringify(words.text.match(/.{0,40}\bdrag.{0,40}/i)?.[0])}`);
   console.log(`ok ${name} (${method}): energy error ${readout}, ${after.ink} inked pixels, axes, words`);
+  // The page's own setup from here (its default step for the system), for the pictures.
+  await page.evaluate((n) => window.physicskitLab.select(n), name);
   await page.evaluate(() => window.physicskitLab.runFrames(120));
   await page.screenshot({ path: join(shots, `${name}.png`), fullPage: true });
   if (await page.locator("#drag-hint").isVisible()) DRAGGABLE.push(name);
+}
+
+// Axis labels are the catalogue's: each system's `presentation` symbols (TeX, read here with a
+// converter of this test's own for the symbols these systems use), dotted for velocities or
+// p-subscripted for momenta, the initial-state parameters' units, and its unit of time.
+{
+  const TEX = { "\\theta": "θ", "\\phi": "φ", "\\psi": "ψ" };
+  const SUBS = { 1: "₁", 2: "₂", 3: "₃", x: "ₓ" };
+  const unicode = (tex) => tex.replace(/\\[a-z]+/g, (m) => TEX[m]).replace(/_\{?([0-9x])\}?/g, (_, c) => SUBS[c]);
+  for (const name of ["double-pendulum", "henon-heiles", "heavy-top", "kepler", "foucault-pendulum"]) {
+    const got = await page.evaluate((n) => {
+      const L = window.physicskitLab;
+      L.select(n); L.runFrames(2);
+      return { ticks: L.ticks(), entry: L.app.entry, n: L.app.lab.state().length,
+        ix: Number(document.getElementById("phase-x").value), iy: Number(document.getElementById("phase-y").value) };
+    }, name);
+    const { symbols, time_unit: tu } = got.entry.presentation;
+    const starts = got.entry.params.filter((p) => p.initial_state).map((p) => p.unit_text);
+    const k = got.n / 2, dot = got.entry.family !== "hamiltonian";
+    // A coordinate's symbol, and its velocity's (a dot over the letter, before the index) or
+    // momentum's (p with the symbol as its index).
+    const q = (i) => unicode(symbols[i]);
+    const v = (i) => (dot ? unicode(symbols[i]).replace(/^(\p{L})/u, "$1\u0307") : `p${unicode(`_${symbols[i]}`)}`);
+    const unit = (u, i) => { const parts = (u ?? "").split(/,\s*/); return parts.length === k ? parts[i] : parts[0]; };
+    const withUnit = (s, u) => (u ? `${s} [${u}]` : s);
+    const want = (i) => (i < k ? withUnit(q(i), unit(starts[0], i)) : withUnit(v(i - k), unit(starts[1], i - k)));
+    const t = got.ticks;
+    if (t.phase.xLabel !== want(got.ix) || t.phase.yLabel !== want(got.iy)) fail(`labels ${name}: phase axes ${t.phase.xLabel} / ${t.phase.yLabel}, the catalogue says ${want(got.ix)} / ${want(got.iy)}`);
+    const time = tu === "s" ? "t [s]" : "t";
+    if (t.energy.xLabel !== time) fail(`labels ${name}: time axis ${t.energy.xLabel}, the catalogue's unit of time is ${JSON.stringify(tu)}`);
+    if (t.section && name === "henon-heiles" && (t.section.xLabel !== want(0) || t.section.yLabel !== want(k))) fail(`labels ${name}: section axes ${t.section.xLabel} / ${t.section.yLabel}`);
+    console.log(`ok labels ${name}: ${t.phase.xLabel}, ${t.phase.yLabel}; ${t.energy.xLabel}`);
+  }
+}
+
+// The heavy top's angular momentum L: its vertical part is conserved (gravity's torque is
+// horizontal), so the drawn L, read back, keeps L_z while L itself turns.
+{
+  const Ls = await page.evaluate(() => {
+    const L = window.physicskitLab, out = [];
+    L.select("heavy-top");
+    for (let i = 0; i < 6; i++) { L.runFrames(40); out.push(L.app.topL); }
+    return out;
+  });
+  const z0 = Ls[0]?.[2];
+  // 1e-6 of |L|: the rate ė₃ is a central difference of 1e-6 s (error ~1e-12 |ė₃|), and the
+  // run's own L_z drift at dt = 1e-3 over these 1.2 s is far smaller than that.
+  const norm = Math.hypot(...(Ls[0] ?? [0, 0, 0]));
+  if (!Ls.every((l) => l && Math.abs(l[2] - z0) <= 1e-6 * norm)) fail(`heavy top: L_z drifts: ${Ls.map((l) => l?.[2]).join(", ")}`);
+  const turned = Math.hypot(Ls[5][0] - Ls[0][0], Ls[5][1] - Ls[0][1]);
+  console.log(`ok heavy top: L_z = ${z0?.toPrecision(8)} kept over 6 draws (|L| ${norm.toPrecision(4)}; its horizontal part moved ${turned.toPrecision(3)})`);
+}
+
+// The rolling rattleback opens with a step that keeps its energy error below 1e-8: run the
+// page's own setup for 10 s of motion (as the step was chosen for) and read the largest error.
+{
+  const r = await page.evaluate(() => {
+    const L = window.physicskitLab;
+    L.select("rolling-rattleback");
+    let worst = 0;
+    while (L.app.lab.time() < 10) { if (!L.runFrames(1)) return null; worst = Math.max(worst, L.app.lab.energyError()); }
+    return { worst, t: L.app.lab.time(), method: document.getElementById("method").value, dt: document.getElementById("dt").value, steps: document.getElementById("speed").value,
+      note: document.getElementById("step-note").textContent };
+  });
+  if (!r || !(r.worst <= 1e-8)) fail(`rolling rattleback: energy error ${r?.worst} over 10 s at its default step`);
+  if (!r?.note.includes(r?.dt)) fail(`rolling rattleback: the page does not show its step (${JSON.stringify(r?.note)})`);
+  console.log(`ok rolling rattleback: ${r?.method} at dt = ${r?.dt}, ${r?.steps} steps a frame: largest energy error ${r?.worst.toExponential(2)} over ${r?.t.toFixed(2)} s`);
 }
 
 // Drag the double pendulum's lower bob 80 px to the left (towards the pivot, within reach): the state must change, the
@@ -306,6 +383,10 @@ for (const [name] of systems) {
     height: window.innerHeight,
   }));
   if (m.overflow > 0) fail(`phone ${name}: the page is ${m.overflow} px wider than the screen`);
+  // No caption cut: every text block shown is as wide as its content.
+  const cut = await phone.evaluate(() => [...document.querySelectorAll("figcaption, p, label, legend, h1, h2, .hint, .clock")]
+    .filter((e) => e.offsetParent !== null && e.scrollWidth > e.clientWidth + 1).map((e) => `${e.id || e.tagName}: ${e.textContent.slice(0, 50)}`));
+  if (cut.length) fail(`phone ${name}: text cut at 390 px: ${cut.join(" | ")}`);
   if (m.scene > m.height || m.run > m.height) fail(`phone ${name}: scene ends at ${m.scene} px, Run at ${m.run} px, screen ${m.height} px`);
   await phone.screenshot({ path: join(shots, `phone-${name}.png`) });
 }
