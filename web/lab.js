@@ -158,8 +158,25 @@ function momentumOf(sym, dot) {
   // An indexed coordinate's momentum takes its index (q₁, p₁); a named one's, its name (pₓ).
   return m[2] ? `p${m[2]}` : `p_{${sym}}`;
 }
+// Names of the entries of the state layouts the lab draws whose catalogue symbols are empty
+// (the catalogue names them only in its notes for the command line): a rigid body's body
+// rates and orientation quaternion, a rolling body's contact point after them, the reduced
+// rattleback's rates; with their units (the rates' from the initial-state parameter, the
+// contact point's the system's length). Null for other systems.
+function layoutNames() {
+  if ((presentation().symbols ?? []).length) return null;
+  const k = kind(), starts = app.entry.params.filter((p) => p.initial_state), rate = starts[0]?.unit_text ?? "";
+  if (k === "rigid" || k === "rolling") {
+    const names = ["\\omega_1", "\\omega_2", "\\omega_3", "q_w", "q_x", "q_y", "q_z"], units = [rate, rate, rate, "", "", "", ""];
+    return k === "rolling" ? { names: [...names, "x", "y"], units: [...units, lengthUnit(), lengthUnit()] } : { names, units };
+  }
+  if (k === "spinner") return { names: ["n_1", "n_2", "n_3"], units: [rate, rate, rate] };
+  return null;
+}
 // TeX symbols of the state's entries.
 function stateSymbols() {
+  const named = layoutNames();
+  if (named && named.names.length === app.lab.state().length) return named.names;
   const { k, paired, dot } = stateLayout(), q = Array.from({ length: k }, (_, i) => symbolOf(i, k));
   return paired ? [...q, ...q.map((s) => momentumOf(s, dot))] : q;
 }
@@ -167,7 +184,8 @@ function stateSymbols() {
 // coordinates and one for the momenta (a unit list `m, rad` names one per coordinate), else
 // the presentation's state units.
 function stateUnits() {
-  const n = app.lab.state().length, { k, paired } = stateLayout();
+  const n = app.lab.state().length, { k, paired } = stateLayout(), named = layoutNames();
+  if (named && named.units.length === n) return named.units;
   const starts = app.entry.params.filter((p) => p.initial_state);
   if (starts.length === n && starts.every((p) => p.kind !== "vector")) return starts.map((p) => p.unit_text ?? "");
   let units = starts.map((p) => p.unit_text ?? "");
@@ -1031,6 +1049,7 @@ function drawChain(ctx, w, h, k) {
   if (app.extent) for (let i = 0; i < n; i++) amp = Math.max(amp, Math.abs(app.extent.lo[i]), Math.abs(app.extent.hi[i]));
   for (let i = 0; i < n; i++) amp = Math.max(amp, Math.abs(s[i]));
   amp = amp || 1;
+  if (n === 1 && k === "chain") return drawOneMass(ctx, w, h, s[0], amp, label(sym, unit));
   const top = k === "chain" ? Math.min(110, h * 0.32) : 0;
   const v = plotView(w, h - top, { x0: 0.5, x1: n + 0.5, y0: -1.1 * amp, y1: 1.1 * amp }, false);
   ctx.save(); ctx.translate(0, top);
@@ -1060,6 +1079,27 @@ function drawChain(ctx, w, h, k) {
   ctx.fillStyle = "#c0392b";
   for (let i = 0; i < n; i++) ctx.fillRect(X(i) - half, y - half, 2 * half, 2 * half);
   sceneNote(`Above: ${n} masses on springs${ring ? " (a ring: the last is joined to the first)" : ", fixed walls at both ends"}, displacements to scale. Below: each mass's displacement against its place in the chain.`);
+}
+
+// One mass on a spring from a wall, seen from the side, its displacement x to scale on the
+// axis (0: the spring's rest length), with the run's extent as a faint band.
+function drawOneMass(ctx, w, h, x, amp, xLabel) {
+  const v = plotView(w, h, { x0: -2.3 * amp, x1: 1.25 * amp, y0: -amp, y1: amp }, false);
+  app.sceneView = v;
+  drawAxes("scene", ctx, v, xLabel, "", { yTicks: [[0, ""]] });
+  // A line, not a plane: the scene has no y axis (the tests read `line`).
+  app.ticks.scene = { ...app.ticks.scene, y: [], yLabel: "", line: true };
+  clip(ctx, v);
+  const y = v.Y(0), half = Math.min(22, (v.rect.y1 - v.rect.y0) / 5), wall = v.X(-2.2 * amp);
+  if (app.extent) { ctx.fillStyle = "rgba(40, 90, 200, 0.1)"; ctx.fillRect(v.X(app.extent.lo[0]), y - 1.6 * half, v.X(app.extent.hi[0]) - v.X(app.extent.lo[0]), 3.2 * half); }
+  ctx.fillStyle = "#bbb"; ctx.fillRect(wall - 10, y - 2 * half, 10, 4 * half);
+  ctx.strokeStyle = "#999"; ctx.setLineDash([5, 4]); ctx.beginPath(); ctx.moveTo(v.X(0), y - 2 * half); ctx.lineTo(v.X(0), y + 2 * half); ctx.stroke(); ctx.setLineDash([]);
+  ctx.strokeStyle = "#555"; ctx.lineWidth = 1.6;
+  coil(ctx, wall, y, v.X(x) - half, y, 12, half * 0.45);
+  ctx.fillStyle = "#c0392b"; ctx.fillRect(v.X(x) - half, y - half, 2 * half, 2 * half);
+  ctx.strokeStyle = "#5a1a12"; ctx.lineWidth = 1.2; ctx.strokeRect(v.X(x) - half, y - half, 2 * half, 2 * half);
+  ctx.restore();
+  sceneNote("A mass on a spring, seen from the side: its displacement from the spring's rest length (dashed) to scale; the band is the range of the run.");
 }
 
 // A system with nothing to draw as bodies (a reduced model's ODE): each state entry against
@@ -1215,8 +1255,11 @@ function drawTiltedDisk(ctx, w, h) {
   const [px, py] = P(contact(th, ph));
   ctx.fillStyle = "#c0392b"; ctx.beginPath(); ctx.arc(px, py, 5, 0, TAU); ctx.fill();
   const rate = param("precession_const") / Math.max(th, param("theta_floor"));
+  // The model's collapse: θ θ' = −decay rate, so θ reaches 0 at θ₀² / (2 decay rate).
+  const th0 = app.lab.initialState()[0], tf = (th0 * th0) / (2 * param("decay_rate"));
   sceneNote(`The disk tilted θ = ${th.toFixed(3)} rad from the table; its contact point (red) runs round at φ̇ = ${rate.toPrecision(3)} rad/s, ` +
-    `faster as the disk flattens (lengths in disk radii; the reduced model has no size).`);
+    `faster as the disk flattens, which it does at t = θ₀² / (2 × decay rate) = ${tf.toPrecision(3)} s, where the model ends ` +
+    `(lengths in disk radii; the reduced model has no size).`);
 }
 
 // The rattleback's rates in a body: an ellipsoid seen in perspective, turned about the
@@ -1224,7 +1267,8 @@ function drawTiltedDisk(ctx, w, h) {
 // proportion to the rocking rates n₁, n₂; a curved arrow shows the sense and size of the spin.
 // Proportions of a typical rattleback (the reduced model has no shape).
 function drawSpinner(ctx, w, h, s) {
-  const v = plotView(w, h, { x0: -1.3, x1: 1.3, y0: -0.8, y1: 1.0 }, true);
+  // Room on the right for the rates' bars.
+  const v = plotView(w, h, { x0: -1.4, x1: 2.1, y0: -0.8, y1: 1.0 }, true);
   app.sceneView = v;
   const P = (p) => { const [x, y] = project3(p, 1.4, 0.55); return [v.X(x), v.Y(y)]; };
   const line = (a, b) => { ctx.beginPath(); ctx.moveTo(...P(a)); ctx.lineTo(...P(b)); ctx.stroke(); };
