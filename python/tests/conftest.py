@@ -1,5 +1,5 @@
-"""Shared fixtures: every built-in system in a small, well-behaved configuration, and the
-cargo profile of the Rust programs some tests build and run."""
+"""Shared fixtures: every built-in system of the catalogue, built from its entry's defaults and
+demonstration values, and the cargo profile of the Rust programs some tests build and run."""
 
 import os
 
@@ -8,24 +8,45 @@ import pytest
 import physicskit.classical as pc
 
 
+def resolve(path: str):
+    """The callable a catalogue ``python`` path names: a class, or a class's classmethod
+    (``"KeplerSystem.from_orbital_elements"``)."""
+    cls_name, _dot, method = path.partition(".")
+    cls = getattr(pc, cls_name)
+    return getattr(cls, method) if method else cls
+
+
+def catalogue_calls():
+    """catalogue ``python`` path -> (callable, keyword arguments) of a valid call: every
+    parameter with a spec default or a demonstration value, by keyword, with that value (the
+    values the command line and the lab start from), an initial velocity the other front ends
+    start at rest as zeros; parameters whose default is None are left out. Every entry with a Python counterpart, so a new system is in every test that
+    iterates this."""
+    calls = {}
+    for entry in pc.catalog():
+        if entry["python"] is None:
+            continue
+        kwargs = {}
+        for p in entry["params"]:
+            if p["default_kind"] in ("value", "demo"):
+                kwargs[p["name"]] = p["default"]
+            elif p["default_kind"] == "demo_absent" and p["initial_state"]:
+                # The spec requires it, the other front ends start it at rest: zeros as long
+                # as the initial state's given half.
+                given = next(v for k, v in kwargs.items()
+                             if any(q["name"] == k and q["initial_state"] for q in entry["params"]))
+                kwargs[p["name"]] = [0.0] * len(given)
+            else:
+                # A required parameter without a demonstration value could not be built here.
+                assert p["default_kind"] == "absent", (entry["name"], p)
+        calls[entry["python"]] = (resolve(entry["python"]), kwargs)
+    return calls
+
+
 def make_systems():
-    """name -> zero-argument factory of a small instance of each built-in system."""
-    return {
-        "KeplerSystem": lambda: pc.KeplerSystem.from_orbital_elements(1.0, 0.5),
-        "HenonHeilesSystem": lambda: pc.HenonHeilesSystem([0.1, 0.0], [0.0, 0.3]),
-        "PendulumSwarm": lambda: pc.PendulumSwarm.from_box(1.0, 0.0, 0.1, 0.1, n=20),
-        "ProjectileMotion": lambda: pc.ProjectileMotion.from_launch(20.0, 45.0),
-        "HarmonicChain": lambda: pc.HarmonicChain([0.1, -0.05, 0.02, 0.0], [0.0, 0.1, 0.0, 0.0]),
-        "FPUTChain": lambda: pc.FPUTChain(n=8, beta=1.0),
-        "SineGordonChain": lambda: pc.SineGordonChain(40, q0=pc.SineGordonChain.kink(40, 20.0)[0]),
-        "DoublePendulum": lambda: pc.DoublePendulum([2.0, 1.0], [0.5, -0.3]),
-        "BeadOnRotatingHoop": lambda: pc.BeadOnRotatingHoop(0.3, 0.5),
-        "CoupledOscillators": lambda: pc.CoupledOscillators([0.1, 0.0, -0.1], [0.0, 0.2, 0.0]),
-        "EulerTop": lambda: pc.EulerTop([0.01, 1.0, 0.01]),
-        "HeavySymmetricTop": lambda: pc.HeavySymmetricTop([0.0, 0.5, 0.0], [0.0, 0.0, 20.0]),
-        "TodaLattice": lambda: pc.TodaLattice([0.0, 0.3, -0.2, 0.1], [0.5, 0.0, -0.5, 0.2]),
-        "ElasticPendulum": lambda: pc.ElasticPendulum([1.2, 0.3], [0.0, 0.1]),
-    }
+    """catalogue ``python`` path -> zero-argument factory of each built-in system, built from its
+    catalogue entry's defaults and demonstration values (``catalogue_calls``)."""
+    return {path: (lambda fn=fn, kw=kw: fn(**kw)) for path, (fn, kw) in catalogue_calls().items()}
 
 
 @pytest.fixture(scope="session")

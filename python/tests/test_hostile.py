@@ -30,7 +30,7 @@ import physicskit.classical as pc
 from physicskit.classical import ConvergenceError
 from physicskit.classical._native import MAX_NATIVE_INT
 
-from conftest import make_systems
+from conftest import catalogue_calls, make_systems
 
 SETTINGS = settings(
     max_examples=40,
@@ -63,40 +63,14 @@ def _available_bytes() -> int:
 #: The system the chaos functions' good calls run on (they move its state a little each time).
 _HH = pc.HenonHeilesSystem([0.1, 0.0], [0.0, 0.3])
 
-GOOD_CALLS = {
-    "KeplerSystem": (pc.KeplerSystem, ([1.0, 0.0], [0.0, 1.0]), dict(k=1.0, mu=1.0, eps=0.01)),
-    "HenonHeilesSystem": (pc.HenonHeilesSystem, ([0.1, 0.0], [0.0, 0.3]), {}),
-    "PendulumSwarm": (pc.PendulumSwarm, ([0.1, 0.2, 0.3], [0.0, 0.1, 0.0]), dict(g_over_l=1.0)),
-    "ProjectileMotion": (pc.ProjectileMotion, ([0.0, 0.0], [1.0, 1.0]), dict(m=1.0, g=9.81)),
-    "HarmonicChain": (pc.HarmonicChain, ([0.1, 0.0, -0.1], [0.0, 0.1, 0.0]), dict(m=1.0, k=1.0)),
-    "FPUTChain": (pc.FPUTChain, (), dict(n=8, m=1.0, k=1.0, beta=1.0, mode=1, amplitude=1.0)),
-    "SineGordonChain": (pc.SineGordonChain, (), dict(n=6, m=1.0, k=1.0, q0=[0.1] * 6,
-                                                     p0=[0.0] * 6)),
-    "DoublePendulum": (pc.DoublePendulum, ([2.0, 1.0], [0.5, -0.3]), dict(l1=1.0, g=9.81)),
-    "BeadOnRotatingHoop": (pc.BeadOnRotatingHoop, (0.3, 0.5), dict(R=1.0, omega=2.0)),
-    "CoupledOscillators": (pc.CoupledOscillators, ([0.1, 0.0, -0.1], [0.0, 0.2, 0.0]),
-                           dict(n=3, m=1.0, k=1.0)),
-    "EulerTop": (pc.EulerTop, ([0.01, 1.0, 0.01],), dict(I1=1.0, I2=2.0, I3=3.0)),
-    "HeavySymmetricTop": (pc.HeavySymmetricTop, ([0.0, 0.5, 0.0], [0.0, 0.0, 20.0]),
-                          dict(I1=1.0, I3=0.5, M=1.0, l=1.0, g=9.81)),
-    "TodaLattice": (pc.TodaLattice, ([0.0, 0.3, -0.2], [0.5, 0.0, -0.5]), dict(a=1.0, b=1.0)),
-    "ElasticPendulum": (pc.ElasticPendulum, ([1.2, 0.3], [0.0, 0.1]),
-                        dict(m=1.0, k=40.0, L0=1.0, g=9.81)),
-    "FoucaultPendulum": (pc.FoucaultPendulum, ([1.0, 0.0], [0.0, 0.1]),
-                         dict(length=67.0, g=9.81, latitude_deg=48.85, omega_earth=7.3e-5)),
-    "FoucaultPendulum.from_deflection": (pc.FoucaultPendulum.from_deflection, (1.0, 30.0),
-                                         dict(length=67.0, g=9.81, latitude_deg=48.85,
-                                              omega_earth=7.3e-5)),
+#: The catalogue's systems, each called with its entry's defaults and demonstration values by
+#: keyword (``conftest.catalogue_calls``); then the functions, named constructors and static
+#: helpers that are not catalogue entries.
+GOOD_CALLS = {path: (fn, (), kwargs) for path, (fn, kwargs) in catalogue_calls().items()}
+_HAND_CALLS = {
     "FoucaultPendulum.analytic_solution": (pc.FoucaultPendulum.analytic_solution,
                                            ([1.0, 0.0], [0.0, 0.1], 0.4, 5e-5, [0.0, 1.0]), {}),
-    "EulersDisk": (pc.EulersDisk, (0.5,),
-                   dict(phi0=0.0, decay_rate=0.05, precession_const=1.0, theta_floor=1e-3)),
     "eulers_disk_theta_analytic": (pc.eulers_disk_theta_analytic, ([0.0, 1.0], 0.5, 0.05), {}),
-    "Rattleback": (pc.Rattleback, ([0.01, 0.01, 3.0],),
-                   dict(I1=1.0, I2=1.5, I3=2.0, gamma=1.0, mu=0.01, eta=0.01)),
-    "RollingRattleback": (pc.RollingRattleback, ([0.0, 0.0, -5.0],),
-                          dict(a=0.2, b=0.03, c=0.02, h=0.01, m=1.0)),
-    "RollingDisk": (pc.RollingDisk, ([0.0, 0.0, 10.0],), dict(a=0.05, m=1.0, g=9.81)),
     "effective_potential_symmetric_top": (pc.effective_potential_symmetric_top,
                                           ([0.3, 0.5], 1.0, 2.0, 1.0, 0.5, 1.0), {}),
     "find_theta_equilibrium": (pc.find_theta_equilibrium, (1.0, 2.0, 1.0, 0.5, 1.0), {}),
@@ -106,11 +80,9 @@ GOOD_CALLS = {
     "methods": (pc.methods, (), {}),
     "catalog": (pc.catalog, (), {}),
     # Named constructors and static helpers, reached through the classes.
-    "KeplerSystem.from_orbital_elements": (pc.KeplerSystem.from_orbital_elements, (1.0, 0.5),
-                                           dict(k=1.0, mu=1.0)),
-    "PendulumSwarm.from_box": (pc.PendulumSwarm.from_box, (1.0, 0.0, 0.1, 0.1),
-                               dict(n=20, g_over_l=1.0, seed=3)),
-    "ProjectileMotion.from_launch": (pc.ProjectileMotion.from_launch, (20.0, 45.0), {}),
+    "FoucaultPendulum.from_deflection": (pc.FoucaultPendulum.from_deflection, (1.0, 30.0),
+                                         dict(length=67.0, g=9.81, latitude_deg=48.85,
+                                              omega_earth=7.3e-5)),
     "ProjectileMotion.analytic_trajectory": (pc.ProjectileMotion.analytic_trajectory,
                                              (20.0, 45.0, 9.81, [0.0, 0.5, 1.0]), {}),
     "ProjectileMotion.range_and_max_height": (pc.ProjectileMotion.range_and_max_height,
@@ -138,6 +110,8 @@ GOOD_CALLS = {
     "crossing": (pc.crossing, (0,), dict(value=0.0, direction="falling")),
     "abs_above": (pc.abs_above, (0, 1.0), {}),
 }
+assert not set(_HAND_CALLS) & set(GOOD_CALLS), "a catalogue entry written by hand too"
+GOOD_CALLS.update(_HAND_CALLS)
 
 # The SymPy engines (physicskit.classical.utils), when SymPy is installed: their constructors
 # (symbols, expressions and params dict) and the systems they build (initial states).

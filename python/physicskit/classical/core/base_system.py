@@ -35,6 +35,10 @@ from .._native import (
     as_vector,
 )
 
+#: Catalogue name -> its ``python`` path (``"kepler"`` -> ``"KeplerSystem.from_orbital_elements"``),
+#: read from the catalogue on the first repr.
+_CONSTRUCTORS: dict[str, str] = {}
+
 __all__ = [
     "SimulationResult",
     "DynamicalSystem",
@@ -380,14 +384,27 @@ class DynamicalSystem(ABC):
 
     def __repr__(self) -> str:
         """``ClassName(parameter=value, ...)``: a built-in system's catalogue parameters as
-        its constructor takes them (with ``t`` and ``state`` once it has moved on), other
-        systems' ``ndof``, ``t`` and ``state``."""
+        the constructor that takes them takes them (``KeplerSystem.from_orbital_elements(a=...,
+        e=...)`` for a system built by that classmethod; with ``t`` and ``state`` once it has
+        moved on), other systems' ``ndof``, ``t`` and ``state``."""
         from . import display
 
         try:
-            return display.format_call(type(self).__name__, self._repr_fields())
+            return display.format_call(self._repr_name(), self._repr_fields())
         except Exception:  # noqa: BLE001  (a repr must not raise)
             return object.__repr__(self)
+
+    def _repr_name(self) -> str:
+        """The catalogue's ``python`` path of the entry the system was built from, when that
+        entry's class is this class (a user's subclass shows its own name)."""
+        name = type(self).__name__
+        native = getattr(self._native, "name", None)
+        if native is None:
+            return name
+        if not _CONSTRUCTORS:
+            _CONSTRUCTORS.update((e["name"], e["python"]) for e in _core.catalog() if e["python"])
+        path = _CONSTRUCTORS.get(native)
+        return path if path is not None and path.partition(".")[0] == name else name
 
     def _repr_fields(self) -> list[tuple[str, Any]]:
         """The ``(name, value)`` pairs :meth:`__repr__` shows; subclasses may extend them."""
