@@ -1,6 +1,7 @@
 // The lab page: pickers and sliders generated from the catalogue (the JSON `physicskit list
 // --json` prints, read from the WebAssembly module; the lab shows its text for people:
-// `summary_text`, `note_text`, `label`, `unit_text`, `help_text`), a frame loop stepping the
+// `summary_text`, `note_text`, `label`, `unit_text`, `help_text`, and labels its axes from each
+// system's `presentation`: symbols, units, unit of time), a frame loop stepping the
 // Rust integrators, and the views, each with axes, ticks and units from a view fixed when a
 // run starts: the scene (each kind of body drawn as what it is, with a trail sampled inside
 // each frame), a phase-space panel, the energy error on a log scale and, for two-degree-of-
@@ -196,9 +197,15 @@ function stateUnits() {
   return paired ? [...q, ...Array.from({ length: k }, (_, i) => pick(units[1], i))] : q;
 }
 // Labels of the state's entries for axes ({runs, text}), and their text for the page.
+// Kept for the system and state length they were made for: a frame reads two of them, and a
+// swarm has thousands.
 function stateAxisLabels() {
-  const units = stateUnits();
-  return stateSymbols().map((s, i) => label(s, units[i]));
+  const key = `${app.entry.name}/${app.lab.state().length}`;
+  if (app.axisLabels?.key !== key) {
+    const units = stateUnits();
+    app.axisLabels = { key, labels: stateSymbols().map((s, i) => label(s, units[i])) };
+  }
+  return app.axisLabels.labels;
 }
 function stateLabels() { return stateSymbols().map(texText); }
 function withUnit(name, unit) { return unit ? `${name} [${unit}]` : name; }
@@ -1044,7 +1051,7 @@ function drawSwarm(ctx, w, h) {
 // site with axes. Sine–Gordon: only the sites on a line with their displacement (an angle).
 function drawChain(ctx, w, h, k) {
   const s = app.lab.state(), n = ndof(), ring = app.entry.name === "toda";
-  const unit = stateUnits()[0], f = fontSize(), sym = presentation().symbols?.[0] ?? "q";
+  const unit = stateUnits()[0], sym = presentation().symbols?.[0] ?? "q";
   let amp = 0;
   if (app.extent) for (let i = 0; i < n; i++) amp = Math.max(amp, Math.abs(app.extent.lo[i]), Math.abs(app.extent.hi[i]));
   for (let i = 0; i < n; i++) amp = Math.max(amp, Math.abs(s[i]));

@@ -2,7 +2,8 @@
 //   - steps per second of the WebAssembly core for the systems of lab_bench.rs, in the same
 //     frames (16 steps of 1 ms, default method), to set against the native figures;
 //   - whole frames (step and draw all panels) per second of the page itself for the double
-//     pendulum at dt = 1e-3 with 16 steps a frame and the 1000-pendulum swarm.
+//     pendulum at dt = 1e-3 with 16 steps a frame and the 1000-pendulum swarm;
+//   - the rolling bodies' energy error over 10 s with rk4 at each step, at real time.
 //
 //   node web/test/bench.mjs SITE_DIR
 import { serve, launch } from "./harness.mjs";
@@ -40,6 +41,27 @@ for (const name of ["double-pendulum", "pendulum-swarm"]) {
     return (performance.now() - t0) / frames;
   }, name);
   console.log(JSON.stringify({ system: name, page_ms_per_frame: Number(ms.toFixed(2)), frames_per_second_possible: Math.round(1000 / ms) }));
+}
+// The step of the rolling bodies (the catalogue's default method, dop853, is adaptive, which
+// a frame-by-frame run cannot take): rk4 at each step with 1/60 s of motion a frame (real time
+// at 60 frames a second), 10 s of motion, the largest energy error over it and the time a
+// frame's steps take. The page opens each at the largest step whose error stays below 1e-8
+// (STEP_DEFAULTS in lab.js).
+for (const name of ["rolling-rattleback", "rolling-disk", "rolling-disk-steady"]) {
+  for (const dt of [1e-3, 5e-4, 2e-4, 1e-4]) {
+    const row = await page.evaluate(([n, step]) => {
+      const lab = window.physicskitLab.app.core.build(n, {});
+      lab.setMethod("rk4");
+      const steps = Math.round(1 / 60 / step);
+      let worst = 0, frames = 0;
+      const t0 = performance.now();
+      while (lab.time() < 10) { lab.step(steps, step); frames++; worst = Math.max(worst, lab.energyError()); }
+      const ms = (performance.now() - t0) / frames;
+      lab.free();
+      return { system: n, method: "rk4", dt: step, steps_per_frame: steps, max_energy_error_10s: Number(worst.toPrecision(3)), ms_per_frame: Number(ms.toFixed(3)) };
+    }, [name, dt]);
+    console.log(JSON.stringify(row));
+  }
 }
 await browser.close();
 server.close();
