@@ -1386,7 +1386,13 @@ function drawRolling(ctx, w, h) {
   const away = Math.max(Math.abs(s[7] - app.rollingView.cx), Math.abs(s[8] - app.rollingView.cy)) + shape.size;
   if (away > app.rollingView.half) app.rollingView.half = 1.3 * away;
   const { cx, cy, half } = app.rollingView;
-  const v = plotView(w, h, { x0: -1.5 * half, x1: 1.5 * half, y0: -0.95 * half, y1: 0.95 * half }, true);
+  // The box of the projected floor with its labels, and room above it for the body.
+  let box = null;
+  for (const [x, y, z] of [[-1.2, -1.2, 0], [-1.2, 1.2, 0], [1.2, -1.2, 0], [1.2, 1.2, 0], [0, 0, 0.5]]) {
+    const [px, py] = project3([x * half, y * half, z * half], half, 0.6);
+    box = grow(box, px, py);
+  }
+  const v = plotView(w, h, pad(box, 0.03), true);
   app.sceneView = v;
   const P = (p) => { const [x, y] = project3([p[0] - cx, p[1] - cy, p[2]], half, 0.6); return [v.X(x), v.Y(y)]; };
   drawFloor(ctx, P, cx, cy, half);
