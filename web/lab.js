@@ -588,11 +588,12 @@ function surface(id) {
 
 function fontSize() { return document.body.classList.contains("large") ? 17 : 12; }
 
-// A transform from a box of the data to the plot area (inside the axes' margins), with equal
-// scales if `square` (the box then grows about its centre to fill the area).
-function plotView(w, h, box, square) {
+// A transform from a box of the data to the plot area (inside the axes' margins, unless `axes`
+// is false), with equal scales if `square` (the box then grows about its centre to fill the area).
+function plotView(w, h, box, square, axes = true) {
   const f = fontSize();
-  const r = { x0: 4.6 * f + 6, x1: w - 10, y0: 10, y1: h - 2.9 * f - 6 };
+  // A 3-D scene draws its own floor and labels: it takes the whole canvas.
+  const r = axes ? { x0: 4.6 * f + 6, x1: w - 10, y0: 10, y1: h - 2.9 * f - 6 } : { x0: 8, x1: w - 8, y0: 8, y1: h - 8 };
   let { x0, x1, y0, y1 } = box;
   // A coordinate that barely moves gets a span of a millionth of its size (ticks that tell
   // their values apart), one that does not move at all a span of 2.
@@ -889,7 +890,7 @@ function project3([x, y, z], size = 1, elevation = ELEVATION) {
 // of the axis tip (precession and nutation).
 function drawTop(ctx, w, h, tip) {
   const l = Math.hypot(tip[0], tip[1], tip[2]) || 1, L = lengthUnit();
-  const v = plotView(w, h, { x0: -1.3 * l, x1: 1.3 * l, y0: -0.9 * l, y1: 1.3 * l }, true);
+  const v = plotView(w, h, { x0: -1.3 * l, x1: 1.3 * l, y0: -0.9 * l, y1: 1.3 * l }, true, false);
   app.sceneView = v;
   const P = (p) => { const [x, y] = project3(p, l); return [v.X(x), v.Y(y)]; };
   const line = (a, b) => { ctx.beginPath(); ctx.moveTo(...P(a)); ctx.lineTo(...P(b)); ctx.stroke(); };
@@ -974,7 +975,7 @@ function rotate([w, x, y, z], v) {
 // L = I ω turned into the space frame (fixed in space: no torque).
 function drawRigid(ctx, w, h) {
   const s = app.lab.state(), q = s.slice(3, 7), I = [param("I1"), param("I2"), param("I3")].map((x) => (Number.isFinite(x) ? x : 1));
-  const v = plotView(w, h, { x0: -1.6, x1: 1.6, y0: -1.4, y1: 1.4 }, true);
+  const v = plotView(w, h, { x0: -1.6, x1: 1.6, y0: -1.4, y1: 1.4 }, true, false);
   app.sceneView = v;
   // Half-sides of the uniform box with these principal moments: I1 ∝ b² + c², ...
   const sum = I[0] + I[1] + I[2];
@@ -1226,7 +1227,7 @@ function drawSwing(ctx, w, h) {
 // the disk flattens). Lengths in units of the disk's radius (the model has none).
 function drawTiltedDisk(ctx, w, h) {
   const s = app.lab.state(), [th, ph] = s;
-  const v = plotView(w, h, { x0: -1.8, x1: 1.8, y0: -1.0, y1: 1.2 }, true);
+  const v = plotView(w, h, { x0: -1.8, x1: 1.8, y0: -1.0, y1: 1.2 }, true, false);
   app.sceneView = v;
   const P = (p) => { const [x, y] = project3(p, 1.6, 0.55); return [v.X(x), v.Y(y)]; };
   const t = tickValues(-1, 1, 4), line = (a, b) => { ctx.beginPath(); ctx.moveTo(...P(a)); ctx.lineTo(...P(b)); ctx.stroke(); };
@@ -1236,10 +1237,11 @@ function drawTiltedDisk(ctx, w, h) {
   const xs = t.values.map((g) => tickText(g, t.step));
   t.values.forEach((g, i) => { const [px, py] = P([g, -1.3, 0]); ctx.fillText(xs[i], px, py); });
   t.values.forEach((g, i) => { const [px, py] = P([1.32, g, 0]); ctx.fillText(xs[i], px, py); });
-  const [xlx, xly] = P([0, -1.75, 0]), [ylx, yly] = P([1.85, 0, 0]);
-  ctx.fillText("x / radius", xlx, xly); ctx.fillText("y / radius", ylx, yly);
+  // The axes' names short (a phone has no room): their unit, the disk's radius, is in the note.
+  const [xlx, xly] = P([0, -1.6, 0]), [ylx, yly] = P([1.62, 0, 0]);
+  ctx.fillText("x", xlx, xly); ctx.fillText("y", ylx, yly);
   ctx.textBaseline = "alphabetic";
-  app.ticks.scene = { x: xs, y: xs.slice(), xLabel: "x / radius", yLabel: "y / radius" };
+  app.ticks.scene = { x: xs, y: xs.slice(), xLabel: "x", yLabel: "y" };
   const contact = (a, b) => [Math.cos(a) * Math.cos(b), Math.cos(a) * Math.sin(b), 0];
   // The contact point's path so far.
   const T = app.trails;
@@ -1275,7 +1277,7 @@ function drawTiltedDisk(ctx, w, h) {
 // Proportions of a typical rattleback (the reduced model has no shape).
 function drawSpinner(ctx, w, h, s) {
   // Room on the right for the rates' bars.
-  const v = plotView(w, h, { x0: -1.4, x1: 2.1, y0: -0.8, y1: 1.0 }, true);
+  const v = plotView(w, h, { x0: -1.4, x1: 2.1, y0: -0.8, y1: 1.0 }, true, false);
   app.sceneView = v;
   const P = (p) => { const [x, y] = project3(p, 1.4, 0.55); return [v.X(x), v.Y(y)]; };
   const line = (a, b) => { ctx.beginPath(); ctx.moveTo(...P(a)); ctx.lineTo(...P(b)); ctx.stroke(); };
@@ -1392,7 +1394,7 @@ function drawRolling(ctx, w, h) {
     const [px, py] = project3([x * half, y * half, z * half], half, 0.6);
     box = grow(box, px, py);
   }
-  const v = plotView(w, h, pad(box, 0.03), true);
+  const v = plotView(w, h, pad(box, 0.03), true, false);
   app.sceneView = v;
   const P = (p) => { const [x, y] = project3([p[0] - cx, p[1] - cy, p[2]], half, 0.6); return [v.X(x), v.Y(y)]; };
   drawFloor(ctx, P, cx, cy, half);
