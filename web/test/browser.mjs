@@ -315,6 +315,25 @@ for (const [hash, system, named] of HOSTILE) {
   await p.close();
 }
 
+// Links in the form the gallery writes (`Ctx::lab_link`: system, method, dt, parameters; no
+// steps) open every system with nothing refused, the method and step they name.
+{
+  const bad = await page.evaluate(() => {
+    const L = window.physicskitLab, out = [];
+    for (const s of L.app.catalogue.systems) {
+      L.select(s.name);
+      const m = document.getElementById("method").value;
+      const hash = `#system=${s.name}&method=${m}&dt=0.002&params=${encodeURIComponent("{}")}`;
+      const clean = L.openHash(hash);
+      const got = [L.app.entry.name, document.getElementById("method").value, document.getElementById("dt").value];
+      if (!clean || got.join() !== [s.name, m, "0.002"].join()) out.push(`${hash} -> ${got} (${document.getElementById("message").textContent})`);
+    }
+    return out;
+  });
+  if (bad.length) fail(`gallery-form links: ${bad.join(" | ")}`);
+  console.log("ok gallery-form links: every system opens with its method and step, nothing refused");
+}
+
 // Hénon–Heiles: three clicks on the section launch three orbits at the same energy (y = 0,
 // py > 0 solved); each runs 80 time units. The crossings of all three stay, each orbit with
 // its own number, read from the JSON export.
