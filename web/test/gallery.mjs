@@ -5,15 +5,17 @@
 //   - every image loads (SVG figures and GIFs, thumbnails included);
 //   - every contents entry points to a section that exists, each section once;
 //   - every "Open in the lab" link carries the lab's share-link fields (system, method, dt,
-//     params as JSON) and names a system the lab's catalogue has;
+//     params as JSON);
 //   - no console errors;
-// and saves a screenshot of each to the given directory.
+// and saves a screenshot of each to the given directory. Then, if the lab is built into the
+// gallery (GALLERY_DIR/lab, as scripts/demo builds it), it serves the lab and opens every
+// link's fragment in it: the lab must refuse nothing and open the linked system.
 //
 //   node web/test/gallery.mjs GALLERY_DIR SCREENSHOT_DIR
-import { mkdirSync } from "node:fs";
 import { join, resolve } from "node:path";
 import { pathToFileURL } from "node:url";
-import { launch } from "./harness.mjs";
+import { existsSync, mkdirSync } from "node:fs";
+import { launch, serve } from "./harness.mjs";
 
 const [gallery, shots] = process.argv.slice(2);
 if (!gallery || !shots) {
@@ -24,6 +26,7 @@ mkdirSync(shots, { recursive: true });
 const url = pathToFileURL(join(resolve(gallery), "index.html")).href;
 const browser = await launch();
 const failures = [];
+const labLinks = new Set();
 const fail = (what) => { failures.push(what); console.log(`FAIL ${what}`); };
 
 for (const [name, width, scheme] of [["desktop", 1280, "light"], ["phone", 390, "light"], ["desktop-dark", 1280, "dark"], ["phone-dark", 390, "dark"]]) {
@@ -57,15 +60,44 @@ for (const [name, width, scheme] of [["desktop", 1280, "light"], ["phone", 390, 
     for (const key of ["system", "method", "dt", "params"]) if (!h.get(key)) fail(`${name}: lab link without ${key}: ${href}`);
     try { JSON.parse(h.get("params")); } catch { fail(`${name}: lab link params are no JSON: ${href}`); }
     if (!Number.isFinite(Number(h.get("dt")))) fail(`${name}: lab link dt is no number: ${href}`);
+    labLinks.add(href);
   }
   for (const e of errors) fail(`${name}: console: ${e}`);
   await page.screenshot({ path: join(shots, `gallery-${name}.png`) });
   await page.screenshot({ path: join(shots, `gallery-${name}-full.png`), fullPage: true });
   await page.close();
 }
+// The lab itself opens every link: nothing refused, the linked system shown.
+const labDir = join(resolve(gallery), "lab");
+let opened = 0;
+if (existsSync(join(labDir, "index.html"))) {
+  const { server, url: labUrl } = await serve(labDir);
+  const page = await browser.newPage({ viewport: { width: 1280, height: 900 } });
+  const errors = [];
+  page.on("pageerror", (e) => errors.push(String(e)));
+  await page.goto(labUrl);
+  await page.evaluate(() => window.physicskitLab.ready);
+  for (const href of labLinks) {
+    const hash = `#${href.split("#")[1]}`;
+    const system = new URLSearchParams(hash.slice(1)).get("system");
+    const got = await page.evaluate((h) => {
+      const lab = window.physicskitLab;
+      const ok = lab.openHash(h);
+      return { ok, system: lab.app.entry.name, message: document.getElementById("message").textContent };
+    }, hash);
+    if (!got.ok) fail(`lab refused part of ${href}: ${got.message}`);
+    if (got.system !== system) fail(`lab opened ${got.system} for ${href}`);
+    opened += 1;
+  }
+  for (const e of errors) fail(`lab: ${e}`);
+  await page.close();
+  server.close();
+} else {
+  console.log(`no lab at ${labDir}: the links' fragments were not opened in it`);
+}
 await browser.close();
 if (failures.length) {
   console.log(`gallery page: ${failures.length} failure(s)`);
   process.exit(1);
 }
-console.log("gallery page: desktop and 390 px, light and dark: no sideways scroll, every image loads, contents and lab links sound");
+console.log(`gallery page: desktop and 390 px, light and dark: no sideways scroll, every image loads, contents and lab links sound; ${opened} of ${labLinks.size} lab links opened in the lab`);

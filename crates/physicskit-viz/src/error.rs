@@ -25,6 +25,10 @@ pub enum VizError {
         /// The operating system's error.
         source: std::io::Error,
     },
+    /// A demonstration's run is not one the browser lab can open (a method it does not
+    /// offer for the system).
+    #[error("no lab link: {0}")]
+    Lab(String),
     /// The bundled font could not be registered with plotters.
     #[error("the bundled DejaVu Sans font could not be loaded")]
     Font,

@@ -236,3 +236,59 @@ impl HeatMap {
         ))
     }
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// The number after `name="` in the first `<image` element of `svg`.
+    fn image_attr(svg: &str, name: &str) -> f64 {
+        let image = &svg[svg.find("<image ").expect("an <image> element")..];
+        let from = image.find(&format!(" {name}=\"")).expect(name) + name.len() + 3;
+        let len = image[from..].find('"').unwrap();
+        image[from..from + len].parse().unwrap()
+    }
+
+    /// A map rasterized by resvg (as GIF frames and any PNG are made) shows its cells: the
+    /// centre of every cell of a 4 x 3 map with twelve different values has the cell's
+    /// viridis colour, so twelve different colours and none of them the white canvas.
+    #[test]
+    fn cells_appear_in_the_raster() {
+        let (nx, ny) = (4, 3);
+        let map = HeatMap {
+            title: "cells".into(),
+            x_label: "x".into(),
+            y_label: "y".into(),
+            value_label: "u".into(),
+            x_range: (0.0, 3.0),
+            y_range: (0.0, 2.0),
+            nx,
+            ny,
+            values: (0..nx * ny).map(|k| k as f64).collect(),
+        };
+        let path = Path::new("cells.svg");
+        let doc = svg::document(path, (500, 400), |root| map.draw(root, path)).unwrap();
+        let scale = 2.0;
+        let pixmap = svg::rasterize(&doc, scale, path).unwrap();
+        let (x0, y0) = (image_attr(&doc, "x"), image_attr(&doc, "y"));
+        let (w, h) = (image_attr(&doc, "width"), image_attr(&doc, "height"));
+        let mut seen = Vec::new();
+        for row in 0..ny {
+            for i in 0..nx {
+                let px = (x0 + (i as f64 + 0.5) * w / nx as f64) * f64::from(scale);
+                let py = (y0 + (row as f64 + 0.5) * h / ny as f64) * f64::from(scale);
+                let c = pixmap.pixel(px as u32, py as u32).unwrap();
+                let rgb = (c.red(), c.green(), c.blue());
+                // Row 0 of the image is the top row, the largest y index.
+                let v = map.values[(ny - 1 - row) * nx + i];
+                let want = ViridisRGB::get_color_normalized(v, 0.0, (nx * ny - 1) as f64);
+                assert_eq!(rgb, (want.0, want.1, want.2), "cell ({i}, {row})");
+                seen.push(rgb);
+            }
+        }
+        seen.sort_unstable();
+        seen.dedup();
+        assert_eq!(seen.len(), nx * ny);
+        assert!(!seen.contains(&(255, 255, 255)));
+    }
+}

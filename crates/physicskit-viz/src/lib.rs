@@ -29,4 +29,6 @@ pub mod svg;
 pub mod text;
 
 pub use error::{Result, VizError};
-pub use gallery::{demo_count, render_gallery, Demo, GalleryFile, GalleryReport};
+pub use gallery::{
+    demo_count, render_gallery, Demo, GalleryFile, GalleryReport, LabLink, LabSetup,
+};

@@ -175,9 +175,63 @@ pub fn options() -> &'static usvg::Options<'static> {
         usvg::Options {
             font_family: "DejaVu Sans".into(),
             fontdb: Arc::new(db),
+            image_href_resolver: usvg::ImageHrefResolver {
+                resolve_data: Box::new(|_, data, options| png_as_svg(&data, options)),
+                ..usvg::ImageHrefResolver::default()
+            },
             ..usvg::Options::default()
         }
     })
+}
+
+/// An embedded PNG as an SVG image of one rectangle per run of equal pixels in a row,
+/// without anti-aliasing (`crispEdges`, as the browser's `image-rendering: pixelated`).
+///
+/// resvg draws embedded raster images only with its `raster-images` feature, which brings
+/// JPEG, WebP and GIF decoders; the gallery embeds one kind of raster, a heat map's PNG of
+/// cells, which this decodes with the `png` crate already at hand. `None` (the image is left
+/// out) for data that is no 8-bit RGB or RGBA PNG.
+fn png_as_svg(data: &[u8], options: &usvg::Options) -> Option<usvg::ImageKind> {
+    let mut reader = png::Decoder::new(data).read_info().ok()?;
+    let mut buf = vec![0; reader.output_buffer_size()];
+    let frame = reader.next_frame(&mut buf).ok()?;
+    let channels = match (frame.color_type, frame.bit_depth) {
+        (png::ColorType::Rgba, png::BitDepth::Eight) => 4,
+        (png::ColorType::Rgb, png::BitDepth::Eight) => 3,
+        _ => return None,
+    };
+    let (w, h) = (frame.width as usize, frame.height as usize);
+    let mut s = format!(
+        "<svg xmlns=\"http://www.w3.org/2000/svg\" width=\"{w}\" height=\"{h}\" viewBox=\"0 0 {w} {h}\" shape-rendering=\"crispEdges\">"
+    );
+    let pixel = |x: usize, y: usize| {
+        let i = (y * w + x) * channels;
+        let alpha = if channels == 4 { buf[i + 3] } else { 255 };
+        (buf[i], buf[i + 1], buf[i + 2], alpha)
+    };
+    for y in 0..h {
+        let mut x = 0;
+        while x < w {
+            let p = pixel(x, y);
+            let mut end = x + 1;
+            while end < w && pixel(end, y) == p {
+                end += 1;
+            }
+            s.push_str(&format!(
+                "<rect x=\"{x}\" y=\"{y}\" width=\"{}\" height=\"1\" fill=\"#{:02X}{:02X}{:02X}\" fill-opacity=\"{}\"/>",
+                end - x,
+                p.0,
+                p.1,
+                p.2,
+                f32::from(p.3) / 255.0
+            ));
+            x = end;
+        }
+    }
+    s.push_str("</svg>");
+    usvg::Tree::from_str(&s, options)
+        .ok()
+        .map(usvg::ImageKind::SVG)
 }
 
 /// Parses an SVG document with [`options`].

@@ -3,8 +3,13 @@
 //! figure passes the layout checks of `physicskit_viz::layout` (text inside the figure, no two
 //! text boxes overlapping, no legend over its own data).
 
+use std::collections::BTreeMap;
 use std::fs::File;
 use std::path::{Path, PathBuf};
+
+use physicskit::classical::catalog;
+use physicskit::classical::model::entry::{ParamKind, Value};
+use physicskit::classical::Method;
 
 /// A fresh directory under the system temp dir, removed at the end of the test.
 struct TempDir(PathBuf);
@@ -92,6 +97,126 @@ fn lab_captions_are_the_gallery_paragraphs(demos: &[physicskit_viz::Demo], html:
     assert_eq!(captioned, systems.len() - 1, "captioned systems");
 }
 
+/// A share-link value percent-decoded, as `URLSearchParams` decodes it.
+fn url_decode(s: &str) -> String {
+    let b = s.as_bytes();
+    let mut out = Vec::with_capacity(b.len());
+    let mut i = 0;
+    while i < b.len() {
+        match b[i] {
+            b'%' => {
+                let hex = std::str::from_utf8(&b[i + 1..i + 3]).expect("two hex digits");
+                out.push(u8::from_str_radix(hex, 16).expect("hex"));
+                i += 3;
+            }
+            b'+' => {
+                out.push(b' ');
+                i += 1;
+            }
+            c => {
+                out.push(c);
+                i += 1;
+            }
+        }
+    }
+    String::from_utf8(out).expect("UTF-8")
+}
+
+/// A JSON value of a share link's parameters as the catalogue value of the parameter's kind,
+/// as the lab converts it (`physicskit-wasm`, `values_from_json`).
+fn value_of(kind: ParamKind, json: &serde_json::Value) -> Value {
+    match (kind, json) {
+        (ParamKind::Integer, serde_json::Value::Number(n)) => {
+            Value::Integer(n.as_i64().expect("an integer"))
+        }
+        (ParamKind::Scalar, serde_json::Value::Number(n)) => Value::Scalar(n.as_f64().unwrap()),
+        (ParamKind::Vector(_), serde_json::Value::Array(xs)) => {
+            Value::Vector(xs.iter().map(|x| x.as_f64().expect("a number")).collect())
+        }
+        (ParamKind::Choice(_), serde_json::Value::String(w)) => Value::Choice(w.clone()),
+        (kind, json) => panic!("{json} is no {}", kind.name()),
+    }
+}
+
+/// Every demonstration's "Open in the lab" link, read back from its URL fragment alone: the
+/// system, method and step are the demonstration's, its parameters are the values the
+/// demonstration ran with (numbers bit for bit), and the catalogue entry built from them, as
+/// the lab builds it, starts from the demonstration's initial state bit for bit (the link's
+/// `state` field included, when it carries one) and takes a step with the link's method and
+/// dt. Whether the page itself accepts each link is checked in Chromium (web/test/gallery.mjs).
+fn lab_links_read_back_to_the_runs(demos: &[physicskit_viz::Demo]) -> usize {
+    let bits = |v: &[f64]| v.iter().map(|x| x.to_bits()).collect::<Vec<_>>();
+    let mut linked = 0;
+    for d in demos {
+        let Some(link) = &d.lab else { continue };
+        linked += 1;
+        let setup = &link.setup;
+        let fields: BTreeMap<String, String> = link
+            .hash
+            .strip_prefix('#')
+            .expect("a fragment")
+            .split('&')
+            .map(|kv| {
+                let (k, v) = kv.split_once('=').expect("key=value");
+                (url_decode(k), url_decode(v))
+            })
+            .collect();
+        let slug = &d.slug;
+        assert_eq!(fields["system"], setup.system, "{slug}");
+        assert_eq!(fields["method"], setup.method.name(), "{slug}");
+        let method: Method = fields["method"].parse().expect("a method name");
+        let dt: f64 = fields["dt"].parse().expect("dt");
+        assert_eq!(dt.to_bits(), setup.dt.to_bits(), "{slug}: dt");
+        let entry = catalog::find(&fields["system"]).expect("a catalogue system");
+        let json: serde_json::Value = serde_json::from_str(&fields["params"]).expect("JSON");
+        let mut params: Vec<(String, Value)> = json
+            .as_object()
+            .expect("a JSON object")
+            .iter()
+            .map(|(k, v)| {
+                let kind = entry
+                    .param(k)
+                    .unwrap_or_else(|| panic!("{slug}: no {k}"))
+                    .kind;
+                (k.clone(), value_of(kind, v))
+            })
+            .collect();
+        let mut expected = setup.params.clone();
+        params.sort_by(|a, b| a.0.cmp(&b.0));
+        expected.sort_by(|a, b| a.0.cmp(&b.0));
+        let as_bits = |ps: &[(String, Value)]| {
+            ps.iter()
+                .map(|(k, v)| {
+                    let b = match v {
+                        Value::Scalar(x) => vec![x.to_bits()],
+                        Value::Vector(xs) => bits(xs),
+                        Value::Integer(i) => vec![*i as u64],
+                        Value::Choice(c) => c.bytes().map(u64::from).collect(),
+                    };
+                    (k.clone(), b)
+                })
+                .collect::<Vec<_>>()
+        };
+        assert_eq!(as_bits(&params), as_bits(&expected), "{slug}: parameters");
+        let mut system = entry.build_from(params).expect("the entry builds");
+        if let Some(state) = fields.get("state") {
+            let state: Vec<f64> = state.split(',').map(|x| x.parse().unwrap()).collect();
+            system
+                .reset(Some(&state), 0.0)
+                .expect("a state of the system");
+        }
+        assert_eq!(
+            bits(system.dynamical().state()),
+            bits(&setup.start),
+            "{slug}: the lab would start elsewhere than the demonstration"
+        );
+        system
+            .integrate((0.0, dt), dt, method, Default::default())
+            .unwrap_or_else(|e| panic!("{slug}: one step: {e}"));
+    }
+    linked
+}
+
 #[test]
 fn quick_gallery_renders_every_promised_file() {
     let dir = TempDir::new("physicskit-gallery");
@@ -147,6 +272,34 @@ fn quick_gallery_renders_every_promised_file() {
     }
     assert!(html.contains(&format!(">{count} demonstrations of")));
     lab_captions_are_the_gallery_paragraphs(&report.demos, &html);
+    // Every demonstration whose main run is one run of a catalogue system links it; these
+    // are the ones without a single run to open: maps and sweeps over many starts or
+    // parameters, and comparisons of methods.
+    const MANY_RUNS: [&str; 7] = [
+        "flip-fractal",
+        "kepler-precession",
+        "work-precision",
+        "henon-heiles-sali",
+        "double-pendulum-lyapunov",
+        "hoop-pitchfork",
+        "henon-heiles-regular-fraction",
+    ];
+    let linked = lab_links_read_back_to_the_runs(&report.demos);
+    for d in &report.demos {
+        assert_eq!(
+            d.lab.is_none(),
+            MANY_RUNS.contains(&d.slug.as_str()),
+            "{}: lab link {:?}",
+            d.slug,
+            d.lab.as_ref().map(|l| &l.hash)
+        );
+    }
+    assert_eq!(linked, count - MANY_RUNS.len());
+    // The page carries each link (its fragment, HTML-escaped).
+    for link in report.demos.iter().filter_map(|d| d.lab.as_ref()) {
+        let href = format!("href=\"lab/index.html{}\"", link.hash.replace('&', "&amp;"));
+        assert!(html.contains(&href), "index.html lacks {href}");
+    }
     let mut gifs = 0;
     let mut problems = Vec::new();
     for f in &report.files {

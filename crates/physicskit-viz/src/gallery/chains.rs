@@ -1,9 +1,10 @@
 //! Demonstration 6, Harmonic chain and coupled oscillators: normal-mode shapes, and beats between two modes.
 
+use physicskit::classical::model::Value;
 use physicskit::classical::systems::{
     CoupledOscillators, CoupledOscillatorsParams, HarmonicChain, NormalModes,
 };
-use physicskit::classical::{HamiltonianSystem, LagrangianSystem, Method};
+use physicskit::classical::{DynamicalSystem, HamiltonianSystem, LagrangianSystem, Method};
 
 use super::common::{column, nonempty};
 use super::{Ctx, Demo};
@@ -84,6 +85,20 @@ pub(crate) fn render(ctx: &Ctx) -> Result<Demo> {
     let dt = 0.02;
     let t1 = (t1 / dt).round() * dt;
     let mut osc = CoupledOscillators::new(&q0, &[0.0; NB], params)?;
+    // The lab opens on the beats: the same chain, start, method and step.
+    d.lab = Some(ctx.lab_link(
+        "coupled-oscillators",
+        &[
+            ("q0", Value::Vector(q0.clone())),
+            ("qdot0", Value::Vector(vec![0.0; NB])),
+            ("n", Value::Integer(NB as i64)),
+            ("m", Value::Scalar(params.m)),
+            ("k", Value::Scalar(params.k)),
+        ],
+        Method::ImplicitMidpoint,
+        dt,
+        osc.state(),
+    )?);
     let r = osc.integrate((0.0, t1), dt, Method::ImplicitMidpoint)?;
     let t = r.t.to_vec();
     let q1 = nonempty(column(r.q(), 0), "q1")?;

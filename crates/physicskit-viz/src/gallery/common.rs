@@ -82,3 +82,30 @@ pub(crate) fn nonempty(v: Vec<f64>, what: &str) -> Result<Vec<f64>> {
         Ok(v)
     }
 }
+
+/// The title and the grey subtitle at the top left of an animation frame drawn by hand (a body
+/// in 3-D rather than a chart).
+pub(crate) fn frame_caption(
+    root: &crate::figure::Area<'_>,
+    path: &std::path::Path,
+    title: &str,
+    subtitle: &str,
+) -> Result<()> {
+    use crate::error::DrawContext;
+    use plotters::prelude::*;
+    root.draw(&Text::new(
+        title.to_string(),
+        (12, 10),
+        (crate::font::FAMILY, 20).into_font(),
+    ))
+    .at(path)?;
+    root.draw(&Text::new(
+        subtitle.to_string(),
+        (12, 36),
+        (crate::font::FAMILY, 13)
+            .into_font()
+            .color(&RGBColor(90, 90, 90)),
+    ))
+    .at(path)?;
+    Ok(())
+}

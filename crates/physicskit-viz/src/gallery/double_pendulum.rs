@@ -4,7 +4,7 @@
 use physicskit::classical::analysis::convergence::log_separation;
 use physicskit::classical::model::Value;
 use physicskit::classical::systems::{DoublePendulum, DoublePendulumParams};
-use physicskit::classical::{LagrangianSystem, Method};
+use physicskit::classical::{DynamicalSystem, LagrangianSystem, Method};
 use plotters::prelude::*;
 
 use super::common::{column, nonempty, stride, wrap};
@@ -38,7 +38,7 @@ pub(crate) fn render(ctx: &Ctx) -> Result<Demo> {
         ],
         Method::Rk4,
         dt,
-        None,
+        dp.state(),
     )?);
     let every = 10; // one stored sample per 0.02 s
     let r = dp.integrate_with((0.0, t1), dt, Method::Rk4, stride(every))?;
@@ -64,7 +64,7 @@ pub(crate) fn render(ctx: &Ctx) -> Result<Demo> {
     let frames = ctx.pick(40, 100);
     let per = (t.len() / frames).max(1);
     let path = ctx.path("double_pendulum.gif");
-    save_gif(&path, (760, 380), frames, 80, |k, root| {
+    save_gif(&path, (760, 380), ctx.gif_scale(), frames, 80, |k, root| {
         let i = (k * per).min(t.len() - 1);
         let (left, right) = root.split_horizontally(380);
         let mut chart = Panel::new(

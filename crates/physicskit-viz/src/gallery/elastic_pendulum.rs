@@ -1,6 +1,7 @@
 //! Demonstration 14, Elastic pendulum: the 2:1 resonance between bounce and swing, at the exact
 //! resonant spring constant and at a detuned one.
 
+use physicskit::classical::model::Value;
 use physicskit::classical::systems::{ElasticPendulum, ElasticPendulumParams};
 use physicskit::classical::{DynamicalSystem, LagrangianSystem, Method};
 
@@ -29,6 +30,23 @@ pub(crate) fn render(ctx: &Ctx) -> Result<Demo> {
         let r_eq = params.equilibrium_length();
         let ratio = params.spring_frequency() / params.swing_frequency();
         let mut bob = ElasticPendulum::new(&[r_eq + STRETCH, THETA0], &[0.0, 0.0], params)?;
+        if d.lab.is_none() {
+            // The lab opens on the exact resonance: the same spring, start, method and step.
+            d.lab = Some(ctx.lab_link(
+                "elastic-pendulum",
+                &[
+                    ("q0", Value::Vector(vec![r_eq + STRETCH, THETA0])),
+                    ("qdot0", Value::Vector(vec![0.0, 0.0])),
+                    ("m", Value::Scalar(params.m)),
+                    ("k", Value::Scalar(params.k)),
+                    ("L0", Value::Scalar(params.l0)),
+                    ("g", Value::Scalar(params.g)),
+                ],
+                Method::ImplicitMidpoint,
+                dt,
+                bob.state(),
+            )?);
+        }
         let total = bob.current_energy() - params.equilibrium_energy();
         let r = bob.integrate_with((0.0, t1), dt, Method::ImplicitMidpoint, stride(every))?;
         let mut path_xy = Vec::with_capacity(r.t.len());

@@ -3,10 +3,10 @@
 
 use physicskit::classical::model::Value;
 use physicskit::classical::systems::{EulerTop, EulerTopParams};
-use physicskit::classical::{Method, OdeSystem};
+use physicskit::classical::{DynamicalSystem, Method, OdeSystem};
 use plotters::prelude::*;
 
-use super::common::{project, stride, ycol};
+use super::common::{frame_caption, project, stride, ycol};
 use super::{Ctx, Demo};
 use crate::animation::save_gif;
 use crate::error::{DrawContext, Result};
@@ -27,7 +27,6 @@ pub(crate) fn render(ctx: &Ctx) -> Result<Demo> {
     let dt = 0.01;
     let t1 = ctx.pick(60.0, 120.0);
     let mut top = EulerTop::new(&OMEGA0, params, None)?;
-    let r = top.integrate_with((0.0, t1), dt, Method::ImplicitMidpoint, stride(5))?;
     // The lab opens on this run: the same spin, moments of inertia, method and step.
     d.lab = Some(ctx.lab_link(
         "euler-top",
@@ -39,8 +38,9 @@ pub(crate) fn render(ctx: &Ctx) -> Result<Demo> {
         ],
         Method::ImplicitMidpoint,
         dt,
-        None,
+        top.state(),
     )?);
+    let r = top.integrate_with((0.0, t1), dt, Method::ImplicitMidpoint, stride(5))?;
     let t = r.t.to_vec();
     let mut panel = Panel::new(
         format!(
@@ -137,7 +137,7 @@ pub(crate) fn render(ctx: &Ctx) -> Result<Demo> {
     let ra = spin.integrate_with((0.0, t_anim), 0.01, Method::ImplicitMidpoint, stride(1))?;
     let per = (ra.t.len() / frames).max(1);
     let path = ctx.path("euler_tumbling.gif");
-    save_gif(&path, (420, 420), frames, 70, |k, root| {
+    save_gif(&path, (420, 420), ctx.gif_scale(), frames, 70, |k, root| {
         let i = (k * per).min(ra.t.len() - 1);
         let state = ra.y.row(i).to_vec();
         let rot = spin.rotation_matrix(Some(&state))?;
@@ -378,18 +378,12 @@ fn draw_box(
         }
     }
     faces.sort_by(|a, b| a.0.total_cmp(&b.0));
-    root.draw(&Text::new(
-        format!("Tumbling plate, t = {t:.1} s"),
-        (12, 10),
-        (FAMILY, 20).into_font(),
-    ))
-    .at(path)?;
-    root.draw(&Text::new(
-        "space frame; the angular momentum L stays fixed".to_string(),
-        (12, 36),
-        (FAMILY, 13).into_font().color(&RGBColor(90, 90, 90)),
-    ))
-    .at(path)?;
+    frame_caption(
+        root,
+        path,
+        &format!("Tumbling plate, t = {t:.1} s"),
+        "space frame; the angular momentum L stays fixed",
+    )?;
     let face_colors = [color(0), color(1), color(4)];
     // The L arrow through the plate's centre: its hidden part (behind the plate) is drawn
     // first, the part in front of the plate after the faces.

@@ -2,7 +2,7 @@
 
 use physicskit::classical::model::Value;
 use physicskit::classical::systems::{FPUTChain, NormalModes};
-use physicskit::classical::{HamiltonianSystem, Method};
+use physicskit::classical::{DynamicalSystem, HamiltonianSystem, Method};
 
 use super::common::stride;
 use super::{Ctx, Demo};
@@ -33,7 +33,7 @@ pub(crate) fn render(ctx: &Ctx) -> Result<Demo> {
         ],
         Method::Yoshida4,
         dt,
-        None,
+        chain.state(),
     )?);
     let every = ctx.pick(200, 100);
     let r = chain.integrate_with((0.0, t1), dt, Method::Yoshida4, stride(every))?;

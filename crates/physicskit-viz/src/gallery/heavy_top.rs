@@ -2,6 +2,7 @@
 //! and `theta(t)` next to `V_eff(theta)`.
 
 use physicskit::classical::analysis::effective_potential_symmetric_top;
+use physicskit::classical::model::Value;
 use physicskit::classical::systems::{HeavySymmetricTop, SymmetricTopParams};
 use physicskit::classical::{DynamicalSystem, LagrangianSystem, Method};
 
@@ -24,7 +25,24 @@ pub(crate) fn render(ctx: &Ctx) -> Result<Demo> {
     let state0 = top.state().to_vec();
     let (p_phi, p_psi) = params.conserved_momenta(&state0)?;
     let e0 = top.current_energy();
-    let r = top.integrate((0.0, t1), 5e-4, Method::ImplicitMidpoint)?;
+    let dt = 5e-4;
+    // The lab opens on this top: the same start, body, method and step.
+    d.lab = Some(ctx.lab_link(
+        "heavy-top",
+        &[
+            ("angles0", Value::Vector(vec![0.0, THETA0, 0.0])),
+            ("angledots0", Value::Vector(vec![PHIDOT0, 0.0, PSIDOT0])),
+            ("I1", Value::Scalar(params.i1)),
+            ("I3", Value::Scalar(params.i3)),
+            ("M", Value::Scalar(params.m)),
+            ("l", Value::Scalar(params.l)),
+            ("g", Value::Scalar(params.g)),
+        ],
+        Method::ImplicitMidpoint,
+        dt,
+        &state0,
+    )?);
+    let r = top.integrate((0.0, t1), dt, Method::ImplicitMidpoint)?;
     let phi = nonempty(column(r.q(), 0), "phi")?;
     let theta = nonempty(column(r.q(), 1), "theta")?;
     let t = r.t.to_vec();

@@ -3,6 +3,7 @@
 use physicskit::classical::analysis::poincare::{
     poincare_section_separable, Direction, Section, SectionRun,
 };
+use physicskit::classical::model::Value;
 use physicskit::classical::systems::HenonHeilesSystem;
 use physicskit::classical::{Error, Method};
 
@@ -33,6 +34,20 @@ pub(crate) fn render(ctx: &Ctx) -> Result<Demo> {
     // One crossing per ~6-7 time units; the time limit only guards against stuck orbits.
     let run = SectionRun::new(0.02, 10.0 * crossings as f64, crossings);
     let energies: [(f64, &str); 3] = [(1.0 / 12.0, "1/12"), (1.0 / 8.0, "1/8"), (1.0 / 6.0, "1/6")];
+    // The lab opens on the first orbit at E = 1/6, where tori and chaos share the section:
+    // the same start, method and step (the lab draws its crossings of the same section).
+    if let Some(y0) = SectionStarts::new(1, energies[2].0)?.spread(0, n_orbits) {
+        d.lab = Some(ctx.lab_link(
+            "henon-heiles",
+            &[
+                ("q0", Value::Vector(y0[..2].to_vec())),
+                ("p0", Value::Vector(y0[2..].to_vec())),
+            ],
+            Method::Yoshida4,
+            run.dt,
+            &y0,
+        )?);
+    }
     let path = ctx.path("henon_heiles_sections.svg");
     let mut panels = Vec::new();
     for (e, label) in energies {

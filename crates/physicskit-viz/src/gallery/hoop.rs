@@ -1,8 +1,9 @@
 //! Demonstration 10, Bead on a rotating hoop: the pitchfork bifurcation and phase portraits below and above
 //! the critical speed.
 
+use physicskit::classical::model::Value;
 use physicskit::classical::systems::{BeadOnRotatingHoop, HoopBranch, HoopParams};
-use physicskit::classical::{LagrangianSystem, Method};
+use physicskit::classical::{DynamicalSystem, LagrangianSystem, Method};
 
 use super::common::{column, nonempty};
 use super::{Ctx, Demo};
@@ -12,6 +13,9 @@ use crate::figure::{color, ramp, save_svg, Legend, Mark, Panel, Series};
 /// Largest rotation rate of the pitchfork diagrams (this demonstration's and demonstration
 /// 20's), in units of `omega_c`.
 pub(super) const MAX_RATIO: f64 = 2.5;
+
+/// Step of the phase-portrait orbits (s).
+const DT: f64 = 0.002;
 
 /// The figure title of a hoop demonstration, stating the parameters it was drawn with.
 pub(super) fn title(params: &HoopParams) -> String {
@@ -111,7 +115,23 @@ pub(crate) fn render(ctx: &Ctx) -> Result<Demo> {
             let th0 = 0.1 + (std::f64::consts::PI - 0.3) * k as f64 / (starts - 1) as f64;
             for sign in [1.0, -1.0] {
                 let mut bead = BeadOnRotatingHoop::new(sign * th0, 0.0, params)?;
-                let r = bead.integrate((0.0, t1), 0.002, Method::ImplicitMidpoint)?;
+                if d.lab.is_none() && ratio > 1.0 {
+                    // The lab opens on the first orbit above the critical speed.
+                    d.lab = Some(ctx.lab_link(
+                        "hoop",
+                        &[
+                            ("theta0", Value::Scalar(sign * th0)),
+                            ("thetadot0", Value::Scalar(0.0)),
+                            ("R", Value::Scalar(params.r)),
+                            ("omega", Value::Scalar(params.omega)),
+                            ("g", Value::Scalar(params.g)),
+                        ],
+                        Method::ImplicitMidpoint,
+                        DT,
+                        bead.state(),
+                    )?);
+                }
+                let r = bead.integrate((0.0, t1), DT, Method::ImplicitMidpoint)?;
                 let th = nonempty(column(r.q(), 0), "theta")?;
                 let om = column(r.p(), 0);
                 let pts = th

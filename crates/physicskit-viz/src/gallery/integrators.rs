@@ -3,7 +3,8 @@
 
 use physicskit::classical::analysis::convergence::fit_order;
 use physicskit::classical::examples::Pendulum;
-use physicskit::classical::{HamiltonianSystem, Method};
+use physicskit::classical::model::Value;
+use physicskit::classical::{DynamicalSystem, HamiltonianSystem, Method};
 
 use super::work_precision::words;
 use super::{Ctx, Demo};
@@ -82,6 +83,20 @@ pub(crate) fn render(ctx: &Ctx) -> Result<Demo> {
     .legend(Legend::Auto);
     for (i, &m) in METHODS.iter().enumerate() {
         let mut p = Pendulum::new(Q0, 0.0, 1.0)?;
+        if i == 0 {
+            // The lab opens on the first method's run: the same pendulum and coarse step.
+            d.lab = Some(ctx.lab_link(
+                "pendulum",
+                &[
+                    ("q0", Value::Scalar(Q0)),
+                    ("p0", Value::Scalar(0.0)),
+                    ("g_over_l", Value::Scalar(1.0)),
+                ],
+                m,
+                dt,
+                p.state(),
+            )?);
+        }
         let r = p.integrate((0.0, t1), dt, m)?;
         let e = r.energy.as_ref().map(|e| e.to_vec()).unwrap_or_default();
         let e0 = e.first().copied().unwrap_or(1.0);

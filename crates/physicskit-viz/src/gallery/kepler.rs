@@ -1,8 +1,9 @@
 //! Demonstration 7, Kepler: the closed ellipse against the precessing rosette of a post-Newtonian correction,
 //! and the angle of the Laplace–Runge–Lenz vector against time.
 
+use physicskit::classical::model::Value;
 use physicskit::classical::systems::{KeplerPerturbations, KeplerSystem};
-use physicskit::classical::{HamiltonianSystem, Method};
+use physicskit::classical::{DynamicalSystem, HamiltonianSystem, Method};
 
 use super::common::{column, stride, unwrap};
 use super::{Ctx, Demo};
@@ -45,7 +46,23 @@ pub(crate) fn render(ctx: &Ctx) -> Result<Demo> {
         ),
     ];
     for (i, (label, pert)) in cases.into_iter().enumerate() {
-        let mut sys = KeplerSystem::from_orbital_elements(A, E, 1.0, 1.0, pert)?;
+        let (k, mu) = (1.0, 1.0);
+        let mut sys = KeplerSystem::from_orbital_elements(A, E, k, mu, pert)?;
+        if i == 0 {
+            // The lab opens on the closed ellipse (its catalogue entry has no c_pn term).
+            d.lab = Some(ctx.lab_link(
+                "kepler",
+                &[
+                    ("a", Value::Scalar(A)),
+                    ("e", Value::Scalar(E)),
+                    ("k", Value::Scalar(k)),
+                    ("mu", Value::Scalar(mu)),
+                ],
+                Method::Yoshida4,
+                dt,
+                sys.state(),
+            )?);
+        }
         let r = sys.integrate_with((0.0, t1), dt, Method::Yoshida4, stride(every))?;
         let x = column(r.q(), 0);
         let y = column(r.q(), 1);

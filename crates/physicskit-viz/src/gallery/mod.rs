@@ -1,10 +1,11 @@
-//! The gallery: the demonstrations (twenty-one; [`demo_count`]), each a set of figures and a
+//! The gallery: the demonstrations ([`demo_count`] of them), each a set of figures and a
 //! one-paragraph explanation of the physics, and [`render_gallery`], which renders them all and
 //! writes `index.html`.
 //!
 //! Every demonstration module has a `render(&Ctx) -> Result<Demo>` function. `quick` mode
 //! (used by tests and `physicskit gallery --quick`) runs fewer orbits, shorter times and fewer
-//! animation frames so the whole gallery renders in well under a minute on two cores.
+//! animation frames, rendered at the figure's size rather than twice it, so the whole gallery
+//! renders in well under a minute on two cores.
 //!
 //! A demonstration's number is its place in the list below: `Ctx` numbers its title
 //! (`"17. Work–precision"`) and prefixes its files (`17_work_precision_1.svg`), so no page
@@ -26,6 +27,7 @@ mod double_pendulum_plane;
 mod elastic_pendulum;
 mod euler_top;
 mod flip_fractal;
+mod foucault;
 mod fput;
 mod heavy_top;
 mod henon_heiles;
@@ -38,6 +40,7 @@ mod integrators;
 mod kepler;
 mod kepler_precession;
 mod projectile;
+mod rattleback;
 mod sine_gordon;
 mod swarm;
 mod toda;
@@ -53,7 +56,7 @@ pub struct GalleryFile {
 }
 
 /// One demonstration: its title, the physics it shows and its files.
-#[derive(Debug, Clone, PartialEq, Eq)]
+#[derive(Debug, Clone, PartialEq)]
 pub struct Demo {
     /// Anchor name in `index.html`, e.g. `"double-pendulum"`.
     pub slug: String,
@@ -74,12 +77,32 @@ pub struct Demo {
 /// A link that opens the browser lab (`lab/index.html`) on a demonstration's setup, in the
 /// lab's share-link format: `#system=NAME&method=M&dt=DT&params=JSON`, optionally `&state=...`
 /// (comma-separated numbers), each value percent-encoded (`web/lab.js`, `applyHash`).
-#[derive(Debug, Clone, PartialEq, Eq)]
+#[derive(Debug, Clone, PartialEq)]
 pub struct LabLink {
     /// The URL fragment, from `#`.
     pub hash: String,
     /// What the link sets up, in words.
     pub what: String,
+    /// The setup the fragment encodes, for tests to read the fragment back against.
+    pub setup: LabSetup,
+}
+
+/// A run of a catalogue system as the lab sets it up: what a [`LabLink`] encodes.
+#[derive(Debug, Clone, PartialEq)]
+pub struct LabSetup {
+    /// The catalogue entry's name.
+    pub system: String,
+    /// Parameter values given (the others stay at the entry's defaults).
+    pub params: Vec<(String, Value)>,
+    /// The integration method.
+    pub method: Method,
+    /// The step.
+    pub dt: f64,
+    /// The initial state the link carries: `None` when the entry built from `params` already
+    /// starts there.
+    pub state: Option<Vec<f64>>,
+    /// The initial state of the demonstration's own run, which the link reproduces bit for bit.
+    pub start: Vec<f64>,
 }
 
 /// Percent-encodes everything but unreserved characters (what `URLSearchParams` decodes).
@@ -159,22 +182,46 @@ impl Ctx<'_> {
         }
     }
 
-    /// The lab link of a run of catalogue system `system` with parameter values `params` (the
-    /// values the demonstration itself runs with), `method` and step `dt`, and optionally the
-    /// initial `state`. The values are checked by the catalogue entry, as the lab checks them.
+    /// The lab link of the demonstration's run of catalogue system `system` with parameter
+    /// values `params` (the values the demonstration itself runs with), fixed-step `method`
+    /// and step `dt`, from the run's initial state `start`. The entry builds the system from
+    /// `params`, as the lab does; the link carries `start` only if that build starts elsewhere
+    /// (a start the entry's parameters do not describe), so the lab always opens on the
+    /// figure's first state, bit for bit.
     ///
     /// # Errors
-    /// [`VizError::Physics`] if the system is unknown or a value is refused by its entry.
+    /// [`VizError::Physics`] if the system is unknown or a value is refused by its entry, or
+    /// `start` is not a state of the system; [`VizError::Lab`] if the entry does not take
+    /// `method` or the method is adaptive (the lab steps frame by frame).
     pub fn lab_link(
         &self,
         system: &str,
         params: &[(&str, Value)],
         method: Method,
         dt: f64,
-        state: Option<&[f64]>,
+        start: &[f64],
     ) -> Result<LabLink> {
         let entry = physicskit::classical::catalog::find(system)?;
-        entry.values(params.iter().map(|(k, v)| ((*k).to_string(), v.clone())))?;
+        let params: Vec<(String, Value)> = params
+            .iter()
+            .map(|(k, v)| ((*k).to_string(), v.clone()))
+            .collect();
+        let mut built = entry.build_from(params.iter().cloned())?;
+        if method.is_adaptive() || !entry.methods().any(|m| m == method) {
+            return Err(VizError::Lab(format!(
+                "the lab cannot run {system} with {}",
+                method.name()
+            )));
+        }
+        let same = |a: &[f64], b: &[f64]| {
+            a.len() == b.len() && a.iter().zip(b).all(|(x, y)| x.to_bits() == y.to_bits())
+        };
+        let state = if same(built.dynamical().state(), start) {
+            None
+        } else {
+            built.reset(Some(start), 0.0)?;
+            Some(start.to_vec())
+        };
         let object = params
             .iter()
             .map(|(k, v)| format!("\"{k}\":{}", json(v)))
@@ -187,7 +234,7 @@ impl Ctx<'_> {
             url_encode(&format!("{dt:?}")),
             url_encode(&format!("{{{object}}}"))
         );
-        if let Some(state) = state {
+        if let Some(state) = &state {
             let s = state
                 .iter()
                 .map(|x| format!("{x:?}"))
@@ -206,7 +253,22 @@ impl Ctx<'_> {
                     ""
                 }
             ),
+            setup: LabSetup {
+                system: system.into(),
+                params,
+                method,
+                dt,
+                state,
+                start: start.to_vec(),
+            },
         })
+    }
+
+    /// Device pixels per figure pixel of the GIF frames: twice the figure's size for the page
+    /// ([`crate::animation::SCALE`], crisp on high-density screens), the figure's size in quick
+    /// mode, where rasterizing and quantizing four times the pixels was most of the added time.
+    pub fn gif_scale(&self) -> f32 {
+        self.pick(1.0, crate::animation::SCALE)
     }
 
     /// `quick` value in quick mode, `full` otherwise.
@@ -264,6 +326,8 @@ fn demos() -> Vec<(&'static str, Render)> {
             "Hénon–Heiles regular fraction",
             henon_heiles_regular::render,
         ),
+        ("Foucault pendulum", foucault::render),
+        ("rolling rattleback", rattleback::render),
     ]
 }
 

@@ -1,8 +1,9 @@
 //! Demonstration 11, Projectile: trajectories at several angles with and without drag, and range against
 //! angle.
 
+use physicskit::classical::model::Value;
 use physicskit::classical::systems::ProjectileMotion;
-use physicskit::classical::{HamiltonianSystem, Method};
+use physicskit::classical::{DynamicalSystem, HamiltonianSystem, Method};
 
 use super::common::column;
 use super::{Ctx, Demo};
@@ -13,12 +14,17 @@ const SPEED: f64 = 40.0;
 const G: f64 = 9.81;
 /// Quadratic drag coefficient (kg/m) for a 1 kg ball: terminal speed sqrt(m g / c) = 22 m/s.
 const DRAG: f64 = 0.02;
+const MASS: f64 = 1.0;
+/// Step of every flight (s).
+const DT: f64 = 2e-3;
+/// Launch angle of the flight the lab link opens (degrees).
+const LAB_ANGLE: f64 = 45.0;
 
 /// The flight until landing (y = 0), the landing point linearly interpolated between the two
 /// samples that bracket it.
 fn flight(angle: f64, drag: f64) -> Result<Vec<(f64, f64)>> {
-    let mut ball = ProjectileMotion::from_launch(SPEED, angle, 1.0, G, drag, 0.0)?;
-    let dt = 2e-3;
+    let mut ball = ProjectileMotion::from_launch(SPEED, angle, MASS, G, drag, 0.0)?;
+    let dt = DT;
     // The vacuum flight time plus a margin, as a whole number of steps.
     let steps = ((ProjectileMotion::flight_time(SPEED, angle, G, 0.0)? + 0.5) / dt).ceil();
     let r = ball.integrate((0.0, steps * dt), dt, Method::Rk4)?;
@@ -38,6 +44,22 @@ fn flight(angle: f64, drag: f64) -> Result<Vec<(f64, f64)>> {
 
 pub(crate) fn render(ctx: &Ctx) -> Result<Demo> {
     let mut d = ctx.demo("projectile", "Projectile motion with and without air drag");
+    // The lab opens on the 45° flight with drag, launched as `flight` launches it.
+    let ball = ProjectileMotion::from_launch(SPEED, LAB_ANGLE, MASS, G, DRAG, 0.0)?;
+    d.lab = Some(ctx.lab_link(
+        "projectile",
+        &[
+            ("speed", Value::Scalar(SPEED)),
+            ("angle_deg", Value::Scalar(LAB_ANGLE)),
+            ("m", Value::Scalar(MASS)),
+            ("g", Value::Scalar(G)),
+            ("drag_coeff", Value::Scalar(DRAG)),
+            ("height", Value::Scalar(0.0)),
+        ],
+        Method::Rk4,
+        DT,
+        ball.state(),
+    )?);
     let mut traj = Panel::new(
         "Trajectories (solid: no drag, dashed: with drag)",
         "x (m)",

@@ -1,7 +1,8 @@
 //! Demonstration 5, Sine-Gordon chain: a kink–antikink collision as a space–time plot and an animation.
 
+use physicskit::classical::model::Value;
 use physicskit::classical::systems::SineGordonChain;
-use physicskit::classical::{HamiltonianSystem, Method};
+use physicskit::classical::{DynamicalSystem, HamiltonianSystem, Method};
 
 use super::common::stride;
 use super::{Ctx, Demo};
@@ -33,6 +34,20 @@ pub(crate) fn render(ctx: &Ctx) -> Result<Demo> {
     // They meet after each covers n/4 sites (t = n/(4v)); run on for as long again.
     let t1 = 0.5 * n as f64 / (BETA * c);
     let dt = 0.02;
+    // The lab opens on the collision: the same chain, kink and antikink, method and step.
+    d.lab = Some(ctx.lab_link(
+        "sine-gordon-state",
+        &[
+            ("n", Value::Integer(n as i64)),
+            ("m", Value::Scalar(1.0)),
+            ("k", Value::Scalar(K)),
+            ("q0", Value::Vector(q0.clone())),
+            ("p0", Value::Vector(p0.clone())),
+        ],
+        Method::Yoshida4,
+        dt,
+        chain.state(),
+    )?);
     let rows = ctx.pick(150, 300);
     let every = ((t1 / dt) as usize / rows).max(1);
     let r = chain.integrate_with((0.0, t1), dt, Method::Yoshida4, stride(every))?;
@@ -67,7 +82,7 @@ pub(crate) fn render(ctx: &Ctx) -> Result<Demo> {
     let frames = ctx.pick(40, 120);
     let per = (ny / frames).max(1);
     let path = ctx.path("sine_gordon.gif");
-    save_gif(&path, (640, 360), frames, 80, |k, root| {
+    save_gif(&path, (640, 360), ctx.gif_scale(), frames, 80, |k, root| {
         let i = (k * per).min(ny - 1);
         let pts = q
             .row(i)

@@ -1,8 +1,11 @@
 //! Demonstration 3, Pendulum swarm: Liouville's theorem. A patch of phase points shears into a filament
 //! along the separatrix while its area stays constant.
 
+use physicskit::classical::model::Value;
 use physicskit::classical::systems::{polygon_area, PendulumSwarm};
-use physicskit::classical::{HamiltonianSystem, IntegrateOptions, Method, Sampling};
+use physicskit::classical::{
+    DynamicalSystem, HamiltonianSystem, IntegrateOptions, Method, Sampling,
+};
 
 use super::{Ctx, Demo};
 use crate::animation::save_gif;
@@ -69,7 +72,24 @@ pub(crate) fn render(ctx: &Ctx) -> Result<Demo> {
     let n_side = ctx.pick(500, 1500);
     let snaps = [0.0, 10.0, 20.0, 40.0];
     let dt = 0.01;
-    let mut cloud = PendulumSwarm::from_box(CENTER.0, CENTER.1, SIZE.0, SIZE.1, n, 1.0, 42)?;
+    let (g_over_l, seed) = (1.0, 42);
+    let mut cloud = PendulumSwarm::from_box(CENTER.0, CENTER.1, SIZE.0, SIZE.1, n, g_over_l, seed)?;
+    // The lab opens on the cloud: the same box, fill, method and step.
+    d.lab = Some(ctx.lab_link(
+        "pendulum-swarm",
+        &[
+            ("q_center", Value::Scalar(CENTER.0)),
+            ("p_center", Value::Scalar(CENTER.1)),
+            ("dq", Value::Scalar(SIZE.0)),
+            ("dp", Value::Scalar(SIZE.1)),
+            ("n", Value::Integer(n as i64)),
+            ("g_over_l", Value::Scalar(g_over_l)),
+            ("seed", Value::Integer(seed as i64)),
+        ],
+        Method::Yoshida4,
+        dt,
+        cloud.state(),
+    )?);
     let (bq, bp) = boundary(n_side);
     let mut edge = PendulumSwarm::new(&bq, &bp, 1.0)?;
     let a0 = polygon_area(&bq, &bp)?;
@@ -132,7 +152,7 @@ pub(crate) fn render(ctx: &Ctx) -> Result<Demo> {
     )?;
     let path = ctx.path("swarm.gif");
     let step = t_end / frames as f64;
-    save_gif(&path, (560, 420), frames, 80, |k, root| {
+    save_gif(&path, (560, 420), ctx.gif_scale(), frames, 80, |k, root| {
         if k > 0 {
             let t0 = (k - 1) as f64 * step;
             cloud.integrate_with(

@@ -1,8 +1,9 @@
 //! Demonstration 13, Toda lattice: the energy per particle sloshing around the ring (space–time
 //! map and two particles) beside the n Lax eigenvalues, flat in time.
 
+use physicskit::classical::model::Value;
 use physicskit::classical::systems::TodaLattice;
-use physicskit::classical::{HamiltonianSystem, Method};
+use physicskit::classical::{DynamicalSystem, HamiltonianSystem, Method};
 
 use super::common::stride;
 use super::{Ctx, Demo};
@@ -25,6 +26,19 @@ pub(crate) fn render(ctx: &Ctx) -> Result<Demo> {
     let mut toda = TodaLattice::new(&[0.0; N], &p0, a, b)?;
     let lambda0 = toda.conserved_quantities(None)?;
     let dt = 0.01;
+    // The lab opens on the two pulses: the same ring, kicks, method and step.
+    d.lab = Some(ctx.lab_link(
+        "toda",
+        &[
+            ("q0", Value::Vector(vec![0.0; N])),
+            ("p0", Value::Vector(p0.to_vec())),
+            ("a", Value::Scalar(a)),
+            ("b", Value::Scalar(b)),
+        ],
+        Method::Yoshida4,
+        dt,
+        toda.state(),
+    )?);
     let t1 = ctx.pick(40.0, 60.0);
     let rows = ctx.pick(200, 400);
     let every = ((t1 / dt) as usize / rows).max(1);

@@ -286,4 +286,18 @@ pub static EXPLANATIONS: &[Explanation] = &[
          orbit at rest at the bottom (orange dots) run for 10 s, the one started 0.01 rad from \
          it (green dots) for 200 s.",
     },
+    Explanation {
+        slug: "foucault",
+        text: Text::OfSystem(&systems::FOUCAULT_ENTRY),
+        figure: "A 67 m pendulum (g = 9.81 m/s²) released at rest 3 m east of the vertical; \
+         implicit midpoint at dt = 0.05 s. Left, Earth's rate is raised so that the plane turns \
+         once in 40 swings; right, the Panthéon's latitude 48.85° N and Earth's sidereal rate.",
+    },
+    Explanation {
+        slug: "rolling-rattleback",
+        text: Text::OfSystem(&systems::ROLLING_RATTLEBACK_ENTRY),
+        figure: "Kane and Levinson's body (semi-axes 0.2, 0.03 and 0.02 m, 1 kg, principal axes \
+         turned from the geometric ones) started tilted 0.5° in roll and pitch and spun at \
+         −5 and +5 rad/s; rk4 at dt = 10⁻⁴ s, no slip and no dissipation.",
+    },
 ];
