@@ -117,6 +117,10 @@ function runsText(runs) {
   return runs.map((r) => (r.sub && [...r.text].every((c) => SUBSCRIPT[c]) ? [...r.text].map((c) => SUBSCRIPT[c]).join("") : r.text)).join("");
 }
 function texText(tex) { return runsText(texRuns(tex)); }
+// Runs into a page element: text, and `<sub>` for subscripts (built as nodes, never as HTML).
+function setRuns(el, runs) {
+  el.replaceChildren(...runs.map((r) => { if (!r.sub) return document.createTextNode(r.text); const e = document.createElement("sub"); e.textContent = r.text; return e; }));
+}
 // The catalogue's unit words for people: powers as superscripts (`kg m^2`, as people.rs does
 // for parameter units).
 function unitWords(unit) {
@@ -406,7 +410,8 @@ function rebuild(state0 = null, keepMessage = false) {
   $("section-figure").hidden = !hasSection();
   if (hasSection()) {
     lab.setSection(1, 0, 1);
-    $("section-name").textContent = `${labels[1]} = 0, ${labels[3]} > 0`;
+    const sym = stateSymbols();
+    setRuns($("section-name"), [...texRuns(sym[1]), { text: " = 0, ", sub: false }, ...texRuns(sym[3]), { text: " > 0", sub: false }]);
   }
   $("drag-hint").hidden = !draggable();
   startViews(app.extent);
