@@ -25,8 +25,8 @@
 //! decreases to zero at the collapse, so that the energy column of a run shows the decay.
 
 use crate::classical::core::error::{check_finite_scalar, check_non_negative, check_positive};
-use crate::classical::core::{Error, Phase, Result};
-use crate::classical::integrators::{DynamicalSystem, Method, OdeSystem};
+use crate::classical::core::{Phase, Result};
+use crate::classical::integrators::Method;
 use crate::classical::model::entry::{Default as D, Family, ParamSpec as P, Range, SystemEntry};
 use crate::classical::model::entry::{Drawing, Presentation};
 use crate::classical::model::erased::{Capabilities, Ode};
@@ -87,18 +87,6 @@ pub struct EulersDisk {
     params: EulersDiskParams,
 }
 
-fn state_len(state: &[f64]) -> Result<()> {
-    if state.len() == 2 {
-        Ok(())
-    } else {
-        Err(Error::DimensionMismatch {
-            name: "state".into(),
-            expected: 2,
-            found: state.len(),
-        })
-    }
-}
-
 impl EulersDisk {
     /// A disk at inclination `theta0` (rad) and contact azimuth `phi0` (rad).
     ///
@@ -127,25 +115,10 @@ impl EulersDisk {
     }
 }
 
-impl DynamicalSystem for EulersDisk {
-    fn phase(&self) -> &Phase {
-        &self.phase
-    }
-
-    fn phase_mut(&mut self) -> &mut Phase {
-        &mut self.phase
-    }
-
+impl EulersDisk {
+    /// The right-hand side, for `impl_ode_dynamics!`.
     #[inline]
-    fn derivatives(&self, _t: f64, state: &[f64], out: &mut [f64]) -> Result<()> {
-        state_len(state)?;
-        if out.len() != 2 {
-            return Err(Error::DimensionMismatch {
-                name: "out".into(),
-                expected: 2,
-                found: out.len(),
-            });
-        }
+    fn field(&self, _t: f64, state: &[f64], out: &mut [f64]) -> Result<()> {
         let inv = self.params.theta_floor.max(state[0]).recip();
         out[0] = -self.params.decay_rate * inv;
         out[1] = self.params.precession_const * inv;
@@ -153,26 +126,13 @@ impl DynamicalSystem for EulersDisk {
     }
 
     /// `theta`: not a conserved energy (the model is dissipative by design) but the
-    /// inclination itself, which decreases to zero at the collapse (`NaN` for a state of the
-    /// wrong length).
-    fn energy(&self, state: &[f64]) -> f64 {
-        if state.len() != 2 {
-            return f64::NAN;
-        }
+    /// inclination itself, which decreases to zero at the collapse.
+    fn field_energy(&self, state: &[f64]) -> f64 {
         state[0]
     }
 
-    fn jacobian(&self, _t: f64, state: &[f64], out: &mut [f64]) -> Option<Result<()>> {
-        if let Err(e) = state_len(state) {
-            return Some(Err(e));
-        }
-        if out.len() != 4 {
-            return Some(Err(Error::DimensionMismatch {
-                name: "jacobian".into(),
-                expected: 4,
-                found: out.len(),
-            }));
-        }
+    /// The Jacobian of [`field`](Self::field), for `impl_ode_dynamics!`.
+    fn field_jacobian(&self, _t: f64, state: &[f64], out: &mut [f64]) -> Result<()> {
         // d(1/theta)/dtheta = -1/theta^2 above the floor; the floor's branch is constant.
         let theta = state[0];
         let d_inv = if theta > self.params.theta_floor {
@@ -186,15 +146,11 @@ impl DynamicalSystem for EulersDisk {
             self.params.precession_const * d_inv,
             0.0,
         ]);
-        Some(Ok(()))
-    }
-
-    fn default_method(&self) -> Method {
-        Method::ImplicitMidpoint
+        Ok(())
     }
 }
 
-impl OdeSystem for EulersDisk {}
+impl_ode_dynamics!(EulersDisk, dim = 2, method = ImplicitMidpoint, jacobian);
 
 impl Capabilities for EulersDisk {}
 

@@ -35,7 +35,7 @@
 
 use crate::classical::core::error::{check_finite_scalar, check_positive, check_vector};
 use crate::classical::core::{Error, Phase, Result};
-use crate::classical::integrators::{DynamicalSystem, Method, OdeSystem};
+use crate::classical::integrators::Method;
 use crate::classical::model::entry::{
     Default as D, Family, Length, ParamSpec as P, Range, SystemEntry,
 };
@@ -121,18 +121,6 @@ pub struct FoucaultPendulum {
     two_omega_z: f64,
 }
 
-fn state_len(state: &[f64]) -> Result<()> {
-    if state.len() == 4 {
-        Ok(())
-    } else {
-        Err(Error::DimensionMismatch {
-            name: "state".into(),
-            expected: 4,
-            found: state.len(),
-        })
-    }
-}
-
 impl FoucaultPendulum {
     /// A pendulum at horizontal displacement `q0 = (x, y)` (m; `x` east, `y` north) with
     /// velocity `v0 = (vx, vy)` (m/s).
@@ -215,25 +203,10 @@ impl FoucaultPendulum {
     }
 }
 
-impl DynamicalSystem for FoucaultPendulum {
-    fn phase(&self) -> &Phase {
-        &self.phase
-    }
-
-    fn phase_mut(&mut self) -> &mut Phase {
-        &mut self.phase
-    }
-
+impl FoucaultPendulum {
+    /// The right-hand side, for `impl_ode_dynamics!`.
     #[inline]
-    fn derivatives(&self, _t: f64, state: &[f64], out: &mut [f64]) -> Result<()> {
-        state_len(state)?;
-        if out.len() != 4 {
-            return Err(Error::DimensionMismatch {
-                name: "out".into(),
-                expected: 4,
-                found: out.len(),
-            });
-        }
+    fn field(&self, _t: f64, state: &[f64], out: &mut [f64]) -> Result<()> {
         let (w2, c) = (self.omega0_sq, self.two_omega_z);
         out[0] = state[2];
         out[1] = state[3];
@@ -244,25 +217,13 @@ impl DynamicalSystem for FoucaultPendulum {
 
     /// Energy per unit mass `|v|^2 / 2 + omega0^2 |q|^2 / 2` (J/kg; `NaN` for a state of the
     /// wrong length).
-    fn energy(&self, state: &[f64]) -> f64 {
-        if state.len() != 4 {
-            return f64::NAN;
-        }
+    fn field_energy(&self, state: &[f64]) -> f64 {
         let [x, y, vx, vy] = [state[0], state[1], state[2], state[3]];
         0.5 * (vx * vx + vy * vy) + 0.5 * self.omega0_sq * (x * x + y * y)
     }
 
-    fn jacobian(&self, _t: f64, state: &[f64], out: &mut [f64]) -> Option<Result<()>> {
-        if let Err(e) = state_len(state) {
-            return Some(Err(e));
-        }
-        if out.len() != 16 {
-            return Some(Err(Error::DimensionMismatch {
-                name: "jacobian".into(),
-                expected: 16,
-                found: out.len(),
-            }));
-        }
+    /// The Jacobian of [`field`](Self::field), for `impl_ode_dynamics!`.
+    fn field_jacobian(&self, _t: f64, _state: &[f64], out: &mut [f64]) -> Result<()> {
         let (w2, c) = (self.omega0_sq, self.two_omega_z);
         out.copy_from_slice(&[
             0.0, 0.0, 1.0, 0.0, //
@@ -270,15 +231,16 @@ impl DynamicalSystem for FoucaultPendulum {
             -w2, 0.0, 0.0, c, //
             0.0, -w2, -c, 0.0,
         ]);
-        Some(Ok(()))
-    }
-
-    fn default_method(&self) -> Method {
-        Method::ImplicitMidpoint
+        Ok(())
     }
 }
 
-impl OdeSystem for FoucaultPendulum {}
+impl_ode_dynamics!(
+    FoucaultPendulum,
+    dim = 4,
+    method = ImplicitMidpoint,
+    jacobian
+);
 
 impl Capabilities for FoucaultPendulum {
     fn positions_into(&self, q: &[f64], out: &mut Vec<f64>) -> Option<Result<()>> {

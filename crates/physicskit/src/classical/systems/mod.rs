@@ -6,6 +6,83 @@
 
 use crate::classical::model::SystemEntry;
 
+/// Implements [`DynamicalSystem`](crate::classical::DynamicalSystem) and
+/// [`OdeSystem`](crate::classical::OdeSystem) for a first-order system whose state has the fixed
+/// length `dim`, stored in a struct with a `phase: Phase` field: the boilerplate every ODE
+/// system here shares, written once. The macro checks the lengths (the state and `out` of
+/// `derivatives` and `jacobian`; a state of another length has a `NaN` energy) and then calls
+/// the system's inherent
+///
+/// - `fn field(&self, t: f64, state: &[f64], out: &mut [f64]) -> Result<()>`, the right-hand
+///   side;
+/// - `fn field_energy(&self, state: &[f64]) -> f64`, what the system reports as its energy;
+/// - with `jacobian` named: `fn field_jacobian(&self, t: f64, state: &[f64], out: &mut [f64])
+///   -> Result<()>`, the row-major `dim x dim` Jacobian (without it the drivers difference the
+///   field).
+///
+/// `method` is the default method. A generic struct is written
+/// `impl_ode_dynamics!(impl [S: Bound] Body<S>, dim = 9, method = Dop853)`.
+macro_rules! impl_ode_dynamics {
+    (@jacobian $dim:expr) => {
+        fn jacobian(
+            &self,
+            t: f64,
+            state: &[f64],
+            out: &mut [f64],
+        ) -> Option<crate::classical::Result<()>> {
+            Some(
+                crate::classical::core::error::check_len("state", state, $dim)
+                    .and_then(|()| {
+                        crate::classical::core::error::check_len("jacobian", out, $dim * $dim)
+                    })
+                    .and_then(|()| self.field_jacobian(t, state, out)),
+            )
+        }
+    };
+    (impl [$($gen:tt)*] $ty:ty, dim = $dim:expr, method = $method:ident $(, $jac:ident)?) => {
+        impl<$($gen)*> crate::classical::DynamicalSystem for $ty {
+            fn phase(&self) -> &crate::classical::Phase {
+                &self.phase
+            }
+
+            fn phase_mut(&mut self) -> &mut crate::classical::Phase {
+                &mut self.phase
+            }
+
+            #[inline]
+            fn derivatives(
+                &self,
+                t: f64,
+                state: &[f64],
+                out: &mut [f64],
+            ) -> crate::classical::Result<()> {
+                crate::classical::core::error::check_len("state", state, $dim)?;
+                crate::classical::core::error::check_len("out", out, $dim)?;
+                self.field(t, state, out)
+            }
+
+            fn energy(&self, state: &[f64]) -> f64 {
+                if state.len() == $dim {
+                    self.field_energy(state)
+                } else {
+                    f64::NAN
+                }
+            }
+
+            $(impl_ode_dynamics!(@$jac $dim);)?
+
+            fn default_method(&self) -> crate::classical::Method {
+                crate::classical::Method::$method
+            }
+        }
+
+        impl<$($gen)*> crate::classical::OdeSystem for $ty {}
+    };
+    ($ty:ty, $($rest:tt)*) => {
+        impl_ode_dynamics!(impl [] $ty, $($rest)*);
+    };
+}
+
 mod kepler;
 pub use kepler::*;
 mod henon_heiles;

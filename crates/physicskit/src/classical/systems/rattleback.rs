@@ -30,8 +30,8 @@
 use crate::classical::core::error::{
     check_finite_scalar, check_non_negative, check_positive, check_vector,
 };
-use crate::classical::core::{Error, Phase, Result};
-use crate::classical::integrators::{DynamicalSystem, Method, OdeSystem};
+use crate::classical::core::{Phase, Result};
+use crate::classical::integrators::Method;
 use crate::classical::model::entry::{
     Default as D, Family, Length, ParamSpec as P, Range, SystemEntry,
 };
@@ -88,18 +88,6 @@ pub struct Rattleback {
     euler: [f64; 3],
 }
 
-fn state_len(state: &[f64]) -> Result<()> {
-    if state.len() == 3 {
-        Ok(())
-    } else {
-        Err(Error::DimensionMismatch {
-            name: "state".into(),
-            expected: 3,
-            found: state.len(),
-        })
-    }
-}
-
 impl Rattleback {
     /// A rattleback with initial rates `n0 = (n1, n2, n3)` (rad/s).
     ///
@@ -127,25 +115,10 @@ impl Rattleback {
     }
 }
 
-impl DynamicalSystem for Rattleback {
-    fn phase(&self) -> &Phase {
-        &self.phase
-    }
-
-    fn phase_mut(&mut self) -> &mut Phase {
-        &mut self.phase
-    }
-
+impl Rattleback {
+    /// The right-hand side, for `impl_ode_dynamics!`.
     #[inline]
-    fn derivatives(&self, _t: f64, state: &[f64], out: &mut [f64]) -> Result<()> {
-        state_len(state)?;
-        if out.len() != 3 {
-            return Err(Error::DimensionMismatch {
-                name: "out".into(),
-                expected: 3,
-                found: out.len(),
-            });
-        }
+    fn field(&self, _t: f64, state: &[f64], out: &mut [f64]) -> Result<()> {
         let [a1, a2, a3] = self.euler;
         let RattlebackParams { gamma, mu, eta, .. } = self.params;
         let (n1, n2, n3) = (state[0], state[1], state[2]);
@@ -157,25 +130,13 @@ impl DynamicalSystem for Rattleback {
 
     /// Kinetic energy `(I1 n1^2 + I2 n2^2 + I3 n3^2) / 2` (`NaN` for a state of the wrong
     /// length); not conserved.
-    fn energy(&self, state: &[f64]) -> f64 {
-        if state.len() != 3 {
-            return f64::NAN;
-        }
+    fn field_energy(&self, state: &[f64]) -> f64 {
         let p = &self.params;
         0.5 * (p.i1 * state[0] * state[0] + p.i2 * state[1] * state[1] + p.i3 * state[2] * state[2])
     }
 
-    fn jacobian(&self, _t: f64, state: &[f64], out: &mut [f64]) -> Option<Result<()>> {
-        if let Err(e) = state_len(state) {
-            return Some(Err(e));
-        }
-        if out.len() != 9 {
-            return Some(Err(Error::DimensionMismatch {
-                name: "jacobian".into(),
-                expected: 9,
-                found: out.len(),
-            }));
-        }
+    /// The Jacobian of [`field`](Self::field), for `impl_ode_dynamics!`.
+    fn field_jacobian(&self, _t: f64, state: &[f64], out: &mut [f64]) -> Result<()> {
         let [a1, a2, a3] = self.euler;
         let RattlebackParams { gamma, mu, eta, .. } = self.params;
         let (n1, n2, n3) = (state[0], state[1], state[2]);
@@ -190,15 +151,11 @@ impl DynamicalSystem for Rattleback {
             a3 * n1,
             -mu,
         ]);
-        Some(Ok(()))
-    }
-
-    fn default_method(&self) -> Method {
-        Method::ImplicitMidpoint
+        Ok(())
     }
 }
 
-impl OdeSystem for Rattleback {}
+impl_ode_dynamics!(Rattleback, dim = 3, method = ImplicitMidpoint, jacobian);
 
 impl Capabilities for Rattleback {}
 

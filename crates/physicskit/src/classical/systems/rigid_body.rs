@@ -16,9 +16,9 @@
 //! near the intermediate axis tumbles periodically (the intermediate-axis theorem) with a
 //! period given by a complete elliptic integral (Landau & Lifshitz §37).
 
-use crate::classical::core::error::{check_positive, check_vector};
+use crate::classical::core::error::{check_len, check_positive, check_vector};
 use crate::classical::core::{Error, Phase, Result};
-use crate::classical::integrators::{DynamicalSystem, Method, OdeSystem};
+use crate::classical::integrators::Method;
 use crate::classical::model::entry::{
     Default as D, Family, Length, ParamSpec as P, Range, SystemEntry,
 };
@@ -66,18 +66,6 @@ pub struct EulerTop {
     /// Euler's coefficients `((I2-I3)/I1, (I3-I1)/I2, (I1-I2)/I3)`, computed once rather than
     /// with three divisions per evaluation.
     euler: [f64; 3],
-}
-
-fn state_len(state: &[f64]) -> Result<()> {
-    if state.len() == 7 {
-        Ok(())
-    } else {
-        Err(Error::DimensionMismatch {
-            name: "state".into(),
-            expected: 7,
-            found: state.len(),
-        })
-    }
 }
 
 impl EulerTop {
@@ -142,7 +130,7 @@ impl EulerTop {
     /// [`Error::DimensionMismatch`] unless `state` has length 7.
     pub fn angular_momentum_squared(&self, state: Option<&[f64]>) -> Result<f64> {
         let s = state.unwrap_or(self.phase.state());
-        state_len(s)?;
+        check_len("state", s, 7)?;
         Ok((0..3).map(|i| (self.inertia[i] * s[i]).powi(2)).sum())
     }
 
@@ -155,7 +143,7 @@ impl EulerTop {
     /// [`Error::DimensionMismatch`] unless `state` has length 7.
     pub fn body_angular_momentum(&self, state: Option<&[f64]>) -> Result<[f64; 3]> {
         let s = state.unwrap_or(self.phase.state());
-        state_len(s)?;
+        check_len("state", s, 7)?;
         Ok([0, 1, 2].map(|i| self.inertia[i] * s[i]))
     }
 
@@ -197,7 +185,7 @@ impl EulerTop {
     /// for a zero or non-finite quaternion.
     pub fn rotation_matrix(&self, state: Option<&[f64]>) -> Result<[[f64; 3]; 3]> {
         let s = state.unwrap_or(self.phase.state());
-        state_len(s)?;
+        check_len("state", s, 7)?;
         let (w, x, y, z) = (s[3], s[4], s[5], s[6]);
         let n2 = w * w + x * x + y * y + z * z;
         if !(n2 > 0.0 && n2.is_finite()) {
@@ -228,25 +216,10 @@ impl EulerTop {
     }
 }
 
-impl DynamicalSystem for EulerTop {
-    fn phase(&self) -> &Phase {
-        &self.phase
-    }
-
-    fn phase_mut(&mut self) -> &mut Phase {
-        &mut self.phase
-    }
-
+impl EulerTop {
+    /// The right-hand side, for `impl_ode_dynamics!`.
     #[inline]
-    fn derivatives(&self, _t: f64, state: &[f64], out: &mut [f64]) -> Result<()> {
-        state_len(state)?;
-        if out.len() != 7 {
-            return Err(Error::DimensionMismatch {
-                name: "out".into(),
-                expected: 7,
-                found: out.len(),
-            });
-        }
+    fn field(&self, _t: f64, state: &[f64], out: &mut [f64]) -> Result<()> {
         let [a1, a2, a3] = self.euler;
         let (w1, w2, w3) = (state[0], state[1], state[2]);
         let (qw, qx, qy, qz) = (state[3], state[4], state[5], state[6]);
@@ -262,26 +235,14 @@ impl DynamicalSystem for EulerTop {
     }
 
     /// Rotational kinetic energy `sum I_i w_i^2 / 2` (`NaN` for a state of the wrong length).
-    fn energy(&self, state: &[f64]) -> f64 {
-        if state.len() != 7 {
-            return f64::NAN;
-        }
+    fn field_energy(&self, state: &[f64]) -> f64 {
         0.5 * (0..3)
             .map(|i| self.inertia[i] * state[i] * state[i])
             .sum::<f64>()
     }
 
-    fn jacobian(&self, _t: f64, state: &[f64], out: &mut [f64]) -> Option<Result<()>> {
-        if let Err(e) = state_len(state) {
-            return Some(Err(e));
-        }
-        if out.len() != 49 {
-            return Some(Err(Error::DimensionMismatch {
-                name: "jacobian".into(),
-                expected: 49,
-                found: out.len(),
-            }));
-        }
+    /// The Jacobian of [`field`](Self::field), for `impl_ode_dynamics!`.
+    fn field_jacobian(&self, _t: f64, state: &[f64], out: &mut [f64]) -> Result<()> {
         let [a1, a2, a3] = self.euler;
         let (w1, w2, w3) = (state[0], state[1], state[2]);
         let (qw, qx, qy, qz) = (
@@ -303,15 +264,11 @@ impl DynamicalSystem for EulerTop {
         for (dst, src) in out.chunks_exact_mut(7).zip(rows.iter()) {
             dst.copy_from_slice(src);
         }
-        Some(Ok(()))
-    }
-
-    fn default_method(&self) -> Method {
-        Method::ImplicitMidpoint
+        Ok(())
     }
 }
 
-impl OdeSystem for EulerTop {}
+impl_ode_dynamics!(EulerTop, dim = 7, method = ImplicitMidpoint, jacobian);
 
 impl Capabilities for EulerTop {
     fn rotation_matrix(&self, state: &[f64]) -> Option<Result<[f64; 9]>> {

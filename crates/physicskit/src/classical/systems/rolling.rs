@@ -38,7 +38,7 @@
 //! `[w1, w2, w3, qw, qx, qy, qz, x, y]`: the angular velocity in the **body** frame, the
 //! body-to-world orientation quaternion (as [`EulerTop`](super::EulerTop)), and the position
 //! `(x, y)` of the contact point on the plane (world frame, `z` up). The centre of mass is at
-//! `(x, y, 0) - R r` ([`RollingRattleback::center_of_mass`]).
+//! `(x, y, 0) - R r` ([`center_of_mass`](RollingBody::center_of_mass)).
 //!
 //! # The quaternion's norm
 //!
@@ -49,16 +49,16 @@
 //! what an integrator lets it drift (measured in `tests/classical/systems/rolling.rs`: below
 //! `1e-10` over the reversal runs with `dop853` at `rtol = 1e-10`, `rk4`'s local error
 //! otherwise) changes no physical quantity. Front ends that draw the body use
-//! [`rotation_matrix`](RollingRattleback::rotation_matrix), which normalizes too.
+//! [`rotation_matrix`](RollingBody::rotation_matrix), which normalizes too.
 
 use std::f64::consts::FRAC_PI_2;
 
 use crate::classical::core::error::{
-    check_finite_scalar, check_non_negative, check_positive, check_vector,
+    check_finite_scalar, check_len, check_non_negative, check_positive, check_vector,
 };
 use crate::classical::core::trig::sin_cos;
 use crate::classical::core::{Error, Phase, Result};
-use crate::classical::integrators::{DynamicalSystem, Method, OdeSystem};
+use crate::classical::integrators::Method;
 use crate::classical::model::entry::{
     Bound, Default as D, Family, Length, ParamSpec as P, Range, SystemEntry,
 };
@@ -111,15 +111,7 @@ fn solve3(j: &[[f64; 3]; 3], b: V3) -> V3 {
 }
 
 fn state_len(state: &[f64]) -> Result<()> {
-    if state.len() == DIM {
-        Ok(())
-    } else {
-        Err(Error::DimensionMismatch {
-            name: "state".into(),
-            expected: DIM,
-            found: state.len(),
-        })
-    }
+    check_len("state", state, DIM)
 }
 
 /// The body-to-world rotation matrix of the quaternion `state[3..7]`, normalized.
@@ -172,11 +164,17 @@ fn initial_quaternion(quat0: Option<&[f64]>, default: [f64; 4]) -> Result<[f64; 
     }
 }
 
-/// The shape under the body: where it touches the plane.
-trait Contact {
-    /// `(r, r')`: the vector from the centre of mass to the contact point, and its rate, for
-    /// the body-frame up vector `gamma` (unit) and its rate `gamma_dot`.
-    fn contact(&self, gamma: V3, gamma_dot: V3) -> Result<(V3, V3)>;
+/// The shape under a [`RollingBody`]: where it touches the plane. Implemented by the
+/// parameters of each rolling body ([`RollingRattlebackParams`]: an ellipsoid;
+/// [`RollingDiskParams`]: a thin disk's rim), which carry its geometry.
+pub trait RollingShape: Copy + std::fmt::Debug + PartialEq {
+    /// `(r, r')`: the vector from the centre of mass to the contact point, and its rate, both
+    /// in the body frame, for the body-frame up vector `gamma` (unit) and its rate
+    /// `gamma_dot`.
+    ///
+    /// # Errors
+    /// An orientation in which the shape has no single lowest point (a disk lying flat).
+    fn contact(&self, gamma: [f64; 3], gamma_dot: [f64; 3]) -> Result<([f64; 3], [f64; 3])>;
 }
 
 /// Mass, gravity and the inertia tensor about the centre of mass, in the body frame.
@@ -188,17 +186,9 @@ struct Body {
 }
 
 impl Body {
-    /// The rolling equations (module docs) at `state` into `out`.
+    /// The rolling equations (module docs) at `state` into `out` (both of length 9).
     #[inline(always)]
-    fn derivatives(&self, shape: &impl Contact, state: &[f64], out: &mut [f64]) -> Result<()> {
-        state_len(state)?;
-        if out.len() != DIM {
-            return Err(Error::DimensionMismatch {
-                name: "out".into(),
-                expected: DIM,
-                found: out.len(),
-            });
-        }
+    fn derivatives(&self, shape: &impl RollingShape, state: &[f64], out: &mut [f64]) -> Result<()> {
         let rot = rotation(state)?;
         let omega = [state[0], state[1], state[2]];
         let gamma = rot[2];
@@ -239,11 +229,9 @@ impl Body {
         Ok(())
     }
 
-    /// Kinetic plus potential energy (`NaN` for a bad state).
-    fn energy(&self, shape: &impl Contact, state: &[f64]) -> f64 {
-        if state.len() != DIM {
-            return f64::NAN;
-        }
+    /// Kinetic plus potential energy of a state of length 9 (`NaN` for a bad quaternion or
+    /// contact).
+    fn energy(&self, shape: &impl RollingShape, state: &[f64]) -> f64 {
         let Ok(rot) = rotation(state) else {
             return f64::NAN;
         };
@@ -258,7 +246,7 @@ impl Body {
     }
 
     /// The centre of mass in the world frame: the contact point `(x, y, 0)` minus `R r`.
-    fn center_of_mass(&self, shape: &impl Contact, state: &[f64]) -> Result<V3> {
+    fn center_of_mass(&self, shape: &impl RollingShape, state: &[f64]) -> Result<V3> {
         state_len(state)?;
         let rot = rotation(state)?;
         let (r, _) = shape.contact(rot[2], [0.0; 3])?;
@@ -267,7 +255,7 @@ impl Body {
     }
 
     /// The vector from the centre of mass to the contact point, in the body frame.
-    fn contact_vector(&self, shape: &impl Contact, state: &[f64]) -> Result<V3> {
+    fn contact_vector(&self, shape: &impl RollingShape, state: &[f64]) -> Result<V3> {
         state_len(state)?;
         let rot = rotation(state)?;
         Ok(shape.contact(rot[2], [0.0; 3])?.0)
@@ -291,39 +279,88 @@ fn vertical_spin(state: &[f64]) -> Result<f64> {
     Ok(dot(rot[2], [state[0], state[1], state[2]]))
 }
 
+/// A rigid body rolling without slipping on a horizontal plane (module docs), its contact
+/// geometry given by its parameters' [`RollingShape`]: [`RollingRattleback`] and
+/// [`RollingDisk`] are its two instances, each with its own constructor.
+#[derive(Debug, Clone)]
+pub struct RollingBody<S: RollingShape> {
+    phase: Phase,
+    params: S,
+    body: Body,
+}
+
+impl<S: RollingShape> RollingBody<S> {
+    /// The parameters.
+    pub fn params(&self) -> S {
+        self.params
+    }
+
+    /// The inertia tensor about the centre of mass in the body's geometric axes (kg m²).
+    pub fn inertia_tensor(&self) -> [[f64; 3]; 3] {
+        self.body.inertia
+    }
+
+    /// The body-to-world rotation matrix of `state` (the current state if `None`), from its
+    /// normalized quaternion.
+    ///
+    /// # Errors
+    /// A state not of length 9, or a zero or non-finite quaternion.
+    pub fn rotation_matrix(&self, state: Option<&[f64]>) -> Result<[[f64; 3]; 3]> {
+        rotation_checked(state.unwrap_or(self.phase.state()))
+    }
+
+    /// The spin about the vertical, `omega . gamma` (rad/s): what reverses for the
+    /// rattleback.
+    ///
+    /// # Errors
+    /// As [`rotation_matrix`](Self::rotation_matrix).
+    pub fn vertical_spin(&self, state: Option<&[f64]>) -> Result<f64> {
+        vertical_spin(state.unwrap_or(self.phase.state()))
+    }
+
+    /// The centre of mass in the world frame (m).
+    ///
+    /// # Errors
+    /// As [`rotation_matrix`](Self::rotation_matrix), or an orientation the shape has no
+    /// lowest point in (a disk lying flat).
+    pub fn center_of_mass(&self, state: Option<&[f64]>) -> Result<[f64; 3]> {
+        self.body
+            .center_of_mass(&self.params, state.unwrap_or(self.phase.state()))
+    }
+
+    /// The vector from the centre of mass to the contact point, body frame (m).
+    ///
+    /// # Errors
+    /// As [`center_of_mass`](Self::center_of_mass).
+    pub fn contact_vector(&self, state: Option<&[f64]>) -> Result<[f64; 3]> {
+        self.body
+            .contact_vector(&self.params, state.unwrap_or(self.phase.state()))
+    }
+
+    /// The rolling equations (module docs), for `impl_ode_dynamics!`.
+    #[inline]
+    fn field(&self, _t: f64, state: &[f64], out: &mut [f64]) -> Result<()> {
+        self.body.derivatives(&self.params, state, out)
+    }
+
+    /// Kinetic energy of the rolling body plus `m g` times the height of its centre of mass,
+    /// for `impl_ode_dynamics!`.
+    fn field_energy(&self, state: &[f64]) -> f64 {
+        self.body.energy(&self.params, state)
+    }
+}
+
+impl_ode_dynamics!(impl [S: RollingShape] RollingBody<S>, dim = DIM, method = Dop853);
+
+impl<S: RollingShape> Capabilities for RollingBody<S> {
+    fn rotation_matrix(&self, state: &[f64]) -> Option<Result<[f64; 9]>> {
+        Some(rotation_checked(state).map(flat))
+    }
+}
+
 // ---------------------------------------------------------------------------------------
 // The rattleback
 // ---------------------------------------------------------------------------------------
-
-/// The ellipsoid `x^2/a^2 + y^2/b^2 + (z - h)^2/c^2 = 1` around a centre of mass at the origin
-/// (its centre a height `h` above the centre of mass).
-#[derive(Debug, Clone, Copy, PartialEq)]
-struct Ellipsoid {
-    /// `(a^2, b^2, c^2)`.
-    axes2: V3,
-    h: f64,
-}
-
-impl Contact for Ellipsoid {
-    #[inline(always)]
-    fn contact(&self, gamma: V3, gamma_dot: V3) -> Result<(V3, V3)> {
-        // The outward normal at p (from the centre) is A^-1 p, A = diag(a^2, b^2, c^2); it is
-        // -gamma at p = -A gamma / s, s = sqrt(gamma . A gamma).
-        let a = self.axes2;
-        let ag = [a[0] * gamma[0], a[1] * gamma[1], a[2] * gamma[2]];
-        let s2 = dot(gamma, ag);
-        let s = s2.sqrt();
-        let agd = [
-            a[0] * gamma_dot[0],
-            a[1] * gamma_dot[1],
-            a[2] * gamma_dot[2],
-        ];
-        let k = dot(gamma, agd) / s2;
-        let r = [-ag[0] / s, -ag[1] / s, -ag[2] / s + self.h];
-        let r_dot = [0, 1, 2].map(|i| -(agd[i] - ag[i] * k) / s);
-        Ok((r, r_dot))
-    }
-}
 
 /// Geometry and mass of a [`RollingRattleback`]. The defaults are Kane & Levinson's body
 /// (Int. J. Non-Linear Mech. 17 (1982) 175, the body many later no-slip studies reuse):
@@ -380,6 +417,29 @@ impl Default for RollingRattlebackParams {
     }
 }
 
+/// The ellipsoid `x^2/a^2 + y^2/b^2 + (z - h)^2/c^2 = 1` around a centre of mass at the origin
+/// (its centre a height `h` above the centre of mass).
+impl RollingShape for RollingRattlebackParams {
+    #[inline(always)]
+    fn contact(&self, gamma: V3, gamma_dot: V3) -> Result<(V3, V3)> {
+        // The outward normal at p (from the centre) is A^-1 p, A = diag(a^2, b^2, c^2); it is
+        // -gamma at p = -A gamma / s, s = sqrt(gamma . A gamma).
+        let a = [self.a * self.a, self.b * self.b, self.c * self.c];
+        let ag = [a[0] * gamma[0], a[1] * gamma[1], a[2] * gamma[2]];
+        let s2 = dot(gamma, ag);
+        let s = s2.sqrt();
+        let agd = [
+            a[0] * gamma_dot[0],
+            a[1] * gamma_dot[1],
+            a[2] * gamma_dot[2],
+        ];
+        let k = dot(gamma, agd) / s2;
+        let r = [-ag[0] / s, -ag[1] / s, -ag[2] / s + self.h];
+        let r_dot = [0, 1, 2].map(|i| -(agd[i] - ag[i] * k) / s);
+        Ok((r, r_dot))
+    }
+}
+
 /// Roll and pitch of the default start, 0.5° each (Kane & Levinson's start).
 const START_TILT: f64 = 0.5 * std::f64::consts::PI / 180.0;
 
@@ -431,13 +491,7 @@ fn check_moments(moments: [f64; 3]) -> Result<()> {
 /// body.integrate((0.0, 0.5), 1e-4, Method::Rk4).unwrap();
 /// assert!((body.current_energy() - e0).abs() < 1e-8 * e0.abs());
 /// ```
-#[derive(Debug, Clone)]
-pub struct RollingRattleback {
-    phase: Phase,
-    params: RollingRattlebackParams,
-    body: Body,
-    shape: Ellipsoid,
-}
+pub type RollingRattleback = RollingBody<RollingRattlebackParams>;
 
 impl RollingRattleback {
     /// A rattleback with body-frame angular velocity `omega0` (rad/s) in orientation `quat0`
@@ -493,88 +547,7 @@ impl RollingRattleback {
                 g: p.g,
                 inertia,
             },
-            shape: Ellipsoid {
-                axes2: [p.a * p.a, p.b * p.b, p.c * p.c],
-                h: p.h,
-            },
         })
-    }
-
-    /// The parameters.
-    pub fn params(&self) -> RollingRattlebackParams {
-        self.params
-    }
-
-    /// The inertia tensor about the centre of mass in the geometric (body) axes (kg m²).
-    pub fn inertia_tensor(&self) -> [[f64; 3]; 3] {
-        self.body.inertia
-    }
-
-    /// The body-to-world rotation matrix of `state` (the current state if `None`), from its
-    /// normalized quaternion.
-    ///
-    /// # Errors
-    /// A state not of length 9, or a zero or non-finite quaternion.
-    pub fn rotation_matrix(&self, state: Option<&[f64]>) -> Result<[[f64; 3]; 3]> {
-        rotation_checked(state.unwrap_or(self.phase.state()))
-    }
-
-    /// The spin about the vertical, `omega . gamma` (rad/s): what reverses.
-    ///
-    /// # Errors
-    /// As [`rotation_matrix`](Self::rotation_matrix).
-    pub fn vertical_spin(&self, state: Option<&[f64]>) -> Result<f64> {
-        vertical_spin(state.unwrap_or(self.phase.state()))
-    }
-
-    /// The centre of mass in the world frame (m).
-    ///
-    /// # Errors
-    /// As [`rotation_matrix`](Self::rotation_matrix).
-    pub fn center_of_mass(&self, state: Option<&[f64]>) -> Result<[f64; 3]> {
-        self.body
-            .center_of_mass(&self.shape, state.unwrap_or(self.phase.state()))
-    }
-
-    /// The vector from the centre of mass to the contact point, body frame (m).
-    ///
-    /// # Errors
-    /// As [`rotation_matrix`](Self::rotation_matrix).
-    pub fn contact_vector(&self, state: Option<&[f64]>) -> Result<[f64; 3]> {
-        self.body
-            .contact_vector(&self.shape, state.unwrap_or(self.phase.state()))
-    }
-}
-
-impl DynamicalSystem for RollingRattleback {
-    fn phase(&self) -> &Phase {
-        &self.phase
-    }
-
-    fn phase_mut(&mut self) -> &mut Phase {
-        &mut self.phase
-    }
-
-    #[inline]
-    fn derivatives(&self, _t: f64, state: &[f64], out: &mut [f64]) -> Result<()> {
-        self.body.derivatives(&self.shape, state, out)
-    }
-
-    /// Kinetic energy of the rolling body plus `m g` times the height of its centre of mass.
-    fn energy(&self, state: &[f64]) -> f64 {
-        self.body.energy(&self.shape, state)
-    }
-
-    fn default_method(&self) -> Method {
-        Method::Dop853
-    }
-}
-
-impl OdeSystem for RollingRattleback {}
-
-impl Capabilities for RollingRattleback {
-    fn rotation_matrix(&self, state: &[f64]) -> Option<Result<[f64; 9]>> {
-        Some(rotation_checked(state).map(flat))
     }
 }
 
@@ -583,12 +556,7 @@ impl Capabilities for RollingRattleback {
 // ---------------------------------------------------------------------------------------
 
 /// A thin disk's rim, radius `a`, around its centre (the centre of mass), normal `z`.
-#[derive(Debug, Clone, Copy, PartialEq)]
-struct Rim {
-    a: f64,
-}
-
-impl Contact for Rim {
+impl RollingShape for RollingDiskParams {
     #[inline(always)]
     fn contact(&self, gamma: V3, gamma_dot: V3) -> Result<(V3, V3)> {
         // The lowest rim point: -a times the unit projection u of gamma onto the disk's plane.
@@ -644,13 +612,7 @@ impl Default for RollingDiskParams {
 /// `w3 = cos(theta) (I1 Omega^2 sin(theta) - m g a) / ((I3 + m a^2) Omega sin(theta))`
 /// ([`RollingDisk::steady`], derived in `tests/classical/systems/rolling.rs`), its centre on a
 /// circle of radius `a w3 / Omega`.
-#[derive(Debug, Clone)]
-pub struct RollingDisk {
-    phase: Phase,
-    params: RollingDiskParams,
-    body: Body,
-    shape: Rim,
-}
+pub type RollingDisk = RollingBody<RollingDiskParams>;
 
 /// Tilt of the default start: 1 rad between the disk and the table.
 const DISK_TILT: f64 = 1.0;
@@ -683,7 +645,6 @@ impl RollingDisk {
         let mut state = omega0.to_vec();
         state.extend_from_slice(&quat);
         state.extend_from_slice(&[0.0, 0.0]);
-        let shape = Rim { a: params.a };
         let rot = rotation(&state)?;
         if rot[2][2].abs() >= 1.0 - 1e-12 {
             return Err(Error::invalid(
@@ -696,7 +657,6 @@ impl RollingDisk {
             phase: Phase::new(state, 0.0)?,
             params,
             body,
-            shape,
         })
     }
 
@@ -735,77 +695,6 @@ impl RollingDisk {
         let omega0 = [-precession * st, 0.0, w3];
         let (sh, ch) = sin_cos(0.5 * theta);
         Self::new(&omega0, params, Some(&[ch, 0.0, sh, 0.0]))
-    }
-
-    /// The parameters.
-    pub fn params(&self) -> RollingDiskParams {
-        self.params
-    }
-
-    /// The body-to-world rotation matrix of `state` (the current state if `None`).
-    ///
-    /// # Errors
-    /// A state not of length 9, or a zero or non-finite quaternion.
-    pub fn rotation_matrix(&self, state: Option<&[f64]>) -> Result<[[f64; 3]; 3]> {
-        rotation_checked(state.unwrap_or(self.phase.state()))
-    }
-
-    /// The spin about the vertical, `omega . gamma` (rad/s).
-    ///
-    /// # Errors
-    /// As [`rotation_matrix`](Self::rotation_matrix).
-    pub fn vertical_spin(&self, state: Option<&[f64]>) -> Result<f64> {
-        vertical_spin(state.unwrap_or(self.phase.state()))
-    }
-
-    /// The disk's centre in the world frame (m).
-    ///
-    /// # Errors
-    /// As [`rotation_matrix`](Self::rotation_matrix), or a disk lying flat.
-    pub fn center_of_mass(&self, state: Option<&[f64]>) -> Result<[f64; 3]> {
-        self.body
-            .center_of_mass(&self.shape, state.unwrap_or(self.phase.state()))
-    }
-
-    /// The vector from the centre to the contact point, body frame (m).
-    ///
-    /// # Errors
-    /// As [`center_of_mass`](Self::center_of_mass).
-    pub fn contact_vector(&self, state: Option<&[f64]>) -> Result<[f64; 3]> {
-        self.body
-            .contact_vector(&self.shape, state.unwrap_or(self.phase.state()))
-    }
-}
-
-impl DynamicalSystem for RollingDisk {
-    fn phase(&self) -> &Phase {
-        &self.phase
-    }
-
-    fn phase_mut(&mut self) -> &mut Phase {
-        &mut self.phase
-    }
-
-    #[inline]
-    fn derivatives(&self, _t: f64, state: &[f64], out: &mut [f64]) -> Result<()> {
-        self.body.derivatives(&self.shape, state, out)
-    }
-
-    /// Kinetic energy of the rolling disk plus `m g` times the height of its centre.
-    fn energy(&self, state: &[f64]) -> f64 {
-        self.body.energy(&self.shape, state)
-    }
-
-    fn default_method(&self) -> Method {
-        Method::Dop853
-    }
-}
-
-impl OdeSystem for RollingDisk {}
-
-impl Capabilities for RollingDisk {
-    fn rotation_matrix(&self, state: &[f64]) -> Option<Result<[f64; 9]>> {
-        Some(rotation_checked(state).map(flat))
     }
 }
 
