@@ -35,6 +35,18 @@ for (const [name, dt, steps] of [["rolling-rattleback", 1e-4, 167], ["rolling-di
     note: `Step: rk4 at dt = ${dt} s, ${steps} steps a frame (real time at 60 frames a second), which keeps this rolling body's energy error below 10⁻⁸; the catalogue's own method, dop853, takes adaptive steps, which a frame-by-frame run cannot.`,
   };
 }
+// A time-lapse for a system whose effect builds up over hours: Foucault's pendulum, whose
+// swing plane turns at the Earth's real rate Ω⊕ sin(latitude), 11° an hour in Paris, which
+// a run at real time would not show. The time-lapse keeps the physics and runs more of it per
+// frame: dt = 0.02 s (the 67 m pendulum's 16.4 s swing in 820 steps) and 400 steps a frame.
+const TIME_LAPSE = {};
+for (const [name, dt, steps] of [["foucault-pendulum", 0.02, 400]]) {
+  const perFrame = dt * steps;
+  TIME_LAPSE[name] = {
+    dt, steps,
+    note: `Time-lapse: ${perFrame} s of the pendulum's time each frame, ${Math.round(perFrame * 60)}× real time at 60 frames a second (dt = ${dt} s, ${steps} steps a frame). The Earth turns at its real rate.`,
+  };
+}
 // The system shown when no link names one: the chaotic double pendulum, running on load.
 const DEFAULT_SYSTEM = "double-pendulum";
 
@@ -117,6 +129,26 @@ function runsText(runs) {
   return runs.map((r) => (r.sub && [...r.text].every((c) => SUBSCRIPT[c]) ? [...r.text].map((c) => SUBSCRIPT[c]).join("") : r.text)).join("");
 }
 function texText(tex) { return runsText(texRuns(tex)); }
+// The catalogue's text for people (labels, captions, help, the physics paragraph) into runs,
+// as a physicist writes it: the names its rules leave as words that have a symbol (the
+// Earth's rotation rate Ω⊕), a method's name in words (implicit midpoint), and a symbol with
+// an index (ω_c, V_eff, q_{i+1}, Ω_⊕) as a subscript run.
+const PEOPLE_SYMBOLS = [["ω earth", "Ω_⊕"], ["latitude deg", "latitude"]];
+function peopleRuns(text) {
+  for (const [words, symbol] of PEOPLE_SYMBOLS) text = text.split(words).join(symbol);
+  text = text.replace(/\b([a-z]{2,})_([a-z]{2,})\b/g, "$1 $2");
+  const runs = [];
+  // One letter (Latin or Greek, not the end of a word), `_`, and an index of up to three
+  // characters, a braced group or ⊕.
+  const re = /(?<![A-Za-z])([A-Za-z\u0370-\u03ff])_(\{[^{}]*\}|[A-Za-z0-9]{1,3}(?![A-Za-z0-9_])|⊕)/gu;
+  let last = 0;
+  for (const m of text.matchAll(re)) {
+    runs.push({ text: text.slice(last, m.index + 1), sub: false }, { text: m[2].replace(/^\{|\}$/g, ""), sub: true });
+    last = m.index + m[0].length;
+  }
+  runs.push({ text: text.slice(last), sub: false });
+  return runs.filter((r) => r.text);
+}
 // Runs into a page element: text, and `<sub>` for subscripts (built as nodes, never as HTML).
 function setRuns(el, runs) {
   el.replaceChildren(...runs.map((r) => { if (!r.sub) return document.createTextNode(r.text); const e = document.createElement("sub"); e.textContent = r.text; return e; }));
@@ -246,11 +278,11 @@ function paramControl(p) {
   const label = document.createElement("label");
   label.htmlFor = id;
   label.className = "param-name";
-  label.textContent = p.label;
+  setRuns(label, peopleRuns(p.label));
   if (p.unit_text) { const u = document.createElement("span"); u.className = "unit"; u.textContent = ` [${p.unit_text}]`; label.append(u); }
   const help = document.createElement("div");
   help.className = "help";
-  help.textContent = p.help_text;
+  setRuns(help, peopleRuns(p.help_text ?? ""));
   const row = document.createElement("div");
   row.className = "param-row";
   div.append(label, row, help);
@@ -282,7 +314,7 @@ function paramControl(p) {
     slider.min = lo; slider.max = hi;
     slider.step = p.kind === "integer" ? 1 : (hi - lo) / 1000;
     slider.value = p.default ?? (lo + hi) / 2;
-    slider.setAttribute("aria-label", `${p.label} (slider)`);
+    slider.setAttribute("aria-label", `${runsText(peopleRuns(p.label))} (slider)`);
     const num = document.createElement("input");
     num.type = "number";
     num.id = id;
@@ -433,6 +465,7 @@ function startViews(extent = null) {
 function clearViews() {
   app.trails = []; app.phase = []; app.energy = []; app.rows = [];
   app.spinAngle = 0; app.rollingView = null; app.topScale = null;
+  if (app.ended) { app.ended = null; message(""); }
   sceneNote("");
   app.frames = 0;
   record();
@@ -534,8 +567,33 @@ function sample() {
   if (app.phase.length > PHASE_TRAIL) app.phase.splice(0, app.phase.length - PHASE_TRAIL);
 }
 
+// The steps a model can still take, at most `n`: a model that ends (the reduced Euler's disk,
+// whose tilt θ reaches the floor θ_min in finite time) stops there rather than stepping past
+// its end, where an implicit solver fails. Above the floor θ θ̇ = −decay rate, so after m steps
+// θ² = θ² − 2 × decay rate × m dt (exactly so for the implicit midpoint rule, whose step keeps
+// θ² − 2 × decay rate × t); the steps left are those that keep θ at or above the floor.
+function stepsLeft(n, dt) {
+  if (kind() !== "disk") return n;
+  const th = app.lab.state()[0], k = param("decay_rate"), floor = param("theta_floor");
+  if (!(th > floor)) return 0;
+  if (!(k > 0)) return n;
+  return Math.max(0, Math.min(n, Math.floor((th * th - floor * floor) / (2 * k * dt))));
+}
+
+// The model's end, once reached: stop, and say so in words (a notice, not an error).
+function endOfModel() {
+  const th = app.lab.state()[0], t = app.lab.time(), k = param("decay_rate");
+  // Where θ would reach zero, from the closed form θ² = θ² − 2 × decay rate × (t′ − t).
+  const tf = t + (Math.max(th, 0) ** 2) / (2 * k);
+  app.ended = `The disk has come to rest at t ≈ ${tf.toPrecision(3)} s: the model's tilt θ reaches zero in finite time there (its finite-time collapse), and the run ends with it. Reset to spin it again.`;
+  setRunning(false);
+  message(app.ended, "notice");
+  draw();
+}
+
 function frame() {
-  const n = Number($("speed").value), dt = Number($("dt").value);
+  const dt = Number($("dt").value), n = stepsLeft(Number($("speed").value), dt);
+  if (n === 0) { endOfModel(); return false; }
   try {
     // The frame's steps in pieces, a trail sample after each: the same bits as one call.
     const pieces = Math.min(SAMPLES_PER_FRAME, n);
@@ -553,6 +611,7 @@ function frame() {
   }
   app.frames++;
   record();
+  if (stepsLeft(1, dt) === 0) endOfModel();
   return true;
 }
 
@@ -567,7 +626,8 @@ function loop() {
   requestAnimationFrame(loop);
 }
 
-function message(text) { $("message").textContent = text; }
+// One line of status: an error (refused input, a failed step) unless `kind` is "notice".
+function message(text, kind = "error") { const el = $("message"); el.textContent = text; el.classList.toggle("notice", kind === "notice"); }
 
 // ---------- drawing: views and axes ----------
 
@@ -1141,7 +1201,8 @@ function drawSeries(ctx, w, h) {
 
 // A caption under the scene, in the page's text (it wraps on a phone; a canvas line would be
 // cut): what the picture shows and its live numbers.
-function sceneNote(text) { const el = $("scene-note"); if (el.textContent !== text) el.textContent = text; }
+// The scene's caption, in people's symbols (peopleRuns: `Ω_⊕` shows as Ω with ⊕ lowered).
+function sceneNote(text) { const el = $("scene-note"); if (el.dataset.text !== text) { el.dataset.text = text; setRuns(el, peopleRuns(text)); } }
 
 // A floor grid in perspective with tick labels in metres along two edges, centred at
 // (cx, cy) with half-width `half`; records the scene's ticks for the tests.
@@ -1177,7 +1238,7 @@ function spinArrow(ctx, P, centre, r, spin, colour, reference) {
 
 // Foucault's pendulum seen from above: the bob's path (a rosette), the swing plane it started
 // in (dashed) and where it swings now (the line through its farthest recent point), the bob,
-// and the turn of the plane beside the Earth's: −ω_z t with ω_z = Ω sin(latitude).
+// and the turn of the plane beside the Earth's: −Ω_⊕ sin(latitude) t.
 function drawSwing(ctx, w, h) {
   const s = app.lab.state(), units = stateUnits(), T = app.trails;
   let amp = Math.hypot(s[0], s[1]);
@@ -1217,13 +1278,16 @@ function drawSwing(ctx, w, h) {
     // A plane's direction is defined modulo π: the turn in (−90°, 90°].
     turned = ((a - a0 + Math.PI / 2) % Math.PI + Math.PI) % Math.PI - Math.PI / 2;
   }
+  // For the tests: the measured turn (rad), the time of the sample it was measured at, and Ω⊕ sin(latitude).
+  app.swingTurn = { turned, at: far ? far[4] : null, omegaZ };
   ctx.fillStyle = "#333"; ctx.beginPath(); ctx.arc(v.X(0), v.Y(0), 3, 0, TAU); ctx.fill();
   bob(ctx, v.X(s[0]), v.Y(s[1]), 8, 0);
   ctx.restore();
-  const t = app.lab.time(), deg = (x) => `${((x * 180) / Math.PI).toFixed(3)}°`;
+  // The closed form at the time of the sample the turn was measured at (up to a swing ago).
+  const t = turned === null ? app.lab.time() : far[4], deg = (x) => `${((x * 180) / Math.PI).toFixed(3)}°`.replace("-", "−");
   const day = Math.abs(omegaZ) > 0 ? `; a full turn takes ${(TAU / Math.abs(omegaZ) / 3600).toPrecision(3)} h` : "";
   sceneNote(`Seen from above: the bob's path, the swing plane it started in (dashed) and its plane now (green)` +
-    `${turned === null ? "" : `, turned ${deg(turned)}`}. The Earth's rotation Ω turns it by −Ω sin(latitude) t = ${deg(-omegaZ * t)}${day}.`);
+    `${turned === null ? "" : `, turned ${deg(turned)} at t = ${t.toFixed(1)} s`}. The Earth's rotation Ω_⊕ turns it by −Ω_⊕ sin(latitude) t = ${deg(-omegaZ * t)}${day}.`);
 }
 
 // Euler's disk (the reduced model: inclination θ and the contact point's azimuth φ): the
@@ -1271,7 +1335,7 @@ function drawTiltedDisk(ctx, w, h) {
   const rate = param("precession_const") / Math.max(th, param("theta_floor"));
   // The model's collapse: θ θ' = −decay rate, so θ reaches 0 at θ₀² / (2 decay rate).
   const th0 = app.lab.initialState()[0], tf = (th0 * th0) / (2 * param("decay_rate"));
-  sceneNote(`The disk tilted θ = ${th.toFixed(3)} rad from the table; its contact point (red) runs round at φ̇ = ${rate.toPrecision(3)} rad/s, ` +
+  sceneNote(`${app.ended ? "At rest. " : ""}The disk tilted θ = ${th.toFixed(3)} rad from the table; its contact point (red) runs round at φ̇ = ${rate.toPrecision(3)} rad/s, ` +
     `faster as the disk flattens, which it does at t = θ₀² / (2 × decay rate) = ${tf.toPrecision(3)} s, where the model ends ` +
     `(lengths in disk radii; the reduced model has no size).`);
 }
@@ -1828,9 +1892,9 @@ function selectSystem(name, params = {}, build = true) {
   app.entry = app.catalogue.systems.find((s) => s.name === name);
   $("system").value = name;
   app.params = { ...params };
-  $("caption").textContent = `${app.entry.summary_text}.${app.entry.note_text ? ` ${app.entry.note_text[0].toUpperCase()}${app.entry.note_text.slice(1)}.` : ""}`;
+  setRuns($("caption"), peopleRuns(`${app.entry.summary_text}.${app.entry.note_text ? ` ${app.entry.note_text[0].toUpperCase()}${app.entry.note_text.slice(1)}.` : ""}`));
   // The physics paragraph: the gallery's text for this system, from the catalogue JSON.
-  $("physics").textContent = app.entry.physics_text ?? app.entry.physics ?? "";
+  setRuns($("physics"), peopleRuns(app.entry.physics_text ?? app.entry.physics ?? ""));
   $("about").hidden = !app.entry.physics;
   fillParams();
   setControlValues();
@@ -1839,7 +1903,18 @@ function selectSystem(name, params = {}, build = true) {
   fillMethods(step?.method ?? null);
   setStep(step?.dt ?? DEFAULT_DT, step?.steps ?? DEFAULT_STEPS);
   $("step-note").textContent = step?.note ?? "";
+  $("timelapse-choice").hidden = !TIME_LAPSE[name];
+  $("timelapse").checked = false;
   if (build) rebuild();
+}
+
+// The time-lapse on or off: its step and steps a frame, or the system's own; the run restarts.
+function setTimeLapse(on) {
+  const name = app.entry.name, tl = TIME_LAPSE[name], step = STEP_DEFAULTS[name];
+  $("timelapse").checked = on && !!tl;
+  if (on && tl) setStep(tl.dt, tl.steps); else setStep(step?.dt ?? DEFAULT_DT, step?.steps ?? DEFAULT_STEPS);
+  $("step-note").textContent = (on ? tl?.note : step?.note) ?? "";
+  restartRun();
 }
 
 function setStep(dt, steps) {
@@ -1866,6 +1941,7 @@ async function main() {
     try { app.lab.setMethod($("method").value); restartRun(); } catch (e) { message(e.message); }
   };
   $("dt").onchange = () => restartRun();
+  $("timelapse").onchange = () => setTimeLapse($("timelapse").checked);
   $("speed").oninput = () => { $("speed-out").textContent = $("speed").value; };
   $("run").onclick = () => setRunning(!app.running);
   $("step").onclick = () => { setRunning(false); frame(); draw(); };
@@ -1910,6 +1986,7 @@ window.physicskitLab = {
   pause: () => setRunning(false),
   restart: () => { setRunning(false); restartRun(); },
   setStep: (dt, steps) => setStep(dt, steps),
+  setTimeLapse: (on) => { setRunning(false); setTimeLapse(on); },
   runFrames: (n) => { setRunning(false); for (let i = 0; i < n; i++) if (!frame()) return false; draw(); return true; },
   shareHash: () => shareHash(),
   openHash: (hash) => { setRunning(false); return applyHash(hash); },
