@@ -59,7 +59,7 @@ impl Default for EulersDiskParams {
 ///
 /// # Errors
 /// [`Error::NonFinite`](crate::classical::Error::NonFinite) for a non-finite input;
-/// [`Error::InvalidParameter`] for `decay_rate < 0`.
+/// [`Error::InvalidParameter`](crate::classical::Error::InvalidParameter) for `decay_rate < 0`.
 pub fn eulers_disk_theta_analytic(t: &[f64], theta0: f64, decay_rate: f64) -> Result<Vec<f64>> {
     let theta0 = check_finite_scalar("theta0", theta0)?;
     let decay_rate = check_non_negative("decay_rate", decay_rate)?;
@@ -91,7 +91,8 @@ impl EulersDisk {
     /// A disk at inclination `theta0` (rad) and contact azimuth `phi0` (rad).
     ///
     /// # Errors
-    /// [`Error::NonFinite`](crate::classical::Error::NonFinite); [`Error::InvalidParameter`]
+    /// [`Error::NonFinite`](crate::classical::Error::NonFinite);
+    /// [`Error::InvalidParameter`](crate::classical::Error::InvalidParameter)
     /// for `decay_rate < 0` or `theta_floor <= 0`.
     pub fn new(theta0: f64, phi0: f64, params: EulersDiskParams) -> Result<Self> {
         check_non_negative("decay_rate", params.decay_rate)?;

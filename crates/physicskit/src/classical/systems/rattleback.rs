@@ -92,8 +92,10 @@ impl Rattleback {
     /// A rattleback with initial rates `n0 = (n1, n2, n3)` (rad/s).
     ///
     /// # Errors
-    /// [`Error::DimensionMismatch`] unless `n0` has length 3; [`Error::NonFinite`];
-    /// [`Error::InvalidParameter`] for a moment `<= 0`, `mu < 0` or `eta < 0`.
+    /// [`Error::DimensionMismatch`](crate::classical::Error::DimensionMismatch) unless `n0`
+    /// has length 3; [`Error::NonFinite`](crate::classical::Error::NonFinite);
+    /// [`Error::InvalidParameter`](crate::classical::Error::InvalidParameter) for a moment
+    /// `<= 0`, `mu < 0` or `eta < 0`.
     pub fn new(n0: &[f64], params: RattlebackParams) -> Result<Self> {
         check_vector("n0", n0, 3)?;
         let i1 = check_positive("I1", params.i1)?;
