@@ -123,6 +123,8 @@ class _MethodInfo(TypedDict):
     symplectic: bool
     separable_only: bool
     adaptive: bool
+    needs_taylor_form: bool
+    """Runs only on systems defined by expressions (the SymPy engines), which have a Taylor form."""
     evaluations_per_step: int
     evaluations: str
     reference: str

@@ -183,6 +183,7 @@ pub fn methods(py: Python<'_>) -> PyResult<Vec<Bound<'_, PyDict>>> {
             d.set_item("symplectic", m.symplectic)?;
             d.set_item("separable_only", m.separable_only)?;
             d.set_item("adaptive", m.is_adaptive())?;
+            d.set_item("needs_taylor_form", m.needs_taylor_form())?;
             d.set_item("evaluations_per_step", m.evaluations_per_step)?;
             d.set_item("evaluations", m.evaluations)?;
             d.set_item("reference", m.reference)?;

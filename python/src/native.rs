@@ -10,6 +10,7 @@
 //! system without it. Nothing here knows a concrete system type.
 
 use numpy::{IntoPyArray, PyArray1, PyArray2, PyReadonlyArray1};
+use physicskit::classical::integrators::taylor::no_taylor_form;
 use physicskit::classical::model::entry::{SystemEntry, Values};
 use physicskit::classical::model::erased::{missing, offered, Capabilities, DynSystem};
 use physicskit::classical::{
@@ -370,6 +371,10 @@ impl NativeSystem {
             .hamiltonian()
             .is_some_and(|h| h.separable() && h.conservative());
         let method = parse_method(method, self.inner.default_method(), splitting).py()?;
+        if method.needs_taylor_form() && self.values.is_some() {
+            // A catalogue system: its field is hand-written, so it has no Taylor form.
+            return Err(no_taylor_form(&format!("`{}`", self.name))).py();
+        }
         let sampling = sampling(stride, final_only).py()?;
         let tolerances = Tolerances::for_method(rtol, atol, max_steps, method).py()?;
         let inner = &mut self.inner;

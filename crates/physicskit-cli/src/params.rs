@@ -13,6 +13,7 @@
 
 use anyhow::{anyhow, bail, Result};
 use physicskit::classical::core::Error;
+use physicskit::classical::integrators::taylor::no_taylor_form;
 use physicskit::classical::model::entry::{Default, Length, Literal, ParamKind, Range};
 use physicskit::classical::model::{DynSystem, ParamSpec, SystemEntry, Value, Values};
 use physicskit::classical::Method;
@@ -215,6 +216,9 @@ pub fn method(entry: &SystemEntry, name: &str) -> Result<Method> {
             method_names(entry)
         )
     })?;
+    if method.needs_taylor_form() {
+        bail!(no_taylor_form(&format!("`{}`", entry.name)));
+    }
     if !entry.methods().any(|m| m == method) {
         bail!(
             "method `{method}` cannot integrate `{}`; valid methods are: {}",

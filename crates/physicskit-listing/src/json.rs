@@ -9,8 +9,8 @@
 //!                           "default_origin", "unit", "range", "help", "initial_state",
 //!                           "label", "unit_text", "help_text"}, ..]}, ..],
 //!  "methods": [{"name", "label", "order", "symplectic", "separable_only", "adaptive",
-//!               "evaluations_per_step",
-//!               "evaluations", "reference"}, ..]}
+//!               "needs_taylor_form", "evaluations_per_step", "evaluations", "reference"},
+//!              ..]}
 //! ```
 //!
 //! - `kind`: `scalar`, `integer`, `vector` or `choice`; `choices` lists the words of a choice

@@ -32,6 +32,9 @@ pub struct MethodRow {
     /// Whether its step adapts to tolerances (`dt` is then the output spacing); the browser
     /// lab's frame-by-frame sessions run only the fixed-step methods.
     pub adaptive: bool,
+    /// Whether it runs only on systems with a Taylor form (defined by expressions: the
+    /// symbolic engines), which no catalogue system has.
+    pub needs_taylor_form: bool,
     /// Force or right-hand-side evaluations per step (typical, for implicit methods).
     pub evaluations_per_step: u32,
     /// What `evaluations_per_step` counts.
@@ -51,6 +54,7 @@ pub fn method_rows() -> Vec<MethodRow> {
             symplectic: m.symplectic,
             separable_only: m.separable_only,
             adaptive: m.is_adaptive(),
+            needs_taylor_form: m.needs_taylor_form(),
             evaluations_per_step: m.evaluations_per_step,
             evaluations: m.evaluations,
             reference: m.reference,

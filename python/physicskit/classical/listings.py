@@ -14,7 +14,8 @@ def methods() -> list[dict[str, Any]]:
     """Every integrator as a dict: ``name`` (the ``method`` argument of ``integrate``),
     ``order`` (of the global error), ``symplectic``, ``separable_only`` (needs ``H = T(p) +
     V(q)``), ``adaptive`` (its step follows ``rtol``/``atol`` and ``dt`` is the output
-    spacing), ``evaluations_per_step`` (force or vector-field evaluations per step: exact for
+    spacing), ``needs_taylor_form`` (runs only on the systems of the SymPy engines, whose
+    equations are expressions: ``taylor``), ``evaluations_per_step`` (force or vector-field evaluations per step: exact for
     explicit methods, typical for implicit ones), ``evaluations`` (what that count counts),
     ``reference`` (the method's source) and ``summary``. The same table as ``physicskit
     list``."""

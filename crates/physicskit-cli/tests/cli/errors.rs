@@ -4,6 +4,7 @@
 use std::path::Path;
 
 use crate::common::{entries, run_in, scratch, stderr};
+use physicskit::classical::Method;
 
 /// A valid run; each case below breaks one argument of it.
 const GOOD: [&str; 8] = [
@@ -93,6 +94,18 @@ fn unknown_method_lists_the_methods_of_that_system() {
         assert_eq!(listed, want.join(", "), "{system}: {err}");
         assert!(listed.contains("gauss_legendre6"), "{err}");
         assert_eq!(listed.contains("verlet"), system == "pendulum", "{err}");
+    }
+}
+
+/// A method that needs a Taylor form, asked of a catalogue system: refused, naming the method,
+/// the system and the systems that have one. The method is found from the table's facts.
+#[test]
+fn a_method_needing_a_taylor_form_is_refused_by_name() {
+    for method in Method::ALL.into_iter().filter(|m| m.needs_taylor_form()) {
+        let err = system_fails("pendulum", &["--method", method.name()], "a.csv");
+        assert!(err.contains(&format!("`{method}`")), "{err}");
+        assert!(err.contains("`pendulum`"), "{err}");
+        assert!(err.contains("HamiltonianEngine"), "{err}");
     }
 }
 

@@ -170,6 +170,7 @@ fn list_json_holds_the_whole_catalogue() {
         assert_eq!(row["symplectic"], json!(m.symplectic));
         assert_eq!(row["separable_only"], json!(m.separable_only));
         assert_eq!(row["adaptive"], json!(m.is_adaptive()));
+        assert_eq!(row["needs_taylor_form"], json!(m.needs_taylor_form()));
         assert_eq!(row["evaluations_per_step"], json!(m.evaluations_per_step));
         assert_eq!(row["reference"], json!(m.reference));
     }

@@ -66,7 +66,9 @@ fn pendulum_args(method: &str) -> Vec<&str> {
 #[test]
 fn npz_round_trips_bit_for_bit() {
     let dir = scratch();
-    for method in Method::ALL {
+    // The CLI runs catalogue systems, whose fields are hand-written: a method that needs a
+    // Taylor form is refused (errors.rs checks the refusal).
+    for method in Method::ALL.into_iter().filter(|m| !m.needs_taylor_form()) {
         let path = simulate(dir.path(), "run.npz", &pendulum_args(method.name()));
         let want = pendulum_reference(method);
         let mut npz = NpzReader::new(File::open(&path).unwrap()).unwrap();

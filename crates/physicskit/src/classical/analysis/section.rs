@@ -20,6 +20,12 @@
 //! BIT 11, 168–174, 1971), which keeps the bracket and converges superlinearly: about six to
 //! ten extra steps per crossing, to a residual at the rounding level of `a·y`.
 //!
+//! With the Taylor method ([`taylor_section`]) each step is a polynomial in time, the
+//! solution over the whole step: a crossing is the root of `σ(τ) = a·P(τ) - c` on the step's
+//! polynomial `P`, found by Newton's method on `σ` and its derivative (kept inside the step's
+//! bracket), so the crossing carries the method's error and the rounding of `P`, and costs
+//! no further expansion of the field.
+//!
 //! For a coordinate section `y_k = c` the stored `y_k` is set to `c` exactly. The section is
 //! taken in the system's own state (`[q, qdot]` for Lagrangian systems, even where an implicit
 //! method runs on `[q, p]`).
@@ -28,8 +34,9 @@ use super::poincare::{Direction, PoincareSection};
 use super::watch::AnalysisOptions;
 use crate::classical::core::error::{check_finite, check_finite_scalar};
 use crate::classical::core::{Error, Result, TimeGrid};
-use crate::classical::integrators::Flow;
+use crate::classical::integrators::taylor::{no_taylor_form, Taylor};
 use crate::classical::integrators::Method;
+use crate::classical::integrators::{Flow, Tolerances};
 use crate::classical::model::erased::DynSystem;
 
 /// Iteration cap of the crossing search; the Illinois iteration needs about ten.
@@ -306,6 +313,16 @@ pub fn poincare_section<S: DynSystem + ?Sized>(
 ) -> Result<PoincareSection> {
     let grid = TimeGrid::new(t_span, dt)?;
     let method = method.unwrap_or_else(|| system.default_method());
+    if method.needs_taylor_form() {
+        // The Taylor method chooses its own steps: `dt` is not used.
+        return taylor_section(
+            system,
+            t_span,
+            Tolerances::default(),
+            surface,
+            max_crossings,
+        );
+    }
     let state0 = system.dynamical().state().to_vec();
     let (cut, end) = {
         let mut flow = system.flow(method, 0)?;
@@ -320,4 +337,110 @@ pub fn poincare_section<S: DynSystem + ?Sized>(
     };
     system.reset(Some(&end.state), end.t)?;
     Ok(cut)
+}
+
+/// The crossings of `system`'s orbit over `t_span` with `surface`, by the adaptive Taylor
+/// method at `tolerances`, at most `max_crossings` of them (the run stops at the last one
+/// kept); each located by Newton's method on the step's Taylor polynomial (see the module
+/// docs). The system is left where the run ended, so a second call continues the orbit.
+///
+/// # Errors
+/// [`Error::UnsupportedMethod`] for a system without a Taylor form
+/// ([`DynamicalSystem::taylor_field`](crate::classical::DynamicalSystem::taylor_field));
+/// [`Error::InvalidTimeSpan`] for a bad span; [`Error::DimensionMismatch`] for a plane of
+/// the wrong length; [`Error::NonFinite`] for a diverging orbit; as
+/// [`Taylor::step`](crate::classical::integrators::taylor::Taylor::step).
+pub fn taylor_section<S: DynSystem + ?Sized>(
+    system: &mut S,
+    t_span: (f64, f64),
+    tolerances: Tolerances,
+    surface: &SurfaceOfSection,
+    max_crossings: usize,
+) -> Result<PoincareSection> {
+    TimeGrid::new(t_span, t_span.1 - t_span.0)?;
+    let dynamical = system.dynamical();
+    let state0 = dynamical.state().to_vec();
+    let dim = state0.len();
+    surface.check_dim(dim)?;
+    check_finite("state", &state0, t_span.0)?;
+    let mut field = dynamical
+        .taylor_field()
+        .ok_or_else(|| no_taylor_form("this system"))??;
+    let mut taylor = Taylor::new(dim, tolerances, t_span.0, &state0, t_span.1)?;
+    let mut out = PoincareSection {
+        dim,
+        ..PoincareSection::default()
+    };
+    let (mut s_before, _) = surface.eval(&state0);
+    let mut crossing = vec![0.0; dim];
+    while out.len() < max_crossings && taylor.step(field.as_mut())? {
+        check_finite("state", taylor.state(), taylor.time().0)?;
+        let (s_after, _) = surface.eval(taylor.state());
+        if surface.direction().crossed(s_before, s_after) {
+            let tau = root_on_polynomial(&taylor, surface.plane(), s_before, s_after);
+            taylor.eval_state(tau, &mut crossing);
+            surface.pin(&mut crossing);
+            let (hi, lo) = taylor.step_start();
+            out.t.push(hi + (lo + tau));
+            out.states.extend_from_slice(&crossing);
+        }
+        s_before = s_after;
+    }
+    let end = taylor.state().to_vec();
+    system.reset(Some(&end), taylor.time().0)?;
+    Ok(out)
+}
+
+/// The root `τ` of `σ(τ) = a·P(τ) - c` on the current step of `taylor`, where
+/// `σ(0) = s0` and `σ(h) = s1` have opposite signs: Newton's method from the secant's root,
+/// each iterate kept inside the shrinking bracket (bisection when Newton leaves it), until the
+/// update or the bracket is at the rounding level of `τ`.
+fn root_on_polynomial(taylor: &Taylor, plane: &Plane, s0: f64, s1: f64) -> f64 {
+    let sigma = |tau: f64| -> (f64, f64) {
+        match plane {
+            Plane::Coordinate { index, value } => {
+                let (v, d) = taylor.eval_component(*index, tau);
+                (v - value, d)
+            }
+            Plane::Linear { a, c } => {
+                let (mut v, mut d) = (-c, 0.0);
+                for (i, ai) in a.iter().enumerate().filter(|(_, ai)| **ai != 0.0) {
+                    let (vi, di) = taylor.eval_component(i, tau);
+                    v += ai * vi;
+                    d += ai * di;
+                }
+                (v, d)
+            }
+        }
+    };
+    let h = taylor.step_length();
+    // The bracket [a, b] (as signed offsets, `h` may be negative) with `σ(a)` of `s0`'s sign.
+    let (mut a, mut b) = (0.0_f64, h);
+    let mut tau = h * s0 / (s0 - s1);
+    if !tau.is_finite() {
+        tau = 0.5 * h;
+    }
+    let inside = |x: f64, a: f64, b: f64| x > a.min(b) && x < a.max(b);
+    for _ in 0..MAX_ITERATIONS {
+        let (f, df) = sigma(tau);
+        if f == 0.0 {
+            return tau;
+        }
+        if (f > 0.0) == (s0 > 0.0) {
+            a = tau;
+        } else {
+            b = tau;
+        }
+        let mut next = tau - f / df;
+        if !inside(next, a, b) {
+            next = 0.5 * (a + b);
+        }
+        let done = (next - tau).abs() <= 2.0 * f64::EPSILON * tau.abs()
+            || (b - a).abs() <= 2.0 * f64::EPSILON * h.abs();
+        tau = next;
+        if done {
+            break;
+        }
+    }
+    tau
 }

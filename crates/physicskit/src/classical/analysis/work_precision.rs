@@ -121,12 +121,12 @@ impl Problem {
 
     /// The methods that apply, in the registry's order: all of them on the separable
     /// Hamiltonians, those not restricted to separable systems on the Lagrangian double
-    /// pendulum.
+    /// pendulum; none that needs a Taylor form (the problems are hand-written systems).
     pub fn methods(self) -> Vec<Method> {
         let lagrangian = matches!(self, Problem::DoublePendulum { .. });
         Method::ALL
             .into_iter()
-            .filter(|m| !(lagrangian && m.needs_separable()))
+            .filter(|m| !(lagrangian && m.needs_separable()) && !m.needs_taylor_form())
             .collect()
     }
 

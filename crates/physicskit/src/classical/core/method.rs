@@ -42,9 +42,16 @@ pub struct MethodInfo {
 }
 
 impl MethodInfo {
-    /// True for the [`Scheme::Adaptive`] kind (see [`Method::is_adaptive`](crate::classical::integrators::Method::is_adaptive)).
+    /// True for the kinds that adapt their step to tolerances, [`Scheme::Adaptive`] and
+    /// [`Scheme::Taylor`] (see [`Method::is_adaptive`](crate::classical::integrators::Method::is_adaptive)).
     pub fn is_adaptive(&self) -> bool {
-        matches!(self.scheme, Scheme::Adaptive)
+        matches!(self.scheme, Scheme::Adaptive | Scheme::Taylor)
+    }
+
+    /// True for the [`Scheme::Taylor`] kind, which runs only on systems that have a Taylor
+    /// form (their field as expressions, from which the Taylor recurrences are generated).
+    pub fn needs_taylor_form(&self) -> bool {
+        matches!(self.scheme, Scheme::Taylor)
     }
 }
 
@@ -79,4 +86,10 @@ pub enum Scheme {
     /// the adaptive steps; tolerances from
     /// [`IntegrateOptions::tolerances`](crate::classical::IntegrateOptions::tolerances).
     Adaptive,
+    /// An adaptive Taylor method: as [`Scheme::Adaptive`] on the fixed-step API (tolerances,
+    /// `dt` the output spacing), but stepping the system's *Taylor form*, its field compiled
+    /// into Taylor-coefficient recurrences, instead of evaluating its vector field. Only
+    /// systems defined by expressions have one (the symbolic engines); every other system
+    /// refuses the method with [`Error::UnsupportedMethod`](super::error::Error::UnsupportedMethod).
+    Taylor,
 }

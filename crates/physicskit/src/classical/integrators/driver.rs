@@ -239,7 +239,8 @@ fn integrate_adaptive<St: AdaptiveStepper, S: DynamicalSystem>(
 ) -> Result<SimulationResult> {
     let tolerances = run.options.tolerances.unwrap_or_default();
     let t_end = run.setup.grid.t_end();
-    integrate_first_order(run, method, |dim| St::adaptive(dim, tolerances, t_end))
+    let stepper = St::for_system(&*run.system, tolerances, t_end)?;
+    integrate_first_order(run, method, |_| stepper)
 }
 
 /// A method on the system's own first-order form, `derivatives(t, y)`, stepped by the

@@ -34,6 +34,13 @@ impl Method {
         self.info().is_adaptive()
     }
 
+    /// True if the method runs only on systems with a Taylor form
+    /// ([`Scheme::Taylor`](crate::classical::core::Scheme::Taylor)): those defined by
+    /// expressions ([`DynamicalSystem::taylor_field`](crate::classical::DynamicalSystem::taylor_field)).
+    pub fn needs_taylor_form(self) -> bool {
+        self.info().needs_taylor_form()
+    }
+
     /// Comma-separated list of valid names, for messages.
     pub fn valid_names() -> String {
         Self::ALL.map(Method::name).join(", ")

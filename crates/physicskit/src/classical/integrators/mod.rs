@@ -16,7 +16,9 @@
 //!   `gauss_legendre4` and `gauss_legendre6` are its one-, two- and three-stage Gauss–Legendre
 //!   tableaus.
 //! - Adaptive methods (`dop853`) name their [`AdaptiveStepper`], which steps with its own
-//!   step sizes and interpolates the output grid from its dense output.
+//!   step sizes and interpolates the output grid from its dense output. `taylor` is one too,
+//!   of the [`Taylor`](crate::classical::core::method::Scheme::Taylor) kind: its stepper
+//!   steps the system's Taylor form, which only expression-defined systems have.
 //!
 //! The steppers are public for users who drive steps themselves (with either sign of `dt`);
 //! `integrate` goes through [`driver`], which validates inputs, allocates once, dispatches on
@@ -37,6 +39,7 @@ registry::registry! {
     GaussLegendre4 = gauss_legendre4(GaussLegendre4),
     GaussLegendre6 = gauss_legendre6(GaussLegendre6),
     Dop853 = dop853(adaptive: Dop853),
+    Taylor = taylor(adaptive: TaylorStepper),
 }
 
 pub mod compensated;
@@ -50,7 +53,6 @@ pub mod splitting;
 pub mod stepper;
 pub mod system;
 pub mod tangent;
-pub mod taylor;
 
 pub use dop853::Dop853;
 pub use ensemble::{integrate_ensemble, Ensemble, ENSEMBLE_CHUNK};
@@ -69,3 +71,4 @@ pub use system::{
     MassInv, OdeSystem,
 };
 pub use tangent::{hamiltonian_flow, lagrangian_flow, ode_flow, Flow};
+pub use taylor::{TaylorField, TaylorStepper};

@@ -4,8 +4,8 @@
 //! A line of the list is `Variant = module` for a splitting method and
 //! `Variant = module(Stepper)` for a method on a vector field, `module` being the method's file
 //! (its name is the method's spec name) and `Stepper` the [`FieldStepper`](super::FieldStepper)
-//! it declares, or `Variant = module(adaptive: Stepper)` for an adaptive method and its
-//! [`AdaptiveStepper`](super::AdaptiveStepper). Everything else comes from the file's `INFO`: the kind of the method is
+//! it declares, or `Variant = module(adaptive: Stepper)` for an adaptive method (a [`Scheme::Adaptive`] or
+//! [`Scheme::Taylor`] one) and its [`AdaptiveStepper`](super::AdaptiveStepper). Everything else comes from the file's `INFO`: the kind of the method is
 //! `INFO.scheme`, read at compile time. A splitting line takes its kick and drift weights (and
 //! the number of drifts, the const parameter of [`SplittingStepper`](super::SplittingStepper)) from the
 //! scheme; a vector-field line is sent to [`Dispatch::explicit_rk`](super::Dispatch) or
@@ -27,7 +27,7 @@ use crate::classical::core::method::{MethodInfo, Scheme};
 pub(crate) const fn splitting_len(info: &MethodInfo) -> usize {
     match info.scheme {
         Scheme::Splitting { drifts, .. } => drifts.len(),
-        Scheme::ExplicitRk | Scheme::ImplicitRk | Scheme::Adaptive => {
+        Scheme::ExplicitRk | Scheme::ImplicitRk | Scheme::Adaptive | Scheme::Taylor => {
             panic!("a registry line without a stepper must be a splitting method")
         }
     }
@@ -38,7 +38,7 @@ pub(crate) const fn splitting_len(info: &MethodInfo) -> usize {
 pub(crate) const fn splitting_coefficients<const N: usize>(info: &MethodInfo) -> Coefficients<N> {
     match info.scheme {
         Scheme::Splitting { kicks, drifts } => Coefficients::partitioned(kicks, drifts),
-        Scheme::ExplicitRk | Scheme::ImplicitRk | Scheme::Adaptive => {
+        Scheme::ExplicitRk | Scheme::ImplicitRk | Scheme::Adaptive | Scheme::Taylor => {
             panic!("a registry line without a stepper must be a splitting method")
         }
     }
@@ -61,17 +61,22 @@ pub(crate) const fn field_kind(info: &MethodInfo) -> FieldKind {
                 "a splitting method takes no stepper in the registry: it runs on SplittingStepper"
             )
         }
-        Scheme::Adaptive => {
+        Scheme::Adaptive | Scheme::Taylor => {
             panic!("an adaptive method's registry line is `Name = file(adaptive: Stepper)`")
         }
     }
 }
 
 /// Evaluated at compile time for each `(adaptive: Stepper)` line of the registry, where a
-/// method whose scheme is not [`Scheme::Adaptive`] fails the build.
+/// method whose scheme is not [`Scheme::Adaptive`] or [`Scheme::Taylor`] fails the build. A
+/// Taylor method is an adaptive stepper whose
+/// [`AdaptiveStepper::for_system`](super::AdaptiveStepper::for_system) takes the system's
+/// Taylor form, so both kinds share [`Dispatch::adaptive`](super::Dispatch::adaptive).
 pub(crate) const fn check_adaptive(info: &MethodInfo) {
-    if !matches!(info.scheme, Scheme::Adaptive) {
-        panic!("a registry line `(adaptive: Stepper)` must declare Scheme::Adaptive");
+    if !matches!(info.scheme, Scheme::Adaptive | Scheme::Taylor) {
+        panic!(
+            "a registry line `(adaptive: Stepper)` must declare Scheme::Adaptive or Scheme::Taylor"
+        );
     }
 }
 

@@ -25,7 +25,7 @@ use std::collections::BTreeMap;
 use super::field::VectorField;
 use super::splitting::Coefficients;
 use crate::classical::core::{Error, ExtraValue, Result};
-use crate::classical::integrators::system::Family;
+use crate::classical::integrators::system::{DynamicalSystem, Family};
 use crate::classical::integrators::{Method, Tolerances};
 
 /// A stepper's statistics over the steps so far (evaluations, solver iterations), reported
@@ -107,6 +107,20 @@ pub trait AdaptiveStepper: FieldStepper {
     /// `t_bound`: it steps onto `t_bound` exactly, so a run's final state is a step's result,
     /// not an interpolation.
     fn adaptive(dim: usize, tolerances: Tolerances, t_bound: f64) -> Self;
+
+    /// [`adaptive`](Self::adaptive) for stepping `system`'s own first-order form: the driver's
+    /// constructor. A stepper that needs more of the system than its vector field (the Taylor
+    /// method needs its [`taylor_field`](DynamicalSystem::taylor_field)) overrides it.
+    ///
+    /// # Errors
+    /// [`Error::UnsupportedMethod`] when `system` lacks what the stepper needs.
+    fn for_system<S: DynamicalSystem + ?Sized>(
+        system: &S,
+        tolerances: Tolerances,
+        t_bound: f64,
+    ) -> Result<Self> {
+        Ok(Self::adaptive(system.state_dim(), tolerances, t_bound))
+    }
 }
 
 /// What a caller (a driver of one system family, a Poincaré section) does with each kind of

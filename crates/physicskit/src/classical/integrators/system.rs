@@ -102,6 +102,15 @@ pub trait DynamicalSystem {
     /// The method `integrate` uses when none is given.
     fn default_method(&self) -> Method;
 
+    /// The system's *Taylor form*: its field `d(state)/dt` (on the state `integrate` steps)
+    /// compiled into Taylor-coefficient recurrences, which the `taylor` method steps. `None`
+    /// (the default) for a system whose field is hand-written code; systems defined by
+    /// expressions (the symbolic engines) override it. `Some(Err(..))` when the recurrences
+    /// cannot be built.
+    fn taylor_field(&self) -> Option<Result<Box<dyn super::taylor::TaylorField>>> {
+        None
+    }
+
     /// Current state vector.
     fn state(&self) -> &[f64] {
         self.phase().state()

@@ -31,15 +31,21 @@ use ndarray::{Array1, Array2};
 
 use crate::classical::core::method::{MethodInfo, Scheme};
 use crate::classical::core::{Error, ExtraValue, Result, SimulationResult, TimeGrid};
+use crate::classical::integrators::field::VectorField;
+use crate::classical::integrators::stepper::{AdaptiveStepper, FieldStepper, Report};
+use crate::classical::integrators::system::DynamicalSystem;
 use crate::classical::integrators::Tolerances;
 
-/// The method's facts (not yet in the registry: see [`integrate_taylor`]).
+/// The method's facts: the [`Taylor`](Scheme::Taylor) kind, so it runs only on systems with a
+/// Taylor form ([`DynamicalSystem::taylor_field`]). Its order is chosen per run from the
+/// tolerances ([`order_for`], from 2 up to [`MAX_ORDER`]); `order` declares the highest.
 pub const INFO: MethodInfo = MethodInfo {
     name: "taylor",
     label: "Taylor",
-    summary: "adaptive Taylor series method: order from the tolerance, step from the last \
-              two Taylor coefficients (Jorba-Zou), dense output from the step polynomial",
-    order: 0,
+    summary: "adaptive Taylor series method on systems defined by expressions: order 2 to 24 \
+              from the tolerance (15 at the default rtol 1e-10, atol 1e-12), step from the \
+              last two Taylor coefficients (Jorba-Zou), dense output from the step polynomial",
+    order: MAX_ORDER as u32,
     symplectic: false,
     separable_only: false,
     evaluations_per_step: 1,
@@ -47,8 +53,25 @@ pub const INFO: MethodInfo = MethodInfo {
                   times an evaluation of the field's operations)",
     reference: "A. Jorba and M. Zou, Exp. Math. 14 (2005) 99; F. Biscani and D. Izzo, \
                 MNRAS 504 (2021) 2614",
-    scheme: Scheme::Adaptive,
+    scheme: Scheme::Taylor,
 };
+
+/// The systems that have a Taylor form, for messages.
+pub const TAYLOR_SYSTEMS: &str = "systems defined by expressions: Python's HamiltonianEngine, \
+     LagrangianEngine and ODEEngine (Rust's ExprHamiltonian, ExprLagrangian and ExprOde)";
+
+/// The refusal of the `taylor` method by `system` (a name, or a description such as "this \
+/// Hamiltonian system"), which has no Taylor form: the one message every front end gives.
+pub fn no_taylor_form(system: &str) -> Error {
+    Error::UnsupportedMethod {
+        method: INFO.name.into(),
+        reason: format!(
+            "{system} has a hand-written field and no Taylor form (its field as expressions, \
+             from which the Taylor recurrences are generated); `taylor` runs on {TAYLOR_SYSTEMS}; \
+             use dop853 for the same tolerances here"
+        ),
+    }
+}
 
 /// Highest order the method uses: `ε = 1e-18` needs 22; tighter tolerances than double
 /// precision can deliver gain nothing from more terms.
@@ -347,7 +370,78 @@ impl Taylor {
 }
 
 impl Taylor {
-    /// The step statistics, as `result.extra` entries.
+    /// Takes one step toward `t_bound` (the last one lands on it exactly); `false` once the
+    /// clock is at `t_bound` (no step taken). The step's polynomial is then the current one:
+    /// [`step_start`](Self::step_start), [`step_length`](Self::step_length),
+    /// [`eval_component`](Self::eval_component).
+    ///
+    /// # Errors
+    /// As [`advance`](Self::advance).
+    // Exact comparison: the clock lands on `t_bound` exactly.
+    #[allow(clippy::float_cmp)]
+    pub fn step<F: TaylorField + ?Sized>(&mut self, field: &mut F) -> Result<bool> {
+        if field.dim() != self.dim {
+            return Err(Error::DimensionMismatch {
+                name: "Taylor field".into(),
+                expected: self.dim,
+                found: field.dim(),
+            });
+        }
+        if self.t.0 == self.t_bound {
+            return Ok(false);
+        }
+        let h = self.expand(field)?;
+        let lands = h == self.offset(self.t_bound);
+        self.take(h, lands);
+        Ok(true)
+    }
+
+    /// Start of the current polynomial's step, as a double-double `(hi, lo)`.
+    pub fn step_start(&self) -> (f64, f64) {
+        self.start
+    }
+
+    /// Signed length of the current polynomial's step (0 before the first step).
+    pub fn step_length(&self) -> f64 {
+        self.h
+    }
+
+    /// The state at the end of the last step.
+    pub fn state(&self) -> &[f64] {
+        &self.y
+    }
+
+    /// The clock at the end of the last step, as a double-double `(hi, lo)`.
+    pub fn time(&self) -> (f64, f64) {
+        self.t
+    }
+
+    /// Component `i` of the current step's polynomial and its derivative in `τ`, at `τ` from
+    /// the step's start: the value by compensated Horner, the derivative by Horner.
+    ///
+    /// # Panics
+    /// Never for `i < dim`; `i >= dim` is a caller's bug (an index into the state).
+    pub fn eval_component(&self, i: usize, tau: f64) -> (f64, f64) {
+        let n1 = self.order + 1;
+        let row = &self.coefficients[i * n1..(i + 1) * n1];
+        let mut d = 0.0;
+        for (k, &c) in row.iter().enumerate().skip(1).rev() {
+            d = d * tau + k as f64 * c;
+        }
+        (compensated_horner(row, tau), d)
+    }
+
+    /// The whole state on the current step's polynomial at `τ` from its start.
+    pub fn eval_state(&self, tau: f64, out: &mut [f64]) {
+        let n1 = self.order + 1;
+        for (o, row) in out.iter_mut().zip(self.coefficients.chunks_exact(n1)) {
+            *o = compensated_horner(row, tau);
+        }
+    }
+}
+
+impl Report for Taylor {
+    /// `steps`, `order`, `smallest_step`, `largest_step`.
     fn report(&self, extra: &mut BTreeMap<String, ExtraValue>) {
         extra.insert("steps".into(), ExtraValue::Scalar(self.accepted as f64));
         extra.insert("order".into(), ExtraValue::Scalar(self.order as f64));
@@ -365,11 +459,8 @@ impl Taylor {
 
 /// Integrates `field` from `y0` over `t_span`, with outputs every `dt` (the grid of
 /// [`TimeGrid`]: `round((t1 - t0)/dt)` intervals, the last landing on `t1`), by the adaptive
-/// Taylor method at `tolerances`.
-///
-/// The method is not yet one of [`Method`](crate::classical::Method)'s: the catalogue's
-/// systems do not yet expose their fields as Taylor expansions. Expression systems do, through
-/// `TaylorProgram` (`lagrangian/taylor_tape.rs`).
+/// Taylor method at `tolerances`: for a field that is not a system's
+/// ([`Method::Taylor`](crate::classical::Method::Taylor) runs a system's own Taylor form).
 ///
 /// # Errors
 /// As [`TimeGrid::new`] and [`Taylor::advance`]; [`Error::InvalidParameter`] for `y0` of
@@ -410,4 +501,178 @@ pub fn integrate_taylor<F: TaylorField + ?Sized>(
         method: INFO.name.to_string(),
         extra,
     })
+}
+
+/// Relative distance under which two times are the same output time (the grid's `t + dt` and
+/// its `time(i + 1)` differ by a few roundings).
+const SAME_TIME_ULPS: f64 = 64.0;
+
+#[inline]
+fn same_time(a: f64, b: f64) -> bool {
+    (a - b).abs() <= SAME_TIME_ULPS * f64::EPSILON * a.abs().max(b.abs())
+}
+
+/// The `taylor` method as the registry runs it: a [`Taylor`] stepper on a system's Taylor form
+/// ([`DynamicalSystem::taylor_field`], taken by [`AdaptiveStepper::for_system`]), advancing
+/// from output to output. The vector field the drivers pass is not evaluated: the Taylor form
+/// is the same field, as recurrences.
+pub struct TaylorStepper {
+    field: Option<Box<dyn TaylorField>>,
+    tolerances: Tolerances,
+    t_bound: f64,
+    stepper: Option<Taylor>,
+    /// The last output and its time: a call from them continues the run, any other restarts.
+    out: Vec<f64>,
+    out_t: f64,
+}
+
+impl std::fmt::Debug for TaylorStepper {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.debug_struct("TaylorStepper")
+            .field("has_field", &self.field.is_some())
+            .field("tolerances", &self.tolerances)
+            .field("t_bound", &self.t_bound)
+            .field("stepper", &self.stepper)
+            .finish_non_exhaustive()
+    }
+}
+
+impl TaylorStepper {
+    /// A stepper on `field` at `tolerances` that never steps past `t_bound`.
+    pub fn on(field: Box<dyn TaylorField>, tolerances: Tolerances, t_bound: f64) -> Self {
+        let dim = field.dim();
+        Self {
+            field: Some(field),
+            tolerances,
+            t_bound,
+            stepper: None,
+            out: vec![0.0; dim],
+            out_t: f64::NAN,
+        }
+    }
+
+    /// Advances `y` from `t` to `t + h` on the Taylor form (`h` the output spacing).
+    ///
+    /// # Errors
+    /// [`Error::UnsupportedMethod`] for a stepper built without a Taylor form;
+    /// [`Error::InvalidArgument`] for `t + h` beyond `t_bound` or against the direction of
+    /// the run; as [`Taylor::advance`].
+    pub fn advance(&mut self, t: f64, y: &mut [f64], h: f64) -> Result<()> {
+        let Some(field) = self.field.as_deref_mut() else {
+            return Err(no_taylor_form("this system"));
+        };
+        if h == 0.0 {
+            return Ok(());
+        }
+        let mut target = t + h;
+        if self.t_bound.is_finite() && same_time(target, self.t_bound) {
+            target = self.t_bound;
+        } else if (target - self.t_bound) * (self.t_bound - t).signum() > 0.0
+            || (self.t_bound - t) * h < 0.0
+        {
+            return Err(Error::InvalidArgument {
+                name: "h".into(),
+                reason: format!(
+                    "t + h = {target} lies beyond the end {} this stepper was built for",
+                    self.t_bound
+                ),
+            });
+        }
+        let continuing = self.stepper.is_some()
+            && same_time(t, self.out_t)
+            && y.iter()
+                .zip(&self.out)
+                .all(|(a, b)| a.to_bits() == b.to_bits());
+        if !continuing {
+            self.stepper = Some(Taylor::new(
+                field.dim(),
+                self.tolerances,
+                t,
+                y,
+                self.t_bound,
+            )?);
+        }
+        if let Some(stepper) = self.stepper.as_mut() {
+            stepper.advance(field, target, y)?;
+        }
+        if self.out.len() == y.len() {
+            self.out.copy_from_slice(y);
+        }
+        self.out_t = target;
+        Ok(())
+    }
+
+    /// The Taylor form this stepper runs on, and its tolerances: for callers that drive
+    /// [`Taylor`] step by step (events located on the step polynomial).
+    pub fn into_parts(self) -> (Option<Box<dyn TaylorField>>, Tolerances) {
+        (self.field, self.tolerances)
+    }
+}
+
+impl FieldStepper for TaylorStepper {
+    /// A stepper without a Taylor form, which refuses to step: the registry builds its steppers
+    /// by [`AdaptiveStepper::for_system`].
+    fn new(dim: usize) -> Self {
+        Self {
+            field: None,
+            tolerances: Tolerances::default(),
+            t_bound: f64::INFINITY,
+            stepper: None,
+            out: vec![0.0; dim],
+            out_t: f64::NAN,
+        }
+    }
+
+    #[inline]
+    fn step_field<F: VectorField + ?Sized>(
+        &mut self,
+        _f: &F,
+        t: f64,
+        y: &mut [f64],
+        h: f64,
+    ) -> Result<()> {
+        self.advance(t, y, h)
+    }
+}
+
+impl AdaptiveStepper for TaylorStepper {
+    fn adaptive(dim: usize, tolerances: Tolerances, t_bound: f64) -> Self {
+        Self {
+            tolerances,
+            t_bound,
+            ..<Self as FieldStepper>::new(dim)
+        }
+    }
+
+    /// The stepper on `system`'s Taylor form.
+    ///
+    /// # Errors
+    /// [`Error::UnsupportedMethod`] for a system without one ([`no_taylor_form`]); whatever
+    /// building its recurrences reports.
+    fn for_system<S: DynamicalSystem + ?Sized>(
+        system: &S,
+        tolerances: Tolerances,
+        t_bound: f64,
+    ) -> Result<Self> {
+        let field = system
+            .taylor_field()
+            .ok_or_else(|| no_taylor_form("this system"))??;
+        if field.dim() != system.state_dim() {
+            return Err(Error::DimensionMismatch {
+                name: "Taylor form".into(),
+                expected: system.state_dim(),
+                found: field.dim(),
+            });
+        }
+        Ok(Self::on(field, tolerances, t_bound))
+    }
+}
+
+impl Report for TaylorStepper {
+    /// As [`Taylor`]'s report, of the current run.
+    fn report(&self, extra: &mut BTreeMap<String, ExtraValue>) {
+        if let Some(stepper) = &self.stepper {
+            stepper.report(extra);
+        }
+    }
 }

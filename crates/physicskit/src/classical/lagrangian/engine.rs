@@ -153,6 +153,15 @@ pub trait Lagrangian {
     /// `L(q, qdot, t)`. `q` and `qdot` have length [`ndof`](Self::ndof).
     fn lagrangian<D: Scalar>(&self, q: &[D], qdot: &[D], t: D) -> D;
 
+    /// The equations of motion on `[q, qdot]` as Taylor recurrences (the system's
+    /// [`taylor_field`](crate::classical::DynamicalSystem::taylor_field)): `None` (the
+    /// default) unless `L` is an expression.
+    fn taylor_field(
+        &self,
+    ) -> Option<Result<Box<dyn crate::classical::integrators::taylor::TaylorField>>> {
+        None
+    }
+
     // Optional closed forms. The engine calls each of these first and differentiates `L`
     // only when it returns `None` (the default). Each receives slices already checked to
     // have length `ndof` (`n x n` for the mass matrix) and must agree with the derivatives

@@ -66,6 +66,15 @@ macro_rules! impl_lagrangian_dynamics {
             fn default_method(&self) -> $crate::classical::Method {
                 $crate::classical::Method::ImplicitMidpoint
             }
+            fn taylor_field(
+                &self,
+            ) -> Option<
+                $crate::classical::Result<
+                    Box<dyn $crate::classical::integrators::taylor::TaylorField>,
+                >,
+            > {
+                $crate::classical::lagrangian::Lagrangian::taylor_field(self.engine.lagrangian())
+            }
         }
 
         impl<$($gen)*> $crate::classical::LagrangianSystem for $ty {

@@ -581,4 +581,12 @@ impl Lagrangian for ExprLagrangian {
     fn lagrangian<D: Scalar>(&self, q: &[D], qdot: &[D], t: D) -> D {
         self.expr.eval(q, qdot, t, &self.params)
     }
+
+    /// The Euler–Lagrange equations solved for `qdot'` symbolically
+    /// ([`TaylorProgram::lagrangian`](super::TaylorProgram::lagrangian)).
+    fn taylor_field(
+        &self,
+    ) -> Option<Result<Box<dyn crate::classical::integrators::taylor::TaylorField>>> {
+        Some(super::TaylorProgram::lagrangian(self).map(|p| Box::new(p) as Box<_>))
+    }
 }

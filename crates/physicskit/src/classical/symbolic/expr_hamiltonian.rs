@@ -45,8 +45,10 @@
 use super::expr::Expr;
 use super::expr_diff::{negate, sum, Var};
 use super::tape::{Backend, Tape};
+use super::taylor_tape::TaylorProgram;
 use crate::classical::core::error::{check_len, check_vector};
 use crate::classical::core::{Error, Phase, Result};
+use crate::classical::integrators::taylor::TaylorField;
 use crate::classical::integrators::{
     hamiltonian_energy, separable_derivatives, separable_jacobian, DynamicalSystem,
     HamiltonianSystem, MassInv, Method,
@@ -307,6 +309,11 @@ impl DynamicalSystem for ExprHamiltonian {
                 Some(Ok(()))
             }
         }
+    }
+
+    /// `H`'s canonical equations as Taylor recurrences ([`TaylorProgram::hamiltonian`]).
+    fn taylor_field(&self) -> Option<Result<Box<dyn TaylorField>>> {
+        Some(TaylorProgram::hamiltonian(self).map(|p| Box::new(p) as Box<dyn TaylorField>))
     }
 
     fn default_method(&self) -> Method {

@@ -28,9 +28,11 @@
 
 use super::expr::Expr;
 use super::tape::{Backend, Tape};
+use super::taylor_tape::TaylorProgram;
 use crate::classical::core::error::check_len;
 use crate::classical::core::{Error, Phase, Result, SimulationResult};
 use crate::classical::integrators::driver;
+use crate::classical::integrators::taylor::TaylorField;
 use crate::classical::integrators::{DynamicalSystem, IntegrateOptions, Method, OdeSystem};
 use crate::classical::model::Capabilities;
 
@@ -188,6 +190,11 @@ impl DynamicalSystem for ExprOde {
         }
         self.field.jacobian(state, &[], t, 0..dim, out);
         Some(Ok(()))
+    }
+
+    /// The components as Taylor recurrences ([`TaylorProgram::ode`]).
+    fn taylor_field(&self) -> Option<Result<Box<dyn TaylorField>>> {
+        Some(TaylorProgram::ode(self).map(|p| Box::new(p) as Box<dyn TaylorField>))
     }
 
     fn default_method(&self) -> Method {

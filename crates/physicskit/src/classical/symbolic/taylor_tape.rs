@@ -25,13 +25,14 @@
 
 use std::collections::HashMap;
 
-use super::expr::{Expr, Func};
+use super::expr::{Expr, ExprLagrangian, Func};
 use super::expr_diff::Var;
 use super::expr_hamiltonian::ExprHamiltonian;
 use super::expr_ode::ExprOde;
 use crate::classical::core::{Error, Result};
 use crate::classical::integrators::taylor::{TaylorField, MAX_ORDER};
 use crate::classical::integrators::HamiltonianSystem;
+use crate::classical::lagrangian::Lagrangian;
 
 /// An operand: a node's series or a constant.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -440,6 +441,72 @@ impl TaylorProgram {
             .map(|i| h.diff(Var::Second(i)))
             .chain((0..n).map(|i| Expr::Neg(Box::new(h.diff(Var::First(i))))))
             .collect();
+        Self::new(&outputs, n, n, system.params())
+    }
+
+    /// The recurrences of an [`ExprLagrangian`]'s Euler–Lagrange equations on the state
+    /// `(q, qdot)`: `dq/dt = qdot` and `M qdot' = r` with the mass matrix
+    /// `M_ij = ∂²L/∂qdot_i∂qdot_j` and `r_i = ∂L/∂q_i - Σ_j ∂²L/∂qdot_i∂q_j qdot_j -
+    /// ∂²L/∂qdot_i∂t`, all from `L`'s symbolic derivatives; the linear system is solved
+    /// symbolically by Gaussian elimination without pivoting, which needs no pivot for a
+    /// positive definite `M` (a kinetic energy: its leading minors are positive). Where a
+    /// leading minor of `M` vanishes the coefficients come out non-finite and the stepper
+    /// refuses the step. The elimination's expressions share their subexpressions, which the
+    /// compilation expands once each.
+    ///
+    /// # Errors
+    /// As [`TaylorProgram::new`] (never, for a valid `ExprLagrangian`).
+    pub fn lagrangian(system: &ExprLagrangian) -> Result<Self> {
+        let n = system.ndof();
+        let l = system.expr();
+        let dl_dqdot: Vec<Expr> = (0..n).map(|i| l.diff(Var::Second(i))).collect();
+        let mut m: Vec<Vec<Expr>> = dl_dqdot
+            .iter()
+            .map(|d| (0..n).map(|j| d.diff(Var::Second(j))).collect())
+            .collect();
+        let mut r: Vec<Expr> = (0..n)
+            .map(|i| {
+                let mut terms = vec![l.diff(Var::First(i))];
+                for j in 0..n {
+                    terms.push(Expr::Neg(Box::new(Expr::Mul(vec![
+                        dl_dqdot[i].diff(Var::First(j)),
+                        Expr::Qdot(j),
+                    ]))));
+                }
+                terms.push(Expr::Neg(Box::new(dl_dqdot[i].diff(Var::Time))));
+                Expr::Add(terms)
+            })
+            .collect();
+        // Forward elimination: row i -= (m_ik / m_kk) row k below each pivot k.
+        for k in 0..n {
+            for i in k + 1..n {
+                let factor = Expr::Div(Box::new(m[i][k].clone()), Box::new(m[k][k].clone()));
+                for j in k + 1..n {
+                    let mkj = m[k][j].clone();
+                    m[i][j] = Expr::Sub(
+                        Box::new(m[i][j].clone()),
+                        Box::new(Expr::Mul(vec![factor.clone(), mkj])),
+                    );
+                }
+                r[i] = Expr::Sub(
+                    Box::new(r[i].clone()),
+                    Box::new(Expr::Mul(vec![factor, r[k].clone()])),
+                );
+            }
+        }
+        // Back substitution.
+        let mut acceleration = vec![Expr::Const(0.0); n];
+        for i in (0..n).rev() {
+            let mut rhs = vec![r[i].clone()];
+            for j in i + 1..n {
+                rhs.push(Expr::Neg(Box::new(Expr::Mul(vec![
+                    m[i][j].clone(),
+                    acceleration[j].clone(),
+                ]))));
+            }
+            acceleration[i] = Expr::Div(Box::new(Expr::Add(rhs)), Box::new(m[i][i].clone()));
+        }
+        let outputs: Vec<Expr> = (0..n).map(Expr::Qdot).chain(acceleration).collect();
         Self::new(&outputs, n, n, system.params())
     }
 

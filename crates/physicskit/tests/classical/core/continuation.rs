@@ -6,7 +6,9 @@ use physicskit::classical::{HamiltonianSystem, Method};
 
 #[test]
 fn two_calls_equal_one_call() {
-    for method in Method::ALL {
+    // The pendulum is hand-written, without a Taylor form: a method that needs one is checked
+    // on an expression system in integrators/taylor.rs.
+    for method in Method::ALL.into_iter().filter(|m| !m.needs_taylor_form()) {
         let mut whole = Pendulum::new(2.0, 0.0, 1.0).unwrap();
         let one = whole.integrate((0.0, 2.0), 0.01, method).unwrap();
         let mut split = Pendulum::new(2.0, 0.0, 1.0).unwrap();

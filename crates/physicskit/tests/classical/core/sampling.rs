@@ -78,7 +78,9 @@ proptest! {
 
 #[test]
 fn identical_inputs_give_bit_identical_outputs() {
-    for method in Method::ALL {
+    // The pendulum is hand-written, without a Taylor form: a method that needs one is checked
+    // on an expression system in integrators/taylor.rs.
+    for method in Method::ALL.into_iter().filter(|m| !m.needs_taylor_form()) {
         let a = Pendulum::new(2.0, 0.1, 1.0)
             .unwrap()
             .integrate((0.0, 10.0), 0.01, method)

@@ -7,6 +7,7 @@ use physicskit::classical::core::method::Scheme;
 use physicskit::classical::examples::Pendulum;
 use physicskit::classical::integrators::splitting::Coefficients;
 use physicskit::classical::integrators::{AdaptiveStepper, Dispatch, FieldStepper};
+use physicskit::classical::symbolic::{Expr, ExprHamiltonian, ExprOde};
 use physicskit::classical::{
     methods, Error, HamiltonianSystem, LagrangianSystem, Method, OdeSystem, Phase, Result,
     SimulationResult,
@@ -134,7 +135,7 @@ fn every_method_is_dispatched_to_its_own_path() {
             (Route::Implicit(m, stepper), Scheme::ImplicitRk) if *m == method => {
                 format!("implicit {stepper}")
             }
-            (Route::Adaptive(m, stepper), Scheme::Adaptive) if *m == method => {
+            (Route::Adaptive(m, stepper), Scheme::Adaptive | Scheme::Taylor) if *m == method => {
                 format!("adaptive {stepper}")
             }
             (route, scheme) => panic!("{method}: dispatched as {route:?}, declared {scheme:?}"),
@@ -166,11 +167,26 @@ fn each_method_spends_the_evaluations_it_declares() {
     let dt = 1e-3;
     for method in Method::ALL {
         let info = method.info();
-        let result = Pendulum::new(1.0, 0.0, 1.0)
-            .unwrap()
-            .integrate((0.0, n as f64 * dt), dt, method)
-            .unwrap();
+        // A method that needs a Taylor form runs on the pendulum as an expression.
+        let result = if method.needs_taylor_form() {
+            expression_pendulum().integrate((0.0, n as f64 * dt), dt, method)
+        } else {
+            Pendulum::new(1.0, 0.0, 1.0)
+                .unwrap()
+                .integrate((0.0, n as f64 * dt), dt, method)
+        }
+        .unwrap();
         assert_eq!(result.method, info.name);
+        if let Scheme::Taylor = info.scheme {
+            // One Taylor expansion per step, each step far longer than dt.
+            let steps = result.extra_scalar("steps").unwrap();
+            assert_eq!(info.evaluations_per_step, 1, "{method}");
+            assert!(
+                steps > 0.0 && steps < n as f64 / 10.0,
+                "{method}: {steps} steps"
+            );
+            continue;
+        }
         let declared = f64::from(info.evaluations_per_step) * n as f64;
         let spent = evaluations(&result);
         println!("{method}: {} evaluations per step", spent / n as f64);
@@ -203,8 +219,15 @@ fn each_method_spends_the_evaluations_it_declares() {
                     "{method}"
                 );
             }
+            Scheme::Taylor => unreachable!("counted above"),
         }
     }
+}
+
+/// The pendulum `H = p^2/2 - cos q` from `(1, 0)` as an expression (it has a Taylor form).
+fn expression_pendulum() -> ExprHamiltonian {
+    let h = Expr::parse("(- (* 0.5 (^ p0 2)) (cos q0))").unwrap();
+    ExprHamiltonian::new(h, 1, vec![], &[1.0], &[0.0]).unwrap()
 }
 
 /// `Ok` or the refusal a method not built for the family must give.
@@ -226,23 +249,41 @@ fn accepted(result: Result<SimulationResult>, method: Method) -> bool {
 fn each_family_accepts_exactly_the_methods_the_table_allows() {
     for method in Method::ALL {
         let general = !method.info().separable_only;
+        // The fixtures' fields are hand-written: no Taylor form.
+        let hand_written = !method.needs_taylor_form();
         let span = (0.0, 0.1);
         let separable = Pendulum::new(1.0, 0.0, 1.0)
             .unwrap()
             .integrate(span, 0.01, method);
-        assert!(
+        assert_eq!(
             accepted(separable, method),
+            hand_written,
             "{method} on a separable system"
         );
         let non_separable = NonSeparable::new(0.5, 0.1).integrate(span, 0.01, method);
-        assert_eq!(accepted(non_separable, method), general, "{method}");
+        assert_eq!(
+            accepted(non_separable, method),
+            general && hand_written,
+            "{method}"
+        );
         let lagrangian = LagrangianPendulum::new(0.5, 0.1).integrate(span, 0.01, method);
-        assert_eq!(accepted(lagrangian, method), general, "{method}");
+        assert_eq!(
+            accepted(lagrangian, method),
+            general && hand_written,
+            "{method}"
+        );
         let mut decay = Scalar {
             phase: Phase::new(vec![1.0], 0.0).unwrap(),
             f: |y| -y,
         };
         let ode = decay.integrate(span, 0.01, method);
-        assert_eq!(accepted(ode, method), general, "{method}");
+        assert_eq!(accepted(ode, method), general && hand_written, "{method}");
+        // Expression systems have a Taylor form: every method their family allows.
+        let pendulum = expression_pendulum().integrate(span, 0.01, method);
+        assert!(accepted(pendulum, method), "{method} on an expression");
+        let mut expr_decay =
+            ExprOde::new(vec![Expr::parse("(neg y0)").unwrap()], vec![], &[1.0], None).unwrap();
+        let ode = expr_decay.integrate(span, 0.01, method);
+        assert_eq!(accepted(ode, method), general, "{method} on an expression");
     }
 }

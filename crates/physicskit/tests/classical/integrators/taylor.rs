@@ -6,11 +6,17 @@
 
 use crate::checks::loglog_slope;
 use crate::fixtures::pseudo_random;
+use physicskit::classical::analysis::poincare::Direction;
+use physicskit::classical::analysis::section::{
+    poincare_section, taylor_section, SurfaceOfSection,
+};
 use physicskit::classical::integrators::taylor::{
     compensated_horner, integrate_taylor, order_for, TaylorField,
 };
+use physicskit::classical::lagrangian::LagrangianModel;
+use physicskit::classical::model::erased::{DynSystem, Hamiltonian};
 use physicskit::classical::symbolic::TaylorProgram;
-use physicskit::classical::symbolic::{Expr, ExprHamiltonian, ExprOde};
+use physicskit::classical::symbolic::{Expr, ExprHamiltonian, ExprLagrangian, ExprOde};
 use physicskit::classical::systems::{
     DoublePendulum, DoublePendulumParams, HenonHeilesSystem, KeplerPerturbations, KeplerSystem,
 };
@@ -412,4 +418,222 @@ fn failures_are_errors() {
         matches!(err, Error::StepSizeTooSmall { t, .. } if t == 0.0),
         "{err}"
     );
+}
+
+/// `Method::Taylor` through `integrate` on an expression system runs the system's Taylor
+/// form: the steps of `integrate_taylor` on the same recurrences, and the same bits on a
+/// second run. The samples agree with `integrate_taylor`'s to 1e-14: the driver asks for
+/// `t + dt` where `integrate_taylor` asks for the grid's `time(i + 1)`, an ulp or so apart
+/// (ulp(20) = 3.6e-15, times a speed of at most 2).
+#[test]
+fn method_taylor_is_integrate_taylor_on_the_systems_taylor_form() {
+    let tol = Tolerances::new(1e-13, 1e-13).unwrap();
+    let options = || IntegrateOptions {
+        tolerances: Some(tol),
+        ..IntegrateOptions::default()
+    };
+    let run = || {
+        kepler_expr()
+            .integrate_with((0.0, 3.0 * PERIOD), PERIOD / 8.0, Method::Taylor, options())
+            .unwrap()
+    };
+    let (a, b) = (run(), run());
+    assert_eq!(a, b);
+    let mut program = TaylorProgram::hamiltonian(&kepler_expr()).unwrap();
+    let direct = integrate_taylor(
+        &mut program,
+        &kepler_state(0.0),
+        (0.0, 3.0 * PERIOD),
+        PERIOD / 8.0,
+        tol,
+    )
+    .unwrap();
+    assert_eq!(a.method, "taylor");
+    let apart = (&a.y - &direct.y).fold(0.0_f64, |m, v| m.max(v.abs()));
+    assert!(apart <= 1e-14, "{apart:e}");
+    assert_eq!(a.extra_scalar("steps"), direct.extra_scalar("steps"));
+    // A second call continues from the first's end: a fresh expansion there, the same
+    // solution to the global error of tol 1e-13 over 3 orbits (~1e-12 measured in the tens of
+    // tol per orbit, see `the_error_follows_the_tolerance`).
+    let mut split = kepler_expr();
+    split
+        .integrate_with((0.0, 1.5 * PERIOD), PERIOD / 8.0, Method::Taylor, options())
+        .unwrap();
+    let second = split
+        .integrate_with(
+            (1.5 * PERIOD, 3.0 * PERIOD),
+            PERIOD / 8.0,
+            Method::Taylor,
+            options(),
+        )
+        .unwrap();
+    let diff = second
+        .final_state()
+        .iter()
+        .zip(a.final_state())
+        .map(|(x, y)| (x - y).abs())
+        .fold(0.0, f64::max);
+    assert!(diff <= 1e-10, "{diff:e}");
+}
+
+/// The double pendulum as a Lagrangian expression (`L = T - V` in the hand-written system's
+/// notation, parameters `(a, b, d, g1, g2)` as in [`double_pendulum_expr`]).
+fn double_pendulum_lagrangian(params: DoublePendulumParams) -> ExprLagrangian {
+    let DoublePendulumParams { m1, m2, l1, l2, g } = params;
+    let values = vec![
+        (m1 + m2) * l1 * l1,
+        m2 * l1 * l2,
+        m2 * l2 * l2,
+        (m1 + m2) * g * l1,
+        m2 * g * l2,
+    ];
+    let l = Expr::parse(
+        "(+ (* 0.5 param0 (^ qdot0 2)) (* 0.5 param2 (^ qdot1 2)) \
+            (* param1 qdot0 qdot1 (cos (- q0 q1))) (* param3 (cos q0)) (* param4 (cos q1)))",
+    )
+    .unwrap();
+    ExprLagrangian::new(l, 2, values).unwrap()
+}
+
+/// A Lagrangian expression's Taylor form (the Euler–Lagrange equations solved symbolically)
+/// gives the engine's accelerations (automatic differentiation and an LU solve) at 50
+/// pseudo-random states to 1e-12 relative to the field's size (two computations of the same
+/// quantities in different orders, through a 2 x 2 solve whose condition stays below ~10 on
+/// these states); and `Method::Taylor` on it follows dop853 at rtol 1e-13 on the hand-written
+/// pendulum to 1e-9 over 10 s (both within ~1e-10 of the solution: see
+/// `henon_heiles_and_the_double_pendulum_agree_with_dop853`).
+#[test]
+fn a_lagrangian_expression_has_the_equations_of_motion_as_its_taylor_form() {
+    let params = DoublePendulumParams::default();
+    let model =
+        LagrangianModel::new(double_pendulum_lagrangian(params), &[1.0, 0.5], &[0.0, 0.0]).unwrap();
+    let mut form = model
+        .taylor_field()
+        .expect("an expression has a Taylor form")
+        .unwrap();
+    for s in 0..50 {
+        let y: Vec<f64> = pseudo_random(4, 7000 + s)
+            .iter()
+            .map(|v| 2.0 * v - 1.0)
+            .collect();
+        let mut want = vec![0.0; 4];
+        model.derivatives(0.0, &y, &mut want).unwrap();
+        let mut c = vec![0.0; 4 * 2];
+        form.coefficients(0.0, &y, 1, &mut c).unwrap();
+        let size = want.iter().fold(1.0_f64, |m, v| m.max(v.abs()));
+        for i in 0..4 {
+            assert!(
+                (c[2 * i + 1] - want[i]).abs() <= 1e-12 * size,
+                "{y:?}: {c:?} {want:?}"
+            );
+        }
+    }
+    let options = |rtol: f64, atol: f64| IntegrateOptions {
+        tolerances: Some(Tolerances::new(rtol, atol).unwrap()),
+        ..IntegrateOptions::default()
+    };
+    let mut model = model;
+    let ours = LagrangianSystem::integrate_with(
+        &mut model,
+        (0.0, 10.0),
+        0.1,
+        Method::Taylor,
+        options(1e-15, 1e-15),
+    )
+    .unwrap();
+    let mut pendulum = DoublePendulum::new(&[1.0, 0.5], &[0.0, 0.0], params).unwrap();
+    let reference = LagrangianSystem::integrate_with(
+        &mut pendulum,
+        (0.0, 10.0),
+        0.1,
+        Method::Dop853,
+        options(1e-13, 1e-15),
+    )
+    .unwrap();
+    let diff = (&ours.y - &reference.y).fold(0.0_f64, |m, v| m.max(v.abs()));
+    println!("Lagrangian double pendulum: largest difference {diff:e}");
+    assert!(diff <= 1e-9, "{diff:e}");
+}
+
+/// A hand-written system has no Taylor form: `Method::Taylor` is refused with
+/// `UnsupportedMethod`, naming the method and the systems that have one; so is a Poincaré
+/// section with it.
+#[test]
+fn a_system_without_a_taylor_form_refuses_the_method() {
+    let mut kepler =
+        KeplerSystem::from_orbital_elements(1.0, 0.5, 1.0, 1.0, KeplerPerturbations::none())
+            .unwrap();
+    let err = kepler
+        .integrate((0.0, 1.0), 0.1, Method::Taylor)
+        .unwrap_err();
+    let Error::UnsupportedMethod { method, reason } = &err else {
+        panic!("{err}");
+    };
+    assert_eq!(method, "taylor");
+    assert!(reason.contains("HamiltonianEngine"), "{reason}");
+    let plane = SurfaceOfSection::coordinate(0, 0.0, Direction::Increasing).unwrap();
+    let mut erased = Hamiltonian(kepler);
+    let err = poincare_section(
+        &mut erased,
+        (0.0, 1.0),
+        0.1,
+        Some(Method::Taylor),
+        &plane,
+        5,
+    )
+    .unwrap_err();
+    assert!(matches!(err, Error::UnsupportedMethod { .. }), "{err}");
+}
+
+/// Crossings located on the step polynomial: the Kepler orbit e = 0.5 (a = 1, period 2 pi,
+/// from perihelion) crosses x = 0 upwards at eccentric anomaly E = 5 pi/3, at the times
+/// `5 pi/3 + sqrt(3)/4 + 2 pi k` (Kepler's equation `t = E - e sin E`), with y = -3/4 and
+/// p_x = (sqrt(3)/2)/(3/4). Over 3 orbits at tolerance 1e-16 every crossing time is within
+/// 1e-13 of that: the orbit's own phase error there is a few 1e-15 (about 110 steps of one
+/// rounding each, see `one_hundred_kepler_orbits_to_the_floor`), the times are below 20, whose
+/// ulp is 3.6e-15, and Newton on the polynomial converges to its rounding; interpolating the
+/// output samples instead (or a root of lower order) misses by orders of magnitude more.
+#[test]
+fn poincare_crossings_on_the_polynomial_match_keplers_equation() {
+    let plane = SurfaceOfSection::coordinate(0, 0.0, Direction::Increasing).unwrap();
+    let mut system = Hamiltonian(kepler_expr());
+    let cut = taylor_section(
+        &mut system,
+        (0.0, 3.0 * PERIOD),
+        Tolerances::new(1e-16, 1e-16).unwrap(),
+        &plane,
+        usize::MAX,
+    )
+    .unwrap();
+    assert_eq!(cut.len(), 3);
+    let root3 = 3.0_f64.sqrt();
+    let mut worst = 0.0_f64;
+    for k in 0..3 {
+        let exact = 5.0 * PERIOD / 6.0 + root3 / 4.0 + PERIOD * k as f64;
+        let state = cut.state(k).unwrap();
+        worst = worst.max((cut.t[k] - exact).abs());
+        assert_eq!(state[0], 0.0);
+        assert!((state[1] + 0.75).abs() <= 1e-13, "{state:?}");
+        assert!((state[2] - root3 / 1.5).abs() <= 1e-13, "{state:?}");
+    }
+    println!("largest crossing-time error {worst:e}");
+    assert!(worst <= 1e-13, "{worst:e}");
+    // The system is left at the end of the run, as `integrate` leaves it.
+    assert_eq!(system.dynamical().t(), 3.0 * PERIOD);
+    // Through `poincare_section` (default tolerances, rtol 1e-10), the same crossings to the
+    // orbit's error at that tolerance (~1e-9 over 3 orbits: tens of tol per orbit).
+    let mut system = Hamiltonian(kepler_expr());
+    let coarse = poincare_section(
+        &mut system,
+        (0.0, 3.0 * PERIOD),
+        PERIOD / 60.0,
+        Some(Method::Taylor),
+        &plane,
+        usize::MAX,
+    )
+    .unwrap();
+    assert_eq!(coarse.len(), 3);
+    for k in 0..3 {
+        assert!((coarse.t[k] - cut.t[k]).abs() <= 1e-8, "{:?}", coarse.t);
+    }
 }
