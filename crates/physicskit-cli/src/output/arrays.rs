@@ -89,15 +89,9 @@ pub fn write_npz(file: &File, entries: &[Entry<'_>]) -> io::Result<()> {
         zip.start_file(format!("{name}.npy"), options)
             .map_err(io::Error::other)?;
         match e {
-            Entry::F64 { shape, data, .. } => {
-                npy::write_f64(&mut zip, shape, data.iter().copied())?
-            }
-            Entry::View { view, .. } => {
-                npy::write_f64(&mut zip, view.shape(), view.iter().copied())?
-            }
-            Entry::I64 { shape, data, .. } => {
-                npy::write_i64(&mut zip, shape, data.iter().copied())?
-            }
+            Entry::F64 { shape, data, .. } => npy::write_slice(&mut zip, shape, data)?,
+            Entry::View { view, .. } => npy::write(&mut zip, view.view())?,
+            Entry::I64 { shape, data, .. } => npy::write_slice(&mut zip, shape, data)?,
             Entry::Str { text, .. } => npy::write_str(&mut zip, text)?,
             Entry::Value { value, .. } => write_value(&mut zip, value)?,
         }
@@ -108,9 +102,9 @@ pub fn write_npz(file: &File, entries: &[Entry<'_>]) -> io::Result<()> {
 /// One catalogue value as a 0-d or 1-d array: `<f8`, `<i8`, or a string for a word.
 fn write_value(w: &mut impl Write, value: &Value) -> io::Result<()> {
     match value {
-        Value::Scalar(v) => npy::write_f64(w, &[], [*v]),
-        Value::Integer(n) => npy::write_i64(w, &[], [*n]),
-        Value::Vector(items) => npy::write_f64(w, &[items.len()], items.iter().copied()),
+        Value::Scalar(v) => npy::write_slice(w, &[], std::slice::from_ref(v)),
+        Value::Integer(n) => npy::write_slice(w, &[], std::slice::from_ref(n)),
+        Value::Vector(items) => npy::write_slice(w, &[items.len()], items),
         Value::Choice(word) => npy::write_str(w, word),
     }
 }

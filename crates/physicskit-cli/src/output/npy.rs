@@ -1,114 +1,68 @@
-//! A minimal writer of NPY format version 1.0 arrays (`numpy.lib.format`).
+//! NPY arrays (`numpy.lib.format`, version 1.0) written by ndarray-npy: `<f8` and `<i8`
+//! arrays of any layout, and 0-d unicode strings `<U{n}` (the `system`, `family` and `method`
+//! entries; none needs pickle, so `numpy.load(..., allow_pickle=False)` reads them).
 //!
-//! Layout: the magic `\x93NUMPY`, version bytes `1, 0`, a little-endian `u16` header length,
-//! then an ASCII Python dict literal `{'descr': ..., 'fortran_order': False, 'shape': (...), }`
-//! padded with spaces and ending in `\n` so that the data starts on a 64-byte boundary, then
-//! the raw little-endian data in C order. Only the dtypes the command line writes are
-//! supported: `<f8`, `<i8` and unicode strings `<U{n}` (UTF-32LE), none of which need pickle,
-//! so `numpy.load(..., allow_pickle=False)` reads them.
-//!
-//! Written here rather than by a crate: ndarray-npy writes no unicode strings (`<U{n}`: the
-//! `system`, `family` and `method` entries), and npyz, which does, brings a second, older
-//! `zip` and num-bigint into the tree; the archive itself is the `zip` crate's (`arrays.rs`).
+//! ndarray-npy writes numbers but has no string element type (its element types give their
+//! dtype statically, and `<U{n}` depends on the text), so a string is ndarray-npy's header
+//! for `<U{n}` followed by the text in UTF-32LE, padded with NULs to `n` characters.
 
-use std::io::{self, Write};
+use std::io::{self, BufWriter, Write};
 
-/// Alignment of the data start recommended by the NPY format description.
-const ALIGN: usize = 64;
+use ndarray::ArrayViewD;
+use ndarray_npy::npy::header::{Header, Layout};
+use ndarray_npy::WriteNpyExt;
+use py_literal::Value as PyValue;
 
-/// Magic string plus version 1.0.
-const MAGIC: &[u8; 8] = b"\x93NUMPY\x01\x00";
-
-/// Bytes buffered before each write to the sink, to keep per-element writes cheap.
+/// Bytes buffered before each write to the sink: a strided array is written element by
+/// element, and each write into a zip entry updates its checksum.
 const CHUNK: usize = 1 << 16;
 
-fn header(descr: &str, shape: &[usize]) -> io::Result<Vec<u8>> {
-    let dims = match shape {
-        [] => String::new(),
-        [n] => format!("{n},"),
-        _ => shape
-            .iter()
-            .map(usize::to_string)
-            .collect::<Vec<_>>()
-            .join(", "),
-    };
-    let mut dict = format!("{{'descr': '{descr}', 'fortran_order': False, 'shape': ({dims}), }}");
-    // Magic (8) + length field (2) + dict + newline must be a multiple of ALIGN.
-    let unpadded = MAGIC.len() + 2 + dict.len() + 1;
-    dict.push_str(&" ".repeat(unpadded.next_multiple_of(ALIGN) - unpadded));
-    dict.push('\n');
-    let len = u16::try_from(dict.len())
-        .map_err(|_| io::Error::new(io::ErrorKind::InvalidInput, "NPY header too long"))?;
-    let mut out = Vec::with_capacity(MAGIC.len() + 2 + dict.len());
-    out.extend_from_slice(MAGIC);
-    out.extend_from_slice(&len.to_le_bytes());
-    out.extend_from_slice(dict.as_bytes());
-    Ok(out)
+/// Writes an `f64` or `i64` array in C order (Fortran order if the view is laid out so).
+///
+/// # Errors
+/// I/O errors of `w`.
+pub fn write<A: ndarray_npy::WritableElement>(
+    w: &mut impl Write,
+    array: ArrayViewD<'_, A>,
+) -> io::Result<()> {
+    let mut buffered = BufWriter::with_capacity(CHUNK, w);
+    array.write_npy(&mut buffered).map_err(io::Error::other)?;
+    buffered.flush()
 }
 
-/// Writes an `f64` array of `shape` whose C-order elements are `data`.
+/// Writes the C-order elements `data` as an array of `shape`.
 ///
 /// # Errors
 /// I/O errors of `w`; `InvalidInput` if `data` does not hold `shape`'s element count.
-pub fn write_f64(
+pub fn write_slice<A: ndarray_npy::WritableElement>(
     w: &mut impl Write,
     shape: &[usize],
-    data: impl IntoIterator<Item = f64>,
+    data: &[A],
 ) -> io::Result<()> {
-    write_le(w, "<f8", shape, data.into_iter().map(f64::to_le_bytes))
+    let array = ArrayViewD::from_shape(shape, data).map_err(|_| {
+        io::Error::new(
+            io::ErrorKind::InvalidInput,
+            format!("array of shape {shape:?} given {} elements", data.len()),
+        )
+    })?;
+    write(w, array)
 }
 
-/// Writes an `i64` array of `shape` whose C-order elements are `data`.
-///
-/// # Errors
-/// As [`write_f64`].
-pub fn write_i64(
-    w: &mut impl Write,
-    shape: &[usize],
-    data: impl IntoIterator<Item = i64>,
-) -> io::Result<()> {
-    write_le(w, "<i8", shape, data.into_iter().map(i64::to_le_bytes))
-}
-
-/// Writes a 0-d unicode string array (dtype `<U{n}`, `n` = number of characters).
+/// Writes a 0-d unicode string array (dtype `<U{n}`, `n` = number of characters, at least 1).
 ///
 /// # Errors
 /// I/O errors of `w`.
 pub fn write_str(w: &mut impl Write, s: &str) -> io::Result<()> {
     let n = s.chars().count().max(1);
-    w.write_all(&header(&format!("<U{n}"), &[])?)?;
+    let header = Header {
+        type_descriptor: PyValue::String(format!("<U{n}")),
+        layout: Layout::Standard,
+        shape: Vec::new(),
+    };
+    header.write(&mut *w).map_err(io::Error::other)?;
     let mut data: Vec<u8> = s.chars().flat_map(|c| u32::from(c).to_le_bytes()).collect();
     data.resize(4 * n, 0);
     w.write_all(&data)
-}
-
-fn write_le<const N: usize>(
-    w: &mut impl Write,
-    descr: &str,
-    shape: &[usize],
-    data: impl Iterator<Item = [u8; N]>,
-) -> io::Result<()> {
-    let expected: usize = shape.iter().product();
-    w.write_all(&header(descr, shape)?)?;
-    let mut buf = Vec::with_capacity(CHUNK);
-    let mut count = 0usize;
-    for bytes in data {
-        buf.extend_from_slice(&bytes);
-        count += 1;
-        if buf.len() >= CHUNK {
-            w.write_all(&buf)?;
-            buf.clear();
-        }
-    }
-    w.write_all(&buf)?;
-    if count == expected {
-        Ok(())
-    } else {
-        Err(io::Error::new(
-            io::ErrorKind::InvalidInput,
-            format!("array of shape {shape:?} given {count} elements"),
-        ))
-    }
 }
 
 #[cfg(test)]
@@ -116,38 +70,30 @@ mod tests {
     use super::*;
 
     #[test]
-    fn header_is_aligned_and_parsable() {
-        for shape in [&[][..], &[3], &[4, 2], &[1, 2, 3]] {
-            let h = header("<f8", shape).unwrap();
-            assert_eq!(h.len() % ALIGN, 0);
-            assert_eq!(&h[..8], MAGIC);
-            let len = u16::from_le_bytes([h[8], h[9]]) as usize;
-            assert_eq!(len + 10, h.len());
-            let text = std::str::from_utf8(&h[10..]).unwrap();
-            assert!(text.ends_with('\n'));
-            assert!(text.starts_with("{'descr': '<f8'"));
-        }
-        let one = header("<f8", &[3]).unwrap();
-        assert!(std::str::from_utf8(&one[10..])
-            .unwrap()
-            .contains("'shape': (3,)"));
-        let zero = header("<f8", &[]).unwrap();
-        assert!(std::str::from_utf8(&zero[10..])
-            .unwrap()
-            .contains("'shape': ()"));
-    }
-
-    #[test]
     fn element_count_is_checked() {
         let mut out = Vec::new();
-        assert!(write_f64(&mut out, &[2, 2], [1.0, 2.0, 3.0]).is_err());
+        let err = write_slice(&mut out, &[2, 2], &[1.0, 2.0, 3.0]).unwrap_err();
+        assert_eq!(err.kind(), io::ErrorKind::InvalidInput);
     }
 
+    /// The header is 64-byte aligned, names the dtype from the text's length, and the data is
+    /// the text's code points in UTF-32LE, NUL-padded.
     #[test]
     fn strings_are_utf32() {
-        let mut out = Vec::new();
-        write_str(&mut out, "ab").unwrap();
-        let data = &out[out.len() - 8..];
-        assert_eq!(data, &[b'a', 0, 0, 0, b'b', 0, 0, 0]);
+        for (text, n) in [("ab", 2), ("", 1), ("θ₁", 2)] {
+            let mut out = Vec::new();
+            write_str(&mut out, text).unwrap();
+            let header_len = out.len() - 4 * n;
+            assert_eq!(header_len % 64, 0);
+            let header = std::str::from_utf8(&out[10..header_len]).unwrap();
+            assert!(header.contains(&format!("'descr': '<U{n}'")), "{header}");
+            assert!(header.contains("'shape': ()"), "{header}");
+            let mut expected: Vec<u8> = text
+                .chars()
+                .flat_map(|c| (c as u32).to_le_bytes())
+                .collect();
+            expected.resize(4 * n, 0);
+            assert_eq!(&out[header_len..], &expected[..]);
+        }
     }
 }
