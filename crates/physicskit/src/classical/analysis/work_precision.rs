@@ -126,7 +126,7 @@ impl Problem {
         let lagrangian = matches!(self, Problem::DoublePendulum { .. });
         Method::ALL
             .into_iter()
-            .filter(|m| !(lagrangian && m.needs_separable()) && !m.needs_taylor_form())
+            .filter(|m| !(m.needs_taylor_form() || lagrangian && m.needs_separable()))
             .collect()
     }
 

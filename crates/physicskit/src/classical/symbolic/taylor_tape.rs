@@ -481,11 +481,12 @@ impl TaylorProgram {
         for k in 0..n {
             for i in k + 1..n {
                 let factor = Expr::Div(Box::new(m[i][k].clone()), Box::new(m[k][k].clone()));
-                for j in k + 1..n {
-                    let mkj = m[k][j].clone();
-                    m[i][j] = Expr::Sub(
-                        Box::new(m[i][j].clone()),
-                        Box::new(Expr::Mul(vec![factor.clone(), mkj])),
+                // Row k is above row i: borrow it beside row i.
+                let (above, from_i) = m.split_at_mut(i);
+                for (mij, mkj) in from_i[0][k + 1..n].iter_mut().zip(&above[k][k + 1..n]) {
+                    *mij = Expr::Sub(
+                        Box::new(mij.clone()),
+                        Box::new(Expr::Mul(vec![factor.clone(), mkj.clone()])),
                     );
                 }
                 r[i] = Expr::Sub(
