@@ -406,7 +406,7 @@ pub fn integrate_hamiltonian<'py>(
     atol: Option<f64>,
     max_steps: Option<u64>,
 ) -> PyResult<Bound<'py, PyTuple>> {
-    let method = parse_method(Some(method), Method::Yoshida4, separable).py()?;
+    let method = parse_method(Some(method), Method::Yoshida4, separable, false).py()?;
     let mut sys =
         PyHamiltonian::new(obj, to_vec(&state), t0, ndof, separable, to_vec(&mass_inv)).py()?;
     let mut observer = SignalObserver::new(progress);
@@ -446,7 +446,7 @@ pub fn integrate_ode<'py>(
     atol: Option<f64>,
     max_steps: Option<u64>,
 ) -> PyResult<Bound<'py, PyTuple>> {
-    let method = parse_method(Some(method), Method::ImplicitMidpoint, false).py()?;
+    let method = parse_method(Some(method), Method::ImplicitMidpoint, false, false).py()?;
     let mut sys = PyOde::new(obj, to_vec(&state), t0).py()?;
     let mut observer = SignalObserver::new(progress);
     let options = options(
@@ -483,7 +483,7 @@ pub fn chaos_hamiltonian<'py>(
     options: Option<&Bound<'_, PyDict>>,
 ) -> PyResult<Bound<'py, PyDict>> {
     let job = chaos::job_from_py(kind, options)?;
-    let method = parse_method(Some(method), Method::Yoshida4, separable).py()?;
+    let method = parse_method(Some(method), Method::Yoshida4, separable, false).py()?;
     let sys =
         PyHamiltonian::new(obj, to_vec(&state), t0, ndof, separable, to_vec(&mass_inv)).py()?;
     let mut observer = SignalObserver::default();
@@ -511,7 +511,7 @@ pub fn chaos_ode<'py>(
     options: Option<&Bound<'_, PyDict>>,
 ) -> PyResult<Bound<'py, PyDict>> {
     let job = chaos::job_from_py(kind, options)?;
-    let method = parse_method(Some(method), Method::ImplicitMidpoint, false).py()?;
+    let method = parse_method(Some(method), Method::ImplicitMidpoint, false, false).py()?;
     let sys = PyOde::new(obj, to_vec(&state), t0).py()?;
     let mut observer = SignalObserver::default();
     let outcome = chaos_run(&sys, t_span, dt, &job, &mut observer, |s, k| {

@@ -314,7 +314,7 @@ pub fn chaos_native<'py>(
     let job = job_from_py(kind, options)?;
     let state = to_vec(&state);
     let inner = native.inner_mut();
-    let method = parse_method(method, inner.default_method(), true).py()?;
+    let method = parse_method(method, inner.default_method(), true, false).py()?;
     let mut observer = SignalObserver::default();
     let outcome = py.detach(|| -> Result<_> {
         inner.reset(Some(&state), t0)?;

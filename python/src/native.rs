@@ -34,11 +34,17 @@ pub fn check_len(name: &str, v: &[f64], n: usize) -> Result<()> {
 }
 
 /// Parses a method name, or takes the system's default for `None`, for a system that accepts
-/// the splitting methods when `splitting` (a separable, conservative Hamiltonian).
+/// the splitting methods when `splitting` (a separable, conservative Hamiltonian) and the
+/// methods that need a Taylor form when `taylor` (a system defined by expressions).
 ///
 /// # Errors
 /// [`Error::UnknownMethod`] listing the names of the methods the system accepts.
-pub fn parse_method(name: Option<&str>, default: Method, splitting: bool) -> Result<Method> {
+pub fn parse_method(
+    name: Option<&str>,
+    default: Method,
+    splitting: bool,
+    taylor: bool,
+) -> Result<Method> {
     let Some(name) = name else {
         return Ok(default);
     };
@@ -46,7 +52,7 @@ pub fn parse_method(name: Option<&str>, default: Method, splitting: bool) -> Res
         name: name.into(),
         valid: Method::ALL
             .into_iter()
-            .filter(|m| splitting || !m.needs_separable())
+            .filter(|m| (splitting || !m.needs_separable()) && (taylor || !m.needs_taylor_form()))
             .map(Method::name)
             .collect::<Vec<_>>()
             .join(", "),
@@ -370,8 +376,10 @@ impl NativeSystem {
             .inner
             .hamiltonian()
             .is_some_and(|h| h.separable() && h.conservative());
-        let method = parse_method(method, self.inner.default_method(), splitting).py()?;
-        if method.needs_taylor_form() && self.values.is_some() {
+        // A catalogue system's field is hand-written: it has no Taylor form.
+        let taylor = self.values.is_none();
+        let method = parse_method(method, self.inner.default_method(), splitting, taylor).py()?;
+        if method.needs_taylor_form() && !taylor {
             // A catalogue system: its field is hand-written, so it has no Taylor form.
             return Err(no_taylor_form(&format!("`{}`", self.name))).py();
         }

@@ -119,7 +119,7 @@ def test_state_properties_behave(system_name):
         assert np.array_equal(q, s.q) and np.array_equal(p, s.p)
     elif isinstance(s, pc.LagrangianSystem):
         assert np.array_equal(np.concatenate([s.q, s.qdot]), s.state)
-    else:
+    elif isinstance(s, pc.EulerTop):
         assert np.array_equal(np.concatenate([s.omega, s.quaternion]), s.state)
     # integrate continues from the state; reset restores it.
     start = s.state.copy()
