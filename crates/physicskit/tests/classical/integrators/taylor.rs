@@ -72,18 +72,24 @@ fn henon_heiles_expr() -> ExprHamiltonian {
     ExprHamiltonian::new(h, 2, vec![], &[0.0, 0.1], &[0.3, 0.0]).unwrap()
 }
 
-/// The double pendulum's `H = p^T M^-1 p / 2 - g1 cos q0 - g2 cos q1` with
-/// `M = [[a, b cos D], [b cos D, d]]`, `D = q0 - q1` (the hand-written system's notation),
-/// parameters `(a, b, d, g1, g2)`.
-fn double_pendulum_expr(params: DoublePendulumParams) -> ExprHamiltonian {
+/// The parameters `(a, b, d, g1, g2)` of the double pendulum's expressions: `a = (m1 + m2) l1²`,
+/// `b = m2 l1 l2`, `d = m2 l2²`, `g1 = (m1 + m2) g l1`, `g2 = m2 g l2`.
+fn double_pendulum_params(params: DoublePendulumParams) -> Vec<f64> {
     let DoublePendulumParams { m1, m2, l1, l2, g } = params;
-    let values = vec![
+    vec![
         (m1 + m2) * l1 * l1,
         m2 * l1 * l2,
         m2 * l2 * l2,
         (m1 + m2) * g * l1,
         m2 * g * l2,
-    ];
+    ]
+}
+
+/// The double pendulum's `H = p^T M^-1 p / 2 - g1 cos q0 - g2 cos q1` with
+/// `M = [[a, b cos D], [b cos D, d]]`, `D = q0 - q1` (the hand-written system's notation),
+/// parameters `(a, b, d, g1, g2)`.
+fn double_pendulum_expr(params: DoublePendulumParams) -> ExprHamiltonian {
+    let values = double_pendulum_params(params);
     let h = Expr::parse(
         "(- (- (/ (+ (* param2 (^ p0 2)) (* param0 (^ p1 2)) (* -2 param1 (cos (- q0 q1)) p0 p1)) \
             (* 2 (- (* param0 param2) (^ (* param1 (cos (- q0 q1))) 2)))) \
@@ -479,14 +485,7 @@ fn method_taylor_is_integrate_taylor_on_the_systems_taylor_form() {
 /// The double pendulum as a Lagrangian expression (`L = T - V` in the hand-written system's
 /// notation, parameters `(a, b, d, g1, g2)` as in [`double_pendulum_expr`]).
 fn double_pendulum_lagrangian(params: DoublePendulumParams) -> ExprLagrangian {
-    let DoublePendulumParams { m1, m2, l1, l2, g } = params;
-    let values = vec![
-        (m1 + m2) * l1 * l1,
-        m2 * l1 * l2,
-        m2 * l2 * l2,
-        (m1 + m2) * g * l1,
-        m2 * g * l2,
-    ];
+    let values = double_pendulum_params(params);
     let l = Expr::parse(
         "(+ (* 0.5 param0 (^ qdot0 2)) (* 0.5 param2 (^ qdot1 2)) \
             (* param1 qdot0 qdot1 (cos (- q0 q1))) (* param3 (cos q0)) (* param4 (cos q1)))",
