@@ -1805,7 +1805,9 @@ function applyHash(hash) {
     if (h.has("system")) refused.push(`no system called ${quoted(h.get("system"))}, so ${systemTitle(fallback).toLowerCase()} opened`);
     entry = fallback;
   }
-  // Parameters: kept one by one, each only if the system builds with it.
+  // Parameters: all together if the system builds with them (a vector and the length that
+  // goes with it only build together); otherwise kept one by one, each only if the system
+  // builds with it, the others refused by name.
   let params = {};
   const raw = h.get("params");
   if (raw !== null && raw !== "") {
@@ -1814,9 +1816,13 @@ function applyHash(hash) {
     if (parsed !== undefined && (parsed === null || typeof parsed !== "object" || Array.isArray(parsed))) {
       refused.push("the parameters (not a set of named values)");
     } else if (parsed !== undefined) {
-      for (const [k, val] of Object.entries(parsed)) {
-        const trial = { ...params, [k]: val };
-        try { app.core.build(entry.name, trial).free(); params = trial; } catch (e) { refused.push(`${quoted(k)}: ${e.message}`); }
+      let together = false;
+      try { app.core.build(entry.name, parsed).free(); params = { ...parsed }; together = true; } catch { /* one by one below */ }
+      if (!together) {
+        for (const [k, val] of Object.entries(parsed)) {
+          const trial = { ...params, [k]: val };
+          try { app.core.build(entry.name, trial).free(); params = trial; } catch (e) { refused.push(`${quoted(k)}: ${e.message}`); }
+        }
       }
     }
   }

@@ -340,6 +340,28 @@ for (const [hash, system, named] of HOSTILE) {
   console.log("ok gallery-form links: every system opens with its method and step, nothing refused");
 }
 
+// Parameters that only build together (a start of another length and the size that goes
+// with it) open together: nothing refused, every value kept.
+{
+  const links = [
+    ["coupled-oscillators", { n: 5, q0: [0.1, -0.2, 0.15, 0.0, 0.05], qdot0: [0, 0, 0, 0, 0] }],
+    ["toda", { q0: [0, 0, 0, 0], p0: [1.0, 0.0, -0.5, -0.5] }],
+  ];
+  const bad = await page.evaluate((links) => {
+    const L = window.physicskitLab, out = [];
+    for (const [system, params] of links) {
+      const clean = L.openHash(`#system=${system}&params=${encodeURIComponent(JSON.stringify(params))}`);
+      const kept = Object.entries(params).every(([k, v]) => JSON.stringify(L.app.params[k]) === JSON.stringify(v));
+      if (!clean || L.app.entry.name !== system || !kept) {
+        out.push(`${system}: ${document.getElementById("message").textContent} kept ${JSON.stringify(L.app.params)}`);
+      }
+    }
+    return out;
+  }, links);
+  if (bad.length) fail(`parameters that build together: ${bad.join(" | ")}`);
+  console.log("ok links whose parameters build only together open with all of them");
+}
+
 // Hénon–Heiles: three clicks on the section launch three orbits at the same energy (y = 0,
 // py > 0 solved); each runs 80 time units. The crossings of all three stay, each orbit with
 // its own number, read from the JSON export.
