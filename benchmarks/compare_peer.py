@@ -1,4 +1,5 @@
-"""Runs every issue-7 workload through physicskit and through the Numba peer and prints a table.
+"""Runs every peer workload (peer/workloads.json) through physicskit and through the Numba peer
+and prints a table.
 
     bash benchmarks/compare_peer.sh          # sets up both environments, then runs this
 

@@ -13,19 +13,23 @@ const STEPS: usize = 10_000;
 
 fn vs_plain(c: &mut Criterion) {
     for w in workloads::all() {
-        let Some(reference) = plain::case(w.name) else {
+        let Some(reference) = plain::case(&w.name) else {
             continue;
         };
+        let (q0, p0) = w
+            .start()
+            .expect("workload builds")
+            .expect("separable workloads have q and p");
         if w.method != Method::Yoshida4 {
             continue;
         }
-        let mut group = c.benchmark_group(w.name);
+        let mut group = c.benchmark_group(&w.name);
         group.throughput(Throughput::Elements(STEPS as u64));
         group.bench_function(BenchmarkId::new("physicskit", STEPS), |b| {
-            b.iter(|| black_box((w.run)(STEPS, w.dt, w.method).expect("workload runs")))
+            b.iter(|| black_box(w.run(STEPS).expect("workload runs")))
         });
         group.bench_function(BenchmarkId::new("plain", STEPS), |b| {
-            b.iter(|| black_box(reference(STEPS, w.dt)))
+            b.iter(|| black_box(reference(&q0, &p0, STEPS, w.dt)))
         });
         group.finish();
     }

@@ -20,58 +20,41 @@ in each implementation's own virtual environment.
 import json
 import sys
 import time
+from pathlib import Path
 
 import numpy as np
 
 
+# The cases: the one table, which benchmarks/src/workloads.rs reads too.
+TABLE = json.loads((Path(__file__).resolve().parent / "workloads.json").read_text())["cases"]
+
+
+def _argument(pc, value):
+    """A table argument: a JSON value, or one of the table's generated starts (its `about`)."""
+    if not isinstance(value, dict):
+        return value
+    if "sine_mode" in value:
+        mode = value["sine_mode"]
+        wave = np.pi * mode["mode"] / (mode["n"] + 1)
+        return mode["amplitude"] * np.sin(wave * np.arange(1, mode["n"] + 1))
+    if "kink" in value:
+        return pc.SineGordonChain.kink(**value["kink"])[value["part"]]
+    raise ValueError(f"unknown start in workloads.json: {value}")
+
+
 def _cases(pc):
-    chain_q0 = 0.5 * np.sin(np.pi * np.arange(1, 17) / 17.0)
+    """Each case's (constructor, method, dt), the constructor calling the system by its Python
+    name with the table's keyword arguments."""
+    cases = {}
+    for case in TABLE:
+        owner, _, constructor = case["system"].partition(".")
+        make = getattr(getattr(pc, owner), constructor) if constructor else getattr(pc, owner)
 
-    def sine_gordon():
-        q0, p0 = pc.SineGordonChain.kink(100, 50.0, velocity=0.2)
-        return pc.SineGordonChain(n=100, q0=q0, p0=p0)
+        def build(make=make, args=case["args"]):
+            return make(**{key: _argument(pc, value) for key, value in args.items()})
 
-    return {
-        "projectile": (lambda: pc.ProjectileMotion.from_launch(20.0, 45.0), "yoshida4", 1e-3),
-        "kepler": (lambda: pc.KeplerSystem.from_orbital_elements(1.0, 0.5), "yoshida4", 1e-3),
-        "kepler_verlet": (lambda: pc.KeplerSystem.from_orbital_elements(1.0, 0.5), "verlet", 1e-3),
-        "kepler_pn": (
-            lambda: pc.KeplerSystem.from_orbital_elements(1.0, 0.3, c_pn=0.01),
-            "yoshida4",
-            1e-3,
-        ),
-        "double_pendulum": (
-            lambda: pc.DoublePendulum([2.0, 1.0], [0.5, -0.3]),
-            "implicit_midpoint",
-            3e-5,
-        ),
-        "double_pendulum_rk4": (lambda: pc.DoublePendulum([2.0, 1.0], [0.5, -0.3]), "rk4", 3e-5),
-        "hoop": (lambda: pc.BeadOnRotatingHoop(0.3, 0.0, omega=3.0), "implicit_midpoint", 2.2e-5),
-        "coupled_oscillators": (
-            lambda: pc.CoupledOscillators([0.1, -0.2, 0.15], [0.0, 0.0, 0.0]),
-            "implicit_midpoint",
-            1e-4,
-        ),
-        "henon_heiles": (lambda: pc.HenonHeilesSystem([0.0, 0.3], [0.3, 0.0]), "yoshida4", 5e-3),
-        "swarm": (
-            lambda: pc.PendulumSwarm.from_box(1.0, 0.0, 0.05, 0.05, n=200),
-            "yoshida4",
-            1e-3,
-        ),
-        "harmonic_chain": (lambda: pc.HarmonicChain(chain_q0, np.zeros(16)), "yoshida4", 1e-2),
-        "fput": (
-            lambda: pc.FPUTChain(n=32, beta=0.7, mode=1, amplitude=0.5),
-            "yoshida4",
-            5e-2,
-        ),
-        "sine_gordon": (sine_gordon, "yoshida4", 1e-2),
-        "euler_top": (lambda: pc.EulerTop([0.01, 1.0, 0.01]), "implicit_midpoint", 1e-3),
-        "heavy_top": (
-            lambda: pc.HeavySymmetricTop([0.0, 0.5, 0.0], [0.0, 0.0, 20.0]),
-            "implicit_midpoint",
-            5e-5,
-        ),
-    }
+        cases[case["name"]] = (build, case["method"], case["dt"])
+    return cases
 
 
 def _run(pc, case, steps, method=None, n=None):

@@ -29,7 +29,7 @@ fn main() {
     if let (Some(name), Some(side)) = (&only, &side) {
         let Some(w) = physicskit_benchmarks::workloads::all()
             .into_iter()
-            .find(|w| w.name == name)
+            .find(|w| w.name == *name)
         else {
             eprintln!("unknown case {name}");
             std::process::exit(2);
@@ -39,13 +39,14 @@ fn main() {
             .and_then(|s| s.parse().ok())
             .unwrap_or(1);
         let ns = if side == "plain" {
-            let run = physicskit_benchmarks::plain::case(w.name).expect("a plain version");
+            let run = physicskit_benchmarks::plain::case(name).expect("a plain version");
+            let (q0, p0) = w.start().expect("builds").expect("a separable workload");
             best_ns(repeats, steps, || {
-                std::hint::black_box(run(steps, w.dt));
+                std::hint::black_box(run(&q0, &p0, steps, w.dt));
             })
         } else {
             best_ns(repeats, steps, || {
-                std::hint::black_box((w.run)(steps, w.dt, w.method).expect("runs"));
+                std::hint::black_box(w.run(steps).expect("runs"));
             })
         };
         if repeats > 1 {
@@ -56,7 +57,7 @@ fn main() {
     for w in physicskit_benchmarks::workloads::all() {
         // One untimed run (the energy drift; errors), then the best of three (the machine is
         // shared); the plain loop likewise.
-        let drift = match (w.run)(steps, w.dt, w.method) {
+        let drift = match w.run(steps) {
             Ok(r) => r.max_relative_energy_error().unwrap_or(f64::NAN),
             Err(e) => {
                 println!("{:<22} error: {e}", w.name);
@@ -64,14 +65,15 @@ fn main() {
             }
         };
         let ns = best_ns(3, steps, || {
-            std::hint::black_box((w.run)(steps, w.dt, w.method).expect("ran above"));
+            std::hint::black_box(w.run(steps).expect("ran above"));
         });
-        let plain = physicskit_benchmarks::plain::case(w.name)
+        let plain = physicskit_benchmarks::plain::case(&w.name)
             .filter(|_| w.method == physicskit::classical::Method::Yoshida4)
             .map(|run| {
-                std::hint::black_box(run(steps, w.dt));
+                let (q0, p0) = w.start().expect("ran above").expect("a separable workload");
+                std::hint::black_box(run(&q0, &p0, steps, w.dt));
                 best_ns(3, steps, || {
-                    std::hint::black_box(run(steps, w.dt));
+                    std::hint::black_box(run(&q0, &p0, steps, w.dt));
                 })
             });
         match plain {

@@ -94,16 +94,20 @@ fn half_sum_squares(p: &[f64]) -> f64 {
     0.5 * p.iter().map(|x| x * x).sum::<f64>()
 }
 
-/// The plain-loop version of a separable workload, by the workload's name, with the same
-/// initial condition as [`crate::workloads`]; `None` for non-separable workloads.
-pub fn case(name: &str) -> Option<fn(usize, f64) -> Trajectory> {
+/// A plain loop: `(q0, p0, steps, dt)` to the stored trajectory.
+pub type Plain = fn(&[f64], &[f64], usize, f64) -> Trajectory;
+
+/// The plain-loop version of a separable workload, by the workload's name, run from the
+/// workload's initial condition ([`Workload::start`](crate::workloads::Workload::start));
+/// `None` for non-separable workloads. The forces, with the table's parameters, are written
+/// here by hand.
+pub fn case(name: &str) -> Option<Plain> {
     Some(match name {
-        "projectile" => |n, dt| {
-            let v = 20.0 * std::f64::consts::FRAC_1_SQRT_2;
+        "projectile" => |q0, p0, n, dt| {
             let g = 9.81;
             yoshida4(
-                &[0.0, 0.0],
-                &[v, v],
+                q0,
+                p0,
                 1.0,
                 dt,
                 n,
@@ -115,17 +119,12 @@ pub fn case(name: &str) -> Option<fn(usize, f64) -> Trajectory> {
                 half_sum_squares,
             )
         },
-        "kepler" | "kepler_pn" => {
-            if name == "kepler" {
-                |n, dt| kepler(0.5, 0.0, n, dt)
-            } else {
-                |n, dt| kepler(0.3, 0.01, n, dt)
-            }
-        }
-        "henon_heiles" => |n, dt| {
+        "kepler" => |q0, p0, n, dt| kepler(q0, p0, 0.0, n, dt),
+        "kepler_pn" => |q0, p0, n, dt| kepler(q0, p0, 0.01, n, dt),
+        "henon_heiles" => |q0, p0, n, dt| {
             yoshida4(
-                &[0.0, 0.3],
-                &[0.3, 0.0],
+                q0,
+                p0,
                 1.0,
                 dt,
                 n,
@@ -138,9 +137,9 @@ pub fn case(name: &str) -> Option<fn(usize, f64) -> Trajectory> {
                 half_sum_squares,
             )
         },
-        "swarm" => |n, dt| {
+        "swarm" => |q0, p0, n, dt| {
             if slice_trig() {
-                swarm(n, dt, |q, f, potential| {
+                unit_masses(q0, p0, dt, n, |q, f, potential| {
                     if potential {
                         -sin_into_sum_cos(q, f, -1.0)
                     } else {
@@ -149,7 +148,7 @@ pub fn case(name: &str) -> Option<fn(usize, f64) -> Trajectory> {
                     }
                 })
             } else {
-                swarm(n, dt, |q, f, potential| {
+                unit_masses(q0, p0, dt, n, |q, f, potential| {
                     if potential {
                         let mut v = 0.0;
                         for (fi, qi) in f.iter_mut().zip(q) {
@@ -167,11 +166,10 @@ pub fn case(name: &str) -> Option<fn(usize, f64) -> Trajectory> {
                 })
             }
         },
-        "harmonic_chain" => |n, dt| {
-            let q0 = crate::workloads::harmonic_chain_q0(16);
+        "harmonic_chain" => |q0, p0, n, dt| {
             yoshida4(
-                &q0,
-                &[0.0; 16],
+                q0,
+                p0,
                 1.0,
                 dt,
                 n,
@@ -179,11 +177,10 @@ pub fn case(name: &str) -> Option<fn(usize, f64) -> Trajectory> {
                 half_sum_squares,
             )
         },
-        "fput" => |n, dt| {
-            let q0 = crate::workloads::harmonic_chain_q0(32);
+        "fput" => |q0, p0, n, dt| {
             yoshida4(
-                &q0,
-                &[0.0; 32],
+                q0,
+                p0,
                 1.0,
                 dt,
                 n,
@@ -191,9 +188,9 @@ pub fn case(name: &str) -> Option<fn(usize, f64) -> Trajectory> {
                 half_sum_squares,
             )
         },
-        "sine_gordon" => |n, dt| {
+        "sine_gordon" => |q0, p0, n, dt| {
             if slice_trig() {
-                sine_gordon(n, dt, |q, f, potential| {
+                unit_masses(q0, p0, dt, n, |q, f, potential| {
                     let onsite = if potential {
                         q.len() as f64 - sin_into_sum_cos(q, f, 1.0)
                     } else {
@@ -203,7 +200,7 @@ pub fn case(name: &str) -> Option<fn(usize, f64) -> Trajectory> {
                     sine_gordon_bonds(q, f, potential) + onsite
                 })
             } else {
-                sine_gordon(n, dt, |q, f, potential| {
+                unit_masses(q0, p0, dt, n, |q, f, potential| {
                     let mut onsite = 0.0;
                     if potential {
                         for (fi, qi) in f.iter_mut().zip(q) {
@@ -224,12 +221,10 @@ pub fn case(name: &str) -> Option<fn(usize, f64) -> Trajectory> {
     })
 }
 
-fn kepler(e: f64, c_pn: f64, n: usize, dt: f64) -> Trajectory {
-    let r0 = 1.0 - e;
-    let p0 = ((1.0 + e) / r0).sqrt();
+fn kepler(q0: &[f64], p0: &[f64], c_pn: f64, n: usize, dt: f64) -> Trajectory {
     yoshida4(
-        &[r0, 0.0],
-        &[0.0, p0],
+        q0,
+        p0,
         1.0,
         dt,
         n,
@@ -245,17 +240,16 @@ fn kepler(e: f64, c_pn: f64, n: usize, dt: f64) -> Trajectory {
     )
 }
 
-/// The workloads' swarm (n = 200) with the given force.
-fn swarm(n: usize, dt: f64, force: impl Fn(&[f64], &mut [f64], bool) -> f64) -> Trajectory {
-    let s = crate::workloads::swarm().expect("valid swarm");
-    let (q0, p0) = physicskit::classical::DynamicalSystem::state(&s).split_at(200);
+/// Yoshida-4 on unit masses (`T = sum p^2 / 2`) with the given force: the swarm and the
+/// sine-Gordon chain.
+fn unit_masses(
+    q0: &[f64],
+    p0: &[f64],
+    dt: f64,
+    n: usize,
+    force: impl Fn(&[f64], &mut [f64], bool) -> f64,
+) -> Trajectory {
     yoshida4(q0, p0, 1.0, dt, n, force, half_sum_squares)
-}
-
-/// The workloads' sine-Gordon kink (n = 100) with the given force.
-fn sine_gordon(n: usize, dt: f64, force: impl Fn(&[f64], &mut [f64], bool) -> f64) -> Trajectory {
-    let (q0, p0) = crate::workloads::sine_gordon_kink().expect("valid kink");
-    yoshida4(&q0, &p0, 1.0, dt, n, force, half_sum_squares)
 }
 
 /// Turns `f = sin q` into `F_i = (q_{i-1} - q_i) + (q_{i+1} - q_i) - sin q_i` with free ends

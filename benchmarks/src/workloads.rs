@@ -1,200 +1,189 @@
 //! The peer-comparison workloads through the Rust API: the peer's canonical cases, 10^5 steps
 //! at the peer's dt, full trajectory and energy stored, from the peer's initial conditions.
+//!
+//! The cases are `peer/workloads.json`, the one table that `peer/workloads.py` reads too: each
+//! names a system by its Python name (`"KeplerSystem.from_orbital_elements"`), which this side
+//! builds through the catalogue entry of that name with the same keyword arguments, so the
+//! Rust and the Python figures are of one workload.
 
-use physicskit::classical::systems::*;
-use physicskit::classical::{
-    HamiltonianSystem, LagrangianSystem, Method, OdeSystem, Result, SimulationResult,
-};
+use physicskit::classical::catalog::SYSTEMS;
+use physicskit::classical::model::entry::{ParamKind, Value};
+use physicskit::classical::model::{DynSystem, SystemEntry};
+use physicskit::classical::systems::SineGordonChain;
+use physicskit::classical::{IntegrateOptions, Method, Result, SimulationResult};
+use serde_json::Value as Json;
+use std::f64::consts::PI;
+
+/// The table, embedded when the crate is built.
+const TABLE: &str = include_str!("../peer/workloads.json");
 
 /// One benchmark case.
+#[derive(Debug, Clone)]
 pub struct Workload {
     /// Name shared with the Python comparison script.
-    pub name: &'static str,
+    pub name: String,
     /// Integrator.
     pub method: Method,
     /// Step.
     pub dt: f64,
-    /// Runs `steps` steps from the case's initial condition.
-    pub run: fn(usize, f64, Method) -> Result<SimulationResult>,
+    entry: &'static SystemEntry,
+    args: Vec<(String, Value)>,
 }
 
-fn span(steps: usize, dt: f64) -> (f64, f64) {
-    (0.0, steps as f64 * dt)
+impl Workload {
+    /// The case's system at its initial condition.
+    ///
+    /// # Errors
+    /// Whatever the catalogue refuses in the table's arguments.
+    pub fn system(&self) -> Result<Box<dyn DynSystem>> {
+        self.entry.build_from(self.args.iter().cloned())
+    }
+
+    /// Builds the system and runs `steps` steps of the case's step with its method.
+    ///
+    /// # Errors
+    /// As [`run_with`](Self::run_with).
+    pub fn run(&self, steps: usize) -> Result<SimulationResult> {
+        self.run_with(steps, self.dt, self.method)
+    }
+
+    /// Builds the system and runs `steps` steps of `dt` with `method`, storing the whole
+    /// trajectory and its energy.
+    ///
+    /// # Errors
+    /// Whatever building or integrating returns.
+    pub fn run_with(&self, steps: usize, dt: f64, method: Method) -> Result<SimulationResult> {
+        let mut system = self.system()?;
+        system.integrate(
+            (0.0, steps as f64 * dt),
+            dt,
+            method,
+            IntegrateOptions::default(),
+        )
+    }
+
+    /// The initial `(q, p)` of a system with a `q`/`p` split (the plain loops' start), `None`
+    /// for a first-order system.
+    ///
+    /// # Errors
+    /// As [`system`](Self::system).
+    pub fn start(&self) -> Result<Option<(Vec<f64>, Vec<f64>)>> {
+        let system = self.system()?;
+        let state = system.dynamical().state();
+        Ok(system.ndof().map(|n| {
+            let (q, p) = state.split_at(n);
+            (q.to_vec(), p.to_vec())
+        }))
+    }
 }
 
-fn kepler(a: f64, e: f64, c_pn: f64) -> Result<KeplerSystem> {
-    KeplerSystem::from_orbital_elements(
-        a,
-        e,
-        1.0,
-        1.0,
-        KeplerPerturbations::none().with_post_newtonian(c_pn),
-    )
-}
-
-/// The double pendulum of both its workloads (implicit midpoint and rk4).
-fn double_pendulum() -> Result<DoublePendulum> {
-    DoublePendulum::new(&[2.0, 1.0], &[0.5, -0.3], Default::default())
-}
-
-/// The swarm workload's 200 pendulums (also the plain loop's start).
+/// Every workload, in the table's order.
 ///
-/// # Errors
-/// None for these parameters; the constructor's otherwise.
-pub fn swarm() -> Result<PendulumSwarm> {
-    PendulumSwarm::from_box(1.0, 0.0, 0.05, 0.05, 200, 1.0, 0)
-}
-
-/// The sine-Gordon workload's kink on 100 sites, `(q0, p0)` (also the plain loop's start).
-///
-/// # Errors
-/// None for these parameters; the constructor's otherwise.
-pub fn sine_gordon_kink() -> Result<(Vec<f64>, Vec<f64>)> {
-    SineGordonChain::kink(100, 50.0, 1.0, 0.2, 1)
-}
-
-/// Initial positions of an `n`-mass chain with fixed ends (the 16-mass harmonic chain, the
-/// 32-mass FPUT chain): mode 1 with amplitude 0.5, as `FPUTChain::new` lays it out.
-pub fn harmonic_chain_q0(n: usize) -> Vec<f64> {
-    FPUTChain::new(n, 1.0, 1.0, 0.0, 1, 0.5)
-        .expect("valid chain")
-        .q()
-        .to_vec()
-}
-
-/// Every workload, in the order of the issue.
+/// # Panics
+/// If the embedded table is malformed (a case without its fields, a system or method no one
+/// knows): a defect of the table that the crate's test catches, not an input.
 pub fn all() -> Vec<Workload> {
-    vec![
-        Workload {
-            name: "projectile",
-            method: Method::Yoshida4,
-            dt: 1e-3,
-            run: |n, dt, m| {
-                ProjectileMotion::from_launch(20.0, 45.0, 1.0, 9.81, 0.0, 0.0)?.integrate(
-                    span(n, dt),
-                    dt,
-                    m,
-                )
-            },
-        },
-        Workload {
-            name: "kepler",
-            method: Method::Yoshida4,
-            dt: 1e-3,
-            run: |n, dt, m| kepler(1.0, 0.5, 0.0)?.integrate(span(n, dt), dt, m),
-        },
-        Workload {
-            name: "kepler_verlet",
-            method: Method::Verlet,
-            dt: 1e-3,
-            run: |n, dt, m| kepler(1.0, 0.5, 0.0)?.integrate(span(n, dt), dt, m),
-        },
-        Workload {
-            name: "kepler_pn",
-            method: Method::Yoshida4,
-            dt: 1e-3,
-            run: |n, dt, m| kepler(1.0, 0.3, 0.01)?.integrate(span(n, dt), dt, m),
-        },
-        Workload {
-            name: "double_pendulum",
-            method: Method::ImplicitMidpoint,
-            dt: 3e-5,
-            run: |n, dt, m| double_pendulum()?.integrate(span(n, dt), dt, m),
-        },
-        Workload {
-            name: "double_pendulum_rk4",
-            method: Method::Rk4,
-            dt: 3e-5,
-            run: |n, dt, m| double_pendulum()?.integrate(span(n, dt), dt, m),
-        },
-        Workload {
-            name: "hoop",
-            method: Method::ImplicitMidpoint,
-            dt: 2.2e-5,
-            run: |n, dt, m| {
-                let params = HoopParams {
-                    omega: 3.0,
-                    ..Default::default()
-                };
-                BeadOnRotatingHoop::new(0.3, 0.0, params)?.integrate(span(n, dt), dt, m)
-            },
-        },
-        Workload {
-            name: "coupled_oscillators",
-            method: Method::ImplicitMidpoint,
-            dt: 1e-4,
-            run: |n, dt, m| {
-                CoupledOscillators::new(&[0.1, -0.2, 0.15], &[0.0; 3], Default::default())?
-                    .integrate(span(n, dt), dt, m)
-            },
-        },
-        Workload {
-            name: "henon_heiles",
-            method: Method::Yoshida4,
-            dt: 5e-3,
-            run: |n, dt, m| {
-                HenonHeilesSystem::new(&[0.0, 0.3], &[0.3, 0.0])?.integrate(span(n, dt), dt, m)
-            },
-        },
-        Workload {
-            name: "swarm",
-            method: Method::Yoshida4,
-            dt: 1e-3,
-            run: |n, dt, m| swarm()?.integrate(span(n, dt), dt, m),
-        },
-        Workload {
-            name: "harmonic_chain",
-            method: Method::Yoshida4,
-            dt: 1e-2,
-            run: |n, dt, m| {
-                HarmonicChain::new(&harmonic_chain_q0(16), &[0.0; 16], 1.0, 1.0)?.integrate(
-                    span(n, dt),
-                    dt,
-                    m,
-                )
-            },
-        },
-        Workload {
-            name: "fput",
-            method: Method::Yoshida4,
-            dt: 5e-2,
-            run: |n, dt, m| {
-                FPUTChain::new(32, 1.0, 1.0, 0.7, 1, 0.5)?.integrate(span(n, dt), dt, m)
-            },
-        },
-        Workload {
-            name: "sine_gordon",
-            method: Method::Yoshida4,
-            dt: 1e-2,
-            run: |n, dt, m| {
-                let (q0, p0) = sine_gordon_kink()?;
-                SineGordonChain::new(100, 1.0, 1.0, Some(&q0), Some(&p0))?.integrate(
-                    span(n, dt),
-                    dt,
-                    m,
-                )
-            },
-        },
-        Workload {
-            name: "euler_top",
-            method: Method::ImplicitMidpoint,
-            dt: 1e-3,
-            run: |n, dt, m| {
-                EulerTop::new(&[0.01, 1.0, 0.01], Default::default(), None)?.integrate(
-                    span(n, dt),
-                    dt,
-                    m,
-                )
-            },
-        },
-        Workload {
-            name: "heavy_top",
-            method: Method::ImplicitMidpoint,
-            dt: 5e-5,
-            run: |n, dt, m| {
-                HeavySymmetricTop::new(&[0.0, 0.5, 0.0], &[0.0, 0.0, 20.0], Default::default())?
-                    .integrate(span(n, dt), dt, m)
-            },
-        },
-    ]
+    let table: Json = serde_json::from_str(TABLE).expect("peer/workloads.json is JSON");
+    table["cases"]
+        .as_array()
+        .expect("peer/workloads.json has a list of cases")
+        .iter()
+        .map(|case| workload(case).unwrap_or_else(|e| panic!("peer/workloads.json: {e}")))
+        .collect()
+}
+
+fn workload(case: &Json) -> std::result::Result<Workload, String> {
+    let field = |key: &str| {
+        case.get(key)
+            .ok_or(format!("a case without `{key}`: {case}"))
+    };
+    let name = field("name")?
+        .as_str()
+        .ok_or("a name that is not a string")?;
+    let system = field("system")?
+        .as_str()
+        .ok_or("a system that is not a string")?;
+    let entry = SYSTEMS
+        .iter()
+        .copied()
+        .find(|e| e.python == Some(system))
+        .ok_or(format!(
+            "{name}: no catalogue entry has the Python name {system}"
+        ))?;
+    let method = field("method")?
+        .as_str()
+        .and_then(|m| m.parse::<Method>().ok())
+        .ok_or(format!("{name}: an unknown method"))?;
+    let dt = field("dt")?
+        .as_f64()
+        .ok_or(format!("{name}: dt is not a number"))?;
+    let args = field("args")?
+        .as_object()
+        .ok_or(format!("{name}: args is not an object"))?
+        .iter()
+        .map(|(key, value)| {
+            let kind = entry.param(key).map(|p| p.kind);
+            argument(kind, value)
+                .map(|v| (key.clone(), v))
+                .map_err(|e| format!("{name}: `{key}`: {e}"))
+        })
+        .collect::<std::result::Result<_, _>>()?;
+    Ok(Workload {
+        name: name.into(),
+        method,
+        dt,
+        entry,
+        args,
+    })
+}
+
+/// A table argument as the catalogue takes it: a number by the parameter's kind, an array as a
+/// vector, or one of the table's two generated starts (see its `about`).
+fn argument(kind: Option<ParamKind>, value: &Json) -> std::result::Result<Value, String> {
+    let number = |key: &str, of: &Json| of[key].as_f64().ok_or(format!("`{key}` is not a number"));
+    match value {
+        Json::Number(x) if kind == Some(ParamKind::Integer) => x
+            .as_i64()
+            .map(Value::Integer)
+            .ok_or("not an integer".into()),
+        Json::Number(x) => x.as_f64().map(Value::Scalar).ok_or("not a number".into()),
+        Json::Array(items) => items
+            .iter()
+            .map(Json::as_f64)
+            .collect::<Option<Vec<f64>>>()
+            .map(Value::Vector)
+            .ok_or("not an array of numbers".into()),
+        Json::Object(start) if start.contains_key("sine_mode") => {
+            let mode = &start["sine_mode"];
+            let n = number("n", mode)? as usize;
+            let wave = PI * number("mode", mode)? / (n + 1) as f64;
+            let amplitude = number("amplitude", mode)?;
+            Ok(Value::Vector(
+                (1..=n)
+                    .map(|i| amplitude * (wave * i as f64).sin())
+                    .collect(),
+            ))
+        }
+        Json::Object(start) if start.contains_key("kink") => {
+            let kink = &start["kink"];
+            let or =
+                |key: &str, default: f64| kink.get(key).map_or(Ok(default), |_| number(key, kink));
+            let (q0, p0) = SineGordonChain::kink(
+                number("n", kink)? as usize,
+                number("center", kink)?,
+                or("width", 1.0)?,
+                or("velocity", 0.0)?,
+                or("polarity", 1.0)? as i32,
+            )
+            .map_err(|e| e.to_string())?;
+            match start.get("part").and_then(Json::as_u64) {
+                Some(0) => Ok(Value::Vector(q0)),
+                Some(1) => Ok(Value::Vector(p0)),
+                _ => Err("a kink start needs `part`: 0 (q0) or 1 (p0)".into()),
+            }
+        }
+        other => Err(format!(
+            "{other} is not a number, an array or a known start"
+        )),
+    }
 }
