@@ -405,21 +405,40 @@ function kind() {
   if (n.includes("pendulum")) return "pendulum";
   return pos.length ? "bodies" : "series";
 }
-function draggable() { return ["projectile", "orbit", "hoop", "spring", "pendulum", "bodies"].includes(kind()); }
+function draggable() { return ["projectile", "orbit", "hoop", "spring", "pendulum", "bodies", "chain", "sites", "top"].includes(kind()); }
+
+// Builds the system with the chosen method (some values run only with some methods: a
+// projectile with drag is not separable, so the splitting methods refuse it). If the chosen
+// method refuses these values, the first offered method that takes them is chosen instead, and
+// the page says so.
+function buildLab(state0) {
+  const chosen = $("method").value;
+  let first = null;
+  for (const m of [chosen, ...offeredMethods().filter((x) => x !== chosen)]) {
+    let lab;
+    try {
+      lab = app.core.build(app.entry.name, app.params, m);
+      if (state0) lab.setState(state0);
+    } catch (e) {
+      lab?.free();
+      first ??= e;
+      continue;
+    }
+    if (m !== chosen) {
+      fillMethods(m);
+      return { lab, note: `${methodTitle(chosen)} cannot run this setup (${first.message}); running with ${methodTitle(m)}.` };
+    }
+    return { lab, note: null };
+  }
+  throw first;
+}
 
 function rebuild(state0 = null, keepMessage = false) {
-  let lab;
-  try {
-    lab = app.core.build(app.entry.name, app.params);
-    if (state0) lab.setState(state0);
-  } catch (e) {
-    lab?.free();
-    message(e.message);
-    return false;
-  }
+  let built;
+  try { built = buildLab(state0); } catch (e) { message(e.message); return false; }
+  const lab = built.lab;
   app.lab?.free();
   app.lab = lab;
-  try { lab.setMethod($("method").value); } catch (e) { message(e.message); }
   const labels = stateLabels(), units = stateUnits();
   // The phase panel starts at (q, p) of one site (the middle one of a chain, where a wave or
   // a kink passes) for each new system and keeps the reader's choice while it is rebuilt.
@@ -447,7 +466,8 @@ function rebuild(state0 = null, keepMessage = false) {
   }
   $("drag-hint").hidden = !draggable();
   startViews(app.extent);
-  if (!keepMessage) message("");
+  if (built.note) message(built.note, "notice");
+  else if (!keepMessage) message("");
   draw();
   return true;
 }
@@ -482,9 +502,8 @@ function probeExtent() {
   if (s0.length > PROBE_MAX_STATE) return null;
   let probe;
   try {
-    probe = app.core.build(app.entry.name, app.params);
+    probe = app.core.build(app.entry.name, app.params, $("method").value);
     probe.setState(s0);
-    probe.setMethod($("method").value);
   } catch { probe?.free(); return null; }
   const dt = Number($("dt").value) || DEFAULT_DT;
   const ext = { pos: null, lo: s0.slice(), hi: s0.slice(), samples: [] };
@@ -955,6 +974,7 @@ function project3([x, y, z], size = 1, elevation = ELEVATION) {
 // of the axis tip (precession and nutation).
 function drawTop(ctx, w, h, tip) {
   const l = Math.hypot(tip[0], tip[1], tip[2]) || 1, L = lengthUnit();
+  app.topLength = l;
   const v = plotView(w, h, { x0: -1.3 * l, x1: 1.3 * l, y0: -0.9 * l, y1: 1.3 * l }, true, false);
   app.sceneView = v;
   const P = (p) => { const [x, y] = project3(p, l); return [v.X(x), v.Y(y)]; };
@@ -1122,7 +1142,13 @@ function drawChain(ctx, w, h, k) {
   if (app.extent) for (let i = 0; i < n; i++) amp = Math.max(amp, Math.abs(app.extent.lo[i]), Math.abs(app.extent.hi[i]));
   for (let i = 0; i < n; i++) amp = Math.max(amp, Math.abs(s[i]));
   amp = amp || 1;
-  if (n === 1 && k === "chain") return drawOneMass(ctx, w, h, s[0], amp, label(sym, unit));
+  // While a mass is dragged the drawing keeps its scale, so the mass stays under the pointer.
+  if (app.drag?.chain) amp = app.drag.amp;
+  if (n === 1 && k === "chain") {
+    drawOneMass(ctx, w, h, s[0], amp, label(sym, unit));
+    app.chainGeom = { one: true, v: app.sceneView, amp };
+    return;
+  }
   const top = k === "chain" ? Math.min(110, h * 0.32) : 0;
   const v = plotView(w, h - top, { x0: 0.5, x1: n + 0.5, y0: -1.1 * amp, y1: 1.1 * amp }, false);
   ctx.save(); ctx.translate(0, top);
@@ -1136,11 +1162,13 @@ function drawChain(ctx, w, h, k) {
   const r = n > 60 ? 1.8 : 4;
   for (let i = 0; i < n; i++) { ctx.beginPath(); ctx.arc(v.X(i + 1), v.Y(s[i]), r, 0, TAU); ctx.fill(); }
   ctx.restore(); ctx.restore();
+  app.chainGeom = { v, top, amp, strip: false };
   if (k !== "chain") return;
   // The masses on their springs, displacements to scale: a displacement of `amp` moves a
   // mass 0.4 of the spacing, so neighbours never cross.
   const x0 = v.rect.x0, x1 = v.rect.x1, y = top * 0.55, gap = (x1 - x0) / (n + 1), gain = (0.4 * gap) / amp;
   const X = (i) => x0 + gap * (i + 1) + gain * s[i];
+  Object.assign(app.chainGeom, { strip: true, x0, gap, gain, y });
   ctx.strokeStyle = "#555"; ctx.lineWidth = 1.2;
   const half = Math.max(3, Math.min(8, gap / 3));
   if (!ring) {
@@ -1662,11 +1690,12 @@ function angleCoordinates(q) {
 // accepted only if it brings the body nearer, angles wrapped into (−π, π]. Within reach the
 // body lands on the pointer; out of reach, at the nearest reachable point (arms stretched
 // towards the pointer), never at a wound-up or bent pose.
-function solveConfiguration(q0, body, target, angles) {
+// `where(q)` is the dragged point of pose q, in the target's coordinates.
+function solveConfiguration(q0, where, target, angles) {
   let q = Array.from(q0).map((x, j) => (angles[j] ? wrapAngle(x) : x));
   const n = q.length;
   const residual = (qq) => {
-    const [x, y] = bodiesOf(app.lab.positionsOf(qq))[body];
+    const [x, y] = where(qq);
     return [x - target[0], y - target[1]];
   };
   const cost = (r) => r[0] * r[0] + r[1] * r[1];
@@ -1718,10 +1747,54 @@ function solveLinear(A, b) {
   return x.every(Number.isFinite) ? x : null;
 }
 
+// A chain's masses are dragged along their line, one at a time: in the strip of masses on
+// springs sideways, in the displacement plot up and down, the one mass on a spring sideways.
+// The displacement is clamped to the drawing's scale fixed when the drag starts (1.1 times the
+// run's largest displacement: the plot's edge; in the strip 0.44 of the spacing, so neighbours
+// never cross). The dragged mass is let go at rest; the others keep their momenta.
+const CHAIN_REACH = 1.1;
+function chainHandles() {
+  const g = app.chainGeom, s = app.lab.state(), n = ndof(), out = [];
+  if (!g) return out;
+  for (let i = 0; i < n; i++) {
+    if (g.one) { out.push({ i, how: "one", x: g.v.X(s[0]), y: g.v.Y(0) }); break; }
+    out.push({ i, how: "plot", x: g.v.X(i + 1), y: g.top + g.v.Y(s[i]) });
+    if (g.strip) out.push({ i, how: "strip", x: g.x0 + g.gap * (i + 1) + g.gain * s[i], y: g.y });
+  }
+  return out;
+}
+function chainDisplacement(d, px, py) {
+  const g = app.chainGeom, i = d.i;
+  const x = d.how === "plot" ? g.v.inv(px, py - g.top)[1] : d.how === "one" ? g.v.inv(px, py)[0] : (px - g.x0 - g.gap * (i + 1)) / g.gain;
+  return Math.max(-CHAIN_REACH * d.amp, Math.min(CHAIN_REACH * d.amp, x));
+}
+
+// A top is dragged by its axis: the pointer on the drawn top picks the direction of the
+// symmetry axis (tilt θ and azimuth φ; the spin angle ψ stays), the point of the sphere of the
+// axis's length whose projection is under the pointer (out of the sphere's outline, the
+// nearest point of the outline). θ is kept TOP_TILT away from the vertical both ways, where the
+// Euler angles lock. The top is let go with its spin ψ̇ and no precession or nutation rate.
+const TOP_TILT = 0.02;
+function topPoint(q) {
+  const [x, y] = project3(app.lab.positionsOf(q), app.topLength);
+  return [x, y];
+}
+function topAngles(q) {
+  const sym = presentation().symbols ?? [], ith = sym.indexOf("\\theta"), iphi = sym.indexOf("\\phi");
+  if (ith < 0 || iphi < 0) return q;
+  // The same axis with θ ≥ 0: (φ, −θ) is (φ + π, θ).
+  if (q[ith] < 0) { q[ith] = -q[ith]; q[iphi] = wrapAngle(q[iphi] + Math.PI); }
+  q[ith] = Math.max(TOP_TILT, Math.min(Math.PI - TOP_TILT, q[ith]));
+  return q;
+}
+
 function onScenePointer(ev) {
-  const c = $("scene"), v = app.sceneView, pos = app.lab.positions();
-  if (!v || !draggable()) return;
+  const c = $("scene"), v = app.sceneView, pos = app.lab.positions(), k = kind();
+  if (!draggable()) return;
   const [px, py] = canvasPoint(c, ev);
+  if (k === "chain" || k === "sites") return onChainPointer(ev, c, px, py);
+  if (!v) return;
+  if (k === "top") return onTopPointer(ev, c, px, py, v);
   if (ev.type === "pointerdown") {
     const bodies = bodiesOf(pos);
     let best = -1, bestD = 30;
@@ -1739,7 +1812,8 @@ function onScenePointer(ev) {
     const s = app.lab.state(), n = ndof(), target = v.inv(px, py);
     // The hoop is drawn turned by Ωt: the bead's place on it is the pointer's x over cos Ωt.
     if (kind() === "hoop") { const c = Math.cos(param("omega") * app.lab.time()); if (Math.abs(c) > 0.2) target[0] /= c; }
-    const q = solveConfiguration(s.slice(0, n), app.drag.body, target, app.drag.angles);
+    const body = app.drag.body;
+    const q = solveConfiguration(s.slice(0, n), (qq) => bodiesOf(app.lab.positionsOf(qq))[body], target, app.drag.angles);
     // A pendulum is let go from rest; an orbiting body keeps its momentum.
     const rest = family() === "lagrangian" ? new Array(n).fill(0) : Array.from(s.slice(n));
     try { app.lab.setState([...q, ...rest]); message(""); } catch (e) { message(e.message); }
@@ -1754,6 +1828,57 @@ function onScenePointer(ev) {
     // A pivot-centred scene keeps its frame; others refit to the new run.
     if (kind() === "pendulum" || kind() === "hoop") app.sceneBox = box;
     draw();
+  }
+}
+
+// The end of a drag: the new run's views.
+function endDrag() {
+  app.drag = null;
+  clearViews();
+  startViews();
+  draw();
+}
+
+function onChainPointer(ev, c, px, py) {
+  if (ev.type === "pointerdown") {
+    let best = null, bestD = 30;
+    for (const hd of chainHandles()) {
+      const d = Math.hypot(hd.x - px, hd.y - py);
+      if (d < bestD) { best = hd; bestD = d; }
+    }
+    if (!best) return;
+    c.setPointerCapture?.(ev.pointerId);
+    app.drag = { chain: true, i: best.i, how: best.how, amp: app.chainGeom.amp };
+    ev.preventDefault();
+  } else if (ev.type === "pointermove" && app.drag?.chain) {
+    const s = Array.from(app.lab.state()), n = ndof();
+    s[app.drag.i] = chainDisplacement(app.drag, px, py);
+    if (s.length === 2 * n) s[n + app.drag.i] = 0;
+    try { app.lab.setState(s); message(""); } catch (e) { message(e.message); }
+    clearViews();
+    draw();
+  } else if ((ev.type === "pointerup" || ev.type === "pointercancel") && app.drag) {
+    endDrag();
+  }
+}
+
+function onTopPointer(ev, c, px, py, v) {
+  if (ev.type === "pointerdown") {
+    const [x, y] = project3(Array.from(app.lab.positions()), app.topLength);
+    if (Math.hypot(v.X(x) - px, v.Y(y) - py) > 30) return;
+    c.setPointerCapture?.(ev.pointerId);
+    app.drag = { top: true, angles: angleCoordinates(Array.from(app.lab.state().slice(0, ndof()))) };
+    ev.preventDefault();
+  } else if (ev.type === "pointermove" && app.drag?.top) {
+    const s = Array.from(app.lab.state()), n = ndof(), sym = presentation().symbols ?? [];
+    const q = topAngles(solveConfiguration(s.slice(0, n), topPoint, v.inv(px, py), app.drag.angles));
+    // Let go with its spin: ψ̇ kept, the other rates zero.
+    const rates = s.slice(n).map((x, j) => (sym[j] === "\\psi" ? x : 0));
+    try { app.lab.setState([...q, ...rates]); message(""); } catch (e) { message(e.message); }
+    clearViews();
+    draw();
+  } else if ((ev.type === "pointerup" || ev.type === "pointercancel") && app.drag) {
+    endDrag();
   }
 }
 
@@ -1783,6 +1908,7 @@ function shareHash() {
   h.set("dt", $("dt").value);
   h.set("steps", $("speed").value);
   h.set("params", JSON.stringify(app.params));
+  if ($("timelapse").checked) h.set("timelapse", "1");
   // Shortest round-trip decimal of each number: the state comes back bit for bit.
   h.set("state", Array.from(app.lab.initialState()).map(String).join(","));
   return `#${h.toString()}`;
@@ -1805,6 +1931,14 @@ function applyHash(hash) {
     if (h.has("system")) refused.push(`no system called ${quoted(h.get("system"))}, so ${systemTitle(fallback).toLowerCase()} opened`);
     entry = fallback;
   }
+  // The method first: some parameter values run only with some methods (a projectile with
+  // drag refuses the splitting methods), so the parameters are tried with the link's method.
+  const offered = entry.methods.filter((m) => !app.catalogue.methods.find((x) => x.name === m)?.adaptive);
+  let method = h.get("method");
+  if (method !== null && !offered.includes(method)) {
+    refused.push(`method ${quoted(method)} (not one this system runs in the lab)`);
+    method = null;
+  }
   // Parameters: all together if the system builds with them (a vector and the length that
   // goes with it only build together); otherwise kept one by one, each only if the system
   // builds with it, the others refused by name.
@@ -1817,21 +1951,17 @@ function applyHash(hash) {
       refused.push("the parameters (not a set of named values)");
     } else if (parsed !== undefined) {
       let together = false;
-      try { app.core.build(entry.name, parsed).free(); params = { ...parsed }; together = true; } catch { /* one by one below */ }
+      try { app.core.build(entry.name, parsed, method).free(); params = { ...parsed }; together = true; } catch { /* one by one below */ }
       if (!together) {
         for (const [k, val] of Object.entries(parsed)) {
           const trial = { ...params, [k]: val };
-          try { app.core.build(entry.name, trial).free(); params = trial; } catch (e) { refused.push(`${quoted(k)}: ${e.message}`); }
+          try { app.core.build(entry.name, trial, method).free(); params = trial; } catch (e) { refused.push(`${quoted(k)}: ${e.message}`); }
         }
       }
     }
   }
   selectSystem(entry.name, params, false);
-  const method = h.get("method");
-  if (method !== null) {
-    if (offeredMethods().includes(method)) fillMethods(method);
-    else refused.push(`method ${quoted(method)} (not one this system runs in the lab)`);
-  }
+  if (method !== null) fillMethods(method);
   const dtText = h.get("dt");
   if (dtText !== null) {
     const dt = Number(dtText);
@@ -1845,6 +1975,14 @@ function applyHash(hash) {
     const n = Number(stepsText), max = Number($("speed").max);
     if (Number.isInteger(n) && n >= 1 && n <= max) { $("speed").value = n; $("speed-out").textContent = n; }
     else refused.push(`steps = ${quoted(stepsText)} (a whole number from 1 to ${max})`);
+  }
+  // A time-lapse link (the box ticked, or, from before the link said so, the time-lapse's own
+  // step and steps a frame) opens with the box ticked and its note; its dt and steps stay the
+  // link's.
+  const tl = TIME_LAPSE[entry.name];
+  if (tl && (h.get("timelapse") === "1" || (Number(dtText) === tl.dt && Number(stepsText) === tl.steps))) {
+    $("timelapse").checked = true;
+    $("step-note").textContent = tl.note;
   }
   let state = null;
   const stateText = h.get("state");
@@ -2001,6 +2139,15 @@ window.physicskitLab = {
   bodiesOnScreen: () => {
     const c = $("scene"), r = c.getBoundingClientRect(), v = app.sceneView;
     return bodiesOf(app.lab.positions()).map(([x, y]) => [r.left + v.X(x), r.top + v.Y(y)]);
+  },
+  // The grab points of a chain's masses ({i, how, x, y}) or a top's axis tip, on the screen.
+  handlesOnScreen: () => {
+    const r = $("scene").getBoundingClientRect();
+    if (kind() === "top") {
+      const [x, y] = project3(Array.from(app.lab.positions()), app.topLength);
+      return [{ i: 0, how: "tip", x: r.left + app.sceneView.X(x), y: r.top + app.sceneView.Y(y) }];
+    }
+    return chainHandles().map((hd) => ({ ...hd, x: r.left + hd.x, y: r.top + hd.y }));
   },
   sceneAt: (clientX, clientY) => {
     const r = $("scene").getBoundingClientRect();

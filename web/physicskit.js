@@ -41,15 +41,20 @@ class Core {
     const len = this.x.pk_catalogue();
     return JSON.parse(this.text(this.x.pk_text_ptr(), len));
   }
-  /** Builds `system` with `params` (an object; missing names take the defaults). */
-  build(system, params = {}) {
+  /**
+   * Builds `system` with `params` (an object; missing names take the defaults) and the method
+   * named `method` (null: the system's default).
+   */
+  build(system, params = {}, method = null) {
     const name = utf8.encode(system);
     const json = utf8.encode(JSON.stringify(params));
-    const both = new Uint8Array(name.length + json.length);
-    both.set(name);
-    both.set(json, name.length);
-    this.putBytes(both);
-    const h = this.x.pk_build(name.length, json.length);
+    const how = utf8.encode(method ?? "");
+    const all = new Uint8Array(name.length + json.length + how.length);
+    all.set(name);
+    all.set(json, name.length);
+    all.set(how, name.length + json.length);
+    this.putBytes(all);
+    const h = this.x.pk_build(name.length, json.length, how.length);
     if (h === 0) throw new Error(this.error());
     return new Lab(this, h);
   }

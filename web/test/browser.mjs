@@ -18,12 +18,16 @@
 // scroll, the scene and Run on the first screen), and no console errors. Screenshots of
 // every system, desktop and phone, go to the given directory.
 //
-//   node web/test/browser.mjs SITE_DIR NATIVE_OUTPUT SCREENSHOT_DIR
+// With a rendered gallery's directory (`physicskit gallery --quick --out DIR`), every one of
+// its "Open in the lab" links is opened too: nothing refused, the system, method, step and
+// parameters it names.
+//
+//   node web/test/browser.mjs SITE_DIR NATIVE_OUTPUT SCREENSHOT_DIR [GALLERY_DIR]
 import { readFileSync, mkdirSync } from "node:fs";
 import { join } from "node:path";
 import { serve, launch } from "./harness.mjs";
 
-const [site, nativeFile, shots] = process.argv.slice(2);
+const [site, nativeFile, shots, galleryDir] = process.argv.slice(2);
 mkdirSync(shots, { recursive: true });
 const native = new Map(readFileSync(nativeFile, "utf8").trim().split("\n")
   .map((l) => JSON.parse(l)).map((r) => [`${r.system} ${r.method}`, r]));
@@ -278,6 +282,76 @@ await page.evaluate(() => window.physicskitLab.select("double-pendulum"));
   await page.screenshot({ path: join(shots, "double-pendulum-dragged-out-of-reach.png"), fullPage: true });
 }
 
+// Dragging a chain's mass and a top's axis. While the pointer is down the body is under it (to
+// 1.5 px: the whole-pixel mouse position and drawing); let go, the run starts from the dragged
+// state, whose energy is the closed form's for that state, and the share link carries it.
+const paramsOf = (p) => p.evaluate(() => { const L = window.physicskitLab; return Object.fromEntries(L.app.entry.params.map((q) => [q.name, L.app.params[q.name] ?? q.default])); });
+async function dragHandle(pick, dx, dy) {
+  const hs = await page.evaluate(() => window.physicskitLab.handlesOnScreen());
+  const h = pick(hs);
+  await page.mouse.move(h.x, h.y);
+  await page.mouse.down();
+  await page.mouse.move(h.x + dx / 2, h.y + dy / 2, { steps: 3 });
+  await page.mouse.move(h.x + dx, h.y + dy, { steps: 3 });
+  const held = (await page.evaluate(() => window.physicskitLab.handlesOnScreen())).find((g) => g.i === h.i && g.how === h.how);
+  await page.mouse.up();
+  const after = await page.evaluate(() => {
+    const L = window.physicskitLab;
+    return { state: Array.from(L.app.lab.state()), initial: Array.from(L.app.lab.initialState()), e0: L.app.lab.energy0(), hash: L.shareHash() };
+  });
+  return { h, held, target: [h.x + dx, h.y + dy], ...after };
+}
+function checkLink(name, r) {
+  const linked = new URLSearchParams(r.hash.slice(1)).get("state").split(",").map(Number);
+  if (linked.join() !== r.initial.join() || r.state.join() !== r.initial.join()) fail(`${name}: the link carries ${linked}, the run starts at ${r.initial}, the state is ${r.state}`);
+}
+{
+  // Coupled oscillators (masses between two walls): E = (m/2) Σ q̇ᵢ² + (k/2) Σ (qᵢ₊₁ − qᵢ)², walls q = 0.
+  await page.evaluate(() => window.physicskitLab.select("coupled-oscillators"));
+  const p = await paramsOf(page);
+  const energy = (s) => {
+    const n = s.length / 2, q = [0, ...s.slice(0, n), 0];
+    let e = 0;
+    for (let i = 0; i < n; i++) e += 0.5 * p.m * s[n + i] ** 2;
+    for (let i = 0; i + 1 < q.length; i++) e += 0.5 * p.k * (q[i + 1] - q[i]) ** 2;
+    return e;
+  };
+  for (const [how, dx, dy] of [["plot", 0, -25], ["strip", 12, 0]]) {
+    const r = await dragHandle((hs) => hs.filter((g) => g.how === how)[1], dx, dy);
+    const name = `chain drag (${how})`;
+    if (!r.held || Math.hypot(r.held.x - r.target[0], r.held.y - r.target[1]) > 1.5) fail(`${name}: mass ${r.h.i} at ${r.held && [r.held.x, r.held.y]}, pointer at ${r.target}`);
+    const n = r.state.length / 2;
+    if (r.state[n + r.h.i] !== 0) fail(`${name}: the dragged mass not let go at rest (${r.state[n + r.h.i]})`);
+    // Sums of a dozen squares: 1e-13 of the energy is a few roundings.
+    if (Math.abs(r.e0 - energy(r.state)) > 1e-13 * Math.abs(energy(r.state))) fail(`${name}: energy ${r.e0}, the closed form ${energy(r.state)}`);
+    checkLink(name, r);
+    console.log(`ok ${name}: mass ${r.h.i} to ${r.state[r.h.i].toPrecision(6)}, under the pointer, energy ${r.e0.toPrecision(8)} (closed form alike)`);
+  }
+  // Far beyond the plot: clamped at the plot's edge, 1.1 times the drawing's scale.
+  const amp = await page.evaluate(() => window.physicskitLab.app.chainGeom.amp);
+  const r = await dragHandle((hs) => hs.filter((g) => g.how === "plot")[2], 0, -2000);
+  if (r.state[r.h.i] !== 1.1 * amp) fail(`chain drag out of range: mass at ${r.state[r.h.i]}, the clamp ${1.1 * amp}`);
+  await page.screenshot({ path: join(shots, "coupled-oscillators-dragged.png"), fullPage: true });
+}
+{
+  // The heavy top let go with its spin and no precession or nutation rate:
+  // E = I₃ ψ̇²/2 + M g l cos θ (Goldstein §5.7 with θ̇ = φ̇ = 0).
+  await page.evaluate(() => window.physicskitLab.select("heavy-top"));
+  const p = await paramsOf(page);
+  const before = await page.evaluate(() => Array.from(window.physicskitLab.app.lab.state()));
+  const r = await dragHandle((hs) => hs[0], 40, 25);
+  const [phi, theta, psi, dphi, dtheta, dpsi] = r.state;
+  if (!r.held || Math.hypot(r.held.x - r.target[0], r.held.y - r.target[1]) > 1.5) fail(`top drag: tip at ${r.held && [r.held.x, r.held.y]}, pointer at ${r.target}`);
+  if (dphi !== 0 || dtheta !== 0 || dpsi !== before[5] || psi !== before[2]) fail(`top drag: let go with rates ${[dphi, dtheta, dpsi]}, spin angle ${psi} (was ${before[2]}, spin rate ${before[5]})`);
+  if (!(theta >= 0.02 && theta <= Math.PI - 0.02) || !(phi > -Math.PI && phi <= Math.PI)) fail(`top drag: θ = ${theta}, φ = ${phi}`);
+  const want = 0.5 * p.I3 * dpsi ** 2 + p.M * p.g * p.l * Math.cos(theta);
+  // Two terms: a few roundings.
+  if (Math.abs(r.e0 - want) > 1e-13 * Math.abs(want)) fail(`top drag: energy ${r.e0}, the closed form ${want}`);
+  checkLink("top drag", r);
+  console.log(`ok top drag: axis to θ = ${theta.toFixed(4)}, φ = ${phi.toFixed(4)}, under the pointer, energy ${r.e0.toPrecision(8)} (closed form alike)`);
+  await page.screenshot({ path: join(shots, "heavy-top-dragged.png"), fullPage: true });
+}
+
 // Hostile share links: each opens a page with controls, the linked system if it exists (else
 // the default), valid values, and one line naming what was refused.
 const HOSTILE = [
@@ -338,6 +412,48 @@ for (const [hash, system, named] of HOSTILE) {
   });
   if (bad.length) fail(`gallery-form links: ${bad.join(" | ")}`);
   console.log("ok gallery-form links: every system opens with its method and step, nothing refused");
+}
+
+// Every "Open in the lab" link of a rendered gallery (GALLERY_DIR/index.html, given as the
+// fourth argument) opens its system with its method, step and every parameter, nothing
+// refused: the page's links are read from the HTML as the gallery wrote them.
+if (galleryDir) {
+  const html = readFileSync(join(galleryDir, "index.html"), "utf8");
+  const hrefs = [...new Set([...html.matchAll(/href="([^"]*#[^"]*)"/g)].map((m) => m[1].replace(/&amp;/g, "&").replace(/&quot;/g, "\"")))]
+    .filter((h) => new URLSearchParams(h.split("#")[1]).has("system"));
+  if (!hrefs.length) fail(`gallery links: none in ${galleryDir}/index.html`);
+  const bad = await page.evaluate((hashes) => {
+    const L = window.physicskitLab, out = [];
+    for (const hash of hashes) {
+      const h = new URLSearchParams(hash.slice(1)), params = JSON.parse(h.get("params") ?? "{}");
+      const clean = L.openHash(hash);
+      const kept = Object.entries(params).every(([k, v]) => JSON.stringify(L.app.params[k]) === JSON.stringify(v));
+      const got = [L.app.entry.name, document.getElementById("method").value, Number(document.getElementById("dt").value)];
+      const want = [h.get("system"), h.get("method"), Number(h.get("dt"))];
+      // And it runs a frame with them.
+      const ran = clean && L.runFrames(1);
+      if (!clean || !kept || !ran || got.join() !== want.join()) out.push(`${want.join()} -> ${got.join()}${ran ? "" : " (does not run)"}: ${document.getElementById("message").textContent}`);
+    }
+    return out;
+  }, hrefs.map((h) => `#${h.split("#")[1]}`));
+  for (const b of bad) fail(`gallery link ${b}`);
+  console.log(`ok gallery links: ${hrefs.length - bad.length} of ${hrefs.length} open with their system, method, step and parameters, nothing refused`);
+}
+
+// A link made in time-lapse opens in time-lapse: the box ticked, its step and steps a frame.
+{
+  const r = await page.evaluate(() => {
+    const L = window.physicskitLab;
+    L.select("foucault-pendulum");
+    L.setTimeLapse(true);
+    const hash = L.shareHash(), dt = document.getElementById("dt").value, steps = document.getElementById("speed").value;
+    L.select("double-pendulum");
+    const clean = L.openHash(hash);
+    return { hash, clean, ticked: document.getElementById("timelapse").checked, same: [dt, steps].join() === [document.getElementById("dt").value, document.getElementById("speed").value].join(),
+      note: document.getElementById("step-note").textContent };
+  });
+  if (!r.clean || !r.ticked || !r.same || !/time-lapse/i.test(r.note)) fail(`time-lapse link: ${JSON.stringify(r)}`);
+  console.log("ok time-lapse link: opens with the time-lapse ticked, its step and steps a frame");
 }
 
 // Parameters that only build together (a start of another length and the size that goes

@@ -126,14 +126,20 @@ pub extern "C" fn pk_error_len() -> usize {
     with(|r| r.error.len())
 }
 
-/// Builds a lab: the input bytes hold the system's name (`name_len` bytes) followed by its
-/// parameters as a JSON object (`params_len` bytes). Returns the handle, or 0 on failure.
+/// Builds a lab: the input bytes hold the system's name (`name_len` bytes), its parameters as
+/// a JSON object (`params_len` bytes) and the method's name (`method_len` bytes; none: the
+/// default), one after another. Returns the handle, or 0 on failure.
 #[no_mangle]
-pub extern "C" fn pk_build(name_len: usize, params_len: usize) -> u32 {
+pub extern "C" fn pk_build(name_len: usize, params_len: usize, method_len: usize) -> u32 {
     with(|r| {
         let built = input_text(r, 0, name_len).and_then(|name| {
             let params = input_text(r, name_len, params_len)?;
-            Lab::new(&name, if params.is_empty() { "{}" } else { &params })
+            let method = input_text(r, name_len + params_len, method_len)?;
+            Lab::with_method(
+                &name,
+                if params.is_empty() { "{}" } else { &params },
+                (!method.is_empty()).then_some(method.as_str()),
+            )
         });
         match built {
             Ok(lab) => {

@@ -39,6 +39,40 @@ const MAX_CROSSINGS: usize = 20_000;
 /// The step a lab starts with, before its first frame names one (the page's default).
 const INITIAL_DT: f64 = 1e-3;
 
+/// The method `name`, if `entry` takes it.
+fn method_of(entry: &SystemEntry, name: &str) -> Result<Method, String> {
+    let method: Method = name
+        .parse()
+        .map_err(|e: physicskit::classical::Error| e.to_string())?;
+    if entry.methods().any(|m| m == method) {
+        Ok(method)
+    } else {
+        Err(format!(
+            "`{}` cannot be integrated with {name}; it takes {}",
+            entry.name,
+            entry
+                .methods()
+                .map(Method::name)
+                .collect::<Vec<_>>()
+                .join(", ")
+        ))
+    }
+}
+
+/// The method a lab starts with: the entry's default. A session steps frame by frame, which
+/// an adaptive method cannot (it steps onto the end of a known span): a system whose default
+/// is adaptive starts with the first fixed-step method it takes.
+fn default_method(entry: &SystemEntry) -> Result<Method, String> {
+    if entry.default_method.is_adaptive() {
+        entry
+            .methods()
+            .find(|m| !m.is_adaptive())
+            .ok_or_else(|| format!("`{}` has no fixed-step method", entry.name))
+    } else {
+        Ok(entry.default_method)
+    }
+}
+
 /// One running system.
 pub struct Lab {
     entry: &'static SystemEntry,
@@ -70,23 +104,28 @@ impl Lab {
     /// # Errors
     /// The catalogue's message for an unknown system or a refused value.
     pub fn new(name: &str, params: &str) -> Result<Self, String> {
+        Self::with_method(name, params, None)
+    }
+
+    /// [`Lab::new`] with the method named by `method` (`None`: the default). Some parameter
+    /// values run only with some methods (a projectile with drag is not separable, so the
+    /// splitting methods refuse it): a setup is built with its method, never with the default
+    /// first.
+    ///
+    /// # Errors
+    /// The catalogue's message for an unknown system or a refused value; an unknown method,
+    /// or one this system cannot use with these values.
+    pub fn with_method(name: &str, params: &str, method: Option<&str>) -> Result<Self, String> {
         let entry = catalog::find(name).map_err(|e| e.to_string())?;
         let given = values_from_json(entry, params)?;
+        let method = match method {
+            Some(name) => method_of(entry, name)?,
+            None => default_method(entry)?,
+        };
         let system = entry.build_from(given).map_err(|e| e.to_string())?;
         let state0 = system.dynamical().state().to_vec();
         let energy0 = system.dynamical().energy(&state0);
         let n = state0.len();
-        // A session steps frame by frame, which an adaptive method cannot (it steps onto the
-        // end of a known span): a system whose default is adaptive starts with the first
-        // fixed-step method it takes.
-        let method = if entry.default_method.is_adaptive() {
-            entry
-                .methods()
-                .find(|m| !m.is_adaptive())
-                .ok_or_else(|| format!("`{}` has no fixed-step method", entry.name))?
-        } else {
-            entry.default_method
-        };
         let session = system
             .start(method, INITIAL_DT)
             .map_err(|r| r.error.to_string())?;
@@ -119,20 +158,7 @@ impl Lab {
     /// # Errors
     /// An unknown name, or a method this system cannot use.
     pub fn set_method(&mut self, name: &str) -> Result<(), String> {
-        let method: Method = name
-            .parse()
-            .map_err(|e: physicskit::classical::Error| e.to_string())?;
-        if !self.entry.methods().any(|m| m == method) {
-            return Err(format!(
-                "`{}` cannot be integrated with {name}; it takes {}",
-                self.entry.name,
-                self.entry
-                    .methods()
-                    .map(Method::name)
-                    .collect::<Vec<_>>()
-                    .join(", ")
-            ));
-        }
+        let method = method_of(self.entry, name)?;
         if method == self.method() {
             return Ok(());
         }

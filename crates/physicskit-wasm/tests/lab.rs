@@ -154,3 +154,20 @@ fn a_huge_count_is_refused_by_name() {
     assert!(Lab::new("pendulum-swarm", &format!(r#"{{"n": {}}}"#, limit + 1)).is_err());
     assert!(Lab::new("pendulum-swarm", r#"{"n": 2000}"#).is_ok());
 }
+
+/// A setup some methods refuse builds with a method that takes it: a projectile with drag is
+/// not separable, so its default splitting method refuses it, and rk4 runs it (the gallery's
+/// link names rk4 with drag). An unknown method is refused by name.
+#[test]
+fn a_setup_builds_with_its_own_method() {
+    let drag = r#"{"drag_coeff": 0.02}"#;
+    let error = Lab::new("projectile", drag).err().unwrap();
+    let mut lab = Lab::with_method("projectile", drag, Some("rk4")).unwrap();
+    assert_eq!(lab.method().name(), "rk4", "default refused with {error}");
+    lab.step(10, 1e-3).unwrap();
+    let error = Lab::with_method("projectile", "{}", Some("warp-drive"))
+        .err()
+        .unwrap();
+    assert!(error.contains("warp-drive"), "{error}");
+    assert!(Lab::with_method("projectile", "{}", None).is_ok());
+}
