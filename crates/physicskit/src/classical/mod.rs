@@ -12,12 +12,14 @@
 //!    and the parallel ensemble of decoupled members.
 //! 3. [`model`]: a system as front ends see it: [`DynSystem`], its capabilities, the frame
 //!    by frame [`model::Session`], and the catalogue's vocabulary ([`SystemEntry`]).
-//! 4. [`lagrangian`]: the engine deriving equations of motion from `L(q, qdot, t)`.
-//! 5. [`symbolic`]: expressions, tapes and their JIT, and the engines built on them.
-//! 6. [`systems`] and [`examples`]: the built-in systems, each with its catalogue entry.
-//! 7. [`catalog`]: the list of every system, and [`explanations`], their physics paragraphs.
-//! 8. [`analysis`]: functions on states, trajectories and flows (action–angle, chaos).
-//! 9. [`ensemble`]: ensembles and sweeps of any catalogue entry on all cores.
+//! 4. [`lagrangian`]: the engine deriving equations of motion from `L(q, qdot, t)`, and
+//!    [`symbolic`]: expressions, tapes and their JIT, and the engines built on them. One
+//!    layer: the expression Lagrangian runs on the engine, and a generic Lagrangian's Taylor
+//!    form is its trace compiled from expressions.
+//! 5. [`systems`] and [`examples`]: the built-in systems, each with its catalogue entry.
+//! 6. [`catalog`]: the list of every system, and [`explanations`], their physics paragraphs.
+//! 7. [`analysis`]: functions on states, trajectories and flows (action–angle, chaos).
+//! 8. [`ensemble`]: ensembles and sweeps of any catalogue entry on all cores.
 
 pub mod analysis;
 pub mod catalog;

@@ -58,7 +58,9 @@ pub const INFO: MethodInfo = MethodInfo {
 
 /// The systems that have a Taylor form, for messages.
 pub const TAYLOR_SYSTEMS: &str = "systems defined by expressions: Python's HamiltonianEngine, \
-     LagrangianEngine and ODEEngine (Rust's ExprHamiltonian, ExprLagrangian and ExprOde)";
+     LagrangianEngine and ODEEngine (Rust's ExprHamiltonian, ExprLagrangian and ExprOde), and \
+     every Lagrangian system (the catalogue's Lagrangian family, whose generic L is traced into \
+     an expression)";
 
 /// The refusal of the `taylor` method by `system` (a name, or a description such as "this \
 /// Hamiltonian system"), which has no Taylor form: the one message every front end gives.
@@ -70,6 +72,17 @@ pub fn no_taylor_form(system: &str) -> Error {
              from which the Taylor recurrences are generated); `taylor` runs on {TAYLOR_SYSTEMS}; \
              use dop853 for the same tolerances here"
         ),
+    }
+}
+
+/// The system's type for messages (`KeplerSystem`, from its path), or "this system" behind a
+/// trait object, whose type names only the trait.
+fn system_name<S: ?Sized>() -> String {
+    let full = std::any::type_name::<S>();
+    let short = full.split('<').next().unwrap_or(full);
+    match short.rsplit("::").next() {
+        Some(name) if !full.starts_with("dyn ") && !name.is_empty() => format!("`{name}`"),
+        _ => "this system".into(),
     }
 }
 
@@ -656,7 +669,7 @@ impl AdaptiveStepper for TaylorStepper {
     ) -> Result<Self> {
         let field = system
             .taylor_field()
-            .ok_or_else(|| no_taylor_form("this system"))??;
+            .ok_or_else(|| no_taylor_form(&system_name::<S>()))??;
         if field.dim() != system.state_dim() {
             return Err(Error::DimensionMismatch {
                 name: "Taylor form".into(),

@@ -154,12 +154,18 @@ pub trait Lagrangian {
     fn lagrangian<D: Scalar>(&self, q: &[D], qdot: &[D], t: D) -> D;
 
     /// The equations of motion on `[q, qdot]` as Taylor recurrences (the system's
-    /// [`taylor_field`](crate::classical::DynamicalSystem::taylor_field)): `None` (the
-    /// default) unless `L` is an expression.
+    /// [`taylor_field`](crate::classical::DynamicalSystem::taylor_field)). The default traces
+    /// [`lagrangian`](Self::lagrangian) once into an expression
+    /// ([`traced_taylor_field`](crate::classical::symbolic::traced_taylor_field)), so every
+    /// Lagrangian written generically has one; `Some(Err(_))` when `L` decides on a value
+    /// of its arguments (a comparison, `re()`), which a trace cannot follow.
     fn taylor_field(
         &self,
-    ) -> Option<Result<Box<dyn crate::classical::integrators::taylor::TaylorField>>> {
-        None
+    ) -> Option<Result<Box<dyn crate::classical::integrators::taylor::TaylorField>>>
+    where
+        Self: Sized,
+    {
+        Some(crate::classical::symbolic::traced_taylor_field(self))
     }
 
     // Optional closed forms. The engine calls each of these first and differentiates `L`

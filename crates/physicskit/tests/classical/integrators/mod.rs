@@ -22,3 +22,4 @@ mod methods;
 mod reversibility;
 mod session;
 mod taylor;
+mod taylor_builtin;

@@ -1,0 +1,206 @@
+//! `taylor` on the built-in systems: the Lagrangian ones have a Taylor form by tracing their
+//! generic `L` (`symbolic/trace.rs`), whose field equals the system's own closed-form
+//! `derivatives` at random states and whose runs follow dop853 at tight tolerance and keep the
+//! energy; every other catalogue system refuses `taylor` by name; a Lagrangian that decides on
+//! a value is refused naming the operation.
+
+use crate::fixtures::pseudo_random;
+use physicskit::classical::catalog::SYSTEMS;
+use physicskit::classical::integrators::Family;
+use physicskit::classical::lagrangian::{Lagrangian, LagrangianModel, Scalar};
+use physicskit::classical::model::DynSystem;
+use physicskit::classical::symbolic::trace_lagrangian;
+use physicskit::classical::{Error, IntegrateOptions, LagrangianSystem, Method, Tolerances};
+
+/// Every catalogue entry built from its defaults, with its name.
+fn catalogue() -> Vec<(&'static str, Box<dyn DynSystem>)> {
+    SYSTEMS
+        .iter()
+        .map(|entry| (entry.name, entry.build_from([]).unwrap()))
+        .collect()
+}
+
+fn lagrangian_systems() -> Vec<(&'static str, Box<dyn DynSystem>)> {
+    let systems: Vec<_> = catalogue()
+        .into_iter()
+        .filter(|(_, s)| s.family() == Family::Lagrangian)
+        .collect();
+    // Double pendulum, coupled oscillators, elastic pendulum, hoop, symmetric top: a catalogue
+    // that lost them would make the tests below vacuous.
+    assert!(systems.len() >= 5, "{} Lagrangian systems", systems.len());
+    systems
+}
+
+/// The traced Taylor form's field (its first-order coefficients `y^[1] = f(t, y)`) against
+/// the system's own `derivatives` (closed forms: hand-derived accelerations) at random states
+/// around the default start. Both are the Euler–Lagrange acceleration to rounding, computed
+/// along different paths (symbolic derivatives of the traced `L` and elimination, against the
+/// hand-derived solution); each is a few dozen operations of relative rounding 1.1e-16
+/// amplified by the mass matrix's condition number (below 1e2 at these states), so they
+/// agree to a few 1e-14 relative to the acceleration's scale: 1e-12 is that with a margin of
+/// about 30, and a wrong term (a missing factor, a sign) is off by order one.
+#[test]
+fn the_traced_field_equals_the_hand_written_one() {
+    for (name, system) in lagrangian_systems() {
+        let dynamical = system.dynamical();
+        let mut field = dynamical
+            .taylor_field()
+            .unwrap_or_else(|| panic!("{name}: no Taylor form"))
+            .unwrap_or_else(|e| panic!("{name}: {e}"));
+        let y0 = dynamical.state().to_vec();
+        let dim = y0.len();
+        assert_eq!(field.dim(), dim, "{name}");
+        for seed in 0..20 {
+            let noise = pseudo_random(dim, 1000 + seed);
+            // Within 0.05 (radians or metres) of the start: inside every system's domain (the
+            // elastic pendulum's r > 0, the top's 0 < theta < pi).
+            let y: Vec<f64> = y0.iter().zip(&noise).map(|(a, b)| a + 0.1 * b).collect();
+            let t = 0.3;
+            let mut own = vec![0.0; dim];
+            dynamical.derivatives(t, &y, &mut own).unwrap();
+            let mut coefficients = vec![0.0; 2 * dim];
+            field.coefficients(t, &y, 1, &mut coefficients).unwrap();
+            let scale = own.iter().fold(1.0_f64, |m, x| m.max(x.abs()));
+            for i in 0..dim {
+                let traced = coefficients[2 * i + 1];
+                assert!(
+                    (traced - own[i]).abs() <= 1e-12 * scale,
+                    "{name} seed {seed} component {i}: traced {traced} vs own {}",
+                    own[i]
+                );
+            }
+        }
+    }
+}
+
+fn run(system: &mut dyn DynSystem, method: Method, span: f64, tol: f64) -> Vec<f64> {
+    let y0 = system.dynamical().state().to_vec();
+    system.reset(Some(&y0), 0.0).unwrap();
+    let result = system
+        .integrate(
+            (0.0, span),
+            span / 10.0,
+            method,
+            IntegrateOptions {
+                tolerances: Some(Tolerances::new(tol, tol).unwrap()),
+                ..IntegrateOptions::final_only()
+            },
+        )
+        .unwrap_or_else(|e| panic!("{method}: {e}"));
+    system.reset(Some(&y0), 0.0).unwrap();
+    result.y.row(result.y.nrows() - 1).to_vec()
+}
+
+/// `taylor` at tolerance 1e-14 against dop853 at 1e-14 over 5 time units from each default
+/// start, and its own energy (the Jacobi integral `p . qdot - L`, conserved: no Lagrangian
+/// here depends on time). Each method's global error at 1e-14 is about 1e-12 of the state's
+/// scale after 5 units (the double pendulum's largest Lyapunov exponent at its default start
+/// is about 1/s, stretching the local errors of ~1e-14 by e^5 ~ 150), so the two agree to
+/// 1e-10 with a margin of 100; a wrong force is off by order one. The energy of one run to
+/// 1e-14 drifts by the sum of its steps' errors, a few hundred steps of ~1e-15 relative:
+/// 1e-11 of the energy's scale bounds it by more than 10x.
+#[test]
+fn taylor_follows_dop853_and_keeps_the_energy_on_every_lagrangian_system() {
+    for (name, mut system) in lagrangian_systems() {
+        let span = 5.0;
+        let taylor = run(system.as_mut(), Method::Taylor, span, 1e-14);
+        let dop853 = run(system.as_mut(), Method::Dop853, span, 1e-14);
+        let scale = dop853.iter().fold(1.0_f64, |m, x| m.max(x.abs()));
+        for (i, (a, b)) in taylor.iter().zip(&dop853).enumerate() {
+            assert!(
+                (a - b).abs() <= 1e-10 * scale,
+                "{name} component {i}: taylor {a} vs dop853 {b}"
+            );
+        }
+        let dynamical = system.dynamical();
+        let e0 = dynamical.energy(dynamical.state());
+        let e1 = dynamical.energy(&taylor);
+        assert!(
+            (e1 - e0).abs() <= 1e-11 * e0.abs().max(1.0),
+            "{name}: energy {e0} -> {e1}"
+        );
+    }
+}
+
+/// Every catalogue system that is not Lagrangian has a hand-written `f64` field and no Taylor
+/// form: `taylor` is refused as unsupported, and the reason names the Lagrangian systems,
+/// which have one.
+#[test]
+fn the_other_systems_refuse_taylor_and_say_which_have_it() {
+    let mut refused = 0;
+    for (name, mut system) in catalogue() {
+        if system.family() == Family::Lagrangian {
+            continue;
+        }
+        assert!(system.dynamical().taylor_field().is_none(), "{name}");
+        let err = system
+            .integrate((0.0, 1.0), 0.1, Method::Taylor, IntegrateOptions::default())
+            .unwrap_err();
+        let Error::UnsupportedMethod { method, reason } = &err else {
+            panic!("{name}: {err}");
+        };
+        assert_eq!(method, "taylor", "{name}");
+        assert!(reason.contains("Lagrangian"), "{name}: {reason}");
+        refused += 1;
+    }
+    assert!(refused > 0);
+}
+
+/// A Lagrangian whose code branches on a value (`|v|` written as a comparison) cannot be
+/// traced: the trace is refused, naming the comparison, and so is its `taylor` run.
+struct Branching;
+
+impl Lagrangian for Branching {
+    fn ndof(&self) -> usize {
+        1
+    }
+    fn lagrangian<D: Scalar>(&self, q: &[D], qdot: &[D], _t: D) -> D {
+        let speed = if qdot[0] < D::from(0.0) {
+            -qdot[0]
+        } else {
+            qdot[0]
+        };
+        speed * speed * 0.5 - q[0] * q[0] * 0.5
+    }
+}
+
+#[test]
+fn a_lagrangian_that_branches_on_a_value_is_refused() {
+    let err = trace_lagrangian(&Branching).unwrap_err();
+    let Error::UnsupportedMethod { method, reason } = &err else {
+        panic!("{err}");
+    };
+    assert_eq!(method, "taylor");
+    assert!(reason.contains("comparison"), "{reason}");
+    let mut model = LagrangianModel::new(Branching, &[0.5], &[0.0]).unwrap();
+    let err = model
+        .integrate((0.0, 1.0), 0.1, Method::Taylor)
+        .unwrap_err();
+    assert!(err.to_string().contains("comparison"), "{err}");
+}
+
+/// A user's generic Lagrangian gets the Taylor form with no code of its own: a pendulum
+/// `L = v²/2 + cos q` traced, against its closed form `qddot = -sin q` at a few angles (the
+/// recurrences give `y^[1]` exactly as the field to rounding: 1e-15 is a few ulps of values
+/// below 1).
+struct Pendulum;
+
+impl Lagrangian for Pendulum {
+    fn ndof(&self) -> usize {
+        1
+    }
+    fn lagrangian<D: Scalar>(&self, q: &[D], qdot: &[D], _t: D) -> D {
+        qdot[0] * qdot[0] * 0.5 + q[0].cos()
+    }
+}
+
+#[test]
+fn a_users_generic_lagrangian_has_a_taylor_form() {
+    let mut field = Pendulum.taylor_field().unwrap().unwrap();
+    for q in [-2.0, -0.3, 0.0, 0.7, 3.0] {
+        let mut c = vec![0.0; 4];
+        field.coefficients(0.0, &[q, 0.2], 1, &mut c).unwrap();
+        assert!((c[1] - 0.2).abs() <= 1e-15, "{c:?}");
+        assert!((c[3] + f64::sin(q)).abs() <= 1e-15, "{q}: {c:?}");
+    }
+}
