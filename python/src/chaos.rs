@@ -16,11 +16,13 @@ use physicskit::classical::analysis::chaos_map::{chaos_map_by, Indicator, MapRun
 use physicskit::classical::analysis::lyapunov::{lyapunov_on_flow, DEFAULT_RENORMALIZE_EVERY};
 use physicskit::classical::analysis::poincare::Direction;
 use physicskit::classical::analysis::sali::{alignment_on_flow, Alignment, CHAOS_THRESHOLD};
-use physicskit::classical::analysis::section::{section_on_flow, Continuation, SurfaceOfSection};
+use physicskit::classical::analysis::section::{
+    section_on_flow, taylor_section, Continuation, SurfaceOfSection,
+};
 use physicskit::classical::analysis::watch::AnalysisOptions;
 use physicskit::classical::integrators::Flow;
 use physicskit::classical::model::erased::DynSystem;
-use physicskit::classical::{Error, Method, Result, TimeGrid};
+use physicskit::classical::{Error, Method, Result, TimeGrid, Tolerances};
 use pyo3::prelude::*;
 use pyo3::types::PyDict;
 
@@ -313,12 +315,39 @@ pub fn chaos_native<'py>(
 ) -> PyResult<Bound<'py, PyDict>> {
     let job = job_from_py(kind, options)?;
     let state = to_vec(&state);
+    // Only a section runs on the Taylor form (crossings on the step polynomial); the tangent
+    // flows of the other analyses have none.
+    let taylor = matches!(job, Job::Section(_)) && native.has_taylor_form();
     let inner = native.inner_mut();
-    let method = parse_method(method, inner.default_method(), true, false).py()?;
+    let method = parse_method(method, inner.default_method(), true, taylor).py()?;
     let mut observer = SignalObserver::default();
     let outcome = py.detach(|| -> Result<_> {
         inner.reset(Some(&state), t0)?;
         let grid = TimeGrid::new(t_span, dt)?;
+        if let (Job::Section(surface), true) = (&job, method.needs_taylor_form()) {
+            // The Taylor method chooses its own steps (`dt` is not used) and leaves the
+            // system where the run ended.
+            let cut = taylor_section(
+                &mut **inner,
+                t_span,
+                Tolerances::default(),
+                surface,
+                usize::MAX,
+            )?;
+            let n = cut.len();
+            let dim = state.len();
+            let end = Continuation {
+                state: inner.dynamical().state().to_vec(),
+                t: inner.dynamical().t(),
+            };
+            return Ok((
+                vec![
+                    ("t", Output::Array(cut.t, vec![n])),
+                    ("y", Output::Array(cut.states, vec![n, dim])),
+                ],
+                end,
+            ));
+        }
         let out = {
             let sys: &dyn DynSystem = &**inner;
             let mut flow = sys.flow(method, job.vectors(state.len()))?;

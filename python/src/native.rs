@@ -35,7 +35,7 @@ pub fn check_len(name: &str, v: &[f64], n: usize) -> Result<()> {
 
 /// Parses a method name, or takes the system's default for `None`, for a system that accepts
 /// the splitting methods when `splitting` (a separable, conservative Hamiltonian) and the
-/// methods that need a Taylor form when `taylor` (a system defined by expressions).
+/// methods that need a Taylor form when `taylor` (a system that has one).
 ///
 /// # Errors
 /// [`Error::UnknownMethod`] listing the names of the methods the system accepts.
@@ -110,6 +110,12 @@ impl NativeSystem {
             name,
             values: None,
         }
+    }
+
+    /// Whether the system has a Taylor form (the expression engines' systems and every
+    /// Lagrangian one), read from the system itself.
+    pub fn has_taylor_form(&self) -> bool {
+        self.inner.dynamical().taylor_field().is_some()
     }
 
     /// The name the system reports.
@@ -376,11 +382,10 @@ impl NativeSystem {
             .inner
             .hamiltonian()
             .is_some_and(|h| h.separable() && h.conservative());
-        // A catalogue system's field is hand-written: it has no Taylor form.
-        let taylor = self.values.is_none();
+        let taylor = self.has_taylor_form();
         let method = parse_method(method, self.inner.default_method(), splitting, taylor).py()?;
         if method.needs_taylor_form() && !taylor {
-            // A catalogue system: its field is hand-written, so it has no Taylor form.
+            // A catalogue system whose field is hand-written.
             return Err(no_taylor_form(&format!("`{}`", self.name))).py();
         }
         let sampling = sampling(stride, final_only).py()?;

@@ -275,14 +275,15 @@ def test_methods_have_the_required_keys_and_describe_integrate():
         assert isinstance(m["symplectic"], bool) and isinstance(m["separable_only"], bool)
     # `separable_only` is what integrate does: a separable system runs every method, a
     # Lagrangian one refuses exactly the separable-only ones. `needs_taylor_form` too: the
-    # catalogue's systems are hand-written and refuse such a method, naming themselves.
+    # catalogue's hand-written Hamiltonian refuses such a method, naming itself, and a
+    # Lagrangian system, whose L is traced into a Taylor form, runs it.
     kepler = pc.KeplerSystem.from_orbital_elements(1.0, 0.5)
     for m in methods:
         dp = pc.DoublePendulum(Q, P)
         if m["needs_taylor_form"]:
-            for s, name in ((kepler, "kepler"), (dp, "double-pendulum")):
-                with pytest.raises(ValueError, match=f"cannot integrate.*`{name}.*HamiltonianEngine"):
-                    s.integrate((0.0, 0.01), 0.01, m["name"])
+            with pytest.raises(ValueError, match="cannot integrate.*`kepler.*HamiltonianEngine"):
+                kepler.integrate((0.0, 0.01), 0.01, m["name"])
+            dp.integrate((0.0, 0.01), 0.01, m["name"])
             continue
         kepler.integrate((0.0, 0.01), 0.01, m["name"])
         if m["separable_only"]:

@@ -1,7 +1,9 @@
 """The ``taylor`` method from Python: on the SymPy engines' systems (Hamiltonian, Lagrangian,
-ODE), whose equations are expressions and so have a Taylor form, against closed forms and
-SciPy's DOP853 at tight tolerance; refused by the catalogue's hand-written systems, naming
-them. Which methods need a Taylor form is read from ``methods()``, not listed here."""
+ODE), whose equations are expressions and so have a Taylor form, and on the catalogue's
+Lagrangian systems (their generic L traced into an expression), against closed forms and
+DOP853 at tight tolerance; Poincaré sections with it; refused by the catalogue's hand-written
+Hamiltonian and ODE systems, naming them. Which methods need a Taylor form is read from
+``methods()``, not listed here."""
 
 import math
 
@@ -31,6 +33,14 @@ def kepler_closed_form(t, e=0.5):
                      b * np.cos(ecc) * edot], axis=-1)
 
 
+def kepler_system():
+    """The orbit of ``kepler_closed_form`` from a HamiltonianEngine at perihelion."""
+    x, y, px, py = sp.symbols("x y p_x p_y")
+    H = (px**2 + py**2) / 2 - 1 / sp.sqrt(x**2 + y**2)
+    y0 = kepler_closed_form(0.0)
+    return HamiltonianEngine([x, y], [px, py], H).system(y0[:2], y0[2:])
+
+
 def test_the_table_has_a_taylor_method():
     assert TAYLOR == ["taylor"]
     (info,) = [m for m in pc.methods() if m["name"] == "taylor"]
@@ -39,10 +49,7 @@ def test_the_table_has_a_taylor_method():
 
 @pytest.mark.parametrize("method", TAYLOR)
 def test_kepler_from_a_hamiltonian_engine_follows_the_closed_form(method):
-    x, y, px, py = sp.symbols("x y p_x p_y")
-    H = (px**2 + py**2) / 2 - 1 / sp.sqrt(x**2 + y**2)
-    y0 = kepler_closed_form(0.0)
-    s = HamiltonianEngine([x, y], [px, py], H).system(y0[:2], y0[2:])
+    s = kepler_system()
     r = s.integrate_sampled((0.0, 10 * 2 * np.pi), 2 * np.pi / 10, method, rtol=1e-14,
                             atol=1e-14)
     assert r.method == method
@@ -78,3 +85,34 @@ def test_a_catalogue_system_refuses_it_by_name(method):
     s = pc.KeplerSystem.from_orbital_elements(1.0, 0.5)
     with pytest.raises(ValueError, match=r"cannot integrate.*`kepler.*HamiltonianEngine"):
         s.integrate_sampled((0.0, 1.0), 0.1, method)
+
+
+@pytest.mark.parametrize("method", TAYLOR)
+def test_a_catalogue_lagrangian_system_runs_it(method):
+    # The catalogue's double pendulum (its L traced, no expression written here) against
+    # dop853 on the same system at rtol 1e-13, 5 s from (1, 0.5) rad at rest: both within
+    # ~1e-10 of the solution (the chaotic stretching over 5 s is ~e^5), so 1e-9 bounds their
+    # difference, and a wrong force misses by order one.
+    ours = pc.DoublePendulum([1.0, 0.5], [0.0, 0.0]).integrate_sampled(
+        (0.0, 5.0), 0.1, method, rtol=1e-15, atol=1e-15)
+    reference = pc.DoublePendulum([1.0, 0.5], [0.0, 0.0]).integrate_sampled(
+        (0.0, 5.0), 0.1, "dop853", rtol=1e-13, atol=1e-15)
+    assert ours.method == method
+    assert np.max(np.abs(ours.y - reference.y)) < 1e-9
+
+
+@pytest.mark.parametrize("method", TAYLOR)
+def test_a_poincare_section_with_it_follows_keplers_equation(method):
+    # The Kepler orbit e = 0.5 from perihelion crosses x = 0 upwards at eccentric anomaly
+    # 5 pi/3, at t = 5 pi/3 + sqrt(3)/4 + 2 pi k (Kepler's equation t = E - e sin E). The
+    # section runs at the default tolerances (rtol 1e-10, atol 1e-12), which keep the orbit's
+    # phase within ~1e-10 over three orbits; the crossings are roots of the step polynomial,
+    # so 1e-8 bounds their error with room, while a root of the wrong step, or a run that
+    # ignored the method, misses by far more.
+    s = kepler_system()
+    cut = pc.poincare_section(s, (0.0, 3 * 2 * np.pi), 0.1, coordinate=0, value=0.0,
+                              direction=1, method=method)
+    expected = 5 * np.pi / 3 + math.sqrt(3) / 4 + 2 * np.pi * np.arange(3)
+    assert len(cut.t) == 3
+    assert np.max(np.abs(cut.t - expected)) < 1e-8
+    assert np.max(np.abs(cut.y - kepler_closed_form(cut.t))) < 1e-8
