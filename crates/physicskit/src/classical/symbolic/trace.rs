@@ -2,8 +2,9 @@
 //! into an expression ([`ExprLagrangian`]) by evaluating it once on a scalar that records the
 //! operations instead of computing them ([`trace_lagrangian`]).
 //!
-//! Every arithmetic operation and elementary function of the [`Scalar`] trait on the tracing
-//! scalar appends one node to a per-thread recording: the node is the [`Expr`] of the
+//! Every arithmetic operation and elementary function of the
+//! [`Scalar`](crate::classical::lagrangian::Scalar) trait on the tracing scalar appends one
+//! node to a per-thread recording: the node is the [`Expr`] of the
 //! operation on its operands' expressions (constants folded as `f64` arithmetic folds them,
 //! sums and products kept n-ary). The Lagrangian's result is then the expression of `L(q,
 //! qdot, t)` in the variables `q_i`, `qdot_i`, `t`, with the system's parameters as
