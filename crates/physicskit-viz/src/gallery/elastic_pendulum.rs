@@ -10,11 +10,11 @@ use super::{Ctx, Demo};
 use crate::error::Result;
 use crate::figure::{color, save_svg, Legend, Panel, Series};
 
-/// Initial stretch beyond the hanging length (m) and initial swing angle (rad): almost pure
-/// bouncing.
+/// Initial stretch beyond the one the bob hangs at (m) and initial swing angle (rad): almost
+/// pure bouncing.
 const STRETCH: f64 = 0.1;
 const THETA0: f64 = 0.02;
-/// The detuned spring constant (N/m): the default, near the naive `4 m g / l0`.
+/// The detuned spring constant (N/m): the default, near the naive `4 m g / L0`.
 const K_DETUNED: f64 = 40.0;
 
 pub(crate) fn render(ctx: &Ctx) -> Result<Demo> {
@@ -27,15 +27,16 @@ pub(crate) fn render(ctx: &Ctx) -> Result<Demo> {
     let mut panels = Vec::new();
     for (k, label) in [(k_res, "exact resonance"), (K_DETUNED, "detuned")] {
         let params = ElasticPendulumParams { k, ..base };
-        let r_eq = params.equilibrium_length();
+        // q = (s, theta): the stretch beyond L0, STRETCH more than the one it hangs at.
+        let s0 = params.equilibrium_stretch() + STRETCH;
         let ratio = params.spring_frequency() / params.swing_frequency();
-        let mut bob = ElasticPendulum::new(&[r_eq + STRETCH, THETA0], &[0.0, 0.0], params)?;
+        let mut bob = ElasticPendulum::new(&[s0, THETA0], &[0.0, 0.0], params)?;
         if d.lab.is_none() {
             // The lab opens on the exact resonance: the same spring, start, method and step.
             d.lab = Some(ctx.lab_link(
                 "elastic-pendulum",
                 &[
-                    ("q0", Value::Vector(vec![r_eq + STRETCH, THETA0])),
+                    ("q0", Value::Vector(vec![s0, THETA0])),
                     ("qdot0", Value::Vector(vec![0.0, 0.0])),
                     ("m", Value::Scalar(params.m)),
                     ("k", Value::Scalar(params.k)),
@@ -89,14 +90,14 @@ pub(crate) fn render(ctx: &Ctx) -> Result<Demo> {
         &path,
         (1500, 900),
         Some(
-            "Elastic pendulum (m = 1 kg, ℓ₀ = 1 m): bounce and swing trade energy only at ωₛ = 2ωₚ",
+            "Elastic pendulum (m = 1 kg, L₀ = 1 m): bounce and swing trade energy only at ωₛ = 2ωₚ",
         ),
         (2, 2),
         |i, area| grid[i].draw(area, &path).map(|_| ()),
     )?;
     d.add(
         path,
-        "bob trajectories and the energy in the bounce and swing modes against time, at the exact 2:1 resonance k = 3mg/ℓ₀ (top) and at k = 40 N/m (bottom)",
+        "bob trajectories and the energy in the bounce and swing modes against time, at the exact 2:1 resonance k = 3mg/L₀ (top) and at k = 40 N/m (bottom)",
     );
     Ok(d)
 }

@@ -111,19 +111,19 @@ class CoupledOscillators(LagrangianSystem):
 
 class ElasticPendulum(LagrangianSystem):
     """Spring pendulum: a bob of mass ``m`` on a spring of stiffness ``k`` and rest length
-    ``L0``; ``q = (r, theta)``, ``theta`` from the downward vertical,
-    ``L = m (rdot^2 + r^2 thetadot^2)/2 + m g r cos(theta) - k (r - L0)^2/2``. At the 2:1
-    resonance (bounce frequency twice the swing's, ``k = 3 m g / L0`` exactly, the swing
-    seeing the stretched length ``L0 + m g / k``) energy trades between the bounce and the
-    swing. The default ``k = 39.24`` is ``4 m g / L0``, the condition usually quoted, which
-    neglects that stretch: a frequency ratio of ``sqrt(5)``, near the resonance.
-
-    The first coordinate is the spring's length ``r``, not its stretch ``r - L0``.
+    ``L0``; ``q = (s, theta)``, ``s`` the spring's stretch beyond ``L0`` (the bob is
+    ``r = L0 + s`` from the pivot) and ``theta`` from the downward vertical,
+    ``L = m (sdot^2 + r^2 thetadot^2)/2 + m g r cos(theta) - k s^2/2``. The bob hangs at
+    rest at ``s = m g / k``. At the 2:1 resonance (bounce frequency twice the swing's,
+    ``k = 3 m g / L0`` exactly, the swing seeing the stretched length ``L0 + m g / k``) energy
+    trades between the bounce and the swing. The default ``k = 39.24`` is ``4 m g / L0``, the
+    condition usually quoted, which neglects that stretch: a frequency ratio of ``sqrt(5)``,
+    near the resonance.
 
     Parameters
     ----------
     q0, qdot0 : array-like, shape (2,)
-        Initial ``(r, theta)`` and ``(rdot, thetadot)``; ``r > 0``.
+        Initial ``(s, theta)`` and ``(sdot, thetadot)``; ``s > -L0`` (a positive length).
     m : float
         Bob mass.
     k : float
@@ -143,8 +143,8 @@ class ElasticPendulum(LagrangianSystem):
         return _energy(self, state)
 
     def positions(self, q=None) -> np.ndarray:
-        """Bob position ``(x, y) = (r sin theta, -r cos theta)`` for ``q = (r, theta)``
-        (default: the current ``q``); pivot at the origin, ``y`` up."""
+        """Bob position ``(x, y) = (r sin theta, -r cos theta)``, ``r = L0 + s``, for
+        ``q = (s, theta)`` (default: the current ``q``); pivot at the origin, ``y`` up."""
         q = self.q if q is None else q
         return self._native.positions(as_vector("q", q, self.ndof))
 

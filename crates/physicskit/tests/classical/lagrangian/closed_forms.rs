@@ -182,17 +182,17 @@ proptest! {
     #[test]
     fn elastic_pendulum_closed_forms_match_automatic_differentiation(
         m in 0.1..5.0_f64, k in 0.5..200.0_f64, l0 in 0.0..3.0_f64, g in -20.0..20.0_f64,
-        // r in [0.2, 5] keeps kappa = max(1, r^2) / min(1, r^2) <= 625.
+        // Lengths r = l0 + s in [0.2, 5] keep kappa = max(1, r^2) / min(1, r^2) <= 625; the
+        // stretch s = r - l0 is the coordinate (negative: a compressed spring).
         r in 0.2..5.0_f64, theta in angle(), v in [-10.0..10.0_f64, -10.0..10.0],
     ) {
         let params = ElasticPendulumParams { m, k, l0, g };
-        // dL/dq: m |g| (cos and r sin terms, r <= 5) and the spring k |r - l0|; the mass
-        // matrix's r-derivative term m r theta'^2 is within 4 mnorm vnorm^2. V: m |g| r and
-        // k (r - l0)^2 / 2.
-        let stretch = (r - l0).abs();
-        let dv = m * g.abs() * (1.0 + r) + k * stretch;
+        // dL/dq: m |g| (cos and r sin terms, r <= 5) and the spring k |s|; the mass matrix's
+        // s-derivative term m r theta'^2 is within 4 mnorm vnorm^2. V: m |g| r and k s^2 / 2.
+        let stretch = r - l0;
+        let dv = m * g.abs() * (1.0 + r) + k * stretch.abs();
         let potential = m * g.abs() * r + 0.5 * k * stretch * stretch;
-        compare(&params, &[r, theta], &v, dv, potential)?;
+        compare(&params, &[stretch, theta], &v, dv, potential)?;
     }
 
     #[test]
@@ -326,13 +326,14 @@ fn closed_forms_call_the_same_mass_matrices_singular() {
         ..Default::default()
     };
     assert!(singular_in_both(&hoop, &[0.3]));
-    // The elastic pendulum's m r^2 against m: singular at r = 0 and 1e-8 (1e-16 < 1e-14),
-    // regular at 1e-6 (1e-12). (At r < 0 the closed forms refuse a state outside the chart
-    // that automatic differentiation, seeing m r^2 > 0, would accept: not compared here,
-    // tested in tests/elastic_pendulum.rs.)
+    // The elastic pendulum's m r^2 against m at the length r = L0 + s (L0 = 1: the stretch
+    // s = r - 1 and the length 1 + s each round by at most 1.1e-16, far below these r):
+    // singular at r = 0 and 1e-8 (1e-16 < 1e-14), regular at 1e-6 (1e-12). (At r < 0 the
+    // closed forms refuse a state outside the chart that automatic differentiation, seeing
+    // m r^2 > 0, would accept: not compared here, tested in tests/elastic_pendulum.rs.)
     let spring = ElasticPendulumParams::default();
     for (r, singular) in [(0.0, true), (1e-8, true), (1e-6, false), (1.0, false)] {
-        assert_eq!(singular_in_both(&spring, &[r, 0.4]), singular, "{r}");
+        assert_eq!(singular_in_both(&spring, &[r - 1.0, 0.4]), singular, "{r}");
     }
     let chain = CoupledOscillatorsParams {
         n: 2,
@@ -402,7 +403,7 @@ fn closed_form_systems_integrate_like_automatic_differentiation() {
         assert!(d < 1e-11, "chain {method}: {d:e}");
 
         let dt = 1e-4;
-        let (q0, v0) = ([1.4, 0.7], [0.3, -0.4]);
+        let (q0, v0) = ([0.4, 0.7], [0.3, -0.4]);
         let params = ElasticPendulumParams::default();
         let mut bob = ElasticPendulum::new(&q0, &v0, params).unwrap();
         let mut model = LagrangianModel::new(AutoDiff(params), &q0, &v0).unwrap();

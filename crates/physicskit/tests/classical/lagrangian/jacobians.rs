@@ -98,13 +98,14 @@ fn cases() -> Vec<Case> {
         },
         Case {
             name: "elastic pendulum",
-            system: Box::new(ElasticPendulum::new(&[1.3, 0.8], &[0.2, -0.5], ep).unwrap()),
+            system: Box::new(ElasticPendulum::new(&[0.3, 0.8], &[0.2, -0.5], ep).unwrap()),
             autodiff: Box::new(move |t, s, o| ep_ad.canonical_jacobian(t, s, o)),
             closed: Box::new(move |t, s, o| ep_cf.closed_canonical_jacobian(t, s, o)),
+            // Stretched, compressed (length 0.6 of L0 = 1) and stretched far.
             states: vec![
-                vec![1.3, 0.8, 0.2, -0.5],
-                vec![0.6, -2.0, -1.5, 2.0],
-                vec![2.2, 0.1, 0.9, 0.3],
+                vec![0.3, 0.8, 0.2, -0.5],
+                vec![-0.4, -2.0, -1.5, 2.0],
+                vec![1.2, 0.1, 0.9, 0.3],
             ],
         },
         Case {
@@ -352,18 +353,18 @@ fn jacobian_of_a_wrong_length_state_is_an_error() {
     ));
 }
 
-/// Where the mass matrix is singular (the spring pendulum's bob at the pivot) the Jacobian
-/// reports it, as the field does.
+/// Where the mass matrix is singular (the spring pendulum's bob at the pivot: stretch
+/// `s = -L0`, or past it) the Jacobian reports it, as the field does.
 #[test]
 fn jacobian_at_a_singular_mass_matrix_is_an_error() {
     let ep =
-        ElasticPendulum::new(&[1.3, 0.8], &[0.2, -0.5], ElasticPendulumParams::default()).unwrap();
+        ElasticPendulum::new(&[0.3, 0.8], &[0.2, -0.5], ElasticPendulumParams::default()).unwrap();
     let mut jac = [0.0; 16];
     for result in [
-        ep.jacobian(0.0, &[0.0, 0.3, 0.1, 0.2], &mut jac),
-        ep.canonical_jacobian(0.0, &[0.0, 0.3, 0.1, 0.2], &mut jac),
+        ep.jacobian(0.0, &[-1.0, 0.3, 0.1, 0.2], &mut jac),
+        ep.canonical_jacobian(0.0, &[-1.0, 0.3, 0.1, 0.2], &mut jac),
         ep.engine()
-            .closed_canonical_jacobian(0.0, &[-0.5, 0.3, 0.1, 0.2], &mut jac),
+            .closed_canonical_jacobian(0.0, &[-1.5, 0.3, 0.1, 0.2], &mut jac),
     ] {
         assert!(
             matches!(result, Some(Err(Error::SingularMatrix { .. }))),

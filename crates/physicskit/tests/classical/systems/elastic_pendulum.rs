@@ -26,19 +26,20 @@ impl Lcg {
 }
 
 /// The equations of motion derived by hand from
-/// `L = m (r'^2 + r^2 theta'^2)/2 + m g r cos theta - k (r - l0)^2/2`:
-/// `r'' = r theta'^2 + g cos theta - (k/m)(r - l0)`, `theta'' = -(g sin theta + 2 r' theta')/r`.
+/// `L = m (s'^2 + r^2 theta'^2)/2 + m g r cos theta - k s^2/2` with `r = l0 + s` (so `r' = s'`):
+/// `s'' = r theta'^2 + g cos theta - (k/m) s`, `theta'' = -(g sin theta + 2 s' theta')/r`.
 /// Also returns the magnitude of the terms of each component (for rounding tolerances).
 fn hand_derived(p: &ElasticPendulumParams, y: [f64; 4]) -> ([f64; 2], [f64; 2]) {
-    let [r, th, rd, thd] = y;
+    let [s, th, sd, thd] = y;
+    let r = p.l0 + s;
     let centrifugal = r * thd * thd;
     let gravity_r = p.g * th.cos();
-    let spring = p.k / p.m * (r - p.l0);
-    let a_r = centrifugal + gravity_r - spring;
-    let a_th = -(p.g * th.sin() + 2.0 * rd * thd) / r;
-    let scale_r = centrifugal.abs() + gravity_r.abs() + spring.abs();
-    let scale_th = (p.g.abs() + 2.0 * (rd * thd).abs()) / r;
-    ([a_r, a_th], [scale_r, scale_th])
+    let spring = p.k / p.m * s;
+    let a_s = centrifugal + gravity_r - spring;
+    let a_th = -(p.g * th.sin() + 2.0 * sd * thd) / r;
+    let scale_s = centrifugal.abs() + gravity_r.abs() + spring.abs();
+    let scale_th = (p.g.abs() + 2.0 * (sd * thd).abs()) / r;
+    ([a_s, a_th], [scale_s, scale_th])
 }
 
 #[test]
@@ -57,8 +58,9 @@ fn accelerations_match_the_hand_derived_equations_at_random_states() {
             l0: rng.uniform(0.0, 3.0),
             g: rng.uniform(-20.0, 20.0),
         };
+        // Lengths r = l0 + s in [0.05, 5]: stretches from -l0 + 0.05 (compressed) to 5 - l0.
         let y = [
-            rng.uniform(0.05, 5.0),
+            rng.uniform(0.05, 5.0) - params.l0,
             rng.uniform(-20.0, 20.0),
             rng.uniform(-10.0, 10.0),
             rng.uniform(-10.0, 10.0),
@@ -133,7 +135,7 @@ fn trajectories_converge_to_an_independent_reference_at_their_orders() {
         l0: 0.9,
         g: 9.81,
     };
-    let y0 = [params.equilibrium_length() + 0.15, 0.6, 0.2, -0.5];
+    let y0 = [params.equilibrium_stretch() + 0.15, 0.6, 0.2, -0.5];
     let (t1, dt) = (4.0, 2e-3);
     let steps = (t1 / dt) as usize;
     let reference = reference(&params, y0, dt / 64.0, 64 * steps, 64);
@@ -174,7 +176,7 @@ fn energy_error_stays_bounded_under_implicit_midpoint() {
         k: ElasticPendulumParams::resonant_k(1.0, 1.0, 9.81).unwrap(),
         ..Default::default()
     };
-    let y0 = [params.equilibrium_length() + 0.3, 1.0, 0.0, 0.0];
+    let y0 = [params.equilibrium_stretch() + 0.3, 1.0, 0.0, 0.0];
     let mut bob = ElasticPendulum::new(&y0[..2], &y0[2..], params).unwrap();
     let e0 = bob.current_energy();
     let options = IntegrateOptions {
@@ -207,22 +209,30 @@ fn energy_error_stays_bounded_under_implicit_midpoint() {
 fn resonant_k_puts_the_linearized_frequencies_at_two_to_one() {
     // The two frequencies measured independently of the helpers: by central differences of
     // the library's acceleration about the hanging equilibrium, where the linearization is
-    // diagonal, omega_r^2 = -d r''/dr and omega_theta^2 = -d theta''/d theta. Differences with
+    // diagonal, omega_s^2 = -d s''/ds and omega_theta^2 = -d theta''/d theta. Differences with
     // h = 1e-6 are accurate to ~1e-9 relative (rounding eps/h), hence the 1e-7 tolerance.
     for (m, l0, g) in [(1.0, 1.0, 9.81), (0.3, 2.5, 1.62), (4.0, 0.2, 24.8)] {
         let k = ElasticPendulumParams::resonant_k(m, l0, g).unwrap();
         assert!((k - 3.0 * m * g / l0).abs() < 1e-12 * k);
         let params = ElasticPendulumParams { m, k, l0, g };
-        let r_eq = params.equilibrium_length();
-        let bob = ElasticPendulum::new(&[r_eq, 0.0], &[0.0, 0.0], params).unwrap();
-        let h = 1e-6;
+        // The hanging equilibrium found from the acceleration, not from the helpers: s'' at
+        // theta = 0 is g - (k/m) s, linear in s, so one secant step from s = 0 lands on its
+        // root (to rounding).
+        let bob = ElasticPendulum::new(&[0.0, 0.0], &[0.0, 0.0], params).unwrap();
         let acc = |q: [f64; 2]| {
             let mut a = [0.0; 2];
             bob.acceleration(&q, &[0.0, 0.0], 0.0, &mut a).unwrap();
             a
         };
-        let w_r2 = -(acc([r_eq + h, 0.0])[0] - acc([r_eq - h, 0.0])[0]) / (2.0 * h);
-        let w_th2 = -(acc([r_eq, h])[1] - acc([r_eq, -h])[1]) / (2.0 * h);
+        let (a0, a1) = (acc([0.0, 0.0])[0], acc([1.0, 0.0])[0]);
+        let s_eq = a0 / (a0 - a1);
+        // The root is m g / k and its length l0 + m g / k, to the rounding of a few
+        // operations on numbers of size ~g (4 ulps of s_eq's scale is plenty, 1e-13 safe).
+        assert!((s_eq - params.equilibrium_stretch()).abs() < 1e-13 * (1.0 + s_eq));
+        assert!((l0 + s_eq - params.equilibrium_length()).abs() < 1e-13 * (l0 + s_eq));
+        let h = 1e-6;
+        let w_r2 = -(acc([s_eq + h, 0.0])[0] - acc([s_eq - h, 0.0])[0]) / (2.0 * h);
+        let w_th2 = -(acc([s_eq, h])[1] - acc([s_eq, -h])[1]) / (2.0 * h);
         let ratio = (w_r2 / w_th2).sqrt();
         assert!((ratio - 2.0).abs() < 1e-7, "ratio {ratio} for {params:?}");
         assert!((w_r2.sqrt() - params.spring_frequency()).abs() < 1e-7 * w_r2.sqrt());
@@ -245,7 +255,7 @@ fn max_swing_share(k: f64, t1: f64) -> f64 {
         k,
         ..Default::default()
     };
-    let y0 = [params.equilibrium_length() + 0.1, 1e-3, 0.0, 0.0];
+    let y0 = [params.equilibrium_stretch() + 0.1, 1e-3, 0.0, 0.0];
     let mut bob = ElasticPendulum::new(&y0[..2], &y0[2..], params).unwrap();
     let total = bob.current_energy() - params.equilibrium_energy();
     let r = bob
@@ -282,8 +292,9 @@ fn mode_energies_sum_to_the_energy_above_equilibrium_and_positions_are_cartesian
     };
     let mut rng = Lcg(3);
     for _ in 0..200 {
+        // Lengths r = l0 + s in [0.2, 3]: the spring compressed (s < 0) as well as stretched.
         let y = [
-            rng.uniform(0.2, 3.0),
+            rng.uniform(0.2, 3.0) - params.l0,
             rng.uniform(-4.0, 4.0),
             rng.uniform(-3.0, 3.0),
             rng.uniform(-3.0, 3.0),
@@ -294,19 +305,22 @@ fn mode_energies_sum_to_the_energy_above_equilibrium_and_positions_are_cartesian
         let scale = params.equilibrium_energy().abs() + bob.current_energy().abs();
         assert!(bounce >= 0.0 && swing >= 0.0);
         assert!((bounce + swing - above).abs() < 1e-13 * scale);
+        // The bob is L0 + s from the pivot (one rounding in the sum, one in each product).
+        let r = params.l0 + y[0];
         let [x, yy] = bob.positions(None).unwrap();
-        assert!((x - y[0] * y[1].sin()).abs() < 1e-15 * y[0]);
-        assert!((yy + y[0] * y[1].cos()).abs() < 1e-15 * y[0]);
-        assert!((x.hypot(yy) - y[0]).abs() < 1e-14 * y[0]);
+        assert!((x - r * y[1].sin()).abs() < 1e-15 * r);
+        assert!((yy + r * y[1].cos()).abs() < 1e-15 * r);
+        assert!((x.hypot(yy) - r).abs() < 1e-14 * r);
     }
-    let bob = ElasticPendulum::new(&[1.0, 0.0], &[0.0, 0.0], params).unwrap();
-    // sin(pi/2) = 1 and cos(0) = 1 exactly, cos(pi/2) = 6e-17.
+    // At s = 0 the spring has its rest length L0 = 1.2: sin(pi/2) = 1 and cos(0) = 1
+    // exactly, cos(pi/2) = 6e-17; 1.2 + 0.8 = 2 exactly.
+    let bob = ElasticPendulum::new(&[0.0, 0.0], &[0.0, 0.0], params).unwrap();
     let [x, y] = bob
-        .positions(Some(&[2.0, std::f64::consts::FRAC_PI_2]))
+        .positions(Some(&[0.8, std::f64::consts::FRAC_PI_2]))
         .unwrap();
     assert!((x - 2.0).abs() < 1e-15 && y.abs() < 1e-15);
     let [x, y] = bob.positions(None).unwrap();
-    assert!(x.abs() < 1e-15 && (y + 1.0).abs() < 1e-15);
+    assert!(x.abs() < 1e-15 && (y + params.l0).abs() < 1e-15);
 }
 
 #[test]
@@ -325,13 +339,22 @@ fn bad_inputs_are_refused() {
     invalid(ElasticPendulumParams { k: -1.0, ..ok }, [1.0, 0.0], "k");
     invalid(ElasticPendulumParams { l0: -0.1, ..ok }, [1.0, 0.0], "L0");
     invalid(ElasticPendulumParams { g: f64::NAN, ..ok }, [1.0, 0.0], "g");
-    invalid(ok, [0.0, 0.3], "r0");
-    invalid(ok, [-1.0, 0.3], "r0");
-    // A positive r0 so small that m r0^2 is negligible next to m: the mass matrix check.
+    // The stretch must leave a positive length L0 + s0: s0 = -L0 puts the bob on the pivot,
+    // s0 < -L0 past it; with L0 = 0 a stretch of 0 is the bob on the pivot too.
+    invalid(ok, [-1.0, 0.3], "q0");
+    invalid(ok, [-1.5, 0.3], "q0");
+    invalid(ElasticPendulumParams { l0: 0.0, ..ok }, [0.0, 0.3], "q0");
+    match ElasticPendulum::new(&[-1.5, 0.3], &[0.0, 0.0], ok) {
+        Err(e) => assert!(e.to_string().contains("L0 + s0 = -0.5 must be > 0"), "{e}"),
+        Ok(_) => panic!("a stretch past the pivot was accepted"),
+    }
+    // A positive length so small that m r^2 is negligible next to m: the mass matrix check.
     assert!(matches!(
-        ElasticPendulum::new(&[1e-9, 0.0], &[0.0, 0.0], ok),
+        ElasticPendulum::new(&[-1.0 + 1e-9, 0.0], &[0.0, 0.0], ok),
         Err(Error::SingularMatrix { .. })
     ));
+    // A compressed spring with a positive length is a valid start.
+    assert!(ElasticPendulum::new(&[-0.5, 0.3], &[0.0, 0.0], ok).is_ok());
     assert!(matches!(
         ElasticPendulum::new(&[1.0], &[0.0, 0.0], ok),
         Err(Error::DimensionMismatch { .. })
