@@ -29,6 +29,9 @@ pub enum VizError {
     /// offer for the system).
     #[error("no lab link: {0}")]
     Lab(String),
+    /// No demonstration has this number (the first field); they are numbered 1 to the second.
+    #[error("no demonstration {0}: they are numbered 1 to {1}")]
+    NoDemo(usize, usize),
     /// The bundled font could not be registered with plotters.
     #[error("the bundled DejaVu Sans font could not be loaded")]
     Font,

@@ -101,7 +101,7 @@ fn collect_texts(group: &usvg::Group, out: &mut Vec<TextBox>) {
 
 /// The points of a path's `d` in this crate's own dialect: absolute `M` and `L` with
 /// `x y` pairs and relative `h` (dots as `M x y h0`, legend samples as `M x y h w`).
-fn path_points(d: &str) -> Vec<Vec<(f64, f64)>> {
+pub fn path_points(d: &str) -> Vec<Vec<(f64, f64)>> {
     let mut polylines: Vec<Vec<(f64, f64)>> = Vec::new();
     let mut rest = d.trim();
     while let Some(cmd) = rest.chars().next() {

@@ -30,5 +30,5 @@ pub mod text;
 
 pub use error::{Result, VizError};
 pub use gallery::{
-    demo_count, render_gallery, Demo, GalleryFile, GalleryReport, LabLink, LabSetup,
+    demo_count, render_demo, render_gallery, Demo, GalleryFile, GalleryReport, LabLink, LabSetup,
 };

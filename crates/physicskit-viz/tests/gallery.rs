@@ -363,3 +363,50 @@ fn unwritable_output_directory_is_an_error() {
     );
     let _ = std::fs::remove_file(&dir.0);
 }
+
+/// The work–precision figure counts its cost (force evaluations) instead of timing it: two
+/// renders are byte for byte the same, and every method's line runs one way along the cost
+/// axis (a timed axis doubled back under load).
+#[test]
+fn work_precision_is_reproducible_and_monotone_in_cost() {
+    const WORK_PRECISION: usize = 17;
+    let a = TempDir::new("physicskit-wp-a");
+    let b = TempDir::new("physicskit-wp-b");
+    let demo = physicskit_viz::render_demo(&a.0, WORK_PRECISION, true).unwrap();
+    assert_eq!(
+        demo.slug, "work-precision",
+        "demonstration {WORK_PRECISION} moved"
+    );
+    physicskit_viz::render_demo(&b.0, WORK_PRECISION, true).unwrap();
+    assert_eq!(demo.files.len(), 3, "one figure per problem");
+    for file in &demo.files {
+        let name = file.path.file_name().unwrap();
+        let first = std::fs::read(&file.path).unwrap();
+        let second = std::fs::read(b.0.join(name)).unwrap();
+        assert!(first == second, "{name:?} differs between two renders");
+        let svg = String::from_utf8(first).unwrap();
+        let doc = resvg::usvg::roxmltree::Document::parse(&svg).unwrap();
+        let lines: Vec<Vec<(f64, f64)>> = doc
+            .descendants()
+            .filter(|n| n.attribute("class") == Some("pk-data"))
+            .flat_map(|g| g.children().filter(|n| n.has_tag_name("path")))
+            .filter_map(|p| p.attribute("d"))
+            .filter(|d| d.contains('L'))
+            .flat_map(physicskit_viz::layout::path_points)
+            .collect();
+        // Five methods integrate the double pendulum (those for non-separable systems), more
+        // the separable problems: a line each.
+        assert!(lines.len() >= 5, "{name:?}: {} lines", lines.len());
+        for line in &lines {
+            assert!(
+                line.windows(2).all(|s| s[1].0 > s[0].0),
+                "{name:?}: a line doubles back along the cost axis: {line:?}"
+            );
+        }
+    }
+    let none = physicskit_viz::render_demo(&a.0, 0, true);
+    assert!(
+        matches!(none, Err(physicskit_viz::VizError::NoDemo(0, _))),
+        "{none:?}"
+    );
+}

@@ -136,7 +136,7 @@ pub(crate) fn render(ctx: &Ctx) -> Result<Demo> {
         "log₁₀ |Δ(θ₁, θ₂, ω₁, ω₂)|  (rad, rad/s)",
     )
     .legend(Legend::Auto)
-    .with(Series::line("separation (rk4, dt = 2 ms)", pts, color(0)));
+    .with(Series::line("separation (RK4, dt = 2 ms)", pts, color(0)));
     let path = ctx.path("double_pendulum_chaos.svg");
     save_panel(&path, (900, 520), &panel)?;
     d.add(path, "log-separation of two runs started 1e-9 rad apart against time: exponential growth, then saturation");
@@ -160,7 +160,7 @@ pub(crate) fn render(ctx: &Ctx) -> Result<Demo> {
         let e0 = e.first().copied().unwrap_or(1.0);
         let rel: Vec<f64> = e.iter().map(|v| (v - e0) / e0).collect();
         panel = panel.with(Series::line(
-            words(m.name()),
+            words(m),
             log_envelope(r.t.as_slice().unwrap_or(&[]), &rel, 200),
             color(if i == 0 { 3 } else { 2 }),
         ));

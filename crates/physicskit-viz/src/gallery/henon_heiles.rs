@@ -72,6 +72,6 @@ pub(crate) fn render(ctx: &Ctx) -> Result<Demo> {
         (1, 3),
         |i, area| panels[i].draw(area, &path).map(|_| ()),
     )?;
-    d.add(path, "Poincaré sections (x, pₓ) at y = 0, p_y > 0 for E = 1/12, 1/8 and 1/6, one colour per orbit along viridis: regular tori giving way to chaos");
+    d.add(path, "Poincaré sections (x, pₓ) at y = 0, p_{y} > 0 for E = 1/12, 1/8 and 1/6, one colour per orbit along viridis: regular tori giving way to chaos");
     Ok(d)
 }

@@ -75,7 +75,7 @@ pub(crate) fn render(ctx: &Ctx) -> Result<Demo> {
             sali.len()
         ),
         x_label: "y".into(),
-        y_label: "p_y".into(),
+        y_label: "p_{y}".into(),
         value_label: format!("log₁₀ SALI (chaotic below {})", CHAOS_THRESHOLD.log10()),
         x_range: y_range,
         y_range: py_range,
@@ -94,7 +94,7 @@ pub(crate) fn render(ctx: &Ctx) -> Result<Demo> {
     let mut section = Panel::new(
         format!("Poincaré section, {n_orbits} orbits (one colour each)"),
         "y",
-        "p_y",
+        "p_{y}",
     )
     .x_range(y_range.0 - half.0, y_range.1 + half.0)
     .y_range(py_range.0 - half.1, py_range.1 + half.1)
@@ -139,7 +139,7 @@ pub(crate) fn render(ctx: &Ctx) -> Result<Demo> {
     d.add(
         path,
         &format!(
-            "Poincaré section (y, p_y) at x = 0 beside the SALI map of the same plane: chaotic \
+            "Poincaré section (y, p_{{y}}) at x = 0 beside the SALI map of the same plane: chaotic \
              sea (SALI < {CHAOS_THRESHOLD:e}) and regular islands"
         ),
     );

@@ -102,7 +102,7 @@ pub(crate) fn render(ctx: &Ctx) -> Result<Demo> {
         let e0 = e.first().copied().unwrap_or(1.0);
         let rel: Vec<f64> = e.iter().map(|&ei| (ei - e0) / e0).collect();
         let pts = window_max(r.t.as_slice().unwrap_or(&[]), &rel, 200);
-        energy = energy.with(Series::line(words(m.name()), pts, color(i)));
+        energy = energy.with(Series::line(words(m), pts, color(i)));
     }
     let path = ctx.path("integrators_energy.svg");
     save_panel(&path, (1000, 560), &energy)?;
@@ -153,7 +153,7 @@ pub(crate) fn render(ctx: &Ctx) -> Result<Demo> {
             .map(|(h, e)| (h.log10(), e.log10()))
             .collect();
         conv = conv.with(Series::line(
-            format!("{} (p = {:.2})", words(m.name()), fit.order),
+            format!("{} (p = {:.2})", words(m), fit.order),
             pts.clone(),
             color(i),
         ));

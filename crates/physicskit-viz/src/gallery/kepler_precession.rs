@@ -105,6 +105,6 @@ pub(crate) fn render(ctx: &Ctx) -> Result<Demo> {
     .with(Series::dots("measured (ensemble)", measured, color(1)).with_mark(Mark::Dots(4)));
     let path = ctx.path("kepler_precession.svg");
     save_panel(&path, (900, 600), &panel)?;
-    d.add(path, "precession per orbit against the post-Newtonian coefficient c_pn: the ensemble's measurement beside first-order perturbation theory");
+    d.add(path, "precession per orbit against the post-Newtonian coefficient c_{pn}: the ensemble's measurement beside first-order perturbation theory");
     Ok(d)
 }

@@ -336,6 +336,28 @@ pub fn demo_count() -> usize {
     demos().len()
 }
 
+/// Renders demonstration `number` (from 1, as [`render_gallery`] numbers them) alone into
+/// `out_dir` (created if missing), without the page: for tests of one demonstration.
+///
+/// # Errors
+/// [`VizError::NoDemo`] if there is no such demonstration; otherwise as
+/// [`render_gallery`].
+pub fn render_demo(out_dir: &Path, number: usize, quick: bool) -> Result<Demo> {
+    let list = demos();
+    let Some((_, render)) = number.checked_sub(1).and_then(|i| list.get(i)) else {
+        return Err(VizError::NoDemo(number, list.len()));
+    };
+    std::fs::create_dir_all(out_dir).map_err(|source| VizError::Io {
+        path: out_dir.to_path_buf(),
+        source,
+    })?;
+    render(&Ctx {
+        out_dir,
+        quick,
+        number,
+    })
+}
+
 /// Renders every demonstration into `out_dir` (created if missing) and writes `index.html`
 /// there. `quick` renders smaller versions (fewer orbits, shorter runs, fewer frames).
 /// `progress` is told the name of each demonstration as it starts.

@@ -1,5 +1,5 @@
 //! Demonstration 23, rolling rattleback: the spin about the vertical against time for both
-//! senses (one reverses, the other keeps), and the body drawn in 3-D as it rattles and turns
+//! senses (one reverses early, the other much later), and the body drawn in 3-D as it rattles and turns
 //! round (an animation).
 
 use physicskit::classical::model::Value;
@@ -21,24 +21,44 @@ const DT: f64 = 1e-4;
 const AZ: f64 = 0.6;
 const EL: f64 = 0.45;
 
+/// The first time the spin about the vertical has the sign opposite to its start, if it does
+/// within the run.
+fn first_reversal(t: &[f64], spin: &[f64]) -> Option<f64> {
+    let s0 = *spin.first()?;
+    t.iter()
+        .zip(spin)
+        .find(|(_, s)| **s * s0 < 0.0)
+        .map(|(t, _)| *t)
+}
+
+/// A run's legend entry: its start and when it first turns round.
+fn spin_label(start: &str, reversal: Option<f64>, t1: f64) -> String {
+    match reversal {
+        Some(t) => format!("{start} start: turns round at t ≈ {t:.1} s"),
+        None => format!("{start} start: keeps its sense up to t = {t1} s"),
+    }
+}
+
 pub(crate) fn render(ctx: &Ctx) -> Result<Demo> {
     let mut d = ctx.demo("rolling-rattleback", "Rattleback: spin reversal");
     let params = RollingRattlebackParams::default();
-    let t1 = ctx.pick(8.0, 12.0);
+    // Long enough for the anticlockwise start to turn round too: without dissipation that sense
+    // is only held longer, not for ever (the legend gives both times, read from the runs).
+    let t1 = ctx.pick(16.0, 30.0);
+    // The animation shows the first reversal of the clockwise start.
+    let t_gif = ctx.pick(8.0, 12.0);
     let every = 100; // one sample per 0.01 s
     let mut panel = Panel::new(
-        format!("Spin about the vertical, started at −{SPIN} and +{SPIN} rad/s (rk4, dt = {DT} s)"),
+        format!("Spin about the vertical, started at −{SPIN} and +{SPIN} rad/s (RK4, dt = {DT} s)"),
         "t (s)",
         "ω · ẑ (rad/s)",
     )
     .legend(Legend::Auto);
     let mut reversing = None;
-    for (i, (sign, label)) in [
-        (-1.0, "clockwise start: reverses"),
-        (1.0, "anticlockwise start: keeps its sense"),
-    ]
-    .into_iter()
-    .enumerate()
+    let mut reversals = [None; 2];
+    for (i, (sign, start)) in [(-1.0, "clockwise"), (1.0, "anticlockwise")]
+        .into_iter()
+        .enumerate()
     {
         let omega0 = [0.0, 0.0, sign * SPIN];
         let mut body = RollingRattleback::new(&omega0, params, None)?;
@@ -70,32 +90,53 @@ pub(crate) fn render(ctx: &Ctx) -> Result<Demo> {
             .iter()
             .map(|s| body.vertical_spin(Some(s.as_slice())))
             .collect::<std::result::Result<Vec<f64>, _>>()?;
-        let pts = r.t.iter().copied().zip(spin).collect();
-        panel = panel.with(Series::line(label, pts, color(i)));
+        let t = r.t.to_vec();
+        reversals[i] = first_reversal(&t, &spin);
+        let pts = t.iter().copied().zip(spin).collect();
+        panel = panel.with(Series::line(
+            spin_label(start, reversals[i], t1),
+            pts,
+            color(i),
+        ));
         if i == 0 {
-            reversing = Some((r.t.to_vec(), states, body));
+            reversing = Some((t, states, body));
         }
     }
     let path = ctx.path("rattleback_spin.svg");
     save_panel(&path, (900, 520), &panel)?;
+    let when = |r: Option<f64>| match r {
+        Some(t) => format!("turns round at t ≈ {t:.1} s"),
+        None => format!("keeps its sense up to t = {t1} s"),
+    };
     d.add(
         path,
-        "the spin about the vertical against time: spun clockwise the body rattles, stops turning and spins the other way; spun anticlockwise it keeps its sense",
+        &format!(
+            "the spin about the vertical against time: spun clockwise the body rattles, stops \
+             turning and {}; spun anticlockwise its rocking grows more slowly, and it {}{}",
+            when(reversals[0]),
+            when(reversals[1]),
+            if reversals[1].is_some() {
+                " (the model has no dissipation: the favoured sense is held longer, not for ever)"
+            } else {
+                ""
+            }
+        ),
     );
 
     let Some((t, states, body)) = reversing else {
         return Err(super::common::missing("the reversing run"));
     };
     let frames = ctx.pick(40, 100);
-    let per = (t.len() / frames).max(1);
+    let shown = t.iter().take_while(|&&ti| ti <= t_gif).count().max(1);
+    let per = (shown / frames).max(1);
     let path = ctx.path("rattleback.gif");
     save_gif(&path, (560, 420), ctx.gif_scale(), frames, 80, |k, root| {
-        let i = (k * per).min(t.len() - 1);
+        let i = (k * per).min(shown - 1);
         draw_body(root, &path, &body, &params, &states[i], t[i])
     })?;
     d.add(
         path,
-        "animation of the reversing run seen from above the table: the ellipsoidal body, its long axis marked, rattles and turns round",
+        "animation of the reversing run, the table seen obliquely from above: the ellipsoidal body, its long axis marked, rattles and turns round",
     );
     Ok(d)
 }

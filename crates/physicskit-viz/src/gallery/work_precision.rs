@@ -1,15 +1,18 @@
-//! Demonstration 17, Work–precision: error against wall time for every applicable method on
-//! three problems (Kepler at e = 0.5, Hénon–Heiles, the double pendulum), from
-//! [`physicskit::classical::analysis::work_precision`]. The methods come from the registry.
+//! Demonstration 17, Work–precision: error against the number of force (right-hand-side)
+//! evaluations for every applicable method on three problems (Kepler at e = 0.5, Hénon–Heiles,
+//! the double pendulum), from [`physicskit::classical::analysis::work_precision`]. The methods
+//! come from the registry. The cost is counted, not timed (as in Hairer, Nørsett & Wanner's
+//! work–precision diagrams), so the figure is the same on every machine and every run, bit for
+//! bit, and each method's line moves one way along the cost axis.
 
-use std::time::Instant;
+use std::path::Path;
 
 use physicskit::classical::analysis::work_precision::{double_pendulum_reference, Problem};
-use physicskit::classical::Method;
+use physicskit::classical::{Method, SimulationResult};
 
 use super::integrators::log10_rel;
 use super::{Ctx, Demo};
-use crate::error::Result;
+use crate::error::{Result, VizError};
 use crate::figure::{save_panel, styled_dots, styled_line, Legend, Panel, Series};
 
 /// A problem's name as a reader writes it (the library's are identifiers).
@@ -21,62 +24,105 @@ fn title(problem: Problem) -> &'static str {
     }
 }
 
-/// A method's registry name as words: `implicit_midpoint` becomes `implicit midpoint`.
-pub(crate) fn words(name: &str) -> String {
-    name.replace('_', " ")
+/// A method's name as people write it (`Störmer–Verlet`, `Gauss–Legendre 4`, `implicit
+/// midpoint`): its registry label.
+pub(crate) fn words(method: Method) -> &'static str {
+    method.info().label
 }
 
-/// Errors below this are rounding: smaller steps would only add time.
+/// Errors below this are rounding: smaller steps would only add cost.
 const ROUNDING: f64 = 1e-14;
+
+/// The cost of a run: its force evaluations (the splitting methods count those) or
+/// right-hand-side evaluations (every other method), which on these Hamiltonian and Lagrangian
+/// systems cost one force each. `None` if the run reports neither.
+fn evaluations(result: &SimulationResult) -> Option<f64> {
+    result
+        .extra_scalar("force_evaluations")
+        .or_else(|| result.extra_scalar("rhs_evaluations"))
+}
+
+/// One method's points `(log10 evaluations, log10 error)` on `problem`, coarsest setting first:
+/// `points` settings of [`Problem::steps`], stopping at the rounding floor. A setting whose run
+/// fails (an implicit solve that does not converge at a large step) is no point of the diagram.
+/// Each point costs more than the one before it: a coarser setting that a finer one beats in
+/// both cost and error is dropped, and so is a finer one that costs no more than its
+/// predecessor otherwise.
+///
+/// # Errors
+/// [`VizError::Draw`] naming `path` if a run reports no evaluation count.
+fn curve(
+    problem: Problem,
+    method: Method,
+    points: usize,
+    reference: &[f64],
+    path: &Path,
+) -> Result<Vec<(f64, f64)>> {
+    let mut pts = Vec::new();
+    for setting in problem.steps(method, points) {
+        let Ok(result) = problem.run(method, setting) else {
+            continue;
+        };
+        let cost = evaluations(&result).ok_or_else(|| VizError::Draw {
+            path: path.to_path_buf(),
+            message: format!("{} reports no evaluation count", method.name()),
+        })?;
+        let error = problem.error(&result, reference);
+        let point = (cost.log10(), log10_rel(error));
+        // A finer setting that costs no more than coarser ones (an adaptive method's loosest
+        // tolerance can spend more on rejected steps) makes them dominated: more cost for
+        // more error. They leave the diagram, which then runs one way along the cost axis.
+        while pts
+            .last()
+            .is_some_and(|p: &(f64, f64)| p.0 >= point.0 && p.1 >= point.1)
+        {
+            pts.pop();
+        }
+        if pts.last().is_none_or(|p| p.0 < point.0) {
+            pts.push(point);
+        }
+        if error < ROUNDING {
+            break;
+        }
+    }
+    Ok(pts)
+}
 
 pub(crate) fn render(ctx: &Ctx) -> Result<Demo> {
     let mut d = ctx.demo("work-precision", "Work–precision");
     let points = ctx.pick(4, 7);
     for (k, problem) in Problem::all(ctx.quick).into_iter().enumerate() {
+        let path = ctx.path(&format!("work_precision_{}.svg", k + 1));
         let reference = match problem {
             Problem::DoublePendulum { t_end } => double_pendulum_reference(t_end)?,
             _ => Vec::new(),
         };
         let mut panel = Panel::new(
             format!("{}, t = {:.0}", title(problem), problem.t_end()),
-            "log₁₀ wall time (s)",
+            "log₁₀ force evaluations",
             format!("log₁₀ {}", problem.error_label()),
         )
         .legend(Legend::Auto);
         for method in problem.methods() {
-            let mut pts = Vec::new();
-            for dt in problem.steps(method, points) {
-                let start = Instant::now();
-                // A step too large for the method (an implicit solve that does not converge)
-                // is no point of the diagram.
-                let Ok(result) = problem.run(method, dt) else {
-                    continue;
-                };
-                let seconds = start.elapsed().as_secs_f64().max(1e-6);
-                let error = problem.error(&result, &reference);
-                pts.push((seconds.log10(), log10_rel(error)));
-                if error < ROUNDING {
-                    break;
-                }
-            }
-            // Colour and line style and marker by the method's place in the registry, so a
-            // method looks the same in all three panels.
+            let pts = curve(problem, method, points, &reference, &path)?;
+            // Colour, line style and marker by the method's place in the registry, so a method
+            // looks the same in all three panels: eight colours, then the same colours dashed
+            // with square markers.
             let i = Method::ALL.iter().position(|m| *m == method).unwrap_or(0);
             let (colour, line) = styled_line(i);
-            panel =
-                panel.with(Series::line(words(method.name()), pts.clone(), colour).with_mark(line));
+            panel = panel.with(Series::line(words(method), pts.clone(), colour).with_mark(line));
             panel = panel.with(
                 Series::dots("", pts, colour)
                     .with_mark(styled_dots(i, 3))
                     .unlabeled(),
             );
         }
-        let path = ctx.path(&format!("work_precision_{}.svg", k + 1));
         save_panel(&path, (1000, 640), &panel)?;
         let what = format!(
-            "log–log {} against wall time on {}, one line per method",
-            problem.error_label(),
-            problem.name()
+            "{}: log–log {} against the number of force evaluations, one line per method (a \
+             setting beaten by a finer one in both cost and error left out)",
+            title(problem),
+            problem.error_label()
         );
         d.add(path, &what);
     }

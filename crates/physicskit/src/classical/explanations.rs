@@ -204,17 +204,19 @@ pub static EXPLANATIONS: &[Explanation] = &[
     Explanation {
         slug: "work-precision",
         text: Text::Own(
-            "How much accuracy each integrator buys per second of computing. Each line is one \
+            "How much accuracy each integrator buys per evaluation of the forces, the cost \
+         Hairer, Nørsett and Wanner count in their work–precision diagrams: unlike a wall \
+         time, the count is the same on every machine and every run. Each line is one \
          method, each point one step size (halved from point to point) or, for the adaptive \
-         dop853, one tolerance (tenfold apart); lower left is better. On the Kepler orbit (the \
+         DOP853, one tolerance (tenfold apart); lower left is better. On the Kepler orbit (the \
          error is the phase lag after the run against the analytic orbit) and on Hénon–Heiles \
          (the largest energy error over the run), the high-order symplectic compositions \
-         (kahan_li8, sofroniou_spaletta10) reach the rounding floor at a small fraction of the \
-         cost of verlet or yoshida4, whose lines are steep but start far up. On the double \
+         (Kahan–Li 8, Sofroniou–Spaletta 10) reach the rounding floor at a small fraction of \
+         the cost of Störmer–Verlet or Yoshida 4, whose lines are steep but start far up. On the double \
          pendulum, a chaotic Lagrangian system where only the methods for non-separable systems \
          apply, the Gauss–Legendre methods of order 4 and 6 reach a given error far faster than \
-         the second-order implicit midpoint rule. Wall times are of one run on a shared \
-         machine: the slopes and the ordering matter, not the last digit.",
+         the second-order implicit midpoint rule, whose fixed-point solve takes more \
+         sweeps per step the larger the step.",
         ),
         figure: "Kepler at eccentricity e = 0.5 (a = k = μ = 1) over 100 orbits from perihelion; \
          SciML's Hénon–Heiles case, q = (0.1, 0) and p = (0, 0.5), to t = 1000; the double \
