@@ -59,6 +59,7 @@ use crate::classical::core::error::{
 use crate::classical::core::trig::sin_cos;
 use crate::classical::core::{Error, Phase, Result};
 use crate::classical::integrators::Method;
+use crate::classical::lagrangian::{forward_jacobian, Scalar};
 use crate::classical::model::entry::{
     Bound, Default as D, Family, Length, ParamSpec as P, Range, SystemEntry,
 };
@@ -70,8 +71,13 @@ const DIM: usize = 9;
 
 type V3 = [f64; 3];
 
+// The field is written once, generic over the number type `X`: `f64` for the field itself,
+// num-dual's dual numbers for its Jacobian (forward-mode automatic differentiation, exact to
+// rounding), which the implicit methods' Newton iteration needs (`field_jacobian`). At `f64`
+// every operation is the one the plain code would do, in the same order.
+
 #[inline(always)]
-fn cross(a: V3, b: V3) -> V3 {
+fn cross<X: Scalar>(a: [X; 3], b: [X; 3]) -> [X; 3] {
     [
         a[1] * b[2] - a[2] * b[1],
         a[2] * b[0] - a[0] * b[2],
@@ -80,19 +86,25 @@ fn cross(a: V3, b: V3) -> V3 {
 }
 
 #[inline(always)]
-fn dot(a: V3, b: V3) -> f64 {
+fn dot<X: Scalar>(a: [X; 3], b: [X; 3]) -> X {
     a[0] * b[0] + a[1] * b[1] + a[2] * b[2]
 }
 
 #[inline(always)]
-fn mat_vec(m: &[[f64; 3]; 3], v: V3) -> V3 {
+fn mat_vec<X: Scalar>(m: &[[X; 3]; 3], v: [X; 3]) -> [X; 3] {
     [dot(m[0], v), dot(m[1], v), dot(m[2], v)]
+}
+
+/// A matrix of constants as numbers of type `X`.
+#[inline(always)]
+fn lift<X: Scalar>(m: &[[f64; 3]; 3]) -> [[X; 3]; 3] {
+    m.map(|row| row.map(X::from))
 }
 
 /// Solves `J x = b` for a symmetric positive definite 3x3 `J` by cofactors (no pivoting is
 /// needed: `J` is an inertia tensor, its determinant the product of three positive moments).
 #[inline(always)]
-fn solve3(j: &[[f64; 3]; 3], b: V3) -> V3 {
+fn solve3<X: Scalar>(j: &[[X; 3]; 3], b: [X; 3]) -> [X; 3] {
     let c00 = j[1][1] * j[2][2] - j[1][2] * j[2][1];
     let c01 = j[1][2] * j[2][0] - j[1][0] * j[2][2];
     let c02 = j[1][0] * j[2][1] - j[1][1] * j[2][0];
@@ -102,7 +114,7 @@ fn solve3(j: &[[f64; 3]; 3], b: V3) -> V3 {
     let det = j[0][0] * c00 + j[0][1] * c01 + j[0][2] * c02;
     // The inverse is the transposed cofactor matrix over det; J is symmetric, so c10 = c01,
     // c20 = c02, c21 = c12.
-    let inv = 1.0 / det;
+    let inv = det.recip();
     [
         (c00 * b[0] + c01 * b[1] + c02 * b[2]) * inv,
         (c01 * b[0] + c11 * b[1] + c12 * b[2]) * inv,
@@ -115,32 +127,33 @@ fn state_len(state: &[f64]) -> Result<()> {
 }
 
 /// The body-to-world rotation matrix of the quaternion `state[3..7]`, normalized.
-fn rotation(state: &[f64]) -> Result<[[f64; 3]; 3]> {
+fn rotation<X: Scalar>(state: &[X]) -> Result<[[X; 3]; 3]> {
     let (w, x, y, z) = (state[3], state[4], state[5], state[6]);
     let n2 = w * w + x * x + y * y + z * z;
-    if !(n2 > 0.0 && n2.is_finite()) {
+    let n2_re = n2.re();
+    if !(n2_re > 0.0 && n2_re.is_finite()) {
         return Err(Error::invalid(
             "quaternion",
-            n2.sqrt(),
+            n2_re.sqrt(),
             "must be non-zero and finite",
         ));
     }
-    let k = 2.0 / n2;
+    let (one, k) = (X::from(1.0), X::from(2.0) / n2);
     Ok([
         [
-            1.0 - k * (y * y + z * z),
+            one - k * (y * y + z * z),
             k * (x * y - w * z),
             k * (x * z + w * y),
         ],
         [
             k * (x * y + w * z),
-            1.0 - k * (x * x + z * z),
+            one - k * (x * x + z * z),
             k * (y * z - w * x),
         ],
         [
             k * (x * z - w * y),
             k * (y * z + w * x),
-            1.0 - k * (x * x + y * y),
+            one - k * (x * x + y * y),
         ],
     ])
 }
@@ -170,11 +183,11 @@ fn initial_quaternion(quat0: Option<&[f64]>, default: [f64; 4]) -> Result<[f64; 
 pub trait RollingShape: Copy + std::fmt::Debug + PartialEq {
     /// `(r, r')`: the vector from the centre of mass to the contact point, and its rate, both
     /// in the body frame, for the body-frame up vector `gamma` (unit) and its rate
-    /// `gamma_dot`.
+    /// `gamma_dot`; generic over the number type (`f64`, or dual numbers for the Jacobian).
     ///
     /// # Errors
     /// An orientation in which the shape has no single lowest point (a disk lying flat).
-    fn contact(&self, gamma: [f64; 3], gamma_dot: [f64; 3]) -> Result<([f64; 3], [f64; 3])>;
+    fn contact<X: Scalar>(&self, gamma: [X; 3], gamma_dot: [X; 3]) -> Result<([X; 3], [X; 3])>;
 }
 
 /// Mass, gravity and the inertia tensor about the centre of mass, in the body frame.
@@ -188,14 +201,20 @@ struct Body {
 impl Body {
     /// The rolling equations (module docs) at `state` into `out` (both of length 9).
     #[inline(always)]
-    fn derivatives(&self, shape: &impl RollingShape, state: &[f64], out: &mut [f64]) -> Result<()> {
+    fn derivatives<X: Scalar>(
+        &self,
+        shape: &impl RollingShape,
+        state: &[X],
+        out: &mut [X],
+    ) -> Result<()> {
         let rot = rotation(state)?;
         let omega = [state[0], state[1], state[2]];
         let gamma = rot[2];
         let gamma_dot = cross(gamma, omega);
         let (r, r_dot) = shape.contact(gamma, gamma_dot)?;
         let m = self.mass;
-        let i_omega = mat_vec(&self.inertia, omega);
+        let inertia = lift::<X>(&self.inertia);
+        let i_omega = mat_vec(&inertia, omega);
         let gyro = cross(omega, i_omega);
         let accel = {
             let a = cross(r_dot, omega);
@@ -205,13 +224,13 @@ impl Body {
         let contact_torque = cross(r, accel);
         let gravity_torque = cross(r, gamma);
         let rhs =
-            [0, 1, 2].map(|i| -gyro[i] + m * contact_torque[i] + m * self.g * gravity_torque[i]);
+            [0, 1, 2].map(|i| -gyro[i] + contact_torque[i] * m + gravity_torque[i] * (m * self.g));
         let r2 = dot(r, r);
-        let mut j = self.inertia;
+        let mut j = inertia;
         for (a, row) in j.iter_mut().enumerate() {
             for (b, x) in row.iter_mut().enumerate() {
-                let delta = if a == b { r2 } else { 0.0 };
-                *x += m * (delta - r[a] * r[b]);
+                let delta = if a == b { r2 } else { X::from(0.0) };
+                *x += (delta - r[a] * r[b]) * m;
             }
         }
         let omega_dot = solve3(&j, rhs);
@@ -219,10 +238,10 @@ impl Body {
         let (qw, qx, qy, qz) = (state[3], state[4], state[5], state[6]);
         let [w1, w2, w3] = omega;
         // (1/2) q ⊗ (0, w) = (1/2) (-v.w, qw w + v x w), v = (qx, qy, qz).
-        out[3] = -0.5 * (qx * w1 + qy * w2 + qz * w3);
-        out[4] = 0.5 * (qw * w1 + qy * w3 - qz * w2);
-        out[5] = 0.5 * (qw * w2 + qz * w1 - qx * w3);
-        out[6] = 0.5 * (qw * w3 + qx * w2 - qy * w1);
+        out[3] = (qx * w1 + qy * w2 + qz * w3) * -0.5;
+        out[4] = (qw * w1 + qy * w3 - qz * w2) * 0.5;
+        out[5] = (qw * w2 + qz * w1 - qx * w3) * 0.5;
+        out[6] = (qw * w3 + qx * w2 - qy * w1) * 0.5;
         // The contact point's path on the plane: the world components of r'.
         out[7] = dot(rot[0], r_dot);
         out[8] = dot(rot[1], r_dot);
@@ -343,6 +362,21 @@ impl<S: RollingShape> RollingBody<S> {
         self.body.derivatives(&self.params, state, out)
     }
 
+    /// The Jacobian of [`field`](Self::field) by forward-mode automatic differentiation of the
+    /// same code (one pass of dual numbers carrying all nine partial derivatives), for
+    /// `impl_ode_dynamics!`: the Newton matrix of the implicit methods, which fixed-point
+    /// iteration alone cannot do without here. The pitching of a rattleback rocks at
+    /// ~100 rad/s, and the contact point runs over the surface at `a^2/c` (2 m for Kane &
+    /// Levinson's body) per radian of tilt, so `d omega'/d q` is ~1e4 s^-2 against `d q'/d
+    /// omega` ~ 1/2: the fixed-point corrections of the two blocks trade places from sweep to
+    /// sweep instead of shrinking steadily, which the solver takes for a slow contraction.
+    fn field_jacobian(&self, _t: f64, state: &[f64], out: &mut [f64]) -> Result<()> {
+        forward_jacobian::<DIM>(state, out, |x, y| {
+            Some(self.body.derivatives(&self.params, x, y))
+        })
+        .unwrap_or(Ok(()))
+    }
+
     /// Kinetic energy of the rolling body plus `m g` times the height of its centre of mass,
     /// for `impl_ode_dynamics!`.
     fn field_energy(&self, state: &[f64]) -> f64 {
@@ -350,7 +384,12 @@ impl<S: RollingShape> RollingBody<S> {
     }
 }
 
-impl_ode_dynamics!(impl [S: RollingShape] RollingBody<S>, dim = DIM, method = Dop853);
+impl_ode_dynamics!(
+    impl [S: RollingShape] RollingBody<S>,
+    dim = DIM,
+    method = Dop853,
+    jacobian
+);
 
 impl<S: RollingShape> Capabilities for RollingBody<S> {
     fn rotation_matrix(&self, state: &[f64]) -> Option<Result<[f64; 9]>> {
@@ -421,17 +460,17 @@ impl Default for RollingRattlebackParams {
 /// (its centre a height `h` above the centre of mass).
 impl RollingShape for RollingRattlebackParams {
     #[inline(always)]
-    fn contact(&self, gamma: V3, gamma_dot: V3) -> Result<(V3, V3)> {
+    fn contact<X: Scalar>(&self, gamma: [X; 3], gamma_dot: [X; 3]) -> Result<([X; 3], [X; 3])> {
         // The outward normal at p (from the centre) is A^-1 p, A = diag(a^2, b^2, c^2); it is
         // -gamma at p = -A gamma / s, s = sqrt(gamma . A gamma).
         let a = [self.a * self.a, self.b * self.b, self.c * self.c];
-        let ag = [a[0] * gamma[0], a[1] * gamma[1], a[2] * gamma[2]];
+        let ag = [gamma[0] * a[0], gamma[1] * a[1], gamma[2] * a[2]];
         let s2 = dot(gamma, ag);
         let s = s2.sqrt();
         let agd = [
-            a[0] * gamma_dot[0],
-            a[1] * gamma_dot[1],
-            a[2] * gamma_dot[2],
+            gamma_dot[0] * a[0],
+            gamma_dot[1] * a[1],
+            gamma_dot[2] * a[2],
         ];
         let k = dot(gamma, agd) / s2;
         let r = [-ag[0] / s, -ag[1] / s, -ag[2] / s + self.h];
@@ -558,10 +597,10 @@ impl RollingRattleback {
 /// A thin disk's rim, radius `a`, around its centre (the centre of mass), normal `z`.
 impl RollingShape for RollingDiskParams {
     #[inline(always)]
-    fn contact(&self, gamma: V3, gamma_dot: V3) -> Result<(V3, V3)> {
+    fn contact<X: Scalar>(&self, gamma: [X; 3], gamma_dot: [X; 3]) -> Result<([X; 3], [X; 3])> {
         // The lowest rim point: -a times the unit projection u of gamma onto the disk's plane.
         let n2 = gamma[0] * gamma[0] + gamma[1] * gamma[1];
-        if n2.is_nan() || n2 <= 0.0 {
+        if n2.re().is_nan() || n2.re() <= 0.0 {
             return Err(Error::Unsupported {
                 operation: "rolling".into(),
                 reason: "the disk lies flat on the plane: its rim has no lowest point".into(),
@@ -570,11 +609,11 @@ impl RollingShape for RollingDiskParams {
         let n = n2.sqrt();
         let u = [gamma[0] / n, gamma[1] / n];
         let along = u[0] * gamma_dot[0] + u[1] * gamma_dot[1];
-        let r = [-self.a * u[0], -self.a * u[1], 0.0];
+        let r = [u[0] * -self.a, u[1] * -self.a, X::from(0.0)];
         let r_dot = [
-            -self.a * (gamma_dot[0] - u[0] * along) / n,
-            -self.a * (gamma_dot[1] - u[1] * along) / n,
-            0.0,
+            (gamma_dot[0] - u[0] * along) * -self.a / n,
+            (gamma_dot[1] - u[1] * along) * -self.a / n,
+            X::from(0.0),
         ];
         Ok((r, r_dot))
     }
