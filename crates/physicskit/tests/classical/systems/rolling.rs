@@ -617,15 +617,16 @@ fn central_difference_jacobian(body: &impl DynamicalSystem, y: &[f64]) -> Vec<f6
     let n = y.len();
     let mut jac = vec![0.0; n * n];
     let (mut fp, mut fm) = (vec![0.0; n], vec![0.0; n]);
-    for j in 0..n {
-        let h = 1e-6 * y[j].abs().max(1.0);
+    for (j, &yj) in y.iter().enumerate() {
+        let h = 1e-6 * yj.abs().max(1.0);
         let (mut yp, mut ym) = (y.to_vec(), y.to_vec());
         yp[j] += h;
         ym[j] -= h;
         body.derivatives(0.0, &yp, &mut fp).unwrap();
         body.derivatives(0.0, &ym, &mut fm).unwrap();
-        for i in 0..n {
-            jac[i * n + j] = (fp[i] - fm[i]) / (yp[j] - ym[j]);
+        let width = yp[j] - ym[j];
+        for (i, (a, b)) in fp.iter().zip(&fm).enumerate() {
+            jac[i * n + j] = (a - b) / width;
         }
     }
     jac
