@@ -220,6 +220,23 @@ def test_given_arguments_are_the_attributes():
     assert f.omega_z == pytest.approx(0.5 * f.omega_earth, rel=4e-16)
 
 
+def test_elastic_pendulum_coordinates_are_the_peers():
+    # The peer documents q = (s, theta) with s the spring's stretch beyond L0 (the bob
+    # L0 + s from the pivot) and L = m (sdot^2 + (L0 + s)^2 thetadot^2)/2 - k s^2/2
+    # + m g (L0 + s) cos(theta): the same q0 must mean the same start here.
+    from physicskit.classical.systems.lagrangian import ElasticPendulum
+
+    m, k, L0, g = 1.0, 39.24, 1.2, 9.81
+    s, th, sd, thd = 0.05, 0.3, 0.1, -0.2
+    bob = ElasticPendulum([s, th], [sd, thd], L0=L0)
+    r = L0 + s
+    # One rounding in L0 + s and in each product: 1e-15 relative.
+    np.testing.assert_allclose(bob.positions(), [r * np.sin(th), -r * np.cos(th)], rtol=1e-15)
+    want = 0.5 * m * (sd**2 + r**2 * thd**2) + 0.5 * k * s**2 - m * g * r * np.cos(th)
+    # E = T + V: a dozen roundings on terms of size ~10 against E ~ -10: 1e-14 relative.
+    assert bob.energy() == pytest.approx(want, rel=1e-14)
+
+
 def test_python_subclasses_keep_plain_attributes():
     # Only the built-in systems' parameters are read-only; a user's own system is not.
     from physicskit.classical import ODESystem

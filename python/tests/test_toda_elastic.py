@@ -70,18 +70,29 @@ def test_toda_refuses_bad_input():
         pc.TodaLattice([0.0, 1j], [0.0, 0.0])
 
 
+def elastic_field(m, k, l0, g):
+    """The equations of motion derived here from L = m (sd^2 + r^2 thd^2)/2 + m g r cos th
+    - k s^2/2 in q = (s, th), r = l0 + s (so rd = sd): s'' = r thd^2 + g cos th - (k/m) s,
+    th'' = -(2 sd thd + g sin th) / r, as the first-order field of (s, th, sd, thd)."""
+    def f(_t, y):
+        s, th, sd, thd = y
+        r = l0 + s
+        return [sd, thd, r * thd**2 + g * np.cos(th) - k / m * s,
+                -(2 * sd * thd + g * np.sin(th)) / r]
+    return f
+
+
 def test_elastic_pendulum_equations_and_positions():
     m, k, l0, g = 1.3, 25.0, 0.8, 9.81
-    bob = pc.ElasticPendulum([1.1, 0.4], [0.2, -0.5], m=m, k=k, L0=l0, g=g)
-    (r, th), (rd, thd) = bob.q, bob.qdot
-    # Hand-derived Euler-Lagrange equations of L = m (rd^2 + r^2 thd^2)/2 + m g r cos th
-    # - k (r - l0)^2/2.
-    r_dd = r * thd**2 + g * np.cos(th) - k / m * (r - l0)
-    th_dd = -(2 * rd * thd + g * np.sin(th)) / r
+    bob = pc.ElasticPendulum([0.3, 0.4], [0.2, -0.5], m=m, k=k, L0=l0, g=g)
+    (s, th), (sd, thd) = bob.q, bob.qdot
+    r = l0 + s
+    expected = elastic_field(m, k, l0, g)(0.0, [s, th, sd, thd])[2:]
     # Closed forms evaluate the same expressions in another order: rounding, 1e-13 relative.
-    np.testing.assert_allclose(bob.acceleration(bob.q, bob.qdot, 0.0), [r_dd, th_dd], rtol=1e-13)
+    np.testing.assert_allclose(bob.acceleration(bob.q, bob.qdot, 0.0), expected, rtol=1e-13)
+    # The bob is L0 + s from the pivot.
     np.testing.assert_allclose(bob.positions(), [r * np.sin(th), -r * np.cos(th)], rtol=1e-15)
-    expected_e = 0.5 * m * (rd**2 + r**2 * thd**2) - m * g * r * np.cos(th) + 0.5 * k * (r - l0) ** 2
+    expected_e = 0.5 * m * (sd**2 + r**2 * thd**2) - m * g * r * np.cos(th) + 0.5 * k * s**2
     assert bob.energy() == pytest.approx(expected_e, rel=1e-14)
     # E_bounce + E_swing = E - E_eq exactly in real arithmetic; the two sides differ only by
     # the rounding of O(10) terms of size O(10) against a difference of O(1): 1e-12 relative.
@@ -90,8 +101,33 @@ def test_elastic_pendulum_equations_and_positions():
     )
 
 
+def test_elastic_pendulum_follows_the_hand_derived_equations():
+    # A 0.6 rad swing with a bounce, the spring compressed at the start (s0 < 0: L0 + s0 =
+    # 0.95 m), against scipy's DOP853 on the equations derived above at rtol = atol = 1e-12
+    # (its own error 2e-11 over these 5 s, against a run at 1e-13). rk4 at dt = 1e-3 errs by
+    # 1.2e-9 here (measured with the same equations stepped by a hand-written RK4); 1e-8
+    # bounds it with margin, while mistaking s for the length (a shift of L0 in r) moves the
+    # state by O(0.1) within the first swing.
+    from scipy.integrate import solve_ivp
+
+    m, k, l0, g = 1.0, 39.24, 1.2, 9.81
+    q0, v0 = [-0.25, 0.6], [0.4, -0.3]
+    bob = pc.ElasticPendulum(q0, v0, m=m, k=k, L0=l0, g=g)
+    run = bob.integrate((0.0, 5.0), 1e-3, method="rk4")
+    ref = solve_ivp(elastic_field(m, k, l0, g), (0.0, 5.0), q0 + v0, method="DOP853",
+                    t_eval=run.t, rtol=1e-12, atol=1e-12)
+    assert ref.success
+    np.testing.assert_allclose(run.y, ref.y.T, rtol=0, atol=1e-8)
+    # The hanging equilibrium is at the stretch m g / k: a bob started there stays (to the
+    # rounding of g - (k/m)(m g/k), ~1e-15 m/s^2 over 1 s: 1e-14 m).
+    rest = pc.ElasticPendulum([m * g / k, 0.0], [0.0, 0.0], m=m, k=k, L0=l0, g=g)
+    still = rest.integrate((0.0, 1.0), 1e-3, method="rk4")
+    np.testing.assert_allclose(still.y[-1], [m * g / k, 0, 0, 0], rtol=0, atol=1e-14)
+    assert rest.positions(still.y[-1, :2])[1] == pytest.approx(-(l0 + m * g / k), rel=1e-15)
+
+
 def test_elastic_pendulum_energy_bounded_under_implicit_midpoint():
-    bob = pc.ElasticPendulum([1.3, 0.3], [0.0, 0.0], k=29.43)
+    bob = pc.ElasticPendulum([0.3, 0.3], [0.0, 0.0], k=29.43)
     res = bob.integrate((0.0, 200.0), dt=1e-3)
     assert res.method == "implicit_midpoint"
     err = np.abs(res.energy - res.energy[0]) / abs(res.energy[0])
@@ -102,5 +138,10 @@ def test_elastic_pendulum_energy_bounded_under_implicit_midpoint():
     # it), and at the O(dt^2) level.
     assert err[half:].max() <= 1.5 * err[:half].max()
     assert err.max() < 1e-6
-    with pytest.raises(ValueError, match="r0"):
-        pc.ElasticPendulum([0.0, 0.3], [0.0, 0.0])
+    # The stretch must leave the spring a positive length L0 + s0 (s0 = -L0: the bob on the
+    # pivot; below, past it).
+    for s0 in (-1.0, -1.5):
+        with pytest.raises(ValueError, match=r"q0.*L0 \+ s0 = .* must be > 0"):
+            pc.ElasticPendulum([s0, 0.3], [0.0, 0.0])
+    with pytest.raises(ValueError, match="q0"):
+        pc.ElasticPendulum([0.0, 0.3], [0.0, 0.0], L0=0.0)

@@ -105,7 +105,7 @@ def test_side_by_side_and_ready_made_animators(tmp_path):
 
 
 @pytest.mark.parametrize("make, fn", [
-    (lambda: pc.ElasticPendulum([1.2, 0.3], [0.0, 0.0]), animations.animate_elastic_pendulum),
+    (lambda: pc.ElasticPendulum([0.2, 0.3], [0.0, 0.0]), animations.animate_elastic_pendulum),
     (lambda: pc.EulerTop([0.01, 1.0, 0.01]), animations.animate_rigid_body_tumble),
     (lambda: pc.EulersDisk(0.5), animations.animate_eulers_disk),
     (lambda: pc.Rattleback([0.01, 0.01, 3.0]), animations.animate_rattleback),
