@@ -129,21 +129,14 @@ function runsText(runs) {
   return runs.map((r) => (r.sub && [...r.text].every((c) => SUBSCRIPT[c]) ? [...r.text].map((c) => SUBSCRIPT[c]).join("") : r.text)).join("");
 }
 function texText(tex) { return runsText(texRuns(tex)); }
-// The catalogue's text for people (labels, captions, help, the physics paragraph) into runs,
-// as a physicist writes it: the names its rules leave as words that have a symbol (the
-// Earth's rotation rate Ω⊕), a method's name in words (implicit midpoint), and a symbol with
-// an index (ω_c, V_eff, q_{i+1}, Ω_⊕) as a subscript run.
-const PEOPLE_SYMBOLS = [["ω earth", "Ω_⊕"], ["latitude deg", "latitude"]];
+// The catalogue's text for people (labels, captions, help, the physics paragraph: written for
+// people by physicskit-listing's people.rs, which marks every index `_{..}`) into runs: the
+// marked indices lowered, the rest as it is. The lab's own captions use the same markup.
 function peopleRuns(text) {
-  for (const [words, symbol] of PEOPLE_SYMBOLS) text = text.split(words).join(symbol);
-  text = text.replace(/\b([a-z]{2,})_([a-z]{2,})\b/g, "$1 $2");
   const runs = [];
-  // One letter (Latin or Greek, not the end of a word), `_`, and an index of up to three
-  // characters, a braced group or ⊕.
-  const re = /(?<![A-Za-z])([A-Za-z\u0370-\u03ff])_(\{[^{}]*\}|[A-Za-z0-9]{1,3}(?![A-Za-z0-9_])|⊕)/gu;
   let last = 0;
-  for (const m of text.matchAll(re)) {
-    runs.push({ text: text.slice(last, m.index + 1), sub: false }, { text: m[2].replace(/^\{|\}$/g, ""), sub: true });
+  for (const m of text.matchAll(/_\{([^{}]*)\}/g)) {
+    runs.push({ text: text.slice(last, m.index), sub: false }, { text: m[1], sub: true });
     last = m.index + m[0].length;
   }
   runs.push({ text: text.slice(last), sub: false });
@@ -972,6 +965,21 @@ function project3([x, y, z], size = 1, elevation = ELEVATION) {
 // The heavy top in perspective: the floor with its axes (ticks in metres), the symmetry
 // axis from the pivot to the centre of mass with a disc across it, its shadow, and the path
 // of the axis tip (precession and nutation).
+// A 3-D floor's labels (centred, hanging from the point): on a narrow canvas the two edges'
+// labels meet at the near corner and the axis names sit on the middle ticks, so a label that
+// would overlap one already drawn is left out (draw the axis names first, then the ticks).
+// Returns put(text, [x, y]), true if drawn.
+function labelPlacer(ctx) {
+  const drawn = [], f = fontSize();
+  return (text, [px, py]) => {
+    const half = ctx.measureText(text).width / 2 + 2, b = [px - half, py - 1, px + half, py + f + 1];
+    if (drawn.some((d) => b[0] < d[2] && d[0] < b[2] && b[1] < d[3] && d[1] < b[3])) return false;
+    drawn.push(b);
+    ctx.fillText(text, px, py);
+    return true;
+  };
+}
+
 function drawTop(ctx, w, h, tip) {
   const l = Math.hypot(tip[0], tip[1], tip[2]) || 1, L = lengthUnit();
   app.topLength = l;
@@ -985,11 +993,11 @@ function drawTop(ctx, w, h, tip) {
   for (const g of t.values) { line([g, -l, 0], [g, l, 0]); line([-l, g, 0], [l, g, 0]); }
   ctx.fillStyle = "#555"; ctx.textAlign = "center"; ctx.textBaseline = "top";
   const xs = t.values.map((g) => tickText(g, t.step)), ys = xs.slice();
-  t.values.forEach((g, i) => { const [px, py] = P([g, -l * 1.08, 0]); ctx.fillText(xs[i], px, py); });
-  t.values.forEach((g, i) => { const [px, py] = P([l * 1.1, g, 0]); ctx.fillText(ys[i], px, py); });
-  const [xlx, xly] = P([0, -l * 1.3, 0]), [ylx, yly] = P([l * 1.35, 0, 0]);
-  ctx.fillText(withUnit("x", L), xlx, xly); ctx.fillText(withUnit("y", L), ylx, yly);
-  app.ticks.scene = { x: xs, y: ys, xLabel: withUnit("x", L), yLabel: withUnit("y", L) };
+  const put = labelPlacer(ctx);
+  put(withUnit("x", L), P([0, -l * 1.3, 0])); put(withUnit("y", L), P([l * 1.35, 0, 0]));
+  const xShown = xs.filter((x, i) => put(x, P([t.values[i], -l * 1.08, 0])));
+  const yShown = ys.filter((y, i) => put(y, P([l * 1.1, t.values[i], 0])));
+  app.ticks.scene = { x: xShown, y: yShown, xLabel: withUnit("x", L), yLabel: withUnit("y", L) };
   ctx.strokeStyle = "#999"; line([0, 0, 0], [0, 0, 1.15 * l]);
   ctx.textBaseline = "alphabetic";
   const [zx, zy] = P([0, 0, 1.2 * l]); ctx.fillText("z", zx, zy);
@@ -1229,7 +1237,7 @@ function drawSeries(ctx, w, h) {
 
 // A caption under the scene, in the page's text (it wraps on a phone; a canvas line would be
 // cut): what the picture shows and its live numbers.
-// The scene's caption, in people's symbols (peopleRuns: `Ω_⊕` shows as Ω with ⊕ lowered).
+// The scene's caption, in people's symbols (peopleRuns: `Ω_{⊕}` shows as Ω with ⊕ lowered).
 function sceneNote(text) { const el = $("scene-note"); if (el.dataset.text !== text) { el.dataset.text = text; setRuns(el, peopleRuns(text)); } }
 
 // A floor grid in perspective with tick labels in metres along two edges, centred at
@@ -1242,12 +1250,12 @@ function drawFloor(ctx, P, cx, cy, half) {
   for (const g of ty.values) line([cx - half, g, 0], [cx + half, g, 0]);
   ctx.fillStyle = "#555"; ctx.textAlign = "center"; ctx.textBaseline = "top";
   const xs = tx.values.map((g) => tickText(g, tx.step)), ys = ty.values.map((g) => tickText(g, ty.step));
-  tx.values.forEach((g, i) => { const [px, py] = P([g, cy - half * 1.1, 0]); ctx.fillText(xs[i], px, py); });
-  ty.values.forEach((g, i) => { const [px, py] = P([cx + half * 1.12, g, 0]); ctx.fillText(ys[i], px, py); });
-  const [xlx, xly] = P([cx, cy - half * 1.32, 0]), [ylx, yly] = P([cx + half * 1.38, cy, 0]);
-  ctx.fillText(withUnit("x", L), xlx, xly); ctx.fillText(withUnit("y", L), ylx, yly);
+  const put = labelPlacer(ctx);
+  put(withUnit("x", L), P([cx, cy - half * 1.32, 0])); put(withUnit("y", L), P([cx + half * 1.38, cy, 0]));
+  const xShown = xs.filter((x, i) => put(x, P([tx.values[i], cy - half * 1.1, 0])));
+  const yShown = ys.filter((y, i) => put(y, P([cx + half * 1.12, ty.values[i], 0])));
   ctx.textBaseline = "alphabetic";
-  app.ticks.scene = { x: xs, y: ys, xLabel: withUnit("x", L), yLabel: withUnit("y", L) };
+  app.ticks.scene = { x: xShown, y: yShown, xLabel: withUnit("x", L), yLabel: withUnit("y", L) };
 }
 
 // A curved arrow round the vertical through `centre` (radius `r` in metres): the sense and
@@ -1315,7 +1323,7 @@ function drawSwing(ctx, w, h) {
   const t = turned === null ? app.lab.time() : far[4], deg = (x) => `${((x * 180) / Math.PI).toFixed(3)}°`.replace("-", "−");
   const day = Math.abs(omegaZ) > 0 ? `; a full turn takes ${(TAU / Math.abs(omegaZ) / 3600).toPrecision(3)} h` : "";
   sceneNote(`Seen from above: the bob's path, the swing plane it started in (dashed) and its plane now (green)` +
-    `${turned === null ? "" : `, turned ${deg(turned)} at t = ${t.toFixed(1)} s`}. The Earth's rotation Ω_⊕ turns it by −Ω_⊕ sin(latitude) t = ${deg(-omegaZ * t)}${day}.`);
+    `${turned === null ? "" : `, turned ${deg(turned)} at t = ${t.toFixed(1)} s`}. The Earth's rotation Ω_{⊕} turns it by −Ω_{⊕} sin(latitude) t = ${deg(-omegaZ * t)}${day}.`);
 }
 
 // Euler's disk (the reduced model: inclination θ and the contact point's azimuth φ): the
@@ -1470,6 +1478,7 @@ function rollingShape() {
 // (fading), the body in perspective at its orientation with a mark that shows its turning,
 // the contact point, and the spin about the vertical (ω · ẑ) as a curved arrow; the spin
 // against time in the caption's numbers.
+const RATTLEBACK_PATH = 30 * SAMPLES_PER_FRAME;
 function drawRolling(ctx, w, h) {
   const s = app.lab.state(), shape = rollingShape(), T = app.trails;
   const R = rotationRows(s.slice(3, 7)), gamma = [R[2][0], R[2][1], R[2][2]];
@@ -1496,8 +1505,12 @@ function drawRolling(ctx, w, h) {
   const P = (p) => { const [x, y] = project3([p[0] - cx, p[1] - cy, p[2]], half, 0.6); return [v.X(x), v.Y(y)]; };
   drawFloor(ctx, P, cx, cy, half);
   ctx.lineWidth = 1.2;
-  for (let k = 1; k < T.length; k++) {
-    ctx.strokeStyle = `rgba(30, 125, 50, ${0.08 + (0.6 * k) / T.length})`;
+  // The rattleback's contact point rocks to and fro ~100 times a second: its whole path is a
+  // dense tangle, so only its recent stretch is drawn, fading out (RATTLEBACK_PATH samples:
+  // 30 frames, half a second of motion at real time). The disks' path is a clean curve: all of it.
+  const first = app.entry.name === "rolling-rattleback" ? Math.max(1, T.length - RATTLEBACK_PATH) : 1, shown = T.length - first + 1;
+  for (let k = first; k < T.length; k++) {
+    ctx.strokeStyle = `rgba(30, 125, 50, ${0.08 + (0.6 * (k - first + 1)) / shown})`;
     ctx.beginPath(); ctx.moveTo(...P([T[k - 1][7], T[k - 1][8], 0])); ctx.lineTo(...P([T[k][7], T[k][8], 0])); ctx.stroke();
   }
   // The shadow, the body's outline filled, its rings and its mark.

@@ -22,7 +22,15 @@
 //! - `^n` and `^(..)` become superscripts where Unicode has them (`r^4` r⁴, `r^(1+eps)`
 //!   r¹⁺ᵋ; on e, if not, `exp(..)`), `sqrt(` `√(`, `*` `·`, `<=` `≤` (and `>=`, `!=`),
 //!   and a few names get their
-//!   spelling (`Henon-Heiles` Hénon–Heiles).
+//!   spelling (`Henon-Heiles` Hénon–Heiles);
+//! - a few names that stay words by these rules have a symbol of their own ([`SYMBOLS`]:
+//!   `omega_earth` Ω⊕, the Earth's rotation rate);
+//! - in every field, the physics paragraph too: snake-case words are spaced (a method's name,
+//!   `implicit_midpoint` implicit midpoint), and an index is written in one markup,
+//!   `_{..}`, that the lab lowers as a subscript: a symbol of one letter (Latin or Greek, not
+//!   the end of a word) with `_` and an index of up to three letters or digits, a braced
+//!   group or ⊕ (`ω_c` `ω_{c}`, `V_eff` `V_{eff}`, `q_{i+1}` unchanged). The lab renders the
+//!   markup and applies no rules of its own.
 
 const GREEK: &[(&str, &str)] = &[
     ("alpha", "α"),
@@ -53,6 +61,9 @@ const NAMES: &[(&str, &str)] = &[
     ("sine-Gordon", "sine–Gordon"),
     ("kink-antikink", "kink–antikink"),
 ];
+
+/// Names the rules below would leave as words that have a symbol (`_{..}`: an index).
+pub const SYMBOLS: &[(&str, &str)] = &[("omega_earth", "Ω_{⊕}"), ("latitude_deg", "latitude")];
 
 /// Words of a note clause that make it a remark for programmers or command-line users.
 const CODE_REMARKS: &[&str] = &["as in the spec", "p holds", "column"];
@@ -117,6 +128,9 @@ fn subscripts(s: &str) -> Option<String> {
 /// `p_x` p_x and `omega_c` ω_c (a short index stays an index), `decay_rate` decay rate,
 /// other words unchanged.
 pub fn symbol(word: &str) -> String {
+    if let Some(&(_, sym)) = SYMBOLS.iter().find(|(w, _)| *w == word) {
+        return sym.to_string();
+    }
     if let Some((base, rest)) = word.split_once('_') {
         if !rest.contains('_') && rest.len() <= 2 && !base.is_empty() {
             return format!("{}_{}", symbol(base), symbol(rest));
@@ -158,7 +172,73 @@ fn maths(text: &str) -> String {
 /// Powers of `text` (prose already written for people: the gallery's physics paragraphs) as
 /// superscripts, `dt^p` dtᵖ, `e^(−b r)` e⁻ᵇʳ; nothing else changes.
 pub fn powers(text: &str) -> String {
-    rewrite(text, false)
+    indices(&rewrite(text, false))
+}
+
+/// Snake-case words spaced and every index in the `_{..}` markup (the module's last rule).
+fn indices(text: &str) -> String {
+    let chars: Vec<char> = text.chars().collect();
+    let is_letter = |c: char| c.is_ascii_alphabetic() || ('\u{370}'..='\u{3ff}').contains(&c);
+    let mut out = String::with_capacity(text.len() + 8);
+    let mut i = 0;
+    while i < chars.len() {
+        let c = chars[i];
+        if c == '_' && i > 0 && !out.is_empty() {
+            // The word before `_`: its letters, back to the last non-letter.
+            let start = chars[..i]
+                .iter()
+                .rposition(|&c| !is_letter(c))
+                .map_or(0, |k| k + 1);
+            let word_len = i - start;
+            let symbol = word_len == 1 && (start == 0 || !is_letter(chars[start - 1]));
+            let index_end = chars[i + 1..]
+                .iter()
+                .position(|&c| !c.is_ascii_alphanumeric())
+                .map_or(chars.len(), |k| i + 1 + k);
+            let next = chars.get(i + 1).copied();
+            if symbol && next == Some('{') {
+                if let Some(close) = chars[i + 1..].iter().position(|&c| c == '}') {
+                    out.extend(&chars[i..=i + 1 + close]);
+                    i += close + 2;
+                    continue;
+                }
+            }
+            if symbol && next == Some('⊕') {
+                out.push_str("_{⊕}");
+                i += 2;
+                continue;
+            }
+            let index_len = index_end - (i + 1);
+            if symbol && (1..=3).contains(&index_len) && chars.get(index_end) != Some(&'_') {
+                out.push_str("_{");
+                out.extend(&chars[i + 1..index_end]);
+                out.push('}');
+                i = index_end;
+                continue;
+            }
+            // Two words of two letters or more joined by `_`: a name, spaced.
+            let next_word = chars[i + 1..]
+                .iter()
+                .take_while(|&&c| c.is_ascii_lowercase())
+                .count();
+            let lower_word = word_len >= 2 && chars[start..i].iter().all(char::is_ascii_lowercase);
+            if lower_word && next_word >= 2 && !continues_word(&chars, i + 1 + next_word) {
+                out.push(' ');
+                i += 1;
+                continue;
+            }
+        }
+        out.push(c);
+        i += 1;
+    }
+    out
+}
+
+/// Whether a word goes on at `at` (`theta_max2` is no pair of words).
+fn continues_word(chars: &[char], at: usize) -> bool {
+    chars
+        .get(at)
+        .is_some_and(|&c| c.is_ascii_alphanumeric() || c == '_')
 }
 
 fn rewrite(text: &str, symbols: bool) -> String {
@@ -340,7 +420,7 @@ fn names(text: &str) -> String {
 
 /// A summary or help line for people.
 pub fn text(s: &str) -> String {
-    maths(&names(&without_code_names(s)))
+    indices(&maths(&names(&without_code_names(s))))
 }
 
 /// A note for people: [`text`] of its clauses that are not remarks for programmers, with
@@ -397,5 +477,5 @@ pub fn title(name: &str) -> String {
 
 /// A parameter's name as a symbol (`thetadot0` θ̇₀, `l1` l₁, `omega` ω).
 pub fn label(name: &str) -> String {
-    symbol(name)
+    indices(&symbol(name))
 }

@@ -33,6 +33,31 @@ fn every_entry_reads_without_code() {
     }
 }
 
+/// Every index is in the one markup the lab lowers (`_{..}`): no `_` is left outside it, in
+/// any field, the physics paragraphs too.
+#[test]
+fn every_index_is_marked() {
+    for entry in SYSTEMS {
+        let mut texts = vec![people::text(entry.summary)];
+        texts.extend(entry.note.and_then(people::note));
+        texts.extend(entry.physics.map(people::powers));
+        for p in entry.params {
+            texts.extend([people::label(p.name), people::text(p.help)]);
+        }
+        for text in &texts {
+            let mut rest = text.as_str();
+            let mut bare = String::new();
+            while let Some(at) = rest.find("_{") {
+                bare.push_str(&rest[..at]);
+                let close = rest[at..].find('}').map_or(rest.len(), |c| at + c + 1);
+                rest = &rest[close..];
+            }
+            bare.push_str(rest);
+            assert!(!bare.contains('_'), "{}: {text:?}", entry.name);
+        }
+    }
+}
+
 #[test]
 fn the_rules() {
     assert_eq!(people::label("thetadot0"), "θ\u{307}₀");
@@ -56,7 +81,7 @@ fn the_rules() {
     assert_eq!(people::note("p holds thetadot, as in the spec"), None);
     assert_eq!(
         people::note("critical speed omega_c = sqrt(g/R); p holds thetadot").as_deref(),
-        Some("critical speed ω_c = √(g/R)")
+        Some("critical speed ω_{c} = √(g/R)")
     );
     assert_eq!(people::note("use --stride for long runs"), None);
     assert_eq!(
@@ -64,6 +89,12 @@ fn the_rules() {
         "error ∝ dtᵖ, V = e⁻ᵇʳ"
     );
     assert_eq!(people::powers("√(a/b) e^(−b r/2)"), "√(a/b) exp(−b r/2)");
+    assert_eq!(people::label("omega_earth"), "Ω_{⊕}");
+    assert_eq!(people::label("latitude_deg"), "latitude");
+    assert_eq!(
+        people::powers("implicit_midpoint keeps V_eff, θ_min, q_{i+1} and Ω_⊕ t"),
+        "implicit midpoint keeps V_{eff}, θ_{min}, q_{i+1} and Ω_{⊕} t"
+    );
     assert_eq!(people::title("henon-heiles"), "Hénon–Heiles");
     assert_eq!(
         people::title("sine-gordon-state"),
