@@ -3,7 +3,8 @@
 Run by ``benchmarks/heyoka_compare.sh`` (it makes heyoka's venv under /tmp and builds our
 side, the ``heyoka_taylor`` binary, in release). For each workload and each tolerance
 1e-6 ... 1e-16 (rtol = atol = tol for us, heyoka's single ``tol``) both integrators run, each
-the best wall time of five after one untimed run; errors are measured against a reference in
+the best wall time of five after one untimed run (ours with its recurrences compiled by the
+JIT, and interpreted for comparison; the compile times of both sides are printed); errors are measured against a reference in
 extended precision: heyoka in real128 where its build has it, else in x87 long double (64-bit
 mantissa) at tolerance 1e-19, and the closed form for Kepler. The table then gives, for each of
 heyoka's runs, our cheapest run with an error at most heyoka's, and the ratio of the times
@@ -181,7 +182,9 @@ def main():
             print(f"  tol {tol:.0e}: heyoka {err:.1e} in {seconds * 1e3:.3f} ms "
                   f"(compile {compile_seconds * 1e3:.1f} ms) | ours at this tol "
                   f"{same['error']:.1e} in {same['seconds'] * 1e3:.3f} ms "
-                  f"(build {same['build_seconds'] * 1e6:.0f} us, {same['steps']:.0f} steps) "
+                  f"(interpreted {same['interpreted_seconds'] * 1e3:.3f} ms; build "
+                  f"{same['build_seconds'] * 1e6:.0f} us, compile "
+                  f"{same['compile_seconds'] * 1e3:.2f} ms; {same['steps']:.0f} steps) "
                   f"| our fastest to heyoka's error: {ours_txt} | ratio {ratio}")
             rows.append((name, tol, err, seconds, ours_txt, ratio))
     print("\n| workload | tol | heyoka error, time | our fastest to that error | ratio |")

@@ -1,9 +1,11 @@
 //! Our side of `benchmarks/heyoka_compare.py`: the adaptive Taylor method
 //! ([`integrate_taylor`] on a [`TaylorProgram`]) on the comparison's workloads, one JSON
-//! object per line: workload, tolerance, the best wall time of five runs (the recurrences
-//! built once, outside the timing, as heyoka's integrator is), the time to build them, the
-//! steps and the final state (or, for `hh-energy`, the largest energy error on a grid of unit
-//! spacing). The script measures the errors against its extended-precision reference.
+//! object per line: workload, tolerance, the best wall time of five runs after one untimed
+//! run with the recurrences compiled by the JIT (built and compiled once, outside the timing,
+//! as heyoka's integrator is), the same with the recurrences interpreted, the time to build
+//! them and to compile them, the steps and the final state (or, for `hh-energy`, the largest
+//! energy error on a grid of unit spacing). The script measures the errors against its
+//! extended-precision reference.
 //!
 //! Workloads (their initial states are the script's too):
 //! - `kepler`: `e = 0.5`, `a = 1`, from perihelion, 100 orbits (`t = 200 pi`);
@@ -14,8 +16,8 @@
 
 use std::time::Instant;
 
-use physicskit::classical::integrators::taylor::integrate_taylor;
-use physicskit::classical::symbolic::TaylorProgram;
+use physicskit::classical::integrators::taylor::{integrate_taylor, order_for};
+use physicskit::classical::symbolic::{Backend, TaylorProgram};
 use physicskit::classical::symbolic::{Expr, ExprHamiltonian};
 use physicskit::classical::{Result, Tolerances};
 
@@ -74,18 +76,27 @@ fn main() -> Result<()> {
         for tol in tolerances {
             let tol_pair = Tolerances::new(tol, tol)?;
             let start = Instant::now();
-            let mut program = TaylorProgram::hamiltonian(&system)?;
+            let program = TaylorProgram::hamiltonian(&system)?;
             let build = start.elapsed().as_secs_f64();
-            let dt = if name == "hh-energy" { 1.0 } else { t1 };
-            let mut best = f64::INFINITY;
-            let mut last = None;
-            for _ in 0..5 {
-                let start = Instant::now();
-                let r = integrate_taylor(&mut program, &y0, (0.0, t1), dt, tol_pair)?;
-                best = best.min(start.elapsed().as_secs_f64());
-                last = Some(r);
+            let start = Instant::now();
+            let backend = program.compile_native(order_for(&tol_pair));
+            let compile = start.elapsed().as_secs_f64();
+            if backend != Backend::Native {
+                eprintln!("{name} at {tol:e}: the recurrences were not compiled");
             }
-            let r = last.expect("five runs");
+            let dt = if name == "hh-energy" { 1.0 } else { t1 };
+            let timed = |mut program: TaylorProgram| -> Result<_> {
+                let mut best = f64::INFINITY;
+                let mut last = integrate_taylor(&mut program, &y0, (0.0, t1), dt, tol_pair)?;
+                for _ in 0..5 {
+                    let start = Instant::now();
+                    last = integrate_taylor(&mut program, &y0, (0.0, t1), dt, tol_pair)?;
+                    best = best.min(start.elapsed().as_secs_f64());
+                }
+                Ok((best, last))
+            };
+            let (interpreted, _) = timed(program.interpreted_only())?;
+            let (best, r) = timed(program)?;
             let steps = r.extra_scalar("steps").unwrap_or(f64::NAN);
             let result = if name == "hh-energy" {
                 let energy = |y: &[f64]| {
@@ -110,7 +121,8 @@ fn main() -> Result<()> {
             };
             println!(
                 "{{\"workload\": \"{name}\", \"tol\": {tol:e}, \"seconds\": {best:e}, \
-                 \"build_seconds\": {build:e}, \"steps\": {steps}, {result}}}"
+                 \"interpreted_seconds\": {interpreted:e}, \"build_seconds\": {build:e}, \
+                 \"compile_seconds\": {compile:e}, \"steps\": {steps}, {result}}}"
             );
         }
     }

@@ -29,7 +29,7 @@ use crate::classical::core::{Error, Result};
 use crate::classical::lagrangian::Scalar;
 
 #[cfg(all(feature = "jit", not(target_arch = "wasm32")))]
-mod jit;
+pub(super) mod jit;
 #[cfg(not(all(feature = "jit", not(target_arch = "wasm32"))))]
 #[path = "tape/interpreted.rs"]
 mod jit;

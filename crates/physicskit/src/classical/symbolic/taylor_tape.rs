@@ -34,6 +34,15 @@ use crate::classical::integrators::taylor::{TaylorField, MAX_ORDER};
 use crate::classical::integrators::HamiltonianSystem;
 use crate::classical::lagrangian::Lagrangian;
 
+use super::tape::Backend;
+
+#[cfg(all(feature = "jit", not(target_arch = "wasm32")))]
+#[path = "tape/taylor_jit.rs"]
+mod jit;
+#[cfg(not(all(feature = "jit", not(target_arch = "wasm32"))))]
+#[path = "tape/taylor_interpreted.rs"]
+mod jit;
+
 /// An operand: a node's series or a constant.
 #[derive(Debug, Clone, Copy, PartialEq)]
 enum Val {
@@ -113,6 +122,8 @@ pub struct TaylorProgram {
     /// Coefficients of every node, `stride` per node; sized at the first expansion of an
     /// order and reused (no allocation per step).
     work: Vec<f64>,
+    /// Native code of the recurrences per order, once compiled; shared by clones.
+    jit: jit::Jit,
 }
 
 struct Builder<'a> {
@@ -354,11 +365,16 @@ impl Builder<'_> {
     }
 }
 
-/// `Σ_j a_j b_{n-1-j}` for slices of length `n`: the Cauchy product's term of order `n - 1`
-/// (zero for empty slices).
+/// `Σ_j a_j b_{n-1-j}` for slices of length `n`: the Cauchy product's term of order `n - 1`,
+/// summed from `j = 0` up, starting with the first product (zero for empty slices). The
+/// compiled recurrences sum in the same order.
 #[inline(always)]
 fn cauchy(a: &[f64], b: &[f64]) -> f64 {
-    a.iter().zip(b.iter().rev()).map(|(x, y)| x * y).sum()
+    let mut terms = a.iter().zip(b.iter().rev()).map(|(x, y)| x * y);
+    match terms.next() {
+        Some(first) => terms.fold(first, |s, t| s + t),
+        None => 0.0,
+    }
 }
 
 /// The value of an [`Node::Integral`]'s function.
@@ -379,6 +395,16 @@ fn unreachable_const() -> Val {
 }
 
 impl TaylorProgram {
+    /// Interpreted expansions (of any order) after which a program's recurrences of the order
+    /// being expanded are compiled to machine code (feature `jit`). Compiling the unrolled
+    /// recurrences costs 3 to 150 ms (growing with the nodes and the square of the order),
+    /// and each compiled expansion saves 1 to 5 µs: compiling pays after 5 000 to 30 000
+    /// expansions (benchmarks/README.md, "Adaptive Taylor method against heyoka", has the
+    /// measured figures). Compiling once the interpreter has run about that many (the
+    /// rent-or-buy rule) costs any run at most about twice what the better choice in
+    /// hindsight would have; [`compile_native`](Self::compile_native) compiles at once.
+    pub const COMPILE_AFTER: u32 = 20_000;
+
     /// Compiles `outputs`, the components of `dy/dt` for the state
     /// `y = (q_0..q_{n_first}, qdot_0/p_0..)` (`n_first + n_second` components, one output
     /// each), in `t` and parameters with values `params`.
@@ -413,6 +439,7 @@ impl TaylorProgram {
             nodes: builder.nodes,
             outputs,
             work: Vec::new(),
+            jit: jit::Jit::default(),
         })
     }
 
@@ -516,8 +543,62 @@ impl TaylorProgram {
         self.nodes.len()
     }
 
+    /// Which code runs expansions to `order` now: native code once the recurrences of that
+    /// order have been compiled (by [`compile_native`](Self::compile_native), or after
+    /// [`COMPILE_AFTER`](Self::COMPILE_AFTER) expansions), else the interpreter.
+    pub fn backend(&self, order: usize) -> Backend {
+        if self.jit.is_native(order) {
+            Backend::Native
+        } else {
+            Backend::Interpreter
+        }
+    }
+
+    /// Compiles the recurrences up to `order` (at most [`MAX_ORDER`]) to machine code now,
+    /// rather than after [`COMPILE_AFTER`](Self::COMPILE_AFTER) expansions, and returns the backend
+    /// that then runs them: [`Backend::Interpreter`] without the feature `jit`, in
+    /// WebAssembly, for an order above [`MAX_ORDER`], or if Cranelift cannot compile for this
+    /// host. Each order compiles once; clones share the code.
+    pub fn compile_native(&self, order: usize) -> Backend {
+        self.jit.compile(&self.nodes, &self.outputs, order);
+        self.backend(order)
+    }
+
+    /// This program with its recurrences interpreted for good (no code shared with the
+    /// original, none ever compiled): the reference the compiled code is tested against.
+    #[doc(hidden)]
+    #[must_use]
+    pub fn interpreted_only(&self) -> Self {
+        Self {
+            jit: jit::Jit::never(),
+            ..self.clone()
+        }
+    }
+
+    /// Orders `0..=order` of every node, by the recurrences interpreted (the state's and
+    /// time's order 0 already set): each order of the operations, then the state's next order
+    /// from the field's, `y^[k+1] = f^[k] / (k + 1)`.
+    fn interpret(&mut self, order: usize, stride: usize) {
+        for k in 0..=order {
+            self.order_k(k, stride);
+            if k < order {
+                let next = (k + 1) as f64;
+                for (i, out) in self.outputs.iter().enumerate() {
+                    let fk = match *out {
+                        Val::Node(n) => self.work[n as usize * stride + k],
+                        Val::Const(c) if k == 0 => c,
+                        Val::Const(_) => 0.0,
+                    };
+                    self.work[i * stride + k + 1] = fk / next;
+                }
+            }
+        }
+    }
+
     /// Order `k` of every operation node, from orders `< k` of all nodes (the state's and
-    /// time's order `k` already set).
+    /// time's order `k` already set). Every sum runs in the order written here, starting with
+    /// its first term; the compiled recurrences (`tape/taylor_jit.rs`) do the same operations
+    /// in the same order, so both give the same bits.
     #[allow(clippy::too_many_lines)]
     fn order_k(&mut self, k: usize, stride: usize) {
         let w = &mut self.work[..];
@@ -557,25 +638,36 @@ impl TaylorProgram {
                     cauchy(&w[a..=a + k], &w[b..=b + k])
                 }
                 Node::Square(a) => {
+                    // 2 Σ_{j < ⌈k/2⌉} a_j a_{k-j}, plus a_{k/2}² for even k.
                     let a = a as usize * stride;
-                    let mut s = 0.0;
-                    for j in 0..k.div_ceil(2) {
-                        s += w[a + j] * w[a + k - j];
-                    }
-                    s *= 2.0;
+                    let half = k.div_ceil(2);
+                    let twice = cauchy(&w[a..a + half], &w[a + k + 1 - half..=a + k]) * 2.0;
                     if k.is_multiple_of(2) {
-                        s += w[a + k / 2] * w[a + k / 2];
+                        let m = w[a + k / 2] * w[a + k / 2];
+                        if half == 0 {
+                            m
+                        } else {
+                            twice + m
+                        }
+                    } else {
+                        twice
                     }
-                    s
                 }
                 Node::Div(a, b) => {
                     let b = b as usize * stride;
-                    (w[at(a, k)] - cauchy(&w[b + 1..=b + k], &w[me..me + k])) / w[b]
+                    if k == 0 {
+                        w[at(a, 0)] / w[b]
+                    } else {
+                        (w[at(a, k)] - cauchy(&w[b + 1..=b + k], &w[me..me + k])) / w[b]
+                    }
                 }
                 Node::CDiv(c, a) => {
                     let a = a as usize * stride;
-                    let s = if k == 0 { c } else { 0.0 };
-                    (s - cauchy(&w[a + 1..=a + k], &w[me..me + k])) / w[a]
+                    if k == 0 {
+                        c / w[a]
+                    } else {
+                        -cauchy(&w[a + 1..=a + k], &w[me..me + k]) / w[a]
+                    }
                 }
                 Node::Sqrt(a) => {
                     if k == 0 {
@@ -593,9 +685,10 @@ impl TaylorProgram {
                     if k == 0 {
                         w[a].powf(alpha)
                     } else {
-                        let mut s = 0.0;
-                        for j in 0..k {
-                            s += (alpha * (k - j) as f64 - j as f64) * w[a + k - j] * w[me + j];
+                        let term = |j: usize| powf_weight(alpha, k, j) * w[a + k - j] * w[me + j];
+                        let mut s = term(0);
+                        for j in 1..k {
+                            s += term(j);
                         }
                         s / (kf * w[a])
                     }
@@ -605,9 +698,10 @@ impl TaylorProgram {
                     if k == 0 {
                         w[a].exp()
                     } else {
-                        let mut s = 0.0;
-                        for j in 1..=k {
-                            s += j as f64 * w[a + j] * w[me + k - j];
+                        let term = |j: usize| j as f64 * w[a + j] * w[me + k - j];
+                        let mut s = term(1);
+                        for j in 2..=k {
+                            s += term(j);
                         }
                         s / kf
                     }
@@ -632,13 +726,14 @@ impl TaylorProgram {
                         let (s, c) = if hyperbolic {
                             (x.sinh(), x.cosh())
                         } else {
-                            x.sin_cos()
+                            (x.sin(), x.cos())
                         };
                         w[partner] = c;
                         s
                     } else {
-                        let (mut s, mut c) = (0.0, 0.0);
-                        for j in 1..=k {
+                        let ja = w[a + 1];
+                        let (mut s, mut c) = (ja * w[partner + k - 1], ja * w[me + k - 1]);
+                        for j in 2..=k {
                             let ja = j as f64 * w[a + j];
                             s += ja * w[partner + k - j];
                             c += ja * w[me + k - j];
@@ -651,6 +746,12 @@ impl TaylorProgram {
             w[me + k] = value;
         }
     }
+}
+
+/// The weight `α (k - j) - j` of the term `j` of order `k` of `a^α`'s recurrence.
+#[inline(always)]
+fn powf_weight(alpha: f64, k: usize, j: usize) -> f64 {
+    alpha * (k - j) as f64 - j as f64
 }
 
 impl TaylorField for TaylorProgram {
@@ -691,19 +792,9 @@ impl TaylorField for TaylorProgram {
         if order >= 1 {
             self.work[time + 1] = 1.0;
         }
-        for k in 0..=order {
-            self.order_k(k, stride);
-            if k < order {
-                let next = (k + 1) as f64;
-                for (i, out) in self.outputs.iter().enumerate() {
-                    let fk = match *out {
-                        Val::Node(n) => self.work[n as usize * stride + k],
-                        Val::Const(c) if k == 0 => c,
-                        Val::Const(_) => 0.0,
-                    };
-                    self.work[i * stride + k + 1] = fk / next;
-                }
-            }
+        match self.jit.code(&self.nodes, &self.outputs, order) {
+            Some(code) => code.call(&mut self.work),
+            None => self.interpret(order, stride),
         }
         for (i, row) in coefficients.chunks_exact_mut(stride).enumerate() {
             row.copy_from_slice(&self.work[i * stride..(i + 1) * stride]);

@@ -23,3 +23,4 @@ mod reversibility;
 mod session;
 mod taylor;
 mod taylor_builtin;
+mod taylor_jit;

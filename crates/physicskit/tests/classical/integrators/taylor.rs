@@ -30,7 +30,7 @@ const PERIOD: f64 = 2.0 * std::f64::consts::PI;
 /// The Kepler orbit `a = 1`, `e = 0.5`, `k = mu = 1` (period `2 pi`) from perihelion, by
 /// Kepler's equation `E - e sin E = t` solved by Newton's method to rounding: position and
 /// momentum.
-fn kepler_state(t: f64) -> [f64; 4] {
+pub(crate) fn kepler_state(t: f64) -> [f64; 4] {
     let e = 0.5;
     let m = t.rem_euclid(PERIOD);
     let mut ecc = m + e * m.sin();
@@ -52,7 +52,7 @@ fn kepler_state(t: f64) -> [f64; 4] {
 }
 
 /// `H = |p|^2/2 - 1/|q|` (k = mu = 1).
-fn kepler_expr() -> ExprHamiltonian {
+pub(crate) fn kepler_expr() -> ExprHamiltonian {
     let h =
         Expr::parse("(- (* 0.5 (+ (^ p0 2) (^ p1 2))) (^ (+ (^ q0 2) (^ q1 2)) -0.5))").unwrap();
     let s = kepler_state(0.0);
@@ -64,7 +64,7 @@ fn kepler_energy(y: &[f64]) -> f64 {
 }
 
 /// `H = |p|^2/2 + |q|^2/2 + x^2 y - y^3/3`.
-fn henon_heiles_expr() -> ExprHamiltonian {
+pub(crate) fn henon_heiles_expr() -> ExprHamiltonian {
     let h = Expr::parse(
         "(+ (* 0.5 (+ (^ p0 2) (^ p1 2) (^ q0 2) (^ q1 2))) (* (^ q0 2) q1) (* -0.333333333333333333 (^ q1 3)))",
     )
@@ -88,7 +88,7 @@ fn double_pendulum_params(params: DoublePendulumParams) -> Vec<f64> {
 /// The double pendulum's `H = p^T M^-1 p / 2 - g1 cos q0 - g2 cos q1` with
 /// `M = [[a, b cos D], [b cos D, d]]`, `D = q0 - q1` (the hand-written system's notation),
 /// parameters `(a, b, d, g1, g2)`.
-fn double_pendulum_expr(params: DoublePendulumParams) -> ExprHamiltonian {
+pub(crate) fn double_pendulum_expr(params: DoublePendulumParams) -> ExprHamiltonian {
     let values = double_pendulum_params(params);
     let h = Expr::parse(
         "(- (- (/ (+ (* param2 (^ p0 2)) (* param0 (^ p1 2)) (* -2 param1 (cos (- q0 q1)) p0 p1)) \
@@ -155,38 +155,42 @@ fn expression_forms_match_the_hand_written_fields() {
     }
 }
 
+/// One expression in `q1` per recurrence (every function, power and quotient form), with a
+/// point `x0` inside its domain, at least 0.4 from its nearest singularity.
+pub(crate) const RECURRENCES: [(&str, f64); 23] = [
+    ("(sin q1)", 0.3),
+    ("(cos q1)", 0.3),
+    ("(tan q1)", 0.3),
+    ("(exp q1)", 0.3),
+    ("(ln q1)", 0.7),
+    ("(sqrt q1)", 0.7),
+    ("(sinh q1)", 0.3),
+    ("(cosh q1)", 0.3),
+    ("(tanh q1)", 0.3),
+    ("(asin q1)", 0.2),
+    ("(acos q1)", 0.2),
+    ("(atan q1)", 0.3),
+    ("(abs q1)", -0.7),
+    ("(^ q1 1.5)", 0.7),
+    ("(^ q1 -1.5)", 0.7),
+    ("(^ q1 3)", -0.3),
+    ("(^ q1 -2)", 0.7),
+    ("(^ q1 q1)", 0.7),
+    ("(^ 2 q1)", 0.3),
+    ("(/ 1 (+ 1 (^ q1 2)))", 0.3),
+    ("(/ (sin q1) (+ 2 (cos q1)))", 0.3),
+    ("(* (exp (neg q1)) (cos (* 3 q1)) (- 1 q1))", 0.3),
+    ("(- (sin (* 2 q1)) (* 2 (sin q1) (cos q1)))", 0.3),
+];
+
 /// Each function's recurrence: the ODE `y0' = f(y1)`, `y1' = 1` from `y1 = x0` has the
 /// Taylor polynomial of `∫ f` over the step; at order 24 and a step of 0.1 inside the radius
-/// of convergence (>= 0.4 from x0 for every function below) its truncation is below 1e-16,
+/// of convergence (>= 0.4 from x0 for every function of `RECURRENCES`) its truncation is below 1e-16,
 /// and Simpson's rule on 4000 intervals (truncation ~1e-20) gives the integral to its
 /// rounding. 2e-14 absolute bounds the sum of both roundings on integrals of size <= 1.
 #[test]
 fn every_recurrence_integrates_its_function() {
-    let cases = [
-        ("(sin q1)", 0.3),
-        ("(cos q1)", 0.3),
-        ("(tan q1)", 0.3),
-        ("(exp q1)", 0.3),
-        ("(ln q1)", 0.7),
-        ("(sqrt q1)", 0.7),
-        ("(sinh q1)", 0.3),
-        ("(cosh q1)", 0.3),
-        ("(tanh q1)", 0.3),
-        ("(asin q1)", 0.2),
-        ("(acos q1)", 0.2),
-        ("(atan q1)", 0.3),
-        ("(abs q1)", -0.7),
-        ("(^ q1 1.5)", 0.7),
-        ("(^ q1 -1.5)", 0.7),
-        ("(^ q1 3)", -0.3),
-        ("(^ q1 -2)", 0.7),
-        ("(^ q1 q1)", 0.7),
-        ("(^ 2 q1)", 0.3),
-        ("(/ 1 (+ 1 (^ q1 2)))", 0.3),
-        ("(/ (sin q1) (+ 2 (cos q1)))", 0.3),
-        ("(* (exp (neg q1)) (cos (* 3 q1)) (- 1 q1))", 0.3),
-        ("(- (sin (* 2 q1)) (* 2 (sin q1) (cos q1)))", 0.3),
-    ];
+    let cases = RECURRENCES;
     let (order, h) = (24, 0.1);
     for (text, x0) in cases {
         let f = Expr::parse(text).unwrap();
@@ -484,7 +488,7 @@ fn method_taylor_is_integrate_taylor_on_the_systems_taylor_form() {
 
 /// The double pendulum as a Lagrangian expression (`L = T - V` in the hand-written system's
 /// notation, parameters `(a, b, d, g1, g2)` as in [`double_pendulum_expr`]).
-fn double_pendulum_lagrangian(params: DoublePendulumParams) -> ExprLagrangian {
+pub(crate) fn double_pendulum_lagrangian(params: DoublePendulumParams) -> ExprLagrangian {
     let values = double_pendulum_params(params);
     let l = Expr::parse(
         "(+ (* 0.5 param0 (^ qdot0 2)) (* 0.5 param2 (^ qdot1 2)) \

@@ -111,17 +111,31 @@ pub(super) struct Native {
     n_first: usize,
     n_second: usize,
     n_outputs: usize,
-    /// `Some` until dropped. A `Mutex` only to make the (`Send`, not `Sync`) module `Sync`;
-    /// it is locked by nobody but `drop`.
-    module: Mutex<Option<JITModule>>,
+    /// Owns the code `entry` points into.
+    _module: OwnedModule,
 }
 
-impl Drop for Native {
-    // SAFETY: `free_memory` unmaps the code; `entry` is reachable only through `&self`, so no
-    // call can run or follow once `drop` has `&mut self`.
+/// A [`JITModule`] whose code is freed when this is dropped: the owner of a compiled
+/// function (a tape's, or a Taylor program's in `taylor_jit.rs`) holds it beside the entry
+/// point, so the code outlives every call.
+pub(in crate::classical::symbolic) struct OwnedModule(
+    /// `Some` until dropped. A `Mutex` only to make the (`Send`, not `Sync`) module `Sync`;
+    /// it is locked by nobody but `drop`.
+    Mutex<Option<JITModule>>,
+);
+
+impl OwnedModule {
+    pub(in crate::classical::symbolic) fn new(module: JITModule) -> Self {
+        Self(Mutex::new(Some(module)))
+    }
+}
+
+impl Drop for OwnedModule {
+    // SAFETY: `free_memory` unmaps the code; its owner's entry point is reachable only through
+    // `&owner`, so no call can run or follow once the owner is being dropped.
     #[allow(unsafe_code)]
     fn drop(&mut self) {
-        let module = match self.module.get_mut() {
+        let module = match self.0.get_mut() {
             Ok(module) => module.take(),
             Err(poisoned) => poisoned.into_inner().take(),
         };
@@ -129,6 +143,16 @@ impl Drop for Native {
             unsafe { module.free_memory() }
         }
     }
+}
+
+/// The code generator's settings for code called through a pointer from anywhere in the
+/// address space, optimized for speed.
+pub(in crate::classical::symbolic) fn flag_builder() -> Option<settings::Builder> {
+    let mut flags = settings::builder();
+    flags.set("is_pic", "false").ok()?;
+    flags.set("use_colocated_libcalls", "false").ok()?;
+    flags.set("opt_level", "speed").ok()?;
+    Some(flags)
 }
 
 impl Native {
@@ -151,12 +175,10 @@ impl Native {
     }
 
     fn compile(tape: &Tape, isa: Result<isa::Builder, String>) -> Option<Native> {
-        let mut flags = settings::builder();
-        // The code is called through a pointer from anywhere in the address space.
-        flags.set("is_pic", "false").ok()?;
-        flags.set("use_colocated_libcalls", "false").ok()?;
-        flags.set("opt_level", "speed").ok()?;
-        let isa = isa.ok()?.finish(settings::Flags::new(flags)).ok()?;
+        let isa = isa
+            .ok()?
+            .finish(settings::Flags::new(flag_builder()?))
+            .ok()?;
         if tape.outputs.is_empty() || isa.pointer_bytes() != 8 {
             return None;
         }
@@ -199,7 +221,7 @@ impl Native {
             n_first: tape.n_first,
             n_second: tape.n_second,
             n_outputs: tape.outputs.len(),
-            module: Mutex::new(Some(module)),
+            _module: OwnedModule::new(module),
         })
     }
 }

@@ -1,0 +1,36 @@
+//! The stand-in for `taylor_jit.rs` where no JIT is built (feature `jit` off, or
+//! WebAssembly): every program's recurrences are interpreted.
+
+use super::{Node, Val};
+
+/// No native code, ever.
+#[derive(Debug, Clone, Default)]
+pub(super) struct Jit(());
+
+/// Native code, which this build cannot have.
+pub(super) enum Native {}
+
+impl Jit {
+    pub(super) fn never() -> Self {
+        Self(())
+    }
+
+    #[inline(always)]
+    pub(super) fn code(&self, _: &[Node], _: &[Val], _: usize) -> Option<&Native> {
+        None
+    }
+
+    pub(super) fn compile(&self, _: &[Node], _: &[Val], _: usize) -> Option<&Native> {
+        None
+    }
+
+    pub(super) fn is_native(&self, _: usize) -> bool {
+        false
+    }
+}
+
+impl Native {
+    pub(super) fn call(&self, _: &mut [f64]) {
+        match *self {}
+    }
+}

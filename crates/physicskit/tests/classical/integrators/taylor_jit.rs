@@ -1,0 +1,172 @@
+//! The Taylor recurrences compiled to machine code (feature `jit`) against the interpreter:
+//! every recurrence and the expression forms of Kepler, Hénon–Heiles and the double pendulum
+//! (Hamiltonian and Lagrangian) bit for bit at every order, whole runs bit for bit, and the
+//! lazy compilation. Without the feature the recurrences are always interpreted, which the
+//! tests then check instead (`native()` below).
+
+use physicskit::classical::integrators::taylor::{integrate_taylor, order_for, TaylorField};
+use physicskit::classical::symbolic::{Backend, Expr, ExprOde, TaylorProgram};
+use physicskit::classical::systems::DoublePendulumParams;
+use physicskit::classical::Tolerances;
+
+use super::taylor::{
+    double_pendulum_expr, double_pendulum_lagrangian, henon_heiles_expr, kepler_expr, kepler_state,
+    RECURRENCES,
+};
+use crate::fixtures::pseudo_random;
+
+/// The backend `compile_native` gives in this build.
+fn native() -> Backend {
+    if cfg!(feature = "jit") {
+        Backend::Native
+    } else {
+        Backend::Interpreter
+    }
+}
+
+/// The same bits; any NaN matches any NaN.
+fn same(a: f64, b: f64) -> bool {
+    a.to_bits() == b.to_bits() || (a.is_nan() && b.is_nan())
+}
+
+/// The systems: every recurrence as the ODE `y0' = f(y1)`, `y1' = 1`, and the four
+/// mechanical expression forms, each with a point to expand at and the spread of the
+/// pseudo-random states around it.
+fn programs() -> Vec<(String, TaylorProgram, Vec<f64>, f64)> {
+    let mut out = Vec::new();
+    for (text, x0) in RECURRENCES {
+        let f = Expr::parse(text).unwrap();
+        let y0 = vec![0.25, x0];
+        let ode = ExprOde::new(vec![f, Expr::constant(1.0)], vec![], &y0, None).unwrap();
+        // A spread of 0.1 keeps every point inside its function's domain.
+        out.push((text.to_string(), TaylorProgram::ode(&ode).unwrap(), y0, 0.1));
+    }
+    let params = DoublePendulumParams::default();
+    let mechanical = [
+        (
+            "Kepler",
+            TaylorProgram::hamiltonian(&kepler_expr()).unwrap(),
+            kepler_state(0.0).to_vec(),
+        ),
+        (
+            "Hénon–Heiles",
+            TaylorProgram::hamiltonian(&henon_heiles_expr()).unwrap(),
+            vec![0.0, 0.1, 0.4, 0.3],
+        ),
+        (
+            "double pendulum (H)",
+            TaylorProgram::hamiltonian(&double_pendulum_expr(params)).unwrap(),
+            vec![2.0, 1.5, 0.3, -0.2],
+        ),
+        (
+            "double pendulum (L)",
+            TaylorProgram::lagrangian(&double_pendulum_lagrangian(params)).unwrap(),
+            vec![2.0, 1.5, 0.3, -0.2],
+        ),
+    ];
+    for (name, program, y0) in mechanical {
+        out.push((name.to_string(), program, y0, 0.3));
+    }
+    out
+}
+
+/// Every order from 1 to 24 (each compiled on its own), at 10 pseudo-random states around each
+/// system's point: the compiled coefficients are the interpreter's, bit for bit.
+#[test]
+fn compiled_coefficients_have_the_interpreters_bits() {
+    for (name, program, y0, spread) in programs() {
+        let interpreted = program.interpreted_only();
+        let mut reference = interpreted.clone();
+        let mut compiled = program;
+        let dim = compiled.dim();
+        for order in 1..=24 {
+            assert_eq!(
+                compiled.compile_native(order),
+                native(),
+                "{name}, order {order}"
+            );
+            assert_eq!(interpreted.backend(order), Backend::Interpreter);
+            for s in 0..10 {
+                let y: Vec<f64> = pseudo_random(dim, 97 * order as u64 + s)
+                    .iter()
+                    .zip(&y0)
+                    .map(|(r, y)| y + spread * (2.0 * r - 1.0))
+                    .collect();
+                let t = 0.1 * s as f64;
+                let mut want = vec![0.0; dim * (order + 1)];
+                let mut got = want.clone();
+                reference.coefficients(t, &y, order, &mut want).unwrap();
+                compiled.coefficients(t, &y, order, &mut got).unwrap();
+                for (i, (g, w)) in got.iter().zip(&want).enumerate() {
+                    assert!(
+                        same(*g, *w),
+                        "{name}, order {order}, y = {y:?}, coefficient {i}: {g:e} vs {w:e}"
+                    );
+                }
+            }
+        }
+    }
+}
+
+/// Whole runs (Kepler over 10 orbits, Hénon–Heiles over t = 100, the double pendulum over
+/// t = 10, at tolerances 1e-8 and 1e-15): every sample of the compiled run is the interpreted
+/// run's, bit for bit.
+#[test]
+fn compiled_runs_have_the_interpreters_bits() {
+    let params = DoublePendulumParams::default();
+    let runs = [
+        (
+            TaylorProgram::hamiltonian(&kepler_expr()).unwrap(),
+            kepler_state(0.0).to_vec(),
+            20.0 * std::f64::consts::PI,
+        ),
+        (
+            TaylorProgram::hamiltonian(&henon_heiles_expr()).unwrap(),
+            vec![0.0, 0.1, 0.4, 0.3],
+            100.0,
+        ),
+        (
+            TaylorProgram::hamiltonian(&double_pendulum_expr(params)).unwrap(),
+            vec![2.0, 1.5, 0.0, 0.0],
+            10.0,
+        ),
+    ];
+    for (k, (program, y0, t1)) in runs.into_iter().enumerate() {
+        for tol in [1e-8, 1e-15] {
+            let tolerances = Tolerances::new(tol, tol).unwrap();
+            let mut interpreted = program.interpreted_only();
+            let mut compiled = program.clone();
+            assert_eq!(compiled.compile_native(order_for(&tolerances)), native());
+            let a =
+                integrate_taylor(&mut interpreted, &y0, (0.0, t1), t1 / 50.0, tolerances).unwrap();
+            let b = integrate_taylor(&mut compiled, &y0, (0.0, t1), t1 / 50.0, tolerances).unwrap();
+            assert_eq!(a.extra_scalar("steps"), b.extra_scalar("steps"));
+            for (x, y) in a.y.iter().zip(b.y.iter()) {
+                assert!(same(*x, *y), "run {k}, tol {tol:e}: {x:e} vs {y:e}");
+            }
+        }
+    }
+}
+
+/// The recurrences of an order are compiled by the expansion after the
+/// `TaylorProgram::COMPILE_AFTER`-th, not before; clones share the code; an order compiled leaves the
+/// others interpreted; an order above the highest is refused by the expansion, never compiled.
+#[test]
+fn recurrences_are_compiled_after_the_threshold() {
+    let mut program = TaylorProgram::hamiltonian(&kepler_expr()).unwrap();
+    let clone = program.clone();
+    let y = kepler_state(0.0);
+    let order = 12;
+    let mut c = vec![0.0; 4 * (order + 1)];
+    for _ in 0..TaylorProgram::COMPILE_AFTER {
+        program.coefficients(0.0, &y, order, &mut c).unwrap();
+    }
+    assert_eq!(program.backend(order), Backend::Interpreter);
+    program.coefficients(0.0, &y, order, &mut c).unwrap();
+    assert_eq!(program.backend(order), native());
+    assert_eq!(clone.backend(order), native());
+    assert_eq!(program.backend(order + 1), Backend::Interpreter);
+    assert_eq!(program.compile_native(25), Backend::Interpreter);
+    let mut c25 = vec![0.0; 4 * 26];
+    assert!(program.coefficients(0.0, &y, 25, &mut c25).is_err());
+}
