@@ -2160,6 +2160,7 @@ window.physicskitLab = {
       const [x, y] = project3(Array.from(app.lab.positions()), app.topLength);
       return [{ i: 0, how: "tip", x: r.left + app.sceneView.X(x), y: r.top + app.sceneView.Y(y) }];
     }
+    if (kind() !== "chain" && kind() !== "sites") return [];
     return chainHandles().map((hd) => ({ ...hd, x: r.left + hd.x, y: r.top + hd.y }));
   },
   sceneAt: (clientX, clientY) => {

@@ -352,6 +352,26 @@ function checkLink(name, r) {
   await page.screenshot({ path: join(shots, "heavy-top-dragged.png"), fullPage: true });
 }
 
+// Every draggable system after a drag (its last body, or a chain's middle mass, or a top's
+// axis, moved 30 px right and 20 px up, then 30 frames run): screenshots to look at, and no
+// console error on the way.
+for (const name of DRAGGABLE) {
+  await page.evaluate((n) => window.physicskitLab.select(n), name);
+  const at = await page.evaluate(() => {
+    const L = window.physicskitLab, hs = L.handlesOnScreen();
+    if (hs.length) { const h = hs[Math.floor(hs.length / 2)]; return [h.x, h.y]; }
+    const b = L.bodiesOnScreen();
+    return b[b.length - 1];
+  });
+  if (!at) continue;
+  await page.mouse.move(at[0], at[1]);
+  await page.mouse.down();
+  await page.mouse.move(at[0] + 30, at[1] - 20, { steps: 4 });
+  await page.mouse.up();
+  await page.evaluate(() => window.physicskitLab.runFrames(30));
+  await page.screenshot({ path: join(shots, `${name}-after-drag.png`), fullPage: true });
+}
+
 // Hostile share links: each opens a page with controls, the linked system if it exists (else
 // the default), valid values, and one line naming what was refused.
 const HOSTILE = [
