@@ -211,17 +211,18 @@ pub static EXPLANATIONS: &[Explanation] = &[
          DOP853, one tolerance (tenfold apart); lower left is better. On the Kepler orbit (the \
          error is the phase lag after the run against the analytic orbit) and on Hénon–Heiles \
          (the largest energy error over the run), the high-order symplectic compositions \
-         (Kahan–Li 8, Sofroniou–Spaletta 10) reach the rounding floor at a small fraction of \
-         the cost of Störmer–Verlet or Yoshida 4, whose lines are steep but start far up. On the double \
+         (Kahan and Li's of order eight, Sofroniou and Spaletta's of order ten) reach the \
+         rounding floor at a small fraction of the cost of Störmer–Verlet or Yoshida's \
+         fourth-order method, whose lines are steep but start far up. On the double \
          pendulum, a chaotic Lagrangian system where only the methods for non-separable systems \
-         apply, the Gauss–Legendre methods of order 4 and 6 reach a given error far faster than \
-         the second-order implicit midpoint rule, whose fixed-point solve takes more \
+         apply, the Gauss–Legendre methods of order 4 and 6 reach a given error at far lower \
+         cost than the second-order implicit midpoint rule, whose fixed-point solve takes more \
          sweeps per step the larger the step.",
         ),
         figure: "Kepler at eccentricity e = 0.5 (a = k = μ = 1) over 100 orbits from perihelion; \
          SciML's Hénon–Heiles case, q = (0.1, 0) and p = (0, 0.5), to t = 1000; the double \
          pendulum with unit masses and arms from θ = (2, 1) rad and θ̇ = (0.5, −0.3) rad/s to t \
-         = 10 s, against a dop853 reference run.",
+         = 10 s, against a DOP853 reference run.",
     },
     Explanation {
         slug: "henon-heiles-sali",
