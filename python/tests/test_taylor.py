@@ -110,7 +110,7 @@ def test_a_poincare_section_with_it_follows_keplers_equation(method):
     # so 1e-8 bounds their error with room, while a root of the wrong step, or a run that
     # ignored the method, misses by far more.
     s = kepler_system()
-    cut = pc.poincare_section(s, (0.0, 3 * 2 * np.pi), 0.1, coordinate=0, value=0.0,
+    cut = pc.poincare_section(s, (0.0, 3 * 2 * np.pi), 2 * np.pi / 10, coordinate=0, value=0.0,
                               direction=1, method=method)
     expected = 5 * np.pi / 3 + math.sqrt(3) / 4 + 2 * np.pi * np.arange(3)
     assert len(cut.t) == 3
