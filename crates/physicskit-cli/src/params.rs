@@ -216,10 +216,10 @@ pub fn method(entry: &SystemEntry, name: &str) -> Result<Method> {
             method_names(entry)
         )
     })?;
-    if method.needs_taylor_form() {
-        bail!(no_taylor_form(&format!("`{}`", entry.name)));
-    }
     if !entry.methods().any(|m| m == method) {
+        if method.needs_taylor_form() {
+            bail!(no_taylor_form(&format!("`{}`", entry.name)));
+        }
         bail!(
             "method `{method}` cannot integrate `{}`; valid methods are: {}",
             entry.name,

@@ -745,13 +745,15 @@ impl SystemEntry {
     }
 
     /// The methods that can integrate this system: every method for separable systems,
-    /// otherwise those that do not need `H = T(p) + V(q)`; never one that needs a Taylor form
-    /// ([`Method::needs_taylor_form`]), which no catalogue system has (their fields are
-    /// hand-written code, and the catalogue test runs every method to check the list).
+    /// otherwise those that do not need `H = T(p) + V(q)`; one that needs a Taylor form
+    /// ([`Method::needs_taylor_form`]) only for the Lagrangian family, whose generic `L` is
+    /// traced into expressions (the other families' fields are hand-written `f64` code). The
+    /// catalogue test runs every method on every entry to check the list.
     pub fn methods(&self) -> impl Iterator<Item = Method> + '_ {
-        Method::ALL
-            .into_iter()
-            .filter(move |m| (self.separable || !m.needs_separable()) && !m.needs_taylor_form())
+        Method::ALL.into_iter().filter(move |m| {
+            (self.separable || !m.needs_separable())
+                && (!m.needs_taylor_form() || self.family == Family::Lagrangian)
+        })
     }
 
     /// Checks `given` (parameter name and value) and fills in the defaults.
