@@ -222,7 +222,8 @@ fn list_json_encodes_defaults_ranges_and_lengths() {
             "implicit_midpoint",
             "gauss_legendre4",
             "gauss_legendre6",
-            "dop853"
+            "dop853",
+            "taylor"
         ])
     );
     assert!(dp["capabilities"]
