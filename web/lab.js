@@ -477,6 +477,7 @@ function startViews(extent = null) {
 
 function clearViews() {
   app.trails = []; app.phase = []; app.energy = []; app.rows = [];
+  app.startHeight = app.lab.positions()[1];
   app.spinAngle = 0; app.rollingView = null; app.topScale = null;
   if (app.ended) { app.ended = null; message(""); }
   sceneNote("");
@@ -603,9 +604,22 @@ function endOfModel() {
   draw();
 }
 
+// A projectile thrown from at or above the ground has landed once it is below it: the model
+// has no ground (it would fly on through it), the picture has, so the run ends there.
+function landed() {
+  return kind() === "projectile" && app.startHeight >= 0 && app.lab.positions()[1] < 0;
+}
+function endOfFlight() {
+  app.ended = `The ball has reached the ground at t ≈ ${app.lab.time().toFixed(2)} s, and the run ends there (the model itself has no ground). Reset to throw it again, or drag the ball.`;
+  setRunning(false);
+  message(app.ended, "notice");
+  draw();
+}
+
 function frame() {
   const dt = Number($("dt").value), n = stepsLeft(Number($("speed").value), dt);
   if (n === 0) { endOfModel(); return false; }
+  if (landed()) { endOfFlight(); return false; }
   try {
     // The frame's steps in pieces, a trail sample after each: the same bits as one call.
     const pieces = Math.min(SAMPLES_PER_FRAME, n);
@@ -614,6 +628,7 @@ function frame() {
       const upto = Math.round((k * n) / pieces);
       app.lab.step(upto - done, dt);
       done = upto;
+      if (landed()) break;
       if (k < pieces) sample();
     }
   } catch (e) {
@@ -624,6 +639,7 @@ function frame() {
   app.frames++;
   record();
   if (stepsLeft(1, dt) === 0) endOfModel();
+  else if (landed()) endOfFlight();
   return true;
 }
 
@@ -696,10 +712,16 @@ function niceStep(span, count) {
   return (f < 1.5 ? 1 : f < 3 ? 2 : f < 7 ? 5 : 10) * p;
 }
 
+// Ticks at a nice step, about `count` of them; at least two (a step rounded up to 5 × 10ⁿ can
+// leave a single tick in the range, an axis without a scale: then a finer step).
 function tickValues(lo, hi, count) {
-  const step = niceStep(hi - lo, count), out = [];
-  for (let k = Math.ceil(lo / step - 1e-9); k * step <= hi + step * 1e-9; k++) out.push(k * step);
-  return { step, values: out };
+  let step, out;
+  for (let c = count; ; c *= 2) {
+    step = niceStep(hi - lo, c);
+    out = [];
+    for (let k = Math.ceil(lo / step - 1e-9); k * step <= hi + step * 1e-9; k++) out.push(k * step);
+    if (out.length >= 2 || c > 64 * count) return { step, values: out };
+  }
 }
 
 function tickText(x, step) {
@@ -739,7 +761,9 @@ function drawAxes(id, ctx, v, xLabel, yLabel, { yTicks = null, xTicks = null } =
   for (const [x, text] of xt) {
     const px = Math.round(v.X(x)) + 0.5;
     ctx.moveTo(px, r.y1); ctx.lineTo(px, r.y1 + 4);
-    ctx.fillText(text, px, r.y1 + 6);
+    // A tick at the plot's right edge: its label moved in to end at the canvas's edge (the
+    // plot area stops 10 px short of it).
+    ctx.fillText(text, Math.min(px, r.x1 + 9 - ctx.measureText(text).width / 2), r.y1 + 6);
   }
   ctx.textAlign = "right"; ctx.textBaseline = "middle";
   for (const [y, text] of yt) {
@@ -888,11 +912,13 @@ function drawScene() {
     ctx.fillStyle = "#333"; ctx.textAlign = "center";
     if (apex && apex[1] > app.trails[0][1] + 1e-9 && app.trails[app.trails.length - 1][1] < apex[1]) {
       ctx.beginPath(); ctx.arc(v.X(apex[0]), v.Y(apex[1]), 3, 0, TAU); ctx.fill();
-      ctx.fillText(`apex ${apex[1].toFixed(2)} ${L}`, v.X(apex[0]), v.Y(apex[1]) - 8);
+      labelInside(ctx, v, `apex ${apex[1].toFixed(2)} ${L}`, v.X(apex[0]), v.Y(apex[1]) - 8);
     }
     if (land) {
       ctx.beginPath(); ctx.moveTo(v.X(land[0]), v.Y(0) - 6); ctx.lineTo(v.X(land[0]), v.Y(0) + 6); ctx.stroke();
-      ctx.fillText(`range ${(land[0] - app.trails[0][0]).toFixed(2)} ${L}`, v.X(land[0]), v.Y(0) + 18);
+      // Under the ground, to the left of the mark if the ball has gone on past it.
+      const range = `range ${(land[0] - app.trails[0][0]).toFixed(2)} ${L}`, past = bodies[0]?.[0] > land[0];
+      labelInside(ctx, v, range, v.X(land[0]) + (past ? -8 : 0), v.Y(0) + 18, past ? "right" : "center");
     }
     bodies.forEach(([x, y], i) => bob(ctx, v.X(x), v.Y(y), 7, i));
   } else if (k === "orbit") {
@@ -909,7 +935,12 @@ function drawScene() {
     if (e > 1e-3 && e < 1) {
       const rp = (Lz * Lz) / (m * kc * (1 + e)), ux = A[0] / Math.hypot(...A), uy = A[1] / Math.hypot(...A);
       arrow(ctx, v.X(0), v.Y(0), v.X(rp * ux), v.Y(rp * uy), "#1e7d32");
-      ctx.fillStyle = "#1e7d32"; ctx.fillText("LRL vector", v.X(rp * ux) + 6, v.Y(rp * uy) - 6);
+      // Beyond the arrow's tip, on the side it points to; where the plot's edge leaves no room
+      // there, beside the tip on the side away from the shaft (above a tip pointing up).
+      ctx.fillStyle = "#1e7d32";
+      const tx = v.X(rp * ux), ty = v.Y(rp * uy), room = ux < 0 ? tx - 6 - v.rect.x0 : v.rect.x1 - tx - 6;
+      const fits = room >= ctx.measureText("LRL vector").width + 3;
+      labelInside(ctx, v, "LRL vector", tx + (ux < 0 ? -6 : 6), fits ? ty - 6 : uy >= 0 ? ty - 10 : ty + fontSize() + 8, ux < 0 ? "right" : "left");
     }
     bodies.forEach(([bx, by], i) => bob(ctx, v.X(bx), v.Y(by), 7, i));
   } else if (k === "hoop") {
@@ -939,6 +970,17 @@ function drawScene() {
     bodies.forEach(([x, y], i) => bob(ctx, v.X(x), v.Y(y), bobRadius(i), i));
   }
   ctx.restore();
+}
+
+// A label in the plot area of `v`: at (x, y) as aligned, moved in to stay whole inside the
+// area (a label at a body near the edge, the projectile's range, Kepler's LRL vector, is never
+// cut by the frame). `y` is the text's baseline.
+function labelInside(ctx, v, text, x, y, align = "center") {
+  const r = v.rect, wd = ctx.measureText(text).width, f = fontSize();
+  let left = align === "center" ? x - wd / 2 : align === "right" ? x - wd : x;
+  left = Math.max(r.x0 + 3, Math.min(left, r.x1 - 3 - wd));
+  const base = Math.max(r.y0 + f + 2, Math.min(y, r.y1 - 4));
+  ctx.save(); ctx.textAlign = "left"; ctx.textBaseline = "alphabetic"; ctx.fillText(text, left, base); ctx.restore();
 }
 
 function arrow(ctx, x0, y0, x1, y1, colour) {
@@ -1173,12 +1215,13 @@ function drawChain(ctx, w, h, k) {
   app.chainGeom = { v, top, amp, strip: false };
   if (k !== "chain") return;
   // The masses on their springs, displacements to scale: a displacement of `amp` moves a
-  // mass 0.4 of the spacing, so neighbours never cross.
-  const x0 = v.rect.x0, x1 = v.rect.x1, y = top * 0.55, gap = (x1 - x0) / (n + 1), gain = (0.4 * gap) / amp;
+  // mass 0.3 of the spacing, so neighbours' centres stay 0.4 of it apart, and a mass is at
+  // most 0.36 of it wide (at least 5 px), so neighbours do not overlap.
+  const x0 = v.rect.x0, x1 = v.rect.x1, y = top * 0.55, gap = (x1 - x0) / (n + 1), gain = (0.3 * gap) / amp;
   const X = (i) => x0 + gap * (i + 1) + gain * s[i];
   Object.assign(app.chainGeom, { strip: true, x0, gap, gain, y });
   ctx.strokeStyle = "#555"; ctx.lineWidth = 1.2;
-  const half = Math.max(3, Math.min(8, gap / 3));
+  const half = Math.max(2.5, Math.min(8, 0.18 * gap));
   if (!ring) {
     ctx.fillStyle = "#bbb"; ctx.fillRect(x0 - 8, y - 18, 8, 36); ctx.fillRect(x1, y - 18, 8, 36);
     coil(ctx, x0, y, X(0) - half, y, 5, 4);
@@ -1535,7 +1578,7 @@ function drawRolling(ctx, w, h) {
     `${app.entry.name === "rolling-rattleback" ? "tilt" : "normal"} ${((tilt * 180) / Math.PI).toFixed(1)}° from the vertical.`);
 }
 
-function drawCurve(id, points, boxKey, labels) {
+function drawCurve(id, points, boxKey, labels, least = [0, 0]) {
   const { ctx, w, h } = surface(id);
   let box = app[boxKey];
   // The view: the probe run's extent of these coordinates, widened only when the run leaves
@@ -1547,6 +1590,7 @@ function drawCurve(id, points, boxKey, labels) {
   let outside = false;
   for (const [x, y] of points) if (box && (x < box.x0 || x > box.x1 || y < box.y0 || y > box.y1)) { outside = true; break; }
   if (!box || outside) { for (const [x, y] of points) box = grow(box, x, y); if (box && outside) box = pad(box, 0.1); }
+  if (box) box = atLeast(box, least);
   app[boxKey] = box;
   if (!box) return null;
   const v = plotView(w, h, box, false);
@@ -1561,9 +1605,36 @@ function drawCurve(id, points, boxKey, labels) {
   return v;
 }
 
+// A box widened about its centre to spans of at least `least` ([x, y]).
+function atLeast(box, [sx, sy]) {
+  const widen = (a, b, span) => (b - a >= span ? [a, b] : [(a + b) / 2 - span / 2, (a + b) / 2 + span / 2]);
+  const [x0, x1] = widen(box.x0, box.x1, sx), [y0, y1] = widen(box.y0, box.y1, sy);
+  return { x0, x1, y0, y1 };
+}
+
+// The scale of state entry `i`: the largest magnitude over the probe run and now of the
+// entries of its kind (all coordinates, or all momenta or velocities).
+function entryScale(i) {
+  const s = app.lab.state(), { k, paired } = stateLayout();
+  const [a, b] = paired ? (i < k ? [0, k] : [k, 2 * k]) : [0, s.length];
+  let m = 0;
+  for (let j = a; j < b; j++) m = Math.max(m, Math.abs(s[j]), Math.abs(app.extent?.lo[j] ?? 0), Math.abs(app.extent?.hi[j] ?? 0));
+  return m;
+}
+
+// The least span of the phase panel along entry `i`: an entry that keeps still next to the
+// others of its kind (it moves less than STILL of their scale over the probe run: a sine-Gordon
+// site the wave has not reached, at 1e-236) is shown on their scale, resting at its value, not
+// magnified into ticks at 1e-235; any other keeps its own span.
+const STILL = 1e-6;
+function phaseLeast(i) {
+  const scale = entryScale(i), lo = app.extent?.lo[i], hi = app.extent?.hi[i];
+  return lo !== undefined && hi - lo < STILL * scale ? scale : 0;
+}
+
 function drawPhase() {
   const labels = stateAxisLabels(), ix = $("phase-x").value, iy = $("phase-y").value;
-  drawCurve("phase", app.phase, "phaseBox", [labels[ix], labels[iy]]);
+  drawCurve("phase", app.phase, "phaseBox", [labels[ix], labels[iy]], [phaseLeast(Number(ix)), phaseLeast(Number(iy))]);
 }
 
 function drawEnergy() {

@@ -15,8 +15,10 @@
 // angles in (−π, π]), three orbits launched on the Hénon–Heiles section (the crossings of all
 // three stay, read from the JSON export), Euler's disk ending at its collapse with words, not
 // an error, Foucault's swing plane turned by the closed form in time-lapse, the keyboard, the page at 390 px wide (no sideways
-// scroll, the scene and Run on the first screen), and no console errors. Screenshots of
-// every system, desktop and phone, go to the given directory.
+// scroll, the scene and Run on the first screen), and no console errors; a bad method name
+// given to the module's build (unknown, HTML, adaptive, refused by the setup) is refused by
+// name and the module runs on. Screenshots of every system, desktop and phone, running and
+// (every draggable one) after a drag, go to the given directory.
 //
 // With a rendered gallery's directory (`physicskit gallery --quick --out DIR`), every one of
 // its "Open in the lab" links is opened too: nothing refused, the system, method, step and
@@ -352,22 +354,28 @@ function checkLink(name, r) {
   await page.screenshot({ path: join(shots, "heavy-top-dragged.png"), fullPage: true });
 }
 
-// Every draggable system after a drag (its last body, or a chain's middle mass, or a top's
-// axis, moved 30 px right and 20 px up, then 30 frames run): screenshots to look at, and no
-// console error on the way.
-for (const name of DRAGGABLE) {
-  await page.evaluate((n) => window.physicskitLab.select(n), name);
-  const at = await page.evaluate(() => {
+// Drags system `name`'s last body, or a chain's middle mass, or a top's axis, 30 px right and
+// 20 px up on page `p`; false if it has nothing on the screen to drag.
+async function dragOnce(p, name) {
+  await p.evaluate((n) => window.physicskitLab.select(n), name);
+  const at = await p.evaluate(() => {
     const L = window.physicskitLab, hs = L.handlesOnScreen();
     if (hs.length) { const h = hs[Math.floor(hs.length / 2)]; return [h.x, h.y]; }
     const b = L.bodiesOnScreen();
     return b[b.length - 1];
   });
-  if (!at) continue;
-  await page.mouse.move(at[0], at[1]);
-  await page.mouse.down();
-  await page.mouse.move(at[0] + 30, at[1] - 20, { steps: 4 });
-  await page.mouse.up();
+  if (!at) return false;
+  await p.mouse.move(at[0], at[1]);
+  await p.mouse.down();
+  await p.mouse.move(at[0] + 30, at[1] - 20, { steps: 4 });
+  await p.mouse.up();
+  return true;
+}
+
+// Every draggable system after a drag (then 30 frames run): screenshots to look at, and no
+// console error on the way.
+for (const name of DRAGGABLE) {
+  if (!await dragOnce(page, name)) continue;
   await page.evaluate(() => window.physicskitLab.runFrames(30));
   await page.screenshot({ path: join(shots, `${name}-after-drag.png`), fullPage: true });
 }
@@ -413,6 +421,31 @@ for (const [hash, system, named] of HOSTILE) {
   if (!ran) fail(`${why}: the opened page does not run`);
   console.log(`ok hostile link ${hash.slice(0, 60)}: ${got.message.slice(0, 110)}`);
   await p.close();
+}
+
+// A method name from a script call is untrusted too: the module's build and set-method refuse
+// an unknown name, HTML, a name in the wrong case, an adaptive method (a frame-by-frame run
+// cannot take its steps) and a splitting method on a system with drag, each with an Error
+// naming the method, and the module runs on (a panic in the WebAssembly would abort it: every
+// later call would throw "unreachable").
+{
+  const r = await page.evaluate(() => {
+    const core = window.physicskitLab.app.core, out = [];
+    const attempt = (method, f) => { try { f(); out.push({ method, thrown: null }); } catch (e) { out.push({ method, thrown: `${e.constructor.name}: ${e.message}` }); } };
+    for (const m of ["warp-drive", "<b>rk4</b>", "RK4", "dop853"]) attempt(m, () => core.build("double-pendulum", {}, m).free());
+    attempt("yoshida4", () => core.build("projectile", { drag_coeff: 0.02 }, "yoshida4").free());
+    const lab = core.build("double-pendulum", {}, "rk4");
+    attempt("warp-drive", () => lab.setMethod("warp-drive"));
+    lab.step(10, 1e-3);
+    const ran = Number.isFinite(lab.energyError()) && lab.time() > 0;
+    lab.free();
+    return { out, ran };
+  });
+  for (const { method, thrown } of r.out) {
+    if (!thrown?.startsWith("Error: ") || !thrown.includes(method)) fail(`method ${method}: ${thrown ?? "not refused"}`);
+  }
+  if (!r.ran) fail("after the refused methods the module does not run");
+  console.log(`ok bad methods refused by name, the module running on: ${r.out.map((o) => o.thrown.slice(7, 60)).join(" | ")}`);
 }
 
 // Links in the form the gallery writes (`Ctx::lab_link`: system, method, dt, parameters; no
@@ -636,6 +669,19 @@ for (const [name] of systems) {
   if (m.scene > m.height || m.run > m.height) fail(`phone ${name}: scene ends at ${m.scene} px, Run at ${m.run} px, screen ${m.height} px`);
   await phone.screenshot({ path: join(shots, `phone-${name}.png`) });
 }
+// Every draggable system dragged on the phone too (as on the desktop, then 30 frames):
+// screenshots to look at, the start moved, the page still no wider than the screen.
+for (const name of DRAGGABLE) {
+  const before = await phone.evaluate((n) => { window.physicskitLab.select(n); return Array.from(window.physicskitLab.app.lab.initialState()); }, name);
+  if (!await dragOnce(phone, name)) { fail(`phone ${name}: nothing to drag on the screen`); continue; }
+  const after = await phone.evaluate(() => Array.from(window.physicskitLab.app.lab.initialState()));
+  if (after.join() === before.join()) fail(`phone ${name}: a drag did not move the start`);
+  await phone.evaluate(() => window.physicskitLab.runFrames(30));
+  const wide = await phone.evaluate(() => document.documentElement.scrollWidth - window.innerWidth);
+  if (wide > 0) fail(`phone ${name}: after a drag the page is ${wide} px wider than the screen`);
+  await phone.screenshot({ path: join(shots, `phone-${name}-after-drag.png`) });
+}
+console.log(`ok phone drags: ${DRAGGABLE.length} draggable systems dragged at 390 px`);
 await phone.evaluate(() => { document.getElementById("large").click(); window.physicskitLab.select("double-pendulum"); window.physicskitLab.runFrames(60); });
 const overflow = await phone.evaluate(() => document.documentElement.scrollWidth - window.innerWidth);
 if (overflow > 0) fail(`phone (large text): the page is ${overflow} px wider than the screen`);
