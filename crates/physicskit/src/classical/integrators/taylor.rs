@@ -112,6 +112,45 @@ pub trait TaylorField {
     ) -> Result<()>;
 }
 
+/// The tightest relative tolerance the method accepts: `2^-54`, half the unit roundoff. A
+/// double's rounding error relative to its value is at least this (just below a power of
+/// two) and at most `2^-53`, so no double result can be held to a tighter `rtol`.
+pub const MIN_RTOL: f64 = f64::EPSILON / 4.0;
+
+/// Checks tolerances for the Taylor method, beyond [`Tolerances::validate`] (finite and
+/// positive): `rtol` from [`MIN_RTOL`] (tighter than any double can hold) up to below 1 (a
+/// relative tolerance of 1 or more asks for no correct digit, and would run at order 2 with
+/// steps as long as the series' radius of convergence allows). `atol` has no scale of its
+/// own (it is in the state's units): any positive value is accepted, and an `atol` so small
+/// that the order rule asks for more than [`MAX_ORDER`] terms runs at [`MAX_ORDER`] (the run
+/// reports its `order`).
+///
+/// # Errors
+/// [`Error::InvalidParameter`] naming the offending field.
+pub fn check_tolerances(tolerances: &Tolerances) -> Result<()> {
+    tolerances.validate()?;
+    let rtol = tolerances.rtol;
+    if rtol < MIN_RTOL {
+        return Err(Error::invalid(
+            "rtol",
+            rtol,
+            format!(
+                "is below what double precision can reach: a double's rounding is at least \
+                 {MIN_RTOL:.3e} of its value (2^-54), so the taylor method accepts rtol >= that"
+            ),
+        ));
+    }
+    if rtol >= 1.0 {
+        return Err(Error::invalid(
+            "rtol",
+            rtol,
+            "must be below 1 for the taylor method: a relative tolerance of 1 or more asks \
+             for no correct digit",
+        ));
+    }
+    Ok(())
+}
+
 /// The order the method uses for tolerances `rtol`, `atol`: `⌈-ln(min(rtol, atol))/2 + 1⌉`,
 /// at least 2, at most [`MAX_ORDER`].
 pub fn order_for(tolerances: &Tolerances) -> usize {
@@ -196,7 +235,7 @@ impl Taylor {
     ///
     /// # Errors
     /// [`Error::InvalidParameter`] for a state of the wrong length or not finite, or
-    /// tolerances that are not finite and positive.
+    /// tolerances that [`check_tolerances`] refuses.
     pub fn new(
         dim: usize,
         tolerances: Tolerances,
@@ -204,7 +243,7 @@ impl Taylor {
         y0: &[f64],
         t_bound: f64,
     ) -> Result<Self> {
-        tolerances.validate()?;
+        check_tolerances(&tolerances)?;
         if y0.len() != dim {
             return Err(Error::invalid(
                 "y0",
@@ -660,13 +699,15 @@ impl AdaptiveStepper for TaylorStepper {
     /// The stepper on `system`'s Taylor form.
     ///
     /// # Errors
-    /// [`Error::UnsupportedMethod`] for a system without one ([`no_taylor_form`]); whatever
-    /// building its recurrences reports.
+    /// [`Error::InvalidParameter`] for tolerances [`check_tolerances`] refuses;
+    /// [`Error::UnsupportedMethod`] for a system without a Taylor form ([`no_taylor_form`]);
+    /// whatever building its recurrences reports.
     fn for_system<S: DynamicalSystem + ?Sized>(
         system: &S,
         tolerances: Tolerances,
         t_bound: f64,
     ) -> Result<Self> {
+        check_tolerances(&tolerances)?;
         let field = system
             .taylor_field()
             .ok_or_else(|| no_taylor_form(&system_name::<S>()))??;
