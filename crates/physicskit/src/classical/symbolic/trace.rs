@@ -31,9 +31,10 @@ use num_dual::{DualNum, DualStruct, Mappable};
 use num_traits::{FromPrimitive, Inv, Num, One, Signed, Zero};
 
 use super::expr::{Expr, ExprLagrangian, Func};
+use super::expr_hamiltonian::ExprHamiltonian;
 use crate::classical::core::{Error, Result};
 use crate::classical::integrators::taylor::TaylorField;
-use crate::classical::lagrangian::Lagrangian;
+use crate::classical::lagrangian::{Lagrangian, Scalar};
 
 /// The operations recorded so far on this thread, and the first operation that needed a
 /// value (which makes the trace unusable).
@@ -179,6 +180,56 @@ fn rem(_: Traced, _: Traced) -> Traced {
 /// [`ExprLagrangian::new`] refuses (a non-finite constant in `L`).
 pub fn trace_lagrangian<L: Lagrangian>(lagrangian: &L) -> Result<ExprLagrangian> {
     let n = lagrangian.ndof();
+    let expr = record(n, |q, qdot, t| lagrangian.lagrangian(q, qdot, t))?;
+    ExprLagrangian::new(expr, n, Vec::new())
+}
+
+/// A Hamiltonian `H(q, p, t)` written once, generic over the number type, as a system with a
+/// hand-written `f64` force writes its potential so that [`trace_hamiltonian`] can give it a
+/// Taylor form. Straight-line code only, as for [`Lagrangian`] (a branch on a parameter is
+/// fine: parameters are numbers, not traced values).
+pub trait TracedHamiltonian {
+    /// Degrees of freedom (the length of `q` and of `p`).
+    fn ndof(&self) -> usize;
+
+    /// `H(q, p, t)`.
+    fn hamiltonian<D: Scalar>(&self, q: &[D], p: &[D], t: D) -> D;
+}
+
+/// `H(q, p, t)` of `hamiltonian` as an expression (momenta as `p<i>`, stored as
+/// [`Expr::Qdot`]), with the system at `(q0, p0)`: see the module documentation.
+///
+/// # Errors
+/// As [`trace_lagrangian`]; whatever [`ExprHamiltonian::new`] refuses.
+pub fn trace_hamiltonian<H: TracedHamiltonian>(
+    hamiltonian: &H,
+    q0: &[f64],
+    p0: &[f64],
+) -> Result<ExprHamiltonian> {
+    let n = hamiltonian.ndof();
+    let expr = record(n, |q, p, t| hamiltonian.hamiltonian(q, p, t))?;
+    ExprHamiltonian::new(expr, n, Vec::new(), q0, p0)
+}
+
+/// The Taylor form of a [`TracedHamiltonian`]: its trace compiled into the recurrences of
+/// Hamilton's equations on `(q, p)`
+/// ([`TaylorProgram::hamiltonian`](super::TaylorProgram::hamiltonian)).
+///
+/// # Errors
+/// As [`trace_hamiltonian`].
+pub fn traced_hamiltonian_taylor_field<H: TracedHamiltonian>(
+    hamiltonian: &H,
+) -> Result<Box<dyn TaylorField>> {
+    let n = hamiltonian.ndof();
+    // The start only seeds the engine's own state; the Taylor form does not keep it.
+    let zero = vec![0.0; n];
+    let traced = trace_hamiltonian(hamiltonian, &zero, &zero)?;
+    Ok(Box::new(super::TaylorProgram::hamiltonian(&traced)?))
+}
+
+/// The expression of `f(q, v, t)` (`v` the velocities or momenta, recorded as
+/// [`Expr::Qdot`]) for `n` degrees of freedom, traced on this thread.
+fn record(n: usize, f: impl FnOnce(&[Traced], &[Traced], Traced) -> Traced) -> Result<Expr> {
     let started = RECORDING.with(|r| {
         let mut r = r.borrow_mut();
         if r.is_some() {
@@ -196,15 +247,15 @@ pub fn trace_lagrangian<L: Lagrangian>(lagrangian: &L) -> Result<ExprLagrangian>
     }
     let _guard = RecordingGuard;
     let q: Vec<Traced> = (0..n).map(|i| push(Expr::Q(i))).collect();
-    let qdot: Vec<Traced> = (0..n).map(|i| push(Expr::Qdot(i))).collect();
+    let v: Vec<Traced> = (0..n).map(|i| push(Expr::Qdot(i))).collect();
     let t = push(Expr::T);
-    let value = lagrangian.lagrangian(&q, &qdot, t);
+    let value = f(&q, &v, t);
     let expr = expr_of(value);
     if let Some(operation) = RECORDING.with(|r| r.borrow().as_ref().and_then(|rec| rec.needs_value))
     {
         return Err(refusal(operation));
     }
-    ExprLagrangian::new(expr, n, Vec::new())
+    Ok(expr)
 }
 
 /// The Taylor form of any [`Lagrangian`]: its trace ([`trace_lagrangian`]) compiled into the
