@@ -9,6 +9,7 @@ use physicskit::classical::integrators::{
     hamiltonian_energy, lagrangian_derivatives, separable_derivatives,
 };
 use physicskit::classical::model::erased::Capabilities;
+use physicskit::classical::symbolic::Backend;
 use physicskit::classical::systems::HenonHeilesSystem;
 use physicskit::classical::{
     DynamicalSystem, Error, HamiltonianSystem, LagrangianSystem, Method, OdeSystem, Phase, Result,
@@ -310,6 +311,22 @@ impl physicskit::classical::integrators::Ensemble for PendulumBank {
         sub.phase.set_t(self.phase.t())?;
         Ok(sub)
     }
+}
+
+/// The backend `compile_native` gives in this build: machine code with the feature `jit`,
+/// the interpreter without it (the JIT tests then check that every tape stays interpreted).
+pub fn native() -> Backend {
+    if cfg!(feature = "jit") {
+        Backend::Native
+    } else {
+        Backend::Interpreter
+    }
+}
+
+/// The same bits; any NaN matches any NaN (Rust leaves NaN payloads unspecified, and `0/0`
+/// or `ln(-1)` make NaNs in both).
+pub fn same(a: f64, b: f64) -> bool {
+    a.to_bits() == b.to_bits() || (a.is_nan() && b.is_nan())
 }
 
 /// A fixed linear congruential sequence in `[-0.5, 0.5)`: deterministic test data.

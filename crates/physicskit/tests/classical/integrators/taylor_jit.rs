@@ -2,7 +2,7 @@
 //! every recurrence and the expression forms of Kepler, Hénon–Heiles and the double pendulum
 //! (Hamiltonian and Lagrangian) bit for bit at every order, whole runs bit for bit, and the
 //! lazy compilation. Without the feature the recurrences are always interpreted, which the
-//! tests then check instead (`native()` below).
+//! tests then check instead (`fixtures::native`).
 
 use physicskit::classical::integrators::taylor::{integrate_taylor, order_for, TaylorField};
 use physicskit::classical::symbolic::{Backend, Expr, ExprOde, TaylorProgram};
@@ -13,21 +13,7 @@ use super::taylor::{
     double_pendulum_expr, double_pendulum_lagrangian, henon_heiles_expr, kepler_expr, kepler_state,
     RECURRENCES,
 };
-use crate::fixtures::pseudo_random;
-
-/// The backend `compile_native` gives in this build.
-fn native() -> Backend {
-    if cfg!(feature = "jit") {
-        Backend::Native
-    } else {
-        Backend::Interpreter
-    }
-}
-
-/// The same bits; any NaN matches any NaN.
-fn same(a: f64, b: f64) -> bool {
-    a.to_bits() == b.to_bits() || (a.is_nan() && b.is_nan())
-}
+use crate::fixtures::{native, pseudo_random, same};
 
 /// The systems: every recurrence as the ODE `y0' = f(y1)`, `y1' = 1`, and the four
 /// mechanical expression forms, each with a point to expand at and the spread of the

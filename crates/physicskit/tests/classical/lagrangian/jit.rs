@@ -2,7 +2,7 @@
 //! and function bit for bit on many inputs, every way of evaluating, whole trajectories of
 //! the expression systems, the lazy compilation, and the fallback to the interpreter where
 //! Cranelift cannot compile. Without the feature every tape is interpreted, which the tests
-//! then check instead (`native()` below).
+//! then check instead (`fixtures::native`).
 
 use physicskit::classical::symbolic::{
     Backend, Expr, ExprHamiltonian, ExprOde, Tape, COMPILE_AFTER,
@@ -11,22 +11,7 @@ use physicskit::classical::{
     DynamicalSystem, HamiltonianSystem, Method, OdeSystem, SimulationResult,
 };
 
-use crate::fixtures::pseudo_random;
-
-/// The backend `compile_native` gives in this build.
-fn native() -> Backend {
-    if cfg!(feature = "jit") {
-        Backend::Native
-    } else {
-        Backend::Interpreter
-    }
-}
-
-/// The same bits; any NaN matches any NaN (Rust leaves NaN payloads unspecified, and `0/0`
-/// or `ln(-1)` make NaNs in both).
-fn same(a: f64, b: f64) -> bool {
-    a.to_bits() == b.to_bits() || (a.is_nan() && b.is_nan())
-}
+use crate::fixtures::{native, pseudo_random, same};
 
 /// One expression per operation of the tape (the name is the operation it compiles to), in
 /// `q0`, `q1`, `qdot0` and `t`.
