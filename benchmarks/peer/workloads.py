@@ -34,6 +34,9 @@ def _argument(pc, value):
     if not isinstance(value, dict):
         return value
     if "sine_mode" in value:
+        # The formula of the library's `systems::sine_mode` (FPUTChain's start, which the Rust
+        # workloads call), written out here because this file also runs in the peer's
+        # environment, whose API has no mode shape to call.
         mode = value["sine_mode"]
         wave = np.pi * mode["mode"] / (mode["n"] + 1)
         return mode["amplitude"] * np.sin(wave * np.arange(1, mode["n"] + 1))

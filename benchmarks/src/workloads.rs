@@ -9,10 +9,9 @@
 use physicskit::classical::catalog::SYSTEMS;
 use physicskit::classical::model::entry::{ParamKind, Value};
 use physicskit::classical::model::{DynSystem, SystemEntry};
-use physicskit::classical::systems::SineGordonChain;
+use physicskit::classical::systems::{sine_mode, SineGordonChain};
 use physicskit::classical::{IntegrateOptions, Method, Result, SimulationResult};
 use serde_json::Value as Json;
-use std::f64::consts::PI;
 
 /// The table, embedded when the crate is built.
 const TABLE: &str = include_str!("../peer/workloads.json");
@@ -156,13 +155,11 @@ fn argument(kind: Option<ParamKind>, value: &Json) -> std::result::Result<Value,
         Json::Object(start) if start.contains_key("sine_mode") => {
             let mode = &start["sine_mode"];
             let n = number("n", mode)? as usize;
-            let wave = PI * number("mode", mode)? / (n + 1) as f64;
+            let index = mode["mode"]
+                .as_u64()
+                .ok_or("`mode` is not a non-negative integer")?;
             let amplitude = number("amplitude", mode)?;
-            Ok(Value::Vector(
-                (1..=n)
-                    .map(|i| amplitude * (wave * i as f64).sin())
-                    .collect(),
-            ))
+            Ok(Value::Vector(sine_mode(n, index as usize, amplitude)))
         }
         Json::Object(start) if start.contains_key("kink") => {
             let kink = &start["kink"];

@@ -373,6 +373,17 @@ crate::impl_separable_dynamics!(HarmonicChain);
 
 // ---------------------------------------------------------------------------------------------
 
+/// The displacements of `n` fixed-end sites in the shape of sine mode `mode`:
+/// `q_i = amplitude sin(pi mode i/(n+1))`, `i = 1..n` (the start of [`FPUTChain::new`], and of
+/// the benchmarks' chain workloads, which call this so that both start from the same bits).
+/// Any `mode` gives its sine; the modes of the chain are `1..=n`.
+pub fn sine_mode(n: usize, mode: usize, amplitude: f64) -> Vec<f64> {
+    let wave = PI * mode as f64 / (n + 1) as f64;
+    (1..=n)
+        .map(|i| amplitude * (wave * i as f64).sin())
+        .collect()
+}
+
 /// The Fermi–Pasta–Ulam–Tsingou β-chain with fixed ends,
 /// `H = sum p_i^2/(2m) + sum_{i=0}^{N} [(k/2) r_i^2 + (beta/4) r_i^4]`.
 ///
@@ -415,10 +426,7 @@ impl FPUTChain {
                 format!("must be in 1..={n} (one of the chain's normal modes)"),
             ));
         }
-        let wave = PI * mode as f64 / (n + 1) as f64;
-        let q0: Vec<f64> = (1..=n)
-            .map(|i| amplitude * (wave * i as f64).sin())
-            .collect();
+        let q0 = sine_mode(n, mode, amplitude);
         let p0 = vec![0.0; n];
         Ok(Self {
             phase: Phase::from_halves("q0", &q0, "p0", &p0)?,
