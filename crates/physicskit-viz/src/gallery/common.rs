@@ -83,6 +83,25 @@ pub(crate) fn nonempty(v: Vec<f64>, what: &str) -> Result<Vec<f64>> {
     }
 }
 
+/// A number as a physicist writes it in running text: a power of ten as `10⁻⁸` (superscript
+/// exponent), any other number in Rust's shortest form.
+pub(crate) fn power_of_ten(x: f64) -> String {
+    // Rust's shortest exponent form is "1e-8" exactly when x is a power of ten.
+    match format!("{x:e}").strip_prefix("1e") {
+        Some(exponent) => {
+            let digits: String = exponent
+                .chars()
+                .map(|c| match c.to_digit(10) {
+                    Some(d) => ['⁰', '¹', '²', '³', '⁴', '⁵', '⁶', '⁷', '⁸', '⁹'][d as usize],
+                    None => '⁻',
+                })
+                .collect();
+            format!("10{digits}")
+        }
+        None => format!("{x}"),
+    }
+}
+
 /// The title and the grey subtitle at the top left of an animation frame drawn by hand (a body
 /// in 3-D rather than a chart).
 pub(crate) fn frame_caption(
@@ -108,4 +127,19 @@ pub(crate) fn frame_caption(
     ))
     .at(path)?;
     Ok(())
+}
+
+#[cfg(test)]
+mod tests {
+    use super::power_of_ten;
+
+    #[test]
+    fn powers_of_ten_are_written_with_superscripts() {
+        assert_eq!(power_of_ten(1e-8), "10⁻⁸");
+        assert_eq!(power_of_ten(1e12), "10¹²");
+        assert_eq!(power_of_ten(1.0), "10⁰");
+        assert_eq!(power_of_ten(2e-8), "2e-8");
+        assert_eq!(power_of_ten(0.0), "0");
+        assert_eq!(power_of_ten(-1e-8), "-0.00000001");
+    }
 }

@@ -74,6 +74,7 @@ pub(crate) fn render(ctx: &Ctx) -> Result<Demo> {
         )
         .x_range(-2.2, 2.2)
         .y_range(-2.2, 2.2)
+        .equal_aspect()
         .legend(Legend::None)
         .draw(&left, &path)?;
         // A 1.5 s trail (75 samples of 0.02 s), fading out towards its tail.

@@ -87,8 +87,9 @@ pub(crate) fn render(ctx: &Ctx) -> Result<Demo> {
     }
     let panel = Panel::new(
         format!(
-            "Regular fraction of the section x = 0: SALI > {CHAOS_THRESHOLD:e} at t = {t1}, \
-             {n} × {n} grid per energy"
+            "Regular fraction of the section x = 0: SALI > {} at t = {t1}, \
+             {n} × {n} grid per energy",
+            super::common::power_of_ten(CHAOS_THRESHOLD)
         ),
         "energy E",
         "fraction of regular orbits",

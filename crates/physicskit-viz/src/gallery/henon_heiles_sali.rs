@@ -70,13 +70,17 @@ pub(crate) fn render(ctx: &Ctx) -> Result<Demo> {
     let chaotic = sali.iter().filter(|&&s| s < CHAOS_THRESHOLD).count();
     let map = HeatMap {
         title: format!(
-            "SALI at t = {t_sali}: {:.0} % of {} orbits chaotic (< {CHAOS_THRESHOLD:e})",
+            "SALI at t = {t_sali}: {:.0} % of {} orbits chaotic (< {})",
             100.0 * chaotic as f64 / sali.len() as f64,
-            sali.len()
+            sali.len(),
+            super::common::power_of_ten(CHAOS_THRESHOLD)
         ),
         x_label: "y".into(),
         y_label: "p_{y}".into(),
-        value_label: format!("log₁₀ SALI (chaotic below {})", CHAOS_THRESHOLD.log10()),
+        value_label: format!(
+            "log₁₀ SALI (chaotic below {})",
+            CHAOS_THRESHOLD.log10().to_string().replace('-', "−")
+        ),
         x_range: y_range,
         y_range: py_range,
         nx,
