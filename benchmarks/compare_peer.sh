@@ -3,6 +3,9 @@
 #
 #   bash benchmarks/compare_peer.sh [--steps N] [--repeats R] [--cases A B ...]
 #   bash benchmarks/compare_peer.sh --same-accuracy [...]   # time to the peer's own accuracy
+#   bash benchmarks/compare_peer.sh --baseline PYTHON [...]  # also ours at another commit
+#       (PYTHON: a venv's python holding that commit's release build; see benchmarks/README.md,
+#       "Before and after")
 #
 # Builds our package into <repo>/.venv (python/dev.sh env) and installs the peer into
 # benchmarks/.venv-peer (git-ignored): the two packages share the name `physicskit`, so each
