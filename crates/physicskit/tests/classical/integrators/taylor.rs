@@ -2,7 +2,8 @@
 //! Kepler, Hénon–Heiles and the double pendulum against their hand-written fields, the
 //! measured local order against the closed-form Kepler orbit, the error following the
 //! tolerance, the floor over 100 Kepler orbits, the energy error's growth over long runs,
-//! dense output independent of the output spacing, and failures as errors.
+//! dense output independent of the output spacing, failures as errors, and hostile tolerances
+//! refused naming the field.
 
 use crate::checks::loglog_slope;
 use crate::fixtures::pseudo_random;
@@ -11,7 +12,7 @@ use physicskit::classical::analysis::section::{
     poincare_section, taylor_section, SurfaceOfSection,
 };
 use physicskit::classical::integrators::taylor::{
-    compensated_horner, integrate_taylor, order_for, TaylorField,
+    compensated_horner, integrate_taylor, order_for, TaylorField, MAX_ORDER, MIN_RTOL,
 };
 use physicskit::classical::lagrangian::LagrangianModel;
 use physicskit::classical::model::erased::{DynSystem, Hamiltonian};
@@ -638,5 +639,83 @@ fn poincare_crossings_on_the_polynomial_match_keplers_equation() {
     assert_eq!(coarse.len(), 3);
     for k in 0..3 {
         assert!((coarse.t[k] - cut.t[k]).abs() <= 1e-8, "{:?}", coarse.t);
+    }
+}
+
+/// Hostile tolerances: NaN, infinite, zero or negative `rtol`/`atol`, an `rtol` of 1 or more
+/// (1e300) and one below what double precision can hold (`MIN_RTOL = 2^-54`) are refused with
+/// an `InvalidParameter` naming the field, by the stepper, by `integrate_taylor` and through the
+/// registry (`Method::Taylor` on an expression system); the smallest accepted `rtol` runs. An
+/// `atol` far below rounding (1e-300) runs at the order cap `MAX_ORDER` (the report says so), and
+/// a huge one (1e300) at the order `rtol` sets: neither explodes the order or the step count.
+#[test]
+fn hostile_tolerances_are_refused_naming_the_field() {
+    let y0 = kepler_state(0.0);
+    let span = (0.0, 1.0);
+    let bad = [
+        f64::NAN,
+        f64::INFINITY,
+        f64::NEG_INFINITY,
+        0.0,
+        -1e-10,
+        1.0,
+        1e300,
+        1e-17,
+        MIN_RTOL / 2.0,
+    ];
+    for value in bad {
+        let tol = Tolerances {
+            rtol: value,
+            ..Tolerances::default()
+        };
+        let named = |e: &Error| matches!(e, Error::InvalidParameter { name, .. } if name == "rtol");
+        let mut program = TaylorProgram::hamiltonian(&kepler_expr()).unwrap();
+        let err = integrate_taylor(&mut program, &y0, span, 0.5, tol).unwrap_err();
+        assert!(named(&err), "rtol = {value:e}: {err}");
+        let options = IntegrateOptions {
+            tolerances: Some(tol),
+            ..IntegrateOptions::default()
+        };
+        let err = kepler_expr()
+            .integrate_with(span, 0.5, Method::Taylor, options)
+            .unwrap_err();
+        assert!(named(&err), "rtol = {value:e} through the registry: {err}");
+    }
+    for value in [f64::NAN, f64::INFINITY, 0.0, -1.0] {
+        let tol = Tolerances {
+            atol: value,
+            ..Tolerances::default()
+        };
+        let mut program = TaylorProgram::hamiltonian(&kepler_expr()).unwrap();
+        let err = integrate_taylor(&mut program, &y0, span, 0.5, tol).unwrap_err();
+        assert!(
+            matches!(&err, Error::InvalidParameter { name, .. } if name == "atol"),
+            "atol = {value:e}: {err}"
+        );
+    }
+    for (rtol, atol, order) in [
+        (
+            MIN_RTOL,
+            MIN_RTOL,
+            order_for(&Tolerances::new(MIN_RTOL, MIN_RTOL).unwrap()),
+        ),
+        (1e-10, 1e-300, MAX_ORDER),
+        (
+            1e-10,
+            1e300,
+            order_for(&Tolerances::new(1e-10, 1.0).unwrap()),
+        ),
+    ] {
+        let mut program = TaylorProgram::hamiltonian(&kepler_expr()).unwrap();
+        let tol = Tolerances::new(rtol, atol).unwrap();
+        let r = integrate_taylor(&mut program, &y0, span, 0.5, tol).unwrap();
+        assert_eq!(
+            r.extra_scalar("order"),
+            Some(order as f64),
+            "{rtol:e}, {atol:e}"
+        );
+        // One time unit of the orbit (a sixth of it) takes a handful of steps at any order.
+        let steps = r.extra_scalar("steps").unwrap();
+        assert!(steps < 100.0, "{rtol:e}, {atol:e}: {steps} steps");
     }
 }
