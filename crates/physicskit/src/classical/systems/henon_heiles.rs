@@ -67,6 +67,18 @@ impl HamiltonianSystem for HenonHeilesSystem {
 
 crate::impl_separable_dynamics!(HenonHeilesSystem);
 
+/// `H` written once over any number type, for the system's Taylor form
+/// ([`traced_hamiltonian_taylor_field`](crate::classical::symbolic::traced_hamiltonian_taylor_field)).
+impl crate::classical::symbolic::TracedHamiltonian for HenonHeilesSystem {
+    fn ndof(&self) -> usize {
+        2
+    }
+    fn hamiltonian<D: crate::classical::lagrangian::Scalar>(&self, q: &[D], p: &[D], _t: D) -> D {
+        let (x, y) = (q[0], q[1]);
+        (p[0] * p[0] + p[1] * p[1] + x * x + y * y) * 0.5 + x * x * y - y * y * y / 3.0
+    }
+}
+
 impl Capabilities for HenonHeilesSystem {
     fn positions_into(&self, q: &[f64], out: &mut Vec<f64>) -> Option<Result<()>> {
         Some(check_len("q", q, 2).map(|()| fill(out, q)))

@@ -281,6 +281,38 @@ impl HamiltonianSystem for KeplerSystem {
 
 crate::impl_separable_dynamics!(KeplerSystem);
 
+/// `H` written once over any number type, for the system's Taylor form
+/// ([`traced_hamiltonian_taylor_field`](crate::classical::symbolic::traced_hamiltonian_taylor_field)):
+/// the terms of [`radial`](KeplerSystem::radial) at the softened radius; a perturbation whose
+/// coefficient is zero is left out, as there (a branch on a parameter, which a trace follows).
+impl crate::classical::symbolic::TracedHamiltonian for KeplerSystem {
+    fn ndof(&self) -> usize {
+        2
+    }
+    fn hamiltonian<D: crate::classical::lagrangian::Scalar>(&self, q: &[D], p: &[D], _t: D) -> D {
+        let KeplerPerturbations {
+            eps,
+            c_eps,
+            c_pn,
+            softening,
+        } = self.pert;
+        let mut r2 = q[0] * q[0] + q[1] * q[1];
+        if softening != 0.0 {
+            r2 += softening * softening;
+        }
+        let s = r2.sqrt();
+        let inv = s.recip();
+        let mut v = inv * (-self.k);
+        if c_eps != 0.0 {
+            v += s.powf(-(1.0 + eps)) * c_eps;
+        }
+        if c_pn != 0.0 {
+            v += inv.powi(3) * c_pn;
+        }
+        (p[0] * p[0] + p[1] * p[1]) * (0.5 * self.mu_inv) + v
+    }
+}
+
 impl Capabilities for KeplerSystem {
     fn positions_into(&self, q: &[f64], out: &mut Vec<f64>) -> Option<Result<()>> {
         // The body relative to the force centre.

@@ -2,15 +2,22 @@
 //! generic `L` (`symbolic/trace.rs`), whose field equals the system's own closed-form
 //! `derivatives` at random states and whose runs follow dop853 at tight tolerance and keep the
 //! energy; every other catalogue system refuses `taylor` by name; a Lagrangian that decides on
-//! a value is refused naming the operation.
+//! a value is refused naming the operation. Kepler's and Hénon–Heiles' Hamiltonians, written
+//! once over any number type, trace into Taylor forms whose field is their hand-written force,
+//! and the work–precision problems run `taylor` on all three.
 
 use crate::fixtures::pseudo_random;
+use physicskit::classical::analysis::work_precision::{double_pendulum_reference, Problem};
 use physicskit::classical::catalog::SYSTEMS;
 use physicskit::classical::integrators::Family;
 use physicskit::classical::lagrangian::{Lagrangian, LagrangianModel, Scalar};
 use physicskit::classical::model::DynSystem;
 use physicskit::classical::symbolic::trace_lagrangian;
-use physicskit::classical::{Error, IntegrateOptions, LagrangianSystem, Method, Tolerances};
+use physicskit::classical::symbolic::{traced_hamiltonian_taylor_field, TracedHamiltonian};
+use physicskit::classical::systems::{HenonHeilesSystem, KeplerPerturbations, KeplerSystem};
+use physicskit::classical::{
+    DynamicalSystem, Error, IntegrateOptions, LagrangianSystem, Method, Tolerances,
+};
 
 /// Every catalogue entry built from its defaults, with its name.
 fn catalogue() -> Vec<(&'static str, Box<dyn DynSystem>)> {
@@ -202,5 +209,94 @@ fn a_users_generic_lagrangian_has_a_taylor_form() {
         field.coefficients(0.0, &[q, 0.2], 1, &mut c).unwrap();
         assert!((c[1] - 0.2).abs() <= 1e-15, "{c:?}");
         assert!((c[3] + f64::sin(q)).abs() <= 1e-15, "{q}: {c:?}");
+    }
+}
+
+/// The traced form's field (`y^[1]`) against the hand-written `derivatives` (`q' = p/mu`,
+/// `p' = F(q)` from the force) at 50 random states around `system`'s start (within 0.15 of it):
+/// two computations of the same field in different operation orders, ~10 roundings of
+/// quantities of the field's size, so they agree to a few 1e-16 relative to it; 1e-13 leaves a
+/// margin of ~100, and a wrong term (a sign, a missing factor, a dropped perturbation) is off
+/// by far more.
+fn traced_field_matches<S: TracedHamiltonian + DynamicalSystem>(name: &str, system: &S) {
+    let mut field = traced_hamiltonian_taylor_field(system).unwrap();
+    let y0 = system.state().to_vec();
+    let dim = y0.len();
+    assert_eq!(field.dim(), dim, "{name}");
+    for seed in 0..50 {
+        let y: Vec<f64> = y0
+            .iter()
+            .zip(pseudo_random(dim, 2000 + seed))
+            .map(|(a, b)| a + 0.3 * b)
+            .collect();
+        let mut own = vec![0.0; dim];
+        system.derivatives(0.0, &y, &mut own).unwrap();
+        let mut c = vec![0.0; dim * 2];
+        field.coefficients(0.0, &y, 1, &mut c).unwrap();
+        let size = own.iter().fold(1.0_f64, |m, v| m.max(v.abs()));
+        for (i, want) in own.iter().enumerate() {
+            let got = c[2 * i + 1];
+            assert!(
+                (got - want).abs() <= 1e-13 * size,
+                "{name} at {y:?}: component {i}: {got} against {want}"
+            );
+        }
+    }
+}
+
+/// Kepler (the point mass, and with every perturbation: power law, post-Newtonian term,
+/// softening, a reduced mass and coupling that are not 1) and Hénon–Heiles: their generic `H`
+/// traces into a Taylor form whose field is the hand-written force's.
+#[test]
+fn the_traced_hamiltonians_equal_the_hand_written_force() {
+    let perturbed = KeplerPerturbations::none()
+        .with_power_law(0.3, 0.05)
+        .with_post_newtonian(-0.01)
+        .with_softening(0.1);
+    for (name, pert) in [
+        ("kepler", KeplerPerturbations::none()),
+        ("perturbed kepler", perturbed),
+    ] {
+        let system = KeplerSystem::new(&[1.0, 0.2], &[0.1, 1.0], 1.3, 0.7, pert).unwrap();
+        traced_field_matches(name, &system);
+    }
+    let henon = HenonHeilesSystem::new(&[0.1, -0.2], &[0.3, 0.2]).unwrap();
+    traced_field_matches("henon_heiles", &henon);
+}
+
+/// The work–precision problems list `taylor` (each has a Taylor form) and run it: from
+/// tolerance 1e-6 to 1e-10 its error falls on every problem (by at least 10: the error
+/// follows the tolerance, 1e4 apart; a run that ignored it, or the wrong system, would not),
+/// and each run reports its cost as evaluations, as the other methods do.
+#[test]
+fn the_work_precision_problems_run_taylor() {
+    for problem in Problem::all(true) {
+        assert!(
+            problem.methods().contains(&Method::Taylor),
+            "{}",
+            problem.name()
+        );
+        let reference = match problem {
+            Problem::DoublePendulum { t_end } => double_pendulum_reference(t_end).unwrap(),
+            _ => Vec::new(),
+        };
+        let runs: Vec<(f64, f64)> = [1e-6, 1e-10]
+            .iter()
+            .map(|&tol| {
+                let r = problem.run(Method::Taylor, tol).unwrap();
+                let cost = r.extra_scalar("rhs_evaluations").unwrap();
+                (problem.error(&r, &reference), cost)
+            })
+            .collect();
+        println!(
+            "{}: taylor (error, evaluations) at 1e-6, 1e-10: {runs:?}",
+            problem.name()
+        );
+        assert!(runs[1].0 * 10.0 < runs[0].0, "{}: {runs:?}", problem.name());
+        assert!(
+            runs[0].1 > 0.0 && runs[1].1 > runs[0].1,
+            "{}: {runs:?}",
+            problem.name()
+        );
     }
 }
