@@ -39,24 +39,42 @@ const MAX_CROSSINGS: usize = 20_000;
 /// The step a lab starts with, before its first frame names one (the page's default).
 const INITIAL_DT: f64 = 1e-3;
 
-/// The method `name`, if `entry` takes it.
+/// The method `name`, if `entry` takes it in the lab. The name is untrusted (a share link, a
+/// script call): an unknown name, a method the system does not take and an adaptive method
+/// (it steps onto the end of a known span, which a frame-by-frame run does not have) are each
+/// refused with a message naming it and the methods the lab runs this system with.
 fn method_of(entry: &SystemEntry, name: &str) -> Result<Method, String> {
-    let method: Method = name
-        .parse()
-        .map_err(|e: physicskit::classical::Error| e.to_string())?;
-    if entry.methods().any(|m| m == method) {
-        Ok(method)
-    } else {
-        Err(format!(
-            "`{}` cannot be integrated with {name}; it takes {}",
+    let runs = || {
+        entry
+            .methods()
+            .filter(|m| !m.is_adaptive())
+            .map(Method::name)
+            .collect::<Vec<_>>()
+            .join(", ")
+    };
+    let Ok(method) = name.parse::<Method>() else {
+        return Err(format!(
+            "no method is called `{name}`; the lab runs `{}` with {}",
             entry.name,
-            entry
-                .methods()
-                .map(Method::name)
-                .collect::<Vec<_>>()
-                .join(", ")
-        ))
+            runs()
+        ));
+    };
+    if !entry.methods().any(|m| m == method) {
+        return Err(format!(
+            "`{}` cannot be integrated with {name}; the lab runs it with {}",
+            entry.name,
+            runs()
+        ));
     }
+    if method.is_adaptive() {
+        return Err(format!(
+            "{name} adapts its steps to the end of a span, which the lab's frame-by-frame run \
+             does not have; the lab runs `{}` with {}",
+            entry.name,
+            runs()
+        ));
+    }
+    Ok(method)
 }
 
 /// The method a lab starts with: the entry's default. A session steps frame by frame, which

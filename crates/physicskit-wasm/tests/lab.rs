@@ -171,3 +171,96 @@ fn a_setup_builds_with_its_own_method() {
     assert!(error.contains("warp-drive"), "{error}");
     assert!(Lab::with_method("projectile", "{}", None).is_ok());
 }
+
+/// Calls `pk_build` as the page does: the name, parameters and method's bytes written one
+/// after another into the module's input buffer. Returns the handle, or the error message.
+fn build_through_exports(name: &[u8], params: &[u8], method: &[u8]) -> Result<u32, String> {
+    use physicskit_wasm::exports::{pk_build, pk_error_len, pk_error_ptr, pk_input_bytes};
+    let bytes = [name, params, method].concat();
+    let at = pk_input_bytes(bytes.len());
+    // SAFETY: `pk_input_bytes` has just made its buffer `bytes.len()` long at `at`, and
+    // nothing touches it until `pk_build` reads it (the page writes the same way into the
+    // module's linear memory).
+    #[allow(unsafe_code)]
+    unsafe {
+        std::ptr::copy_nonoverlapping(bytes.as_ptr(), at as *mut u8, bytes.len());
+    }
+    let h = pk_build(name.len(), params.len(), method.len());
+    if h != 0 {
+        return Ok(h);
+    }
+    // SAFETY: the error message is a `String` the module owns, unchanged until its next call.
+    #[allow(unsafe_code)]
+    let message =
+        unsafe { std::slice::from_raw_parts(pk_error_ptr() as *const u8, pk_error_len()) };
+    Err(String::from_utf8(message.to_vec()).expect("the module's messages are UTF-8"))
+}
+
+/// A method name from a share link or a script call is untrusted: `pk_build` given every
+/// method name with every system, an unknown name, bytes that are not UTF-8 and lengths past
+/// the input refuses with a message naming what it refused (a panic would abort the page's
+/// module), and the module builds and runs a lab afterwards.
+#[test]
+fn build_refuses_a_bad_method_by_name_and_keeps_running() {
+    use physicskit::classical::Method;
+    use physicskit_wasm::exports::{pk_build, pk_free, pk_input_bytes, pk_step};
+    for entry in SYSTEMS {
+        let name = entry.name.as_bytes();
+        for method in Method::ALL {
+            // The lab runs the fixed-step methods the entry lists.
+            let listed = entry.methods().any(|m| m == method);
+            match build_through_exports(name, b"{}", method.name().as_bytes()) {
+                Ok(h) => {
+                    assert!(
+                        listed && !method.is_adaptive(),
+                        "{} built with {method}",
+                        entry.name
+                    );
+                    // A method it builds with, it runs with (dt of the page's default).
+                    assert_eq!(pk_step(h, 2, 1e-3), 0, "{} {method}", entry.name);
+                    pk_free(h);
+                }
+                Err(message) => {
+                    // An adaptive method is refused for the lab's frame-by-frame run, and
+                    // every refusal offers only methods the lab runs.
+                    if listed && method.is_adaptive() {
+                        assert!(message.contains("frame-by-frame"), "{message}");
+                    }
+                    let offered = message.rsplit_once(" with ").map_or("", |(_, list)| list);
+                    assert!(
+                        !offered.contains("dop853"),
+                        "{} with {method}: {message:?} offers an adaptive method",
+                        entry.name
+                    );
+                    assert!(
+                        message.contains(method.name()) || message.contains(entry.name),
+                        "{} with {method}: the message {message:?} names neither",
+                        entry.name
+                    );
+                }
+            }
+        }
+    }
+    let hostile: [(&[u8], &str); 5] = [
+        (b"warp-drive", "warp-drive"),
+        (b"<img src=x onerror=alert(1)>", "<img src=x"),
+        (b"RK4", "RK4"),
+        (b" rk4", " rk4"),
+        (b"\xff\xfe", "UTF-8"),
+    ];
+    for (method, named) in hostile {
+        let message = build_through_exports(b"double-pendulum", b"{}", method).unwrap_err();
+        assert!(
+            message.contains(named),
+            "{message:?} does not name {named:?}"
+        );
+    }
+    // Lengths past what was written: refused, not read past the buffer.
+    pk_input_bytes(4);
+    assert_eq!(pk_build(4, usize::MAX, 1), 0);
+    assert_eq!(pk_build(usize::MAX, 1, 1), 0);
+    // The module is whole: a lab builds and runs.
+    let h = build_through_exports(b"double-pendulum", b"{}", b"rk4").unwrap();
+    assert_eq!(pk_step(h, 10, 1e-3), 0);
+    pk_free(h);
+}
