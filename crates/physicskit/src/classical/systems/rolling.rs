@@ -33,6 +33,21 @@
 //! `E = m |r x omega|^2 / 2 + omega . I omega / 2 - m g r . gamma` is conserved; the height of
 //! `G` above the plane is `-r . gamma`.
 //!
+//! # The published body and its reversal
+//!
+//! The default [`RollingRattlebackParams`] are Kane & Levinson's body (Int. J. Non-Linear Mech.
+//! 17 (1982) 175: semi-axes 20, 3 and 2 cm, the ellipsoid's centre 1 cm above the centre of mass,
+//! 1 kg, inertia `[[2, -0.2, 0], [-0.2, 16, 0], [0, 0, 17]]` kg cm²), and the default start is
+//! theirs: roll and pitch 0.5°, at rest but for the spin about the body's vertical (-5 rad/s in
+//! their runs, as the public reproductions of the paper, pydy's `reproduceKane1982` and the
+//! `RattleBack` package, state it). Because the spin swings with the pitching near the
+//! reversal, the reversal time is taken where the spin averaged over 0.1 s (about two pitching
+//! periods) changes sign: from that start at -5 rad/s it is 2.7963 s, at +5 rad/s 11.495 s
+//! (without dissipation both senses reverse, one four times later). No printed reversal time
+//! for this body could be read, so `tests/classical/systems/rolling.rs` checks these times
+//! against Kane & Levinson's own equations in their own variables (roll and pitch angles, their
+//! inertia tensor, Cramer's rule), integrated apart from this module, to 1e-5 s.
+//!
 //! # State
 //!
 //! `[w1, w2, w3, qw, qx, qy, qz, x, y]`: the angular velocity in the **body** frame, the
