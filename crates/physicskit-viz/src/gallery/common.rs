@@ -138,7 +138,7 @@ mod tests {
         assert_eq!(power_of_ten(1e-8), "10⁻⁸");
         assert_eq!(power_of_ten(1e12), "10¹²");
         assert_eq!(power_of_ten(1.0), "10⁰");
-        assert_eq!(power_of_ten(2e-8), "2e-8");
+        assert_eq!(power_of_ten(2e-8), "0.00000002");
         assert_eq!(power_of_ten(0.0), "0");
         assert_eq!(power_of_ten(-1e-8), "-0.00000001");
     }
