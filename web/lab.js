@@ -23,28 +23,30 @@ const MIN_DT = DTS[0], MAX_DT = DTS[DTS.length - 1];
 const SAMPLES_PER_FRAME = 8;
 const TRAIL = 2400, PHASE_TRAIL = 6000, ENERGY_POINTS = 3000, MAX_ROWS = 100000;
 const TAU = 2 * Math.PI;
-// The step a system opens with where the catalogue's default method is adaptive (dop853), which
-// a frame-by-frame run cannot take: the fixed-step method, step and steps per frame (1/60 s of
-// motion a frame: real time at 60 frames a second) that keep the energy error below 1e-8 over
-// the first 10 s, measured in the WebAssembly build (benchmarks/README.md, "The lab's step for
-// the rolling bodies"). Other systems open at DEFAULT_DT and DEFAULT_STEPS.
-const STEP_DEFAULTS = {};
-for (const [name, dt, steps] of [["rolling-rattleback", 1e-4, 167], ["rolling-disk", 1e-3, 17], ["rolling-disk-steady", 1e-3, 17]]) {
-  STEP_DEFAULTS[name] = {
-    method: "rk4", dt, steps,
-    note: `Step: rk4 at dt = ${dt} s, ${steps} steps a frame (real time at 60 frames a second), which keeps this rolling body's energy error below 10⁻⁸; the catalogue's own method, dop853, takes adaptive steps, which a frame-by-frame run cannot.`,
+// How a system is stepped frame by frame: the catalogue's pace (`presentation.pace`). A
+// "fixed" pace is for a system whose default method is adaptive, which a frame-by-frame run
+// cannot take: it opens with that fixed-step method, step and steps a frame (1/60 s of motion a
+// frame: real time at 60 frames a second), whose energy error the catalogue's tests bound. A
+// "time_lapse" is offered for a system whose effect builds up over hours (Foucault's swing
+// plane turns at the Earth's rate): more of the same physics each frame. Other systems open at
+// DEFAULT_DT and DEFAULT_STEPS.
+function stepDefaults(entry) {
+  const p = entry.presentation.pace;
+  if (p.kind !== "fixed") return null;
+  const [mant, exp] = p.energy_error.toExponential().split("e");
+  const bound = `${mant === "1" ? "" : `${mant}×`}10${superscriptInt(Number(exp))}`;
+  return {
+    method: p.method, dt: p.dt, steps: p.steps_per_frame,
+    note: `Step: ${p.method} at dt = ${p.dt} s, ${p.steps_per_frame} steps a frame (real time at 60 frames a second), which keeps the energy error below ${bound}; the catalogue's own method, ${entry.default_method}, takes adaptive steps, which a frame-by-frame run cannot.`,
   };
 }
-// A time-lapse for a system whose effect builds up over hours: Foucault's pendulum, whose
-// swing plane turns at the Earth's real rate Ω⊕ sin(latitude), 11° an hour in Paris, which
-// a run at real time would not show. The time-lapse keeps the physics and runs more of it per
-// frame: dt = 0.02 s (the 67 m pendulum's 16.4 s swing in 820 steps) and 400 steps a frame.
-const TIME_LAPSE = {};
-for (const [name, dt, steps] of [["foucault-pendulum", 0.02, 400]]) {
-  const perFrame = dt * steps;
-  TIME_LAPSE[name] = {
-    dt, steps,
-    note: `Time-lapse: ${perFrame} s of the pendulum's time each frame, ${Math.round(perFrame * 60)}× real time at 60 frames a second (dt = ${dt} s, ${steps} steps a frame). The Earth turns at its real rate.`,
+function timeLapse(entry) {
+  const p = entry.presentation.pace;
+  if (p.kind !== "time_lapse") return null;
+  const perFrame = p.dt * p.steps_per_frame;
+  return {
+    dt: p.dt, steps: p.steps_per_frame,
+    note: `Time-lapse: ${Number(perFrame.toPrecision(6))} s of the system's time each frame, ${Math.round(perFrame * 60)}× real time at 60 frames a second (dt = ${p.dt} s, ${p.steps_per_frame} steps a frame). The physics is unchanged.`,
   };
 }
 // The system shown when no link names one: the chaotic double pendulum, running on load.
@@ -373,30 +375,27 @@ function family() { return app.entry.family; }
 function ndof() { const n = app.lab.state().length; return family() === "ode" ? n : n / 2; }
 // The Poincaré section panel. A section (q2 = 0, p2 > 0) of the 3-D energy surface is a 2-D
 // picture for a separable Hamiltonian of two degrees of freedom, so it is offered (a checkbox)
-// for those only; it is on by default only where it is the picture that matters: Hénon–Heiles,
-// bounded and chaotic at its energies (islands and a chaotic sea).
-const SECTION_BY_DEFAULT = new Set(["henon-heiles"]);
+// for those only; it is on from the start where the catalogue says it is the picture that
+// matters (`presentation.section_first`: Hénon–Heiles, islands in a chaotic sea).
 function sectionOffered() { return family() === "hamiltonian" && app.entry.separable && ndof() === 2; }
 function hasSection() { return sectionOffered() && $("section-on").checked; }
+// The lab's picture of the system: the catalogue's drawing (`presentation.drawing`) and its
+// attributes, as the names the drawing code below uses.
 function kind() {
-  const n = app.entry.name, caps = app.entry.capabilities, pos = app.lab.positions();
-  const drawing = presentation().drawing.kind;
-  if (drawing === "swing") return "swing";
-  if (drawing === "contact_spiral") return "disk";
-  if (drawing === "spin") return "spinner";
-  // The catalogue's rolling bodies are drawn as plots there; here, in 3-D on their plane.
-  if (n.startsWith("rolling-")) return "rolling";
-  if (pos.length === 3) return "top";
-  if (n === "euler-top") return "rigid";
-  if (n.includes("swarm") && (caps.includes("per_particle_energy") || caps.includes("phase_space_area"))) return "swarm";
-  if (n.startsWith("sine-gordon")) return "sites";
-  if (!pos.length && family() !== "ode") return "chain";
-  if (n.startsWith("projectile")) return "projectile";
-  if (n.startsWith("kepler")) return "orbit";
-  if (n === "hoop") return "hoop";
-  if (n === "elastic-pendulum") return "spring";
-  if (n.includes("pendulum")) return "pendulum";
-  return pos.length ? "bodies" : "series";
+  const d = presentation().drawing;
+  switch (d.kind) {
+    case "bobs": return d.springs ? "spring" : "pendulum";
+    case "orbit": return d.ground ? "projectile" : d.central_body ? "orbit" : "bodies";
+    case "chain": return "chain";
+    case "field": return "sites";
+    case "inertia_box": return "rigid";
+    case "top_axis": return "top";
+    case "contact_spiral": return "disk";
+    case "spin": return "spinner";
+    case "rolling": return "rolling";
+    case "swing": case "swarm": case "hoop": return d.kind;
+    default: return "series";
+  }
 }
 function draggable() { return ["projectile", "orbit", "hoop", "spring", "pendulum", "bodies", "chain", "sites", "top"].includes(kind()); }
 
@@ -437,7 +436,7 @@ function rebuild(state0 = null, keepMessage = false) {
   // a kink passes) for each new system and keeps the reader's choice while it is rebuilt.
   const same = app.phaseSystem === app.entry.name;
   app.phaseSystem = app.entry.name;
-  if (!same) $("section-on").checked = SECTION_BY_DEFAULT.has(app.entry.name);
+  if (!same) $("section-on").checked = app.entry.presentation.section_first;
   $("section-choice").hidden = !sectionOffered();
   const { k: kk, paired } = stateLayout(), k = paired ? kk : 0;
   // The site that moves most over the probe run (a chain's wave or kink passes there).
@@ -1186,7 +1185,7 @@ function drawSwarm(ctx, w, h) {
 // with the spacing), walls at fixed ends, and below, each site's displacement against the
 // site with axes. Sine–Gordon: only the sites on a line with their displacement (an angle).
 function drawChain(ctx, w, h, k) {
-  const s = app.lab.state(), n = ndof(), ring = app.entry.name === "toda";
+  const s = app.lab.state(), n = ndof(), ring = presentation().drawing.ends === "periodic";
   const unit = stateUnits()[0], sym = presentation().symbols?.[0] ?? "q";
   let amp = 0;
   if (app.extent) for (let i = 0; i < n; i++) amp = Math.max(amp, Math.abs(app.extent.lo[i]), Math.abs(app.extent.hi[i]));
@@ -1493,7 +1492,7 @@ const mulRows = (R, p) => R.map((row) => row[0] * p[0] + row[1] * p[1] + row[2] 
 // (The same geometry as the catalogue's systems: an ellipsoid of semi-axes a, b, c whose
 // centre is h above the centre of mass, or a thin disk's rim of radius a.)
 function rollingShape() {
-  if (app.entry.name === "rolling-rattleback") {
+  if (presentation().drawing.shape === "ellipsoid") {
     const a = param("a"), b = param("b"), c = param("c"), hh = param("h"), A = [a * a, b * b, c * c];
     return {
       size: a,
@@ -1551,7 +1550,7 @@ function drawRolling(ctx, w, h) {
   // The rattleback's contact point rocks to and fro ~100 times a second: its whole path is a
   // dense tangle, so only its recent stretch is drawn, fading out (RATTLEBACK_PATH samples:
   // 30 frames, half a second of motion at real time). The disks' path is a clean curve: all of it.
-  const first = app.entry.name === "rolling-rattleback" ? Math.max(1, T.length - RATTLEBACK_PATH) : 1, shown = T.length - first + 1;
+  const first = presentation().drawing.shape === "ellipsoid" ? Math.max(1, T.length - RATTLEBACK_PATH) : 1, shown = T.length - first + 1;
   for (let k = first; k < T.length; k++) {
     ctx.strokeStyle = `rgba(30, 125, 50, ${0.08 + (0.6 * (k - first + 1)) / shown})`;
     ctx.beginPath(); ctx.moveTo(...P([T[k - 1][7], T[k - 1][8], 0])); ctx.lineTo(...P([T[k][7], T[k][8], 0])); ctx.stroke();
@@ -1572,10 +1571,10 @@ function drawRolling(ctx, w, h) {
   const s0 = app.lab.initialState(), g0 = rotationRows(s0.slice(3, 7))[2];
   spinArrow(ctx, P, [cm[0], cm[1], cm[2]], 1.15 * shape.size, spin, "#1f5fbf", s0[0] * g0[0] + s0[1] * g0[1] + s0[2] * g0[2]);
   const tilt = Math.acos(Math.max(-1, Math.min(1, R[2][2])));
-  const what = app.entry.name === "rolling-rattleback" ? "The rattleback" : "The disk";
+  const ellipsoid = presentation().drawing.shape === "ellipsoid", what = `The ${app.entry.title.toLowerCase().replace(/^rolling /, "").replace(/ \(.*\)$/, "")}`;
   sceneNote(`${what} rolling without slipping; green: the contact point and its path on the table. ` +
-    `Spin about the vertical ω·ẑ = ${spin.toFixed(3)} rad/s (blue arrow, seen from above${app.entry.name === "rolling-rattleback" ? "; a reversal crosses zero" : ""}), ` +
-    `${app.entry.name === "rolling-rattleback" ? "tilt" : "normal"} ${((tilt * 180) / Math.PI).toFixed(1)}° from the vertical.`);
+    `Spin about the vertical ω·ẑ = ${spin.toFixed(3)} rad/s (blue arrow, seen from above${ellipsoid ? "; a reversal crosses zero" : ""}), ` +
+    `${ellipsoid ? "tilt" : "normal"} ${((tilt * 180) / Math.PI).toFixed(1)}° from the vertical.`);
 }
 
 function drawCurve(id, points, boxKey, labels, least = [0, 0]) {
@@ -2063,7 +2062,7 @@ function applyHash(hash) {
   // A time-lapse link (the box ticked, or, from before the link said so, the time-lapse's own
   // step and steps a frame) opens with the box ticked and its note; its dt and steps stay the
   // link's.
-  const tl = TIME_LAPSE[entry.name];
+  const tl = timeLapse(entry);
   if (tl && (h.get("timelapse") === "1" || (Number(dtText) === tl.dt && Number(stepsText) === tl.steps))) {
     $("timelapse").checked = true;
     $("step-note").textContent = tl.note;
@@ -2127,18 +2126,18 @@ function selectSystem(name, params = {}, build = true) {
   fillParams();
   setControlValues();
   // A new system starts from its own default method (the catalogue's) and the lab's step.
-  const step = STEP_DEFAULTS[name];
+  const step = stepDefaults(app.entry);
   fillMethods(step?.method ?? null);
   setStep(step?.dt ?? DEFAULT_DT, step?.steps ?? DEFAULT_STEPS);
   $("step-note").textContent = step?.note ?? "";
-  $("timelapse-choice").hidden = !TIME_LAPSE[name];
+  $("timelapse-choice").hidden = !timeLapse(app.entry);
   $("timelapse").checked = false;
   if (build) rebuild();
 }
 
 // The time-lapse on or off: its step and steps a frame, or the system's own; the run restarts.
 function setTimeLapse(on) {
-  const name = app.entry.name, tl = TIME_LAPSE[name], step = STEP_DEFAULTS[name];
+  const tl = timeLapse(app.entry), step = stepDefaults(app.entry);
   $("timelapse").checked = on && !!tl;
   if (on && tl) setStep(tl.dt, tl.steps); else setStep(step?.dt ?? DEFAULT_DT, step?.steps ?? DEFAULT_STEPS);
   $("step-note").textContent = (on ? tl?.note : step?.note) ?? "";

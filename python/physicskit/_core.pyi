@@ -85,15 +85,23 @@ class _ParamInfo(TypedDict):
 
 class _DrawingInfo(TypedDict, total=False):
     kind: Literal[
-        "bobs", "hoop", "swarm", "chain", "orbit", "inertia_box", "top_axis", "swing",
-        "contact_spiral", "spin", "plots",
+        "bobs", "hoop", "swarm", "chain", "field", "orbit", "inertia_box", "top_axis", "swing",
+        "contact_spiral", "spin", "rolling", "plots",
     ]
-    fixed_ends: bool
-    """Chains: both ends held by walls."""
+    springs: bool
+    """Bobs: hung on springs (coils), not rods."""
+    ends: Literal["fixed", "free", "periodic"]
+    """Chains: walls at both ends, free ends, or a ring."""
     central_body: bool
     """Orbits: a central body at the origin."""
+    ground: bool
+    """Orbits: level ground at y = 0 (a projectile's flight)."""
+    shape: Literal["ellipsoid", "disk"]
+    """Rolling bodies: the body's shape."""
 
 class _PresentationInfo(TypedDict):
+    title: str
+    """The system's name as a title for people (``"Hénon–Heiles"``)."""
     symbols: list[str]
     """TeX symbols of the coordinates: one each, or one for all (a chain's), or none."""
     time_unit: str

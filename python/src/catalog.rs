@@ -8,7 +8,7 @@
 
 use physicskit::classical::catalog as core_catalog;
 use physicskit::classical::model::entry::{
-    Bound as Limit, Default, Drawing, Length, Literal, ParamKind, ParamSpec, Presentation,
+    Attribute, Bound as Limit, Default, Length, Literal, ParamKind, ParamSpec, Presentation,
     SystemEntry,
 };
 use physicskit::classical::Method;
@@ -109,19 +109,23 @@ fn param_info<'py>(py: Python<'py>, p: &ParamSpec) -> PyResult<Bound<'py, PyDict
     Ok(d)
 }
 
-/// How front ends show a system, as a dict: `symbols`, `time_unit`, `state_units` (`None` or
-/// a pair) and `drawing` (`kind`, and `fixed_ends` for chains, `central_body` for orbits).
+/// How front ends show a system, as a dict: `title`, `symbols`, `time_unit`, `state_units`
+/// (`None` or a pair) and `drawing` (`kind` and the kind's attributes: `springs` for bobs,
+/// `ends` for chains, `central_body` and `ground` for orbits, `shape` for rolling bodies).
 fn presentation_info<'py>(py: Python<'py>, p: &Presentation) -> PyResult<Bound<'py, PyDict>> {
     let d = PyDict::new(py);
+    d.set_item("title", p.title)?;
     d.set_item("symbols", p.symbols.to_vec())?;
     d.set_item("time_unit", p.time_unit)?;
     d.set_item("state_units", p.state_units.map(|(q, p)| vec![q, p]))?;
     let drawing = PyDict::new(py);
     drawing.set_item("kind", p.drawing.name())?;
-    match p.drawing {
-        Drawing::Chain { fixed_ends } => drawing.set_item("fixed_ends", fixed_ends)?,
-        Drawing::Orbit { central_body } => drawing.set_item("central_body", central_body)?,
-        _ => {}
+    for (name, value) in p.drawing.attributes() {
+        match value {
+            Attribute::Flag(b) => drawing.set_item(name, b)?,
+            Attribute::Word(w) => drawing.set_item(name, w)?,
+            Attribute::Number(x) => drawing.set_item(name, x)?,
+        }
     }
     d.set_item("drawing", drawing)?;
     Ok(d)

@@ -33,9 +33,13 @@
 //!   the opening of the gallery demonstration that shows it; `null` if none.
 //! - `presentation`: how front ends show the system (`SystemEntry::presentation`):
 //!   `{"symbols": [TeX, ..], "time_unit", "state_units": null or [coordinate, momentum],
-//!   "drawing": {"kind", "fixed_ends" (chains), "central_body" (orbits)}}`.
+//!   "drawing": {"kind", and the kind's attributes: "springs" (bobs), "ends" (chains),
+//!   "central_body" and "ground" (orbits), "shape" (rolling bodies)}, "pace": {"kind": "own"}
+//!   or {"kind": "fixed", "method", "dt", "steps_per_frame", "energy_error"} or
+//!   {"kind": "time_lapse", "dt", "steps_per_frame"}, "section_first": bool}`.
 //! - `methods` per system: those that can integrate it, as `simulate --method` takes them.
-//! - `title`, `summary_text`, `note_text`, `physics_text` (the paragraph's powers as
+//! - `title`: the entry's `presentation.title`.
+//! - `summary_text`, `note_text`, `physics_text` (the paragraph's powers as
 //!   superscripts), and per parameter `label`, `unit_text`, `help_text`: the
 //!   same text for people (the lab's), in Unicode mathematics, without class names, flags or
 //!   remarks about state columns (`crate::people`); `note_text` is `null` when nothing is
@@ -46,7 +50,7 @@ use std::io::{self, Write};
 use physicskit::classical::catalog::SYSTEMS;
 use physicskit::classical::model::entry::{Bound, Default, Length, Literal, ParamKind, Range};
 use physicskit::classical::model::erased::offered;
-use physicskit::classical::model::{Drawing, ParamSpec, Presentation, SystemEntry};
+use physicskit::classical::model::{Attribute, ParamSpec, Presentation, SystemEntry};
 use serde::Serialize;
 
 use crate::{method_rows, people, MethodRow};
@@ -62,7 +66,7 @@ struct Catalogue {
 struct System {
     name: &'static str,
     python: Option<&'static str>,
-    title: String,
+    title: &'static str,
     summary: &'static str,
     summary_text: String,
     family: &'static str,
@@ -83,16 +87,9 @@ struct PresentationJson {
     symbols: &'static [&'static str],
     time_unit: &'static str,
     state_units: Option<[&'static str; 2]>,
-    drawing: DrawingJson,
-}
-
-#[derive(Serialize)]
-struct DrawingJson {
-    kind: &'static str,
-    #[serde(skip_serializing_if = "Option::is_none")]
-    fixed_ends: Option<bool>,
-    #[serde(skip_serializing_if = "Option::is_none")]
-    central_body: Option<bool>,
+    drawing: serde_json::Map<String, serde_json::Value>,
+    pace: serde_json::Map<String, serde_json::Value>,
+    section_first: bool,
 }
 
 #[derive(Serialize)]
@@ -171,7 +168,7 @@ fn system(entry: &SystemEntry) -> System {
     System {
         name: entry.name,
         python: entry.python,
-        title: people::title(entry.name),
+        title: entry.presentation.title,
         summary: entry.summary,
         summary_text: people::text(entry.summary),
         family: entry.family.name(),
@@ -194,21 +191,32 @@ fn system(entry: &SystemEntry) -> System {
 }
 
 fn presentation(p: &Presentation) -> PresentationJson {
-    let (fixed_ends, central_body) = match p.drawing {
-        Drawing::Chain { fixed_ends } => (Some(fixed_ends), None),
-        Drawing::Orbit { central_body } => (None, Some(central_body)),
-        _ => (None, None),
-    };
     PresentationJson {
         symbols: p.symbols,
         time_unit: p.time_unit,
         state_units: p.state_units.map(|(q, p)| [q, p]),
-        drawing: DrawingJson {
-            kind: p.drawing.name(),
-            fixed_ends,
-            central_body,
-        },
+        drawing: kind_with(p.drawing.name(), p.drawing.attributes()),
+        pace: kind_with(p.pace.name(), p.pace.attributes()),
+        section_first: p.section_first,
     }
+}
+
+/// `{"kind": kind, attribute: value, ..}`.
+fn kind_with(
+    kind: &'static str,
+    attributes: Vec<(&'static str, Attribute)>,
+) -> serde_json::Map<String, serde_json::Value> {
+    let mut map = serde_json::Map::new();
+    map.insert("kind".into(), kind.into());
+    for (name, value) in attributes {
+        let value = match value {
+            Attribute::Flag(b) => b.into(),
+            Attribute::Word(w) => w.into(),
+            Attribute::Number(x) => x.into(),
+        };
+        map.insert(name.into(), value);
+    }
+    map
 }
 
 fn param(spec: &ParamSpec) -> Param {

@@ -434,47 +434,6 @@ pub fn note(s: &str) -> Option<String> {
     (!kept.is_empty()).then(|| kept.join("; "))
 }
 
-/// Words of a system's name that are proper names (or initials), as people write them.
-const PROPER: &[(&str, &str)] = &[
-    ("henon", "Hénon"),
-    ("heiles", "Heiles"),
-    ("kepler", "Kepler"),
-    ("toda", "Toda lattice"),
-    ("gordon", "Gordon"),
-    ("euler", "Euler"),
-    ("eulers", "Euler's"),
-    ("fput", "Fermi–Pasta–Ulam–Tsingou chain"),
-    ("foucault", "Foucault"),
-];
-
-/// A system's name as a title: `henon-heiles` Hénon–Heiles, `double-pendulum` Double
-/// pendulum, `kepler-state` Kepler (from a state).
-pub fn title(name: &str) -> String {
-    let words: Vec<&str> = name.split('-').collect();
-    let proper = |w: &str| PROPER.iter().find(|(k, _)| *k == w).map(|&(_, p)| p);
-    let mut out: Vec<String> = Vec::with_capacity(words.len());
-    for (i, w) in words.iter().enumerate() {
-        // Two proper names in a row are one name: an en dash between them.
-        match (proper(w), i.checked_sub(1).and_then(|j| proper(words[j]))) {
-            (Some(p), Some(_)) => {
-                let last = out.last_mut().expect("a previous word");
-                last.push('–');
-                last.push_str(p);
-            }
-            (Some(p), None) => out.push(p.to_string()),
-            (None, _) if *w == "state" && i > 0 => out.push("(from a state)".into()),
-            (None, _) if *w == "sine" => out.push("Sine".into()),
-            (None, _) => out.push((*w).to_string()),
-        }
-    }
-    let mut text = out.join(" ").replace("Sine Gordon", "Sine–Gordon");
-    if let Some(first) = text.chars().next() {
-        let upper: String = first.to_uppercase().collect();
-        text.replace_range(..first.len_utf8(), &upper);
-    }
-    text
-}
-
 /// A parameter's name as a symbol (`thetadot0` θ̇₀, `l1` l₁, `omega` ω).
 pub fn label(name: &str) -> String {
     indices(&symbol(name))

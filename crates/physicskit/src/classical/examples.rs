@@ -7,7 +7,7 @@ use crate::classical::core::error::{check_finite_scalar, check_positive};
 use crate::classical::core::{Phase, Result};
 use crate::classical::integrators::{HamiltonianSystem, MassInv, Method};
 use crate::classical::model::entry::{Default as D, Family, ParamSpec as P, Range, SystemEntry};
-use crate::classical::model::entry::{Drawing, Presentation};
+use crate::classical::model::entry::{Drawing, Ends, Pace, Presentation};
 use crate::classical::model::erased::{fill, Capabilities, Hamiltonian};
 
 /// The simple pendulum `H = p^2/2 - (g/l) cos q` (unit `m l^2`).
@@ -170,10 +170,13 @@ pub static PENDULUM_ENTRY: SystemEntry = SystemEntry {
     note: None,
     physics: Some(PENDULUM_PHYSICS),
     presentation: Presentation {
+        title: "Simple pendulum",
         symbols: &["\\theta"],
         time_unit: "s",
         state_units: None,
-        drawing: Drawing::Plots,
+        drawing: Drawing::Bobs { springs: false },
+        pace: Pace::Own,
+        section_first: false,
     },
     build: |v| {
         Ok(Box::new(Hamiltonian(Pendulum::new(
@@ -221,10 +224,13 @@ pub static HARMONIC_OSCILLATOR_ENTRY: SystemEntry = SystemEntry {
     note: None,
     physics: None,
     presentation: Presentation {
+        title: "Harmonic oscillator",
         symbols: &["x"],
         time_unit: "s",
         state_units: None,
-        drawing: Drawing::Plots,
+        drawing: Drawing::Chain { ends: Ends::Fixed },
+        pace: Pace::Own,
+        section_first: false,
     },
     build: |v| {
         Ok(Box::new(Hamiltonian(HarmonicOscillator::new(

@@ -48,8 +48,22 @@ def _set_trail(trail: Any, xy: np.ndarray, base: Any) -> None:
     trail.set_color(rgba)
 
 
-def _bobs(system: Any, result: Any, idx: np.ndarray, ax: Any, trail: int) -> _Update:
-    """Pendulums drawn from the system's ``positions(q)``: rods from the pivot through each bob."""
+def _coil(a: np.ndarray, b: np.ndarray, turns: int = 10, width: float = 0.06) -> np.ndarray:
+    """A spring from ``a`` to ``b`` as a zig-zag of ``turns`` turns, straight for a tenth of
+    its length at each end; ``width`` is its half-width relative to its rest length scale."""
+    d = b - a
+    length = float(np.hypot(*d)) or 1e-12
+    u, n = d / length, np.array([-d[1], d[0]]) / length
+    s = np.concatenate([[0.0, 0.1], np.linspace(0.1, 0.9, 2 * turns + 1)[1:-1], [0.9, 1.0]])
+    side = np.zeros_like(s)
+    side[2:-2] = np.where(np.arange(len(s) - 4) % 2 == 0, 1.0, -1.0)
+    return a + np.outer(s * length, u) + np.outer(side * width, n)
+
+
+def _bobs(system: Any, result: Any, idx: np.ndarray, ax: Any, trail: int,
+          springs: bool = False) -> _Update:
+    """Pendulums drawn from the system's ``positions(q)``: rods (or, on springs, coils) from
+    the pivot through each bob."""
     pos = np.array([system.positions(result.q[i]) for i in idx]).reshape(len(idx), -1, 2)
     reach = 1.1 * np.abs(pos).max()
     ax.set_xlim(-reach, reach)
@@ -62,8 +76,12 @@ def _bobs(system: Any, result: Any, idx: np.ndarray, ax: Any, trail: int) -> _Up
     ax.set_xlabel("$x$ (m)")
     ax.set_ylabel("$y$ (m)")
 
+    width = 0.04 * reach
+
     def update(k: int) -> list[Any]:
         pts = np.vstack([[0.0, 0.0], pos[k]])
+        if springs:
+            pts = np.vstack([_coil(pts[i], pts[i + 1], width=width) for i in range(len(pts) - 1)])
         rods.set_data(pts[:, 0], pts[:, 1])
         bobs.set_data(pos[k, :, 0], pos[k, :, 1])
         _set_trail(fade, pos[max(0, k - trail) : k + 1, -1], "C3")
@@ -124,6 +142,30 @@ def _chain(system: Any, result: Any, idx: np.ndarray, ax: Any, walls: bool) -> _
     return update
 
 
+def _field(system: Any, result: Any, idx: np.ndarray, ax: Any) -> _Update:
+    """A field on the lattice's sites: each site's value ``q_i`` against the site, joined
+    (the sine–Gordon angles; a kink is a step of 2π)."""
+    q = result.q[idx]
+    n = q.shape[1]
+    sites = np.arange(1, n + 1)
+    lab = Labels(system, n)
+    lo, hi = float(q.min()), float(q.max())
+    pad = 0.08 * max(hi - lo, 1e-12)
+    ax.set_xlim(0.5, n + 0.5)
+    ax.set_ylim(lo - pad, hi + pad)
+    (line,) = ax.plot([], [], "-", color="C0", lw=1.2)
+    (dots,) = ax.plot([], [], "o", color="C3", ms=max(1.5, min(5.0, 160.0 / n)))
+    ax.set_xlabel("site $i$")
+    ax.set_ylabel(lab.q(0))
+
+    def update(k: int) -> list[Any]:
+        line.set_data(sites, q[k])
+        dots.set_data(sites, q[k])
+        return [line, dots]
+
+    return update
+
+
 def _cloud(system: Any, result: Any, idx: np.ndarray, ax: Any) -> _Update:
     """The swarm's points in phase space."""
     from .phase import draw_separatrix
@@ -145,11 +187,15 @@ def _cloud(system: Any, result: Any, idx: np.ndarray, ax: Any) -> _Update:
 
 
 def _orbit(system: Any, result: Any, idx: np.ndarray, ax: Any, trail: int,
-           central_body: bool) -> _Update:
-    """A point moving in the ``(q_1, q_2)`` plane with a fading trail."""
+           central_body: bool, ground: bool = False) -> _Update:
+    """A point moving in the ``(q_1, q_2)`` plane with a fading trail; a central body at the
+    origin, or level ground at ``y = 0`` (a projectile's flight)."""
     xy = result.q[idx][:, :2]
     lab = Labels(system, 2)
     ax.plot(result.q[:, 0], result.q[:, 1], color="0.85", lw=0.6)
+    if ground:
+        ax.axhline(0.0, color="#8a7a50", lw=1.5)
+        ax.set_aspect("equal", adjustable="datalim")
     if central_body:
         ax.plot([0.0], [0.0], marker="*", color="orange", ms=12)
         ax.set_aspect("equal", adjustable="datalim")
@@ -341,22 +387,25 @@ def animate(system: Any, result: Any, *, stride: int = 1, frames: int | None = N
     three_d = kind in ("inertia_box", "top_axis")
     # Pictures drawn from the state itself, not from q and p.
     by_state = three_d or kind in ("swing", "contact_spiral", "spin")
+    if kind in ("plots", "rolling"):
+        raise ValueError(
+            f"animate cannot draw a {type(system).__name__}: "
+            + ("a rolling body is drawn in 3-D by the browser lab and the gallery; "
+               if kind == "rolling" else "the catalogue gives it no picture; ")
+            + "animate draws the pendulum family, the hoop, chains and fields, the pendulum "
+            "swarm, orbits, the tops and the reduced models; plot_result draws any run"
+        )
     if not by_state and not has_qp(result):
         raise ValueError("the result has no q and p to animate")
-    if kind == "plots":
-        raise ValueError(
-            f"animate cannot draw a {type(system).__name__}: the catalogue gives it no picture "
-            "(it draws the pendulum family, the hoop, chains, the pendulum swarm, orbits and "
-            "the tops; plot_result draws any run)"
-        )
     ax = new_axes(ax, projection="3d" if three_d else None)
     builders: dict[str, Callable[[], _Update]] = {
-        "bobs": lambda: _bobs(system, result, idx, ax, trail),
+        "bobs": lambda: _bobs(system, result, idx, ax, trail, bool(drawing.get("springs"))),
         "hoop": lambda: _hoop(system, result, idx, ax, trail),
         "swarm": lambda: _cloud(system, result, idx, ax),
-        "chain": lambda: _chain(system, result, idx, ax, bool(drawing.get("fixed_ends"))),
+        "chain": lambda: _chain(system, result, idx, ax, drawing.get("ends") == "fixed"),
+        "field": lambda: _field(system, result, idx, ax),
         "orbit": lambda: _orbit(system, result, idx, ax, trail,
-                                bool(drawing.get("central_body"))),
+                                bool(drawing.get("central_body")), bool(drawing.get("ground"))),
         "inertia_box": lambda: _box(system, result, idx, ax),
         "top_axis": lambda: _top(system, result, idx, ax, trail),
         "swing": lambda: _swing(system, result, idx, ax, trail),

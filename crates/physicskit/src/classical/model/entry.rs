@@ -20,11 +20,14 @@ use crate::classical::core::error::{Error, Result};
 pub use crate::classical::integrators::Family;
 use crate::classical::integrators::Method;
 
-/// How front ends show a system: the symbols of its coordinates, its unit of time and the
-/// picture an animation draws. Python's plots and animations read it from `catalog()`, the
-/// command line and the lab from `list --json`.
+/// How front ends show a system: its title, the symbols of its coordinates, its unit of time,
+/// the picture an animation draws and how an animation paces it. Python's plots and
+/// animations read it from `catalog()`, the command line and the lab from `list --json`.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct Presentation {
+    /// The system's name as a title for people, with its proper names and dashes
+    /// (`"Hénon–Heiles"`, `"Foucault pendulum"`): menus, figure titles.
+    pub title: &'static str,
     /// The coordinates' symbols in TeX math (`\theta_1`): one per coordinate, or a single one
     /// for every coordinate of a chain or a swarm (shown as `q_i`, `\theta_i`); empty when the
     /// state is not `[q, p]` (front ends then write `q_i` or the state's own names).
@@ -38,26 +41,169 @@ pub struct Presentation {
     pub state_units: Option<(&'static str, &'static str)>,
     /// The picture an animation draws.
     pub drawing: Drawing,
+    /// How an animation run frame by frame steps the system.
+    pub pace: Pace,
+    /// The Poincaré section (`q_2 = 0`, `p_2 > 0`) is the picture that matters (bounded and
+    /// chaotic at the default energy: islands in a chaotic sea), so a front end that can show
+    /// one shows it from the start.
+    pub section_first: bool,
+}
+
+/// How an animation that runs frame by frame (the lab, 60 frames a second) steps a system.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub enum Pace {
+    /// The front end's own step and steps a frame, with the entry's default method.
+    Own,
+    /// This fixed-step method, step and number of steps a frame. For a system whose default
+    /// method is adaptive (a frame-by-frame run needs a fixed step) and whose motion is fast
+    /// against the front end's own step. The relative energy error of a run of
+    /// [`PACE_CHECK_FRAMES`] frames from the defaults stays below `energy_error` (the
+    /// catalogue's tests run it).
+    Fixed {
+        /// The method.
+        method: Method,
+        /// The step.
+        dt: f64,
+        /// Steps a frame.
+        steps_per_frame: u32,
+        /// The bound on the relative energy error that the front end may state.
+        energy_error: f64,
+    },
+    /// Real time would show nothing (the effect builds up over hours): a time-lapse is offered
+    /// at this step and number of steps a frame, the physics unchanged.
+    TimeLapse {
+        /// The step.
+        dt: f64,
+        /// Steps a frame.
+        steps_per_frame: u32,
+    },
+}
+
+/// Frames of a [`Pace::Fixed`] run over which its `energy_error` is checked: a minute at 60
+/// frames a second.
+pub const PACE_CHECK_FRAMES: u32 = 3600;
+
+impl Pace {
+    /// The kind's name, as front ends read it (`"fixed"`).
+    pub fn name(self) -> &'static str {
+        match self {
+            Pace::Own => "own",
+            Pace::Fixed { .. } => "fixed",
+            Pace::TimeLapse { .. } => "time_lapse",
+        }
+    }
+
+    /// The kind's fields by name, as front ends read them (`[("dt", Number(0.02)), ..]`).
+    pub fn attributes(self) -> Vec<(&'static str, Attribute)> {
+        match self {
+            Pace::Own => Vec::new(),
+            Pace::Fixed {
+                method,
+                dt,
+                steps_per_frame,
+                energy_error,
+            } => vec![
+                ("method", Attribute::Word(method.name())),
+                ("dt", Attribute::Number(dt)),
+                (
+                    "steps_per_frame",
+                    Attribute::Number(f64::from(steps_per_frame)),
+                ),
+                ("energy_error", Attribute::Number(energy_error)),
+            ],
+            Pace::TimeLapse {
+                dt,
+                steps_per_frame,
+            } => vec![
+                ("dt", Attribute::Number(dt)),
+                (
+                    "steps_per_frame",
+                    Attribute::Number(f64::from(steps_per_frame)),
+                ),
+            ],
+        }
+    }
+}
+
+/// The ends of a chain.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Ends {
+    /// Held by walls.
+    Fixed,
+    /// Free.
+    Free,
+    /// Joined: the last site's neighbour is the first (a ring).
+    Periodic,
+}
+
+impl Ends {
+    /// The word front ends read (`"fixed"`).
+    pub fn name(self) -> &'static str {
+        match self {
+            Ends::Fixed => "fixed",
+            Ends::Free => "free",
+            Ends::Periodic => "periodic",
+        }
+    }
+}
+
+/// The shape of a body rolling on a plane.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Shape {
+    /// An ellipsoid of semi-axes `a`, `b`, `c` whose centre is `h` above the centre of mass
+    /// (the entry's parameters of those names).
+    Ellipsoid,
+    /// A thin disk of radius `a`.
+    Disk,
+}
+
+impl Shape {
+    /// The word front ends read (`"disk"`).
+    pub fn name(self) -> &'static str {
+        match self {
+            Shape::Ellipsoid => "ellipsoid",
+            Shape::Disk => "disk",
+        }
+    }
+}
+
+/// One attribute of a [`Drawing`] or a [`Pace`], as front ends read it.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub enum Attribute {
+    /// A yes or no.
+    Flag(bool),
+    /// One word from a fixed set.
+    Word(&'static str),
+    /// A number.
+    Number(f64),
 }
 
 /// The picture of a system in an animation.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub enum Drawing {
-    /// Bobs on rods or springs from a fixed pivot, at the system's `positions`.
-    Bobs,
+    /// Bobs from a fixed pivot, at the system's `positions`, each hung from the last.
+    Bobs {
+        /// On springs (drawn as coils), not rigid rods.
+        springs: bool,
+    },
     /// A bead on a hoop that turns about its vertical diameter.
     Hoop,
     /// The members as points in their common phase plane, with the separatrix.
     Swarm,
-    /// Masses along a line, each displaced across it; walls at both ends when they are fixed.
+    /// Masses along a line, each displaced across it (to scale with the spacing).
     Chain {
-        /// Both ends are held by walls (otherwise free or periodic).
-        fixed_ends: bool,
+        /// The chain's ends.
+        ends: Ends,
     },
+    /// A field on the sites of a lattice: each site's value against the site (the
+    /// sine–Gordon angles, whose kinks are the picture).
+    Field,
     /// A body moving in the plane of its first two coordinates, with a trail.
     Orbit {
         /// A central body at the origin (a central force).
         central_body: bool,
+        /// Level ground at `y = 0`, with the flight's apex and range (a projectile).
+        ground: bool,
     },
     /// A rigid body as the box of its principal moments, turned by its rotation matrix.
     InertiaBox,
@@ -69,6 +215,12 @@ pub enum Drawing {
     ContactSpiral,
     /// A body's vertical spin against time (a reversal crosses zero).
     Spin,
+    /// A body rolling without slipping on a plane, in 3-D, with its contact path and its
+    /// spin about the vertical.
+    Rolling {
+        /// The body's shape.
+        shape: Shape,
+    },
     /// No picture beyond the plots of the state.
     Plots,
 }
@@ -77,17 +229,36 @@ impl Drawing {
     /// The kind's name, as front ends read it (`"chain"`).
     pub fn name(self) -> &'static str {
         match self {
-            Drawing::Bobs => "bobs",
+            Drawing::Bobs { .. } => "bobs",
             Drawing::Hoop => "hoop",
             Drawing::Swarm => "swarm",
             Drawing::Chain { .. } => "chain",
+            Drawing::Field => "field",
             Drawing::Orbit { .. } => "orbit",
             Drawing::InertiaBox => "inertia_box",
             Drawing::TopAxis => "top_axis",
             Drawing::Swing => "swing",
             Drawing::ContactSpiral => "contact_spiral",
             Drawing::Spin => "spin",
+            Drawing::Rolling { .. } => "rolling",
             Drawing::Plots => "plots",
+        }
+    }
+
+    /// The kind's attributes by name, as front ends read them (`[("ends", Word("fixed"))]`).
+    pub fn attributes(self) -> Vec<(&'static str, Attribute)> {
+        match self {
+            Drawing::Bobs { springs } => vec![("springs", Attribute::Flag(springs))],
+            Drawing::Chain { ends } => vec![("ends", Attribute::Word(ends.name()))],
+            Drawing::Orbit {
+                central_body,
+                ground,
+            } => vec![
+                ("central_body", Attribute::Flag(central_body)),
+                ("ground", Attribute::Flag(ground)),
+            ],
+            Drawing::Rolling { shape } => vec![("shape", Attribute::Word(shape.name()))],
+            _ => Vec::new(),
         }
     }
 }

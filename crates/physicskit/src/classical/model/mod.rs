@@ -10,6 +10,9 @@ pub mod entry;
 pub mod erased;
 pub mod session;
 
-pub use entry::{Drawing, Family, ParamSpec, Presentation, SystemEntry, Value, Values};
+pub use entry::{
+    Attribute, Drawing, Ends, Family, Pace, ParamSpec, Presentation, Shape, SystemEntry, Value,
+    Values, PACE_CHECK_FRAMES,
+};
 pub use erased::{Capabilities, DynSystem};
 pub use session::{Refused, Session};

@@ -41,7 +41,7 @@ use crate::classical::integrators::{HamiltonianSystem, MassInv, Method};
 use crate::classical::model::entry::{
     Default as D, Family, Length, Literal, ParamSpec as P, Range, SystemEntry,
 };
-use crate::classical::model::entry::{Drawing, Presentation};
+use crate::classical::model::entry::{Drawing, Ends, Pace, Presentation};
 use crate::classical::model::erased::{Capabilities, Hamiltonian};
 
 /// Angular frequency of normal mode `j` (`1..=n`) of `n` masses `m` joined by springs `k`
@@ -856,10 +856,13 @@ pub static HARMONIC_CHAIN_ENTRY: SystemEntry = SystemEntry {
     note: None,
     physics: Some(CHAINS_PHYSICS),
     presentation: Presentation {
+        title: "Harmonic chain",
         symbols: &["q"],
         time_unit: "time",
         state_units: None,
-        drawing: Drawing::Chain { fixed_ends: true },
+        drawing: Drawing::Chain { ends: Ends::Fixed },
+        pace: Pace::Own,
+        section_first: false,
     },
     build: |v| {
         let q0 = v.vector("q0")?;
@@ -910,10 +913,13 @@ pub static FPUT_ENTRY: SystemEntry = SystemEntry {
     note: Some("the recurrence shows with e.g. --beta 0.7 --amplitude 0.5"),
     physics: Some(FPUT_PHYSICS),
     presentation: Presentation {
+        title: "Fermi–Pasta–Ulam–Tsingou chain",
         symbols: &["q"],
         time_unit: "time",
         state_units: Some(("length", "mass length/time")),
-        drawing: Drawing::Chain { fixed_ends: true },
+        drawing: Drawing::Chain { ends: Ends::Fixed },
+        pace: Pace::Own,
+        section_first: false,
     },
     build: |v| {
         Ok(Box::new(Hamiltonian(FPUTChain::new(
@@ -975,10 +981,13 @@ pub static SINE_GORDON_STATE_ENTRY: SystemEntry = SystemEntry {
     note: None,
     physics: Some(SINE_GORDON_PHYSICS),
     presentation: Presentation {
+        title: "Sine–Gordon chain (from a state)",
         symbols: &["\\phi"],
         time_unit: "",
         state_units: None,
-        drawing: Drawing::Chain { fixed_ends: false },
+        drawing: Drawing::Field,
+        pace: Pace::Own,
+        section_first: false,
     },
     build: |v| {
         Ok(Box::new(Hamiltonian(SineGordonChain::new(
@@ -1043,10 +1052,13 @@ pub static SINE_GORDON_KINK_ENTRY: SystemEntry = SystemEntry {
     note: None,
     physics: Some(SINE_GORDON_PHYSICS),
     presentation: Presentation {
+        title: "Sine–Gordon chain",
         symbols: &["\\phi"],
         time_unit: "",
         state_units: None,
-        drawing: Drawing::Chain { fixed_ends: false },
+        drawing: Drawing::Field,
+        pace: Pace::Own,
+        section_first: false,
     },
     build: |v| {
         let n = v.count("n")?;

@@ -37,7 +37,7 @@ use crate::classical::lagrangian::{singular_mass_matrix, Lagrangian, LagrangianE
 use crate::classical::model::entry::{
     Default as D, Family, Length, ParamSpec as P, Range, SystemEntry,
 };
-use crate::classical::model::entry::{Drawing, Presentation};
+use crate::classical::model::entry::{Drawing, Ends, Pace, Presentation};
 use crate::classical::model::erased::{Capabilities, Lagrangian as Erased};
 
 /// Size, mass and spring constant of a [`CoupledOscillators`] chain; its [`Lagrangian`].
@@ -250,10 +250,13 @@ pub static COUPLED_OSCILLATORS_ENTRY: SystemEntry = SystemEntry {
     note: Some("p holds qdot, as in the spec"),
     physics: Some(super::chains::CHAINS_PHYSICS),
     presentation: Presentation {
+        title: "Coupled oscillators",
         symbols: &["x"],
         time_unit: "s",
         state_units: None,
-        drawing: Drawing::Chain { fixed_ends: true },
+        drawing: Drawing::Chain { ends: Ends::Fixed },
+        pace: Pace::Own,
+        section_first: false,
     },
     build: |v| {
         let q0 = v.vector("q0")?;

@@ -82,7 +82,7 @@ use crate::classical::lagrangian::{
 use crate::classical::model::entry::{
     Default as D, Family, Length, ParamSpec as P, Range, SystemEntry,
 };
-use crate::classical::model::entry::{Drawing, Presentation};
+use crate::classical::model::entry::{Drawing, Pace, Presentation};
 use crate::classical::model::erased::{fill, Capabilities, Lagrangian as Erased};
 
 /// Masses, rod lengths and gravity of a [`DoublePendulum`]; its [`Lagrangian`].
@@ -451,10 +451,13 @@ pub static DOUBLE_PENDULUM_ENTRY: SystemEntry = SystemEntry {
     note: Some("p holds thetadot, as in the spec"),
     physics: Some(DOUBLE_PENDULUM_PHYSICS),
     presentation: Presentation {
+        title: "Double pendulum",
         symbols: &["\\theta_1", "\\theta_2"],
         time_unit: "s",
         state_units: None,
-        drawing: Drawing::Bobs,
+        drawing: Drawing::Bobs { springs: false },
+        pace: Pace::Own,
+        section_first: false,
     },
     build: |v| {
         let params = DoublePendulumParams {

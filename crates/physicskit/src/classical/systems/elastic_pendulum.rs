@@ -88,7 +88,7 @@ use crate::classical::lagrangian::{FieldScalar, Lagrangian, LagrangianEngine, Sc
 use crate::classical::model::entry::{
     Default as D, Family, Length, ParamSpec as P, Range, SystemEntry,
 };
-use crate::classical::model::entry::{Drawing, Presentation};
+use crate::classical::model::entry::{Drawing, Pace, Presentation};
 use crate::classical::model::erased::{fill, Capabilities, Lagrangian as Erased};
 
 /// Mass, spring constant, rest length and gravity of an [`ElasticPendulum`]; its
@@ -501,10 +501,13 @@ pub static ELASTIC_PENDULUM_ENTRY: SystemEntry = SystemEntry {
     ),
     physics: Some(ELASTIC_PENDULUM_PHYSICS),
     presentation: Presentation {
+        title: "Elastic pendulum",
         symbols: &["s", "\\theta"],
         time_unit: "s",
         state_units: None,
-        drawing: Drawing::Bobs,
+        drawing: Drawing::Bobs { springs: true },
+        pace: Pace::Own,
+        section_first: false,
     },
     build: |v| {
         let params = ElasticPendulumParams {

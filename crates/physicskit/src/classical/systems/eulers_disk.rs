@@ -28,7 +28,7 @@ use crate::classical::core::error::{check_finite_scalar, check_non_negative, che
 use crate::classical::core::{Phase, Result};
 use crate::classical::integrators::Method;
 use crate::classical::model::entry::{Default as D, Family, ParamSpec as P, Range, SystemEntry};
-use crate::classical::model::entry::{Drawing, Presentation};
+use crate::classical::model::entry::{Drawing, Pace, Presentation};
 use crate::classical::model::erased::{Capabilities, Ode};
 
 /// Rate constants and floor of an [`EulersDisk`].
@@ -220,10 +220,13 @@ pub static EULERS_DISK_ENTRY: SystemEntry = SystemEntry {
     ),
     physics: Some(EULERS_DISK_PHYSICS),
     presentation: Presentation {
+        title: "Euler's disk (reduced model)",
         symbols: &["\\theta", "\\phi"],
         time_unit: "s",
         state_units: None,
         drawing: Drawing::ContactSpiral,
+        pace: Pace::Own,
+        section_first: false,
     },
     build: |v| {
         let params = EulersDiskParams {

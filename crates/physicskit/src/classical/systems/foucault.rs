@@ -39,7 +39,7 @@ use crate::classical::integrators::Method;
 use crate::classical::model::entry::{
     Default as D, Family, Length, ParamSpec as P, Range, SystemEntry,
 };
-use crate::classical::model::entry::{Drawing, Presentation};
+use crate::classical::model::entry::{Drawing, Pace, Presentation};
 use crate::classical::model::erased::{fill, Capabilities, Ode};
 
 /// Earth's sidereal rotation rate `2 pi / 86164.0905 s` (rad/s): the default `omega_earth`.
@@ -330,10 +330,16 @@ pub static FOUCAULT_ENTRY: SystemEntry = SystemEntry {
     ),
     physics: Some(FOUCAULT_PHYSICS),
     presentation: Presentation {
+        title: "Foucault pendulum",
         symbols: &["x", "y"],
         time_unit: "s",
         state_units: None,
         drawing: Drawing::Swing,
+        pace: Pace::TimeLapse {
+            dt: 0.02,
+            steps_per_frame: 400,
+        },
+        section_first: false,
     },
     build: |v| {
         let params = FoucaultParams {

@@ -13,7 +13,7 @@ use crate::classical::core::error::{check_len, check_vector};
 use crate::classical::core::{Phase, Result};
 use crate::classical::integrators::{HamiltonianSystem, Method};
 use crate::classical::model::entry::{Default as D, Family, Length, ParamSpec as P, SystemEntry};
-use crate::classical::model::entry::{Drawing, Presentation};
+use crate::classical::model::entry::{Drawing, Pace, Presentation};
 use crate::classical::model::erased::{fill, Capabilities, Hamiltonian};
 
 /// The Hénon–Heiles Hamiltonian `H = |p|^2/2 + (x^2 + y^2)/2 + x^2 y - y^3/3` (unit masses).
@@ -125,12 +125,16 @@ pub static HENON_HEILES_ENTRY: SystemEntry = SystemEntry {
     note: Some("orbits are bounded for E < 1/6"),
     physics: Some(HENON_HEILES_PHYSICS),
     presentation: Presentation {
+        title: "Hénon–Heiles",
         symbols: &["x", "y"],
         time_unit: "",
         state_units: None,
         drawing: Drawing::Orbit {
             central_body: false,
+            ground: false,
         },
+        pace: Pace::Own,
+        section_first: true,
     },
     build: |v| {
         Ok(Box::new(Hamiltonian(HenonHeilesSystem::new(

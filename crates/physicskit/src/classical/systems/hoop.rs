@@ -42,7 +42,7 @@ use crate::classical::lagrangian::{
     singular_mass_matrix, FieldScalar, Lagrangian, LagrangianEngine, Scalar,
 };
 use crate::classical::model::entry::{Default as D, Family, ParamSpec as P, Range, SystemEntry};
-use crate::classical::model::entry::{Drawing, Presentation};
+use crate::classical::model::entry::{Drawing, Pace, Presentation};
 use crate::classical::model::erased::{fill, Capabilities, Lagrangian as Erased};
 
 /// Radius, rotation rate and gravity of a [`BeadOnRotatingHoop`]; its [`Lagrangian`].
@@ -401,10 +401,13 @@ pub static HOOP_ENTRY: SystemEntry = SystemEntry {
     note: Some("critical speed omega_c = sqrt(g/R); p holds thetadot"),
     physics: Some(HOOP_PHYSICS),
     presentation: Presentation {
+        title: "Bead on a rotating hoop",
         symbols: &["\\theta"],
         time_unit: "s",
         state_units: None,
         drawing: Drawing::Hoop,
+        pace: Pace::Own,
+        section_first: false,
     },
     build: |v| {
         let params = HoopParams {

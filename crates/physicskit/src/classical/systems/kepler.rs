@@ -26,7 +26,7 @@ use crate::classical::integrators::{HamiltonianSystem, MassInv, Method};
 use crate::classical::model::entry::{
     Default as D, Family, Length, ParamSpec as P, Range, SystemEntry, Values,
 };
-use crate::classical::model::entry::{Drawing, Presentation};
+use crate::classical::model::entry::{Drawing, Pace, Presentation};
 use crate::classical::model::erased::{fill, Capabilities, Hamiltonian};
 
 /// The optional perturbations of [`KeplerSystem`]; `Default` is the pure two-body problem.
@@ -432,10 +432,16 @@ pub static KEPLER_STATE_ENTRY: SystemEntry = SystemEntry {
     note: None,
     physics: Some(KEPLER_PHYSICS),
     presentation: Presentation {
+        title: "Kepler problem (from a state)",
         symbols: &["x", "y"],
         time_unit: "time",
         state_units: None,
-        drawing: Drawing::Orbit { central_body: true },
+        drawing: Drawing::Orbit {
+            central_body: true,
+            ground: false,
+        },
+        pace: Pace::Own,
+        section_first: false,
     },
     build: |v| {
         Ok(Box::new(Hamiltonian(KeplerSystem::new(
@@ -482,10 +488,16 @@ pub static KEPLER_ENTRY: SystemEntry = SystemEntry {
     note: Some("period 2 pi sqrt(mu a^3 / k); c_pn != 0 makes the orbit precess"),
     physics: Some(KEPLER_PHYSICS),
     presentation: Presentation {
+        title: "Kepler problem",
         symbols: &["x", "y"],
         time_unit: "time",
         state_units: None,
-        drawing: Drawing::Orbit { central_body: true },
+        drawing: Drawing::Orbit {
+            central_body: true,
+            ground: false,
+        },
+        pace: Pace::Own,
+        section_first: false,
     },
     build: |v| {
         Ok(Box::new(Hamiltonian(KeplerSystem::from_orbital_elements(

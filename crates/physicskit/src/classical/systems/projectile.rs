@@ -23,7 +23,7 @@ use crate::classical::integrators::{
 use crate::classical::model::entry::{
     Default as D, Family, Length, ParamSpec as P, Range, SystemEntry,
 };
-use crate::classical::model::entry::{Drawing, Presentation};
+use crate::classical::model::entry::{Drawing, Pace, Presentation};
 use crate::classical::model::erased::{fill, Capabilities, Hamiltonian};
 
 /// A point projectile `H = |p|^2/(2m) + m g y` with optional drag force `-c |v| v`.
@@ -318,12 +318,16 @@ pub static PROJECTILE_STATE_ENTRY: SystemEntry = SystemEntry {
     note: Some(DRAG_NOTE),
     physics: Some(PROJECTILE_PHYSICS),
     presentation: Presentation {
+        title: "Projectile (from a state)",
         symbols: &["x", "y"],
         time_unit: "s",
         state_units: None,
         drawing: Drawing::Orbit {
             central_body: false,
+            ground: true,
         },
+        pace: Pace::Own,
+        section_first: false,
     },
     build: |v| {
         Ok(Box::new(Hamiltonian(ProjectileMotion::new(
@@ -368,12 +372,16 @@ pub static PROJECTILE_ENTRY: SystemEntry = SystemEntry {
     note: Some(DRAG_NOTE),
     physics: Some(PROJECTILE_PHYSICS),
     presentation: Presentation {
+        title: "Projectile",
         symbols: &["x", "y"],
         time_unit: "s",
         state_units: None,
         drawing: Drawing::Orbit {
             central_body: false,
+            ground: true,
         },
+        pace: Pace::Own,
+        section_first: false,
     },
     build: |v| {
         Ok(Box::new(Hamiltonian(ProjectileMotion::from_launch(

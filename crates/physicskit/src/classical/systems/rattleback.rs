@@ -35,7 +35,7 @@ use crate::classical::integrators::Method;
 use crate::classical::model::entry::{
     Default as D, Family, Length, ParamSpec as P, Range, SystemEntry,
 };
-use crate::classical::model::entry::{Drawing, Presentation};
+use crate::classical::model::entry::{Drawing, Pace, Presentation};
 use crate::classical::model::erased::{Capabilities, Ode};
 
 /// Moments, coupling and damping of a [`Rattleback`].
@@ -226,10 +226,13 @@ pub static RATTLEBACK_ENTRY: SystemEntry = SystemEntry {
     ),
     physics: Some(RATTLEBACK_PHYSICS),
     presentation: Presentation {
+        title: "Rattleback (reduced model)",
         symbols: &[],
         time_unit: "s",
         state_units: None,
         drawing: Drawing::Spin,
+        pace: Pace::Own,
+        section_first: false,
     },
     build: |v| {
         let params = RattlebackParams {

@@ -22,7 +22,7 @@ use crate::classical::integrators::Method;
 use crate::classical::model::entry::{
     Default as D, Family, Length, ParamSpec as P, Range, SystemEntry,
 };
-use crate::classical::model::entry::{Drawing, Presentation};
+use crate::classical::model::entry::{Drawing, Pace, Presentation};
 use crate::classical::model::erased::{Capabilities, Ode};
 
 /// Principal moments of inertia of an [`EulerTop`].
@@ -353,10 +353,13 @@ pub static EULER_TOP_ENTRY: SystemEntry = SystemEntry {
     note: Some("y columns: w1, w2, w3, qw, qx, qy, qz; spin near axis 2 to see the flips"),
     physics: Some(EULER_TOP_PHYSICS),
     presentation: Presentation {
+        title: "Euler top",
         symbols: &[],
         time_unit: "s",
         state_units: None,
         drawing: Drawing::InertiaBox,
+        pace: Pace::Own,
+        section_first: false,
     },
     build: |v| {
         let params = EulerTopParams {

@@ -20,7 +20,7 @@ use crate::classical::integrators::{HamiltonianSystem, IntegrateOptions, Method}
 use crate::classical::model::entry::{
     Default as D, Family, Length, ParamSpec as P, Range, SystemEntry,
 };
-use crate::classical::model::entry::{Drawing, Presentation};
+use crate::classical::model::entry::{Drawing, Pace, Presentation};
 use crate::classical::model::erased::{Capabilities, Hamiltonian};
 
 /// `N` decoupled pendulums `H_i = p_i^2/2 - (g/l) cos q_i`, state `[q_1..q_N, p_1..p_N]`.
@@ -385,10 +385,13 @@ pub static SWARM_STATE_ENTRY: SystemEntry = SystemEntry {
     note: None,
     physics: Some(SWARM_PHYSICS),
     presentation: Presentation {
+        title: "Pendulum swarm (from a state)",
         symbols: &["\\theta"],
         time_unit: "s",
         state_units: None,
         drawing: Drawing::Swarm,
+        pace: Pace::Own,
+        section_first: false,
     },
     build: |v| {
         Ok(Box::new(Hamiltonian(PendulumSwarm::new(
@@ -453,10 +456,13 @@ pub static SWARM_ENTRY: SystemEntry = SystemEntry {
     note: Some("q and p have one column per pendulum; use --stride for long runs"),
     physics: Some(SWARM_PHYSICS),
     presentation: Presentation {
+        title: "Pendulum swarm",
         symbols: &["\\theta"],
         time_unit: "s",
         state_units: None,
         drawing: Drawing::Swarm,
+        pace: Pace::Own,
+        section_first: false,
     },
     build: |v| {
         Ok(Box::new(Hamiltonian(PendulumSwarm::from_box(

@@ -55,7 +55,7 @@ use crate::classical::lagrangian::{
 use crate::classical::model::entry::{
     Default as D, Family, Length, ParamSpec as P, Range, SystemEntry,
 };
-use crate::classical::model::entry::{Drawing, Presentation};
+use crate::classical::model::entry::{Drawing, Pace, Presentation};
 use crate::classical::model::erased::{fill, Capabilities, Lagrangian as Erased};
 
 /// Inertia, mass, lever arm and gravity of a [`HeavySymmetricTop`]; its [`Lagrangian`].
@@ -423,10 +423,13 @@ pub static HEAVY_TOP_ENTRY: SystemEntry = SystemEntry {
     note: Some("p holds the angle rates, as in the spec"),
     physics: Some(HEAVY_TOP_PHYSICS),
     presentation: Presentation {
+        title: "Heavy symmetric top",
         symbols: &["\\phi", "\\theta", "\\psi"],
         time_unit: "s",
         state_units: None,
         drawing: Drawing::TopAxis,
+        pace: Pace::Own,
+        section_first: false,
     },
     build: |v| {
         let params = SymmetricTopParams {

@@ -59,7 +59,7 @@ use crate::classical::integrators::{HamiltonianSystem, MassInv, Method};
 use crate::classical::model::entry::{
     Default as D, Family, Length, ParamSpec as P, Range, SystemEntry,
 };
-use crate::classical::model::entry::{Drawing, Presentation};
+use crate::classical::model::entry::{Drawing, Ends, Pace, Presentation};
 use crate::classical::model::erased::{Capabilities, Hamiltonian};
 
 /// The periodic Toda lattice `H = sum p_i^2/2 + (a/b) sum exp(-b (q_{i+1} - q_i))` (see the
@@ -369,10 +369,15 @@ pub static TODA_ENTRY: SystemEntry = SystemEntry {
     note: Some("conserved_quantities: the n eigenvalues of Flaschka's Lax matrix"),
     physics: Some(TODA_PHYSICS),
     presentation: Presentation {
+        title: "Toda lattice",
         symbols: &["q"],
         time_unit: "time",
         state_units: None,
-        drawing: Drawing::Chain { fixed_ends: false },
+        drawing: Drawing::Chain {
+            ends: Ends::Periodic,
+        },
+        pace: Pace::Own,
+        section_first: false,
     },
     build: |v| {
         Ok(Box::new(Hamiltonian(TodaLattice::new(

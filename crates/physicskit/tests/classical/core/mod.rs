@@ -6,5 +6,6 @@
 #![allow(clippy::float_cmp)]
 
 mod continuation;
+mod presentation;
 mod sampling;
 mod validation;
