@@ -201,6 +201,30 @@ class _SplitOnAccess(SimulationResult):
         self.__dict__["_p"] = value
 
 
+def _native_result(
+    t: np.ndarray,
+    y: np.ndarray,
+    energy: Optional[np.ndarray],
+    method: str,
+    extra: dict,
+    ndof: Optional[int],
+) -> SimulationResult:
+    """The result of a native run, built without ``SimulationResult.__post_init__``'s checks:
+    the native side makes ``t`` from finite, increasing steps and ``y`` and ``energy`` one row
+    per time, all float64 and C-contiguous, so checking them again would only add passes over
+    every sample (on the cheapest systems, a measurable part of the run). Results built by
+    hand are checked."""
+    cls = _SplitOnAccess if ndof else SimulationResult
+    result = cls.__new__(cls)
+    fields = {"t": t, "y": y, "energy": energy, "method": method, "extra": extra}
+    if ndof:
+        fields["_ndof"] = ndof
+    else:
+        fields.update(q=None, p=None)
+    result.__dict__.update(fields)
+    return result
+
+
 class _Sampling(NamedTuple):
     """What a run stores, and an adaptive method's tolerances (the keyword arguments of the
     native integrators)."""
@@ -456,11 +480,7 @@ class DynamicalSystem(ABC):
         ``y`` lazily."""
         t, y, native_ndof, energy, method, extra = parts
         ndof = native_ndof if ndof is None else ndof
-        result: SimulationResult
-        if ndof:
-            result = _SplitOnAccess(t, y, energy=energy, method=method, extra=extra, ndof=ndof)
-        else:
-            result = SimulationResult(t, y, energy=energy, method=method, extra=extra)
+        result = _native_result(t, y, energy, method, extra, ndof)
         self.state = result.y[-1].copy()
         self.t = float(result.t[-1])
         return result
