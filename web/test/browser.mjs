@@ -66,7 +66,7 @@ const page = await open();
 const systems = await page.evaluate(() => window.physicskitLab.app.catalogue.systems.map((s) => [s.name, s.default_method]));
 // Text a person should never meet in the page: code, flags, ASCII powers, notes to developers.
 // Symbols left as words or with a bare index ("ω earth", "ω_c") are code-isms too.
-const DENYLIST = ["::", "--", "^", "thetadot", "as in the spec", "ω earth", "_"];
+const DENYLIST = ["::", "--", "->", "^", "thetadot", "as in the spec", "ω earth", "_"];
 const pageText = (p) => p.evaluate(() => {
   const parts = [document.body.innerText];
   for (const o of document.querySelectorAll("option")) parts.push(o.textContent);

@@ -320,7 +320,22 @@ fn rewrite(text: &str, symbols: bool) -> String {
             }
         }
         let pair = (c, chars.get(i + 1).copied());
+        // A hyphen used as a minus sign: alone between spaces (`x^2 y - y^3/3`), or before a
+        // term at the start of one (`-n2`, `(-L0`), not inside a word or a number (`1e-8`).
+        if c == '-' && pair.1 != Some('>') {
+            let before = i.checked_sub(1).map(|k| chars[k]);
+            let opens = before.is_none_or(|b| matches!(b, ' ' | '(' | '[' | ',' | '='));
+            let term = pair
+                .1
+                .is_some_and(|n| n == ' ' || n == '(' || n.is_ascii_alphanumeric());
+            if opens && term {
+                out.push('−');
+                i += 1;
+                continue;
+            }
+        }
         let relation = match pair {
+            ('-', Some('>')) => Some('→'),
             ('!', Some('=')) => Some('≠'),
             ('<', Some('=')) => Some('≤'),
             ('>', Some('=')) => Some('≥'),

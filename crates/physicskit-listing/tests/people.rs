@@ -7,7 +7,7 @@ use physicskit_listing::people;
 
 /// What a person should never meet in the lab: scope paths, flags, ASCII powers, a state
 /// column's code name, a note to developers.
-const DENYLIST: [&str; 5] = ["::", "--", "^", "thetadot", "as in the spec"];
+const DENYLIST: [&str; 6] = ["::", "--", "^", "->", "thetadot", "as in the spec"];
 
 #[test]
 fn every_entry_reads_without_code() {
@@ -68,6 +68,13 @@ fn the_rules() {
     assert_eq!(people::label("rk4"), "rk4");
     assert_eq!(people::label("decay_rate"), "decay rate");
     assert_eq!(people::text("m/s^2"), "m/s²");
+    // Hyphens that are minus signs become minus signs; those in words and numbers stay.
+    assert_eq!(
+        people::text("(n1, n2, n3) -> (n1, -n2, -n3)"),
+        "(n₁, n₂, n₃) → (n₁, −n₂, −n₃)"
+    );
+    assert_eq!(people::text("x^2 y - y^3/3"), "x² y − y³/3");
+    assert_eq!(people::text("spring-like, 1e-8"), "spring-like, 1e-8");
     assert_eq!(people::text("c eps / r^(1+eps)"), "c ε / r¹⁺ᵋ");
     assert_eq!(
         people::text("planar Kepler problem (KeplerSystem::new)"),
