@@ -283,7 +283,7 @@ crate::impl_separable_dynamics!(KeplerSystem);
 
 /// `H` written once over any number type, for the system's Taylor form
 /// ([`traced_hamiltonian_taylor_field`](crate::classical::symbolic::traced_hamiltonian_taylor_field)):
-/// the terms of [`radial`](KeplerSystem::radial) at the softened radius; a perturbation whose
+/// the terms of the force's `radial` at the softened radius; a perturbation whose
 /// coefficient is zero is left out, as there (a branch on a parameter, which a trace follows).
 impl crate::classical::symbolic::TracedHamiltonian for KeplerSystem {
     fn ndof(&self) -> usize {
