@@ -91,11 +91,21 @@ pub(crate) fn render(ctx: &Ctx) -> Result<Demo> {
                 .at(&path)?;
         }
         let [x1, y1, x2, y2] = pos[i];
+        // The pivot: a short ceiling bar the upper rod hangs from.
+        chart
+            .draw_series(std::iter::once(PathElement::new(
+                vec![(-0.25, 0.0), (0.25, 0.0)],
+                RGBColor(90, 90, 90).stroke_width(4),
+            )))
+            .at(&path)?;
         chart
             .draw_series(std::iter::once(PathElement::new(
                 vec![(0.0, 0.0), (x1, y1), (x2, y2)],
                 BLACK.stroke_width(3),
             )))
+            .at(&path)?;
+        chart
+            .draw_series(std::iter::once(Circle::new((0.0, 0.0), 4, BLACK.filled())))
             .at(&path)?;
         chart
             .draw_series([(x1, y1), (x2, y2)].map(|p| Circle::new(p, 8, color(0).filled())))

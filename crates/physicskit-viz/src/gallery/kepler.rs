@@ -86,6 +86,11 @@ pub(crate) fn render(ctx: &Ctx) -> Result<Demo> {
                 .collect();
         angles = angles.with(Series::line(label, pts, color(if i == 0 { 6 } else { 1 })));
     }
+    // The attracting centre at the focus (the origin), drawn over the orbits.
+    panel = panel.with(
+        Series::dots("attracting centre (focus)", vec![(0.0, 0.0)], color(2))
+            .with_mark(crate::figure::Mark::Dots(6)),
+    );
     let path = ctx.path("kepler_orbits.svg");
     save_panel(&path, (820, 720), &panel)?;
     d.add(path, "the closed Newtonian ellipse against the precessing rosette with a post-Newtonian 1/r³ term");
