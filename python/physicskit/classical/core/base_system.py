@@ -216,7 +216,7 @@ def _native_result(
     hand are checked."""
     cls = _SplitOnAccess if ndof else SimulationResult
     result = cls.__new__(cls)
-    fields = {"t": t, "y": y, "energy": energy, "method": method, "extra": extra}
+    fields: dict[str, Any] = {"t": t, "y": y, "energy": energy, "method": method, "extra": extra}
     if ndof:
         fields["_ndof"] = ndof
     else:
