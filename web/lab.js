@@ -1280,7 +1280,12 @@ function drawSeries(ctx, w, h) {
 // A caption under the scene, in the page's text (it wraps on a phone; a canvas line would be
 // cut): what the picture shows and its live numbers.
 // The scene's caption, in people's symbols (peopleRuns: `Ω_{⊕}` shows as Ω with ⊕ lowered).
-function sceneNote(text) { const el = $("scene-note"); if (el.dataset.text !== text) { el.dataset.text = text; setRuns(el, peopleRuns(text)); } }
+// A note under the scene; a number's sign is a minus sign (−2.883), not a hyphen.
+function sceneNote(text) {
+  text = text.replace(/(^|[\s(=,])-(?=\d)/g, "$1−");
+  const el = $("scene-note");
+  if (el.dataset.text !== text) { el.dataset.text = text; setRuns(el, peopleRuns(text)); }
+}
 
 // A floor grid in perspective with tick labels in metres along two edges, centred at
 // (cx, cy) with half-width `half`; records the scene's ticks for the tests.
@@ -1744,7 +1749,7 @@ function draw() {
   const tu = timeUnit();
   $("time").textContent = `${app.lab.time().toFixed(2)}${tu ? ` ${tu}` : ""}`;
   $("energy-error").textContent = app.lab.energyError().toExponential(3);
-  drawScene(); drawPhase(); drawEnergy(); drawSection();
+  drawScene(); drawPhase(); if (!$("energy-figure").hidden) drawEnergy(); drawSection();
 }
 
 // ---------- direct manipulation ----------
@@ -2131,6 +2136,9 @@ function selectSystem(name, params = {}, build = true) {
   setStep(step?.dt ?? DEFAULT_DT, step?.steps ?? DEFAULT_STEPS);
   $("step-note").textContent = step?.note ?? "";
   $("timelapse-choice").hidden = !timeLapse(app.entry);
+  // A reduced model whose `energy` is dissipated or is no energy has no energy error to show.
+  $("energy-figure").hidden = !app.entry.presentation.energy_conserved;
+  $("phase").closest("figure").classList.toggle("wide", !app.entry.presentation.energy_conserved);
   $("timelapse").checked = false;
   if (build) rebuild();
 }

@@ -36,7 +36,8 @@
 //!   "drawing": {"kind", and the kind's attributes: "springs" (bobs), "ends" (chains),
 //!   "central_body" and "ground" (orbits), "shape" (rolling bodies)}, "pace": {"kind": "own"}
 //!   or {"kind": "fixed", "method", "dt", "steps_per_frame", "energy_error"} or
-//!   {"kind": "time_lapse", "dt", "steps_per_frame"}, "section_first": bool}`.
+//!   {"kind": "time_lapse", "dt", "steps_per_frame"}, "section_first": bool,
+//!   "energy_conserved": bool}`.
 //! - `methods` per system: those that can integrate it, as `simulate --method` takes them.
 //! - `title`: the entry's `presentation.title`.
 //! - `summary_text`, `note_text`, `physics_text` (the paragraph's powers as
@@ -90,6 +91,7 @@ struct PresentationJson {
     drawing: serde_json::Map<String, serde_json::Value>,
     pace: serde_json::Map<String, serde_json::Value>,
     section_first: bool,
+    energy_conserved: bool,
 }
 
 #[derive(Serialize)]
@@ -198,6 +200,7 @@ fn presentation(p: &Presentation) -> PresentationJson {
         drawing: kind_with(p.drawing.name(), p.drawing.attributes()),
         pace: kind_with(p.pace.name(), p.pace.attributes()),
         section_first: p.section_first,
+        energy_conserved: p.energy_conserved,
     }
 }
 

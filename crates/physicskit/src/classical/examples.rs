@@ -177,6 +177,7 @@ pub static PENDULUM_ENTRY: SystemEntry = SystemEntry {
         drawing: Drawing::Bobs { springs: false },
         pace: Pace::Own,
         section_first: false,
+        energy_conserved: true,
     },
     build: |v| {
         Ok(Box::new(Hamiltonian(Pendulum::new(
@@ -231,6 +232,7 @@ pub static HARMONIC_OSCILLATOR_ENTRY: SystemEntry = SystemEntry {
         drawing: Drawing::Chain { ends: Ends::Fixed },
         pace: Pace::Own,
         section_first: false,
+        energy_conserved: true,
     },
     build: |v| {
         Ok(Box::new(Hamiltonian(HarmonicOscillator::new(

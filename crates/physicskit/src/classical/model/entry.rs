@@ -47,6 +47,11 @@ pub struct Presentation {
     /// chaotic at the default energy: islands in a chaotic sea), so a front end that can show
     /// one shows it from the start.
     pub section_first: bool,
+    /// The equations conserve the system's `energy`, so front ends show its relative error as
+    /// a check of the integration. False for the reduced models whose `energy` is dissipated
+    /// by their damping (the reduced rattleback) or is not an energy (the reduced Euler's disk
+    /// returns its tilt θ, as the peer does): front ends show no energy error for them.
+    pub energy_conserved: bool,
 }
 
 /// How an animation that runs frame by frame (the lab, 60 frames a second) steps a system.

@@ -863,6 +863,7 @@ pub static HARMONIC_CHAIN_ENTRY: SystemEntry = SystemEntry {
         drawing: Drawing::Chain { ends: Ends::Fixed },
         pace: Pace::Own,
         section_first: false,
+        energy_conserved: true,
     },
     build: |v| {
         let q0 = v.vector("q0")?;
@@ -920,6 +921,7 @@ pub static FPUT_ENTRY: SystemEntry = SystemEntry {
         drawing: Drawing::Chain { ends: Ends::Fixed },
         pace: Pace::Own,
         section_first: false,
+        energy_conserved: true,
     },
     build: |v| {
         Ok(Box::new(Hamiltonian(FPUTChain::new(
@@ -988,6 +990,7 @@ pub static SINE_GORDON_STATE_ENTRY: SystemEntry = SystemEntry {
         drawing: Drawing::Field,
         pace: Pace::Own,
         section_first: false,
+        energy_conserved: true,
     },
     build: |v| {
         Ok(Box::new(Hamiltonian(SineGordonChain::new(
@@ -1059,6 +1062,7 @@ pub static SINE_GORDON_KINK_ENTRY: SystemEntry = SystemEntry {
         drawing: Drawing::Field,
         pace: Pace::Own,
         section_first: false,
+        energy_conserved: true,
     },
     build: |v| {
         let n = v.count("n")?;

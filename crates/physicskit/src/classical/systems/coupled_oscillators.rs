@@ -257,6 +257,7 @@ pub static COUPLED_OSCILLATORS_ENTRY: SystemEntry = SystemEntry {
         drawing: Drawing::Chain { ends: Ends::Fixed },
         pace: Pace::Own,
         section_first: false,
+        energy_conserved: true,
     },
     build: |v| {
         let q0 = v.vector("q0")?;

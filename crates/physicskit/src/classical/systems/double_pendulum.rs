@@ -458,6 +458,7 @@ pub static DOUBLE_PENDULUM_ENTRY: SystemEntry = SystemEntry {
         drawing: Drawing::Bobs { springs: false },
         pace: Pace::Own,
         section_first: false,
+        energy_conserved: true,
     },
     build: |v| {
         let params = DoublePendulumParams {

@@ -508,6 +508,7 @@ pub static ELASTIC_PENDULUM_ENTRY: SystemEntry = SystemEntry {
         drawing: Drawing::Bobs { springs: true },
         pace: Pace::Own,
         section_first: false,
+        energy_conserved: true,
     },
     build: |v| {
         let params = ElasticPendulumParams {

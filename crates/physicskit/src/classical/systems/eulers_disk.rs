@@ -227,6 +227,7 @@ pub static EULERS_DISK_ENTRY: SystemEntry = SystemEntry {
         drawing: Drawing::ContactSpiral,
         pace: Pace::Own,
         section_first: false,
+        energy_conserved: false,
     },
     build: |v| {
         let params = EulersDiskParams {

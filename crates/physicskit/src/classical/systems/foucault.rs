@@ -340,6 +340,7 @@ pub static FOUCAULT_ENTRY: SystemEntry = SystemEntry {
             steps_per_frame: 400,
         },
         section_first: false,
+        energy_conserved: true,
     },
     build: |v| {
         let params = FoucaultParams {

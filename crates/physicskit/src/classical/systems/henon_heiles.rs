@@ -135,6 +135,7 @@ pub static HENON_HEILES_ENTRY: SystemEntry = SystemEntry {
         },
         pace: Pace::Own,
         section_first: true,
+        energy_conserved: true,
     },
     build: |v| {
         Ok(Box::new(Hamiltonian(HenonHeilesSystem::new(

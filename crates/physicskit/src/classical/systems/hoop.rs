@@ -408,6 +408,7 @@ pub static HOOP_ENTRY: SystemEntry = SystemEntry {
         drawing: Drawing::Hoop,
         pace: Pace::Own,
         section_first: false,
+        energy_conserved: true,
     },
     build: |v| {
         let params = HoopParams {

@@ -442,6 +442,7 @@ pub static KEPLER_STATE_ENTRY: SystemEntry = SystemEntry {
         },
         pace: Pace::Own,
         section_first: false,
+        energy_conserved: true,
     },
     build: |v| {
         Ok(Box::new(Hamiltonian(KeplerSystem::new(
@@ -498,6 +499,7 @@ pub static KEPLER_ENTRY: SystemEntry = SystemEntry {
         },
         pace: Pace::Own,
         section_first: false,
+        energy_conserved: true,
     },
     build: |v| {
         Ok(Box::new(Hamiltonian(KeplerSystem::from_orbital_elements(

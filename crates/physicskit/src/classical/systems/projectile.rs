@@ -328,6 +328,7 @@ pub static PROJECTILE_STATE_ENTRY: SystemEntry = SystemEntry {
         },
         pace: Pace::Own,
         section_first: false,
+        energy_conserved: true,
     },
     build: |v| {
         Ok(Box::new(Hamiltonian(ProjectileMotion::new(
@@ -382,6 +383,7 @@ pub static PROJECTILE_ENTRY: SystemEntry = SystemEntry {
         },
         pace: Pace::Own,
         section_first: false,
+        energy_conserved: true,
     },
     build: |v| {
         Ok(Box::new(Hamiltonian(ProjectileMotion::from_launch(

@@ -233,6 +233,7 @@ pub static RATTLEBACK_ENTRY: SystemEntry = SystemEntry {
         drawing: Drawing::Spin,
         pace: Pace::Own,
         section_first: false,
+        energy_conserved: false,
     },
     build: |v| {
         let params = RattlebackParams {

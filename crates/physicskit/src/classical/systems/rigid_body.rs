@@ -360,6 +360,7 @@ pub static EULER_TOP_ENTRY: SystemEntry = SystemEntry {
         drawing: Drawing::InertiaBox,
         pace: Pace::Own,
         section_first: false,
+        energy_conserved: true,
     },
     build: |v| {
         let params = EulerTopParams {

@@ -897,6 +897,7 @@ pub static ROLLING_RATTLEBACK_ENTRY: SystemEntry = SystemEntry {
             energy_error: 1e-8,
         },
         section_first: false,
+        energy_conserved: true,
     },
     build: |v| {
         let params = RollingRattlebackParams {
@@ -994,6 +995,7 @@ pub static ROLLING_DISK_ENTRY: SystemEntry = SystemEntry {
         drawing: Drawing::Rolling { shape: Shape::Disk },
         pace: DISK_PACE,
         section_first: false,
+        energy_conserved: true,
     },
     build: |v| {
         Ok(Box::new(Ode(RollingDisk::new(
@@ -1042,6 +1044,7 @@ pub static ROLLING_DISK_STEADY_ENTRY: SystemEntry = SystemEntry {
         drawing: Drawing::Rolling { shape: Shape::Disk },
         pace: DISK_PACE,
         section_first: false,
+        energy_conserved: true,
     },
     build: |v| {
         Ok(Box::new(Ode(RollingDisk::steady(

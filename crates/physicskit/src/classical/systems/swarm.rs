@@ -392,6 +392,7 @@ pub static SWARM_STATE_ENTRY: SystemEntry = SystemEntry {
         drawing: Drawing::Swarm,
         pace: Pace::Own,
         section_first: false,
+        energy_conserved: true,
     },
     build: |v| {
         Ok(Box::new(Hamiltonian(PendulumSwarm::new(
@@ -463,6 +464,7 @@ pub static SWARM_ENTRY: SystemEntry = SystemEntry {
         drawing: Drawing::Swarm,
         pace: Pace::Own,
         section_first: false,
+        energy_conserved: true,
     },
     build: |v| {
         Ok(Box::new(Hamiltonian(PendulumSwarm::from_box(

@@ -430,6 +430,7 @@ pub static HEAVY_TOP_ENTRY: SystemEntry = SystemEntry {
         drawing: Drawing::TopAxis,
         pace: Pace::Own,
         section_first: false,
+        energy_conserved: true,
     },
     build: |v| {
         let params = SymmetricTopParams {

@@ -378,6 +378,7 @@ pub static TODA_ENTRY: SystemEntry = SystemEntry {
         },
         pace: Pace::Own,
         section_first: false,
+        energy_conserved: true,
     },
     build: |v| {
         Ok(Box::new(Hamiltonian(TodaLattice::new(
