@@ -99,6 +99,17 @@ class _DrawingInfo(TypedDict, total=False):
     shape: Literal["ellipsoid", "disk"]
     """Rolling bodies: the body's shape."""
 
+class _PaceInfo(TypedDict, total=False):
+    kind: Literal["own", "fixed", "time_lapse"]
+    method: str
+    """Fixed: the fixed-step method."""
+    dt: float
+    """Fixed or time-lapse: the step."""
+    steps_per_frame: float
+    """Fixed or time-lapse: steps a frame."""
+    energy_error: float
+    """Fixed: the bound on the relative energy error over a minute of frames (tested)."""
+
 class _PresentationInfo(TypedDict):
     title: str
     """The system's name as a title for people (``"Hénon–Heiles"``)."""
@@ -109,6 +120,12 @@ class _PresentationInfo(TypedDict):
     state_units: list[str] | None
     """Units of a coordinate and a momentum or velocity, where no parameter gives them."""
     drawing: _DrawingInfo
+    pace: _PaceInfo
+    """How a frame-by-frame animation steps it (the browser lab's 60 frames a second)."""
+    section_first: bool
+    """The Poincaré section is the picture that matters: shown from the start."""
+    energy_conserved: bool
+    """Its equations conserve ``energy`` (False for the dissipative reduced models)."""
 
 class _SystemInfo(TypedDict):
     name: str

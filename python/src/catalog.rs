@@ -110,24 +110,42 @@ fn param_info<'py>(py: Python<'py>, p: &ParamSpec) -> PyResult<Bound<'py, PyDict
 }
 
 /// How front ends show a system, as a dict: `title`, `symbols`, `time_unit`, `state_units`
-/// (`None` or a pair) and `drawing` (`kind` and the kind's attributes: `springs` for bobs,
-/// `ends` for chains, `central_body` and `ground` for orbits, `shape` for rolling bodies).
+/// (`None` or a pair), `drawing` (`kind` and the kind's attributes: `springs` for bobs, `ends`
+/// for chains, `central_body` and `ground` for orbits, `shape` for rolling bodies), `pace`
+/// (`kind`: `own`, `fixed` with `method`, `dt`, `steps_per_frame`, `energy_error`, or
+/// `time_lapse` with `dt`, `steps_per_frame`), `section_first` and `energy_conserved`: the
+/// same as `list --json`'s.
 fn presentation_info<'py>(py: Python<'py>, p: &Presentation) -> PyResult<Bound<'py, PyDict>> {
     let d = PyDict::new(py);
     d.set_item("title", p.title)?;
     d.set_item("symbols", p.symbols.to_vec())?;
     d.set_item("time_unit", p.time_unit)?;
     d.set_item("state_units", p.state_units.map(|(q, p)| vec![q, p]))?;
-    let drawing = PyDict::new(py);
-    drawing.set_item("kind", p.drawing.name())?;
-    for (name, value) in p.drawing.attributes() {
+    d.set_item(
+        "drawing",
+        kind_with(py, p.drawing.name(), p.drawing.attributes())?,
+    )?;
+    d.set_item("pace", kind_with(py, p.pace.name(), p.pace.attributes())?)?;
+    d.set_item("section_first", p.section_first)?;
+    d.set_item("energy_conserved", p.energy_conserved)?;
+    Ok(d)
+}
+
+/// `{"kind": kind, attribute: value, ..}`.
+fn kind_with<'py>(
+    py: Python<'py>,
+    kind: &'static str,
+    attributes: Vec<(&'static str, Attribute)>,
+) -> PyResult<Bound<'py, PyDict>> {
+    let d = PyDict::new(py);
+    d.set_item("kind", kind)?;
+    for (name, value) in attributes {
         match value {
-            Attribute::Flag(b) => drawing.set_item(name, b)?,
-            Attribute::Word(w) => drawing.set_item(name, w)?,
-            Attribute::Number(x) => drawing.set_item(name, x)?,
+            Attribute::Flag(b) => d.set_item(name, b)?,
+            Attribute::Word(w) => d.set_item(name, w)?,
+            Attribute::Number(x) => d.set_item(name, x)?,
         }
     }
-    d.set_item("drawing", drawing)?;
     Ok(d)
 }
 

@@ -32,14 +32,14 @@
 //! - `physics`: the system's physics paragraph (`SystemEntry::physics`), the lab's caption and
 //!   the opening of the gallery demonstration that shows it; `null` if none.
 //! - `presentation`: how front ends show the system (`SystemEntry::presentation`):
-//!   `{"symbols": [TeX, ..], "time_unit", "state_units": null or [coordinate, momentum],
+//!   `{"title", "symbols": [TeX, ..], "time_unit", "state_units": null or [coordinate, momentum],
 //!   "drawing": {"kind", and the kind's attributes: "springs" (bobs), "ends" (chains),
 //!   "central_body" and "ground" (orbits), "shape" (rolling bodies)}, "pace": {"kind": "own"}
 //!   or {"kind": "fixed", "method", "dt", "steps_per_frame", "energy_error"} or
 //!   {"kind": "time_lapse", "dt", "steps_per_frame"}, "section_first": bool,
 //!   "energy_conserved": bool}`.
 //! - `methods` per system: those that can integrate it, as `simulate --method` takes them.
-//! - `title`: the entry's `presentation.title`.
+//! - `title`: the entry's `presentation.title` (also inside `presentation`).
 //! - `summary_text`, `note_text`, `physics_text` (the paragraph's powers as
 //!   superscripts), and per parameter `label`, `unit_text`, `help_text`: the
 //!   same text for people (the lab's), in Unicode mathematics, without class names, flags or
@@ -85,6 +85,7 @@ struct System {
 
 #[derive(Serialize)]
 struct PresentationJson {
+    title: &'static str,
     symbols: &'static [&'static str],
     time_unit: &'static str,
     state_units: Option<[&'static str; 2]>,
@@ -194,6 +195,7 @@ fn system(entry: &SystemEntry) -> System {
 
 fn presentation(p: &Presentation) -> PresentationJson {
     PresentationJson {
+        title: p.title,
         symbols: p.symbols,
         time_unit: p.time_unit,
         state_units: p.state_units.map(|(q, p)| [q, p]),
