@@ -274,15 +274,18 @@ def test_methods_have_the_required_keys_and_describe_integrate():
         assert isinstance(m["order"], int) and m["order"] >= 1
         assert isinstance(m["symplectic"], bool) and isinstance(m["separable_only"], bool)
     # `separable_only` is what integrate does: a separable system runs every method, a
-    # Lagrangian one refuses exactly the separable-only ones. `needs_taylor_form` too: the
-    # catalogue's hand-written Hamiltonian refuses such a method, naming itself, and a
-    # Lagrangian system, whose L is traced into a Taylor form, runs it.
+    # Lagrangian one refuses exactly the separable-only ones. `needs_taylor_form` too: a
+    # catalogue Hamiltonian with only a hand-written force (the Toda lattice) refuses such a
+    # method, naming itself; Kepler, whose H is traced, and a Lagrangian system, whose L is,
+    # run it.
     kepler = pc.KeplerSystem.from_orbital_elements(1.0, 0.5)
+    toda = pc.TodaLattice([0.1, 0.0, -0.1], [0.0, 0.2, 0.0])
     for m in methods:
         dp = pc.DoublePendulum(Q, P)
         if m["needs_taylor_form"]:
-            with pytest.raises(ValueError, match="cannot integrate.*`kepler.*HamiltonianEngine"):
-                kepler.integrate((0.0, 0.01), 0.01, m["name"])
+            with pytest.raises(ValueError, match="cannot integrate.*`toda.*HamiltonianEngine"):
+                toda.integrate((0.0, 0.01), 0.01, m["name"])
+            kepler.integrate((0.0, 0.01), 0.01, m["name"])
             dp.integrate((0.0, 0.01), 0.01, m["name"])
             continue
         kepler.integrate((0.0, 0.01), 0.01, m["name"])

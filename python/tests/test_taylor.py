@@ -81,10 +81,21 @@ def test_lagrangian_and_ode_engines_agree_with_dop853(method):
 
 
 @pytest.mark.parametrize("method", TAYLOR)
-def test_a_catalogue_system_refuses_it_by_name(method):
-    s = pc.KeplerSystem.from_orbital_elements(1.0, 0.5)
-    with pytest.raises(ValueError, match=r"cannot integrate.*`kepler.*HamiltonianEngine"):
+def test_a_catalogue_system_without_a_taylor_form_refuses_it_by_name(method):
+    s = pc.TodaLattice([0.1, 0.0, -0.1], [0.0, 0.2, 0.0])
+    with pytest.raises(ValueError, match=r"cannot integrate.*`toda.*HamiltonianEngine"):
         s.integrate_sampled((0.0, 1.0), 0.1, method)
+
+
+@pytest.mark.parametrize("method", TAYLOR)
+def test_the_catalogue_kepler_runs_it_to_the_closed_form(method):
+    # The catalogue's KeplerSystem (its H traced, no expression written here), 5 orbits from
+    # perihelion at rtol = atol = 1e-14: the phase error after ~31 time units is ~1e-12 at that
+    # tolerance, so 1e-10 has a margin of ~100, and a wrong force misses by order one.
+    s = pc.KeplerSystem.from_orbital_elements(1.0, 0.5)
+    r = s.integrate_sampled((0.0, 10 * np.pi), np.pi, method, rtol=1e-14, atol=1e-14)
+    assert r.method == method
+    assert np.max(np.abs(r.y - kepler_closed_form(r.t))) < 1e-10
 
 
 @pytest.mark.parametrize("method", TAYLOR)

@@ -17,21 +17,13 @@
 //! Each problem lists the methods that apply ([`Problem::methods`]: every method in the
 //! registry that accepts the system, so a new method appears without editing this file) and a
 //! ladder of steps, or of tolerances for an adaptive method ([`Problem::steps`]). `taylor`
-//! applies to all three: the double pendulum's Lagrangian is traced into its Taylor form by the
-//! registry, and Kepler's and Hénon–Heiles' Hamiltonians, written once over any number type
-//! ([`TracedHamiltonian`]), are traced here.
+//! applies to all three: each system has a Taylor form (its `L` or `H` traced), and reports
+//! its cost in field evaluations as the others do.
 
-use ndarray::Array1;
-
-use crate::classical::core::ExtraValue;
 use crate::classical::integrators::options::{IntegrateOptions, Sampling, Tolerances};
-use crate::classical::integrators::taylor::{integrate_taylor, order_for};
-use crate::classical::symbolic::{traced_hamiltonian_taylor_field, TracedHamiltonian};
 use crate::classical::systems::KeplerPerturbations;
 use crate::classical::systems::{DoublePendulum, HenonHeilesSystem, KeplerSystem};
-use crate::classical::{
-    DynamicalSystem, HamiltonianSystem, LagrangianSystem, Method, Result, SimulationResult,
-};
+use crate::classical::{HamiltonianSystem, LagrangianSystem, Method, Result, SimulationResult};
 
 /// One of the three work–precision problems (see the module docs).
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -102,42 +94,6 @@ fn henon_heiles() -> Result<HenonHeilesSystem> {
     HenonHeilesSystem::new(&[0.1, 0.0], &[0.0, 0.5])
 }
 
-/// `taylor` on the Taylor form traced from `system`'s generic `H`, from its state over `span`
-/// with outputs every `dt`, and the energy of each output (which the Hénon–Heiles error reads),
-/// as the registry's runs report it.
-fn traced_run<S: TracedHamiltonian + DynamicalSystem>(
-    system: &S,
-    span: (f64, f64),
-    dt: f64,
-    tolerances: Tolerances,
-) -> Result<SimulationResult> {
-    let mut field = traced_hamiltonian_taylor_field(system)?;
-    let mut result = integrate_taylor(field.as_mut(), system.state(), span, dt, tolerances)?;
-    let energy: Array1<f64> = result
-        .y
-        .rows()
-        .into_iter()
-        .map(|row| row.as_slice().map_or(f64::NAN, |y| system.energy(y)))
-        .collect();
-    result.energy = Some(energy);
-    Ok(result)
-}
-
-/// Adds `rhs_evaluations` to a `taylor` run, the cost axis every other method reports: each
-/// step is one expansion to order `p`, whose Cauchy products compute `k + 1` terms for
-/// coefficient `k` of each nonlinear operation, `(p + 1)(p + 2)/2` in all where an evaluation
-/// of the field does one. So a step counts as `(p + 1)(p + 2)/2` evaluations: an upper bound
-/// for fields with linear operations too (those cost `p + 1`), the same yardstick on every
-/// problem.
-fn count_expansions(result: &mut SimulationResult, tolerances: &Tolerances) {
-    let p = order_for(tolerances) as f64;
-    let steps = result.extra_scalar("steps").unwrap_or(f64::NAN);
-    result.extra.insert(
-        "rhs_evaluations".into(),
-        ExtraValue::Scalar(steps * (p + 1.0) * (p + 2.0) / 2.0),
-    );
-}
-
 impl Problem {
     /// The problems at the sizes: 100 Kepler orbits, Hénon–Heiles to `t = 1000`, the
     /// double pendulum to `t = 10`; `quick` shortens each tenfold (for the gallery's quick mode).
@@ -172,8 +128,7 @@ impl Problem {
 
     /// The methods that apply, in the registry's order: all of them on the separable
     /// Hamiltonians, those not restricted to separable systems on the Lagrangian double
-    /// pendulum. Every problem has a Taylor form (see the module docs), so those that need one
-    /// apply everywhere.
+    /// pendulum. Every problem's system has a Taylor form (see the module docs).
     pub fn methods(self) -> Vec<Method> {
         let lagrangian = matches!(self, Problem::DoublePendulum { .. });
         Method::ALL
@@ -236,24 +191,6 @@ impl Problem {
         } else {
             (setting, None)
         };
-        if method.needs_taylor_form() {
-            let tolerances = tolerances.unwrap_or_default();
-            let mut result = match self {
-                Problem::Kepler { .. } => traced_run(&kepler()?, span, dt, tolerances)?,
-                Problem::HenonHeiles { .. } => traced_run(&henon_heiles()?, span, dt, tolerances)?,
-                Problem::DoublePendulum { .. } => double_pendulum()?.integrate_with(
-                    span,
-                    dt,
-                    method,
-                    IntegrateOptions {
-                        tolerances: Some(tolerances),
-                        ..final_only()
-                    },
-                )?,
-            };
-            count_expansions(&mut result, &tolerances);
-            return Ok(result);
-        }
         let final_only = IntegrateOptions {
             tolerances,
             ..final_only()

@@ -330,11 +330,31 @@ pub fn separable_jacobian<S: HamiltonianSystem + ?Sized>(
 
 /// Implements [`DynamicalSystem`] for a separable [`HamiltonianSystem`] stored in a struct with
 /// a `phase: Phase` field: derivatives from the force, energy `T + V`, Jacobian from
-/// `force_jacobian`, default method `yoshida4`.
+/// `force_jacobian`, default method `yoshida4`. With `taylor: path`, the system's Taylor form
+/// is `path(&system)` (a function from `&Type` to `Result<Box<dyn TaylorField>>`, such as
+/// `symbolic::traced_hamiltonian_taylor_field` for a system whose `H` is written once over any
+/// number type); without, it has none.
 #[macro_export]
 macro_rules! impl_separable_dynamics {
     ($ty:ty) => {
+        $crate::impl_separable_dynamics!($ty, {});
+    };
+    ($ty:ty, taylor: $field:path) => {
+        $crate::impl_separable_dynamics!($ty, {
+            fn taylor_field(
+                &self,
+            ) -> Option<
+                $crate::classical::Result<
+                    Box<dyn $crate::classical::integrators::TaylorField>,
+                >,
+            > {
+                Some($field(self))
+            }
+        });
+    };
+    ($ty:ty, { $($extra:item)* }) => {
         impl $crate::classical::DynamicalSystem for $ty {
+            $($extra)*
             fn phase(&self) -> &$crate::classical::Phase {
                 &self.phase
             }

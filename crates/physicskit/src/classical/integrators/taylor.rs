@@ -58,9 +58,9 @@ pub const INFO: MethodInfo = MethodInfo {
 
 /// The systems that have a Taylor form, for messages.
 pub const TAYLOR_SYSTEMS: &str = "systems defined by expressions: Python's HamiltonianEngine, \
-     LagrangianEngine and ODEEngine (Rust's ExprHamiltonian, ExprLagrangian and ExprOde), and \
+     LagrangianEngine and ODEEngine (Rust's ExprHamiltonian, ExprLagrangian and ExprOde), \
      every Lagrangian system (the catalogue's Lagrangian family, whose generic L is traced into \
-     an expression)";
+     an expression), and the Kepler and Hénon–Heiles systems (their H is traced likewise)";
 
 /// The refusal of the `taylor` method by `system` (a name, or a description such as "this \
 /// Hamiltonian system"), which has no Taylor form: the one message every front end gives.
@@ -493,10 +493,21 @@ impl Taylor {
 }
 
 impl Report for Taylor {
-    /// `steps`, `order`, `smallest_step`, `largest_step`.
+    /// `steps`, `order`, `rhs_evaluations`, `smallest_step`, `largest_step`.
+    /// `rhs_evaluations` is the cost in the yardstick every other method reports, field
+    /// evaluations, modelled rather than counted: a step is one expansion to order `p`, whose
+    /// Cauchy products compute `k + 1` terms for coefficient `k` of each nonlinear operation,
+    /// `(p + 1)(p + 2)/2` in all where one evaluation of the field computes one; so a step
+    /// counts as `(p + 1)(p + 2)/2` evaluations (an upper bound for a field with linear
+    /// operations, which cost `p + 1`).
     fn report(&self, extra: &mut BTreeMap<String, ExtraValue>) {
+        let p = self.order as f64;
         extra.insert("steps".into(), ExtraValue::Scalar(self.accepted as f64));
-        extra.insert("order".into(), ExtraValue::Scalar(self.order as f64));
+        extra.insert("order".into(), ExtraValue::Scalar(p));
+        extra.insert(
+            "rhs_evaluations".into(),
+            ExtraValue::Scalar(self.accepted as f64 * (p + 1.0) * (p + 2.0) / 2.0),
+        );
         extra.insert(
             "smallest_step".into(),
             ExtraValue::Scalar(if self.accepted > 0 {

@@ -864,6 +864,11 @@ pub struct SystemEntry {
     /// splitting methods apply (the built system has the last word: a projectile with drag
     /// refuses them).
     pub separable: bool,
+    /// Whether the system has a Taylor form (its field as expressions, which the `taylor`
+    /// method's recurrences are generated from): every Lagrangian system (its generic `L` is
+    /// traced), and the Hamiltonians written once over any number type. The catalogue test
+    /// runs `taylor` on every entry to check it.
+    pub taylor_form: bool,
     /// The method `integrate` uses by default for the default parameters.
     pub default_method: Method,
     /// A remark for listings (which parameters show what).
@@ -922,13 +927,12 @@ impl SystemEntry {
 
     /// The methods that can integrate this system: every method for separable systems,
     /// otherwise those that do not need `H = T(p) + V(q)`; one that needs a Taylor form
-    /// ([`Method::needs_taylor_form`]) only for the Lagrangian family, whose generic `L` is
-    /// traced into expressions (the other families' fields are hand-written `f64` code). The
-    /// catalogue test runs every method on every entry to check the list.
+    /// ([`Method::needs_taylor_form`]) only where the entry has one
+    /// ([`taylor_form`](Self::taylor_form)). The catalogue test runs every method on every
+    /// entry to check the list.
     pub fn methods(&self) -> impl Iterator<Item = Method> + '_ {
         Method::ALL.into_iter().filter(move |m| {
-            (self.separable || !m.needs_separable())
-                && (!m.needs_taylor_form() || self.family == Family::Lagrangian)
+            (self.separable || !m.needs_separable()) && (!m.needs_taylor_form() || self.taylor_form)
         })
     }
 

@@ -852,6 +852,7 @@ pub static HARMONIC_CHAIN_ENTRY: SystemEntry = SystemEntry {
         SPRING,
     ],
     separable: true,
+    taylor_form: false,
     default_method: Method::Yoshida4,
     note: None,
     physics: Some(CHAINS_PHYSICS),
@@ -910,6 +911,7 @@ pub static FPUT_ENTRY: SystemEntry = SystemEntry {
         ),
     ],
     separable: true,
+    taylor_form: false,
     default_method: Method::Yoshida4,
     note: Some("the recurrence shows with e.g. --beta 0.7 --amplitude 0.5"),
     physics: Some(FPUT_PHYSICS),
@@ -951,6 +953,18 @@ const SINE_GORDON_COUPLING: P = P::scalar(
     "coupling constant",
 );
 
+/// How both sine–Gordon entries are shown (the second with its own title).
+const SINE_GORDON_PRESENTATION: Presentation = Presentation {
+    title: "Sine–Gordon chain",
+    symbols: &["\\phi"],
+    time_unit: "",
+    state_units: None,
+    drawing: Drawing::Field,
+    pace: Pace::Own,
+    section_first: false,
+    energy_conserved: true,
+};
+
 /// The catalogue entry of [`SineGordonChain::new`].
 pub static SINE_GORDON_STATE_ENTRY: SystemEntry = SystemEntry {
     name: "sine-gordon-state",
@@ -979,18 +993,13 @@ pub static SINE_GORDON_STATE_ENTRY: SystemEntry = SystemEntry {
         .initial_state(),
     ],
     separable: true,
+    taylor_form: false,
     default_method: Method::Yoshida4,
     note: None,
     physics: Some(SINE_GORDON_PHYSICS),
     presentation: Presentation {
         title: "Sine–Gordon chain (from a state)",
-        symbols: &["\\phi"],
-        time_unit: "",
-        state_units: None,
-        drawing: Drawing::Field,
-        pace: Pace::Own,
-        section_first: false,
-        energy_conserved: true,
+        ..SINE_GORDON_PRESENTATION
     },
     build: |v| {
         Ok(Box::new(Hamiltonian(SineGordonChain::new(
@@ -1051,19 +1060,11 @@ pub static SINE_GORDON_KINK_ENTRY: SystemEntry = SystemEntry {
         ),
     ],
     separable: true,
+    taylor_form: false,
     default_method: Method::Yoshida4,
     note: None,
     physics: Some(SINE_GORDON_PHYSICS),
-    presentation: Presentation {
-        title: "Sine–Gordon chain",
-        symbols: &["\\phi"],
-        time_unit: "",
-        state_units: None,
-        drawing: Drawing::Field,
-        pace: Pace::Own,
-        section_first: false,
-        energy_conserved: true,
-    },
+    presentation: SINE_GORDON_PRESENTATION,
     build: |v| {
         let n = v.count("n")?;
         let (m, k) = (v.scalar("m")?, v.scalar("k")?);

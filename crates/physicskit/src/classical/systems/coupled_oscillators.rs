@@ -246,6 +246,7 @@ pub static COUPLED_OSCILLATORS_ENTRY: SystemEntry = SystemEntry {
         ),
     ],
     separable: false,
+    taylor_form: true,
     default_method: Method::ImplicitMidpoint,
     note: Some("p holds qdot, as in the spec"),
     physics: Some(super::chains::CHAINS_PHYSICS),

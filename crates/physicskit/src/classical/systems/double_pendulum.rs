@@ -447,6 +447,7 @@ pub static DOUBLE_PENDULUM_ENTRY: SystemEntry = SystemEntry {
         ),
     ],
     separable: false,
+    taylor_form: true,
     default_method: Method::ImplicitMidpoint,
     note: Some("p holds thetadot, as in the spec"),
     physics: Some(DOUBLE_PENDULUM_PHYSICS),

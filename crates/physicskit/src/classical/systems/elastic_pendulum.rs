@@ -495,6 +495,7 @@ pub static ELASTIC_PENDULUM_ENTRY: SystemEntry = SystemEntry {
         ),
     ],
     separable: false,
+    taylor_form: true,
     default_method: Method::ImplicitMidpoint,
     note: Some(
         "exact 2:1 resonance (bounce twice the swing frequency) at k = 3 m g / L0; p holds qdot",

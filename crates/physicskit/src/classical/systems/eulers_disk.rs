@@ -213,6 +213,7 @@ pub static EULERS_DISK_ENTRY: SystemEntry = SystemEntry {
         ),
     ],
     separable: false,
+    taylor_form: false,
     default_method: Method::ImplicitMidpoint,
     note: Some(
         "y columns: theta, phi; a phenomenological reduced model, not rolling mechanics; the \

@@ -323,6 +323,7 @@ pub static FOUCAULT_ENTRY: SystemEntry = SystemEntry {
         ),
     ],
     separable: false,
+    taylor_form: false,
     default_method: Method::ImplicitMidpoint,
     note: Some(
         "y columns: x, y, vx, vy; the swing plane turns once in 2 pi / (omega_earth \

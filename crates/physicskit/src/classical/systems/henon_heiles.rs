@@ -65,7 +65,7 @@ impl HamiltonianSystem for HenonHeilesSystem {
     }
 }
 
-crate::impl_separable_dynamics!(HenonHeilesSystem);
+crate::impl_separable_dynamics!(HenonHeilesSystem, taylor: crate::classical::symbolic::traced_hamiltonian_taylor_field);
 
 /// `H` written once over any number type, for the system's Taylor form
 /// ([`traced_hamiltonian_taylor_field`](crate::classical::symbolic::traced_hamiltonian_taylor_field)).
@@ -121,6 +121,7 @@ pub static HENON_HEILES_ENTRY: SystemEntry = SystemEntry {
         .initial_state(),
     ],
     separable: true,
+    taylor_form: true,
     default_method: Method::Yoshida4,
     note: Some("orbits are bounded for E < 1/6"),
     physics: Some(HENON_HEILES_PHYSICS),

@@ -397,6 +397,7 @@ pub static HOOP_ENTRY: SystemEntry = SystemEntry {
         ),
     ],
     separable: false,
+    taylor_form: true,
     default_method: Method::ImplicitMidpoint,
     note: Some("critical speed omega_c = sqrt(g/R); p holds thetadot"),
     physics: Some(HOOP_PHYSICS),

@@ -279,7 +279,7 @@ impl HamiltonianSystem for KeplerSystem {
     }
 }
 
-crate::impl_separable_dynamics!(KeplerSystem);
+crate::impl_separable_dynamics!(KeplerSystem, taylor: crate::classical::symbolic::traced_hamiltonian_taylor_field);
 
 /// `H` written once over any number type, for the system's Taylor form
 /// ([`traced_hamiltonian_taylor_field`](crate::classical::symbolic::traced_hamiltonian_taylor_field)):
@@ -397,6 +397,21 @@ const KEPLER_PHYSICS: &str =
          vector's angle grows at a steady rate, the perihelion precession (43 arc-seconds per \
          century for Mercury).";
 
+/// How both Kepler entries are shown (the second with its own title).
+const KEPLER_PRESENTATION: Presentation = Presentation {
+    title: "Kepler problem",
+    symbols: &["x", "y"],
+    time_unit: "time",
+    state_units: None,
+    drawing: Drawing::Orbit {
+        central_body: true,
+        ground: false,
+    },
+    pace: Pace::Own,
+    section_first: false,
+    energy_conserved: true,
+};
+
 /// The catalogue entry of [`KeplerSystem::new`].
 pub static KEPLER_STATE_ENTRY: SystemEntry = SystemEntry {
     name: "kepler-state",
@@ -428,21 +443,13 @@ pub static KEPLER_STATE_ENTRY: SystemEntry = SystemEntry {
         PERTURBATION_PARAMS[3],
     ],
     separable: true,
+    taylor_form: true,
     default_method: Method::Yoshida4,
     note: None,
     physics: Some(KEPLER_PHYSICS),
     presentation: Presentation {
         title: "Kepler problem (from a state)",
-        symbols: &["x", "y"],
-        time_unit: "time",
-        state_units: None,
-        drawing: Drawing::Orbit {
-            central_body: true,
-            ground: false,
-        },
-        pace: Pace::Own,
-        section_first: false,
-        energy_conserved: true,
+        ..KEPLER_PRESENTATION
     },
     build: |v| {
         Ok(Box::new(Hamiltonian(KeplerSystem::new(
@@ -485,22 +492,11 @@ pub static KEPLER_ENTRY: SystemEntry = SystemEntry {
         PERTURBATION_PARAMS[3],
     ],
     separable: true,
+    taylor_form: true,
     default_method: Method::Yoshida4,
     note: Some("period 2 pi sqrt(mu a^3 / k); c_pn != 0 makes the orbit precess"),
     physics: Some(KEPLER_PHYSICS),
-    presentation: Presentation {
-        title: "Kepler problem",
-        symbols: &["x", "y"],
-        time_unit: "time",
-        state_units: None,
-        drawing: Drawing::Orbit {
-            central_body: true,
-            ground: false,
-        },
-        pace: Pace::Own,
-        section_first: false,
-        energy_conserved: true,
-    },
+    presentation: KEPLER_PRESENTATION,
     build: |v| {
         Ok(Box::new(Hamiltonian(KeplerSystem::from_orbital_elements(
             v.scalar("a")?,

@@ -286,6 +286,21 @@ const PROJECTILE_PHYSICS: &str =
          paths become lopsided, steeper on the way down, the range shrinks a lot, and the \
          best launch angle drops below 45°.";
 
+/// How both projectile entries are shown (the second with its own title).
+const PROJECTILE_PRESENTATION: Presentation = Presentation {
+    title: "Projectile",
+    symbols: &["x", "y"],
+    time_unit: "s",
+    state_units: None,
+    drawing: Drawing::Orbit {
+        central_body: false,
+        ground: true,
+    },
+    pace: Pace::Own,
+    section_first: false,
+    energy_conserved: true,
+};
+
 /// The catalogue entry of [`ProjectileMotion::new`].
 pub static PROJECTILE_STATE_ENTRY: SystemEntry = SystemEntry {
     name: "projectile-state",
@@ -314,21 +329,13 @@ pub static PROJECTILE_STATE_ENTRY: SystemEntry = SystemEntry {
         PROJECTILE_PARAMS[2],
     ],
     separable: true,
+    taylor_form: false,
     default_method: Method::Yoshida4,
     note: Some(DRAG_NOTE),
     physics: Some(PROJECTILE_PHYSICS),
     presentation: Presentation {
         title: "Projectile (from a state)",
-        symbols: &["x", "y"],
-        time_unit: "s",
-        state_units: None,
-        drawing: Drawing::Orbit {
-            central_body: false,
-            ground: true,
-        },
-        pace: Pace::Own,
-        section_first: false,
-        energy_conserved: true,
+        ..PROJECTILE_PRESENTATION
     },
     build: |v| {
         Ok(Box::new(Hamiltonian(ProjectileMotion::new(
@@ -369,22 +376,11 @@ pub static PROJECTILE_ENTRY: SystemEntry = SystemEntry {
         P::scalar("height", D::scalar(0.0), "m", Range::ANY, "launch height"),
     ],
     separable: true,
+    taylor_form: false,
     default_method: Method::Yoshida4,
     note: Some(DRAG_NOTE),
     physics: Some(PROJECTILE_PHYSICS),
-    presentation: Presentation {
-        title: "Projectile",
-        symbols: &["x", "y"],
-        time_unit: "s",
-        state_units: None,
-        drawing: Drawing::Orbit {
-            central_body: false,
-            ground: true,
-        },
-        pace: Pace::Own,
-        section_first: false,
-        energy_conserved: true,
-    },
+    presentation: PROJECTILE_PRESENTATION,
     build: |v| {
         Ok(Box::new(Hamiltonian(ProjectileMotion::from_launch(
             v.scalar("speed")?,

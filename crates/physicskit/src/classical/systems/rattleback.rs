@@ -219,6 +219,7 @@ pub static RATTLEBACK_ENTRY: SystemEntry = SystemEntry {
         ),
     ],
     separable: false,
+    taylor_form: false,
     default_method: Method::ImplicitMidpoint,
     note: Some(
         "y columns: n1, n2, n3; a phenomenological reduced model, not rolling mechanics; it \

@@ -349,6 +349,7 @@ pub static EULER_TOP_ENTRY: SystemEntry = SystemEntry {
         .initial_state(),
     ],
     separable: false,
+    taylor_form: false,
     default_method: Method::ImplicitMidpoint,
     note: Some("y columns: w1, w2, w3, qw, qx, qy, qz; spin near axis 2 to see the flips"),
     physics: Some(EULER_TOP_PHYSICS),

@@ -876,6 +876,7 @@ pub static ROLLING_RATTLEBACK_ENTRY: SystemEntry = SystemEntry {
         .initial_state(),
     ],
     separable: false,
+    taylor_form: false,
     default_method: Method::Dop853,
     note: Some(
         "y columns: w1, w2, w3 (body), qw, qx, qy, qz, contact x, y; defaults: Kane & \
@@ -946,13 +947,23 @@ fn disk_params(v: &crate::classical::model::Values) -> Result<RollingDiskParams>
     })
 }
 
-/// The disks' frame-by-frame pace: rk4 at 1 ms, 17 steps a frame (real time at 60 frames a
-/// second); dop853, their default, takes adaptive steps.
-const DISK_PACE: Pace = Pace::Fixed {
-    method: Method::Rk4,
-    dt: 1e-3,
-    steps_per_frame: 17,
-    energy_error: 1e-8,
+/// How both rolling-disk entries are shown (the second with its own title).
+const DISK_PRESENTATION: Presentation = Presentation {
+    title: "Rolling disk",
+    symbols: &[],
+    time_unit: "s",
+    state_units: None,
+    drawing: Drawing::Rolling { shape: Shape::Disk },
+    // rk4 at 1 ms, 17 steps a frame (real time at 60 frames a second): dop853, the disks'
+    // default, takes adaptive steps, which a frame-by-frame run cannot.
+    pace: Pace::Fixed {
+        method: Method::Rk4,
+        dt: 1e-3,
+        steps_per_frame: 17,
+        energy_error: 1e-8,
+    },
+    section_first: false,
+    energy_conserved: true,
 };
 
 /// The catalogue entry of [`RollingDisk`].
@@ -984,19 +995,11 @@ pub static ROLLING_DISK_ENTRY: SystemEntry = SystemEntry {
         .initial_state(),
     ],
     separable: false,
+    taylor_form: false,
     default_method: Method::Dop853,
     note: Some("y columns: w1, w2, w3 (body), qw, qx, qy, qz, contact x, y"),
     physics: Some(ROLLING_DISK_PHYSICS),
-    presentation: Presentation {
-        title: "Rolling disk",
-        symbols: &[],
-        time_unit: "s",
-        state_units: None,
-        drawing: Drawing::Rolling { shape: Shape::Disk },
-        pace: DISK_PACE,
-        section_first: false,
-        energy_conserved: true,
-    },
+    presentation: DISK_PRESENTATION,
     build: |v| {
         Ok(Box::new(Ode(RollingDisk::new(
             v.vector("omega0")?,
@@ -1033,18 +1036,13 @@ pub static ROLLING_DISK_STEADY_ENTRY: SystemEntry = SystemEntry {
         DISK_PARAMS[2],
     ],
     separable: false,
+    taylor_form: false,
     default_method: Method::Dop853,
     note: Some("y columns: w1, w2, w3 (body), qw, qx, qy, qz, contact x, y"),
     physics: Some(ROLLING_DISK_PHYSICS),
     presentation: Presentation {
         title: "Rolling disk (steady circle)",
-        symbols: &[],
-        time_unit: "s",
-        state_units: None,
-        drawing: Drawing::Rolling { shape: Shape::Disk },
-        pace: DISK_PACE,
-        section_first: false,
-        energy_conserved: true,
+        ..DISK_PRESENTATION
     },
     build: |v| {
         Ok(Box::new(Ode(RollingDisk::steady(

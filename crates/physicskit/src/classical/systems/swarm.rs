@@ -355,6 +355,18 @@ const SWARM_PHYSICS: &str =
          Hamiltonian flow preserves phase-space area, so the area enclosed by the patch's \
          boundary stays at its initial value.";
 
+/// How both pendulum-swarm entries are shown (the second with its own title).
+const SWARM_PRESENTATION: Presentation = Presentation {
+    title: "Pendulum swarm",
+    symbols: &["\\theta"],
+    time_unit: "s",
+    state_units: None,
+    drawing: Drawing::Swarm,
+    pace: Pace::Own,
+    section_first: false,
+    energy_conserved: true,
+};
+
 /// The catalogue entry of [`PendulumSwarm::new`].
 pub static SWARM_STATE_ENTRY: SystemEntry = SystemEntry {
     name: "pendulum-swarm-state",
@@ -381,18 +393,13 @@ pub static SWARM_STATE_ENTRY: SystemEntry = SystemEntry {
         G_OVER_L,
     ],
     separable: true,
+    taylor_form: false,
     default_method: Method::Yoshida4,
     note: None,
     physics: Some(SWARM_PHYSICS),
     presentation: Presentation {
         title: "Pendulum swarm (from a state)",
-        symbols: &["\\theta"],
-        time_unit: "s",
-        state_units: None,
-        drawing: Drawing::Swarm,
-        pace: Pace::Own,
-        section_first: false,
-        energy_conserved: true,
+        ..SWARM_PRESENTATION
     },
     build: |v| {
         Ok(Box::new(Hamiltonian(PendulumSwarm::new(
@@ -453,19 +460,11 @@ pub static SWARM_ENTRY: SystemEntry = SystemEntry {
         ),
     ],
     separable: true,
+    taylor_form: false,
     default_method: Method::Yoshida4,
     note: Some("q and p have one column per pendulum; use --stride for long runs"),
     physics: Some(SWARM_PHYSICS),
-    presentation: Presentation {
-        title: "Pendulum swarm",
-        symbols: &["\\theta"],
-        time_unit: "s",
-        state_units: None,
-        drawing: Drawing::Swarm,
-        pace: Pace::Own,
-        section_first: false,
-        energy_conserved: true,
-    },
+    presentation: SWARM_PRESENTATION,
     build: |v| {
         Ok(Box::new(Hamiltonian(PendulumSwarm::from_box(
             v.scalar("q_center")?,

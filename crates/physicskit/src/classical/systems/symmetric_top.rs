@@ -419,6 +419,7 @@ pub static HEAVY_TOP_ENTRY: SystemEntry = SystemEntry {
         ),
     ],
     separable: false,
+    taylor_form: true,
     default_method: Method::ImplicitMidpoint,
     note: Some("p holds the angle rates, as in the spec"),
     physics: Some(HEAVY_TOP_PHYSICS),

@@ -365,6 +365,7 @@ pub static TODA_ENTRY: SystemEntry = SystemEntry {
         ),
     ],
     separable: true,
+    taylor_form: false,
     default_method: Method::Yoshida4,
     note: Some("conserved_quantities: the n eigenvalues of Flaschka's Lax matrix"),
     physics: Some(TODA_PHYSICS),

@@ -20,6 +20,7 @@ use physicskit::classical::symbolic::TaylorProgram;
 use physicskit::classical::symbolic::{Expr, ExprHamiltonian, ExprLagrangian, ExprOde};
 use physicskit::classical::systems::{
     DoublePendulum, DoublePendulumParams, HenonHeilesSystem, KeplerPerturbations, KeplerSystem,
+    TodaLattice,
 };
 use physicskit::classical::{
     DynamicalSystem, Error, HamiltonianSystem, IntegrateOptions, LagrangianSystem, Method,
@@ -559,24 +560,20 @@ fn a_lagrangian_expression_has_the_equations_of_motion_as_its_taylor_form() {
     assert!(diff <= 1e-9, "{diff:e}");
 }
 
-/// A hand-written system has no Taylor form: `Method::Taylor` is refused with
-/// `UnsupportedMethod`, naming the method and the systems that have one; so is a Poincaré
-/// section with it.
+/// A system whose field is only hand-written (the Toda lattice) has no Taylor form:
+/// `Method::Taylor` is refused with `UnsupportedMethod`, naming the method and the systems
+/// that have one; so is a Poincaré section with it.
 #[test]
 fn a_system_without_a_taylor_form_refuses_the_method() {
-    let mut kepler =
-        KeplerSystem::from_orbital_elements(1.0, 0.5, 1.0, 1.0, KeplerPerturbations::none())
-            .unwrap();
-    let err = kepler
-        .integrate((0.0, 1.0), 0.1, Method::Taylor)
-        .unwrap_err();
+    let mut toda = TodaLattice::new(&[0.1, 0.0, -0.1], &[0.0, 0.2, 0.0], 1.0, 1.0).unwrap();
+    let err = toda.integrate((0.0, 1.0), 0.1, Method::Taylor).unwrap_err();
     let Error::UnsupportedMethod { method, reason } = &err else {
         panic!("{err}");
     };
     assert_eq!(method, "taylor");
     assert!(reason.contains("HamiltonianEngine"), "{reason}");
     let plane = SurfaceOfSection::coordinate(0, 0.0, Direction::Increasing).unwrap();
-    let mut erased = Hamiltonian(kepler);
+    let mut erased = Hamiltonian(toda);
     let err = poincare_section(
         &mut erased,
         (0.0, 1.0),
