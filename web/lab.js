@@ -1576,7 +1576,7 @@ function drawRolling(ctx, w, h) {
   const s0 = app.lab.initialState(), g0 = rotationRows(s0.slice(3, 7))[2];
   spinArrow(ctx, P, [cm[0], cm[1], cm[2]], 1.15 * shape.size, spin, "#1f5fbf", s0[0] * g0[0] + s0[1] * g0[1] + s0[2] * g0[2]);
   const tilt = Math.acos(Math.max(-1, Math.min(1, R[2][2])));
-  const ellipsoid = presentation().drawing.shape === "ellipsoid", what = `The ${app.entry.title.toLowerCase().replace(/^rolling /, "").replace(/ \(.*\)$/, "")}`;
+  const ellipsoid = presentation().drawing.shape === "ellipsoid", what = ellipsoid ? "The ellipsoid" : "The disk";
   sceneNote(`${what} rolling without slipping; green: the contact point and its path on the table. ` +
     `Spin about the vertical ω·ẑ = ${spin.toFixed(3)} rad/s (blue arrow, seen from above${ellipsoid ? "; a reversal crosses zero" : ""}), ` +
     `${ellipsoid ? "tilt" : "normal"} ${((tilt * 180) / Math.PI).toFixed(1)}° from the vertical.`);

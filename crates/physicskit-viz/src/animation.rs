@@ -4,8 +4,8 @@
 //!
 //! The palette is learnt once per GIF by NeuQuant from a few frames spread over the run
 //! (`PALETTE_FRAMES`): the frames of one animation are the same figure with its bodies moved,
-//! so they share their colours, and learning a palette per frame was most of the time an
-//! animation took. Frames are rasterized, indexed and LZW-compressed in parallel, a few at a
+//! so they share their colours, and learning a palette is the costliest part of quantizing a
+//! frame (benchmarks/README.md, "Gallery render"). Frames are rasterized, indexed and LZW-compressed in parallel, a few at a
 //! time, and written in order, so the file does not depend on the number of threads.
 
 use std::fs::File;

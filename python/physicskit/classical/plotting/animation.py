@@ -130,7 +130,7 @@ def _chain(system: Any, result: Any, idx: np.ndarray, ax: Any, walls: bool) -> _
     (springs,) = ax.plot([], [], "-", color="0.4", lw=1)
     (masses,) = ax.plot([], [], "o", color="C0", ms=max(2.0, min(8.0, 240.0 / n)))
     ax.set_xlabel("site $i$")
-    ax.set_ylabel(f"displacement $q_i$ ({lab.q_unit})")
+    ax.set_ylabel(f"displacement ${lab._family() or 'q'}_i$ ({lab.q_unit})")
 
     def update(k: int) -> list[Any]:
         xs = np.concatenate([[0], sites, [n + 1]]) if walls else sites
@@ -156,7 +156,7 @@ def _field(system: Any, result: Any, idx: np.ndarray, ax: Any) -> _Update:
     (line,) = ax.plot([], [], "-", color="C0", lw=1.2)
     (dots,) = ax.plot([], [], "o", color="C3", ms=max(1.5, min(5.0, 160.0 / n)))
     ax.set_xlabel("site $i$")
-    ax.set_ylabel(lab.q(0))
+    ax.set_ylabel(f"${lab._family() or 'q'}_i$ ({lab.q_unit})")
 
     def update(k: int) -> list[Any]:
         line.set_data(sites, q[k])
