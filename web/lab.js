@@ -158,7 +158,7 @@ function unitWords(unit) {
 // A label: TeX symbol and unit; `text` is what the page shows and the tests read.
 function label(tex, unit = "") {
   const runs = texRuns(tex);
-  if (unit) runs.push({ text: ` [${unit}]`, sub: false });
+  if (unit) runs.push({ text: ` (${unit})`, sub: false });
   return { runs, text: runsText(runs) };
 }
 function plainLabel(text) { return { runs: [{ text, sub: false }], text }; }
@@ -193,11 +193,14 @@ function momentumOf(sym, dot) {
 // Names of the entries of the state layouts the lab draws whose catalogue symbols are empty
 // (the catalogue names them only in its notes for the command line): a rigid body's body
 // rates and orientation quaternion, a rolling body's contact point after them, the reduced
-// rattleback's rates; with their units (the rates' from the initial-state parameter, the
-// contact point's the system's length). Null for other systems.
+// rattleback's rates; with their units (the rates' from the initial-state parameter; an entry
+// started from other values, such as a steady motion's tilt and precession, has rates in
+// radians per its unit of time; the contact point's the system's length). Null for other
+// systems.
 function layoutNames() {
   if ((presentation().symbols ?? []).length) return null;
-  const k = kind(), starts = app.entry.params.filter((p) => p.initial_state), rate = starts[0]?.unit_text ?? "";
+  const k = kind(), starts = app.entry.params.filter((p) => p.initial_state);
+  const rate = starts[0]?.unit_text ?? (timeUnit() ? `rad/${timeUnit()}` : "");
   if (k === "rigid" || k === "rolling") {
     const names = ["\\omega_1", "\\omega_2", "\\omega_3", "q_w", "q_x", "q_y", "q_z"], units = [rate, rate, rate, "", "", "", ""];
     return k === "rolling" ? { names: [...names, "x", "y"], units: [...units, lengthUnit(), lengthUnit()] } : { names, units };
@@ -239,7 +242,7 @@ function stateAxisLabels() {
   return app.axisLabels.labels;
 }
 function stateLabels() { return stateSymbols().map(texText); }
-function withUnit(name, unit) { return unit ? `${name} [${unit}]` : name; }
+function withUnit(name, unit) { return unit ? `${name} (${unit})` : name; }
 
 const SUB = "₀₁₂₃₄₅₆₇₈₉";
 function subscript(n) { return String(n).split("").map((d) => SUB[Number(d)]).join(""); }
@@ -274,7 +277,7 @@ function paramControl(p) {
   label.htmlFor = id;
   label.className = "param-name";
   setRuns(label, peopleRuns(p.label));
-  if (p.unit_text) { const u = document.createElement("span"); u.className = "unit"; u.textContent = ` [${p.unit_text}]`; label.append(u); }
+  if (p.unit_text) { const u = document.createElement("span"); u.className = "unit"; u.textContent = ` (${p.unit_text})`; label.append(u); }
   const help = document.createElement("div");
   help.className = "help";
   setRuns(help, peopleRuns(p.help_text ?? ""));
@@ -457,6 +460,9 @@ function rebuild(state0 = null, keepMessage = false) {
     setRuns($("section-name"), [...texRuns(sym[1]), { text: " = 0, ", sub: false }, ...texRuns(sym[3]), { text: " > 0", sub: false }]);
   }
   $("drag-hint").hidden = !draggable();
+  // A swarm's phase panel is its close-up (the scene is its phase plane).
+  $("phase-choice").hidden = kind() === "swarm";
+  $("closeup-caption").hidden = kind() !== "swarm";
   startViews(app.extent);
   if (built.note) message(built.note, "notice");
   else if (!keepMessage) message("");
@@ -464,12 +470,20 @@ function rebuild(state0 = null, keepMessage = false) {
   return true;
 }
 
-// A new run (a new system, a reset, a drag let go): views fixed from the run's own extent.
-function startViews(extent = null) {
+// A new run: views fixed from the run's own extent. A new system or new parameters fit them
+// afresh; a new run of the same setup (`keep`: a drag let go, Reset, another method or step,
+// an orbit launched on the section) keeps the frames it had and grows them to take in the new
+// run, never shrinking them, so the picture does not jump (a short flight after a drag is
+// drawn short, at the scale of the ground and the launcher before).
+function startViews(extent = null, keep = false) {
+  const scene = app.sceneBox, phase = app.phaseBox, amp = app.chainGeom?.amp;
   clearViews();
   app.extent = extent ?? probeExtent();
   app.sceneBox = sceneBoxFrom(app.extent);
+  if (keep && scene) app.sceneBox = app.sceneBox ? union(scene, app.sceneBox) : scene;
   app.phaseBox = null;
+  app.phaseKeep = keep ? phase : null;
+  app.ampFloor = keep ? amp : null;
   app.boundary = hasSection() ? sectionBoundary() : null;
   app.sectionBox = app.boundary?.box ?? null;
 }
@@ -477,7 +491,7 @@ function startViews(extent = null) {
 function clearViews() {
   app.trails = []; app.phase = []; app.energy = []; app.rows = [];
   app.startHeight = app.lab.positions()[1];
-  app.spinAngle = 0; app.rollingView = null; app.topScale = null;
+  app.spinAngle = 0; app.rollingView = null; app.topScale = null; app.swarmReach = null; app.closeScale = null;
   if (app.ended) { app.ended = null; message(""); }
   sceneNote("");
   app.frames = 0;
@@ -657,6 +671,9 @@ function loop() {
 function message(text, kind = "error") { const el = $("message"); el.textContent = text; el.classList.toggle("notice", kind === "notice"); }
 
 // ---------- drawing: views and axes ----------
+
+// The smallest box holding both.
+function union(a, b) { return grow(grow(a, b.x0, b.y0), b.x1, b.y1); }
 
 function grow(box, x, y) {
   if (!Number.isFinite(x) || !Number.isFinite(y)) return box;
@@ -879,6 +896,7 @@ function param(name) {
 function drawScene() {
   const { ctx, w, h } = surface("scene");
   const k = kind(), pos = app.lab.positions(), L = lengthUnit();
+  app.sceneLabels = [];
   if (k === "top") return drawTop(ctx, w, h, Array.from(pos));
   if (k === "rigid") return drawRigid(ctx, w, h);
   if (k === "swarm") return drawSwarm(ctx, w, h);
@@ -992,6 +1010,51 @@ function arrow(ctx, x0, y0, x1, y1, colour) {
   ctx.fill();
 }
 
+// True if the segment [x0, y0, x1, y1] meets the box [left, top, right, bottom]
+// (Liang–Barsky clipping).
+function segmentMeetsBox([x0, y0, x1, y1], [l, t, r, b]) {
+  let u0 = 0, u1 = 1;
+  const dx = x1 - x0, dy = y1 - y0;
+  for (const [p, q] of [[-dx, x0 - l], [dx, r - x0], [-dy, y0 - t], [dy, b - y0]]) {
+    if (p === 0) { if (q < 0) return false; continue; }
+    const u = q / p;
+    if (p < 0) { if (u > u1) return false; u0 = Math.max(u0, u); } else { if (u < u0) return false; u1 = Math.min(u1, u); }
+  }
+  return u0 <= u1;
+}
+// Names of arrows ({text, seg: [x0, y0, x1, y1] from tail to tip, colour}): each placed beyond
+// its tip along the arrow, at the first distance and angle off it (0, ±30°, ±60°, ...) where
+// its box meets no arrow and no name placed before; the box's corner nearest the arrow keeps
+// a gap from the tip, so a name never sits on what it names. Returns what was drawn
+// ({text, box, seg}), for the tests. `others`: more segments to keep clear of.
+function arrowLabels(ctx, arrows, others = []) {
+  const f = fontSize(), placed = [];
+  ctx.save(); ctx.textAlign = "center"; ctx.textBaseline = "middle";
+  for (const a of arrows) {
+    const [x0, y0, x1, y1] = a.seg, len = Math.hypot(x1 - x0, y1 - y0);
+    // An arrow seen end-on has no direction on the screen: its name goes above its tip.
+    const base = len > 1 ? Math.atan2(y1 - y0, x1 - x0) : -Math.PI / 2;
+    const hw = ctx.measureText(a.text).width / 2 + 2, hh = f / 2 + 1;
+    let best = null;
+    search: for (const gap of [4, 10, 18]) {
+      for (const turn of [0, 0.5, -0.5, 1, -1, 1.6, -1.6, 2.3, -2.3]) {
+        const th = base + turn, dx = Math.cos(th), dy = Math.sin(th);
+        const d = gap + hw * Math.abs(dx) + hh * Math.abs(dy), cx = x1 + d * dx, cy = y1 + d * dy;
+        const box = [cx - hw, cy - hh, cx + hw, cy + hh];
+        const clear = [...arrows.map((o) => o.seg), ...others].every((sg) => !segmentMeetsBox(sg, box)) &&
+          placed.every((p) => box[2] <= p.box[0] || p.box[2] <= box[0] || box[3] <= p.box[1] || p.box[3] <= box[1]);
+        if (!best) best = { cx, cy, box };
+        if (clear) { best = { cx, cy, box }; break search; }
+      }
+    }
+    ctx.fillStyle = a.colour;
+    ctx.fillText(a.text, best.cx, best.cy);
+    placed.push({ text: a.text, box: best.box, seg: a.seg });
+  }
+  ctx.restore();
+  return placed;
+}
+
 // The view of 3-D points: turned by AZIMUTH about the vertical, tilted by ELEVATION towards
 // the viewer, seen in perspective from DISTANCE (in units of the body's size). Returns
 // [screen x, screen y, depth].
@@ -1009,9 +1072,10 @@ function project3([x, y, z], size = 1, elevation = ELEVATION) {
 // A 3-D floor's labels (centred, hanging from the point): on a narrow canvas the two edges'
 // labels meet at the near corner and the axis names sit on the middle ticks, so a label that
 // would overlap one already drawn is left out (draw the axis names first, then the ticks).
-// Returns put(text, [x, y]), true if drawn.
-function labelPlacer(ctx) {
-  const drawn = [], f = fontSize();
+// Returns put(text, [x, y]), true if drawn. `avoid`: boxes [left, top, right, bottom] of the
+// body drawn over the floor, whose labels would sit on it.
+function labelPlacer(ctx, avoid = []) {
+  const drawn = [...avoid], f = fontSize();
   return (text, [px, py]) => {
     const half = ctx.measureText(text).width / 2 + 2, b = [px - half, py - 1, px + half, py + f + 1];
     if (drawn.some((d) => b[0] < d[2] && d[0] < b[2] && b[1] < d[3] && d[1] < b[3])) return false;
@@ -1034,7 +1098,14 @@ function drawTop(ctx, w, h, tip) {
   for (const g of t.values) { line([g, -l, 0], [g, l, 0]); line([-l, g, 0], [l, g, 0]); }
   ctx.fillStyle = "#555"; ctx.textAlign = "center"; ctx.textBaseline = "top";
   const xs = t.values.map((g) => tickText(g, t.step)), ys = xs.slice();
-  const put = labelPlacer(ctx);
+  // The top (its axis and the disc round its tip, radius l/2) stands over the floor: a tick
+  // label its box would cover is left out.
+  let body = grow(null, ...P([0, 0, 0]));
+  for (let k = 0; k < 24; k++) {
+    const th = (TAU * k) / 24, c = [Math.cos(th), Math.sin(th)];
+    for (const d of [[c[0], c[1], 0], [c[0], 0, c[1]], [0, c[0], c[1]]]) body = grow(body, ...P(tip.map((x, i) => x + 0.5 * l * d[i])));
+  }
+  const put = labelPlacer(ctx, [[body.x0, body.y0, body.x1, body.y1]]);
   put(withUnit("x", L), P([0, -l * 1.3, 0])); put(withUnit("y", L), P([l * 1.35, 0, 0]));
   const xShown = xs.filter((x, i) => put(x, P([t.values[i], -l * 1.08, 0])));
   const yShown = ys.filter((y, i) => put(y, P([l * 1.1, t.values[i], 0])));
@@ -1071,7 +1142,7 @@ function drawTop(ctx, w, h, tip) {
     if (!app.topScale) app.topScale = (1.2 * l) / (Ln || 1);
     const [x0, y0] = P([0, 0, 0]), end = Lv.map((x) => x * app.topScale), [x1, y1] = P(end);
     arrow(ctx, x0, y0, x1, y1, "#e07000");
-    ctx.fillStyle = "#e07000"; ctx.textAlign = "left"; ctx.fillText("L", x1 + 6, y1);
+    app.sceneLabels = arrowLabels(ctx, [{ text: "L", seg: [x0, y0, x1, y1], colour: "#e07000" }], [[x0, y0, ...P(tip)], [x0, y0, ...P([0, 0, 1.15 * l])]]);
     sceneNote(`The top's axis (black) with its disc, the path of its tip (blue), and its angular momentum about the pivot L (orange, |L| = ${Ln.toPrecision(4)} kg m²/s): gravity's torque turns L about the vertical, keeping its vertical part.`);
   }
   const [ox, oy] = P([0, 0, 0]);
@@ -1124,17 +1195,18 @@ function drawRigid(ctx, w, h) {
     if ([1, 2, 4].includes(i ^ j)) { ctx.moveTo(...P(corners[i])); ctx.lineTo(...P(corners[j])); }
   }
   ctx.stroke();
-  const names = ["1", "2", "3"], colours = ["#c0392b", "#1e7d32", "#2860c8"];
+  const colours = ["#c0392b", "#1e7d32", "#2860c8"], [ox, oy] = P([0, 0, 0]), arrows = [];
   for (let i = 0; i < 3; i++) {
     const e = [0, 0, 0]; e[i] = 1.05;
-    const tip = rotate(q, e), [x0, y0] = P([0, 0, 0]), [x1, y1] = P(tip);
-    arrow(ctx, x0, y0, x1, y1, colours[i]);
-    ctx.fillText(`e${subscript(i + 1)}`, x1 + 4, y1 - 4);
+    const [x1, y1] = P(rotate(q, e));
+    arrows.push({ text: `e${subscript(i + 1)}`, seg: [ox, oy, x1, y1], colour: colours[i] });
   }
   const Lb = [I[0] * s[0], I[1] * s[1], I[2] * s[2]], Ls = rotate(q, Lb), Ln = Math.hypot(...Ls) || 1;
-  const Lt = Ls.map((x) => (1.35 * x) / Ln), [x0, y0] = P([0, 0, 0]), [x1, y1] = P(Lt);
-  arrow(ctx, x0, y0, x1, y1, "#e07000");
-  ctx.fillStyle = "#e07000"; ctx.fillText("L", x1 + 5, y1);
+  const [lx, ly] = P(Ls.map((x) => (1.35 * x) / Ln));
+  arrows.push({ text: "L", seg: [ox, oy, lx, ly], colour: "#e07000" });
+  for (const a of arrows) arrow(ctx, ...a.seg, a.colour);
+  // Each name beyond its arrow's tip, clear of every arrow and of the names placed before.
+  app.sceneLabels = arrowLabels(ctx, arrows);
   // The path of the tip of body axis 3, fading with age.
   ctx.lineWidth = 1;
   const T = app.trails;
@@ -1150,35 +1222,156 @@ function drawRigid(ctx, w, h) {
   app.ticks.scene.y = [`|L| = ${Ln.toPrecision(4)}`];
 }
 
-// A swarm of pendulums: every member a point of the (angle, momentum) plane, coloured along
-// the swarm, with the separatrix p = ±2 √(g/l) cos(q/2) between swinging and turning.
-const SWARM_BANDS = 12;
-function drawSwarm(ctx, w, h) {
-  const s = app.lab.state(), n = s.length / 2, k2 = param("g_over_l"), g = Number.isFinite(k2) ? k2 : 1;
-  const pmax = Math.max(2.6 * Math.sqrt(g), ...(app.extent ? app.extent.hi.slice(n).map(Math.abs) : [0]));
-  const v = plotView(w, h, { x0: -Math.PI, x1: Math.PI, y0: -1.1 * pmax, y1: 1.1 * pmax }, false);
-  app.sceneView = v;
-  const piTicks = [[-Math.PI, "−π"], [-Math.PI / 2, "−π/2"], [0, "0"], [Math.PI / 2, "π/2"], [Math.PI, "π"]];
-  const sym = presentation().symbols?.[0] ?? "q", units = stateUnits(), { dot } = stateLayout();
-  drawAxes("scene", ctx, v, label(sym, units[0]), label(momentumOf(sym, dot), units[n]), { xTicks: piTicks });
-  clip(ctx, v);
-  ctx.strokeStyle = "#888"; ctx.setLineDash([6, 4]); ctx.lineWidth = 1.2;
-  for (const sign of [1, -1]) {
-    ctx.beginPath();
-    for (let k = 0; k <= 120; k++) { const q = -Math.PI + (TAU * k) / 120, p = sign * 2 * Math.sqrt(g) * Math.cos(q / 2); if (k) ctx.lineTo(v.X(q), v.Y(p)); else ctx.moveTo(v.X(q), v.Y(p)); }
-    ctx.stroke();
+// A swarm of pendulums: every member a point of the (angle, momentum) plane, coloured by its
+// energy, with the separatrix p = ±2 √(g/l) cos(θ/2) between swinging and turning.
+// Each pendulum keeps its energy E = p²/2 − (g/l) cos θ, so it stays on its own contour for
+// good: the region the swarm can ever reach, the union of its members' contours, is known
+// when the run starts. The scene shows that region, fixed for the run (the swarm never leaves
+// it), with the contours of the lowest and highest energies between which the filament
+// winds; the phase panel is a close-up that follows the swarm (a dashed frame in the scene).
+// Colours from the lowest energy to the highest (plasma's scale without its pale yellow end,
+// which white paper hides).
+const SWARM_COLOURS = ["#0d0887", "#41049d", "#6a00a8", "#8f0da4", "#b12a90", "#cc4778", "#e16462", "#f2844b", "#fca636"];
+function swarmG() { const g = param("g_over_l"); return Number.isFinite(g) && g > 0 ? g : 1; }
+function swarmEnergy(q, p, g) { return 0.5 * p * p - g * Math.cos(q); }
+const wrapQ = (q) => q - TAU * Math.ceil((q - Math.PI) / TAU);
+// The box of the contours of every member (a swinging one: |θ| ≤ arccos(−E/g), |p| ≤
+// √(2(E + g)); a turning one: all angles, p of its sign between √(2(E − g)) and √(2(E + g))),
+// the lowest and highest energies, and the members by colour (their energy's place between).
+function swarmReach() {
+  const s = app.lab.state(), n = s.length / 2, g = swarmG(), energies = new Float64Array(n);
+  let box = null, lo = Infinity, hi = -Infinity;
+  for (let i = 0; i < n; i++) {
+    const q = s[i], p = s[n + i], E = swarmEnergy(q, p, g);
+    energies[i] = E;
+    lo = Math.min(lo, E); hi = Math.max(hi, E);
+    if (E < g) {
+      const qa = Math.acos(Math.max(-1, Math.min(1, -E / g))), pa = Math.sqrt(Math.max(0, 2 * (E + g)));
+      box = grow(grow(box, -qa, -pa), qa, pa);
+    } else {
+      const sign = p < 0 ? -1 : 1;
+      box = grow(grow(box, -Math.PI, sign * Math.sqrt(2 * (E - g))), Math.PI, sign * Math.sqrt(2 * (E + g)));
+    }
   }
-  ctx.setLineDash([]);
-  const wrapQ = (q) => q - TAU * Math.ceil((q - Math.PI) / TAU);
-  for (let b = 0; b < SWARM_BANDS; b++) {
-    ctx.fillStyle = `hsl(${(300 * b) / SWARM_BANDS}, 70%, 42%)`;
+  if (!box) return null;
+  const bands = SWARM_COLOURS.map(() => []), span = hi - lo;
+  energies.forEach((E, i) => bands[span > 0 ? Math.min(bands.length - 1, Math.floor(((E - lo) / span) * bands.length)) : 0].push(i));
+  // A swarm at rest at the bottom has no extent: a span of a fifth of the separatrix's
+  // height round it, so its axes have a scale.
+  return { box: atLeast(pad(box, 0.08), [0.4, 0.8 * Math.sqrt(g)]), lo, hi, g, bands };
+}
+// The contour of energy E as polylines (one for a swinging orbit, two for a turning one).
+function energyContour(E, g) {
+  const pOf = (q) => Math.sqrt(Math.max(0, 2 * (E + g * Math.cos(q))));
+  const N = 160, out = [];
+  if (E < g) {
+    const qa = Math.acos(Math.max(-1, Math.min(1, -E / g))), top = [], bottom = [];
+    // Points crowd at the turning points, where the contour turns.
+    for (let k = 0; k <= N; k++) { const q = -qa * Math.cos((Math.PI * k) / N); top.push([q, pOf(q)]); bottom.push([q, -pOf(q)]); }
+    out.push([...top, ...bottom.reverse()]);
+  } else {
+    for (const sign of [1, -1]) out.push(Array.from({ length: N + 1 }, (_, k) => { const q = -Math.PI + (TAU * k) / N; return [q, sign * pOf(q)]; }));
+  }
+  return out;
+}
+// The members as points, in their energy's colour; `at(θ)` places an angle in the view.
+function swarmPoints(ctx, v, s, n, at) {
+  if (!app.swarmReach) app.swarmReach = swarmReach();
+  app.swarmReach?.bands.forEach((members, b) => {
+    ctx.fillStyle = SWARM_COLOURS[b];
     ctx.beginPath();
-    const i1 = Math.round(((b + 1) * n) / SWARM_BANDS);
-    for (let i = Math.round((b * n) / SWARM_BANDS); i < i1; i++) ctx.rect(v.X(wrapQ(s[i])) - 1.5, v.Y(s[n + i]) - 1.5, 3, 3);
+    for (const i of members) ctx.rect(v.X(at(s[i])) - 1.5, v.Y(s[n + i]) - 1.5, 3, 3);
     ctx.fill();
+  });
+}
+function swarmLabels() {
+  const sym = presentation().symbols?.[0] ?? "q", units = stateUnits(), { dot } = stateLayout(), n = app.lab.state().length / 2;
+  return [label(sym, units[0]), label(momentumOf(sym, dot), units[n])];
+}
+function drawSwarm(ctx, w, h) {
+  const s = app.lab.state(), n = s.length / 2;
+  if (!app.swarmReach) app.swarmReach = swarmReach();
+  const reach = app.swarmReach, g = reach?.g ?? swarmG();
+  const v = plotView(w, h, reach?.box ?? { x0: -Math.PI, x1: Math.PI, y0: -3 * Math.sqrt(g), y1: 3 * Math.sqrt(g) }, false);
+  app.sceneView = v;
+  // Multiples of π/2 where the view spans more than π, else ordinary ticks.
+  const piTicks = v.box.x1 - v.box.x0 > Math.PI
+    ? [[-Math.PI, "−π"], [-Math.PI / 2, "−π/2"], [0, "0"], [Math.PI / 2, "π/2"], [Math.PI, "π"]].filter(([x]) => x >= v.box.x0 - 1e-9 && x <= v.box.x1 + 1e-9)
+    : null;
+  const [xl, yl] = swarmLabels();
+  drawAxes("scene", ctx, v, xl, yl, { xTicks: piTicks });
+  clip(ctx, v);
+  // The band the swarm winds in: its lowest and highest energies' contours.
+  if (reach) {
+    ctx.strokeStyle = "#b9b9b9"; ctx.lineWidth = 1;
+    for (const E of reach.hi - reach.lo > 1e-12 * Math.abs(reach.hi) ? [reach.lo, reach.hi] : [reach.hi]) {
+      for (const line of energyContour(E, g)) { ctx.beginPath(); line.forEach(([q, p], k) => (k ? ctx.lineTo(v.X(q), v.Y(p)) : ctx.moveTo(v.X(q), v.Y(p)))); ctx.stroke(); }
+    }
   }
-  sceneNote(`${n} pendulums, each a point of the phase plane, coloured along the swarm; dashed: the separatrix between swinging and turning over.`);
+  ctx.strokeStyle = "#777"; ctx.setLineDash([6, 4]); ctx.lineWidth = 1.2;
+  for (const line of energyContour(g, g)) { ctx.beginPath(); line.forEach(([q, p], k) => (k ? ctx.lineTo(v.X(q), v.Y(p)) : ctx.moveTo(v.X(q), v.Y(p)))); ctx.stroke(); }
+  ctx.setLineDash([]);
+  swarmPoints(ctx, v, s, n, wrapQ);
+  // The close-up's frame (the phase panel), drawn where the swarm is (and a turn of 2π
+  // either side, for a swarm across θ = ±π).
+  const cu = swarmCloseUp();
+  if (cu) {
+    ctx.strokeStyle = "#333"; ctx.lineWidth = 1; ctx.setLineDash([4, 3]);
+    const c = wrapQ((cu.box.x0 + cu.box.x1) / 2) - (cu.box.x0 + cu.box.x1) / 2;
+    for (const d of [c - TAU, c, c + TAU]) ctx.strokeRect(v.X(cu.box.x0 + d), v.Y(cu.box.y1), v.X(cu.box.x1 + d) - v.X(cu.box.x0 + d), v.Y(cu.box.y0) - v.Y(cu.box.y1));
+    ctx.setLineDash([]);
+  }
+  const inView = energyContour(g, g).some((line) => line.some(([q, p]) => q >= v.box.x0 && q <= v.box.x1 && p >= v.box.y0 && p <= v.box.y1));
+  sceneNote(`${n} pendulums, each a point of the phase plane, coloured by its energy (dark blue the lowest, orange the highest). Each keeps its energy, so the swarm stays between the grey contours of its lowest and highest energies: the view is that band, fixed for the run. ` +
+    `${inView ? "Dashed: the separatrix between swinging and turning over. " : ""}The dashed frame is the close-up below${cu ? `, ×${cu.zoom.toPrecision(2)}` : ""}.`);
   ctx.restore();
+}
+
+// The close-up of the swarm in the phase panel: the swarm's extent (angles taken about their
+// circular mean, so a swarm across θ = ±π stays in one piece) with a margin, centred on it, at
+// the scene's ratio of scales (shapes as in the scene, magnified). The magnification only falls
+// during a run (the frame grows as the swarm stretches and folds, never zooms back in), and
+// starts again with the run.
+const CLOSE_MARGIN = 0.3;
+function swarmCloseUp() {
+  const sv = app.sceneView, c = $("phase");
+  if (!sv || kind() !== "swarm") return null;
+  const s = app.lab.state(), n = s.length / 2;
+  let cs = 0, sn = 0;
+  for (let i = 0; i < n; i++) { cs += Math.cos(s[i]); sn += Math.sin(s[i]); }
+  const mean = Math.atan2(sn, cs);
+  let box = null;
+  for (let i = 0; i < n; i++) box = grow(box, mean + wrapQ(s[i] - mean), s[n + i]);
+  if (!box) return null;
+  const g = swarmG();
+  // Spans a hair above nothing (a swarm of one, or at rest): a hundredth of the scene's.
+  const sw = Math.max(box.x1 - box.x0, 1e-2 * (sv.box.x1 - sv.box.x0)), sh = Math.max(box.y1 - box.y0, 1e-2 * (sv.box.y1 - sv.box.y0));
+  const pv = plotView(c.clientWidth || 640, c.clientHeight || 400, { x0: 0, x1: 1, y0: 0, y1: 1 }, false);
+  const rw = pv.rect.x1 - pv.rect.x0, rh = pv.rect.y1 - pv.rect.y0;
+  const sx = (sv.rect.x1 - sv.rect.x0) / (sv.box.x1 - sv.box.x0), sy = (sv.rect.y1 - sv.rect.y0) / (sv.box.y1 - sv.box.y0);
+  // Pixels per radian in the close-up: the swarm and its margin fit both ways at the scene's
+  // ratio of scales; never more than before in this run, never less than the scene's.
+  let k = Math.min(rw / ((1 + 2 * CLOSE_MARGIN) * sw), (rh / ((1 + 2 * CLOSE_MARGIN) * sh)) * (sx / sy));
+  if (app.closeScale) k = Math.min(k, app.closeScale);
+  k = Math.max(k, sx * Math.min(1, rw / (sv.rect.x1 - sv.rect.x0)));
+  app.closeScale = k;
+  const ky = k * (sy / sx), cx = (box.x0 + box.x1) / 2, cy = (box.y0 + box.y1) / 2;
+  return { box: { x0: cx - rw / (2 * k), x1: cx + rw / (2 * k), y0: cy - rh / (2 * ky), y1: cy + rh / (2 * ky) }, zoom: k / sx, swarm: box };
+}
+function drawSwarmCloseUp() {
+  const { ctx, w, h } = surface("phase");
+  const cu = swarmCloseUp();
+  if (!cu) return;
+  const v = plotView(w, h, cu.box, false);
+  app.closeView = { box: v.box, swarm: cu.swarm, zoom: cu.zoom };
+  const [xl, yl] = swarmLabels();
+  drawAxes("phase", ctx, v, xl, yl);
+  clip(ctx, v);
+  const s = app.lab.state(), n = s.length / 2, mid = (cu.box.x0 + cu.box.x1) / 2;
+  swarmPoints(ctx, v, s, n, (q) => mid + wrapQ(q - mid));
+  ctx.restore();
+  const note = `Close-up of the swarm (the dashed frame above), magnified ×${cu.zoom.toPrecision(2)}: it stretches and folds, and its area stays the same (Liouville's theorem).`;
+  if ($("closeup-caption").textContent !== note) $("closeup-caption").textContent = note;
 }
 
 // A chain: masses on springs drawn along a line (each displaced by its coordinate, to scale
@@ -1191,6 +1384,8 @@ function drawChain(ctx, w, h, k) {
   if (app.extent) for (let i = 0; i < n; i++) amp = Math.max(amp, Math.abs(app.extent.lo[i]), Math.abs(app.extent.hi[i]));
   for (let i = 0; i < n; i++) amp = Math.max(amp, Math.abs(s[i]));
   amp = amp || 1;
+  // A new run of the same setup keeps the scale it had (it may grow).
+  amp = Math.max(amp, app.ampFloor ?? 0);
   // While a mass is dragged the drawing keeps its scale, so the mass stays under the pointer.
   if (app.drag?.chain) amp = app.drag.amp;
   if (n === 1 && k === "chain") {
@@ -1227,9 +1422,18 @@ function drawChain(ctx, w, h, k) {
     coil(ctx, X(n - 1) + half, y, x1, y, 5, 4);
   }
   for (let i = 0; i + 1 < n; i++) coil(ctx, X(i) + half, y, X(i + 1) - half, y, Math.max(2, Math.min(6, Math.round(gap / 8))), Math.min(4, half * 0.6));
+  if (ring) {
+    // The ring's closing spring, from the last mass back round to the first, drawn as a
+    // loop under the strip.
+    const drop = Math.min(0.35 * top, 3 * half + 10);
+    ctx.beginPath(); ctx.moveTo(X(n - 1) + half, y);
+    ctx.bezierCurveTo(x1 + 0.6 * gap, y, x1 + 0.6 * gap, y + drop, (x0 + x1) / 2, y + drop);
+    ctx.bezierCurveTo(x0 - 0.6 * gap, y + drop, x0 - 0.6 * gap, y, X(0) - half, y);
+    ctx.setLineDash([4, 3]); ctx.stroke(); ctx.setLineDash([]);
+  }
   ctx.fillStyle = "#c0392b";
   for (let i = 0; i < n; i++) ctx.fillRect(X(i) - half, y - half, 2 * half, 2 * half);
-  sceneNote(`Above: ${n} masses on springs${ring ? " (a ring: the last is joined to the first)" : ", fixed walls at both ends"}, displacements to scale. Below: each mass's displacement against its place in the chain.`);
+  sceneNote(`Above: ${n} masses on springs${ring ? " (a ring: the last is joined to the first, dashed)" : ", fixed walls at both ends"}, displacements to scale. Below: each mass's displacement against its place in the chain.`);
 }
 
 // One mass on a spring from a wall, seen from the side, its displacement x to scale on the
@@ -1459,7 +1663,7 @@ function drawSpinner(ctx, w, h, s) {
   ring((a) => [0, semi[1] * Math.cos(a), semi[2] * Math.sin(a)], "#c0392b");
   ctx.strokeStyle = "#7a2a1e"; ctx.lineWidth = 2.5; line(R([-semi[0], 0, 0]), R([semi[0], 0, 0]));
   spinArrow(ctx, P, [0, 0, 0.12], 1.15, s[2], "#1f5fbf", app.lab.initialState()[2]);
-  app.ticks.scene = { x: [`n₁ = ${s[0].toPrecision(3)}`, `n₂ = ${s[1].toPrecision(3)}`], y: [`n₃ = ${s[2].toPrecision(3)}`], xLabel: "rocking rates n₁, n₂ [rad/s]", yLabel: "spin n₃ [rad/s]" };
+  app.ticks.scene = { x: [`n₁ = ${s[0].toPrecision(3)}`, `n₂ = ${s[1].toPrecision(3)}`], y: [`n₃ = ${s[2].toPrecision(3)}`], xLabel: "rocking rates n₁, n₂ (rad/s)", yLabel: "spin n₃ (rad/s)" };
   drawRateBars(ctx, w, h, s, nmax);
   sceneNote(`A rattleback's rates: the spin n₃ = ${s[2].toFixed(3)} rad/s (blue arrow: its sense seen from above; it turns the body), ` +
     `rocking n₁ = ${s[0].toFixed(3)}, n₂ = ${s[1].toFixed(3)} rad/s (the tilt, exaggerated). The reduced model has no shape: the body is drawn in a rattleback's proportions.`);
@@ -1590,6 +1794,7 @@ function drawCurve(id, points, boxKey, labels, least = [0, 0]) {
   if (!box && app.extent && points.length) {
     const ix = Number($("phase-x").value), iy = Number($("phase-y").value);
     box = pad({ x0: app.extent.lo[ix], x1: app.extent.hi[ix], y0: app.extent.lo[iy], y1: app.extent.hi[iy] }, 0.08);
+    if (app.phaseKeep) box = union(box, app.phaseKeep);
   }
   let outside = false;
   for (const [x, y] of points) if (box && (x < box.x0 || x > box.x1 || y < box.y0 || y > box.y1)) { outside = true; break; }
@@ -1637,6 +1842,7 @@ function phaseLeast(i) {
 }
 
 function drawPhase() {
+  if (kind() === "swarm") return drawSwarmCloseUp();
   const labels = stateAxisLabels(), ix = $("phase-x").value, iy = $("phase-y").value;
   drawCurve("phase", app.phase, "phaseBox", [labels[ix], labels[iy]], [phaseLeast(Number(ix)), phaseLeast(Number(iy))]);
 }
@@ -1909,21 +2115,15 @@ function onScenePointer(ev) {
     clearViews();
     draw();
   } else if ((ev.type === "pointerup" || ev.type === "pointercancel") && app.drag) {
-    app.drag = null;
-    clearViews();
-    const box = app.sceneBox;
-    startViews();
-    // A pivot-centred scene keeps its frame; others refit to the new run.
-    if (kind() === "pendulum" || kind() === "hoop") app.sceneBox = box;
-    draw();
+    endDrag();
   }
 }
 
-// The end of a drag: the new run's views.
+// The end of a drag: the new run's views, in the frames the drag was made in (grown to take
+// in the new run).
 function endDrag() {
   app.drag = null;
-  clearViews();
-  startViews();
+  startViews(null, true);
   draw();
 }
 
@@ -1981,9 +2181,8 @@ function onSectionClick(ev) {
     message(e.message);
     return;
   }
-  app.trails = []; app.phase = []; app.energy = []; app.rows = [];
-  app.extent = probeExtent(); app.sceneBox = sceneBoxFrom(app.extent); app.phaseBox = null;
-  record();
+  // The section's orbits accumulate, so only the other views start again (in their frames).
+  startViews(null, true);
   draw();
 }
 
@@ -2159,7 +2358,7 @@ function setStep(dt, steps) {
   $("speed-out").textContent = steps;
 }
 
-function restartRun() { app.lab.reset(); startViews(); draw(); }
+function restartRun() { app.lab.reset(); startViews(null, true); draw(); }
 
 async function main() {
   const bytes = await (await fetch("physicskit_wasm.wasm")).arrayBuffer();
@@ -2192,7 +2391,7 @@ async function main() {
   };
   $("json").onclick = () => download(`${app.entry.name}.json`, JSON.stringify(exportData()), "application/json");
   $("large").onchange = () => { document.body.classList.toggle("large", $("large").checked); draw(); };
-  $("phase-x").onchange = $("phase-y").onchange = () => { app.phase = []; app.phaseBox = null; sample(); draw(); };
+  $("phase-x").onchange = $("phase-y").onchange = () => { app.phase = []; app.phaseBox = null; app.phaseKeep = null; sample(); draw(); };
   $("section-clear").onclick = () => { app.lab.clearCrossings(); draw(); };
   $("section-on").onchange = () => rebuild(Array.from(app.lab.initialState()));
   for (const t of ["pointerdown", "pointermove", "pointerup", "pointercancel"]) $("scene").addEventListener(t, onScenePointer);

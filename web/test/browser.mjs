@@ -9,6 +9,10 @@
 //   - axes on every canvas shown (the tick labels the page drew, which it exposes);
 //   - no code in the page's text (a denylist: `::`, `--`, `^`, `thetadot`, "as in the spec",
 //     a symbol left as words or with a bare `_` index);
+// then: every phase and time axis of a system timed in seconds says its unit, as "θ₁ (rad)";
+// the pendulum swarm's fixed view of where it can reach and its close-up; names of arrows off
+// every arrow and each other (the tops); a projectile's frame kept and grown, never shrunk,
+// by drags and Reset; every chain of rods dragged by its last bob;
 // then: a share link round trip (a dragged start, reopened in a new page, runs to the same
 // bits), hostile share links (each opens a valid page and names what it refused), a drag of
 // the double pendulum's lower bob within reach and one far out of reach (a reachable pose,
@@ -169,15 +173,155 @@ for (let [name, method] of systems) {
     const q = (i) => unicode(symbols[i]);
     const v = (i) => (dot ? unicode(symbols[i]).replace(/^(\p{L})/u, "$1\u0307") : `p${unicode(`_${symbols[i]}`)}`);
     const unit = (u, i) => { const parts = (u ?? "").split(/,\s*/); return parts.length === k ? parts[i] : parts[0]; };
-    const withUnit = (s, u) => (u ? `${s} [${u}]` : s);
+    const withUnit = (s, u) => (u ? `${s} (${u})` : s);
     const want = (i) => (i < k ? withUnit(q(i), unit(starts[0], i)) : withUnit(v(i - k), unit(starts[1], i - k)));
     const t = got.ticks;
     if (t.phase.xLabel !== want(got.ix) || t.phase.yLabel !== want(got.iy)) fail(`labels ${name}: phase axes ${t.phase.xLabel} / ${t.phase.yLabel}, the catalogue says ${want(got.ix)} / ${want(got.iy)}`);
-    const time = tu === "s" ? "t [s]" : "t";
+    const time = tu === "s" ? "t (s)" : "t";
     if (t.energy.xLabel !== time) fail(`labels ${name}: time axis ${t.energy.xLabel}, the catalogue's unit of time is ${JSON.stringify(tu)}`);
     if (t.section && name === "henon-heiles" && (t.section.xLabel !== want(0) || t.section.yLabel !== want(k))) fail(`labels ${name}: section axes ${t.section.xLabel} / ${t.section.yLabel}`);
     console.log(`ok labels ${name}: ${t.phase.xLabel}, ${t.phase.yLabel}; ${t.energy.xLabel}`);
   }
+}
+
+// Every axis a physicist would give a unit has one: in a system whose time is in seconds,
+// every state quantity has a dimension (but a quaternion's components), so the phase panel's
+// axes (as each system opens) and the time axis say their unit, as "symbol (unit)".
+{
+  const bad = await page.evaluate((names) => {
+    const L = window.physicskitLab, out = [];
+    for (const n of names) {
+      L.select(n); L.runFrames(2);
+      if (L.app.entry.presentation.time_unit !== "s") continue;
+      const t = L.ticks();
+      for (const [id, axis] of [["phase", "xLabel"], ["phase", "yLabel"], ["energy", "xLabel"]]) {
+        const text = t[id]?.[axis];
+        if (text !== undefined && !/^\S+ \([^()]+\)$/u.test(text) && !(id === "energy" && document.getElementById("energy-figure").hidden)) out.push(`${n}: ${id} ${axis} ${JSON.stringify(text)}`);
+      }
+    }
+    return out;
+  }, systems.map(([n]) => n));
+  for (const b of bad) fail(`units: ${b}`);
+  console.log(`ok units: every phase and time axis of the systems timed in seconds says its unit${bad.length ? ` (but ${bad.length})` : ""}`);
+}
+
+// The pendulum swarm: the scene is the region the swarm can ever reach (each pendulum keeps its
+// energy), fixed for the run; the phase panel a close-up that holds the whole swarm, filling at
+// least half of it one way, and never zooms back in. Run over a full swing (the default swarm's
+// period is about 6.7 s) and check it against the run itself: every member stays in the
+// scene's view, and the swarm's own extent over the swing fills most of it (the view is not
+// needlessly large).
+{
+  const r = await page.evaluate(() => {
+    const L = window.physicskitLab, out = { boxes: new Set(), escaped: 0, zooms: [], filled: [], outside: 0 };
+    L.select("pendulum-swarm");
+    let seen = null;
+    const wrap = (q) => q - 2 * Math.PI * Math.ceil((q - Math.PI) / (2 * Math.PI));
+    for (let f = 0; f < 320; f++) {
+      if (!L.runFrames(1)) return null;
+      const s = L.app.lab.state(), n = s.length / 2, b = L.app.sceneView.box, c = L.app.closeView;
+      out.boxes.add(JSON.stringify(b));
+      for (let i = 0; i < n; i++) {
+        const q = wrap(s[i]), p = s[n + i];
+        if (q < b.x0 || q > b.x1 || p < b.y0 || p > b.y1) out.escaped++;
+        seen = seen ? { x0: Math.min(seen.x0, q), x1: Math.max(seen.x1, q), y0: Math.min(seen.y0, p), y1: Math.max(seen.y1, p) } : { x0: q, x1: q, y0: p, y1: p };
+      }
+      const w = c.swarm, cb = c.box;
+      if (w.x0 < cb.x0 || w.x1 > cb.x1 || w.y0 < cb.y0 || w.y1 > cb.y1) out.outside++;
+      out.zooms.push(c.zoom);
+      out.filled.push(Math.max((w.x1 - w.x0) / (cb.x1 - cb.x0), (w.y1 - w.y0) / (cb.y1 - cb.y0)));
+      out.box = b;
+    }
+    out.seen = seen;
+    out.boxes = out.boxes.size;
+    out.shown = !document.getElementById("closeup-caption").hidden && document.getElementById("phase-choice").hidden;
+    return out;
+  });
+  if (!r) fail("swarm: the run failed");
+  else {
+    if (r.boxes !== 1) fail(`swarm: the scene's view changed during the run (${r.boxes} views)`);
+    if (r.escaped) fail(`swarm: ${r.escaped} member positions outside the scene's view`);
+    // 0.75: the view is the reach with an 8% margin each side, and the swarm's own extent
+    // over a swing comes within its box's width (0.05 rad) of the reach.
+    const fx = (r.seen.x1 - r.seen.x0) / (r.box.x1 - r.box.x0), fy = (r.seen.y1 - r.seen.y0) / (r.box.y1 - r.box.y0);
+    if (!(fx > 0.75 && fy > 0.75)) fail(`swarm: over a swing the swarm fills ${fx.toFixed(2)} × ${fy.toFixed(2)} of the scene's view`);
+    if (r.outside) fail(`swarm: the close-up left the swarm out ${r.outside} times`);
+    if (r.zooms.some((z, i) => i && z > r.zooms[i - 1])) fail(`swarm: the close-up zoomed back in (${r.zooms.join(", ")})`);
+    // Half: the close-up's margin is 0.3 of the swarm's extent each side (1/1.6 of the panel)
+    // until the magnification has to stop falling.
+    if (!(r.filled[0] >= 0.5)) fail(`swarm: the swarm fills only ${r.filled[0]} of the close-up`);
+    if (!r.shown) fail("swarm: the close-up's caption not shown, or the phase choice shown");
+    console.log(`ok swarm: scene view fixed over ${r.zooms.length} frames, every member in it, a swing fills ${fx.toFixed(2)} × ${fy.toFixed(2)} of it; close-up ×${r.zooms[0].toPrecision(3)} → ×${r.zooms[r.zooms.length - 1].toPrecision(3)}, the swarm filling ${r.filled[0].toFixed(2)} of it at the start`);
+  }
+  await page.screenshot({ path: join(shots, "pendulum-swarm-swing.png"), fullPage: true });
+}
+
+// Names of arrows never sit on an arrow (theirs or another) or on each other: the Euler top's
+// body axes e₁, e₂, e₃ and L, over many orientations, and the heavy top's L. Checked here by
+// sampling points along each drawn segment (the page clips segments against boxes).
+{
+  const draws = await page.evaluate(() => {
+    const L = window.physicskitLab, out = [];
+    for (const [name, frames, every] of [["euler-top", 40, 15], ["heavy-top", 12, 20]]) {
+      L.select(name);
+      for (let k = 0; k < frames; k++) { L.runFrames(every); out.push({ name, labels: L.app.sceneLabels }); }
+    }
+    return out;
+  });
+  const inside = ([x, y], [l, t, r, b]) => x > l && x < r && y > t && y < b;
+  let hits = 0, count = 0;
+  for (const { name, labels } of draws) {
+    for (const a of labels) {
+      count++;
+      for (const o of labels) {
+        const [x0, y0, x1, y1] = o.seg;
+        for (let k = 0; k <= 200; k++) {
+          const u = k / 200;
+          if (inside([x0 + u * (x1 - x0), y0 + u * (y1 - y0)], a.box)) { hits++; fail(`${name}: the name ${a.text} sits on the arrow of ${o.text}`); break; }
+        }
+        if (o !== a && a.box[0] < o.box[2] && o.box[0] < a.box[2] && a.box[1] < o.box[3] && o.box[1] < a.box[3]) { hits++; fail(`${name}: the names ${a.text} and ${o.text} overlap`); }
+      }
+    }
+  }
+  if (!count) fail("arrow names: none recorded");
+  console.log(`ok arrow names: ${count} names over ${draws.length} drawings of the tops, none on an arrow or another name`);
+}
+
+// After a drag the scene keeps its frame and grows to take in the new run, never shrinks: the
+// projectile dragged while falling (it keeps its momentum, so its new flight is short) is drawn
+// at the scale it had, and a drag that starts a longer flight widens the frame to hold it. Reset
+// keeps it too.
+{
+  await page.evaluate(() => { const L = window.physicskitLab; L.select("projectile"); L.runFrames(95); });
+  const view = () => page.evaluate(() => {
+    const L = window.physicskitLab, v = L.app.sceneView, e = L.app.extent?.pos;
+    return { box: { ...L.app.sceneBox }, scale: v.X(1) - v.X(0), flight: e && { ...e }, phase: L.app.phaseBox && { ...L.app.phaseBox } };
+  });
+  const dragBall = async (dx, dy) => {
+    const [b] = await page.evaluate(() => window.physicskitLab.bodiesOnScreen());
+    await page.mouse.move(b[0], b[1]); await page.mouse.down();
+    await page.mouse.move(b[0] + dx, b[1] + dy, { steps: 4 }); await page.mouse.up();
+    await page.evaluate(() => window.physicskitLab.runFrames(2));
+  };
+  const holds = (a, b) => a.x0 <= b.x0 && a.x1 >= b.x1 && a.y0 <= b.y0 && a.y1 >= b.y1;
+  const before = await view();
+  await dragBall(-40, 0);
+  const short = await view();
+  if (!holds(before.box, short.flight)) fail(`projectile drag: the new flight ${JSON.stringify(short.flight)} is not a short one inside the old frame`);
+  if (JSON.stringify(short.box) !== JSON.stringify(before.box) || short.scale !== before.scale) fail(`projectile drag: the frame moved from ${JSON.stringify(before.box)} (${before.scale} px/m) to ${JSON.stringify(short.box)} (${short.scale} px/m)`);
+  if (before.phase && short.phase && !holds(short.phase, before.phase)) fail("projectile drag: the phase panel's frame shrank");
+  await page.screenshot({ path: join(shots, "projectile-dragged-short.png"), fullPage: true });
+  // Up near the top of the frame: a longer flight, which the frame grows to hold.
+  const top = await page.evaluate(() => { const v = window.physicskitLab.app.sceneView; return document.getElementById("scene").getBoundingClientRect().top + v.Y(0.85 * v.box.y1); });
+  const [b0] = await page.evaluate(() => window.physicskitLab.bodiesOnScreen());
+  await dragBall(0, top - b0[1]);
+  const high = await view();
+  if (!holds(high.box, short.box) || !holds(high.box, high.flight)) fail(`projectile drag up: frame ${JSON.stringify(high.box)}, the flight ${JSON.stringify(high.flight)}, the frame before ${JSON.stringify(short.box)}`);
+  await page.evaluate(() => window.physicskitLab.restart());
+  const reset = await view();
+  if (JSON.stringify(reset.box) !== JSON.stringify(high.box)) fail("projectile: Reset changed the frame");
+  console.log(`ok projectile drags: a short flight drawn in the frame it had (${before.scale.toFixed(2)} px/m), a higher start grows it to ${JSON.stringify(Object.values(high.box).map((x) => +x.toFixed(1)))}, Reset keeps it`);
+  await page.screenshot({ path: join(shots, "projectile-dragged-high.png"), fullPage: true });
 }
 
 // The heavy top's angular momentum L: its vertical part is conserved (gravity's torque is
@@ -371,6 +515,37 @@ async function dragOnce(p, name) {
   await p.mouse.move(at[0] + 30, at[1] - 20, { steps: 4 });
   await p.mouse.up();
   return true;
+}
+
+// Every chain of rods (a drawing of bobs without springs, two bobs or more): its last bob
+// dragged towards the pivot, to three quarters of its distance (inside the reach of rods that
+// can fold), lands under the pointer and is let go from rest.
+{
+  const chains = await page.evaluate(() => window.physicskitLab.app.catalogue.systems
+    .filter((s) => s.presentation.drawing.kind === "bobs" && !s.presentation.drawing.springs).map((s) => s.name));
+  const dragged = [];
+  for (const name of chains) {
+    const at = await page.evaluate((n) => {
+      const L = window.physicskitLab; L.select(n);
+      const r = document.getElementById("scene").getBoundingClientRect(), v = L.app.sceneView;
+      return { bobs: L.bodiesOnScreen(), pivot: [r.left + v.X(0), r.top + v.Y(0)] };
+    }, name);
+    if (at.bobs.length < 2) continue;
+    const b = at.bobs[at.bobs.length - 1], target = [0, 1].map((i) => at.pivot[i] + 0.75 * (b[i] - at.pivot[i]));
+    await page.mouse.move(b[0], b[1]); await page.mouse.down();
+    await page.mouse.move((b[0] + target[0]) / 2, (b[1] + target[1]) / 2, { steps: 3 });
+    await page.mouse.move(target[0], target[1], { steps: 3 });
+    await page.mouse.up();
+    const got = await page.evaluate(() => ({ bobs: window.physicskitLab.bodiesOnScreen(), state: Array.from(window.physicskitLab.app.lab.state()) }));
+    const last = got.bobs[got.bobs.length - 1], n = got.state.length / 2;
+    // 1.5 px: the whole-pixel mouse position and drawing, as for the double pendulum above.
+    if (Math.hypot(last[0] - target[0], last[1] - target[1]) > 1.5) fail(`${name}: the last bob at ${last}, the pointer at ${target}`);
+    if (got.state.slice(n).some((x) => x !== 0)) fail(`${name}: let go with rates ${got.state.slice(n)}`);
+    dragged.push(name);
+    await page.screenshot({ path: join(shots, `${name}-last-bob-dragged.png`), fullPage: true });
+  }
+  if (!dragged.length) fail("no chain of rods dragged by its last bob");
+  console.log(`ok last bobs: ${dragged.join(", ")} dragged by their last bob, under the pointer, let go at rest`);
 }
 
 // Every draggable system after a drag (then 30 frames run): screenshots to look at, and no

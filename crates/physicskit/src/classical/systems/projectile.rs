@@ -380,7 +380,11 @@ pub static PROJECTILE_ENTRY: SystemEntry = SystemEntry {
     default_method: Method::Yoshida4,
     note: Some(DRAG_NOTE),
     physics: Some(PROJECTILE_PHYSICS),
-    presentation: PROJECTILE_PRESENTATION,
+    // Started from a speed and an angle, not from a state: the state's units said here.
+    presentation: Presentation {
+        state_units: Some(("m", "kg m/s")),
+        ..PROJECTILE_PRESENTATION
+    },
     build: |v| {
         Ok(Box::new(Hamiltonian(ProjectileMotion::from_launch(
             v.scalar("speed")?,

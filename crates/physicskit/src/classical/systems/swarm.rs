@@ -464,7 +464,11 @@ pub static SWARM_ENTRY: SystemEntry = SystemEntry {
     default_method: Method::Yoshida4,
     note: Some("q and p have one column per pendulum; use --stride for long runs"),
     physics: Some(SWARM_PHYSICS),
-    presentation: SWARM_PRESENTATION,
+    // Filled from a box, not from a state: the state's units said here.
+    presentation: Presentation {
+        state_units: Some(("rad", "rad/s")),
+        ..SWARM_PRESENTATION
+    },
     build: |v| {
         Ok(Box::new(Hamiltonian(PendulumSwarm::from_box(
             v.scalar("q_center")?,
