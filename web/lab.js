@@ -380,7 +380,9 @@ function ndof() { const n = app.lab.state().length; return family() === "ode" ? 
 // picture for a separable Hamiltonian of two degrees of freedom, so it is offered (a checkbox)
 // for those only; it is on from the start where the catalogue says it is the picture that
 // matters (`presentation.section_first`: Hénon–Heiles, islands in a chaotic sea).
-function sectionOffered() { return family() === "hamiltonian" && app.entry.separable && ndof() === 2; }
+// Only where the section's edge on the energy surface is closed: an unbounded flight (a
+// projectile) crosses the plane once and has no section to show.
+function sectionOffered() { return family() === "hamiltonian" && app.entry.separable && ndof() === 2 && app.sectionClosed; }
 function hasSection() { return sectionOffered() && $("section-on").checked; }
 // The lab's picture of the system: the catalogue's drawing (`presentation.drawing`) and its
 // attributes, as the names the drawing code below uses.
@@ -439,6 +441,7 @@ function rebuild(state0 = null, keepMessage = false) {
   // a kink passes) for each new system and keeps the reader's choice while it is rebuilt.
   const same = app.phaseSystem === app.entry.name;
   app.phaseSystem = app.entry.name;
+  app.sectionClosed = family() === "hamiltonian" && app.entry.separable && ndof() === 2 && sectionBoundary() !== null;
   if (!same) $("section-on").checked = app.entry.presentation.section_first;
   $("section-choice").hidden = !sectionOffered();
   const { k: kk, paired } = stateLayout(), k = paired ? kk : 0;
@@ -984,7 +987,11 @@ function drawScene() {
       [x0, y0] = [v.X(x), v.Y(y)];
     });
     pivot(ctx, v.X(0), v.Y(0));
-    bodies.forEach(([x, y], i) => bob(ctx, v.X(x), v.Y(y), bobRadius(i), i));
+    // Bobs no wider than 0.3 of the shortest rod on the screen (three rods on a phone are short),
+    // so neighbours never cover each other or the rod between them.
+    let rod = Infinity, [px, py] = [0, 0];
+    if (k === "pendulum") for (const [x, y] of bodies) { rod = Math.min(rod, Math.hypot(v.X(x) - v.X(px), v.Y(y) - v.Y(py))); [px, py] = [x, y]; }
+    bodies.forEach(([x, y], i) => bob(ctx, v.X(x), v.Y(y), Math.min(bobRadius(i), Math.max(4, 0.3 * rod)), i));
   }
   ctx.restore();
 }
@@ -1632,8 +1639,9 @@ function drawTiltedDisk(ctx, w, h) {
 // proportion to the rocking rates n₁, n₂; a curved arrow shows the sense and size of the spin.
 // Proportions of a typical rattleback (the reduced model has no shape).
 function drawSpinner(ctx, w, h, s) {
-  // Room on the right for the rates' bars.
-  const v = plotView(w, h, { x0: -1.4, x1: 2.1, y0: -0.8, y1: 1.0 }, true, false);
+  // The body left of the rates' bars and their scale (drawRateBars: three bars 2.2 font sizes
+  // apart, their axis's labels about 4.5 font sizes to its left).
+  const v = plotView(w - (11.1 * fontSize() + 10), h, { x0: -1.4, x1: 1.4, y0: -0.8, y1: 1.0 }, true, false);
   app.sceneView = v;
   const P = (p) => { const [x, y] = project3(p, 1.4, 0.55); return [v.X(x), v.Y(y)]; };
   const line = (a, b) => { ctx.beginPath(); ctx.moveTo(...P(a)); ctx.lineTo(...P(b)); ctx.stroke(); };
@@ -1675,6 +1683,14 @@ function drawRateBars(ctx, w, h, s, nmax) {
   const f = fontSize(), x0 = w - 3 * 2.2 * f - 10, y0 = 14 + f, y1 = h - 2 * f, mid = (y0 + y1) / 2;
   const top = Math.max(nmax, Math.abs(app.lab.initialState()[2]) || 1, Math.abs(s[2]));
   ctx.strokeStyle = "#999"; ctx.lineWidth = 1; ctx.beginPath(); ctx.moveTo(x0 - 4, mid); ctx.lineTo(w - 6, mid); ctx.stroke();
+  // Their scale: an axis on the left with ticks in rad/s.
+  const Y = (r) => mid - ((y1 - y0) / 2) * (r / top), t = tickValues(-top, top, 4), ax = x0 - 8;
+  ctx.strokeStyle = "#555"; ctx.beginPath(); ctx.moveTo(ax, y0); ctx.lineTo(ax, y1);
+  ctx.fillStyle = "#333"; ctx.textAlign = "right"; ctx.textBaseline = "middle";
+  for (const r of t.values) { ctx.moveTo(ax - 4, Y(r)); ctx.lineTo(ax, Y(r)); ctx.fillText(tickText(r, t.step), ax - 6, Y(r)); }
+  ctx.stroke();
+  ctx.textAlign = "center"; ctx.textBaseline = "bottom";
+  ctx.fillText("rad/s", ax, y0 - 4);
   ["n₁", "n₂", "n₃"].forEach((name, i) => {
     const x = x0 + i * 2.2 * f, hgt = ((y1 - y0) / 2) * (s[i] / top);
     ctx.fillStyle = i === 2 ? "#1f5fbf" : "#c0392b";
@@ -1943,7 +1959,7 @@ function drawSection() {
     if (!ids.includes(o)) ids.push(o);
     ctx.fillStyle = orbitColour(ids.indexOf(o));
     ctx.beginPath();
-    for (; i < count && orbits[i] === o; i++) ctx.rect(v.X(x[i * n]) - 1.75, v.Y(x[i * n + 2]) - 1.75, 3.5, 3.5);
+    for (; i < count && orbits[i] === o; i++) ctx.rect(v.X(x[i * n]) - 2.25, v.Y(x[i * n + 2]) - 2.25, 4.5, 4.5);
     ctx.fill();
   }
   ctx.restore();

@@ -517,6 +517,27 @@ async function dragOnce(p, name) {
   return true;
 }
 
+// The Poincaré section is offered only where it has a closed edge on the energy surface (an
+// unbounded flight crosses the plane once): every system offering it draws that edge.
+{
+  const r = await page.evaluate((names) => {
+    const L = window.physicskitLab, offered = [], open = [];
+    for (const n of names) {
+      L.select(n);
+      if (document.getElementById("section-choice").hidden) continue;
+      const box = document.getElementById("section-on"), was = box.checked;
+      if (!was) { box.checked = true; box.onchange(); }
+      offered.push(n);
+      if (!L.app.boundary) open.push(n);
+      if (!was) { box.checked = false; box.onchange(); }
+    }
+    return { offered, open };
+  }, systems.map(([n]) => n));
+  if (r.open.length) fail(`section offered without a closed edge: ${r.open.join(", ")}`);
+  if (!r.offered.includes("henon-heiles")) fail(`the section is not offered for Hénon–Heiles (offered: ${r.offered.join(", ")})`);
+  console.log(`ok section offered for ${r.offered.join(", ")}, each with its closed edge`);
+}
+
 // Every chain of rods (a drawing of bobs without springs, two bobs or more): its last bob
 // dragged towards the pivot, to three quarters of its distance (inside the reach of rods that
 // can fold), lands under the pointer and is let go from rest.
