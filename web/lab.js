@@ -991,7 +991,9 @@ function drawScene() {
     // so neighbours never cover each other or the rod between them.
     let rod = Infinity, [px, py] = [0, 0];
     if (k === "pendulum") for (const [x, y] of bodies) { rod = Math.min(rod, Math.hypot(v.X(x) - v.X(px), v.Y(y) - v.Y(py))); [px, py] = [x, y]; }
-    bodies.forEach(([x, y], i) => bob(ctx, v.X(x), v.Y(y), Math.min(bobRadius(i), Math.max(4, 0.3 * rod)), i));
+    // What was drawn, for the tests: each bob's centre and radius on the canvas.
+    app.bobsDrawn = bodies.map(([x, y], i) => ({ x: v.X(x), y: v.Y(y), r: Math.min(bobRadius(i), Math.max(4, 0.3 * rod)) }));
+    for (const [i, b] of app.bobsDrawn.entries()) bob(ctx, b.x, b.y, b.r, i);
   }
   ctx.restore();
 }
@@ -1284,10 +1286,12 @@ function energyContour(E, g) {
 // The members as points, in their energy's colour; `at(θ)` places an angle in the view.
 function swarmPoints(ctx, v, s, n, at) {
   if (!app.swarmReach) app.swarmReach = swarmReach();
+  // A few pendulums as dots that show; thousands as points that leave the filament's shape.
+  const d = n <= 50 ? 6 : n <= 500 ? 4 : 3;
   app.swarmReach?.bands.forEach((members, b) => {
     ctx.fillStyle = SWARM_COLOURS[b];
     ctx.beginPath();
-    for (const i of members) ctx.rect(v.X(at(s[i])) - 1.5, v.Y(s[n + i]) - 1.5, 3, 3);
+    for (const i of members) ctx.rect(v.X(at(s[i])) - d / 2, v.Y(s[n + i]) - d / 2, d, d);
     ctx.fill();
   });
 }

@@ -166,7 +166,9 @@ for (let [name, method] of systems) {
         ix: Number(document.getElementById("phase-x").value), iy: Number(document.getElementById("phase-y").value) };
     }, name);
     const { symbols, time_unit: tu } = got.entry.presentation;
-    const starts = got.entry.params.filter((p) => p.initial_state).map((p) => p.unit_text);
+    // The initial-state parameters' units, else the presentation's state units.
+    const initial = got.entry.params.filter((p) => p.initial_state).map((p) => p.unit_text);
+    const starts = initial.length ? initial : got.entry.presentation.state_units ?? [];
     const k = got.n / 2, dot = got.entry.family !== "hamiltonian";
     // A coordinate's symbol, and its velocity's (a dot over the letter, before the index) or
     // momentum's (p with the symbol as its index).
@@ -864,6 +866,11 @@ for (const [name] of systems) {
     .filter((e) => e.offsetParent !== null && !e.classList.contains("sr-only") && e.scrollWidth > e.clientWidth + 1).map((e) => `${e.id || e.tagName}: ${e.textContent.slice(0, 50)}`));
   if (cut.length) fail(`phone ${name}: text cut at 390 px: ${cut.join(" | ")}`);
   if (m.scene > m.height || m.run > m.height) fail(`phone ${name}: scene ends at ${m.scene} px, Run at ${m.run} px, screen ${m.height} px`);
+  // A chain of rods: neighbouring bobs (and the first and the pivot) never cover each other.
+  const bobs = await phone.evaluate(() => { const L = window.physicskitLab, d = L.app.entry.presentation.drawing; return d.kind === "bobs" && !d.springs ? [{ x: L.app.sceneView.X(0), y: L.app.sceneView.Y(0), r: 0 }, ...L.app.bobsDrawn] : []; });
+  for (let i = 1; i < bobs.length; i++) {
+    if (Math.hypot(bobs[i].x - bobs[i - 1].x, bobs[i].y - bobs[i - 1].y) < bobs[i].r + bobs[i - 1].r) fail(`phone ${name}: bob ${i} covers ${i > 1 ? `bob ${i - 1}` : "the pivot"} (${JSON.stringify(bobs.slice(i - 1, i + 1))})`);
+  }
   await phone.screenshot({ path: join(shots, `phone-${name}.png`) });
 }
 // Every draggable system dragged on the phone too (as on the desktop, then 30 frames):

@@ -496,7 +496,12 @@ pub static KEPLER_ENTRY: SystemEntry = SystemEntry {
     default_method: Method::Yoshida4,
     note: Some("period 2 pi sqrt(mu a^3 / k); c_pn != 0 makes the orbit precess"),
     physics: Some(KEPLER_PHYSICS),
-    presentation: KEPLER_PRESENTATION,
+    // Started from orbital elements, not from a state: the state's units said here, as the
+    // entry started from a state has them.
+    presentation: Presentation {
+        state_units: Some(("length", "mass length/time")),
+        ..KEPLER_PRESENTATION
+    },
     build: |v| {
         Ok(Box::new(Hamiltonian(KeplerSystem::from_orbital_elements(
             v.scalar("a")?,
