@@ -1,7 +1,7 @@
 //! The built-in systems, one file per family, each with its catalogue entry.
 //!
 //! Hamiltonian: `kepler`, `henon_heiles`, `swarm`, `projectile`, `chains`, and the integrable
-//! `toda` lattice. Lagrangian and rigid bodies: `double_pendulum`, `hoop`,
+//! `toda` lattice. Lagrangian and rigid bodies: `double_pendulum`, `triple_pendulum`, `hoop`,
 //! `coupled_oscillators`, `symmetric_top`, `rigid_body`, `elastic_pendulum`.
 
 use crate::classical::model::SystemEntry;
@@ -97,6 +97,8 @@ mod toda;
 pub use toda::*;
 mod double_pendulum;
 pub use double_pendulum::*;
+mod triple_pendulum;
+pub use triple_pendulum::*;
 mod hoop;
 pub use hoop::*;
 mod coupled_oscillators;
@@ -133,6 +135,7 @@ pub static SYSTEMS: &[&SystemEntry] = &[
     &SINE_GORDON_KINK_ENTRY,
     &SINE_GORDON_STATE_ENTRY,
     &DOUBLE_PENDULUM_ENTRY,
+    &TRIPLE_PENDULUM_ENTRY,
     &HOOP_ENTRY,
     &COUPLED_OSCILLATORS_ENTRY,
     &HEAVY_TOP_ENTRY,
