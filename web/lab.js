@@ -1085,10 +1085,13 @@ function project3([x, y, z], size = 1, elevation = ELEVATION) {
 // body drawn over the floor, whose labels would sit on it.
 function labelPlacer(ctx, avoid = []) {
   const drawn = [...avoid], f = fontSize();
+  // For the tests: the body's boxes and the labels drawn.
+  app.floorLabels = { avoid, drawn: [] };
   return (text, [px, py]) => {
     const half = ctx.measureText(text).width / 2 + 2, b = [px - half, py - 1, px + half, py + f + 1];
     if (drawn.some((d) => b[0] < d[2] && d[0] < b[2] && b[1] < d[3] && d[1] < b[3])) return false;
     drawn.push(b);
+    app.floorLabels.drawn.push({ text, box: b });
     ctx.fillText(text, px, py);
     return true;
   };
@@ -1504,7 +1507,8 @@ function sceneNote(text) {
 
 // A floor grid in perspective with tick labels in metres along two edges, centred at
 // (cx, cy) with half-width `half`; records the scene's ticks for the tests.
-function drawFloor(ctx, P, cx, cy, half) {
+// `avoid`: boxes of the body over the floor, where no tick label goes.
+function drawFloor(ctx, P, cx, cy, half, avoid = []) {
   const tx = tickValues(cx - half, cx + half, 4), ty = tickValues(cy - half, cy + half, 4), L = lengthUnit();
   const line = (a, b) => { ctx.beginPath(); ctx.moveTo(...P(a)); ctx.lineTo(...P(b)); ctx.stroke(); };
   ctx.strokeStyle = "#ddd"; ctx.lineWidth = 1;
@@ -1512,7 +1516,7 @@ function drawFloor(ctx, P, cx, cy, half) {
   for (const g of ty.values) line([cx - half, g, 0], [cx + half, g, 0]);
   ctx.fillStyle = "#555"; ctx.textAlign = "center"; ctx.textBaseline = "top";
   const xs = tx.values.map((g) => tickText(g, tx.step)), ys = ty.values.map((g) => tickText(g, ty.step));
-  const put = labelPlacer(ctx);
+  const put = labelPlacer(ctx, avoid);
   put(withUnit("x", L), P([cx, cy - half * 1.32, 0])); put(withUnit("y", L), P([cx + half * 1.38, cy, 0]));
   const xShown = xs.filter((x, i) => put(x, P([tx.values[i], cy - half * 1.1, 0])));
   const yShown = ys.filter((y, i) => put(y, P([cx + half * 1.12, ty.values[i], 0])));
@@ -1602,13 +1606,18 @@ function drawTiltedDisk(ctx, w, h) {
   for (const g of t.values) { line([g, -1.2, 0], [g, 1.2, 0]); line([-1.2, g, 0], [1.2, g, 0]); }
   ctx.fillStyle = "#555"; ctx.textAlign = "center"; ctx.textBaseline = "top";
   const xs = t.values.map((g) => tickText(g, t.step));
-  t.values.forEach((g, i) => { const [px, py] = P([g, -1.3, 0]); ctx.fillText(xs[i], px, py); });
-  t.values.forEach((g, i) => { const [px, py] = P([1.32, g, 0]); ctx.fillText(xs[i], px, py); });
+  // The disk (its rim and its shadow) lies over the floor: a tick label it would cover is left out.
+  const c = [0, 0, Math.sin(th)], er = [-Math.cos(th) * Math.cos(ph), -Math.cos(th) * Math.sin(ph), Math.sin(th)], et = [-Math.sin(ph), Math.cos(ph), 0];
+  const rim = (a) => [0, 1, 2].map((i) => c[i] + Math.cos(a) * er[i] + Math.sin(a) * et[i]);
+  let disk = null;
+  for (let k = 0; k < 32; k++) { const p = rim((TAU * k) / 32); disk = grow(grow(disk, ...P(p)), ...P([p[0], p[1], 0])); }
+  const put = labelPlacer(ctx, [[disk.x0, disk.y0, disk.x1, disk.y1]]);
   // The axes' names short (a phone has no room): their unit, the disk's radius, is in the note.
-  const [xlx, xly] = P([0, -1.6, 0]), [ylx, yly] = P([1.62, 0, 0]);
-  ctx.fillText("x", xlx, xly); ctx.fillText("y", ylx, yly);
+  put("x", P([0, -1.6, 0])); put("y", P([1.62, 0, 0]));
+  const xShown = xs.filter((x, i) => put(x, P([t.values[i], -1.3, 0])));
+  const yShown = xs.filter((y, i) => put(y, P([1.32, t.values[i], 0])));
   ctx.textBaseline = "alphabetic";
-  app.ticks.scene = { x: xs, y: xs.slice(), xLabel: "x", yLabel: "y" };
+  app.ticks.scene = { x: xShown, y: yShown, xLabel: "x", yLabel: "y" };
   const contact = (a, b) => [Math.cos(a) * Math.cos(b), Math.cos(a) * Math.sin(b), 0];
   // The contact point's path so far.
   const T = app.trails;
@@ -1617,8 +1626,6 @@ function drawTiltedDisk(ctx, w, h) {
     ctx.strokeStyle = `rgba(40, 90, 200, ${0.1 + (0.7 * k) / T.length})`;
     line(contact(T[k - 1][0], T[k - 1][1]), contact(T[k][0], T[k][1]));
   }
-  const c = [0, 0, Math.sin(th)], er = [-Math.cos(th) * Math.cos(ph), -Math.cos(th) * Math.sin(ph), Math.sin(th)], et = [-Math.sin(ph), Math.cos(ph), 0];
-  const rim = (a) => [0, 1, 2].map((i) => c[i] + Math.cos(a) * er[i] + Math.sin(a) * et[i]);
   // Its shadow, straight below.
   ctx.fillStyle = "rgba(0, 0, 0, 0.08)"; ctx.beginPath();
   for (let k = 0; k <= 64; k++) { const p = rim((TAU * k) / 64); const [x, y] = P([p[0], p[1], 0]); k ? ctx.lineTo(x, y) : ctx.moveTo(x, y); }
@@ -1774,7 +1781,14 @@ function drawRolling(ctx, w, h) {
   const v = plotView(w, h, pad(box, 0.03), true, false);
   app.sceneView = v;
   const P = (p) => { const [x, y] = project3([p[0] - cx, p[1] - cy, p[2]], half, 0.6); return [v.X(x), v.Y(y)]; };
-  drawFloor(ctx, P, cx, cy, half);
+  // The body and its spin arrow stand over the floor: no tick label under them.
+  let body = null;
+  for (let k = 0; k < 36; k++) {
+    const a = (TAU * k) / 36;
+    for (const f of [shape.outline, ...shape.rings]) body = grow(body, ...P(world(f(a))));
+    body = grow(body, ...P([cm[0] + 1.2 * shape.size * Math.cos(a), cm[1] + 1.2 * shape.size * Math.sin(a), cm[2]]));
+  }
+  drawFloor(ctx, P, cx, cy, half, [[body.x0, body.y0, body.x1, body.y1]]);
   ctx.lineWidth = 1.2;
   // The rattleback's contact point rocks to and fro ~100 times a second: its whole path is a
   // dense tangle, so only its recent stretch is drawn, fading out (RATTLEBACK_PATH samples:

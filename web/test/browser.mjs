@@ -289,6 +289,28 @@ for (let [name, method] of systems) {
   console.log(`ok arrow names: ${count} names over ${draws.length} drawings of the tops, none on an arrow or another name`);
 }
 
+// A floor's tick labels never sit under the body standing on it (the tops, Euler's disk, the
+// rolling bodies): over a run, no label drawn meets the box of the body's drawing, and each
+// floor keeps labels on both edges.
+{
+  const bad = await page.evaluate((names) => {
+    const L = window.physicskitLab, out = [];
+    for (const n of names) {
+      L.select(n);
+      if (!["top_axis", "contact_spiral", "rolling"].includes(L.app.entry.presentation.drawing.kind)) continue;
+      for (let k = 0; k < 8; k++) {
+        L.runFrames(15);
+        const { avoid, drawn } = L.app.floorLabels, t = L.ticks().scene;
+        for (const d of drawn) for (const a of avoid) if (d.box[0] < a[2] && a[0] < d.box[2] && d.box[1] < a[3] && a[1] < d.box[3]) out.push(`${n}: ${d.text} under the body`);
+        if (!avoid.length || !t.x.length || !t.y.length) out.push(`${n}: floor ${JSON.stringify(t)}, body ${JSON.stringify(avoid)}`);
+      }
+    }
+    return out;
+  }, systems.map(([n]) => n));
+  for (const b of [...new Set(bad)]) fail(`floor labels: ${b}`);
+  console.log("ok floor labels: none under the tops, Euler's disk or the rolling bodies over their runs");
+}
+
 // After a drag the scene keeps its frame and grows to take in the new run, never shrinks: the
 // projectile dragged while falling (it keeps its momentum, so its new flight is short) is drawn
 // at the scale it had, and a drag that starts a longer flight widens the frame to hold it. Reset
