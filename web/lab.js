@@ -1421,7 +1421,12 @@ function drawChain(ctx, w, h, k) {
   for (let i = 0; i < n; i++) { ctx.beginPath(); ctx.arc(v.X(i + 1), v.Y(s[i]), r, 0, TAU); ctx.fill(); }
   ctx.restore(); ctx.restore();
   app.chainGeom = { v, top, amp, strip: false };
-  if (k !== "chain") return;
+  if (k !== "chain") {
+    // A chain at rest (its default start) has nothing to show until a site is moved.
+    const rest = Array.from(s).every((x) => x === 0);
+    sceneNote(`${n} sites: each one's ${unit === "rad" ? "angle" : "displacement"} against its place in the chain${rest ? ". All at rest: drag a site up or down to start a wave" : ""}.`);
+    return;
+  }
   // The masses on their springs, displacements to scale: a displacement of `amp` moves a
   // mass 0.3 of the spacing, so neighbours' centres stay 0.4 of it apart, and a mass is at
   // most 0.36 of it wide (at least 5 px), so neighbours do not overlap.
