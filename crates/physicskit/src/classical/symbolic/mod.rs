@@ -7,6 +7,7 @@ mod expr;
 mod expr_diff;
 mod expr_hamiltonian;
 mod expr_ode;
+mod hash_cons;
 mod tape;
 mod taylor_tape;
 mod trace;

@@ -20,11 +20,10 @@
 //! operations in the same order, so the results keep their bits; where Cranelift cannot
 //! compile, the tape stays interpreted. [`Tape::backend`] tells which runs.
 
-use std::collections::HashMap;
-
 use num_dual::{Dual64, DualNum};
 
 use super::expr::{Expr, Func, MAX_EXPR_DEPTH};
+use super::hash_cons::{HashCons, Keyed};
 use crate::classical::core::{Error, Result};
 use crate::classical::lagrangian::Scalar;
 
@@ -84,7 +83,9 @@ enum Val {
 /// Hash key of an operation (floats by their bits).
 type Key = (u8, u64, u64);
 
-impl Op {
+impl Keyed for Op {
+    type Key = Key;
+
     fn key(self) -> Key {
         let s = u64::from;
         match self {
@@ -108,7 +109,9 @@ impl Op {
             Op::Func(f, a) => (17 + f as u8, s(a), 0),
         }
     }
+}
 
+impl Op {
     /// The operation on registers `r`, operands read at `index & mask` (`r.len() - 1`, a
     /// power of two minus one: on a fixed-size array the compiler then drops the bounds
     /// checks).
@@ -180,20 +183,13 @@ struct Builder<'a> {
     n_first: usize,
     n_second: usize,
     params: &'a [f64],
-    ops: Vec<Op>,
-    seen: HashMap<Key, u32>,
+    ops: HashCons<Op>,
 }
 
 impl Builder<'_> {
     fn op(&mut self, op: Op) -> Val {
-        let key = op.key();
-        if let Some(&slot) = self.seen.get(&key) {
-            return Val::Slot(slot);
-        }
-        let slot = (self.n_first + self.n_second + 1 + self.ops.len()) as u32;
-        self.ops.push(op);
-        self.seen.insert(key, slot);
-        Val::Slot(slot)
+        let (i, _) = self.ops.intern(op);
+        Val::Slot((self.n_first + self.n_second + 1) as u32 + i)
     }
 
     fn binary(&mut self, kind: u8, a: Val, b: Val) -> Val {
@@ -350,14 +346,13 @@ impl Tape {
             n_first,
             n_second,
             params,
-            ops: Vec::new(),
-            seen: HashMap::new(),
+            ops: HashCons::new(Vec::new()),
         };
         let outputs = outputs
             .iter()
             .map(|e| b.output(e))
             .collect::<Result<Vec<_>>>()?;
-        let constants = b.ops.iter().filter_map(|op| match *op {
+        let constants = b.ops.items.iter().filter_map(|op| match *op {
             Op::AddC(_, c)
             | Op::MulC(_, c)
             | Op::SubC(_, c)
@@ -383,7 +378,7 @@ impl Tape {
         Ok(Self {
             n_first,
             n_second,
-            ops: b.ops,
+            ops: b.ops.items,
             outputs,
             jit: jit::Jit::default(),
         })

@@ -23,12 +23,11 @@
 //! A series that is undefined at the point (division by a zero value, a power or logarithm of
 //! zero) gives non-finite coefficients, which the stepper refuses with an error.
 
-use std::collections::HashMap;
-
 use super::expr::{Expr, ExprLagrangian, Func};
 use super::expr_diff::Var;
 use super::expr_hamiltonian::ExprHamiltonian;
 use super::expr_ode::ExprOde;
+use super::hash_cons::{HashCons, Keyed};
 use crate::classical::core::{Error, Result};
 use crate::classical::integrators::taylor::{TaylorField, MAX_ORDER};
 use crate::classical::integrators::HamiltonianSystem;
@@ -91,25 +90,29 @@ enum Node {
 /// Hash key of a node (floats by their bits).
 type Key = (u8, u32, u32, u64);
 
-fn key(node: Node) -> Key {
-    match node {
-        Node::State | Node::Time | Node::Partner => (0, 0, 0, 0),
-        Node::Add(a, b) => (1, a, b, 0),
-        Node::Sub(a, b) => (2, a, b, 0),
-        Node::Mul(a, b) => (3, a, b, 0),
-        Node::Div(a, b) => (4, a, b, 0),
-        Node::AddC(a, c) => (5, a, 0, c.to_bits()),
-        Node::CSub(c, a) => (6, a, 0, c.to_bits()),
-        Node::MulC(a, c) => (7, a, 0, c.to_bits()),
-        Node::CDiv(c, a) => (8, a, 0, c.to_bits()),
-        Node::Neg(a) => (9, a, 0, 0),
-        Node::Square(a) => (10, a, 0, 0),
-        Node::Sqrt(a) => (11, a, 0, 0),
-        Node::Powf(a, x) => (12, a, 0, x.to_bits()),
-        Node::Exp(a) => (13, a, 0, 0),
-        Node::Integral { a, d, sign, func } => (14 + func as u8, a, d, sign.to_bits()),
-        Node::SinCos(a, hyperbolic) => (40, a, u32::from(hyperbolic), 0),
-        Node::Abs(a) => (41, a, 0, 0),
+impl Keyed for Node {
+    type Key = Key;
+
+    fn key(self) -> Key {
+        match self {
+            Node::State | Node::Time | Node::Partner => (0, 0, 0, 0),
+            Node::Add(a, b) => (1, a, b, 0),
+            Node::Sub(a, b) => (2, a, b, 0),
+            Node::Mul(a, b) => (3, a, b, 0),
+            Node::Div(a, b) => (4, a, b, 0),
+            Node::AddC(a, c) => (5, a, 0, c.to_bits()),
+            Node::CSub(c, a) => (6, a, 0, c.to_bits()),
+            Node::MulC(a, c) => (7, a, 0, c.to_bits()),
+            Node::CDiv(c, a) => (8, a, 0, c.to_bits()),
+            Node::Neg(a) => (9, a, 0, 0),
+            Node::Square(a) => (10, a, 0, 0),
+            Node::Sqrt(a) => (11, a, 0, 0),
+            Node::Powf(a, x) => (12, a, 0, x.to_bits()),
+            Node::Exp(a) => (13, a, 0, 0),
+            Node::Integral { a, d, sign, func } => (14 + func as u8, a, d, sign.to_bits()),
+            Node::SinCos(a, hyperbolic) => (40, a, u32::from(hyperbolic), 0),
+            Node::Abs(a) => (41, a, 0, 0),
+        }
     }
 }
 
@@ -130,22 +133,15 @@ struct Builder<'a> {
     n_first: usize,
     n_second: usize,
     params: &'a [f64],
-    nodes: Vec<Node>,
-    seen: HashMap<Key, u32>,
+    nodes: HashCons<Node>,
 }
 
 impl Builder<'_> {
     fn node(&mut self, node: Node) -> u32 {
-        let k = key(node);
-        if let Some(&i) = self.seen.get(&k) {
-            return i;
+        let (i, new) = self.nodes.intern(node);
+        if let (Node::SinCos(..), true) = (node, new) {
+            self.nodes.items.push(Node::Partner);
         }
-        let i = self.nodes.len() as u32;
-        self.nodes.push(node);
-        if let Node::SinCos(..) = node {
-            self.nodes.push(Node::Partner);
-        }
-        self.seen.insert(k, i);
         i
     }
 
@@ -427,8 +423,7 @@ impl TaylorProgram {
             n_first,
             n_second,
             params,
-            nodes,
-            seen: HashMap::new(),
+            nodes: HashCons::new(nodes),
         };
         let outputs = outputs
             .iter()
@@ -436,7 +431,7 @@ impl TaylorProgram {
             .collect::<Result<Vec<_>>>()?;
         Ok(Self {
             dim,
-            nodes: builder.nodes,
+            nodes: builder.nodes.items,
             outputs,
             work: Vec::new(),
             jit: jit::Jit::default(),

@@ -175,54 +175,134 @@ impl Native {
     }
 
     fn compile(tape: &Tape, isa: Result<isa::Builder, String>) -> Option<Native> {
-        let isa = isa
-            .ok()?
-            .finish(settings::Flags::new(flag_builder()?))
-            .ok()?;
-        if tape.outputs.is_empty() || isa.pointer_bytes() != 8 {
+        if tape.outputs.is_empty() {
             return None;
         }
-        let call_conv = isa.default_call_conv();
-        let mut module = JITModule::new(JITBuilder::with_isa(isa, default_libcall_names()));
-        let pointer = module.target_config().pointer_type();
-        let mut signature = module.make_signature();
-        for ty in [pointer, pointer, types::F64, pointer] {
-            signature.params.push(AbiParam::new(ty));
-        }
-        signature.returns.push(AbiParam::new(types::F64));
-        let id = module
-            .declare_function("tape", Linkage::Local, &signature)
-            .ok()?;
-        let mut context = module.make_context();
-        context.func.signature = signature;
-        let mut builder_context = FunctionBuilderContext::new();
-        {
-            let mut b = FunctionBuilder::new(&mut context.func, &mut builder_context);
-            let block = b.create_block();
-            b.append_block_params_for_function_params(block);
-            b.switch_to_block(block);
-            b.seal_block(block);
-            let params = b.block_params(block).to_vec();
-            let mut emit = Emitter::new(b, tape, &params, call_conv, pointer);
-            for op in &tape.ops {
-                let v = emit.op(*op);
-                emit.slots.push(Some(v));
-            }
-            let last = emit.outputs(&tape.outputs, params[3]);
-            emit.b.ins().return_(&[last]);
-            emit.b.finalize();
-        }
-        module.define_function(id, &mut context).ok()?;
-        module.clear_context(&mut context);
-        module.finalize_definitions().ok()?;
-        let entry = entry_point(module.get_finalized_function(id));
+        let params = [Param::Pointer, Param::Pointer, Param::F64, Param::Pointer];
+        let (code, module) = compile_function(
+            isa.ok()?,
+            flag_builder()?,
+            &params,
+            true,
+            |b, params, shims| {
+                let mut emit = Emitter::new(b, shims, tape, params);
+                for op in &tape.ops {
+                    let v = emit.op(*op);
+                    emit.slots.push(Some(v));
+                }
+                vec![emit.outputs(&tape.outputs, params[3])]
+            },
+        )?;
         Some(Native {
-            entry,
+            entry: entry_point(code),
             n_first: tape.n_first,
             n_second: tape.n_second,
             n_outputs: tape.outputs.len(),
-            _module: OwnedModule::new(module),
+            _module: module,
         })
+    }
+}
+
+/// A parameter of a generated function.
+#[derive(Clone, Copy)]
+pub(in crate::classical::symbolic) enum Param {
+    /// A pointer (to `f64`s).
+    Pointer,
+    F64,
+}
+
+/// Compiles one function for the target `isa` with `flags`: parameters `params`, an `f64`
+/// result if `returns`, and a single block whose instructions `body` emits from the
+/// parameters' values, returning the values the function returns. The finalized code, and
+/// the module that owns it; `None` where Cranelift fails or the target's pointers are not
+/// 64-bit.
+pub(in crate::classical::symbolic) fn compile_function(
+    isa: isa::Builder,
+    flags: settings::Builder,
+    params: &[Param],
+    returns: bool,
+    body: impl FnOnce(&mut FunctionBuilder<'_>, &[Value], &mut Shims) -> Vec<Value>,
+) -> Option<(*const u8, OwnedModule)> {
+    let isa = isa.finish(settings::Flags::new(flags)).ok()?;
+    if isa.pointer_bytes() != 8 {
+        return None;
+    }
+    let call_conv = isa.default_call_conv();
+    let mut module = JITModule::new(JITBuilder::with_isa(isa, default_libcall_names()));
+    let pointer = module.target_config().pointer_type();
+    let mut signature = module.make_signature();
+    for param in params {
+        let ty = match param {
+            Param::Pointer => pointer,
+            Param::F64 => types::F64,
+        };
+        signature.params.push(AbiParam::new(ty));
+    }
+    if returns {
+        signature.returns.push(AbiParam::new(types::F64));
+    }
+    let id = module
+        .declare_function("generated", Linkage::Local, &signature)
+        .ok()?;
+    let mut context = module.make_context();
+    context.func.signature = signature;
+    let mut builder_context = FunctionBuilderContext::new();
+    {
+        let mut b = FunctionBuilder::new(&mut context.func, &mut builder_context);
+        let block = b.create_block();
+        b.append_block_params_for_function_params(block);
+        b.switch_to_block(block);
+        b.seal_block(block);
+        let values = b.block_params(block).to_vec();
+        let mut shims = Shims {
+            pointer,
+            call_conv,
+            signatures: Vec::new(),
+        };
+        let results = body(&mut b, &values, &mut shims);
+        b.ins().return_(&results);
+        b.finalize();
+    }
+    module.define_function(id, &mut context).ok()?;
+    module.clear_context(&mut context);
+    module.finalize_definitions().ok()?;
+    let code = module.get_finalized_function(id);
+    Some((code, OwnedModule::new(module)))
+}
+
+/// Calls of `extern "C"` shims (plain Rust functions of `f64` and `i32` arguments returning an
+/// `f64`) from generated code, each signature imported once.
+pub(in crate::classical::symbolic) struct Shims {
+    pointer: types::Type,
+    call_conv: CallConv,
+    signatures: Vec<(Vec<types::Type>, SigRef)>,
+}
+
+impl Shims {
+    /// A call of the shim at `address` on `args` (its parameters' types are theirs).
+    pub(in crate::classical::symbolic) fn call(
+        &mut self,
+        b: &mut FunctionBuilder<'_>,
+        address: usize,
+        args: &[Value],
+    ) -> Value {
+        let kinds: Vec<types::Type> = args.iter().map(|&v| b.func.dfg.value_type(v)).collect();
+        let sig = match self.signatures.iter().find(|(k, _)| *k == kinds) {
+            Some(&(_, sig)) => sig,
+            None => {
+                let mut s = Signature::new(self.call_conv);
+                for &ty in &kinds {
+                    s.params.push(AbiParam::new(ty));
+                }
+                s.returns.push(AbiParam::new(types::F64));
+                let sig = b.import_signature(s);
+                self.signatures.push((kinds, sig));
+                sig
+            }
+        };
+        let callee = b.ins().iconst(self.pointer, address as i64);
+        let call = b.ins().call_indirect(sig, callee, args);
+        b.inst_results(call)[0]
     }
 }
 
@@ -262,33 +342,27 @@ const FUNCS: [extern "C" fn(f64) -> f64; 13] = [
 
 /// Emits a tape's operations into one block.
 struct Emitter<'a, 'b> {
-    b: FunctionBuilder<'b>,
+    b: &'a mut FunctionBuilder<'b>,
+    shims: &'a mut Shims,
     tape: &'a Tape,
     params: &'a [Value],
     /// A value per slot: inputs loaded on first use, then one per operation.
     slots: Vec<Option<Value>>,
-    pointer: types::Type,
-    call_conv: CallConv,
-    /// `f64 -> f64`, `(f64, i32) -> f64`, `(f64, f64) -> f64`, imported on first use.
-    signatures: [Option<SigRef>; 3],
 }
 
 impl<'a, 'b> Emitter<'a, 'b> {
     fn new(
-        b: FunctionBuilder<'b>,
+        b: &'a mut FunctionBuilder<'b>,
+        shims: &'a mut Shims,
         tape: &'a Tape,
         params: &'a [Value],
-        call_conv: CallConv,
-        pointer: types::Type,
     ) -> Self {
         Self {
             b,
+            shims,
             tape,
             params,
             slots: vec![None; tape.n_inputs()],
-            pointer,
-            call_conv,
-            signatures: [None; 3],
         }
     }
 
@@ -319,26 +393,8 @@ impl<'a, 'b> Emitter<'a, 'b> {
         self.b.ins().f64const(c)
     }
 
-    fn call(&mut self, kind: usize, address: usize, args: &[Value]) -> Value {
-        let sig = match self.signatures[kind] {
-            Some(sig) => sig,
-            None => {
-                let mut s = Signature::new(self.call_conv);
-                s.params.push(AbiParam::new(types::F64));
-                match kind {
-                    1 => s.params.push(AbiParam::new(types::I32)),
-                    2 => s.params.push(AbiParam::new(types::F64)),
-                    _ => {}
-                }
-                s.returns.push(AbiParam::new(types::F64));
-                let sig = self.b.import_signature(s);
-                self.signatures[kind] = Some(sig);
-                sig
-            }
-        };
-        let callee = self.b.ins().iconst(self.pointer, address as i64);
-        let call = self.b.ins().call_indirect(sig, callee, args);
-        self.b.inst_results(call)[0]
+    fn call(&mut self, address: usize, args: &[Value]) -> Value {
+        self.shims.call(self.b, address, args)
     }
 
     /// The operation, on operands in the order [`Op::apply`] has them.
@@ -368,14 +424,14 @@ impl<'a, 'b> Emitter<'a, 'b> {
             Op::Mul(..) | Op::MulC(..) | Op::Square(_) => self.b.ins().fmul(x, y),
             Op::Div(..) | Op::DivC(..) | Op::CDiv(..) => self.b.ins().fdiv(x, y),
             Op::Neg(_) => self.b.ins().fneg(x),
-            Op::Powi(..) => self.call(1, powi as *const () as usize, &[x, y]),
-            Op::Powf(..) => self.call(2, powf as *const () as usize, &[x, y]),
+            Op::Powi(..) => self.call(powi as *const () as usize, &[x, y]),
+            Op::Powf(..) => self.call(powf as *const () as usize, &[x, y]),
             Op::Pow(..) | Op::PowC(..) | Op::CPow(..) => {
-                self.call(2, pow as *const () as usize, &[x, y])
+                self.call(pow as *const () as usize, &[x, y])
             }
             Op::Func(Func::Sqrt, _) => self.b.ins().sqrt(x),
             Op::Func(Func::Abs, _) => self.b.ins().fabs(x),
-            Op::Func(f, _) => self.call(0, FUNCS[f as usize] as usize, &[x]),
+            Op::Func(f, _) => self.call(FUNCS[f as usize] as usize, &[x]),
         }
     }
 

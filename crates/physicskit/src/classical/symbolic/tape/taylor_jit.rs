@@ -19,22 +19,22 @@
 //! The code of an order is compiled once, by the expansion that comes after
 //! [`TaylorProgram::COMPILE_AFTER`] interpreted ones (or by
 //! [`TaylorProgram::compile_native`](super::TaylorProgram::compile_native)); if compilation
-//! fails the recurrences stay interpreted. The code lives in a [`JITModule`] shared by the
+//! fails the recurrences stay interpreted. The code lives in a
+//! [`JITModule`](cranelift_jit::JITModule) shared by the
 //! program's clones behind an `Arc` and freed with the last of them.
 
 use std::sync::atomic::{AtomicU32, Ordering};
 use std::sync::{Arc, OnceLock};
 
-use cranelift_codegen::ir::{types, AbiParam, InstBuilder, MemFlags, SigRef, Signature, Value};
-use cranelift_codegen::isa::CallConv;
-use cranelift_codegen::settings::{self, Configurable};
-use cranelift_frontend::{FunctionBuilder, FunctionBuilderContext};
-use cranelift_jit::{JITBuilder, JITModule};
-use cranelift_module::{default_libcall_names, Linkage, Module};
+use cranelift_codegen::ir::{types, InstBuilder, MemFlags, Value};
+use cranelift_codegen::settings::Configurable;
+use cranelift_frontend::FunctionBuilder;
 
 use super::{func_value, powf_weight, Node, TaylorProgram, Val};
 use crate::classical::integrators::taylor::MAX_ORDER;
-use crate::classical::symbolic::tape::jit::{flag_builder, OwnedModule};
+use crate::classical::symbolic::tape::jit::{
+    compile_function, flag_builder, OwnedModule, Param, Shims,
+};
 use crate::classical::symbolic::Func;
 
 /// The compiled function: the work array.
@@ -133,51 +133,22 @@ impl Native {
         // Cranelift's samples in a profile of the comparison benchmark) and would find only
         // what the bit-for-bit tests against the interpreter find.
         flags.set("enable_verifier", "false").ok()?;
-        let isa = cranelift_native::builder()
-            .ok()?
-            .finish(settings::Flags::new(flags))
-            .ok()?;
-        if isa.pointer_bytes() != 8 {
-            return None;
-        }
-        let call_conv = isa.default_call_conv();
-        let mut module = JITModule::new(JITBuilder::with_isa(isa, default_libcall_names()));
-        let pointer = module.target_config().pointer_type();
-        let mut signature = module.make_signature();
-        signature.params.push(AbiParam::new(pointer));
-        let id = module
-            .declare_function("taylor", Linkage::Local, &signature)
-            .ok()?;
-        let mut context = module.make_context();
-        context.func.signature = signature;
-        let mut builder_context = FunctionBuilderContext::new();
-        {
-            let mut b = FunctionBuilder::new(&mut context.func, &mut builder_context);
-            let block = b.create_block();
-            b.append_block_params_for_function_params(block);
-            b.switch_to_block(block);
-            b.seal_block(block);
-            let w = b.block_params(block)[0];
-            let mut emit = Emitter {
-                b,
-                w,
-                stride: order + 1,
-                pointer,
-                call_conv,
-                signatures: [None; 2],
-            };
-            emit.recurrences(nodes, outputs, order);
-            emit.b.ins().return_(&[]);
-            emit.b.finalize();
-        }
-        module.define_function(id, &mut context).ok()?;
-        module.clear_context(&mut context);
-        module.finalize_definitions().ok()?;
-        let entry = entry_point(module.get_finalized_function(id));
+        let isa = cranelift_native::builder().ok()?;
+        let (code, module) =
+            compile_function(isa, flags, &[Param::Pointer], false, |b, params, shims| {
+                let mut emit = Emitter {
+                    b,
+                    shims,
+                    w: params[0],
+                    stride: order + 1,
+                };
+                emit.recurrences(nodes, outputs, order);
+                Vec::new()
+            })?;
         Some(Native {
-            entry,
+            entry: entry_point(code),
             len: nodes.len() * (order + 1),
-            _module: OwnedModule::new(module),
+            _module: module,
         })
     }
 }
@@ -220,18 +191,15 @@ extern "C" fn integral<const F: usize>(x: f64) -> f64 {
 }
 
 /// Emits a program's recurrences into one block.
-struct Emitter<'b> {
-    b: FunctionBuilder<'b>,
+struct Emitter<'a, 'b> {
+    b: &'a mut FunctionBuilder<'b>,
+    shims: &'a mut Shims,
     /// The work array.
     w: Value,
     stride: usize,
-    pointer: types::Type,
-    call_conv: CallConv,
-    /// `f64 -> f64` and `(f64, f64) -> f64`, imported on first use.
-    signatures: [Option<SigRef>; 2],
 }
 
-impl Emitter<'_> {
+impl Emitter<'_, '_> {
     /// Coefficient `j` of node `n`.
     fn ld(&mut self, n: usize, j: usize) -> Value {
         let offset = (8 * (n * self.stride + j)) as i32;
@@ -272,26 +240,9 @@ impl Emitter<'_> {
         self.b.ins().fmul(c, x)
     }
 
-    /// A call of the shim at `address` (`f64 -> f64` with one argument, `(f64, f64) -> f64`
-    /// with two).
+    /// A call of the shim at `address`.
     fn call(&mut self, address: usize, args: &[Value]) -> Value {
-        let kind = args.len() - 1;
-        let sig = match self.signatures[kind] {
-            Some(sig) => sig,
-            None => {
-                let mut s = Signature::new(self.call_conv);
-                for _ in args {
-                    s.params.push(AbiParam::new(types::F64));
-                }
-                s.returns.push(AbiParam::new(types::F64));
-                let sig = self.b.import_signature(s);
-                self.signatures[kind] = Some(sig);
-                sig
-            }
-        };
-        let callee = self.b.ins().iconst(self.pointer, address as i64);
-        let call = self.b.ins().call_indirect(sig, callee, args);
-        self.b.inst_results(call)[0]
+        self.shims.call(self.b, address, args)
     }
 
     /// `Σ_{j < n} a_j b_{n-1-j}` from `j = 0` (the interpreter's `cauchy` of the slices
