@@ -166,8 +166,12 @@ function plainLabel(text) { return { runs: [{ text, sub: false }], text }; }
 function presentation() { return app.entry.presentation; }
 function timeUnit() { return presentation().time_unit === "s" ? "s" : ""; }
 function timeLabel() { return label("t", timeUnit()); }
-// Drawing positions are in metres where the system's lengths are.
-function lengthUnit() { return app.entry.params.some((p) => p.unit_text === "m") ? "m" : ""; }
+// Drawing positions are in metres where the system's lengths are; a body on an orbit is drawn
+// at its coordinates, in their unit (Kepler's "length").
+function lengthUnit() {
+  if (app.entry.params.some((p) => p.unit_text === "m")) return "m";
+  return presentation().drawing.kind === "orbit" ? stateUnits()[0] ?? "" : "";
+}
 
 // The state's layout: `k` coordinates, then (for a Hamiltonian, a Lagrangian, or an ODE whose
 // symbols name half its entries) their momenta or velocities.
@@ -1424,7 +1428,7 @@ function drawChain(ctx, w, h, k) {
   if (k !== "chain") {
     // A chain at rest (its default start) has nothing to show until a site is moved.
     const rest = Array.from(s).every((x) => x === 0);
-    sceneNote(`${n} sites: each one's ${unit === "rad" ? "angle" : "displacement"} against its place in the chain${rest ? ". All at rest: drag a site up or down to start a wave" : ""}.`);
+    sceneNote(`${n} sites: each one's ${texText(sym)} against its place in the chain${rest ? ". All at rest: drag a site up or down to start a wave" : ""}.`);
     return;
   }
   // The masses on their springs, displacements to scale: a displacement of `amp` moves a
