@@ -16,4 +16,5 @@ mod sizes;
 mod swarm;
 mod symmetric_top;
 mod toda;
+mod triple_pendulum;
 mod validation;
