@@ -1,4 +1,5 @@
-"""Lagrangian systems: the double pendulum, the bead on a rotating hoop, coupled oscillators.
+"""Lagrangian systems: the double and triple pendulums, the bead on a rotating hoop, coupled
+oscillators, the elastic pendulum.
 
 Their equations of motion are derived natively by the Rust Lagrangian engine (automatic
 differentiation of L), including the canonical form used by ``implicit_midpoint``.
@@ -14,7 +15,10 @@ from .._native import as_vector
 from ..core.base_system import LagrangianSystem
 from ._native_base import adopt, build, energy as _energy, keep
 
-__all__ = ["DoublePendulum", "BeadOnRotatingHoop", "CoupledOscillators", "ElasticPendulum"]
+__all__ = [
+    "DoublePendulum", "TriplePendulum", "BeadOnRotatingHoop", "CoupledOscillators",
+    "ElasticPendulum",
+]
 
 
 class DoublePendulum(LagrangianSystem):
@@ -44,6 +48,40 @@ class DoublePendulum(LagrangianSystem):
 
     def positions(self, q=None) -> np.ndarray:
         """Bob positions ``(x1, y1, x2, y2)`` for angles ``q`` (default: current angles)."""
+        q = self.q if q is None else q
+        return self._native.positions(as_vector("q", q, self.ndof))
+
+
+class TriplePendulum(LagrangianSystem):
+    """Planar triple pendulum (three point masses on massless rods hanging one below the
+    other from a fixed pivot); ``q = (theta1, theta2, theta3)`` from the downward vertical.
+    Chaotic when released from high up, and non-separable in canonical form.
+
+    Parameters
+    ----------
+    theta0, thetadot0 : array-like, shape (3,)
+        Initial angles and angular velocities.
+    m1, m2, m3 : float
+        Bob masses, top to bottom.
+    l1, l2, l3 : float
+        Rod lengths, top to bottom.
+    g : float
+        Gravitational acceleration.
+    """
+
+    def __init__(self, theta0, thetadot0, m1=1.0, m2=1.0, m3=1.0, l1=1.0, l2=1.0, l3=1.0,
+                 g=9.81):
+        v = adopt(self, build("triple-pendulum", theta0=theta0, thetadot0=thetadot0, m1=m1,
+                              m2=m2, m3=m3, l1=l1, l2=l2, l3=l3, g=g))
+        keep(self, **{n: v[n] for n in ("m1", "m2", "m3", "l1", "l2", "l3", "g")})
+
+    def energy(self, state: Optional[np.ndarray] = None) -> float:
+        """Return ``T + V`` of ``state`` (default: ``self.state``)."""
+        return _energy(self, state)
+
+    def positions(self, q=None) -> np.ndarray:
+        """Bob positions ``(x1, y1, x2, y2, x3, y3)`` for angles ``q`` (default: current
+        angles); pivot at the origin, ``y`` up."""
         q = self.q if q is None else q
         return self._native.positions(as_vector("q", q, self.ndof))
 
