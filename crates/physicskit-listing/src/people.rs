@@ -38,6 +38,7 @@ const GREEK: &[(&str, &str)] = &[
     ("gamma", "γ"),
     ("delta", "δ"),
     ("epsilon", "ε"),
+    ("eta", "η"),
     ("eps", "ε"),
     ("kappa", "κ"),
     ("lambda", "λ"),
@@ -63,7 +64,15 @@ const NAMES: &[(&str, &str)] = &[
 ];
 
 /// Names the rules below would leave as words that have a symbol (`_{..}`: an index).
-pub const SYMBOLS: &[(&str, &str)] = &[("omega_earth", "Ω_{⊕}"), ("latitude_deg", "latitude")];
+pub const SYMBOLS: &[(&str, &str)] = &[
+    ("omega_earth", "Ω_{⊕}"),
+    ("g_over_l", "g/l"),
+    ("dq", "Δq"),
+    ("dp", "Δp"),
+    ("angles0", "(φ, θ, ψ)₀"),
+    ("angledots0", "(φ̇, θ̇, ψ̇)₀"),
+    ("quat0", "quaternion₀"),
+];
 
 /// Words of a note clause that make it a remark for programmers or command-line users.
 const CODE_REMARKS: &[&str] = &["as in the spec", "p holds", "column"];
@@ -124,15 +133,19 @@ fn subscripts(s: &str) -> Option<String> {
     s.chars().map(subscript).collect()
 }
 
-/// One identifier as a symbol: `theta` θ, `thetadot0` θ̇₀, `m1` m₁, `angles0` angles₀,
-/// `p_x` p_x and `omega_c` ω_c (a short index stays an index), `decay_rate` decay rate,
-/// other words unchanged.
+/// One identifier as a symbol: `theta` θ, `thetadot0` θ̇₀, `m1` m₁, `n0` n₀,
+/// `p_x` p_x, `omega_c` ω_c and `c_eps` c_ε (a short or Greek index stays an index),
+/// `angle_deg` angle (the unit says degrees), `decay_rate` decay rate, other words unchanged.
 pub fn symbol(word: &str) -> String {
     if let Some(&(_, sym)) = SYMBOLS.iter().find(|(w, _)| *w == word) {
         return sym.to_string();
     }
+    if let Some(stem) = word.strip_suffix("_deg").filter(|s| !s.is_empty()) {
+        return symbol(stem);
+    }
     if let Some((base, rest)) = word.split_once('_') {
-        if !rest.contains('_') && rest.len() <= 2 && !base.is_empty() {
+        let index = rest.len() <= 2 || greek(rest).is_some();
+        if !rest.contains('_') && index && !base.is_empty() {
             return format!("{}_{}", symbol(base), symbol(rest));
         }
         return word.split('_').map(symbol).collect::<Vec<_>>().join(" ");
@@ -193,7 +206,7 @@ fn indices(text: &str) -> String {
             let symbol = word_len == 1 && (start == 0 || !is_letter(chars[start - 1]));
             let index_end = chars[i + 1..]
                 .iter()
-                .position(|&c| !c.is_ascii_alphanumeric())
+                .position(|&c| !(c.is_ascii_digit() || is_letter(c)))
                 .map_or(chars.len(), |k| i + 1 + k);
             let next = chars.get(i + 1).copied();
             if symbol && next == Some('{') {

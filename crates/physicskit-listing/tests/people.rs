@@ -101,6 +101,11 @@ fn the_rules() {
     assert_eq!(people::powers("√(a/b) e^(−b r/2)"), "√(a/b) exp(−b r/2)");
     assert_eq!(people::label("omega_earth"), "Ω_{⊕}");
     assert_eq!(people::label("latitude_deg"), "latitude");
+    assert_eq!(people::label("angle_deg"), "angle");
+    assert_eq!(people::label("c_eps"), "c_{ε}");
+    assert_eq!(people::label("eta"), "η");
+    assert_eq!(people::label("g_over_l"), "g/l");
+    assert_eq!(people::label("angledots0"), "(φ̇, θ̇, ψ̇)₀");
     assert_eq!(
         people::powers("implicit_midpoint keeps V_eff, θ_min, q_{i+1} and Ω_⊕ t"),
         "implicit midpoint keeps V_{eff}, θ_{min}, q_{i+1} and Ω_{⊕} t"
