@@ -30,5 +30,6 @@ pub mod text;
 
 pub use error::{Result, VizError};
 pub use gallery::{
-    demo_count, render_demo, render_gallery, Demo, GalleryFile, GalleryReport, LabLink, LabSetup,
+    demo_count, explanations, render_demo, render_gallery, Demo, Explanation, GalleryFile,
+    GalleryReport, LabLink, LabSetup, Physics,
 };

@@ -80,8 +80,9 @@ fn lab_captions_are_the_gallery_paragraphs(demos: &[physicskit_viz::Demo], html:
         }
     }
     for d in demos {
-        let explanation =
-            physicskit::classical::explanations::for_demo(&d.slug).expect("an explanation");
+        let explanation = physicskit_viz::gallery::explanations()
+            .find(|e| e.slug == d.slug)
+            .expect("an explanation");
         if explanation.system().is_none() {
             continue; // an analysis across systems, captioned by their own demonstrations
         }

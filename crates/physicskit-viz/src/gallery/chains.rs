@@ -7,15 +7,25 @@ use physicskit::classical::systems::{
 use physicskit::classical::{DynamicalSystem, HamiltonianSystem, LagrangianSystem, Method};
 
 use super::common::{column, nonempty};
-use super::{Ctx, Demo};
+use super::{Ctx, Demo, Explanation, Physics};
 use crate::error::Result;
 use crate::figure::{color, save_panel, save_svg, Legend, Mark, Panel, Series};
 
 /// Sites of the chain whose mode shapes are drawn.
 const N: usize = 8;
 
+/// The paragraph under this demonstration: the physics, then what its figures show.
+pub(super) const EXPLANATION: Explanation = Explanation {
+    slug: "chains",
+    text: Physics::OfSystem(&physicskit::classical::systems::HARMONIC_CHAIN_ENTRY),
+    figure: "The first figure shows the shapes of the four lowest modes of an 8-mass chain, each \
+         checked by simulation (the dots are the displacements half a period later, flipped \
+         in sign as a standing wave must be). The second shows beats in a 12-mass chain \
+         started in a superposition of its two highest modes (ω₁₁ and ω₁₂).",
+};
+
 pub(crate) fn render(ctx: &Ctx) -> Result<Demo> {
-    let mut d = ctx.demo("chains", "Harmonic chain and coupled oscillators");
+    let mut d = ctx.demo("Harmonic chain and coupled oscillators");
     // Mode shapes from the chain's own modal transform, verified by integration.
     let probe = HarmonicChain::new(&[0.0; N], &[0.0; N], 1.0, 1.0)?;
     let omega = probe.normal_mode_frequencies().to_vec();

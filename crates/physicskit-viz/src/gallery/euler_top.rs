@@ -7,7 +7,7 @@ use physicskit::classical::{DynamicalSystem, Method, OdeSystem};
 use plotters::prelude::*;
 
 use super::common::{frame_caption, project, stride, ycol};
-use super::{Ctx, Demo};
+use super::{Ctx, Demo, Explanation, Physics};
 use crate::animation::save_gif;
 use crate::error::{DrawContext, Result};
 use crate::figure::{color, save_panel, Legend, Panel, Series};
@@ -18,11 +18,15 @@ const OMEGA0: [f64; 3] = [0.01, 1.0, 0.01];
 const AZ: f64 = 0.7;
 const EL: f64 = 0.35;
 
+/// The paragraph under this demonstration: the physics, then what its figures show.
+pub(super) const EXPLANATION: Explanation = Explanation {
+    slug: "euler-top",
+    text: Physics::OfSystem(&physicskit::classical::systems::EULER_TOP_ENTRY),
+    figure: "I₁ = 1, I₂ = 2, I₃ = 3 (a flat plate), spun almost exactly about axis 2.",
+};
+
 pub(crate) fn render(ctx: &Ctx) -> Result<Demo> {
-    let mut d = ctx.demo(
-        "euler-top",
-        "Euler top: the tennis-racket (Dzhanibekov) effect",
-    );
+    let mut d = ctx.demo("Euler top: the tennis-racket (Dzhanibekov) effect");
     let params = EulerTopParams::default();
     let dt = 0.01;
     let t1 = ctx.pick(60.0, 120.0);

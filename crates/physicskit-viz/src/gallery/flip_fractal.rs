@@ -14,12 +14,33 @@ use physicskit::classical::Method;
 use plotters::prelude::BLACK;
 
 use super::double_pendulum_plane::{axis, save_with_no_flip_contour};
-use super::{Ctx, Demo};
+use super::{Ctx, Demo, Explanation, Physics};
 use crate::error::Result;
 use crate::heatmap::HeatMap;
 
+/// The paragraph under this demonstration: the physics, then what its figures show.
+pub(super) const EXPLANATION: Explanation = Explanation {
+    slug: "flip-fractal",
+    text: Physics::Own(
+        "Each pixel is one double pendulum released from rest at the angles (θ₁, θ₂); its \
+         colour is the time until either arm first swings over the top (|θ| > π), located \
+         inside the integration step. Energy alone forbids a flip where the energy at rest is \
+         at or below the flip energy, that of the lowest state with an arm upside down (for \
+         point bobs min(g₁ − |g₂|, g₂ − |g₁|), with g₁ = (m₁ + m₂) g l₁ and g₂ = m₂ g l₂: the \
+         library's DoublePendulumParams::flip_energy). No member inside the black curve can \
+         flip; those and the members that did not flip within the run are drawn at the top of \
+         the scale. The boundaries between flip times are fractal (Heyl 2008): nearby starts \
+         that straddle them flip at very different times, the fingerprint of chaos. Computed as \
+         one ensemble on all cores (physicskit::classical::ensemble), bit-identical for any \
+         number of threads.",
+    ),
+    figure: "Equal masses and arms (1 kg, 1 m, g = 9.81 m/s²), for which the curve is 2 cos \
+         θ₁ + cos θ₂ = 1 (Heyl's 3 cos θ₁ + cos θ₂ = 2 is for uniform rods); 240 × 240 starts \
+         run for 30 s with rk4 at dt = 0.01 s; times in units of √(l/g).",
+};
+
 pub(crate) fn render(ctx: &Ctx) -> Result<Demo> {
-    let mut d = ctx.demo("flip-fractal", "Double pendulum: the flip-time fractal");
+    let mut d = ctx.demo("Double pendulum: the flip-time fractal");
     let n = ctx.pick(64, 240);
     let t_max = ctx.pick(10.0, 30.0);
     let theta = axis(n);

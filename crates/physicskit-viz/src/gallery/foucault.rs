@@ -7,7 +7,7 @@ use physicskit::classical::systems::{FoucaultParams, FoucaultPendulum};
 use physicskit::classical::{DynamicalSystem, Method, OdeSystem};
 
 use super::common::{stride, ycol};
-use super::{Ctx, Demo};
+use super::{Ctx, Demo, Explanation, Physics};
 use crate::error::Result;
 use crate::figure::{color, save_svg, Legend, Mark, Panel, Series};
 
@@ -50,8 +50,17 @@ fn slope(pts: &[(f64, f64)]) -> f64 {
     sxy / sxx
 }
 
+/// The paragraph under this demonstration: the physics, then what its figures show.
+pub(super) const EXPLANATION: Explanation = Explanation {
+    slug: "foucault",
+    text: Physics::OfSystem(&physicskit::classical::systems::FOUCAULT_ENTRY),
+    figure: "A 67 m pendulum (g = 9.81 m/s²) released at rest 3 m east of the vertical; \
+         implicit midpoint at dt = 0.05 s. Left, Earth's rate is raised so that the plane turns \
+         once in 40 swings; right, the Panthéon's latitude 48.85° N and Earth's sidereal rate.",
+};
+
 pub(crate) fn render(ctx: &Ctx) -> Result<Demo> {
-    let mut d = ctx.demo("foucault", "Foucault pendulum: the swing plane turning");
+    let mut d = ctx.demo("Foucault pendulum: the swing plane turning");
     let pantheon = FoucaultParams::default();
     let q0 = [AMPLITUDE, 0.0];
     let v0 = [0.0, 0.0];

@@ -5,7 +5,7 @@ use physicskit::classical::systems::{FPUTChain, NormalModes};
 use physicskit::classical::{DynamicalSystem, HamiltonianSystem, Method};
 
 use super::common::stride;
-use super::{Ctx, Demo};
+use super::{Ctx, Demo, Explanation, Physics};
 use crate::error::Result;
 use crate::figure::{color, save_panel, Legend, Panel, Series};
 
@@ -14,8 +14,15 @@ const N: usize = 32;
 const BETA: f64 = 1.0;
 const AMPLITUDE: f64 = 3.0;
 
+/// The paragraph under this demonstration: the physics, then what its figures show.
+pub(super) const EXPLANATION: Explanation = Explanation {
+    slug: "fput",
+    text: Physics::OfSystem(&physicskit::classical::systems::FPUT_ENTRY),
+    figure: "32 masses; the figure follows the energies of the lowest modes.",
+};
+
 pub(crate) fn render(ctx: &Ctx) -> Result<Demo> {
-    let mut d = ctx.demo("fput", "Fermi–Pasta–Ulam–Tsingou recurrence");
+    let mut d = ctx.demo("Fermi–Pasta–Ulam–Tsingou recurrence");
     let dt = 0.05;
     let t1 = ctx.pick(10000.0, 20000.0);
     let (m, k, mode) = (1.0, 1.0, 1);

@@ -7,7 +7,7 @@ use physicskit::classical::systems::{HeavySymmetricTop, SymmetricTopParams};
 use physicskit::classical::{DynamicalSystem, LagrangianSystem, Method};
 
 use super::common::{column, nonempty};
-use super::{Ctx, Demo};
+use super::{Ctx, Demo, Explanation, Physics};
 use crate::error::Result;
 use crate::figure::{color, save_svg, Legend, Mark, Panel, Series};
 
@@ -17,8 +17,16 @@ const THETA0: f64 = 0.8;
 const PHIDOT0: f64 = -1.5;
 const PSIDOT0: f64 = 30.0;
 
+/// The paragraph under this demonstration: the physics, then what its figures show.
+pub(super) const EXPLANATION: Explanation = Explanation {
+    slug: "heavy-top",
+    text: Physics::OfSystem(&physicskit::classical::systems::HEAVY_TOP_ENTRY),
+    figure: "I₁ = 1, I₃ = 0.5 kg m², M g l = 9.81 J, started with a small backward precession: \
+         the tip draws loops.",
+};
+
 pub(crate) fn render(ctx: &Ctx) -> Result<Demo> {
-    let mut d = ctx.demo("heavy-top", "Heavy symmetric top: precession and nutation");
+    let mut d = ctx.demo("Heavy symmetric top: precession and nutation");
     let params = SymmetricTopParams::default();
     let t1 = ctx.pick(6.0, 12.0);
     let mut top = HeavySymmetricTop::new(&[0.0, THETA0, 0.0], &[PHIDOT0, 0.0, PSIDOT0], params)?;

@@ -8,7 +8,7 @@ use physicskit::classical::systems::HenonHeilesSystem;
 use physicskit::classical::{Error, Method};
 
 use super::henon_heiles_starts::SectionStarts;
-use super::{Ctx, Demo};
+use super::{Ctx, Demo, Explanation, Physics};
 use crate::error::Result;
 use crate::figure::{ramp, save_svg, Legend, Mark, Panel, Series};
 
@@ -26,8 +26,16 @@ fn orbit(y0: [f64; 4], run: &SectionRun, section: &Section) -> Result<Option<Vec
     }
 }
 
+/// The paragraph under this demonstration: the physics, then what its figures show.
+pub(super) const EXPLANATION: Explanation = Explanation {
+    slug: "henon-heiles",
+    text: Physics::OfSystem(&physicskit::classical::systems::HENON_HEILES_ENTRY),
+    figure: "Each colour is one orbit; the three panels are at E = 1/12 (almost everything \
+         regular), E = 1/8 (islands in a chaotic sea) and the saddles' energy.",
+};
+
 pub(crate) fn render(ctx: &Ctx) -> Result<Demo> {
-    let mut d = ctx.demo("henon-heiles", "Hénon–Heiles: KAM tori breaking up");
+    let mut d = ctx.demo("Hénon–Heiles: KAM tori breaking up");
     let section = Section::new(1, 0.0, Direction::Increasing)?;
     let crossings = ctx.pick(250, 900);
     let n_orbits = ctx.pick(12, 30);

@@ -6,7 +6,7 @@ use physicskit::classical::systems::{BeadOnRotatingHoop, HoopBranch, HoopParams}
 use physicskit::classical::{DynamicalSystem, LagrangianSystem, Method};
 
 use super::common::{column, nonempty};
-use super::{Ctx, Demo};
+use super::{Ctx, Demo, Explanation, Physics};
 use crate::error::Result;
 use crate::figure::{color, ramp, save_svg, Legend, Mark, Panel, Series};
 
@@ -90,8 +90,16 @@ pub(super) fn pitchfork_panel(params0: HoopParams) -> Panel {
     panel.y_range(-200.0, 200.0).legend(Legend::Auto)
 }
 
+/// The paragraph under this demonstration: the physics, then what its figures show.
+pub(super) const EXPLANATION: Explanation = Explanation {
+    slug: "hoop",
+    text: Physics::OfSystem(&physicskit::classical::systems::HOOP_ENTRY),
+    figure: "R = 1 m, g = 9.81 m/s², ω up to 2.5 ω_c; the phase portraits are at ω = 0.7 ω_c \
+         and 1.6 ω_c.",
+};
+
 pub(crate) fn render(ctx: &Ctx) -> Result<Demo> {
-    let mut d = ctx.demo("hoop", "Bead on a rotating hoop: a pitchfork bifurcation");
+    let mut d = ctx.demo("Bead on a rotating hoop: a pitchfork bifurcation");
     let params0 = HoopParams::default();
     let wc = params0.critical_omega();
     let diagram = pitchfork_panel(params0);

@@ -6,7 +6,7 @@ use physicskit::classical::systems::{KeplerPerturbations, KeplerSystem};
 use physicskit::classical::{DynamicalSystem, HamiltonianSystem, Method};
 
 use super::common::{column, stride, unwrap};
-use super::{Ctx, Demo};
+use super::{Ctx, Demo, Explanation, Physics};
 use crate::error::Result;
 use crate::figure::{color, save_panel, Legend, Panel, Series};
 
@@ -15,8 +15,15 @@ const E: f64 = 0.6;
 /// Strength of the attractive `c_pn / r^3` term (units k a^2): a few degrees per orbit.
 const C_PN: f64 = -0.005;
 
+/// The paragraph under this demonstration: the physics, then what its figures show.
+pub(super) const EXPLANATION: Explanation = Explanation {
+    slug: "kepler",
+    text: Physics::OfSystem(&physicskit::classical::systems::KEPLER_ENTRY),
+    figure: "Units with G M = 1; semi-major axis 1, eccentricity 0.6.",
+};
+
 pub(crate) fn render(ctx: &Ctx) -> Result<Demo> {
-    let mut d = ctx.demo("kepler", "Kepler orbits and perihelion precession");
+    let mut d = ctx.demo("Kepler orbits and perihelion precession");
     let period = std::f64::consts::TAU * A.powf(1.5);
     let orbits = ctx.pick(12.0, 30.0);
     let t1 = orbits * period;

@@ -2,7 +2,9 @@
 //! one-paragraph explanation of the physics, and [`render_gallery`], which renders them all and
 //! writes `index.html`.
 //!
-//! Every demonstration module has a `render(&Ctx) -> Result<Demo>` function. `quick` mode
+//! Every demonstration module has a `render(&Ctx) -> Result<Demo>` function and declares its
+//! paragraph, `EXPLANATION` (an [`Explanation`]: its physics and what its figures show), which
+//! [`explanations`] lists without rendering. `quick` mode
 //! (used by tests and `physicskit gallery --quick`) runs fewer orbits, shorter times and fewer
 //! animation frames, rendered at the figure's size rather than twice it, so the whole gallery
 //! renders in well under a minute on two cores.
@@ -14,7 +16,7 @@
 use std::path::{Path, PathBuf};
 use std::time::Instant;
 
-use physicskit::classical::model::Value;
+use physicskit::classical::model::{SystemEntry, Value};
 use physicskit::classical::Method;
 
 use crate::error::{Result, VizError};
@@ -46,6 +48,53 @@ mod swarm;
 mod toda;
 mod work_precision;
 
+/// A demonstration's paragraph, declared by its page: the physics, then what its figures show.
+///
+/// A demonstration of a system opens with that system's physics, which its catalogue entry
+/// holds ([`SystemEntry::physics`], written next to the system and shown by the lab and
+/// `list --json` too); a demonstration of a method or of an analysis across systems has a
+/// paragraph of its own. The figure part says what the gallery's figures show (their
+/// parameters, grid sizes, run times and panels), which only the gallery prints: the physics
+/// holds for any parameters and states no number of the figure part (`tests/explanations.rs`).
+#[derive(Debug, Clone, Copy)]
+pub struct Explanation {
+    /// The demonstration's anchor name in `index.html`, e.g. `"double-pendulum"`.
+    pub slug: &'static str,
+    /// The physics part: a system's, or the demonstration's own.
+    pub text: Physics,
+    /// What the gallery's figures show: their parameters, grid sizes, run times and panels
+    /// (never empty). The gallery prints it after the physics; the lab, which starts from the
+    /// catalogue's defaults, does not.
+    pub figure: &'static str,
+}
+
+/// Where a demonstration's physics paragraph comes from.
+#[derive(Debug, Clone, Copy)]
+pub enum Physics {
+    /// The physics of the catalogue system the demonstration shows.
+    OfSystem(&'static SystemEntry),
+    /// A paragraph of the demonstration's own (a method, or an analysis across systems).
+    Own(&'static str),
+}
+
+impl Explanation {
+    /// The physics paragraph (plain text, Unicode), true whatever the parameters.
+    pub fn text(&self) -> &'static str {
+        match self.text {
+            Physics::OfSystem(entry) => entry.physics.unwrap_or(""),
+            Physics::Own(text) => text,
+        }
+    }
+
+    /// The catalogue system whose physics opens the paragraph, if any.
+    pub fn system(&self) -> Option<&'static SystemEntry> {
+        match self.text {
+            Physics::OfSystem(entry) => Some(entry),
+            Physics::Own(_) => None,
+        }
+    }
+}
+
 /// One file written by the gallery.
 #[derive(Debug, Clone, PartialEq, Eq)]
 pub struct GalleryFile {
@@ -62,11 +111,11 @@ pub struct Demo {
     pub slug: String,
     /// Section title, numbered (`"17. Work–precision"`).
     pub title: String,
-    /// One paragraph of physics (from `physicskit::classical::explanations`, shared with the
-    /// lab).
+    /// One paragraph of physics ([`Explanation::text`]; a system's is its catalogue entry's
+    /// `physics`, the lab's caption).
     pub explanation: String,
-    /// What this demonstration's figures show: their parameters and panels (the same source's
-    /// `figure`).
+    /// What this demonstration's figures show: their parameters and panels
+    /// ([`Explanation::figure`]).
     pub figure: String,
     /// Figures and animations, in display order.
     pub files: Vec<GalleryFile>,
@@ -154,8 +203,10 @@ pub(crate) struct Ctx<'a> {
     out_dir: &'a Path,
     /// Fewer orbits and frames.
     pub quick: bool,
-    /// The demonstration's number (its place in [`demos`], from 1).
+    /// The demonstration's number (its place in [`PAGES`], from 1).
     number: usize,
+    /// The page's paragraph.
+    explanation: &'static Explanation,
 }
 
 impl Ctx<'_> {
@@ -165,18 +216,14 @@ impl Ctx<'_> {
         self.out_dir.join(format!("{:02}_{name}", self.number))
     }
 
-    /// Starts this demonstration's [`Demo`], its title numbered (`"17. Work–precision"`); its
-    /// paragraph is the core's
-    /// [`explanations::for_demo`](physicskit::classical::explanations::for_demo)`(slug)`, the
-    /// text the lab shows for the same systems (empty for a slug without one, which the gallery
-    /// test refuses).
-    pub fn demo(&self, slug: &str, title: &str) -> Demo {
-        let explanation = physicskit::classical::explanations::for_demo(slug);
+    /// Starts this demonstration's [`Demo`], its title numbered (`"17. Work–precision"`), its
+    /// slug and paragraph the page's [`Explanation`].
+    pub fn demo(&self, title: &str) -> Demo {
         Demo {
-            slug: slug.into(),
+            slug: self.explanation.slug.into(),
             title: format!("{}. {title}", self.number),
-            explanation: explanation.map(|e| e.text().to_owned()).unwrap_or_default(),
-            figure: explanation.map(|e| e.figure.to_owned()).unwrap_or_default(),
+            explanation: self.explanation.text().to_owned(),
+            figure: self.explanation.figure.to_owned(),
             files: Vec::new(),
             lab: None,
         }
@@ -293,47 +340,60 @@ impl Demo {
 
 type Render = fn(&Ctx) -> Result<Demo>;
 
-/// The demonstrations in gallery order, with their titles for progress messages.
-fn demos() -> Vec<(&'static str, Render)> {
-    vec![
-        ("double pendulum", double_pendulum::render as Render),
-        ("Hénon–Heiles", henon_heiles::render),
-        ("pendulum swarm", swarm::render),
-        ("FPUT recurrence", fput::render),
-        ("sine-Gordon kinks", sine_gordon::render),
-        ("harmonic chain and coupled oscillators", chains::render),
-        ("Kepler orbits", kepler::render),
-        ("Euler top", euler_top::render),
-        ("heavy symmetric top", heavy_top::render),
-        ("bead on a rotating hoop", hoop::render),
-        ("projectile", projectile::render),
-        ("integrators compared", integrators::render),
-        ("Toda lattice", toda::render),
-        ("elastic pendulum", elastic_pendulum::render),
-        ("flip-time fractal", flip_fractal::render),
-        ("Kepler precession against c_pn", kepler_precession::render),
-        ("work–precision", work_precision::render),
-        ("Hénon–Heiles SALI map", henon_heiles_sali::render),
-        (
-            "double pendulum Lyapunov map",
-            double_pendulum_lyapunov::render,
-        ),
-        (
-            "hoop pitchfork and Lyapunov exponent",
-            hoop_pitchfork::render,
-        ),
-        (
-            "Hénon–Heiles regular fraction",
-            henon_heiles_regular::render,
-        ),
-        ("Foucault pendulum", foucault::render),
-        ("rolling rattleback", rattleback::render),
-    ]
+/// A demonstration as the list holds it: its name for progress messages, its renderer and its
+/// paragraph.
+struct Page {
+    name: &'static str,
+    render: Render,
+    explanation: &'static Explanation,
+}
+
+/// The [`Page`] of gallery module `$module`: its `render` and `EXPLANATION`.
+macro_rules! page {
+    ($name:literal, $module:ident) => {
+        Page {
+            name: $name,
+            render: $module::render,
+            explanation: &$module::EXPLANATION,
+        }
+    };
+}
+
+/// The demonstrations in gallery order.
+static PAGES: &[Page] = &[
+    page!("double pendulum", double_pendulum),
+    page!("Hénon–Heiles", henon_heiles),
+    page!("pendulum swarm", swarm),
+    page!("FPUT recurrence", fput),
+    page!("sine-Gordon kinks", sine_gordon),
+    page!("harmonic chain and coupled oscillators", chains),
+    page!("Kepler orbits", kepler),
+    page!("Euler top", euler_top),
+    page!("heavy symmetric top", heavy_top),
+    page!("bead on a rotating hoop", hoop),
+    page!("projectile", projectile),
+    page!("integrators compared", integrators),
+    page!("Toda lattice", toda),
+    page!("elastic pendulum", elastic_pendulum),
+    page!("flip-time fractal", flip_fractal),
+    page!("Kepler precession against c_pn", kepler_precession),
+    page!("work–precision", work_precision),
+    page!("Hénon–Heiles SALI map", henon_heiles_sali),
+    page!("double pendulum Lyapunov map", double_pendulum_lyapunov),
+    page!("hoop pitchfork and Lyapunov exponent", hoop_pitchfork),
+    page!("Hénon–Heiles regular fraction", henon_heiles_regular),
+    page!("Foucault pendulum", foucault),
+    page!("rolling rattleback", rattleback),
+];
+
+/// Every demonstration's paragraph, in gallery order, without rendering anything.
+pub fn explanations() -> impl Iterator<Item = &'static Explanation> {
+    PAGES.iter().map(|p| p.explanation)
 }
 
 /// Number of demonstrations [`render_gallery`] renders.
 pub fn demo_count() -> usize {
-    demos().len()
+    PAGES.len()
 }
 
 /// Renders demonstration `number` (from 1, as [`render_gallery`] numbers them) alone into
@@ -343,18 +403,18 @@ pub fn demo_count() -> usize {
 /// [`VizError::NoDemo`] if there is no such demonstration; otherwise as
 /// [`render_gallery`].
 pub fn render_demo(out_dir: &Path, number: usize, quick: bool) -> Result<Demo> {
-    let list = demos();
-    let Some((_, render)) = number.checked_sub(1).and_then(|i| list.get(i)) else {
-        return Err(VizError::NoDemo(number, list.len()));
+    let Some(page) = number.checked_sub(1).and_then(|i| PAGES.get(i)) else {
+        return Err(VizError::NoDemo(number, PAGES.len()));
     };
     std::fs::create_dir_all(out_dir).map_err(|source| VizError::Io {
         path: out_dir.to_path_buf(),
         source,
     })?;
-    render(&Ctx {
+    (page.render)(&Ctx {
         out_dir,
         quick,
         number,
+        explanation: page.explanation,
     })
 }
 
@@ -375,16 +435,16 @@ pub fn render_gallery(
         path: out_dir.to_path_buf(),
         source,
     })?;
-    let list = demos();
-    let mut rendered = Vec::with_capacity(list.len());
-    for (i, (name, render)) in list.iter().enumerate() {
-        progress(&format!("[{}/{}] {name}", i + 1, list.len()));
+    let mut rendered = Vec::with_capacity(PAGES.len());
+    for (i, page) in PAGES.iter().enumerate() {
+        progress(&format!("[{}/{}] {}", i + 1, PAGES.len(), page.name));
         let ctx = Ctx {
             out_dir,
             quick,
             number: i + 1,
+            explanation: page.explanation,
         };
-        rendered.push(render(&ctx)?);
+        rendered.push((page.render)(&ctx)?);
     }
     let index = out_dir.join("index.html");
     std::fs::write(&index, crate::html::index_html(&rendered, quick)).map_err(|source| {

@@ -6,7 +6,7 @@ use physicskit::classical::systems::ProjectileMotion;
 use physicskit::classical::{DynamicalSystem, HamiltonianSystem, Method};
 
 use super::common::column;
-use super::{Ctx, Demo};
+use super::{Ctx, Demo, Explanation, Physics};
 use crate::error::Result;
 use crate::figure::{color, save_svg, Legend, Mark, Panel, Series};
 
@@ -42,8 +42,15 @@ fn flight(angle: f64, drag: f64) -> Result<Vec<(f64, f64)>> {
     Ok(pts)
 }
 
+/// The paragraph under this demonstration: the physics, then what its figures show.
+pub(super) const EXPLANATION: Explanation = Explanation {
+    slug: "projectile",
+    text: Physics::OfSystem(&physicskit::classical::systems::PROJECTILE_ENTRY),
+    figure: "A 1 kg ball launched at 40 m/s; with drag its terminal speed is 22 m/s.",
+};
+
 pub(crate) fn render(ctx: &Ctx) -> Result<Demo> {
-    let mut d = ctx.demo("projectile", "Projectile motion with and without air drag");
+    let mut d = ctx.demo("Projectile motion with and without air drag");
     // The lab opens on the 45° flight with drag, launched as `flight` launches it.
     let ball = ProjectileMotion::from_launch(SPEED, LAB_ANGLE, MASS, G, DRAG, 0.0)?;
     d.lab = Some(ctx.lab_link(

@@ -1,17 +1,21 @@
 //! Demonstration 23, rolling rattleback: the spin about the vertical against time for both
-//! senses (one reverses early, the other much later), and the body drawn in 3-D as it rattles and turns
-//! round (an animation).
+//! senses (one reverses early, the other much later), with its mean over two pitching periods,
+//! whose first zero is the reversal time ([`spin_reversal_time`]), and the body drawn in 3-D as
+//! it rattles and turns round (an animation).
 
 use physicskit::classical::model::Value;
-use physicskit::classical::systems::{RollingRattleback, RollingRattlebackParams};
+use physicskit::classical::systems::{
+    averaged_spin, spin_reversal_time, RollingRattleback, RollingRattlebackParams,
+    SPIN_REVERSAL_WINDOW,
+};
 use physicskit::classical::{DynamicalSystem, Method, OdeSystem};
 use plotters::prelude::*;
 
 use super::common::{frame_caption, project, stride};
-use super::{Ctx, Demo};
+use super::{Ctx, Demo, Explanation, Physics};
 use crate::animation::save_gif;
 use crate::error::{DrawContext, Result};
-use crate::figure::{color, save_panel, Legend, Panel, Series};
+use crate::figure::{color, save_panel, Legend, Mark, Panel, Series};
 
 /// Spin about the vertical at the start (rad/s): clockwise seen from above reverses.
 const SPIN: f64 = 5.0;
@@ -21,16 +25,6 @@ const DT: f64 = 1e-4;
 const AZ: f64 = 0.6;
 const EL: f64 = 0.45;
 
-/// The first time the spin about the vertical has the sign opposite to its start, if it does
-/// within the run.
-fn first_reversal(t: &[f64], spin: &[f64]) -> Option<f64> {
-    let s0 = *spin.first()?;
-    t.iter()
-        .zip(spin)
-        .find(|(_, s)| **s * s0 < 0.0)
-        .map(|(t, _)| *t)
-}
-
 /// A run's legend entry: its start and when it first turns round.
 fn spin_label(start: &str, reversal: Option<f64>, t1: f64) -> String {
     match reversal {
@@ -39,21 +33,38 @@ fn spin_label(start: &str, reversal: Option<f64>, t1: f64) -> String {
     }
 }
 
+/// The paragraph under this demonstration: the physics, then what its figures show.
+pub(super) const EXPLANATION: Explanation = Explanation {
+    slug: "rolling-rattleback",
+    text: Physics::OfSystem(&physicskit::classical::systems::ROLLING_RATTLEBACK_ENTRY),
+    figure: "Kane and Levinson's body (semi-axes 0.2, 0.03 and 0.02 m, 1 kg, principal axes \
+         turned from the geometric ones) started tilted 0.5° in roll and pitch and spun at \
+         −5 and +5 rad/s; rk4 at dt = 10⁻⁴ s, no slip and no dissipation.",
+};
+
 pub(crate) fn render(ctx: &Ctx) -> Result<Demo> {
-    let mut d = ctx.demo("rolling-rattleback", "Rattleback: spin reversal");
+    let mut d = ctx.demo("Rattleback: spin reversal");
     let params = RollingRattlebackParams::default();
     // Long enough for the anticlockwise start to turn round too: without dissipation that sense
     // is only held longer, not for ever (the legend gives both times, read from the runs).
     let t1 = ctx.pick(16.0, 30.0);
     // The animation shows the first reversal of the clockwise start.
     let t_gif = ctx.pick(8.0, 12.0);
-    let every = 100; // one sample per 0.01 s
+    // The spin's mean is taken from one sample per 1 ms (at 0.01 s, about six samples a pitching
+    // period, the trapezoidal mean would move the reversal by 2 ms; at 1 ms it moves by 0.02
+    // ms); one sample in ten is drawn.
+    let every = 10;
+    let drawn = 10;
     let mut panel = Panel::new(
-        format!("Spin about the vertical, started at −{SPIN} and +{SPIN} rad/s (RK4, dt = {DT} s)"),
+        format!(
+            "Spin about the vertical, started at −{SPIN} and +{SPIN} rad/s (RK4, dt = {DT} s); \
+             faint: sampled, bold: its mean over {SPIN_REVERSAL_WINDOW} s"
+        ),
         "t (s)",
         "ω · ẑ (rad/s)",
     )
     .legend(Legend::Auto);
+    let mut turns = Vec::new();
     let mut reversing = None;
     let mut reversals = [None; 2];
     for (i, (sign, start)) in [(-1.0, "clockwise"), (1.0, "anticlockwise")]
@@ -91,17 +102,27 @@ pub(crate) fn render(ctx: &Ctx) -> Result<Demo> {
             .map(|s| body.vertical_spin(Some(s.as_slice())))
             .collect::<std::result::Result<Vec<f64>, _>>()?;
         let t = r.t.to_vec();
-        reversals[i] = first_reversal(&t, &spin);
-        let pts = t.iter().copied().zip(spin).collect();
-        panel = panel.with(Series::line(
-            spin_label(start, reversals[i], t1),
-            pts,
-            color(i),
-        ));
+        reversals[i] = spin_reversal_time(&t, &spin, SPIN_REVERSAL_WINDOW)?;
+        let (centres, means) = averaged_spin(&t, &spin, SPIN_REVERSAL_WINDOW)?;
+        let sampled = t.iter().copied().zip(spin).step_by(drawn).collect();
+        let mean = centres.into_iter().zip(means).step_by(drawn).collect();
+        panel = panel
+            .with(
+                Series::line(spin_label(start, reversals[i], t1), sampled, color(i))
+                    .with_mark(Mark::Line(1))
+                    .with_alpha(0.4),
+            )
+            .with(Series::line("", mean, color(i)).unlabeled());
+        turns.extend(reversals[i].map(|t| (t, 0.0)));
         if i == 0 {
-            reversing = Some((t, states, body));
+            let frames: (Vec<f64>, Vec<Vec<f64>>) =
+                t.into_iter().zip(states).step_by(drawn).unzip();
+            reversing = Some((frames, body));
         }
     }
+    panel = panel.with(
+        Series::dots("reversal: the bold mean crosses zero", turns, BLACK).with_mark(Mark::Dots(4)),
+    );
     let path = ctx.path("rattleback_spin.svg");
     save_panel(&path, (900, 520), &panel)?;
     let when = |r: Option<f64>| match r {
@@ -111,8 +132,10 @@ pub(crate) fn render(ctx: &Ctx) -> Result<Demo> {
     d.add(
         path,
         &format!(
-            "the spin about the vertical against time: spun clockwise the body rattles, stops \
-             turning and {}; spun anticlockwise its rocking grows more slowly, and it {}{}",
+            "the spin about the vertical against time, faint as sampled and bold as its mean \
+             over two pitching periods, whose zero (dot) is the reversal: spun clockwise the \
+             body rattles, stops turning and {}; spun anticlockwise its rocking grows more \
+             slowly, and it {}{}",
             when(reversals[0]),
             when(reversals[1]),
             if reversals[1].is_some() {
@@ -123,7 +146,7 @@ pub(crate) fn render(ctx: &Ctx) -> Result<Demo> {
         ),
     );
 
-    let Some((t, states, body)) = reversing else {
+    let Some(((t, states), body)) = reversing else {
         return Err(super::common::missing("the reversing run"));
     };
     let frames = ctx.pick(40, 100);

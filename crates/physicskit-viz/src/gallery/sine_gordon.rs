@@ -5,7 +5,7 @@ use physicskit::classical::systems::SineGordonChain;
 use physicskit::classical::{DynamicalSystem, HamiltonianSystem, Method};
 
 use super::common::stride;
-use super::{Ctx, Demo};
+use super::{Ctx, Demo, Explanation, Physics};
 use crate::animation::save_gif;
 use crate::error::Result;
 use crate::figure::{color, save_svg, Legend, Panel, Series};
@@ -16,8 +16,15 @@ const K: f64 = 16.0;
 /// Speed of each soliton as a fraction of the wave speed sqrt(K/m) = 4 sites per unit time.
 const BETA: f64 = 0.4;
 
+/// The paragraph under this demonstration: the physics, then what its figures show.
+pub(super) const EXPLANATION: Explanation = Explanation {
+    slug: "sine-gordon",
+    text: Physics::OfSystem(&physicskit::classical::systems::SINE_GORDON_KINK_ENTRY),
+    figure: "The kink and the antikink approach each other at 0.4 of the wave speed.",
+};
+
 pub(crate) fn render(ctx: &Ctx) -> Result<Demo> {
-    let mut d = ctx.demo("sine-gordon", "Sine-Gordon chain: kink–antikink collision");
+    let mut d = ctx.demo("Sine-Gordon chain: kink–antikink collision");
     let n = ctx.pick(160, 240);
     let width = K.sqrt();
     let c = K.sqrt(); // wave speed for m = 1, in sites per unit time

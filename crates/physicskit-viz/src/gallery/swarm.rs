@@ -7,7 +7,7 @@ use physicskit::classical::{
     DynamicalSystem, HamiltonianSystem, IntegrateOptions, Method, Sampling,
 };
 
-use super::{Ctx, Demo};
+use super::{Ctx, Demo, Explanation, Physics};
 use crate::animation::save_gif;
 use crate::error::Result;
 use crate::figure::{color, save_svg, Legend, Mark, Panel, Series};
@@ -66,8 +66,16 @@ fn wrapped(q: &[f64], p: &[f64]) -> Vec<(f64, f64)> {
         .collect()
 }
 
+/// The paragraph under this demonstration: the physics, then what its figures show.
+pub(super) const EXPLANATION: Explanation = Explanation {
+    slug: "swarm",
+    text: Physics::OfSystem(&physicskit::classical::systems::SWARM_ENTRY),
+    figure: "g/l = 1 s⁻²; the patch starts just inside the separatrix, and its area is measured \
+         on 2000 boundary points carried along with the flow.",
+};
+
 pub(crate) fn render(ctx: &Ctx) -> Result<Demo> {
-    let mut d = ctx.demo("swarm", "Pendulum swarm: Liouville's theorem");
+    let mut d = ctx.demo("Pendulum swarm: Liouville's theorem");
     let n = ctx.pick(1500, 5000);
     let n_side = ctx.pick(500, 1500);
     let snaps = [0.0, 10.0, 20.0, 40.0];

@@ -6,7 +6,7 @@ use physicskit::classical::systems::TodaLattice;
 use physicskit::classical::{DynamicalSystem, HamiltonianSystem, Method};
 
 use super::common::stride;
-use super::{Ctx, Demo};
+use super::{Ctx, Demo, Explanation, Physics};
 use crate::error::Result;
 use crate::figure::{color, ramp, save_svg, Legend, Panel, Series};
 use crate::heatmap::HeatMap;
@@ -16,8 +16,17 @@ const N: usize = 16;
 /// Momentum kicks: `(particle, p)`. Two pulses of different heights, hence speeds.
 const KICKS: [(usize, f64); 2] = [(0, 3.0), (8, -1.5)];
 
+/// The paragraph under this demonstration: the physics, then what its figures show.
+pub(super) const EXPLANATION: Explanation = Explanation {
+    slug: "toda",
+    text: Physics::OfSystem(&physicskit::classical::systems::TODA_ENTRY),
+    figure: "Sixteen masses, a = b = 1; two particles are kicked with 3 and −1.5 units of \
+         momentum. Left: the energy of each particle above its equilibrium share a/b; middle: \
+         two particles; right: the sixteen eigenvalues of L, flat lines.",
+};
+
 pub(crate) fn render(ctx: &Ctx) -> Result<Demo> {
-    let mut d = ctx.demo("toda", "Toda lattice: n conserved quantities");
+    let mut d = ctx.demo("Toda lattice: n conserved quantities");
     let (a, b) = (1.0, 1.0);
     let mut p0 = [0.0; N];
     for (i, p) in KICKS {

@@ -17,7 +17,7 @@
 //!    layer: the expression Lagrangian runs on the engine, and a generic Lagrangian's Taylor
 //!    form is its trace compiled from expressions.
 //! 5. [`systems`] and [`examples`]: the built-in systems, each with its catalogue entry.
-//! 6. [`catalog`]: the list of every system, and [`explanations`], their physics paragraphs.
+//! 6. [`catalog`]: the list of every system.
 //! 7. [`analysis`]: functions on states, trajectories and flows (action–angle, chaos).
 //! 8. [`ensemble`]: ensembles and sweeps of any catalogue entry on all cores.
 
@@ -26,7 +26,6 @@ pub mod catalog;
 pub mod core;
 pub mod ensemble;
 pub mod examples;
-pub mod explanations;
 pub mod integrators;
 pub mod lagrangian;
 pub mod model;

@@ -9,7 +9,6 @@ mod analysis;
 mod core;
 mod digests;
 mod ensemble;
-mod explanations;
 mod integrators;
 mod lagrangian;
 mod systems;

@@ -7,7 +7,8 @@
 //! methods' energy error at their orders through the reversal.
 
 use physicskit::classical::systems::{
-    RollingDisk, RollingDiskParams, RollingRattleback, RollingRattlebackParams,
+    spin_reversal_time, RollingDisk, RollingDiskParams, RollingRattleback, RollingRattlebackParams,
+    SPIN_REVERSAL_WINDOW,
 };
 use physicskit::classical::{
     DynamicalSystem, Error, IntegrateOptions, Method, OdeSystem, SimulationResult, Tolerances,
@@ -154,34 +155,43 @@ fn contact_point_has_zero_velocity() {
     }
 }
 
-/// The averaging window of [`averaged_reversal`] (s): about two periods of the pitching
-/// (~109 rad/s, period 0.058 s, at small amplitude).
-const SPIN_WINDOW: f64 = 0.1;
-
 /// The reversal time of a spin history `spin` sampled at the uniformly spaced times `t`: the
-/// first zero of the spin averaged over a sliding window of [`SPIN_WINDOW`] (the mean over
-/// `[s - w/2, s + w/2]`, from the trapezoidal heading turned), by linear interpolation between
-/// samples. The raw spin `omega . gamma` swings with the pitching near the reversal and can
-/// touch zero briefly before it turns for good (for Kane & Levinson's run at -5 rad/s a
-/// root-finder on the raw spin stops at 2.685 s, a 1 ms grid first sees a sign change at
-/// 2.761 s), so only the averaged spin, the spin of the averaged theories, has a
-/// well-conditioned zero.
+/// library's definition, the first zero of the spin averaged over two pitching periods
+/// (`spin_reversal_time`; the raw spin touches zero before it turns for good).
 fn averaged_reversal(t: &[f64], spin: &[f64]) -> Option<f64> {
-    let dt = t[1] - t[0];
-    let m = (SPIN_WINDOW / dt).round() as usize;
-    let mut heading = Vec::with_capacity(spin.len());
-    heading.push(0.0);
-    for pair in spin.windows(2) {
-        let last = heading[heading.len() - 1];
-        heading.push(last + 0.5 * (pair[0] + pair[1]) * dt);
+    spin_reversal_time(t, spin, SPIN_REVERSAL_WINDOW).expect("a uniformly sampled spin")
+}
+
+/// `spin_reversal_time` refuses, by name, a history it cannot average: lengths that differ, a
+/// non-finite value, one sample, times not evenly spaced or going back, and a window that is
+/// not positive and finite, rounds to no sample or spans more than the record.
+#[test]
+fn spin_reversal_time_refuses_what_it_cannot_average() {
+    let t: Vec<f64> = (0..=100).map(|k| f64::from(k) * 0.01).collect();
+    let spin: Vec<f64> = t.iter().map(|s| 0.5 - s).collect();
+    let refused = |t: &[f64], spin: &[f64], window: f64| match spin_reversal_time(t, spin, window) {
+        Err(Error::InvalidParameter { name, .. }) => name,
+        Err(Error::DimensionMismatch { name, .. }) => format!("length of {name}"),
+        Err(Error::NonFinite { name, .. }) => format!("non-finite {name}"),
+        other => panic!("{other:?}"),
+    };
+    assert_eq!(refused(&t, &spin[..50], 0.1), "length of spin");
+    let mut nan = spin.clone();
+    nan[3] = f64::NAN;
+    assert_eq!(refused(&t, &nan, 0.1), "non-finite spin");
+    assert_eq!(refused(&t[..1], &spin[..1], 0.1), "t");
+    let mut uneven = t.clone();
+    uneven[50] += 0.003;
+    assert_eq!(refused(&uneven, &spin, 0.1), "t");
+    let backwards: Vec<f64> = t.iter().rev().copied().collect();
+    assert_eq!(refused(&backwards, &spin, 0.1), "t");
+    for window in [0.0, -0.1, f64::NAN, f64::INFINITY, 0.004, 2.0] {
+        assert_eq!(refused(&t, &spin, window), "window", "{window}");
     }
-    let width = m as f64 * dt;
-    let mean: Vec<f64> = (0..spin.len().saturating_sub(m))
-        .map(|k| (heading[k + m] - heading[k]) / width)
-        .collect();
-    (1..mean.len())
-        .find(|&k| mean[k - 1] * mean[k] < 0.0)
-        .map(|k| t[k - 1] + 0.5 * width + dt * mean[k - 1] / (mean[k - 1] - mean[k]))
+    // The same history is accepted: the trapezoidal mean of a linear spin is exact, so its zero
+    // is the trend's to rounding (1e-12 is a thousand times the sums' rounding).
+    let t_rev = spin_reversal_time(&t, &spin, 0.1).unwrap().unwrap();
+    assert!((t_rev - 0.5).abs() < 1e-12, "{t_rev}");
 }
 
 /// The averaged reversal time of the library's rattleback spun at `spin` from the default

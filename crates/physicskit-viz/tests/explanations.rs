@@ -1,9 +1,10 @@
-//! The gallery's paragraphs: every demonstration has the physics (`text`, shown by the lab
+//! The gallery's paragraphs, each declared by its page (`physicskit_viz::explanations` lists
+//! them without rendering): every demonstration has the physics (`text`, shown by the lab
 //! beside a run from any setting) and the figures' setup (`figure`), and the physics states no
 //! number of the setup.
 
 use physicskit::classical::catalog;
-use physicskit::classical::explanations::{for_demo, Text, EXPLANATIONS};
+use physicskit_viz::{explanations, Explanation, Physics};
 
 /// The numbers written in `s`: runs of ASCII digits with inner `.` or `/` (`9.81`, `1/6`),
 /// not glued to a preceding letter, digit, subscript or `_` (so `rk4`, `θ₁`, `kahan_li8` are
@@ -48,8 +49,8 @@ fn numbers_reads_values_not_names() {
 /// 2), which a physics text and a setup both use with different meanings.
 #[test]
 fn the_physics_states_no_number_of_the_setup() {
-    assert!(!EXPLANATIONS.is_empty());
-    for e in EXPLANATIONS {
+    assert_eq!(explanations().count(), physicskit_viz::demo_count());
+    for e in explanations() {
         assert!(e.text().len() > 200, "{}: text too short", e.slug);
         assert!(!e.figure.is_empty(), "{}: no setup", e.slug);
         let text = numbers(e.text());
@@ -73,15 +74,12 @@ fn the_physics_states_no_number_of_the_setup() {
 /// one.
 #[test]
 fn each_system_has_its_physics_and_the_gallery_opens_with_it() {
-    for (i, e) in EXPLANATIONS.iter().enumerate() {
-        assert!(
-            EXPLANATIONS[..i].iter().all(|o| o.slug != e.slug),
-            "{}",
-            e.slug
-        );
-        assert!(std::ptr::eq(for_demo(e.slug).unwrap(), e));
-        if let Text::OfSystem(entry) = e.text {
-            assert!(catalog::find(entry.name).is_ok(), "{}", entry.name);
+    let all: Vec<&Explanation> = explanations().collect();
+    for (i, e) in all.iter().enumerate() {
+        assert!(all[..i].iter().all(|o| o.slug != e.slug), "{}", e.slug);
+        if let Physics::OfSystem(entry) = e.text {
+            let listed = catalog::find(entry.name).expect("a catalogue system");
+            assert!(std::ptr::eq(listed, entry), "{}", entry.name);
             assert_eq!(Some(e.text()), entry.physics, "{}", e.slug);
         }
     }
