@@ -37,6 +37,7 @@ __all__ = [
     "projectile_analytic_trajectory",
     "projectile_range_and_max_height",
     "sine_gordon_kink",
+    "spin_reversal_time",
     "system_jacobian",
 ]
 
@@ -306,6 +307,10 @@ def foucault_analytic_solution(q0: _ArrayF64, v0: _ArrayF64, omega0: float, omeg
 
 def eulers_disk_theta_analytic(t: _ArrayF64, theta0: float, decay_rate: float) -> _ArrayF64:
     """theta(t) of the reduced Euler's disk, zero after the collapse."""
+
+def spin_reversal_time(t: _ArrayF64, spin: _ArrayF64, window: float = ...) -> float | None:
+    """First zero of a uniformly sampled spin history averaged over `window` (s; default two
+    pitching periods of the default rolling rattleback), or None if it keeps its sign."""
 
 def projectile_analytic_trajectory(speed: float, angle_deg: float, g: float, t: _ArrayF64, height: float) -> tuple[_ArrayF64, _ArrayF64]:
     """Galileo's parabola `(x(t), y(t))`."""

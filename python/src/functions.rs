@@ -1,13 +1,14 @@
 //! Functions that take no system: closed forms and analyses of the built-in systems
 //! (pendulum action-angle variables, the heavy top's effective potential, the projectile's
-//! vacuum trajectory, Foucault's pendulum, the reduced Euler's disk, sine-Gordon kink initial
-//! data). Each is a thin shell: numpy in, slices
+//! vacuum trajectory, Foucault's pendulum, the reduced Euler's disk, a rattleback's spin
+//! reversal, sine-Gordon kink initial data). Each is a thin shell: numpy in, slices
 //! to the core function, numpy out.
 
 use numpy::{PyArray1, PyReadonlyArray1};
 use physicskit::classical::analysis;
 use physicskit::classical::systems::{
-    eulers_disk_theta_analytic as disk_theta, FoucaultPendulum, ProjectileMotion, SineGordonChain,
+    eulers_disk_theta_analytic as disk_theta, spin_reversal_time as reversal, FoucaultPendulum,
+    ProjectileMotion, SineGordonChain, SPIN_REVERSAL_WINDOW,
 };
 use pyo3::prelude::*;
 
@@ -67,6 +68,14 @@ pub fn eulers_disk_theta_analytic<'py>(
         py,
         disk_theta(&to_vec(&t), theta0, decay_rate).py()?,
     ))
+}
+
+/// `spin_reversal_time`: the first zero of a spin history averaged over `window` (s), or
+/// `None`.
+#[pyfunction]
+#[pyo3(signature = (t, spin, window = SPIN_REVERSAL_WINDOW))]
+pub fn spin_reversal_time(t: Arr<'_>, spin: Arr<'_>, window: f64) -> PyResult<Option<f64>> {
+    reversal(&to_vec(&t), &to_vec(&spin), window).py()
 }
 
 /// Vacuum range and maximum height.
@@ -175,6 +184,7 @@ pub fn register(m: &Bound<'_, PyModule>) -> PyResult<()> {
         projectile_range_and_max_height,
         foucault_analytic_solution,
         eulers_disk_theta_analytic,
+        spin_reversal_time,
         sine_gordon_kink,
         pendulum_action_angle,
         effective_potential_symmetric_top,
