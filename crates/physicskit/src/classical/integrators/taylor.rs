@@ -24,6 +24,15 @@
 //! once at the end), so the new state carries about one rounding, not `p`; the clock is a
 //! double-double (its rounding errors kept in a second word), so it does not drift over
 //! millions of steps.
+//!
+//! **Instruction sets**: the error-free product `a b = p + e` is one fused multiply-add,
+//! `e = fma(a, b, -p)`, on x86-64 CPUs with FMA (detected at run time by std's
+//! `is_x86_feature_detected!`, cached), and Dekker's product (Veltkamp's split, no FMA)
+//! elsewhere. Both give the exact `e`, so the same bits, unless an operand exceeds `2^996`
+//! (the split overflows) or the product's error underflows: far from any state and step of an
+//! integration. The rows of the state are evaluated four at a time (independent chains the
+//! CPU overlaps), each with the operations of one row alone. The Taylor coefficients
+//! themselves never use FMA (`symbolic/taylor_tape.rs`).
 
 use std::collections::BTreeMap;
 
@@ -180,7 +189,7 @@ fn split(a: f64) -> (f64, f64) {
     (hi, a - hi)
 }
 
-/// `a b = p + e` exactly (Dekker's TwoProduct, without FMA: the same bits on every target).
+/// `a b = p + e` exactly (Dekker's TwoProduct, without FMA: the path of CPUs without FMA).
 #[inline(always)]
 fn two_product(a: f64, b: f64) -> (f64, f64) {
     let p = a * b;
@@ -189,22 +198,80 @@ fn two_product(a: f64, b: f64) -> (f64, f64) {
     (p, al * bl - (((p - ah * bh) - al * bh) - ah * bl))
 }
 
+/// `a b = p + e` exactly by one fused multiply-add, `e = fma(a, b, -p)`: the same `(p, e)` as
+/// [`two_product`] wherever both are exact (see the module documentation).
+#[inline(always)]
+fn two_product_fused(a: f64, b: f64) -> (f64, f64) {
+    let p = a * b;
+    (p, a.mul_add(b, -p))
+}
+
+/// Rows evaluated side by side by [`horner_rows`]: independent chains the CPU overlaps.
+const LANES: usize = 4;
+
+/// Compensated Horner of each row of `c` (rows of `n1` coefficients) at `x` into `out`, `LANES`
+/// rows at a time (each row's operations are those of [`compensated_horner`], in its order);
+/// error-free products by FMA if `FUSED`.
+#[inline(always)]
+fn horner_rows<const FUSED: bool>(c: &[f64], n1: usize, x: f64, out: &mut [f64]) {
+    let product = if FUSED {
+        two_product_fused
+    } else {
+        two_product
+    };
+    for (rows, out) in c.chunks(n1 * LANES).zip(out.chunks_mut(LANES)) {
+        let m = out.len();
+        let (mut s, mut err) = ([0.0; LANES], [0.0; LANES]);
+        for (r, sr) in s[..m].iter_mut().enumerate() {
+            *sr = rows[r * n1 + n1 - 1];
+        }
+        for k in (0..n1 - 1).rev() {
+            for (r, (sr, er)) in s[..m].iter_mut().zip(&mut err[..m]).enumerate() {
+                let (p, pi) = product(*sr, x);
+                let (sum, sigma) = two_sum(p, rows[r * n1 + k]);
+                *sr = sum;
+                *er = *er * x + (pi + sigma);
+            }
+        }
+        for ((o, sr), er) in out.iter_mut().zip(&s).zip(&err) {
+            *o = sr + er;
+        }
+    }
+}
+
+/// [`horner_rows`] with FMA (compiled for it; called only where the CPU has it).
+#[cfg(target_arch = "x86_64")]
+#[target_feature(enable = "fma")]
+fn horner_rows_fma(c: &[f64], n1: usize, x: f64, out: &mut [f64]) {
+    horner_rows::<true>(c, n1, x, out);
+}
+
+/// Compensated Horner of each row of `c` (rows of `n1` coefficients, `n1 >= 1`, `out.len()`
+/// rows) at `x` into `out`, on the FMA path where the CPU has FMA.
+#[inline]
+fn eval_rows(c: &[f64], n1: usize, x: f64, out: &mut [f64]) {
+    #[cfg(target_arch = "x86_64")]
+    if std::arch::is_x86_feature_detected!("fma") {
+        // SAFETY: the CPU has FMA (checked just above), the one feature the function enables.
+        #[allow(unsafe_code)]
+        unsafe {
+            horner_rows_fma(c, n1, x, out);
+        }
+        return;
+    }
+    horner_rows::<false>(c, n1, x, out);
+}
+
 /// `Σ_k c_k x^k` by compensated Horner: as accurate as Horner in twice the working precision,
 /// then rounded once.
 #[inline]
 pub fn compensated_horner(c: &[f64], x: f64) -> f64 {
-    let Some((&last, rest)) = c.split_last() else {
+    if c.is_empty() {
         return 0.0;
-    };
-    let mut s = last;
-    let mut err = 0.0;
-    for &ck in rest.iter().rev() {
-        let (p, pi) = two_product(s, x);
-        let (sum, sigma) = two_sum(p, ck);
-        s = sum;
-        err = err * x + (pi + sigma);
     }
-    s + err
+    let mut out = [0.0];
+    eval_rows(c, c.len(), x, &mut out);
+    out[0]
 }
 
 /// The adaptive Taylor stepper: its own steps, the last step's polynomial kept for output.
@@ -348,10 +415,7 @@ impl Taylor {
 
     /// Takes one step on the current expansion of length `h`, moving the clock.
     fn take(&mut self, h: f64, lands: bool) {
-        let n1 = self.order + 1;
-        for (yi, row) in self.y.iter_mut().zip(self.coefficients.chunks_exact(n1)) {
-            *yi = compensated_horner(row, h);
-        }
+        eval_rows(&self.coefficients, self.order + 1, h, &mut self.y);
         self.start = self.t;
         if lands {
             self.t = (self.t_bound, 0.0);
@@ -485,10 +549,8 @@ impl Taylor {
 
     /// The whole state on the current step's polynomial at `τ` from its start.
     pub fn eval_state(&self, tau: f64, out: &mut [f64]) {
-        let n1 = self.order + 1;
-        for (o, row) in out.iter_mut().zip(self.coefficients.chunks_exact(n1)) {
-            *o = compensated_horner(row, tau);
-        }
+        let n = out.len().min(self.dim);
+        eval_rows(&self.coefficients, self.order + 1, tau, &mut out[..n]);
     }
 }
 
