@@ -164,13 +164,21 @@ function label(tex, unit = "") {
 function plainLabel(text) { return { runs: [{ text, sub: false }], text }; }
 
 function presentation() { return app.entry.presentation; }
-function timeUnit() { return presentation().time_unit === "s" ? "s" : ""; }
+// The catalogue's unit of time: "s", "time" (the user's own units, as Kepler's "length"), or
+// "" (a dimensionless system, which the caption says once).
+function timeUnit() { return presentation().time_unit; }
 function timeLabel() { return label("t", timeUnit()); }
 // Drawing positions are in metres where the system's lengths are; a body on an orbit is drawn
 // at its coordinates, in their unit (Kepler's "length").
 function lengthUnit() {
   if (app.entry.params.some((p) => p.unit_text === "m")) return "m";
   return presentation().drawing.kind === "orbit" ? stateUnits()[0] ?? "" : "";
+}
+// An axis of the drawing's lengths: "x (m)", or "x / l" where the positions are in units of
+// a length of the system's own (the catalogue's drawing `scale`: a simple pendulum's rod).
+function lengthLabel(sym) {
+  const scale = presentation().drawing.scale;
+  return scale ? `${sym} / ${texText(scale)}` : withUnit(sym, lengthUnit());
 }
 
 // The state's layout: `k` coordinates, then (for a Hamiltonian, a Lagrangian, or an ODE whose
@@ -916,7 +924,7 @@ function drawScene() {
   if (!app.sceneBox) app.sceneBox = sceneBoxFrom(null) ?? { x0: -1, x1: 1, y0: -1, y1: 1 };
   const v = plotView(w, h, app.sceneBox, true);
   app.sceneView = v;
-  drawAxes("scene", ctx, v, withUnit("x", L), withUnit("y", L));
+  drawAxes("scene", ctx, v, lengthLabel("x"), lengthLabel("y"));
   clip(ctx, v);
   const bodies = bodiesOf(pos);
   if (k === "projectile") {
@@ -1091,7 +1099,7 @@ function labelPlacer(ctx, avoid = []) {
   const drawn = [...avoid], f = fontSize();
   // For the tests: the body's boxes and the labels drawn.
   app.floorLabels = { avoid, drawn: [] };
-  return (text, [px, py]) => {
+  const put = (text, [px, py]) => {
     const half = ctx.measureText(text).width / 2 + 2, b = [px - half, py - 1, px + half, py + f + 1];
     if (drawn.some((d) => b[0] < d[2] && d[0] < b[2] && b[1] < d[3] && d[1] < b[3])) return false;
     drawn.push(b);
@@ -1099,10 +1107,21 @@ function labelPlacer(ctx, avoid = []) {
     ctx.fillText(text, px, py);
     return true;
   };
+  // An axis's name is never left out: the first of `spots` where it is clear; if none, the
+  // first, where the tests see it under the body.
+  put.first = (text, spots) => {
+    if (spots.some((at) => put(text, at))) return;
+    const half = ctx.measureText(text).width / 2 + 2, [px, py] = spots[0];
+    ctx.fillText(text, px, py);
+    app.floorLabels.drawn.push({ text, box: [px - half, py - 1, px + half, py + f + 1] });
+  };
+  return put;
 }
+// Spots for a floor axis's name: at `at(0)`, then along its edge both ways by `step`.
+function alongEdge(at, step) { return [0, 1, -1, 2, -2, 3, -3].map((k) => at(k * step)); }
 
 function drawTop(ctx, w, h, tip) {
-  const l = Math.hypot(tip[0], tip[1], tip[2]) || 1, L = lengthUnit();
+  const l = Math.hypot(tip[0], tip[1], tip[2]) || 1;
   app.topLength = l;
   const v = plotView(w, h, { x0: -1.3 * l, x1: 1.3 * l, y0: -0.9 * l, y1: 1.3 * l }, true, false);
   app.sceneView = v;
@@ -1114,21 +1133,34 @@ function drawTop(ctx, w, h, tip) {
   for (const g of t.values) { line([g, -l, 0], [g, l, 0]); line([-l, g, 0], [l, g, 0]); }
   ctx.fillStyle = "#555"; ctx.textAlign = "center"; ctx.textBaseline = "top";
   const xs = t.values.map((g) => tickText(g, t.step)), ys = xs.slice();
-  // The top (its axis and the disc round its tip, radius l/2) stands over the floor: a tick
-  // label its box would cover is left out.
-  let body = grow(null, ...P([0, 0, 0]));
+  // The top (the disc round its tip, radius l/2, and its axis from the pivot) stands over the
+  // floor: a label it would cover is left out. The body's boxes: the disc's (whatever its
+  // turn), and six along the axis (a label beside a standing top's axis is clear of it).
+  let disc = null;
   for (let k = 0; k < 24; k++) {
     const th = (TAU * k) / 24, c = [Math.cos(th), Math.sin(th)];
-    for (const d of [[c[0], c[1], 0], [c[0], 0, c[1]], [0, c[0], c[1]]]) body = grow(body, ...P(tip.map((x, i) => x + 0.5 * l * d[i])));
+    for (const d of [[c[0], c[1], 0], [c[0], 0, c[1]], [0, c[0], c[1]]]) disc = grow(disc, ...P(tip.map((x, i) => x + 0.5 * l * d[i])));
   }
-  const put = labelPlacer(ctx, [[body.x0, body.y0, body.x1, body.y1]]);
-  put(withUnit("x", L), P([0, -l * 1.3, 0])); put(withUnit("y", L), P([l * 1.35, 0, 0]));
+  const body = [[disc.x0, disc.y0, disc.x1, disc.y1]];
+  for (let k = 0; k < 6; k++) {
+    const [ax, ay] = P(tip.map((x) => (x * k) / 6)), [bx, by] = P(tip.map((x) => (x * (k + 1)) / 6));
+    body.push([Math.min(ax, bx) - 4, Math.min(ay, by) - 4, Math.max(ax, bx) + 4, Math.max(ay, by) + 4]);
+  }
+  const put = labelPlacer(ctx, body);
+  put.first(lengthLabel("x"), alongEdge((g) => P([g, -l * 1.3, 0]), 0.3 * l));
+  put.first(lengthLabel("y"), alongEdge((g) => P([l * 1.35, g, 0]), 0.3 * l));
+  // The vertical's name at its top, or, where the top's disc stands there, the first place
+  // beside the vertical (lower and lower, right then left) clear of the disc and the labels.
+  const zText = lengthLabel("z"), zHalf = ctx.measureText(zText).width / 2 + 6, f = fontSize();
+  const [zx, zy] = P([0, 0, 1.15 * l]), spots = [];
+  for (let y = zy - f - 3; y > 1 && spots.length < 4; y -= f) spots.push([zx, y]);
+  for (let k = 0; k < 8; k++) { const [, y] = P([0, 0, (1 - 0.12 * k) * l]); spots.push([zx + zHalf, y], [zx - zHalf, y]); }
+  put.first(zText, spots.length ? spots : [[zx, zy]]);
   const xShown = xs.filter((x, i) => put(x, P([t.values[i], -l * 1.08, 0])));
   const yShown = ys.filter((y, i) => put(y, P([l * 1.1, t.values[i], 0])));
-  app.ticks.scene = { x: xShown, y: yShown, xLabel: withUnit("x", L), yLabel: withUnit("y", L) };
+  app.ticks.scene = { x: xShown, y: yShown, xLabel: lengthLabel("x"), yLabel: lengthLabel("y"), zLabel: zText };
   ctx.strokeStyle = "#999"; line([0, 0, 0], [0, 0, 1.15 * l]);
   ctx.textBaseline = "alphabetic";
-  const [zx, zy] = P([0, 0, 1.2 * l]); ctx.fillText("z", zx, zy);
   ctx.lineWidth = 1.5;
   const T = app.trails;
   for (let k = 1; k < T.length; k++) {
@@ -1232,10 +1264,11 @@ function drawRigid(ctx, w, h) {
     ctx.beginPath(); ctx.moveTo(...P(a)); ctx.lineTo(...P(b)); ctx.stroke();
   }
   sceneNote(`The body's axes e₁, e₂, e₃ turn; its angular momentum L (orange, |L| = ${Ln.toPrecision(4)} kg m²/s) stays fixed in space (no torque). Blue: the path of the tip of e₃.`);
-  app.ticks.scene = { x: [], y: [], xLabel: "body axes e₁ e₂ e₃", yLabel: "L" };
-  // Its own little scale: |ω| of the body.
-  app.ticks.scene.x = [`|ω| = ${Math.hypot(s[0], s[1], s[2]).toPrecision(4)} rad/s`];
-  app.ticks.scene.y = [`|L| = ${Ln.toPrecision(4)}`];
+  // No axes in space: the scene's scale is its two magnitudes, |ω| and |L|.
+  app.ticks.scene = {
+    x: [Math.hypot(s[0], s[1], s[2]).toPrecision(4)], xLabel: `|ω| (${stateUnits()[0]})`,
+    y: [Ln.toPrecision(4)], yLabel: "|L| (kg m²/s)",
+  };
 }
 
 // A swarm of pendulums: every member a point of the (angle, momentum) plane, coloured by its
@@ -1395,6 +1428,9 @@ function drawSwarmCloseUp() {
 // A chain: masses on springs drawn along a line (each displaced by its coordinate, to scale
 // with the spacing), walls at fixed ends, and below, each site's displacement against the
 // site with axes. Sine–Gordon: only the sites on a line with their displacement (an angle).
+// The least spacing of the masses on a chain's strip, in CSS pixels: springs of three coils
+// between masses 7 px wide, as readable projected as on a phone.
+const STRIP_GAP = 22;
 function drawChain(ctx, w, h, k) {
   const s = app.lab.state(), n = ndof(), ring = presentation().drawing.ends === "periodic";
   const unit = stateUnits()[0], sym = presentation().symbols?.[0] ?? "q";
@@ -1416,12 +1452,18 @@ function drawChain(ctx, w, h, k) {
   ctx.save(); ctx.translate(0, top);
   drawAxes("scene", ctx, v, "site", label(sym, unit));
   clip(ctx, v);
+  // On a narrow canvas (a phone) a strip of every mass would be too dense to read: it shows
+  // the chain's middle, masses at least STRIP_GAP px apart, marked on the plot by a band.
+  const count = k === "chain" ? Math.min(n, Math.max(3, Math.floor((v.rect.x1 - v.rect.x0) / STRIP_GAP) - 1)) : n;
+  const first = Math.floor((n - count) / 2), last = first + count - 1;
+  if (count < n) { ctx.fillStyle = "rgba(192, 57, 43, 0.1)"; ctx.fillRect(v.X(first + 0.5), v.rect.y0, v.X(last + 1.5) - v.X(first + 0.5), v.rect.y1 - v.rect.y0); }
   ctx.strokeStyle = "#999"; ctx.lineWidth = 1; ctx.beginPath(); ctx.moveTo(v.rect.x0, v.Y(0)); ctx.lineTo(v.rect.x1, v.Y(0)); ctx.stroke();
   ctx.strokeStyle = "#2860c8"; ctx.lineWidth = 1.5; ctx.beginPath();
   for (let i = 0; i < n; i++) (i ? ctx.lineTo(v.X(i + 1), v.Y(s[i])) : ctx.moveTo(v.X(i + 1), v.Y(s[i])));
   ctx.stroke();
   ctx.fillStyle = "#c0392b";
-  const r = n > 60 ? 1.8 : 4;
+  // Dots no wider than 0.6 of their spacing (32 sites on a phone are 9 px apart).
+  const r = n > 60 ? 1.8 : Math.min(4, 0.3 * (v.X(2) - v.X(1)));
   for (let i = 0; i < n; i++) { ctx.beginPath(); ctx.arc(v.X(i + 1), v.Y(s[i]), r, 0, TAU); ctx.fill(); }
   ctx.restore(); ctx.restore();
   app.chainGeom = { v, top, amp, strip: false };
@@ -1433,19 +1475,22 @@ function drawChain(ctx, w, h, k) {
   }
   // The masses on their springs, displacements to scale: a displacement of `amp` moves a
   // mass 0.3 of the spacing, so neighbours' centres stay 0.4 of it apart, and a mass is at
-  // most 0.36 of it wide (at least 5 px), so neighbours do not overlap.
-  const x0 = v.rect.x0, x1 = v.rect.x1, y = top * 0.55, gap = (x1 - x0) / (n + 1), gain = (0.3 * gap) / amp;
-  const X = (i) => x0 + gap * (i + 1) + gain * s[i];
-  Object.assign(app.chainGeom, { strip: true, x0, gap, gain, y });
-  ctx.strokeStyle = "#555"; ctx.lineWidth = 1.2;
+  // most 0.36 of it wide (at least 5 px), so neighbours do not overlap. A window of the
+  // chain (`first` to `last`) goes on at both sides: springs to the strip's edges, in grey.
+  const whole = count === n;
+  const x0 = v.rect.x0, x1 = v.rect.x1, y = top * 0.55, gap = (x1 - x0) / (count + 1), gain = (0.3 * gap) / amp;
+  const X = (i) => x0 + gap * (i - first + 1) + gain * s[i];
+  Object.assign(app.chainGeom, { strip: true, x0, gap, gain, y, first, count });
+  ctx.strokeStyle = whole ? "#555" : "#aaa"; ctx.lineWidth = 1.2;
   const half = Math.max(2.5, Math.min(8, 0.18 * gap));
-  if (!ring) {
-    ctx.fillStyle = "#bbb"; ctx.fillRect(x0 - 8, y - 18, 8, 36); ctx.fillRect(x1, y - 18, 8, 36);
-    coil(ctx, x0, y, X(0) - half, y, 5, 4);
-    coil(ctx, X(n - 1) + half, y, x1, y, 5, 4);
+  if (!ring || !whole) {
+    if (whole) { ctx.fillStyle = "#bbb"; ctx.fillRect(x0 - 8, y - 18, 8, 36); ctx.fillRect(x1, y - 18, 8, 36); }
+    coil(ctx, x0, y, X(first) - half, y, 5, 4);
+    coil(ctx, X(last) + half, y, x1, y, 5, 4);
   }
-  for (let i = 0; i + 1 < n; i++) coil(ctx, X(i) + half, y, X(i + 1) - half, y, Math.max(2, Math.min(6, Math.round(gap / 8))), Math.min(4, half * 0.6));
-  if (ring) {
+  ctx.strokeStyle = "#555";
+  for (let i = first; i < last; i++) coil(ctx, X(i) + half, y, X(i + 1) - half, y, Math.max(2, Math.min(6, Math.round(gap / 8))), Math.min(4, half * 0.6));
+  if (ring && whole) {
     // The ring's closing spring, from the last mass back round to the first, drawn as a
     // loop under the strip.
     const drop = Math.min(0.35 * top, 3 * half + 10);
@@ -1455,8 +1500,10 @@ function drawChain(ctx, w, h, k) {
     ctx.setLineDash([4, 3]); ctx.stroke(); ctx.setLineDash([]);
   }
   ctx.fillStyle = "#c0392b";
-  for (let i = 0; i < n; i++) ctx.fillRect(X(i) - half, y - half, 2 * half, 2 * half);
-  sceneNote(`Above: ${n} masses on springs${ring ? " (a ring: the last is joined to the first, dashed)" : ", fixed walls at both ends"}, displacements to scale. Below: each mass's displacement against its place in the chain.`);
+  for (let i = first; i <= last; i++) ctx.fillRect(X(i) - half, y - half, 2 * half, 2 * half);
+  const strip = whole ? `${n} masses on springs${ring ? " (a ring: the last is joined to the first, dashed)" : ", fixed walls at both ends"}`
+    : `masses ${first + 1} to ${last + 1} of the ${n} on springs (the band below; the chain goes on at both sides)`;
+  sceneNote(`Above: ${strip}, displacements to scale. Below: each mass's displacement against its place in the chain.`);
 }
 
 // One mass on a spring from a wall, seen from the side, its displacement x to scale on the
@@ -1518,7 +1565,7 @@ function sceneNote(text) {
 // (cx, cy) with half-width `half`; records the scene's ticks for the tests.
 // `avoid`: boxes of the body over the floor, where no tick label goes.
 function drawFloor(ctx, P, cx, cy, half, avoid = []) {
-  const tx = tickValues(cx - half, cx + half, 4), ty = tickValues(cy - half, cy + half, 4), L = lengthUnit();
+  const tx = tickValues(cx - half, cx + half, 4), ty = tickValues(cy - half, cy + half, 4);
   const line = (a, b) => { ctx.beginPath(); ctx.moveTo(...P(a)); ctx.lineTo(...P(b)); ctx.stroke(); };
   ctx.strokeStyle = "#ddd"; ctx.lineWidth = 1;
   for (const g of tx.values) line([g, cy - half, 0], [g, cy + half, 0]);
@@ -1526,11 +1573,12 @@ function drawFloor(ctx, P, cx, cy, half, avoid = []) {
   ctx.fillStyle = "#555"; ctx.textAlign = "center"; ctx.textBaseline = "top";
   const xs = tx.values.map((g) => tickText(g, tx.step)), ys = ty.values.map((g) => tickText(g, ty.step));
   const put = labelPlacer(ctx, avoid);
-  put(withUnit("x", L), P([cx, cy - half * 1.32, 0])); put(withUnit("y", L), P([cx + half * 1.38, cy, 0]));
+  put.first(lengthLabel("x"), alongEdge((g) => P([cx + g, cy - half * 1.32, 0]), 0.3 * half));
+  put.first(lengthLabel("y"), alongEdge((g) => P([cx + half * 1.38, cy + g, 0]), 0.3 * half));
   const xShown = xs.filter((x, i) => put(x, P([tx.values[i], cy - half * 1.1, 0])));
   const yShown = ys.filter((y, i) => put(y, P([cx + half * 1.12, ty.values[i], 0])));
   ctx.textBaseline = "alphabetic";
-  app.ticks.scene = { x: xShown, y: yShown, xLabel: withUnit("x", L), yLabel: withUnit("y", L) };
+  app.ticks.scene = { x: xShown, y: yShown, xLabel: lengthLabel("x"), yLabel: lengthLabel("y") };
 }
 
 // A curved arrow round the vertical through `centre` (radius `r` in metres): the sense and
@@ -1621,12 +1669,13 @@ function drawTiltedDisk(ctx, w, h) {
   let disk = null;
   for (let k = 0; k < 32; k++) { const p = rim((TAU * k) / 32); disk = grow(grow(disk, ...P(p)), ...P([p[0], p[1], 0])); }
   const put = labelPlacer(ctx, [[disk.x0, disk.y0, disk.x1, disk.y1]]);
-  // The axes' names short (a phone has no room): their unit, the disk's radius, is in the note.
-  put("x", P([0, -1.6, 0])); put("y", P([1.62, 0, 0]));
+  // Lengths in units of the disk's radius R (drawn 1: the reduced model has no size).
+  put.first("x / R", alongEdge((g) => P([g, -1.6, 0]), 0.3));
+  put.first("y / R", alongEdge((g) => P([1.62, g, 0]), 0.3));
   const xShown = xs.filter((x, i) => put(x, P([t.values[i], -1.3, 0])));
   const yShown = xs.filter((y, i) => put(y, P([1.32, t.values[i], 0])));
   ctx.textBaseline = "alphabetic";
-  app.ticks.scene = { x: xShown, y: yShown, xLabel: "x", yLabel: "y" };
+  app.ticks.scene = { x: xShown, y: yShown, xLabel: "x / R", yLabel: "y / R" };
   const contact = (a, b) => [Math.cos(a) * Math.cos(b), Math.cos(a) * Math.sin(b), 0];
   // The contact point's path so far.
   const T = app.trails;
@@ -1651,7 +1700,7 @@ function drawTiltedDisk(ctx, w, h) {
   const th0 = app.lab.initialState()[0], tf = (th0 * th0) / (2 * param("decay_rate"));
   sceneNote(`${app.ended ? "At rest. " : ""}The disk tilted θ = ${th.toFixed(3)} rad from the table; its contact point (red) runs round at φ̇ = ${rate.toPrecision(3)} rad/s, ` +
     `faster as the disk flattens, which it does at t = θ₀² / (2 × decay rate) = ${tf.toPrecision(3)} s, where the model ends ` +
-    `(lengths in disk radii; the reduced model has no size).`);
+    `(lengths in units of the disk's radius R; the reduced model has no size).`);
 }
 
 // The rattleback's rates in a body: an ellipsoid seen in perspective, turned about the
@@ -1995,7 +2044,8 @@ function drawSection() {
 }
 
 function draw() {
-  const tu = timeUnit();
+  // The readout names seconds only: "4.50 time" would read as a word.
+  const tu = timeUnit() === "s" ? "s" : "";
   $("time").textContent = `${app.lab.time().toFixed(2)}${tu ? ` ${tu}` : ""}`;
   $("energy-error").textContent = app.lab.energyError().toExponential(3);
   drawScene(); drawPhase(); if (!$("energy-figure").hidden) drawEnergy(); drawSection();
@@ -2096,13 +2146,13 @@ function chainHandles() {
   for (let i = 0; i < n; i++) {
     if (g.one) { out.push({ i, how: "one", x: g.v.X(s[0]), y: g.v.Y(0) }); break; }
     out.push({ i, how: "plot", x: g.v.X(i + 1), y: g.top + g.v.Y(s[i]) });
-    if (g.strip) out.push({ i, how: "strip", x: g.x0 + g.gap * (i + 1) + g.gain * s[i], y: g.y });
+    if (g.strip && i >= g.first && i < g.first + g.count) out.push({ i, how: "strip", x: g.x0 + g.gap * (i - g.first + 1) + g.gain * s[i], y: g.y });
   }
   return out;
 }
 function chainDisplacement(d, px, py) {
   const g = app.chainGeom, i = d.i;
-  const x = d.how === "plot" ? g.v.inv(px, py - g.top)[1] : d.how === "one" ? g.v.inv(px, py)[0] : (px - g.x0 - g.gap * (i + 1)) / g.gain;
+  const x = d.how === "plot" ? g.v.inv(px, py - g.top)[1] : d.how === "one" ? g.v.inv(px, py)[0] : (px - g.x0 - g.gap * (i - g.first + 1)) / g.gain;
   return Math.max(-CHAIN_REACH * d.amp, Math.min(CHAIN_REACH * d.amp, x));
 }
 
@@ -2366,7 +2416,10 @@ function selectSystem(name, params = {}, build = true) {
   app.entry = app.catalogue.systems.find((s) => s.name === name);
   $("system").value = name;
   app.params = { ...params };
-  setRuns($("caption"), peopleRuns(`${app.entry.summary_text}.${app.entry.note_text ? ` ${app.entry.note_text[0].toUpperCase()}${app.entry.note_text.slice(1)}.` : ""}`));
+  // A dimensionless system (no unit of time in the catalogue) says so once, here: its axes
+  // carry bare symbols.
+  const scaled = app.entry.presentation.time_unit === "" ? " All quantities are in dimensionless units." : "";
+  setRuns($("caption"), peopleRuns(`${app.entry.summary_text}.${app.entry.note_text ? ` ${app.entry.note_text[0].toUpperCase()}${app.entry.note_text.slice(1)}.` : ""}${scaled}`));
   // The physics paragraph: the gallery's text for this system, from the catalogue JSON.
   setRuns($("physics"), peopleRuns(app.entry.physics_text ?? app.entry.physics ?? ""));
   $("about").hidden = !app.entry.physics;

@@ -9,7 +9,8 @@
 //   - axes on every canvas shown (the tick labels the page drew, which it exposes);
 //   - no code in the page's text (a denylist: `::`, `--`, `^`, `thetadot`, "as in the spec",
 //     a symbol left as words or with a bare `_` index);
-// then: every phase and time axis of a system timed in seconds says its unit, as "θ₁ (rad)";
+// then: every axis of every system says its unit, as "θ₁ (rad)", or a ratio ("x / l"), or
+// (a system the catalogue declares dimensionless) a bare symbol;
 // the pendulum swarm's fixed view of where it can reach and its close-up; names of arrows off
 // every arrow and each other (the tops); a projectile's frame kept and grown, never shrunk,
 // by drags and Reset; every chain of rods dragged by its last bob;
@@ -179,32 +180,40 @@ for (let [name, method] of systems) {
     const want = (i) => (i < k ? withUnit(q(i), unit(starts[0], i)) : withUnit(v(i - k), unit(starts[1], i - k)));
     const t = got.ticks;
     if (t.phase.xLabel !== want(got.ix) || t.phase.yLabel !== want(got.iy)) fail(`labels ${name}: phase axes ${t.phase.xLabel} / ${t.phase.yLabel}, the catalogue says ${want(got.ix)} / ${want(got.iy)}`);
-    const time = tu === "s" ? "t (s)" : "t";
+    const time = tu ? `t (${tu})` : "t";
     if (t.energy.xLabel !== time) fail(`labels ${name}: time axis ${t.energy.xLabel}, the catalogue's unit of time is ${JSON.stringify(tu)}`);
     if (t.section && name === "henon-heiles" && (t.section.xLabel !== want(0) || t.section.yLabel !== want(k))) fail(`labels ${name}: section axes ${t.section.xLabel} / ${t.section.yLabel}`);
     console.log(`ok labels ${name}: ${t.phase.xLabel}, ${t.phase.yLabel}; ${t.energy.xLabel}`);
   }
 }
 
-// Every axis a physicist would give a unit has one: in a system whose time is in seconds,
-// every state quantity has a dimension (but a quaternion's components), so the phase panel's
-// axes (as each system opens) and the time axis say their unit, as "symbol (unit)".
+// Every axis says what it measures in: on every canvas shown, of every system (as it opens),
+// each axis with tick labels is named "symbol (unit)", or a ratio ("x / l": lengths in units
+// of a length of the system's own, as the catalogue's drawing says; "|E − E₀| / |E₀|"), or
+// counts sites; a bare symbol only in a system the catalogue declares dimensionless (no unit
+// of time), whose caption then says so.
 {
   const bad = await page.evaluate((names) => {
     const L = window.physicskitLab, out = [];
+    const unit = /^.+ \([^()]+\)$/u, ratio = /^.+ \/ .+$/u;
     for (const n of names) {
       L.select(n); L.runFrames(2);
-      if (L.app.entry.presentation.time_unit !== "s") continue;
-      const t = L.ticks();
-      for (const [id, axis] of [["phase", "xLabel"], ["phase", "yLabel"], ["energy", "xLabel"]]) {
-        const text = t[id]?.[axis];
-        if (text !== undefined && !/^\S+ \([^()]+\)$/u.test(text) && !(id === "energy" && document.getElementById("energy-figure").hidden)) out.push(`${n}: ${id} ${axis} ${JSON.stringify(text)}`);
+      const t = L.ticks(), scaled = L.app.entry.presentation.time_unit === "";
+      if (scaled && !/dimensionless units/.test(document.getElementById("caption").textContent)) out.push(`${n}: dimensionless, and the caption does not say so`);
+      const shown = [...document.querySelectorAll("canvas")].filter((c) => c.offsetParent !== null).map((c) => c.id);
+      for (const id of shown) {
+        const axes = [["x", t[id]?.x, t[id]?.xLabel], ["y", t[id]?.y, t[id]?.yLabel], ["z", t[id]?.x, t[id]?.zLabel]];
+        for (const [axis, ticks, text] of axes) {
+          if (!ticks?.length || text === undefined) continue;
+          if (unit.test(text) || ratio.test(text) || text === "site" || (scaled && text)) continue;
+          out.push(`${n}: ${id} ${axis} axis ${JSON.stringify(text)}`);
+        }
       }
     }
     return out;
   }, systems.map(([n]) => n));
   for (const b of bad) fail(`units: ${b}`);
-  console.log(`ok units: every phase and time axis of the systems timed in seconds says its unit${bad.length ? ` (but ${bad.length})` : ""}`);
+  console.log(`ok units: every axis of every system says its unit, a ratio or (declared) no dimension${bad.length ? ` (but ${bad.length})` : ""}`);
 }
 
 // The pendulum swarm: the scene is the region the swarm can ever reach (each pendulum keeps its
@@ -289,9 +298,10 @@ for (let [name, method] of systems) {
   console.log(`ok arrow names: ${count} names over ${draws.length} drawings of the tops, none on an arrow or another name`);
 }
 
-// A floor's tick labels never sit under the body standing on it (the tops, Euler's disk, the
-// rolling bodies): over a run, no label drawn meets the box of the body's drawing, and each
-// floor keeps labels on both edges.
+// A floor's tick labels and axis names never sit under the body standing on it (the tops,
+// Euler's disk, the rolling bodies): over a run, no label drawn meets the box of the body's
+// drawing, each floor keeps labels on both edges, and every axis's name (and the heavy top's
+// vertical, z) is among the labels drawn.
 {
   const bad = await page.evaluate((names) => {
     const L = window.physicskitLab, out = [];
@@ -303,6 +313,7 @@ for (let [name, method] of systems) {
         const { avoid, drawn } = L.app.floorLabels, t = L.ticks().scene;
         for (const d of drawn) for (const a of avoid) if (d.box[0] < a[2] && a[0] < d.box[2] && d.box[1] < a[3] && a[1] < d.box[3]) out.push(`${n}: ${d.text} under the body`);
         if (!avoid.length || !t.x.length || !t.y.length) out.push(`${n}: floor ${JSON.stringify(t)}, body ${JSON.stringify(avoid)}`);
+        for (const name of [t.xLabel, t.yLabel, t.zLabel]) if (name && !drawn.some((d) => d.text === name)) out.push(`${n}: the axis name ${name} not drawn`);
       }
     }
     return out;

@@ -33,7 +33,8 @@
 //!   the opening of the gallery demonstration that shows it; `null` if none.
 //! - `presentation`: how front ends show the system (`SystemEntry::presentation`):
 //!   `{"title", "symbols": [TeX, ..], "time_unit", "state_units": null or [coordinate, momentum],
-//!   "drawing": {"kind", and the kind's attributes: "springs" (bobs), "ends" (chains),
+//!   "drawing": {"kind", and the kind's attributes: "springs" and
+//!   "scale" (bobs, the length its positions are in units of, if any), "ends" (chains),
 //!   "central_body" and "ground" (orbits), "shape" (rolling bodies)}, "pace": {"kind": "own"}
 //!   or {"kind": "fixed", "method", "dt", "steps_per_frame", "energy_error"} or
 //!   {"kind": "time_lapse", "dt", "steps_per_frame"}, "section_first": bool,

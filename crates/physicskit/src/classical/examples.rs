@@ -175,7 +175,10 @@ pub static PENDULUM_ENTRY: SystemEntry = SystemEntry {
         symbols: &["\\theta"],
         time_unit: "s",
         state_units: None,
-        drawing: Drawing::Bobs { springs: false },
+        drawing: Drawing::Bobs {
+            springs: false,
+            scale: Some("l"),
+        },
         pace: Pace::Own,
         section_first: false,
         energy_conserved: true,

@@ -190,6 +190,10 @@ pub enum Drawing {
     Bobs {
         /// On springs (drawn as coils), not rigid rods.
         springs: bool,
+        /// A length of the system's own that its `positions` are in units of, as a TeX
+        /// symbol (`l`: a simple pendulum's are those of a unit rod; front ends write the
+        /// axes `x / l`); `None` where they are in its parameters' unit of length.
+        scale: Option<&'static str>,
     },
     /// A bead on a hoop that turns about its vertical diameter.
     Hoop,
@@ -253,7 +257,11 @@ impl Drawing {
     /// The kind's attributes by name, as front ends read them (`[("ends", Word("fixed"))]`).
     pub fn attributes(self) -> Vec<(&'static str, Attribute)> {
         match self {
-            Drawing::Bobs { springs } => vec![("springs", Attribute::Flag(springs))],
+            Drawing::Bobs { springs, scale } => {
+                let mut attributes = vec![("springs", Attribute::Flag(springs))];
+                attributes.extend(scale.map(|l| ("scale", Attribute::Word(l))));
+                attributes
+            }
             Drawing::Chain { ends } => vec![("ends", Attribute::Word(ends.name()))],
             Drawing::Orbit {
                 central_body,

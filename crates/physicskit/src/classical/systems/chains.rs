@@ -953,11 +953,14 @@ const SINE_GORDON_COUPLING: P = P::scalar(
     "coupling constant",
 );
 
-/// How both sine–Gordon entries are shown (the second with its own title).
+/// How both sine–Gordon entries are shown (the second with its own title). The angles are in
+/// radians; time is in the units in which the on-site energy `1 - cos q` has amplitude 1 and
+/// the mass is `m` (the kink's speed is in sites per that time), the momenta `m q̇` in mass
+/// radians per that time.
 const SINE_GORDON_PRESENTATION: Presentation = Presentation {
     title: "Sine–Gordon chain",
     symbols: &["\\phi"],
-    time_unit: "",
+    time_unit: "time",
     state_units: None,
     drawing: Drawing::Field,
     pace: Pace::Own,
@@ -987,7 +990,7 @@ pub static SINE_GORDON_STATE_ENTRY: SystemEntry = SystemEntry {
             "p0",
             Length::Count("n"),
             D::Absent,
-            "",
+            "mass rad/time",
             "initial momenta, length n (left out: zeros)",
         )
         .initial_state(),
@@ -1064,7 +1067,11 @@ pub static SINE_GORDON_KINK_ENTRY: SystemEntry = SystemEntry {
     default_method: Method::Yoshida4,
     note: None,
     physics: Some(SINE_GORDON_PHYSICS),
-    presentation: SINE_GORDON_PRESENTATION,
+    // Started from kink data, not from a state: the state's units said here.
+    presentation: Presentation {
+        state_units: Some(("rad", "mass rad/time")),
+        ..SINE_GORDON_PRESENTATION
+    },
     build: |v| {
         let n = v.count("n")?;
         let (m, k) = (v.scalar("m")?, v.scalar("k")?);

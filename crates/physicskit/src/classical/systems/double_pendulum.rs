@@ -456,7 +456,10 @@ pub static DOUBLE_PENDULUM_ENTRY: SystemEntry = SystemEntry {
         symbols: &["\\theta_1", "\\theta_2"],
         time_unit: "s",
         state_units: None,
-        drawing: Drawing::Bobs { springs: false },
+        drawing: Drawing::Bobs {
+            springs: false,
+            scale: None,
+        },
         pace: Pace::Own,
         section_first: false,
         energy_conserved: true,

@@ -506,7 +506,10 @@ pub static ELASTIC_PENDULUM_ENTRY: SystemEntry = SystemEntry {
         symbols: &["s", "\\theta"],
         time_unit: "s",
         state_units: None,
-        drawing: Drawing::Bobs { springs: true },
+        drawing: Drawing::Bobs {
+            springs: true,
+            scale: None,
+        },
         pace: Pace::Own,
         section_first: false,
         energy_conserved: true,

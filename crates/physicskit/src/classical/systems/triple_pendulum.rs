@@ -285,7 +285,10 @@ pub static TRIPLE_PENDULUM_ENTRY: SystemEntry = SystemEntry {
         symbols: &["\\theta_1", "\\theta_2", "\\theta_3"],
         time_unit: "s",
         state_units: None,
-        drawing: Drawing::Bobs { springs: false },
+        drawing: Drawing::Bobs {
+            springs: false,
+            scale: None,
+        },
         pace: Pace::Own,
         section_first: false,
         energy_conserved: true,

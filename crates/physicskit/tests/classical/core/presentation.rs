@@ -116,6 +116,12 @@ fn drawings_fit_their_systems() {
         let has = |name: &str| entry.params.iter().any(|p| p.name == name);
         match entry.presentation.drawing {
             Drawing::Bobs { .. } | Drawing::Hoop => {
+                // The drawing's lengths have a unit: a parameter in metres, or the length of
+                // the system's own that the positions are in units of (never both).
+                let metres = entry.params.iter().any(|p| p.unit == "m");
+                if let Drawing::Bobs { scale, .. } = entry.presentation.drawing {
+                    assert!(metres != scale.is_some(), "{}: scale {scale:?}", entry.name);
+                }
                 let ndof = system.ndof().expect("a [q, p] or [q, qdot] state");
                 let pos = system
                     .capabilities()
