@@ -495,7 +495,14 @@ function startViews(extent = null, keep = false) {
   clearViews();
   app.extent = extent ?? probeExtent();
   app.sceneBox = sceneBoxFrom(app.extent);
-  if (keep && scene) app.sceneBox = app.sceneBox ? union(scene, app.sceneBox) : scene;
+  if (keep && scene) {
+    // The kept frame, unless the new run comes within 0.03 of its edges (a body drawn there,
+    // 7 px wide, would be cut): then widened to hold the run with the frame's own margin,
+    // 0.08 of it (a short run's margin, 0.08 of itself, is too thin for its body).
+    const b = sceneBoxFrom(app.extent, 0), W = scene.x1 - scene.x0, H = scene.y1 - scene.y0;
+    const inside = !b || (b.x0 >= scene.x0 + 0.03 * W && b.x1 <= scene.x1 - 0.03 * W && b.y0 >= scene.y0 + 0.03 * H && b.y1 <= scene.y1 - 0.03 * H);
+    app.sceneBox = inside ? scene : union(scene, { x0: b.x0 - 0.08 * W, x1: b.x1 + 0.08 * W, y0: b.y0 - 0.08 * H, y1: b.y1 + 0.08 * H });
+  }
   app.phaseBox = null;
   app.phaseKeep = keep ? phase : null;
   app.ampFloor = keep ? amp : null;
@@ -548,7 +555,7 @@ function probeExtent() {
   return ext;
 }
 
-function sceneBoxFrom(ext) {
+function sceneBoxFrom(ext, margin = 0.08) {
   const pos = app.lab.positions();
   let box = null;
   for (let i = 0; i + 1 < pos.length && pos.length !== 3; i += 2) box = grow(box, pos[i], pos[i + 1]);
@@ -562,7 +569,7 @@ function sceneBoxFrom(ext) {
   }
   if (k === "projectile") box = grow(box, box ? box.x0 : 0, 0);
   if (!box) return null;
-  return pad(box, 0.08);
+  return pad(box, margin);
 }
 
 function reachOf(pos) {
