@@ -6,14 +6,17 @@
 
 use numpy::{PyArray1, PyReadonlyArray1};
 use physicskit::classical::analysis;
+use physicskit::classical::model::entry::Value;
 use physicskit::classical::systems::{
     eulers_disk_theta_analytic as disk_theta, spin_reversal_time as reversal, FoucaultPendulum,
     ProjectileMotion, SineGordonChain, SPIN_REVERSAL_WINDOW,
 };
+use pyo3::exceptions::PyValueError;
 use pyo3::prelude::*;
 
 use crate::convert::to_vec;
 use crate::errors::IntoPyResult;
+use crate::params;
 
 type Arr<'a> = PyReadonlyArray1<'a, f64>;
 /// Two numpy vectors returned together (`(x, y)`, `(q0, p0)`).
@@ -70,12 +73,43 @@ pub fn eulers_disk_theta_analytic<'py>(
     ))
 }
 
+/// The `window` of [`spin_reversal_time`], read by the scalar rules of the catalogue's
+/// parameters (`params`): a real number, so a complex number, a bool, a string or an int too
+/// large for a float is a ValueError naming `window` rather than pyo3's TypeError or
+/// OverflowError.
+struct Window(f64);
+
+impl<'a, 'py> FromPyObject<'a, 'py> for Window {
+    type Error = PyErr;
+
+    fn extract(obj: Borrowed<'a, 'py, PyAny>) -> PyResult<Self> {
+        match params::scalar("window", &obj, false)? {
+            Value::Scalar(x) => Ok(Self(x)),
+            other => Err(PyValueError::new_err(format!(
+                "`window`: expected a real number, got {other:?}"
+            ))),
+        }
+    }
+}
+
 /// `spin_reversal_time`: the first zero of a spin history averaged over `window` (s), or
-/// `None`.
+/// `None`. `t` and `spin` are array-likes of reals (lists too), read as the catalogue's vector
+/// parameters are; the core checks lengths, finiteness, spacing and the window.
 #[pyfunction]
-#[pyo3(signature = (t, spin, window = SPIN_REVERSAL_WINDOW))]
-pub fn spin_reversal_time(t: Arr<'_>, spin: Arr<'_>, window: f64) -> PyResult<Option<f64>> {
-    reversal(&to_vec(&t), &to_vec(&spin), window).py()
+#[pyo3(signature = (t, spin, window = Window(SPIN_REVERSAL_WINDOW)))]
+fn spin_reversal_time(
+    t: &Bound<'_, PyAny>,
+    spin: &Bound<'_, PyAny>,
+    window: Window,
+) -> PyResult<Option<f64>> {
+    let (Value::Vector(t), Value::Vector(spin)) =
+        (params::vector("t", t)?, params::vector("spin", spin)?)
+    else {
+        return Err(PyValueError::new_err(
+            "`t`, `spin`: expected one-dimensional arrays of real numbers",
+        ));
+    };
+    reversal(&t, &spin, window.0).py()
 }
 
 /// Vacuum range and maximum height.
