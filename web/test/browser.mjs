@@ -904,6 +904,17 @@ for (const [name] of systems) {
   for (let i = 1; i < bobs.length; i++) {
     if (Math.hypot(bobs[i].x - bobs[i - 1].x, bobs[i].y - bobs[i - 1].y) < bobs[i].r + bobs[i - 1].r) fail(`phone ${name}: bob ${i} covers ${i > 1 ? `bob ${i - 1}` : "the pivot"} (${JSON.stringify(bobs.slice(i - 1, i + 1))})`);
   }
+  // A chain's strip of masses on springs stays readable: neighbours at least 20 px apart (where
+  // all do not fit, a window of the chain), each mass on the screen inside the strip.
+  const strip = await phone.evaluate(() => {
+    const L = window.physicskitLab, g = L.app.chainGeom;
+    if (!g?.strip) return null;
+    const r = document.getElementById("scene").getBoundingClientRect();
+    return { gap: g.gap, count: g.count, xs: L.handlesOnScreen().filter((h) => h.how === "strip").map((h) => h.x - r.left), x0: g.x0, x1: g.v.rect.x1 };
+  });
+  // 20 px: a mass 7 px wide and a spring of two coils between neighbours.
+  if (strip && !(strip.gap >= 20)) fail(`phone ${name}: the strip's masses ${strip.gap.toFixed(1)} px apart`);
+  if (strip && (strip.xs.length !== strip.count || strip.xs.some((x) => x < strip.x0 || x > strip.x1))) fail(`phone ${name}: strip masses at ${strip.xs.map((x) => x.toFixed(0))}, the strip ${strip.x0}–${strip.x1} px`);
   await phone.screenshot({ path: join(shots, `phone-${name}.png`) });
 }
 // Every draggable system dragged on the phone too (as on the desktop, then 30 frames):
