@@ -915,6 +915,15 @@ for (const [name] of systems) {
   // 20 px: a mass 7 px wide and a spring of two coils between neighbours.
   if (strip && !(strip.gap >= 20)) fail(`phone ${name}: the strip's masses ${strip.gap.toFixed(1)} px apart`);
   if (strip && (strip.xs.length !== strip.count || strip.xs.some((x) => x < strip.x0 || x > strip.x1))) fail(`phone ${name}: strip masses at ${strip.xs.map((x) => x.toFixed(0))}, the strip ${strip.x0}–${strip.x1} px`);
+  // On the narrow floor too: no label under the body, every axis's name drawn.
+  const under = await phone.evaluate(() => {
+    const L = window.physicskitLab, f = L.app.floorLabels, t = L.ticks().scene, out = [];
+    if (!["top_axis", "contact_spiral", "rolling"].includes(L.app.entry.presentation.drawing.kind)) return out;
+    for (const d of f.drawn) for (const a of f.avoid) if (d.box[0] < a[2] && a[0] < d.box[2] && d.box[1] < a[3] && a[1] < d.box[3]) out.push(`${d.text} under the body`);
+    for (const axis of [t.xLabel, t.yLabel, t.zLabel]) if (axis && !f.drawn.some((d) => d.text === axis)) out.push(`the axis name ${axis} not drawn`);
+    return out;
+  });
+  for (const u of new Set(under)) fail(`phone ${name}: ${u}`);
   await phone.screenshot({ path: join(shots, `phone-${name}.png`) });
 }
 // Every draggable system dragged on the phone too (as on the desktop, then 30 frames):
