@@ -20,7 +20,8 @@
 // angles in (−π, π]), three orbits launched on the Hénon–Heiles section (the crossings of all
 // three stay, read from the JSON export), Euler's disk ending at its collapse with words, not
 // an error, Foucault's swing plane turned by the closed form in time-lapse, the keyboard, the page at 390 px wide (no sideways
-// scroll, the scene and Run on the first screen), and no console errors; a bad method name
+// scroll, the scene and Run on the first screen, a chain's strip of masses readable, a floor's
+// axis names drawn and clear of its body), and no console errors; a bad method name
 // given to the module's build (unknown, HTML, adaptive, refused by the setup) is refused by
 // name and the module runs on. Screenshots of every system, desktop and phone, running and
 // (every draggable one) after a drag, go to the given directory.
