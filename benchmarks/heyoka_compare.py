@@ -16,13 +16,29 @@ Workloads (the same starts as ``benchmarks/src/bin/heyoka_taylor.rs``):
   hh-energy  the same start, t = 1000: largest energy error on a grid of unit spacing
   pendulum   double pendulum from rest at (2, 1.5) rad, t = 10, state (q, p): final error
 
-Usage: heyoka_compare.py PATH_TO_heyoka_taylor
+Batch workload (``batch``, with the ``heyoka_batch`` binary): 1000 Hénon–Heiles orbits at
+E = 1/6 launched on the surface x = 0 (a lattice of 50 heights y by 20 momenta p_x, none zero,
+p_y > 0; the binary prints the starts and heyoka starts from the same bits), t = 100, final
+states, at tolerances 1e-6, 1e-10, 1e-14. heyoka: ``taylor_adaptive_batch`` (batch size
+``recommended_simd_size()``) over the orbits on one thread; on two threads,
+``ensemble_propagate_until_batch`` (its own ensemble API, ``max_workers=2``: a copy of the
+integrator per batch) and two Python threads each stepping its own integrator over half the
+batches (heyoka releases the GIL while it propagates). Ours: the ensemble API
+(``ensemble::run``, method ``taylor``, at its default tolerances, the only ones its plan
+takes) and the compiled recurrences over the members with rayon, on one and two threads (see
+the binary). Errors: the largest component error over every 20th orbit (50 orbits) against
+heyoka in real128 at tolerance 1e-32. The orbits are chaotic: over t = 100 the error of the
+most unstable of them grows from the tolerance by several orders of magnitude, alike for both.
+
+Usage: heyoka_compare.py PATH_TO_heyoka_taylor [PATH_TO_heyoka_batch]
+       heyoka_compare.py --batch-only PATH_TO_heyoka_batch
 """
 
 import json
 import math
 import subprocess
 import sys
+import threading
 import time
 
 import heyoka as hy
@@ -30,6 +46,11 @@ import numpy as np
 
 TOLERANCES = [1e-6, 1e-8, 1e-10, 1e-12, 1e-14, 1e-16]
 REPEATS = 5
+BATCH_TOLERANCES = [1e-6, 1e-10, 1e-14]
+BATCH_T_END = 100.0
+#: Every this many orbits of the batch gets a real128 reference (50 of the 1000): real128 runs
+#: in software, about 0.1 s an orbit.
+REFERENCE_EVERY = 20
 
 
 def systems():
@@ -149,7 +170,159 @@ def error_of(name, result, ref, y0):
     return float(np.max(np.abs(np.array(result, dtype=np.longdouble) - ref)))
 
 
+def batch_reference(hh, starts):
+    """Final states of every REFERENCE_EVERY-th orbit in real128 at tolerance 1e-32, as long
+    doubles (through text: numpy cannot cast real128)."""
+    fp = hy.real128
+    first = [fp(repr(float(v))) for v in starts[0]]
+    ta = hy.taylor_adaptive(hh, first, tol=fp("1e-32"), fp_type=fp)
+    ref = {}
+    for i in range(0, len(starts), REFERENCE_EVERY):
+        ta.time = fp(0)
+        ta.state[:] = [fp(repr(float(v))) for v in starts[i]]
+        if ta.propagate_until(fp(BATCH_T_END))[0] != hy.taylor_outcome.time_limit:
+            raise RuntimeError(f"the real128 reference of orbit {i} stopped early")
+        ref[i] = np.array([np.longdouble(str(v)) for v in ta.state], dtype=np.longdouble)
+    return ref
+
+
+def batch_error(finals, ref):
+    """The largest component error over the reference's orbits (finals: n x 4)."""
+    finals = np.asarray(finals, dtype=np.longdouble).reshape(-1, 4)
+    return float(max(np.max(np.abs(finals[i] - r)) for i, r in ref.items()))
+
+
+def heyoka_batches(starts, size):
+    """The starts in batches of `size` (4 x size each, the last padded with its last orbit)."""
+    s = np.asarray(starts, dtype=float)
+    pad = (-len(s)) % size
+    s = np.concatenate([s, np.repeat(s[-1:], pad, axis=0)])
+    return [np.ascontiguousarray(s[k:k + size].T) for k in range(0, len(s), size)]
+
+
+def run_heyoka_batch(hh, starts, tol):
+    """heyoka's batch mode on one thread, on two threads of its ensemble API and on two Python
+    threads: (seconds, final states, compile seconds, batch size) for each, keyed by label."""
+    size = hy.recommended_simd_size()
+    batches = heyoka_batches(starts, size)
+    n = len(starts)
+    start = time.perf_counter()
+    ta = hy.taylor_adaptive_batch(hh, batches[0], tol=tol)
+    compile_seconds = time.perf_counter() - start
+    out = {}
+
+    def reached(integrator):
+        # Every lane reached t (an orbit escaping to infinity would stop early).
+        if any(r[0] != hy.taylor_outcome.time_limit for r in integrator.propagate_res):
+            raise RuntimeError(f"heyoka stopped early: {integrator.propagate_res}")
+
+    def propagate(integrator, group):
+        finals = []
+        for b in group:
+            integrator.set_time(0.0)
+            integrator.state[:] = b
+            integrator.propagate_until(BATCH_T_END)
+            reached(integrator)
+            finals.append(integrator.state.T.copy())
+        return finals
+
+    def one_thread():
+        out["1 thread"] = np.concatenate(propagate(ta, batches))[:n]
+
+    def ensemble_api():
+        def gen(integrator, i):
+            integrator.set_time(0.0)
+            integrator.state[:] = batches[i]
+            return integrator
+
+        ret = hy.ensemble_propagate_until_batch(ta, BATCH_T_END, len(batches), gen,
+                                                max_workers=2)
+        for r in ret:
+            reached(r[0])
+        out["2 threads, ensemble API"] = np.concatenate([r[0].state.T for r in ret])[:n]
+
+    second = hy.taylor_adaptive_batch(hh, batches[0], tol=tol)
+    halves = [batches[: len(batches) // 2], batches[len(batches) // 2:]]
+
+    def two_threads():
+        parts = [None, None]
+
+        def work(k, integrator):
+            parts[k] = propagate(integrator, halves[k])
+
+        threads = [threading.Thread(target=work, args=(k, it))
+                   for k, it in enumerate((ta, second))]
+        for t in threads:
+            t.start()
+        for t in threads:
+            t.join()
+        out["2 threads, own integrators"] = np.concatenate(parts[0] + parts[1])[:n]
+
+    times = {"1 thread": best_time(one_thread),
+             "2 threads, ensemble API": best_time(ensemble_api),
+             "2 threads, own integrators": best_time(two_threads)}
+    return {k: (times[k], out[k], compile_seconds, size) for k in times}
+
+
+def batch(batch_bin):
+    """The batch workload: heyoka's batch mode against our ensembles; prints a table."""
+    lines = [json.loads(line) for line in subprocess.run(
+        [batch_bin], check=True, capture_output=True, text=True).stdout.splitlines()]
+    starts = np.array(next(o for o in lines if o["kind"] == "starts")["states"]).reshape(-1, 4)
+    hh = systems()["hh-state"][0]
+    start = time.perf_counter()
+    ref = batch_reference(hh, starts)
+    print(f"\nbatch: {len(starts)} Hénon–Heiles orbits, t = {BATCH_T_END:g} (reference: heyoka "
+          f"real128 for {len(ref)} orbits, {time.perf_counter() - start:.1f} s)")
+    check = next(o for o in lines if o["kind"] == "check")
+    print(f"  ours: compiled recurrences at the ensemble's tolerances give the ensemble's bits: "
+          f"{check['compiled_equals_ensemble']}")
+    ours = {}
+    for o in lines:
+        if o["kind"] in ("ensemble", "compiled") and "final" in o:
+            o["error"] = batch_error(o["final"], ref)
+    for o in lines:
+        if o["kind"] in ("ensemble", "compiled"):
+            tol = o.get("tol", o.get("rtol"))
+            one = next(p for p in lines if p["kind"] == o["kind"] and p.get("tol") == o.get("tol")
+                       and p["threads"] == 1)
+            ours[(o["kind"], tol, o["threads"])] = (o["seconds"], one["error"])
+            bits = "" if o["threads"] == 1 else f", same bits as 1 thread: {o['same_bits']}"
+            extra = (f" (rtol {o['rtol']:.0e}, atol {o['atol']:.0e})" if o["kind"] == "ensemble"
+                     else f", {o['steps']:.0f} steps, compile {o['compile_seconds'] * 1e3:.1f} ms")
+            print(f"  ours {o['kind']}, {o['threads']} thread(s), tol {tol:.0e}{extra}: "
+                  f"{one['error']:.1e} in {o['seconds'] * 1e3:.2f} ms{bits}")
+    rows = []
+    for tol in BATCH_TOLERANCES:
+        runs = run_heyoka_batch(hh, starts, tol)
+        for label, (seconds, finals, compile_seconds, size) in runs.items():
+            err = batch_error(finals, ref)
+            print(f"  heyoka tol {tol:.0e}, {label}, batch {size}: {err:.1e} in "
+                  f"{seconds * 1e3:.2f} ms (compile {compile_seconds * 1e3:.1f} ms)")
+            threads = 1 if label == "1 thread" else 2
+            # Ours at the same thread count, cheapest with an error at most heyoka's.
+            reaching = [(v[0], k) for k, v in ours.items() if k[2] == threads and v[1] <= err]
+            if reaching:
+                best_seconds, (kind, our_tol, _) = min(reaching)
+                ours_txt = (f"{kind} tol {our_tol:.0e}: {ours[(kind, our_tol, threads)][1]:.1e}, "
+                            f"{best_seconds * 1e3:.2f} ms")
+                ratio = f"{seconds / best_seconds:.2f}"
+            else:
+                ours_txt, ratio = "not reached", "-"
+            rows.append((tol, label, size, err, seconds, ours_txt, ratio))
+    print("\n| heyoka tol | heyoka run | heyoka error, time | our fastest to that error, "
+          "same threads | ratio |")
+    print("|---|---|---|---|---|")
+    for tol, label, size, err, seconds, ours_txt, ratio in rows:
+        print(f"| {tol:.0e} | {label}, batch {size} | {err:.1e}, {seconds * 1e3:.2f} ms | "
+              f"{ours_txt} | {ratio} |")
+
+
 def main():
+    if sys.argv[1] == "--batch-only":
+        print(f"heyoka {hy.__version__}, numpy {np.__version__}")
+        batch(sys.argv[2])
+        return
     ours_bin = sys.argv[1]
     ours = [json.loads(line) for line in subprocess.run(
         [ours_bin], check=True, capture_output=True, text=True).stdout.splitlines()]
@@ -191,6 +364,8 @@ def main():
     print("|---|---|---|---|---|")
     for name, tol, err, seconds, ours_txt, ratio in rows:
         print(f"| {name} | {tol:.0e} | {err:.1e}, {seconds * 1e3:.3f} ms | {ours_txt} | {ratio} |")
+    if len(sys.argv) > 2:
+        batch(sys.argv[2])
 
 
 if __name__ == "__main__":
