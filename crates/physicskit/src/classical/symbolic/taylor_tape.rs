@@ -782,7 +782,8 @@ impl TaylorField for TaylorProgram {
             self.work[i * stride] = yi;
         }
         let time = dim * stride;
-        self.work[time..time + stride].fill(0.0);
+        // The time's series is `t + τ`: its orders from 2 on are the zeros of the allocation,
+        // which no recurrence writes.
         self.work[time] = t;
         if order >= 1 {
             self.work[time + 1] = 1.0;
@@ -791,9 +792,8 @@ impl TaylorField for TaylorProgram {
             Some(code) => code.call(&mut self.work),
             None => self.interpret(order, stride),
         }
-        for (i, row) in coefficients.chunks_exact_mut(stride).enumerate() {
-            row.copy_from_slice(&self.work[i * stride..(i + 1) * stride]);
-        }
+        // The state's rows come first in the work array.
+        coefficients.copy_from_slice(&self.work[..dim * stride]);
         Ok(())
     }
 }
