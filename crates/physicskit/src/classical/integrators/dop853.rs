@@ -808,8 +808,9 @@ impl FieldStepper for Dop853 {
 }
 
 impl AdaptiveStepper for Dop853 {
+    /// Bounded by a finite `t_bound`; unbounded for `+inf` (a session's run, which has no end).
     fn adaptive(dim: usize, tolerances: Tolerances, t_bound: f64) -> Self {
-        Dop853::new(dim, tolerances, Some(t_bound))
+        Dop853::new(dim, tolerances, t_bound.is_finite().then_some(t_bound))
     }
 }
 

@@ -29,7 +29,8 @@ impl Method {
     }
 
     /// True if the method adapts its step to tolerances ([`Scheme::Adaptive`](crate::classical::core::Scheme::Adaptive)): `dt` is then
-    /// the output spacing, and the frame-by-frame sessions of the lab do not run it.
+    /// the output spacing (a frame-by-frame session runs it with no end: see
+    /// [`model::session`](crate::classical::model::session)).
     pub fn is_adaptive(self) -> bool {
         self.info().is_adaptive()
     }

@@ -60,7 +60,7 @@ pub enum Pace {
     /// The front end's own step and steps a frame, with the entry's default method.
     Own,
     /// This fixed-step method, step and number of steps a frame. For a system whose default
-    /// method is adaptive (a frame-by-frame run needs a fixed step) and whose motion is fast
+    /// method is adaptive (a front end opens it with a step it can pace) and whose motion is fast
     /// against the front end's own step. The relative energy error of a run of
     /// [`PACE_CHECK_FRAMES`] frames from the defaults stays below `energy_error` (the
     /// catalogue's tests run it).

@@ -22,7 +22,7 @@ use crate::classical::integrators::system::{
     DynamicalSystem, Family, HamiltonianSystem, LagrangianSystem, OdeSystem,
 };
 use crate::classical::integrators::tangent::{self, Flow};
-use crate::classical::integrators::Method;
+use crate::classical::integrators::{Method, Tolerances};
 
 /// What only some systems offer. Every method returns `None` unless the system overrides it;
 /// `Some(Err(..))` reports bad arguments (wrong lengths).
@@ -254,7 +254,8 @@ pub trait DynSystem: Send + Sync {
 
     /// Hands the system to a [`Session`] stepping it with `method` and step `dt` from its
     /// current state and clock, a frame at a time, with the same bits as `integrate` over the
-    /// same steps and no allocation per frame.
+    /// same steps and no allocation per frame. An adaptive method runs with the default
+    /// [`Tolerances`] (see [`start_with`](Self::start_with)).
     ///
     /// # Errors
     /// A [`Refused`] holding the reason (the method is not one this system can use, `dt` is
@@ -263,6 +264,25 @@ pub trait DynSystem: Send + Sync {
         self: Box<Self>,
         method: Method,
         dt: f64,
+    ) -> std::result::Result<Box<dyn Session>, Refused> {
+        self.start_with(method, dt, None)
+    }
+
+    /// [`start`](Self::start) with the `tolerances` of an adaptive method (`None`: the
+    /// defaults), `dt` then being the output spacing. An adaptive session has the bits of
+    /// `integrate` with the same tolerances up to `integrate`'s last internal step (the
+    /// session's [module documentation](super::session) says exactly which samples).
+    ///
+    /// # Errors
+    /// As [`start`](Self::start), and as `integrate` refuses tolerances:
+    /// [`Error::InvalidArgument`] naming `tolerances` for a fixed-step method,
+    /// [`Error::InvalidParameter`] naming `rtol` or `atol` when it is not finite and positive (or, for `taylor`, outside
+    /// the range its order rule takes).
+    fn start_with(
+        self: Box<Self>,
+        method: Method,
+        dt: f64,
+        tolerances: Option<Tolerances>,
     ) -> std::result::Result<Box<dyn Session>, Refused>;
 }
 
@@ -316,12 +336,17 @@ macro_rules! impl_dyn_system {
             ) -> Result<SimulationResult> {
                 $family::integrate_with(&mut self.0, t_span, dt, method, options)
             }
-            fn start(
+            fn start_with(
                 self: Box<Self>,
                 method: Method,
                 dt: f64,
+                tolerances: Option<Tolerances>,
             ) -> std::result::Result<Box<dyn Session>, Refused> {
-                method.dispatch($start { system: self, dt })
+                method.dispatch($start {
+                    system: self,
+                    dt,
+                    tolerances,
+                })
             }
             impl_dyn_system!(@view $view);
             fn capabilities(&self) -> &dyn Capabilities {

@@ -3,7 +3,8 @@
 //! browser lab) without allocating per frame.
 //!
 //! [`DynSystem::start`] hands the system to a
-//! session for one method and step `dt`. The session is generic over the concrete system and
+//! session for one method and step `dt` ([`DynSystem::start_with`] with the tolerances of an
+//! adaptive method). The session is generic over the concrete system and
 //! stepper inside (the same [`Method::dispatch`](crate::classical::Method::dispatch) as
 //! `integrate` chooses the stepper), and erased once, at construction: a frame costs one
 //! dynamic call, its steps none.
@@ -17,16 +18,34 @@
 //! `integrate` over `a + b` steps from the same start (tested for every catalogue system and
 //! method in `tests/classical/integrators/session.rs`).
 //!
+//! **Adaptive methods** (`dop853`, `taylor`) run as `integrate` runs them, on the system's
+//! own first-order form with `dt` the output spacing: each step of `dt` is a call of the
+//! stepper from `t` to `t + dt`, which takes as many internal steps as its tolerances need
+//! and interpolates at `t + dt` (dense output). A session has no end, so its stepper is built
+//! with `t_bound = +inf`, where `integrate`'s steps onto `t_end`. The bound enters only the
+//! internal steps that reach it: `integrate` shortens its last internal step to land on
+//! `t_end`, and `dop853` also caps its first step at the span. So a session's samples equal
+//! `integrate`'s over the same grid with the same tolerances, bit for bit, at every sample
+//! before the start of `integrate`'s last internal step, as long as `integrate`'s first step
+//! is not capped by its span (a span longer than that step); the samples inside the last
+//! internal step, and the final one, differ by the two runs' different internal steps there
+//! (within the tolerances). [`Session::set_dt`] changes only the output spacing (the internal
+//! steps do not depend on it, and the run continues them); [`Session::restart`] and a failed
+//! frame build the stepper afresh (on the system's Taylor form again, for `taylor`).
+//!
 //! **No allocation per frame.** The working state, the state at the frame's start (restored
 //! when a step fails) and the stored-form buffer are allocated by `start`; the stepper's own
 //! buffers by its constructor. `advance` allocates nothing (a failing frame does: it rebuilds
-//! the stepper, whose buffers may hold a half-finished step).
+//! the stepper, whose buffers may hold a half-finished step). An adaptive stepper's buffers
+//! are sized once for the state (its internal steps reuse them), so its frames allocate
+//! nothing either.
 
 use std::ops::DerefMut;
 
 use super::DynSystem;
 use crate::classical::core::{error::check_finite, Error, Result, TimeGrid};
 use crate::classical::integrators::field::{Canonical, FirstOrder, VectorField};
+use crate::classical::integrators::options::check_adaptive;
 use crate::classical::integrators::splitting::Coefficients;
 use crate::classical::integrators::splitting::{check_system, SplittingStepper};
 use crate::classical::integrators::stepper::{
@@ -34,7 +53,7 @@ use crate::classical::integrators::stepper::{
 };
 use crate::classical::integrators::Family;
 use crate::classical::integrators::{
-    DynamicalSystem, HamiltonianSystem, LagrangianSystem, Method, OdeSystem,
+    DynamicalSystem, HamiltonianSystem, LagrangianSystem, Method, OdeSystem, Tolerances,
 };
 
 /// A run in progress: a system, a method and a step, advanced `n` steps at a time.
@@ -54,15 +73,20 @@ pub trait Session {
     /// The method.
     fn method(&self) -> Method;
 
-    /// The step.
+    /// The step (for an adaptive method, the output spacing).
     fn dt(&self) -> f64;
+
+    /// The tolerances of an adaptive method (the defaults when none were given); `None` for
+    /// a fixed-step method.
+    fn tolerances(&self) -> Option<Tolerances>;
 
     /// Steps taken since the session started, or since the last
     /// [`restart`](Self::restart) or [`set_dt`](Self::set_dt).
     fn steps(&self) -> u64;
 
     /// Changes the step; the run continues from the current state and time (a splitting
-    /// method keeps its cached force, an implicit Lagrangian run its canonical state).
+    /// method keeps its cached force, an implicit Lagrangian run its canonical state, an
+    /// adaptive method its internal steps: only the output spacing changes).
     ///
     /// # Errors
     /// [`Error::InvalidTimeSpan`] for a `dt` that is not finite and positive.
@@ -108,7 +132,8 @@ impl std::fmt::Debug for dyn Session {
 /// What [`DynSystem::start`] returns when it refuses: the reason, and the system back.
 pub struct Refused {
     /// Why (a method the system cannot use, a `dt` that is not finite and positive, a
-    /// state that is not finite).
+    /// state that is not finite, tolerances that are invalid or given to a fixed-step
+    /// method).
     pub error: Error,
     /// The system, unchanged.
     pub system: Box<dyn DynSystem>,
@@ -129,7 +154,11 @@ trait Kind<S: ?Sized> {
 
     /// Forgets what the stepper carries from one step to the next (after the state changed
     /// outside it, or a failed step).
-    fn forget(&mut self, dim: usize);
+    ///
+    /// # Errors
+    /// Whatever rebuilding the stepper on `system` reports (it succeeded when the session
+    /// started, on the same system).
+    fn forget(&mut self, system: &S, dim: usize) -> Result<()>;
 
     /// The working state of the stored state `stored` at `t` (into `work`, of its length).
     fn to_working(&self, system: &S, stored: &[f64], t: f64, work: &mut [f64]) -> Result<()> {
@@ -156,8 +185,9 @@ impl<S: HamiltonianSystem + ?Sized, const N: usize> Kind<S> for Split<N> {
         self.0.step(system, t, q, p, h)
     }
 
-    fn forget(&mut self, _dim: usize) {
+    fn forget(&mut self, _: &S, _dim: usize) -> Result<()> {
         self.0.invalidate();
+        Ok(())
     }
 }
 
@@ -170,8 +200,9 @@ impl<S: DynamicalSystem + ?Sized, St: FieldStepper> Kind<S> for Field<St> {
         self.0.step_field(&FirstOrder(system), t, y, h)
     }
 
-    fn forget(&mut self, dim: usize) {
+    fn forget(&mut self, _: &S, dim: usize) -> Result<()> {
         self.0 = St::new(dim);
+        Ok(())
     }
 }
 
@@ -184,8 +215,9 @@ impl<S: LagrangianSystem + ?Sized, St: FieldStepper> Kind<S> for Canon<St> {
         self.0.step_field(&Canonical(system), t, y, h)
     }
 
-    fn forget(&mut self, dim: usize) {
+    fn forget(&mut self, _: &S, dim: usize) -> Result<()> {
         self.0 = St::new(dim);
+        Ok(())
     }
 
     /// `p = dL/dqdot` at `(q, qdot)`, as `integrate` starts its canonical runs.
@@ -204,12 +236,44 @@ impl<S: LagrangianSystem + ?Sized, St: FieldStepper> Kind<S> for Canon<St> {
     }
 }
 
+/// An adaptive method on the system's own first-order form, as `integrate` runs it, with no
+/// end (`t_bound = +inf`).
+struct Adaptive<St> {
+    stepper: St,
+    tolerances: Tolerances,
+}
+
+impl<St: AdaptiveStepper> Adaptive<St> {
+    fn on<S: DynamicalSystem + ?Sized>(system: &S, tolerances: Tolerances) -> Result<Self> {
+        Ok(Self {
+            stepper: St::for_system(system, tolerances, f64::INFINITY)?,
+            tolerances,
+        })
+    }
+}
+
+impl<S: DynamicalSystem + ?Sized, St: AdaptiveStepper> Kind<S> for Adaptive<St> {
+    #[inline(always)]
+    fn step(&mut self, system: &S, t: f64, y: &mut [f64], h: f64) -> Result<()> {
+        self.stepper.step_field(&FirstOrder(system), t, y, h)
+    }
+
+    /// A new stepper: one that continued from a state equal to its last output would
+    /// continue its internal steps, where a new session starts afresh.
+    fn forget(&mut self, system: &S, _dim: usize) -> Result<()> {
+        *self = Self::on(system, self.tolerances)?;
+        Ok(())
+    }
+}
+
 /// The session of the system wrapper `W` (its concrete system is `W::Target`) under the
 /// stepper kind `K`.
 struct Running<W, K> {
     system: Box<W>,
     kind: K,
     method: Method,
+    /// The tolerances of an adaptive method.
+    tolerances: Option<Tolerances>,
     /// `t0` and `dt` of the run: step `i` starts at `grid.time(i)`, as in `integrate`.
     grid: TimeGrid,
     steps: usize,
@@ -227,17 +291,25 @@ where
     W::Target: DynamicalSystem,
     K: Kind<W::Target> + 'static,
 {
-    /// Validates and builds a session; on refusal, gives the system back.
+    /// Validates and builds a session; on refusal, gives the system back. `tolerances` are
+    /// checked as `integrate` checks them (valid, and given only to an adaptive method);
+    /// an adaptive method's `kind` receives them (the defaults when none are given).
     fn start(
         system: Box<W>,
         method: Method,
         dt: f64,
+        tolerances: Option<Tolerances>,
         kind: impl FnOnce(&W::Target, usize) -> Result<K>,
     ) -> std::result::Result<Box<dyn Session>, Refused> {
         let built = (|| {
             let d: &W::Target = &system;
             let t0 = d.t();
             let grid = TimeGrid::new((t0, t0 + dt), dt)?;
+            if let Some(tolerances) = tolerances {
+                check_adaptive("tolerances", method)?;
+                tolerances.validate()?;
+            }
+            let tolerances = method.is_adaptive().then(|| tolerances.unwrap_or_default());
             let state = d.state();
             if let Some(ndof) = system.ndof() {
                 if state.len() != 2 * ndof {
@@ -252,12 +324,13 @@ where
             let kind = kind(d, state.len())?;
             let mut work = state.to_vec();
             kind.to_working(d, state, t0, &mut work)?;
-            Ok((grid, kind, work))
+            Ok((grid, kind, work, tolerances))
         })();
         match built {
-            Ok((grid, kind, work)) => Ok(Box::new(Self {
+            Ok((grid, kind, work, tolerances)) => Ok(Box::new(Self {
                 kind,
                 method,
+                tolerances,
                 grid,
                 steps: 0,
                 saved: work.clone(),
@@ -270,10 +343,13 @@ where
     }
 
     /// The failed frame's start back, and a stepper without memory of it.
-    fn undo(&mut self) {
+    ///
+    /// # Errors
+    /// As [`Kind::forget`].
+    fn undo(&mut self) -> Result<()> {
         self.work.copy_from_slice(&self.saved);
         let dim = self.work.len();
-        self.kind.forget(dim);
+        self.kind.forget(&self.system, dim)
     }
 }
 
@@ -307,7 +383,9 @@ where
             None => self.kind.to_stored(system, &self.work, t, &mut self.stored),
         };
         if let Err(e) = outcome {
-            self.undo();
+            // A stepper that cannot be rebuilt (never: it was built on this system) reports
+            // that instead.
+            self.undo()?;
             return Err(e);
         }
         self.steps += n_steps;
@@ -325,6 +403,10 @@ where
 
     fn dt(&self) -> f64 {
         self.grid.dt()
+    }
+
+    fn tolerances(&self) -> Option<Tolerances> {
+        self.tolerances
     }
 
     fn steps(&self) -> u64 {
@@ -357,7 +439,7 @@ where
         self.stored.copy_from_slice(system.state());
         self.saved.copy_from_slice(&self.work);
         let dim = self.work.len();
-        self.kind.forget(dim);
+        self.kind.forget(system, dim)?;
         self.grid = grid;
         self.steps = 0;
         Ok(())
@@ -368,30 +450,42 @@ where
     }
 }
 
-/// Sessions step a fixed grid open-endedly; dop853 steps onto the end of a known span and
-/// interpolates its outputs, so a session of it would not have the bits of `integrate`.
-fn no_adaptive(method: Method) -> Error {
-    Error::UnsupportedMethod {
-        method: method.name().into(),
-        reason: "an adaptive method needs the end of its span; frame-by-frame sessions run \
-                 the fixed-step methods (use integrate with t_span for dop853)"
-            .into(),
-    }
-}
-
 /// What every family's dispatch does alike: a session on the first-order field, and the
 /// refusals.
 type Started = std::result::Result<Box<dyn Session>, Refused>;
 
 /// A session of the field stepper `St` on `dy/dt = derivatives(t, y)`.
-fn on_first_order<W, St>(system: Box<W>, method: Method, dt: f64) -> Started
+fn on_first_order<W, St>(
+    system: Box<W>,
+    method: Method,
+    dt: f64,
+    tolerances: Option<Tolerances>,
+) -> Started
 where
     W: DynSystem + DerefMut + 'static,
     W::Target: DynamicalSystem + Sized,
     St: FieldStepper,
 {
-    Running::start(system, method, dt, |s, _| {
+    Running::start(system, method, dt, tolerances, |s, _| {
         Ok(Field(St::new(FirstOrder(s).dim())))
+    })
+}
+
+/// A session of the adaptive stepper `St` on the system's own first-order form (`[q, p]` of
+/// a Hamiltonian, `[q, qdot]` of a Lagrangian system), as `integrate` runs it.
+fn adaptive_on_first_order<W, St>(
+    system: Box<W>,
+    method: Method,
+    dt: f64,
+    tolerances: Option<Tolerances>,
+) -> Started
+where
+    W: DynSystem + DerefMut + 'static,
+    W::Target: DynamicalSystem + Sized,
+    St: AdaptiveStepper,
+{
+    Running::start(system, method, dt, tolerances, |s, _| {
+        Adaptive::<St>::on(s, tolerances.unwrap_or_default())
     })
 }
 
@@ -404,6 +498,7 @@ fn refuse<W: DynSystem + 'static>(system: Box<W>, error: Error) -> Started {
 pub(crate) struct StartHamiltonian<W> {
     pub(crate) system: Box<W>,
     pub(crate) dt: f64,
+    pub(crate) tolerances: Option<Tolerances>,
 }
 
 impl<W> Dispatch for StartHamiltonian<W>
@@ -418,7 +513,7 @@ where
         method: Method,
         coefficients: Coefficients<N>,
     ) -> Self::Output {
-        Running::start(self.system, method, self.dt, |s, dim| {
+        Running::start(self.system, method, self.dt, self.tolerances, |s, dim| {
             check_system(method, s)?;
             Ok(Split(SplittingStepper::with_buffer(
                 coefficients,
@@ -428,22 +523,24 @@ where
     }
 
     fn explicit_rk<St: FieldStepper>(self, method: Method) -> Self::Output {
-        on_first_order::<W, St>(self.system, method, self.dt)
+        on_first_order::<W, St>(self.system, method, self.dt, self.tolerances)
     }
 
     fn implicit_rk<St: FieldStepper>(self, method: Method) -> Self::Output {
-        on_first_order::<W, St>(self.system, method, self.dt)
+        on_first_order::<W, St>(self.system, method, self.dt, self.tolerances)
     }
 
     fn adaptive<St: AdaptiveStepper>(self, method: Method) -> Self::Output {
-        refuse(self.system, no_adaptive(method))
+        adaptive_on_first_order::<W, St>(self.system, method, self.dt, self.tolerances)
     }
 }
 
-/// The Lagrangian family's sessions: implicit methods on the canonical form `[q, p]`.
+/// The Lagrangian family's sessions: implicit methods on the canonical form `[q, p]`, explicit
+/// and adaptive ones on `[q, qdot]`.
 pub(crate) struct StartLagrangian<W> {
     pub(crate) system: Box<W>,
     pub(crate) dt: f64,
+    pub(crate) tolerances: Option<Tolerances>,
 }
 
 impl<W> Dispatch for StartLagrangian<W>
@@ -458,17 +555,17 @@ where
     }
 
     fn explicit_rk<St: FieldStepper>(self, method: Method) -> Self::Output {
-        on_first_order::<W, St>(self.system, method, self.dt)
+        on_first_order::<W, St>(self.system, method, self.dt, self.tolerances)
     }
 
     fn implicit_rk<St: FieldStepper>(self, method: Method) -> Self::Output {
-        Running::start(self.system, method, self.dt, |s, _| {
+        Running::start(self.system, method, self.dt, self.tolerances, |s, _| {
             Ok(Canon(St::new(Canonical(s).dim())))
         })
     }
 
     fn adaptive<St: AdaptiveStepper>(self, method: Method) -> Self::Output {
-        refuse(self.system, no_adaptive(method))
+        adaptive_on_first_order::<W, St>(self.system, method, self.dt, self.tolerances)
     }
 }
 
@@ -476,6 +573,7 @@ where
 pub(crate) struct StartOde<W> {
     pub(crate) system: Box<W>,
     pub(crate) dt: f64,
+    pub(crate) tolerances: Option<Tolerances>,
 }
 
 impl<W> Dispatch for StartOde<W>
@@ -490,14 +588,14 @@ where
     }
 
     fn explicit_rk<St: FieldStepper>(self, method: Method) -> Self::Output {
-        on_first_order::<W, St>(self.system, method, self.dt)
+        on_first_order::<W, St>(self.system, method, self.dt, self.tolerances)
     }
 
     fn implicit_rk<St: FieldStepper>(self, method: Method) -> Self::Output {
-        on_first_order::<W, St>(self.system, method, self.dt)
+        on_first_order::<W, St>(self.system, method, self.dt, self.tolerances)
     }
 
     fn adaptive<St: AdaptiveStepper>(self, method: Method) -> Self::Output {
-        refuse(self.system, no_adaptive(method))
+        adaptive_on_first_order::<W, St>(self.system, method, self.dt, self.tolerances)
     }
 }

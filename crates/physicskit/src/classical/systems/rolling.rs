@@ -1060,7 +1060,7 @@ const DISK_PRESENTATION: Presentation = Presentation {
     state_units: None,
     drawing: Drawing::Rolling { shape: Shape::Disk },
     // rk4 at 1 ms, 17 steps a frame (real time at 60 frames a second): dop853, the disks'
-    // default, takes adaptive steps, which a frame-by-frame run cannot.
+    // default, takes adaptive steps, which do not pace a frame.
     pace: Pace::Fixed {
         method: Method::Rk4,
         dt: 1e-3,

@@ -1,10 +1,11 @@
 //! Sessions (`DynSystem::start`) against `integrate`: for every catalogue system and every
-//! method it lists, frames of a session reach the bits of one `integrate` over the same steps,
-//! and a refusal by one is a refusal by the other.
+//! method it lists, frames of a session reach the bits of one `integrate` over the same steps
+//! (for an adaptive method, up to `integrate`'s last internal step, where it lands on its
+//! end), and a refusal by one is a refusal by the other.
 
 use physicskit::classical::catalog::SYSTEMS;
-use physicskit::classical::model::DynSystem;
-use physicskit::classical::{Error, IntegrateOptions, Method};
+use physicskit::classical::model::{DynSystem, SystemEntry};
+use physicskit::classical::{Error, IntegrateOptions, Method, Sampling, Tolerances};
 
 /// Steps compared per system and method: enough for the splitting methods' cached force and
 /// an implicit Lagrangian run's canonical state to be carried across several frames.
@@ -29,16 +30,7 @@ fn frames_of_a_session_have_the_bits_of_one_integrate() {
     for entry in SYSTEMS {
         for method in entry.methods() {
             if method.is_adaptive() {
-                // No session for an adaptive method (it needs the end of its span): refused
-                // with the system handed back unchanged.
-                let Err(refused) = build(entry).start(method, DT) else {
-                    panic!("{} {method}: a session of an adaptive method", entry.name)
-                };
-                assert!(matches!(refused.error, Error::UnsupportedMethod { .. }));
-                assert_eq!(
-                    refused.system.dynamical().state(),
-                    build(entry).dynamical().state()
-                );
+                // Compared up to integrate's last internal step, below.
                 continue;
             }
             let mut reference = build(entry);
@@ -158,4 +150,208 @@ fn refusals_keep_the_system_and_the_run() {
     assert_eq!((session.state(), session.t()), (&state[..], t));
     session.advance(1).unwrap();
     assert_eq!(session.steps(), 6);
+}
+
+/// The output spacing of the adaptive runs: a power of two, so every output time
+/// `t0 + i dt` is exact and a session whose spacing changes reaches the same times.
+const ADAPTIVE_DT: f64 = 1.0 / 64.0;
+
+/// The span of the `integrate` the adaptive sessions are compared with: eight time units,
+/// far beyond the compared samples (`STEPS` of them, 0.625), so integrate's last internal
+/// step (shortened to land on 8) and dop853's first (capped at the span) are not the ones
+/// that produce the compared samples. No catalogue system takes internal steps of 7 time
+/// units at these tolerances.
+const ADAPTIVE_SPAN: f64 = 8.0;
+
+/// Tolerances other than the defaults, so a session that ignored them would not match.
+fn tolerances() -> Tolerances {
+    Tolerances::new(1e-9, 1e-11).unwrap()
+}
+
+fn bits(v: &[f64]) -> Vec<u64> {
+    v.iter().map(|x| x.to_bits()).collect()
+}
+
+/// `integrate` of `entry` with `method` at `tolerances` over [`ADAPTIVE_SPAN`], every sample.
+fn integrate_adaptive(
+    entry: &SystemEntry,
+    method: Method,
+    tolerances: Tolerances,
+) -> physicskit::classical::Result<physicskit::classical::SimulationResult> {
+    build(entry).integrate(
+        (0.0, ADAPTIVE_SPAN),
+        ADAPTIVE_DT,
+        method,
+        IntegrateOptions {
+            sampling: Sampling::All,
+            tolerances: Some(tolerances),
+            ..IntegrateOptions::default()
+        },
+    )
+}
+
+#[test]
+fn adaptive_sessions_have_the_bits_of_integrate_before_its_last_step() {
+    let mut compared = 0;
+    for entry in SYSTEMS {
+        // Every adaptive method: those the entry takes are compared sample by sample; taylor
+        // on a system without a Taylor form is refused by both, with one message.
+        for method in Method::ALL.into_iter().filter(|m| m.is_adaptive()) {
+            let expected = integrate_adaptive(entry, method, tolerances());
+            let started = build(entry).start_with(method, ADAPTIVE_DT, Some(tolerances()));
+            if !entry.methods().any(|m| m == method) {
+                let (Err(a), Err(b)) = (expected, started) else {
+                    panic!("{} {method}: not listed, yet run", entry.name)
+                };
+                assert_eq!(
+                    a.to_string(),
+                    b.error.to_string(),
+                    "{} {method}",
+                    entry.name
+                );
+                assert_eq!(
+                    b.system.dynamical().state(),
+                    build(entry).dynamical().state()
+                );
+                continue;
+            }
+            let expected = expected.unwrap_or_else(|e| panic!("{} {method}: {e}", entry.name));
+            let mut session =
+                started.unwrap_or_else(|r| panic!("{} {method}: {}", entry.name, r.error));
+            assert_eq!(session.tolerances(), Some(tolerances()));
+            let mut done = 0;
+            for n in FRAMES {
+                session.advance(n).unwrap();
+                done += n;
+                assert_eq!(
+                    bits(session.state()),
+                    bits(&expected.y.row(done).to_vec()),
+                    "{} {method} after {done} samples",
+                    entry.name
+                );
+                assert_eq!(session.t(), expected.t[done]);
+            }
+            assert_eq!(session.steps(), STEPS as u64);
+            compared += 1;
+        }
+    }
+    // dop853 runs on every system: fewer comparisons means the loop skipped some.
+    assert!(compared > SYSTEMS.len(), "{compared} comparisons");
+}
+
+#[test]
+fn adaptive_set_dt_changes_only_the_output_spacing_and_restart_starts_afresh() {
+    for entry in SYSTEMS {
+        for method in entry.methods().filter(|m| m.is_adaptive()) {
+            let start = || {
+                build(entry)
+                    .start_with(method, ADAPTIVE_DT, Some(tolerances()))
+                    .unwrap()
+            };
+            let what = format!("{} {method}", entry.name);
+            // 16 samples, then 8 at twice the spacing: the internal steps are those of 32
+            // samples at the first spacing, and the output time (exact) is the same.
+            let mut switched = start();
+            switched.advance(16).unwrap();
+            switched.set_dt(2.0 * ADAPTIVE_DT).unwrap();
+            assert_eq!(switched.steps(), 0);
+            switched.advance(8).unwrap();
+            let mut straight = start();
+            straight.advance(32).unwrap();
+            assert_eq!(switched.t(), straight.t(), "{what}");
+            assert_eq!(bits(switched.state()), bits(straight.state()), "{what}");
+
+            // A restart where the run is (its state, its clock) is a new session there, not
+            // the run continued: the stepper starts afresh.
+            let (state, t) = (straight.state().to_vec(), straight.t());
+            straight.restart(None, t).unwrap();
+            straight.advance(10).unwrap();
+            let mut system = build(entry);
+            system.reset(Some(&state), t).unwrap();
+            let mut fresh = system
+                .start_with(method, ADAPTIVE_DT, Some(tolerances()))
+                .unwrap();
+            fresh.advance(10).unwrap();
+            assert_eq!(bits(straight.state()), bits(fresh.state()), "{what}");
+            // ... which is not what the run continued would give (else the check above
+            // could not tell): the continued run stepped from its internal steps. A state at
+            // rest (the sine-Gordon chain's zero state) stays put either way.
+            let mut continued = start();
+            continued.advance(42).unwrap();
+            if bits(continued.state()) != bits(&state) {
+                assert_ne!(bits(continued.state()), bits(fresh.state()), "{what}");
+            }
+
+            // Back to the initial state at 0: the first run's bits again.
+            let state0 = build(entry).dynamical().state().to_vec();
+            straight.restart(Some(&state0), 0.0).unwrap();
+            straight.advance(32).unwrap();
+            assert_eq!(bits(switched.state()), bits(straight.state()), "{what}");
+        }
+    }
+}
+
+#[test]
+fn hostile_tolerances_are_refused_as_integrate_refuses_them() {
+    let kepler = physicskit::classical::catalog::find("kepler").unwrap();
+    let pendulum = physicskit::classical::catalog::find("double-pendulum").unwrap();
+    let default = Tolerances::default();
+    let mut refusals = 0;
+    for entry in [kepler, pendulum] {
+        for method in [Method::Dop853, Method::Taylor, Method::Rk4] {
+            for bad in [f64::NAN, f64::INFINITY, -f64::INFINITY, 0.0, -1e-8, 1e300] {
+                for tol in [
+                    Tolerances {
+                        rtol: bad,
+                        ..default
+                    },
+                    Tolerances {
+                        atol: bad,
+                        ..default
+                    },
+                ] {
+                    let integrated = integrate_adaptive(entry, method, tol);
+                    let started = build(entry).start_with(method, ADAPTIVE_DT, Some(tol));
+                    let what = format!("{} {method} {tol:?}", entry.name);
+                    match (integrated, started) {
+                        (Err(a), Err(b)) => {
+                            assert_eq!(a.to_string(), b.error.to_string(), "{what}");
+                            assert!(
+                                matches!(
+                                    b.error,
+                                    Error::InvalidParameter { .. } | Error::InvalidArgument { .. }
+                                ),
+                                "{what}: {}",
+                                b.error
+                            );
+                            assert_eq!(
+                                b.system.dynamical().state(),
+                                build(entry).dynamical().state()
+                            );
+                            refusals += 1;
+                        }
+                        // A huge tolerance is valid for dop853 (its steps then grow until
+                        // the run blows up) and for taylor's atol (under relative control):
+                        // accepted by both, whatever the run then does.
+                        (integrated, Ok(_)) => {
+                            assert_eq!(bad, 1e300, "{what}");
+                            assert!(
+                                !matches!(
+                                    integrated,
+                                    Err(Error::InvalidParameter { .. }
+                                        | Error::InvalidArgument { .. })
+                                ),
+                                "{what}: {:?}",
+                                integrated.err()
+                            );
+                        }
+                        (a, b) => panic!("{what}: integrate {:?}, start {:?}", a.err(), b.err()),
+                    }
+                }
+            }
+        }
+    }
+    // rk4 refuses any tolerances (6 values, both fields, 2 systems); dop853 and taylor every
+    // non-finite or non-positive value (5 of 6); taylor also rtol = 1e300.
+    assert_eq!(refusals, 6 * 2 * 2 + 5 * 2 * 2 * 2 + 2);
 }
