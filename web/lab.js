@@ -15,6 +15,14 @@ const $ = (id) => document.getElementById(id);
 const DTS = [1e-4, 2e-4, 5e-4, 1e-3, 2e-3, 5e-3, 1e-2, 2e-2, 5e-2, 0.1];
 const DEFAULT_DT = 1e-3;
 const DEFAULT_STEPS = 25;
+// An adaptive method (dop853, taylor) takes a tolerance (rtol = atol) in place of the step,
+// which is then only the output spacing: its steps are chosen to the tolerance. The menu runs
+// from 1e-6 (an energy drift one sees over a long run) to 1e-14 (near the rounding floor of
+// double precision for these systems); the default is the core's default rtol. A link's
+// tolerance must lie in the menu's range.
+const TOLS = [1e-6, 1e-7, 1e-8, 1e-9, 1e-10, 1e-11, 1e-12, 1e-13, 1e-14];
+const DEFAULT_TOL = 1e-10;
+const MIN_TOL = TOLS[TOLS.length - 1], MAX_TOL = TOLS[0];
 // The step sizes a link may ask for: the menu's range. Outside it a frame either crawls or
 // blows up, so a link's dt there is refused rather than offered.
 const MIN_DT = DTS[0], MAX_DT = DTS[DTS.length - 1];
@@ -24,9 +32,9 @@ const SAMPLES_PER_FRAME = 8;
 const TRAIL = 2400, PHASE_TRAIL = 6000, ENERGY_POINTS = 3000, MAX_ROWS = 100000;
 const TAU = 2 * Math.PI;
 // How a system is stepped frame by frame: the catalogue's pace (`presentation.pace`). A
-// "fixed" pace is for a system whose default method is adaptive, which a frame-by-frame run
-// cannot take: it opens with that fixed-step method, step and steps a frame (1/60 s of motion a
-// frame: real time at 60 frames a second), whose energy error the catalogue's tests bound. A
+// "fixed" pace is for a system whose default method is adaptive: it opens with that fixed-step
+// method, step and steps a frame (1/60 s of motion a frame: real time at 60 frames a second),
+// whose energy error the catalogue's tests bound; the adaptive method is in the menu too. A
 // "time_lapse" is offered for a system whose effect builds up over hours (Foucault's swing
 // plane turns at the Earth's rate): more of the same physics each frame. Other systems open at
 // DEFAULT_DT and DEFAULT_STEPS.
@@ -37,7 +45,7 @@ function stepDefaults(entry) {
   const bound = `${mant === "1" ? "" : `${mant}×`}10${superscriptInt(Number(exp))}`;
   return {
     method: p.method, dt: p.dt, steps: p.steps_per_frame,
-    note: `Step: ${p.method} at dt = ${p.dt} s, ${p.steps_per_frame} steps a frame (real time at 60 frames a second), which keeps the energy error below ${bound}; the catalogue's own method, ${entry.default_method}, takes adaptive steps, which a frame-by-frame run cannot.`,
+    note: `Step: ${p.method} at dt = ${p.dt} s, ${p.steps_per_frame} steps a frame (real time at 60 frames a second), which keeps the energy error below ${bound}; the catalogue's own method, ${entry.default_method}, is in the menu too, at a tolerance instead of a step.`,
   };
 }
 function timeLapse(entry) {
@@ -353,11 +361,15 @@ function setControlValues() {
   }
 }
 
-// The lab steps frame by frame, which an adaptive method (dop853: it steps onto the end of a
-// known span) cannot: only the fixed-step methods are offered.
+// Every method the system takes is offered; an adaptive one (the catalogue's `adaptive`) runs
+// at a tolerance, with the step as its output spacing.
 function offeredMethods() {
-  return app.entry.methods.filter((m) => !app.catalogue.methods.find((x) => x.name === m)?.adaptive);
+  return app.entry.methods;
 }
+function isAdaptive(name) { return !!app.catalogue.methods.find((x) => x.name === name)?.adaptive; }
+// The tolerance the labs are built and run at (kept by a fixed-step method for the next
+// adaptive one).
+function tolerance() { return Number($("tol").value) || DEFAULT_TOL; }
 
 function fillMethods(keep) {
   const sel = $("method"), fixed = offeredMethods();
@@ -366,13 +378,41 @@ function fillMethods(keep) {
   describeMethod();
 }
 
+// The step control of the chosen method: the step dt, or for an adaptive method its tolerance
+// (the step then only spaces the outputs, and is kept as it was).
+function showStepControl() {
+  const adaptive = isAdaptive($("method").value);
+  $("tol-row").hidden = !adaptive;
+  $("dt").closest(".param").hidden = adaptive;
+}
+
+// The tolerance menu, next to the step's (the page's HTML has the step's only).
+function addToleranceControl() {
+  const row = document.createElement("div");
+  row.className = "param";
+  row.id = "tol-row";
+  row.hidden = true;
+  const label = document.createElement("label");
+  label.htmlFor = "tol";
+  label.textContent = "Tolerance (rtol = atol)";
+  const sel = document.createElement("select");
+  sel.id = "tol";
+  sel.replaceChildren(...TOLS.map((t) => new Option(String(t), String(t))));
+  sel.value = String(DEFAULT_TOL);
+  row.append(label, sel);
+  $("dt").closest(".param").after(row);
+}
+
 function describeMethod() {
+  showStepControl();
   const m = app.catalogue.methods.find((x) => x.name === $("method").value);
   if (!m) { $("method-info").textContent = ""; $("method-ref").textContent = ""; return; }
   // What is counted, without the catalogue's remarks after it.
   const what = m.evaluations.split(/[,:;(]/)[0].trim();
   const ev = m.evaluations_per_step === 1 ? what.replace(/s$/, "") : what;
-  $("method-info").textContent = `order ${m.order} · ${m.symplectic ? "symplectic" : "not symplectic"} · ` +
+  // An adaptive method's steps are its own (to the tolerance); dt spaces its outputs.
+  const how = m.adaptive ? ` · adaptive: its own steps to the tolerance, an output every dt = ${$("dt").value} s` : "";
+  $("method-info").textContent = `order ${m.order} · ${m.symplectic ? "symplectic" : "not symplectic"}${how} · ` +
     `${m.evaluations_per_step} ${ev} per step`;
   $("method-ref").textContent = m.reference;
 }
@@ -426,7 +466,7 @@ function buildLab(state0) {
   for (const m of [chosen, ...offeredMethods().filter((x) => x !== chosen)]) {
     let lab;
     try {
-      lab = app.core.build(app.entry.name, app.params, m);
+      lab = app.core.build(app.entry.name, app.params, m, tolerance());
       if (state0) lab.setState(state0);
     } catch (e) {
       lab?.free();
@@ -531,7 +571,7 @@ function probeExtent() {
   if (s0.length > PROBE_MAX_STATE) return null;
   let probe;
   try {
-    probe = app.core.build(app.entry.name, app.params, $("method").value);
+    probe = app.core.build(app.entry.name, app.params, $("method").value, tolerance());
     probe.setState(s0);
   } catch { probe?.free(); return null; }
   const dt = Number($("dt").value) || DEFAULT_DT;
@@ -2293,6 +2333,7 @@ function shareHash() {
   h.set("system", app.entry.name);
   h.set("method", $("method").value);
   h.set("dt", $("dt").value);
+  if (isAdaptive($("method").value)) h.set("tol", $("tol").value);
   h.set("steps", $("speed").value);
   h.set("params", JSON.stringify(app.params));
   if ($("timelapse").checked) h.set("timelapse", "1");
@@ -2320,7 +2361,7 @@ function applyHash(hash) {
   }
   // The method first: some parameter values run only with some methods (a projectile with
   // drag refuses the splitting methods), so the parameters are tried with the link's method.
-  const offered = entry.methods.filter((m) => !app.catalogue.methods.find((x) => x.name === m)?.adaptive);
+  const offered = entry.methods;
   let method = h.get("method");
   if (method !== null && !offered.includes(method)) {
     refused.push(`method ${quoted(method)} (not one this system runs in the lab)`);
@@ -2356,6 +2397,18 @@ function applyHash(hash) {
       if (![...$("dt").options].some((o) => Number(o.value) === dt)) $("dt").append(new Option(String(dt), String(dt)));
       $("dt").value = String(dt);
     } else refused.push(`dt = ${quoted(dtText)} (a step from ${MIN_DT} to ${MAX_DT})`);
+  }
+  // The tolerance of an adaptive method (a link from before adaptive methods has none: the
+  // default).
+  const tolText = h.get("tol");
+  if (tolText !== null) {
+    const tol = Number(tolText);
+    if (!isAdaptive($("method").value)) {
+      refused.push(`tol = ${quoted(tolText)} (${methodTitle($("method").value)} takes a step, not a tolerance)`);
+    } else if (tolText.trim() !== "" && Number.isFinite(tol) && tol >= MIN_TOL && tol <= MAX_TOL) {
+      if (![...$("tol").options].some((o) => Number(o.value) === tol)) $("tol").append(new Option(String(tol), String(tol)));
+      $("tol").value = String(tol);
+    } else refused.push(`tol = ${quoted(tolText)} (a tolerance from ${MIN_TOL} to ${MAX_TOL})`);
   }
   const stepsText = h.get("steps");
   if (stepsText !== null) {
@@ -2436,6 +2489,7 @@ function selectSystem(name, params = {}, build = true) {
   const step = stepDefaults(app.entry);
   fillMethods(step?.method ?? null);
   setStep(step?.dt ?? DEFAULT_DT, step?.steps ?? DEFAULT_STEPS);
+  $("tol").value = String(DEFAULT_TOL);
   $("step-note").textContent = step?.note ?? "";
   $("timelapse-choice").hidden = !timeLapse(app.entry);
   // A reduced model whose `energy` is dissipated or is no energy has no energy error to show.
@@ -2470,14 +2524,18 @@ async function main() {
   fillSystems();
   $("dt").replaceChildren(...DTS.map((d) => new Option(String(d), String(d))));
   $("dt").value = String(DEFAULT_DT);
+  addToleranceControl();
   $("speed").value = DEFAULT_STEPS;
   $("speed-out").textContent = DEFAULT_STEPS;
   $("system").onchange = () => selectSystem($("system").value);
   $("method").onchange = () => {
     describeMethod();
-    try { app.lab.setMethod($("method").value); restartRun(); } catch (e) { message(e.message); }
+    try { app.lab.setTolerance(tolerance()); app.lab.setMethod($("method").value); restartRun(); } catch (e) { message(e.message); }
   };
-  $("dt").onchange = () => restartRun();
+  $("dt").onchange = () => { describeMethod(); restartRun(); };
+  $("tol").onchange = () => {
+    try { app.lab.setTolerance(tolerance()); restartRun(); } catch (e) { message(e.message); }
+  };
   $("timelapse").onchange = () => setTimeLapse($("timelapse").checked);
   $("speed").oninput = () => { $("speed-out").textContent = $("speed").value; };
   $("run").onclick = () => setRunning(!app.running);

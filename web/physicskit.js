@@ -43,9 +43,10 @@ class Core {
   }
   /**
    * Builds `system` with `params` (an object; missing names take the defaults) and the method
-   * named `method` (null: the system's default).
+   * named `method` (null: the system's default), an adaptive one at the tolerance `tol`
+   * (rtol = atol; null: the lab's default).
    */
-  build(system, params = {}, method = null) {
+  build(system, params = {}, method = null, tol = null) {
     const name = utf8.encode(system);
     const json = utf8.encode(JSON.stringify(params));
     const how = utf8.encode(method ?? "");
@@ -54,7 +55,9 @@ class Core {
     all.set(json, name.length);
     all.set(how, name.length + json.length);
     this.putBytes(all);
-    const h = this.x.pk_build(name.length, json.length, how.length);
+    const h = tol === null
+      ? this.x.pk_build(name.length, json.length, how.length)
+      : this.x.pk_build_tol(name.length, json.length, how.length, tol);
     if (h === 0) throw new Error(this.error());
     return new Lab(this, h);
   }
@@ -72,6 +75,13 @@ class Lab {
     const bytes = utf8.encode(name);
     this.core.putBytes(bytes);
     this.core.check(this.core.x.pk_set_method(this.h, bytes.length));
+  }
+  /** Sets the tolerance (rtol = atol) of an adaptive method; a fixed-step one keeps it. */
+  setTolerance(tol) {
+    this.core.check(this.core.x.pk_set_tolerance(this.h, tol));
+  }
+  tolerance() {
+    return this.core.x.pk_tolerance(this.h);
   }
   step(n, dt) {
     this.core.check(this.core.x.pk_step(this.h, n, dt));

@@ -109,8 +109,7 @@ for (let [name, method] of systems) {
   await page.evaluate((n) => { window.physicskitLab.select(n); window.physicskitLab.setStep(1e-3, 25); }, name);
   const before = await sceneInk(page);
   const ok = await page.evaluate(() => window.physicskitLab.runFrames(4));
-  // The page runs the catalogue's default method, or the first fixed-step one if that is
-  // adaptive (a frame-by-frame run cannot take an adaptive step).
+  // The page runs the catalogue's default method, or the fixed-step one its pace names.
   method = await page.evaluate(() => document.getElementById("method").value);
   const after = await sceneInk(page);
   const readout = await page.locator("#energy-error").textContent();
@@ -657,15 +656,15 @@ for (const [hash, system, named] of HOSTILE) {
 }
 
 // A method name from a script call is untrusted too: the module's build and set-method refuse
-// an unknown name, HTML, a name in the wrong case, an adaptive method (a frame-by-frame run
-// cannot take its steps) and a splitting method on a system with drag, each with an Error
+// an unknown name, HTML, a name in the wrong case and a splitting method on a system with
+// drag, each with an Error
 // naming the method, and the module runs on (a panic in the WebAssembly would abort it: every
 // later call would throw "unreachable").
 {
   const r = await page.evaluate(() => {
     const core = window.physicskitLab.app.core, out = [];
     const attempt = (method, f) => { try { f(); out.push({ method, thrown: null }); } catch (e) { out.push({ method, thrown: `${e.constructor.name}: ${e.message}` }); } };
-    for (const m of ["warp-drive", "<b>rk4</b>", "RK4", "dop853"]) attempt(m, () => core.build("double-pendulum", {}, m).free());
+    for (const m of ["warp-drive", "<b>rk4</b>", "RK4"]) attempt(m, () => core.build("double-pendulum", {}, m).free());
     attempt("yoshida4", () => core.build("projectile", { drag_coeff: 0.02 }, "yoshida4").free());
     const lab = core.build("double-pendulum", {}, "rk4");
     attempt("warp-drive", () => lab.setMethod("warp-drive"));

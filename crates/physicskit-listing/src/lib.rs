@@ -30,7 +30,7 @@ pub struct MethodRow {
     /// Whether it applies only to separable systems `H = T(p) + V(q)`.
     pub separable_only: bool,
     /// Whether its step adapts to tolerances (`dt` is then the output spacing); the browser
-    /// lab's frame-by-frame sessions run only the fixed-step methods.
+    /// lab then offers a tolerance in place of the step.
     pub adaptive: bool,
     /// Whether it runs only on systems with a Taylor form (defined by expressions: the
     /// symbolic engines), which no catalogue system has.

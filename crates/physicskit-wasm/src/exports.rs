@@ -131,14 +131,25 @@ pub extern "C" fn pk_error_len() -> usize {
 /// default), one after another. Returns the handle, or 0 on failure.
 #[no_mangle]
 pub extern "C" fn pk_build(name_len: usize, params_len: usize, method_len: usize) -> u32 {
+    build(
+        name_len,
+        params_len,
+        method_len,
+        crate::lab::DEFAULT_TOLERANCE,
+    )
+}
+
+/// [`pk_build`] at the tolerance `tol`.
+fn build(name_len: usize, params_len: usize, method_len: usize, tol: f64) -> u32 {
     with(|r| {
         let built = input_text(r, 0, name_len).and_then(|name| {
             let params = input_text(r, name_len, params_len)?;
             let method = input_text(r, name_len + params_len, method_len)?;
-            Lab::with_method(
+            Lab::with_tolerance(
                 &name,
                 if params.is_empty() { "{}" } else { &params },
                 (!method.is_empty()).then_some(method.as_str()),
+                tol,
             )
         });
         match built {
@@ -159,6 +170,19 @@ pub extern "C" fn pk_build(name_len: usize, params_len: usize, method_len: usize
     })
 }
 
+/// [`pk_build`] with the tolerance `tol` (`rtol = atol`) of an adaptive method (kept, and
+/// unused, by a fixed-step one). Returns the handle, or 0 on failure (a `tol` that is not
+/// finite and positive, or one the method refuses, among the reasons).
+#[no_mangle]
+pub extern "C" fn pk_build_tol(
+    name_len: usize,
+    params_len: usize,
+    method_len: usize,
+    tol: f64,
+) -> u32 {
+    build(name_len, params_len, method_len, tol)
+}
+
 /// Frees lab `h` (nothing if there is none).
 #[no_mangle]
 pub extern "C" fn pk_free(h: u32) {
@@ -175,6 +199,19 @@ pub extern "C" fn pk_free(h: u32) {
 #[no_mangle]
 pub extern "C" fn pk_set_method(h: u32, len: usize) -> i32 {
     on_lab(h, |lab, r| lab.set_method(&input_text(r, 0, len)?))
+}
+
+/// Sets the tolerance (`rtol = atol`) of lab `h`'s adaptive method to `tol` (see
+/// [`Lab::set_tolerance`]).
+#[no_mangle]
+pub extern "C" fn pk_set_tolerance(h: u32, tol: f64) -> i32 {
+    on_lab(h, |lab, _| lab.set_tolerance(tol))
+}
+
+/// Lab `h`'s tolerance (NaN if there is no such lab).
+#[no_mangle]
+pub extern "C" fn pk_tolerance(h: u32) -> f64 {
+    read(h, f64::NAN, Lab::tolerance)
 }
 
 /// Advances lab `h` by `n` steps of `dt`.

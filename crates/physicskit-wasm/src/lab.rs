@@ -1,8 +1,12 @@
 //! [`Lab`]: one system running in the lab, stepped a frame at a time.
 //!
-//! The system runs in a [`Session`] (`DynSystem::start`): a frame advances it `n` steps with
-//! the stepper and buffers kept from frame to frame, so frames allocate nothing and a run has
-//! the bits of one `integrate` over all its steps, whatever the frames. With a section the
+//! The system runs in a [`Session`] (`DynSystem::start_with`): a frame advances it `n` steps
+//! with the stepper and buffers kept from frame to frame, so frames allocate nothing and a run
+//! has the bits of one `integrate` over all its steps, whatever the frames. An adaptive method
+//! (`dop853`, `taylor`) runs at the lab's tolerance (`rtol = atol`, [`Lab::set_tolerance`])
+//! with `dt` the output spacing: each step of a frame is one output, reached by as many
+//! internal steps as the tolerance needs (the session's documentation says which samples
+//! match `integrate`'s). With a section the
 //! frame advances one step at a time, and each step that carries the section coordinate
 //! across its value in the section's direction is refined to the crossing by Hénon's trick
 //! (M. Hénon, Physica D 5, 412, 1982), as `analysis::poincare` does.
@@ -25,7 +29,7 @@ use physicskit::classical::integrators::FirstOrder;
 use physicskit::classical::model::erased::DynSystem;
 use physicskit::classical::model::Session;
 use physicskit::classical::model::SystemEntry;
-use physicskit::classical::Method;
+use physicskit::classical::{Method, Tolerances};
 
 use crate::params::values_from_json;
 
@@ -39,15 +43,27 @@ const MAX_CROSSINGS: usize = 20_000;
 /// The step a lab starts with, before its first frame names one (the page's default).
 const INITIAL_DT: f64 = 1e-3;
 
+/// The tolerance (`rtol = atol`) an adaptive method runs at until one is set: the core's
+/// default relative tolerance ([`Tolerances::default`]), the middle of the page's menu.
+pub const DEFAULT_TOLERANCE: f64 = 1e-10;
+
+/// The tolerances of the lab's tolerance `tol` (`rtol = atol = tol`), for `method`: `None`
+/// for a fixed-step method, which takes none.
+///
+/// # Errors
+/// A `tol` that is not finite and positive, with the core's message (naming `rtol`).
+fn tolerances_for(method: Method, tol: f64) -> Result<Option<Tolerances>, String> {
+    let tolerances = Tolerances::new(tol, tol).map_err(|e| e.to_string())?;
+    Ok(method.is_adaptive().then_some(tolerances))
+}
+
 /// The method `name`, if `entry` takes it in the lab. The name is untrusted (a share link, a
-/// script call): an unknown name, a method the system does not take and an adaptive method
-/// (it steps onto the end of a known span, which a frame-by-frame run does not have) are each
-/// refused with a message naming it and the methods the lab runs this system with.
+/// script call): an unknown name and a method the system does not take are each refused with
+/// a message naming it and the methods the lab runs this system with.
 fn method_of(entry: &SystemEntry, name: &str) -> Result<Method, String> {
     let runs = || {
         entry
             .methods()
-            .filter(|m| !m.is_adaptive())
             .map(Method::name)
             .collect::<Vec<_>>()
             .join(", ")
@@ -66,36 +82,17 @@ fn method_of(entry: &SystemEntry, name: &str) -> Result<Method, String> {
             runs()
         ));
     }
-    if method.is_adaptive() {
-        return Err(format!(
-            "{name} adapts its steps to the end of a span, which the lab's frame-by-frame run \
-             does not have; the lab runs `{}` with {}",
-            entry.name,
-            runs()
-        ));
-    }
     Ok(method)
-}
-
-/// The method a lab starts with: the entry's default. A session steps frame by frame, which
-/// an adaptive method cannot (it steps onto the end of a known span): a system whose default
-/// is adaptive starts with the first fixed-step method it takes.
-fn default_method(entry: &SystemEntry) -> Result<Method, String> {
-    if entry.default_method.is_adaptive() {
-        entry
-            .methods()
-            .find(|m| !m.is_adaptive())
-            .ok_or_else(|| format!("`{}` has no fixed-step method", entry.name))
-    } else {
-        Ok(entry.default_method)
-    }
 }
 
 /// One running system.
 pub struct Lab {
     entry: &'static SystemEntry,
-    /// Always `Some` between calls; taken only while the method changes.
+    /// Always `Some` between calls; taken only while the method or tolerance changes.
     session: Option<Box<dyn Session>>,
+    /// The tolerance (`rtol = atol`) of an adaptive method; kept while a fixed-step method
+    /// runs, for the next adaptive one.
+    tolerance: f64,
     /// The run's initial state (what `reset` returns to) and its energy.
     state0: Vec<f64>,
     energy0: f64,
@@ -117,7 +114,7 @@ pub struct Lab {
 
 impl Lab {
     /// Builds the catalogue entry `name` from its defaults overridden by the JSON object
-    /// `params`, with its default method (if that is adaptive, its first fixed-step one).
+    /// `params`, with its default method (an adaptive one at [`DEFAULT_TOLERANCE`]).
     ///
     /// # Errors
     /// The catalogue's message for an unknown system or a refused value.
@@ -134,22 +131,39 @@ impl Lab {
     /// The catalogue's message for an unknown system or a refused value; an unknown method,
     /// or one this system cannot use with these values.
     pub fn with_method(name: &str, params: &str, method: Option<&str>) -> Result<Self, String> {
+        Self::with_tolerance(name, params, method, DEFAULT_TOLERANCE)
+    }
+
+    /// [`Lab::with_method`] with the tolerance `tol` (`rtol = atol`) of an adaptive method
+    /// (kept, and unused, by a fixed-step one).
+    ///
+    /// # Errors
+    /// As [`Lab::with_method`]; a `tol` that is not finite and positive, or one the method
+    /// refuses (`taylor` takes `rtol` from `2^-54` to below 1), with the core's message.
+    pub fn with_tolerance(
+        name: &str,
+        params: &str,
+        method: Option<&str>,
+        tol: f64,
+    ) -> Result<Self, String> {
         let entry = catalog::find(name).map_err(|e| e.to_string())?;
         let given = values_from_json(entry, params)?;
         let method = match method {
             Some(name) => method_of(entry, name)?,
-            None => default_method(entry)?,
+            None => entry.default_method,
         };
+        let tolerances = tolerances_for(method, tol)?;
         let system = entry.build_from(given).map_err(|e| e.to_string())?;
         let state0 = system.dynamical().state().to_vec();
         let energy0 = system.dynamical().energy(&state0);
         let n = state0.len();
         let session = system
-            .start(method, INITIAL_DT)
+            .start_with(method, INITIAL_DT, tolerances)
             .map_err(|r| r.error.to_string())?;
         let mut lab = Self {
             entry,
             session: Some(session),
+            tolerance: tol,
             state0,
             energy0,
             positions: Vec::new(),
@@ -180,19 +194,49 @@ impl Lab {
         if method == self.method() {
             return Ok(());
         }
+        self.restart_session(method, self.tolerance)
+    }
+
+    /// Sets the tolerance (`rtol = atol`) of an adaptive method; a fixed-step method keeps
+    /// it for the next adaptive one. An adaptive run continues from its current state and
+    /// clock with a stepper at the new tolerance.
+    ///
+    /// # Errors
+    /// A `tol` that is not finite and positive, or one the method in use refuses, with the
+    /// core's message; the lab then runs on as it was.
+    pub fn set_tolerance(&mut self, tol: f64) -> Result<(), String> {
+        let method = self.method();
+        let tolerances = tolerances_for(method, tol)?;
+        if tolerances.is_some() && tol.to_bits() != self.tolerance.to_bits() {
+            self.restart_session(method, tol)?;
+        }
+        self.tolerance = tol;
+        Ok(())
+    }
+
+    /// The tolerance (`rtol = atol`) an adaptive method runs at.
+    pub fn tolerance(&self) -> f64 {
+        self.tolerance
+    }
+
+    /// A new session of `method` at the tolerance `tol` from the current state and clock,
+    /// or, if it is refused, the one in use again (it ran this system at this `dt` a moment
+    /// ago).
+    fn restart_session(&mut self, method: Method, tol: f64) -> Result<(), String> {
+        let tolerances = tolerances_for(method, tol)?;
         let old = self.session.take().expect("a lab always holds its session");
-        let (dt, previous) = (old.dt(), old.method());
-        match old.into_system().start(method, dt) {
+        let (dt, previous, before) = (old.dt(), old.method(), old.tolerances());
+        match old.into_system().start_with(method, dt, tolerances) {
             Ok(session) => {
                 self.session = Some(session);
+                self.tolerance = tol;
                 Ok(())
             }
             Err(refused) => {
                 let error = refused.error.to_string();
-                // Back to the method in use: it ran this system at this dt a moment ago.
                 let back = refused
                     .system
-                    .start(previous, dt)
+                    .start_with(previous, dt, before)
                     .map_err(|r| r.error.to_string())?;
                 self.session = Some(back);
                 Err(error)
