@@ -256,7 +256,7 @@ def system_jacobian(system: NativeSystem, t: float, state: _ArrayF64) -> _ArrayF
 def force_jacobian(system: NativeSystem, q: _ArrayF64, t: float) -> _ArrayF64:
     """The force Jacobian `dF/dq` of a separable Hamiltonian `system` at `(q, t)`."""
 
-def ensemble(system: str | dict[str, Any], common: dict[str, Any], sweeps: list[tuple[str, _ArrayF64]], states: _MatrixF64 | None, n: int, t_span: tuple[float, float], dt: float, method: str | None = None, stride: int | None = None, energy_error: bool = False, events: list[tuple[int, str, float]] = ..., max_lyapunov: int | None = None, sali: int | None = None, final_state: bool = True, threads: int | None = None, progress: Callable[[int, int], Any] | None = None, check_only: bool = False, prechecked: bool = False) -> dict[str, Any]:
+def ensemble(system: str | dict[str, Any], common: dict[str, Any], sweeps: list[tuple[str, _ArrayF64]], states: _MatrixF64 | None, n: int, t_span: tuple[float, float], dt: float, method: str | None = None, stride: int | None = None, energy_error: bool = False, events: list[tuple[int, str, float]] = ..., max_lyapunov: int | None = None, sali: int | None = None, final_state: bool = True, threads: int | None = None, progress: Callable[[int, int], Any] | None = None, check_only: bool = False, prechecked: bool = False, rtol: float | None = None, atol: float | None = None, max_steps: int | None = None) -> dict[str, Any]:
     """Integrates `n` members of `system` on all cores (GIL released): a catalogue name with
     its `common` values, or a SymPy engine's system as a dict (`family` hamiltonian /
     lagrangian / ode, `expressions`, `ndof`, `params` as (name, value) pairs, `energy`,
@@ -264,7 +264,9 @@ def ensemble(system: str | dict[str, Any], common: dict[str, Any], sweeps: list[
     `states` (n x state length). Returns method, ndof, final_state, steps, t, trajectory (with
     `stride`) and reductions by name (`max_energy_error`, `event_time` per event `(index,
     kind, value)` with kind crosses/rising/falling/abs_above, `max_lyapunov`, `sali`; each a
-    list of arrays). ValueError naming a bad member's index before any integration."""
+    list of arrays). `rtol`, `atol`, `max_steps`: an adaptive method's tolerances for every
+    member, checked as `integrate` checks them. ValueError naming a bad member's index before
+    any integration."""
 
 def expr_lagrangian(sexpr: str, ndof: int, params: _ArrayF64, q0: _ArrayF64, qdot0: _ArrayF64) -> NativeSystem:
     """A Lagrangian system from a prefix S-expression (see `physicskit::classical::lagrangian::Expr`)"""

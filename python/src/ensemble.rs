@@ -12,7 +12,7 @@ use physicskit::classical::ensemble::{
     self as core_ensemble, Condition, Direction, EnsembleResult, Event, FromCatalogue,
     FromParameters, MemberSource, Members, Plan, Reduction, Sweep,
 };
-use physicskit::classical::{Error, Observer};
+use physicskit::classical::{Error, Observer, Tolerances};
 use pyo3::exceptions::{PyTypeError, PyValueError};
 use pyo3::prelude::*;
 use pyo3::types::{PyDict, PyList, PyString};
@@ -117,7 +117,9 @@ impl System {
 /// `max_lyapunov`, `sali`; each a list of arrays of `n`; `max_lyapunov` and `sali` being
 /// their `renormalize_every`), `steps` (the steps each member took: fewer than the span's when
 /// `final_state` is false and only events are asked, each member then stopping at its last
-/// event; `final_state` is then `n x 0`).
+/// event; `final_state` is then `n x 0`). `rtol`, `atol` and `max_steps` are an adaptive
+/// method's tolerances for every member, checked as `integrate` checks them
+/// ([`Tolerances::for_method`], against `method` or, without one, member 0's default).
 ///
 /// # Errors
 /// `ValueError` for anything the engine refuses (a bad member named by index, before any
@@ -129,7 +131,7 @@ impl System {
 #[pyo3(signature = (system, common, sweeps, states, n, t_span, dt, method=None, stride=None,
                     energy_error=false, events=Vec::new(), max_lyapunov=None, sali=None,
                     final_state=true, threads=None, progress=None, check_only=false,
-                    prechecked=false))]
+                    prechecked=false, rtol=None, atol=None, max_steps=None))]
 #[allow(clippy::too_many_arguments)]
 pub fn ensemble<'py>(
     py: Python<'py>,
@@ -151,6 +153,9 @@ pub fn ensemble<'py>(
     progress: Option<Py<PyAny>>,
     check_only: bool,
     prechecked: bool,
+    rtol: Option<f64>,
+    atol: Option<f64>,
+    max_steps: Option<u64>,
 ) -> PyResult<Bound<'py, PyDict>> {
     let mut given = Vec::with_capacity(common.len());
     let system = System::from_py(system, common, &mut given)?;
@@ -176,7 +181,7 @@ pub fn ensemble<'py>(
     if let Some(renormalize_every) = sali {
         reductions.push(Reduction::Sali { renormalize_every });
     }
-    let plan = Plan {
+    let mut plan = Plan {
         t_span,
         dt,
         method: method.map(str::parse).transpose().py()?,
@@ -184,10 +189,13 @@ pub fn ensemble<'py>(
         reductions,
         final_state,
         threads,
+        tolerances: None,
     };
+    let tolerances = (rtol, atol, max_steps);
     let out = match system {
         System::Catalogue(entry) => {
             let source = FromCatalogue::new(entry, &members).py()?;
+            plan.tolerances = checked_tolerances(&source, &plan, tolerances)?;
             execute(py, &source, &plan, progress, check_only, prechecked)?
         }
         System::Expression(spec) => {
@@ -195,6 +203,7 @@ pub fn ensemble<'py>(
             let source =
                 FromParameters::new(spec.params.clone(), spec.state.clone(), &members, build)
                     .py()?;
+            plan.tolerances = checked_tolerances(&source, &plan, tolerances)?;
             execute(py, &source, &plan, progress, check_only, prechecked)?
         }
     };
@@ -222,6 +231,20 @@ pub fn ensemble<'py>(
     }
     d.set_item("reductions", reductions)?;
     Ok(d)
+}
+
+/// The tolerances of `(rtol, atol, max_steps)` for the method `plan` runs `source` with
+/// (member 0's default when it names none, built only when a tolerance is given).
+fn checked_tolerances<S: MemberSource + ?Sized>(
+    source: &S,
+    plan: &Plan,
+    (rtol, atol, max_steps): (Option<f64>, Option<f64>, Option<u64>),
+) -> PyResult<Option<Tolerances>> {
+    if rtol.is_none() && atol.is_none() && max_steps.is_none() {
+        return Ok(None);
+    }
+    let method = core_ensemble::method(source, plan).py()?;
+    Tolerances::for_method(rtol, atol, max_steps, method).py()
 }
 
 /// Checks (`check_only`: `None` once every member passed) or runs the members of `source`

@@ -145,6 +145,7 @@ fn main() -> Result<()> {
             reductions: vec![],
             final_state: true,
             threads: Some(threads),
+            tolerances: None,
         };
         let (seconds, out) = best_of_five(|| ensemble::run(entry, &members, &plan, None))?;
         let finals: Vec<f64> = out.final_state.iter().copied().collect();

@@ -152,6 +152,25 @@ pub struct EnsembleArgs {
         )
     )]
     pub renormalize_every: Option<String>,
+    /// Relative tolerance of an adaptive method for every member, > 0, as `simulate --rtol`.
+    #[arg(long, value_name = "RTOL", allow_negative_numbers = true, help = format!(
+        "Relative tolerance of an adaptive method for every member, > 0 [default: {:e}]",
+        Tolerances::default().rtol
+    ))]
+    pub rtol: Option<String>,
+    /// Absolute tolerance of an adaptive method for every member, > 0, as `simulate --atol`.
+    #[arg(long, value_name = "ATOL", allow_negative_numbers = true, help = format!(
+        "Absolute tolerance of an adaptive method for every member, > 0 [default: {:e}]",
+        Tolerances::default().atol
+    ))]
+    pub atol: Option<String>,
+    /// Most steps an adaptive method may attempt per member, >= 1, as `simulate --max-steps`.
+    #[arg(long, value_name = "N", allow_negative_numbers = true, help = format!(
+        "Most steps (accepted and rejected) an adaptive method may attempt per member before it \
+         stops with an error, >= 1 [default: {}]",
+        Tolerances::default().max_steps
+    ))]
+    pub max_steps: Option<String>,
     /// Worker threads (default: one per core); the results do not depend on it.
     #[arg(long, value_name = "N")]
     pub threads: Option<usize>,

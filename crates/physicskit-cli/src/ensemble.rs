@@ -13,9 +13,9 @@ use anyhow::{anyhow, bail, Context, Result};
 use physicskit::classical::analysis::lyapunov::DEFAULT_RENORMALIZE_EVERY;
 use physicskit::classical::catalog;
 use physicskit::classical::core::check_items_fit;
-use physicskit::classical::ensemble::{self, Members, Plan, Reduction, Sweep};
+use physicskit::classical::ensemble::{self, FromCatalogue, Members, Plan, Reduction, Sweep};
 use physicskit::classical::model::{SystemEntry, Value};
-use physicskit::classical::Observer;
+use physicskit::classical::{Error, Method, Observer, Tolerances};
 
 use crate::cli::EnsembleArgs;
 use crate::output::arrays::{write_npz, Entry};
@@ -153,6 +153,28 @@ fn reductions(scenario: &Scenario) -> Result<Vec<Reduction>> {
     Ok(out)
 }
 
+/// The tolerances of `--rtol`, `--atol` and `--max-steps` (`rtol`, `atol`, `max_steps`),
+/// checked for `method` as `simulate` checks its own: an error naming the flag and the key
+/// for a value that is not > 0, or for a fixed-step method.
+fn tolerances(scenario: &Scenario, method: Method) -> Result<Option<Tolerances>> {
+    let (rtol, atol, max_steps) = (scenario.rtol, scenario.atol, scenario.max_steps);
+    Tolerances::for_method(rtol, atol, max_steps, method).map_err(|e| match e {
+        Error::InvalidParameter { name, reason, .. } | Error::InvalidArgument { name, reason } => {
+            let value = match name.as_str() {
+                "rtol" => rtol.map(|x| x.to_string()),
+                "atol" => atol.map(|x| x.to_string()),
+                _ => max_steps.map(|n| n.to_string()),
+            };
+            anyhow!(
+                "invalid value `{}` for `--{}` (`{name}`): {reason}",
+                value.unwrap_or_default(),
+                name.replace('_', "-")
+            )
+        }
+        other => other.into(),
+    })
+}
+
 /// Runs `ensemble`.
 ///
 /// # Errors
@@ -176,7 +198,7 @@ pub fn run(args: &EnsembleArgs, stop: &Stop) -> Result<()> {
     if !final_state && scenario.stride.is_none() && reductions.is_empty() {
         bail!("`--no-final-state` (`final_state: false`) leaves nothing to write: keep a reduction or --stride");
     }
-    let plan = Plan {
+    let mut plan = Plan {
         t_span: (
             scenario.t0.unwrap_or(0.0),
             required(&scenario.t1, "t1", "t1")?,
@@ -187,15 +209,20 @@ pub fn run(args: &EnsembleArgs, stop: &Stop) -> Result<()> {
         reductions,
         final_state,
         threads: scenario.threads,
+        tolerances: None,
     };
+    let source = FromCatalogue::new(entry, &layout.members)?;
+    let given = [scenario.rtol, scenario.atol].iter().any(Option::is_some);
+    if given || scenario.max_steps.is_some() {
+        plan.tolerances = tolerances(&scenario, ensemble::method(&source, &plan)?)?;
+    }
     let out_path = required(&scenario.out, "out", "out")?;
     let pending = Pending::create(&out_path)?;
     if !pending.is_npz() {
         bail!("`ensemble` writes .npz only, got `{}`", out_path.display());
     }
     let mut observer = StopObserver(stop);
-    let out = ensemble::run(entry, &layout.members, &plan, Some(&mut observer))
-        .context("ensemble run")?;
+    let out = ensemble::run_source(&source, &plan, Some(&mut observer)).context("ensemble run")?;
     if stop.requested() {
         bail!("interrupted before writing `{}`", out_path.display());
     }

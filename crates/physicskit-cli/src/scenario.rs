@@ -22,7 +22,8 @@
 //! errors naming the key. Paths are relative to the working directory, as on the command line.
 //!
 //! Flags given with a file ([`Scenario::overridden_by`]): a setting (SYSTEM, `--method`,
-//! `--dt`, `--t0`, `--t1`, `--stride`, `--renormalize-every`, `--threads`, `--out`) replaces
+//! `--dt`, `--t0`, `--t1`, `--stride`, `--renormalize-every`, `--threads`, `--rtol`, `--atol`,
+//! `--max-steps`, `--out`) replaces
 //! the file's; `--set NAME=VALUE` replaces that parameter's value only; a switch
 //! (`--energy-error`, `--max-lyapunov`, `--sali`, `--no-final-state`) adds to the file's.
 //! The members (`--grid`, `--values`; `grid`, `values`, `states`) and the events are given in
@@ -84,6 +85,12 @@ pub struct Scenario {
     pub final_state: Option<bool>,
     /// Worker threads.
     pub threads: Option<usize>,
+    /// Relative tolerance of an adaptive method.
+    pub rtol: Option<f64>,
+    /// Absolute tolerance of an adaptive method.
+    pub atol: Option<f64>,
+    /// Most steps an adaptive method may attempt per member.
+    pub max_steps: Option<u64>,
     /// Output file (.npz).
     pub out: Option<PathBuf>,
 }
@@ -318,6 +325,13 @@ impl Scenario {
                 .transpose()?,
             final_state: args.no_final_state.then_some(false),
             threads: args.threads,
+            rtol: args.rtol.as_deref().map(|t| number("rtol", t)).transpose()?,
+            atol: args.atol.as_deref().map(|t| number("atol", t)).transpose()?,
+            max_steps: args
+                .max_steps
+                .as_deref()
+                .map(|t| count("max-steps", t, 1).map(|n| n as u64))
+                .transpose()?,
             out: args.out.clone(),
         })
     }
@@ -387,6 +401,9 @@ impl Scenario {
             renormalize_every: flags.renormalize_every.or(self.renormalize_every),
             final_state: flags.final_state.or(self.final_state),
             threads: flags.threads.or(self.threads),
+            rtol: flags.rtol.or(self.rtol),
+            atol: flags.atol.or(self.atol),
+            max_steps: flags.max_steps.or(self.max_steps),
             out: flags.out.or(self.out),
         })
     }

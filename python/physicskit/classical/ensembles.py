@@ -252,6 +252,9 @@ def ensemble(
     threads: int | None = None,
     client: Any = None,
     chunk_size: int | None = None,
+    rtol: float | None = None,
+    atol: float | None = None,
+    max_steps: int | None = None,
 ) -> EnsembleResult:
     """Integrates an ensemble of ``system``: a built-in system, whose constructor arguments all
     members share; a catalogue name, for its defaults; or a system of a SymPy engine
@@ -288,6 +291,13 @@ def ensemble(
     (its deviation vectors aligned to rounding) where ``chaos_map`` gives about 1e-14. The two
     agree on every verdict against :data:`CHAOS_THRESHOLD`.
 
+    ``rtol``, ``atol`` and ``max_steps``: the tolerances and step budget of an adaptive method
+    (``"dop853"``, ``"taylor"``) for every member, as ``integrate_sampled`` takes them
+    (finite and > 0; an integer >= 1; ``None``, the default, means ``1e-10``, ``1e-12`` and ten
+    million); each member's results then equal its own ``integrate_sampled`` with the same
+    tolerances bit for bit. A fixed-step method has none: giving any with one is a
+    ``ValueError``, as is a value that is not a finite number > 0 (an integer >= 1).
+
     ``final_state=False`` keeps no final states (another output must then be asked); when only
     ``events`` are asked (no ``stride``, no other reduction) each member then stops at its last
     event, with the same event times as the full run (a flip-time map costs the time to each
@@ -319,6 +329,9 @@ def ensemble(
         "energy_error": as_flag("energy_error", energy_error),
         "events": _events(events),
         "final_state": as_flag("final_state", final_state),
+        "rtol": None if rtol is None else as_scalar("rtol", rtol),
+        "atol": None if atol is None else as_scalar("atol", atol),
+        "max_steps": None if max_steps is None else as_int("max_steps", max_steps, minimum=1),
     }
     every = as_int("renormalize_every", renormalize_every, minimum=1)
     for key, value in (("max_lyapunov", max_lyapunov), ("sali", sali)):

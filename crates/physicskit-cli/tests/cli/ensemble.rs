@@ -78,6 +78,7 @@ fn the_npz_is_the_library_ensemble_shaped_by_the_grid() {
         ],
         final_state: true,
         threads: None,
+        tolerances: None,
     };
     let entry = catalog::find("harmonic-oscillator").unwrap();
     let lib = ensemble::run(entry, &members, &plan, None).unwrap();
@@ -178,6 +179,7 @@ fn chaos_reductions_are_the_library_ones() {
         ],
         final_state: true,
         threads: None,
+        tolerances: None,
     };
     let entry = catalog::find("henon-heiles").unwrap();
     let lib = ensemble::run(entry, &members, &plan, None).unwrap();
@@ -280,4 +282,105 @@ fn help_states_the_library_constants() {
         sali_line.contains(&format!("above {threshold:e}: regular")),
         "{sali_line}"
     );
+}
+
+/// Kepler orbits (`a = 1`, `k = mu = 1`: period `2 pi`) at `e = 0.1, 0.4, 0.7` over two
+/// periods by `method` with `extra` flags into `e.npz` in `dir`; the run's output and, if it
+/// succeeded, each member's largest distance from its start.
+fn kepler_orbits(
+    dir: &std::path::Path,
+    method: &str,
+    extra: &[&str],
+) -> (std::process::Output, Vec<f64>) {
+    let (t1, dt) = (4.0 * std::f64::consts::PI, std::f64::consts::TAU / 64.0);
+    let (t1, dt) = (t1.to_string(), dt.to_string());
+    let mut args = vec!["ensemble", "kepler", "--values", "e=0.1,0.4,0.7"];
+    args.extend_from_slice(&["--method", method, "--t1", &t1, "--dt", &dt]);
+    args.extend_from_slice(&["--out", "e.npz"]);
+    args.extend_from_slice(extra);
+    let out = run_in(dir, &args);
+    if out.status.code() != Some(0) {
+        return (out, vec![]);
+    }
+    let mut npz = NpzReader::new(File::open(dir.join("e.npz")).unwrap()).unwrap();
+    let final_state: Array2<f64> = npz.by_name("final_state.npy").unwrap();
+    let errors = [0.1f64, 0.4, 0.7]
+        .iter()
+        .zip(final_state.rows())
+        .map(|(&e, y)| {
+            // The closed form's start, perihelion, where every period returns the orbit.
+            let start = [1.0 - e, 0.0, 0.0, ((1.0 + e) / (1.0 - e)).sqrt()];
+            y.iter()
+                .zip(start)
+                .map(|(y, y0)| (y - y0).abs())
+                .fold(0.0, f64::max)
+        })
+        .collect();
+    (out, errors)
+}
+
+#[test]
+fn rtol_and_atol_reach_every_member() {
+    let dir = scratch();
+    let (out, loose) = kepler_orbits(dir.path(), "taylor", &["--rtol", "1e-6", "--atol", "1e-6"]);
+    assert_eq!(out.status.code(), Some(0), "{}", stderr(&out));
+    let (out, tight) = kepler_orbits(
+        dir.path(),
+        "taylor",
+        &["--rtol", "1e-12", "--atol", "1e-12"],
+    );
+    assert_eq!(out.status.code(), Some(0), "{}", stderr(&out));
+    for (k, (l, t)) in loose.iter().zip(&tight).enumerate() {
+        // Tolerances 1e6 times tighter: measured, the distance from the start after two
+        // periods falls from 6e-8 .. 7e-6 to 8e-13 .. 1.6e-11, by 8e4 to 7e5; 100 keeps a
+        // margin of over 800. Flags not passed on would leave both runs at the defaults, the
+        // same bits: ratio 1.
+        assert!(100.0 * t < *l, "member {k}: {t:e} at 1e-12, {l:e} at 1e-6");
+    }
+    // The same from a scenario file's keys, and a bad value or a fixed-step method refused
+    // naming the flag and the key, with no file left.
+    std::fs::write(
+        dir.path().join("s.json"),
+        r#"{"rtol": 1e-12, "atol": 1e-12}"#,
+    )
+    .unwrap();
+    let (out, from_file) = kepler_orbits(dir.path(), "taylor", &["--scenario", "s.json"]);
+    assert_eq!(out.status.code(), Some(0), "{}", stderr(&out));
+    assert_eq!(bits(&from_file), bits(&tight));
+    for (method, flags, expected) in [
+        (
+            "taylor",
+            &["--rtol", "0"][..],
+            "invalid value `0` for `--rtol` (`rtol`): ",
+        ),
+        (
+            "taylor",
+            &["--atol", "nan"][..],
+            "invalid value `NaN` for `--atol` (`atol`): ",
+        ),
+        (
+            "dop853",
+            &["--max-steps", "0"][..],
+            "invalid value `0` for `--max-steps`",
+        ),
+        (
+            "yoshida4",
+            &["--rtol", "1e-9"][..],
+            "invalid value `0.000000001` for `--rtol` (`rtol`): `yoshida4` is a fixed-step method",
+        ),
+    ] {
+        let dir = scratch();
+        let (out, _) = kepler_orbits(dir.path(), method, flags);
+        assert_eq!(out.status.code(), Some(2), "{flags:?}");
+        assert!(
+            stderr(&out).contains(expected),
+            "{flags:?}: {}",
+            stderr(&out)
+        );
+        assert!(entries(dir.path()).is_empty(), "{flags:?}");
+    }
+}
+
+fn bits(v: &[f64]) -> Vec<u64> {
+    v.iter().map(|x| x.to_bits()).collect()
 }

@@ -276,6 +276,7 @@ fn listed_members_by_a_grid_are_the_librarys() {
         reductions: vec![],
         final_state: true,
         threads: None,
+        tolerances: None,
     };
     let lib = ensemble::run(
         catalog::find("harmonic-oscillator").unwrap(),

@@ -77,6 +77,7 @@ pub(crate) fn render(ctx: &Ctx) -> Result<Demo> {
         reductions: vec![flip(0), flip(1)],
         final_state: false,
         threads: None,
+        tolerances: None,
     };
     let out = ensemble::run(catalog::find("double-pendulum")?, &members, &plan, None)?;
     let (first, second) = (&out.reductions[0].1, &out.reductions[1].1);

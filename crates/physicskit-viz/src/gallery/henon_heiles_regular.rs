@@ -92,6 +92,7 @@ pub(crate) fn render(ctx: &Ctx) -> Result<Demo> {
         }],
         final_state: false,
         threads: None,
+        tolerances: None,
     };
     let out = ensemble::run(catalog::find("henon-heiles")?, &members, &plan, None)?;
     let sali = &out.reductions[0].1;

@@ -72,6 +72,7 @@ pub(crate) fn render(ctx: &Ctx) -> Result<Demo> {
         reductions: vec![],
         final_state: true,
         threads: None,
+        tolerances: None,
     };
     let out = ensemble::run(catalog::find("kepler")?, &members, &plan, None)?;
     let (Some(t), Some(trajectory)) = (out.t, out.trajectory) else {

@@ -121,6 +121,13 @@ pub(crate) fn in_member(index: usize, error: Error) -> Error {
             method,
             reason: format!("member {index}: {reason}"),
         },
+        // Still a failure to converge (at the given tolerances or step budget), not a bad
+        // argument: front ends map it as they map a single run's.
+        Error::StepSizeTooSmall { t, step, reason } => Error::StepSizeTooSmall {
+            t,
+            step,
+            reason: format!("member {index}: {reason}"),
+        },
         other => Error::InvalidArgument {
             name: format!("member {index}"),
             reason: other.to_string(),

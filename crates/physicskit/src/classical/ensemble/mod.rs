@@ -18,6 +18,10 @@
 //! split of the members into runs (which is how the Python front end distributes an ensemble
 //! over a Dask cluster).
 //!
+//! An adaptive method (`dop853`, `taylor`) runs every member at the plan's
+//! [`Plan::tolerances`] (`None`: [`Tolerances::default`], as `integrate`'s); a fixed-step
+//! method given tolerances is refused before any work, as `integrate` refuses it.
+//!
 //! Per member the engine keeps ([`Plan`]):
 //! * the final state, unless `final_state` is `false`;
 //! * optionally the trajectory every `stride` steps (the rows `integrate` with
@@ -60,7 +64,8 @@ use crate::classical::core::{memory_check, Error, Result, TimeGrid};
 use crate::classical::integrators::ensemble::watched;
 #[cfg(doc)]
 use crate::classical::integrators::ensemble::PROGRESS_PERIOD;
-use crate::classical::integrators::{IntegrateOptions, Method, Observer, Sampling};
+use crate::classical::integrators::options::check_adaptive;
+use crate::classical::integrators::{IntegrateOptions, Method, Observer, Sampling, Tolerances};
 use crate::classical::model::{DynSystem, SystemEntry};
 
 /// Members per parallel chunk: enough to make scheduling negligible, few enough that 1e3
@@ -88,6 +93,10 @@ pub struct Plan {
     pub final_state: bool,
     /// Worker threads (`None`: rayon's global pool, one per core).
     pub threads: Option<usize>,
+    /// Tolerances of an adaptive method, for every member's run (`None`:
+    /// [`Tolerances::default`]); refused with a fixed-step method, as by `integrate`
+    /// ([`IntegrateOptions::tolerances`]).
+    pub tolerances: Option<Tolerances>,
 }
 
 /// The outputs, member-major: member `i`'s values are row `i` (the Python front end reshapes
@@ -156,6 +165,7 @@ struct Prepared<'s, S: ?Sized> {
 ///     reductions: vec![],
 ///     final_state: true,
 ///     threads: None,
+///     tolerances: None,
 /// };
 /// let out = ensemble::run(catalog::find("harmonic-oscillator")?, &members, &plan, None)?;
 /// assert_eq!(out.final_state.dim(), (3, 2));
@@ -229,6 +239,19 @@ pub fn check_source<S: MemberSource + ?Sized>(source: &S, plan: &Plan) -> Result
     in_pool(&pool, || prepare(source, plan, true)).map(|_| ())
 }
 
+/// The method `plan` runs `source`'s members with: `plan.method`, else member 0's default
+/// (built to ask it, clock at `plan.t_span.0`). For front ends that check an adaptive method's
+/// tolerances against the method, as [`Tolerances::for_method`] does, before the run.
+///
+/// # Errors
+/// Member 0 refused by `source` (named as member 0), when the plan names no method.
+pub fn method<S: MemberSource + ?Sized>(source: &S, plan: &Plan) -> Result<Method> {
+    match plan.method {
+        Some(method) => Ok(method),
+        None => Ok(build(source, 0, plan.t_span.0)?.default_method()),
+    }
+}
+
 /// Member `index` of `source`, its errors named by the index.
 fn build<S: MemberSource + ?Sized>(
     source: &S,
@@ -286,6 +309,10 @@ fn prepare<'s, S: MemberSource + ?Sized>(
     let dim = first.dynamical().state_dim();
     let ndof = first.ndof();
     let method = plan.method.unwrap_or_else(|| first.default_method());
+    if let Some(tolerances) = plan.tolerances {
+        check_adaptive("tolerances", method)?;
+        tolerances.validate()?;
+    }
     for r in &plan.reductions {
         r.check(dim)?;
     }
@@ -459,7 +486,7 @@ fn run_member<S: MemberSource + ?Sized>(
             skip_energy: p.skip_energy,
             observer: Some(&mut flag),
             observe_every: OBSERVE_EVERY,
-            ..IntegrateOptions::default()
+            tolerances: plan.tolerances,
         },
     )?;
     debug_assert_eq!(result.y.nrows(), p.run_rows);

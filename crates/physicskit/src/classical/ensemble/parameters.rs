@@ -77,6 +77,7 @@ where
     ///     reductions: vec![],
     ///     final_state: true,
     ///     threads: None,
+    ///     tolerances: None,
     /// };
     /// let out = ensemble::run_source(&source, &plan, None)?;
     /// assert_eq!(out.final_state.dim(), (3, 2));

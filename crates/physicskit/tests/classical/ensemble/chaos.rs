@@ -40,6 +40,7 @@ fn chaos_plan(threads: Option<usize>) -> Plan {
         ],
         final_state: true,
         threads,
+        tolerances: None,
     }
 }
 
@@ -131,6 +132,7 @@ fn a_lagrangian_member_equals_its_single_orbit_call() {
         }],
         final_state: true,
         threads: Some(2),
+        tolerances: None,
     };
     let entry = catalog::find("double-pendulum").unwrap();
     let out = ensemble::run(entry, &members, &plan, None).unwrap();
@@ -166,6 +168,7 @@ fn splitting_on_a_non_separable_system_and_bad_settings_are_refused_up_front() {
         }],
         final_state: true,
         threads: Some(1),
+        tolerances: None,
     };
     let err = ensemble::run(entry, &members, &plan, None).unwrap_err();
     // The refusal `integrate` gives a single member, word for word, not a member's failure.

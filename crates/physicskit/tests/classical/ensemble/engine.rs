@@ -44,6 +44,7 @@ fn pendulum_plan(threads: Option<usize>) -> Plan {
         ],
         final_state: true,
         threads,
+        tolerances: None,
     }
 }
 
@@ -142,6 +143,7 @@ fn states_given_per_member_equal_single_runs() {
         reductions: vec![],
         final_state: true,
         threads: Some(2),
+        tolerances: None,
     };
     let entry = catalog::find("henon-heiles").unwrap();
     let out = ensemble::run(entry, &members, &plan, None).unwrap();
@@ -185,6 +187,7 @@ fn a_nan_in_member_731_of_1000_is_refused_by_index_before_any_integration() {
         reductions: vec![],
         final_state: true,
         threads: None,
+        tolerances: None,
     };
     let mut count = Count(0);
     let entry = catalog::find("harmonic-oscillator").unwrap();

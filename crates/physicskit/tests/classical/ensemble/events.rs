@@ -28,6 +28,7 @@ fn crossing_errors(method: Method, dt: f64) -> [f64; 2] {
         })],
         final_state: true,
         threads: Some(1),
+        tolerances: None,
     };
     let entry = catalog::find("harmonic-oscillator").unwrap();
     let out = ensemble::run(entry, &members, &plan, None).unwrap();
@@ -83,6 +84,7 @@ fn events_never_reached_are_nan_and_events_at_the_start_are_t0() {
         })],
         final_state: true,
         threads: Some(1),
+        tolerances: None,
     };
     let entry = catalog::find("harmonic-oscillator").unwrap();
     let out = ensemble::run(entry, &members, &plan, None).unwrap();
@@ -120,6 +122,7 @@ fn members_of_an_events_only_plan_stop_at_their_last_event_with_the_same_times()
         reductions: vec![flip(0), flip(1)],
         final_state: true,
         threads: Some(2),
+        tolerances: None,
     };
     let entry = catalog::find("double-pendulum").unwrap();
     let full = ensemble::run(entry, &members, &plan, None).unwrap();

@@ -8,3 +8,4 @@ mod chaos;
 mod engine;
 mod events;
 mod parameters;
+mod tolerances;

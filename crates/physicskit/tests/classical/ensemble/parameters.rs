@@ -71,6 +71,7 @@ fn plan(threads: Option<usize>) -> Plan {
         ],
         final_state: true,
         threads,
+        tolerances: None,
     }
 }
 

@@ -42,6 +42,7 @@ fn short_watched_ensembles_cost_their_work() {
         reductions: vec![],
         final_state: true,
         threads: None,
+        tolerances: None,
     };
     let start = Instant::now();
     for _ in 0..20 {
