@@ -407,13 +407,15 @@ function describeMethod() {
   showStepControl();
   const m = app.catalogue.methods.find((x) => x.name === $("method").value);
   if (!m) { $("method-info").textContent = ""; $("method-ref").textContent = ""; return; }
-  // What is counted, without the catalogue's remarks after it.
-  const what = m.evaluations.split(/[,:;(]/)[0].trim();
-  const ev = m.evaluations_per_step === 1 ? what.replace(/s$/, "") : what;
+  // What is counted, without the catalogue's remarks after it; "per …" where it says per what.
+  let what = m.evaluations.split(/[,:;(]/)[0].trim(), per = "per step";
+  const at = what.indexOf(" per ");
+  if (at >= 0) { per = what.slice(at + 1); what = what.slice(0, at); }
+  const ev = m.evaluations_per_step === 1 ? what.replace(/s(?= of |$)/, "") : what;
   // An adaptive method's steps are its own (to the tolerance); dt spaces its outputs.
   const how = m.adaptive ? ` · adaptive: its own steps to the tolerance, an output every dt = ${$("dt").value} s` : "";
   $("method-info").textContent = `order ${m.order} · ${m.symplectic ? "symplectic" : "not symplectic"}${how} · ` +
-    `${m.evaluations_per_step} ${ev} per step`;
+    `${m.evaluations_per_step} ${ev} ${per}`;
   $("method-ref").textContent = m.reference;
 }
 
