@@ -114,7 +114,8 @@ pub struct Lab {
 
 impl Lab {
     /// Builds the catalogue entry `name` from its defaults overridden by the JSON object
-    /// `params`, with its default method (an adaptive one at [`DEFAULT_TOLERANCE`]).
+    /// `params`, with its default method (an adaptive one at the lab's
+    /// default tolerance, `DEFAULT_TOLERANCE`).
     ///
     /// # Errors
     /// The catalogue's message for an unknown system or a refused value.
