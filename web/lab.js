@@ -2410,7 +2410,7 @@ function applyHash(hash) {
     } else if (tolText.trim() !== "" && Number.isFinite(tol) && tol >= MIN_TOL && tol <= MAX_TOL) {
       if (![...$("tol").options].some((o) => Number(o.value) === tol)) $("tol").append(new Option(String(tol), String(tol)));
       $("tol").value = String(tol);
-    } else refused.push(`tol = ${quoted(tolText)} (a tolerance from ${MIN_TOL} to ${MAX_TOL})`);
+    } else refused.push(`tol = ${quoted(tolText)} (a tolerance from ${MIN_TOL.toExponential()} to ${MAX_TOL.toExponential()})`);
   }
   const stepsText = h.get("steps");
   if (stepsText !== null) {
@@ -2476,6 +2476,8 @@ function exportData() {
 
 function selectSystem(name, params = {}, build = true) {
   app.entry = app.catalogue.systems.find((s) => s.name === name);
+  // The last chain's drawing geometry (its drag handles) goes with it.
+  app.chainGeom = null;
   $("system").value = name;
   app.params = { ...params };
   // A dimensionless system (no unit of time in the catalogue) says so once, here: its axes
