@@ -91,6 +91,8 @@ class _DrawingInfo(TypedDict, total=False):
     ]
     springs: bool
     """Bobs: hung on springs (coils), not rods."""
+    scale: str
+    """Bobs: the system's own length its positions are in units of (TeX, ``l``), if any."""
     ends: Literal["fixed", "free", "periodic"]
     """Chains: walls at both ends, free ends, or a ring."""
     central_body: bool
