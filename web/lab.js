@@ -2462,6 +2462,8 @@ function exportData() {
     system: app.entry.name, params: app.params, method: $("method").value, dt: Number($("dt").value),
     initial_state: Array.from(app.lab.initialState()), columns, rows,
   };
+  // An adaptive method's run is set by its tolerance (rtol = atol); dt is its output spacing.
+  if (isAdaptive(out.method)) out.tol = app.lab.tolerance();
   if (hasSection()) {
     const x = Array.from(app.lab.crossings()), o = Array.from(app.lab.crossingOrbits()), n = app.lab.state().length;
     out.section = {
