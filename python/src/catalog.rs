@@ -110,9 +110,10 @@ fn param_info<'py>(py: Python<'py>, p: &ParamSpec) -> PyResult<Bound<'py, PyDict
 }
 
 /// How front ends show a system, as a dict: `title`, `symbols`, `time_unit`, `state_units`
-/// (`None` or a pair), `drawing` (`kind` and the kind's attributes: `springs` and `scale` for bobs, `ends`
-/// for chains, `central_body` and `ground` for orbits, `shape` for rolling bodies), `pace`
-/// (`kind`: `own`, `fixed` with `method`, `dt`, `steps_per_frame`, `energy_error`, or
+/// (`None` or a pair), `drawing` (`kind` and the kind's attributes: `springs` and `scale` for
+/// bobs, `ends` for chains, `central_body` and `ground` for orbits, `shape` for rolling
+/// bodies), `pace` (`kind`: `own`, `fixed` with `method`, `dt`, `steps_per_frame`,
+/// `energy_error`, or
 /// `time_lapse` with `dt`, `steps_per_frame`), `section_first` and `energy_conserved`: the
 /// same as `list --json`'s.
 fn presentation_info<'py>(py: Python<'py>, p: &Presentation) -> PyResult<Bound<'py, PyDict>> {
