@@ -325,8 +325,16 @@ impl Scenario {
                 .transpose()?,
             final_state: args.no_final_state.then_some(false),
             threads: args.threads,
-            rtol: args.rtol.as_deref().map(|t| number("rtol", t)).transpose()?,
-            atol: args.atol.as_deref().map(|t| number("atol", t)).transpose()?,
+            rtol: args
+                .rtol
+                .as_deref()
+                .map(|t| number("rtol", t))
+                .transpose()?,
+            atol: args
+                .atol
+                .as_deref()
+                .map(|t| number("atol", t))
+                .transpose()?,
             max_steps: args
                 .max_steps
                 .as_deref()
