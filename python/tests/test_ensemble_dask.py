@@ -147,3 +147,42 @@ def test_members_failing_during_their_runs_raise_the_local_engines_error(client)
     with pytest.raises(ValueError, match="member 3: ") as dask:
         run(client=client, chunk_size=4)
     assert str(dask.value) == str(local.value)
+
+
+def test_tolerances_travel_to_the_workers(client):
+    def kepler(**kw):
+        return pc.ensemble("kepler", (0.0, 4 * np.pi), np.pi / 32, "taylor",
+                           sweep={"e": np.linspace(0.0, 0.8, 9)}, **kw)
+
+    local = kepler(rtol=1e-6, atol=1e-6, threads=1)
+    _same_bits(local, kepler(rtol=1e-6, atol=1e-6, client=client, chunk_size=2))
+    # The tolerances changed the run: the defaults give other bits.
+    assert local.final_state.tobytes() != kepler(threads=1).final_state.tobytes()
+
+
+def _unaligned(a):
+    """A copy of the float64 array ``a`` at an odd address."""
+    raw = bytearray(a.nbytes + 1)
+    out = np.frombuffer(raw, dtype=np.float64, count=a.size, offset=1).reshape(a.shape)
+    out[...] = a
+    assert not out.flags.aligned
+    return out
+
+
+def test_a_part_runs_from_unaligned_arrays(monkeypatch):
+    # Dask's deserialization can hand a worker a part whose sweep sits at an odd byte offset of
+    # its message (a worker reading one in place panicked, and the run above hung). The part is
+    # handed to the engine as the worker gets it, unaligned: the run gives the aligned bits.
+    def kepler():
+        return pc.ensemble("kepler", (0.0, 4 * np.pi), np.pi / 32, "taylor",
+                           sweep={"e": np.linspace(0.0, 0.8, 9)}, threads=1)
+
+    aligned = kepler()
+    run = pc.ensembles._Job.__call__
+
+    def as_a_worker_gets_it(job, **extra):
+        job.sweeps = [(k, _unaligned(v)) for k, v in job.sweeps]
+        return run(job, **extra)
+
+    monkeypatch.setattr(pc.ensembles._Job, "__call__", as_a_worker_gets_it)
+    assert kepler().final_state.tobytes() == aligned.final_state.tobytes()
