@@ -384,6 +384,8 @@ function showStepControl() {
   const adaptive = isAdaptive($("method").value);
   $("tol-row").hidden = !adaptive;
   $("dt").closest(".param").hidden = adaptive;
+  // An adaptive method takes its own steps: a frame advances this many outputs, dt apart.
+  document.querySelector("label[for=speed]").firstChild.textContent = adaptive ? "Outputs per frame " : "Steps per frame ";
 }
 
 // The tolerance menu, next to the step's (the page's HTML has the step's only).

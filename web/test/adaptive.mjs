@@ -45,6 +45,7 @@ const look = (page) => page.evaluate(() => {
     energyError: lab.energyError(),
     message: $("message").textContent,
     exported: L.exportJson().tol,
+    speedLabel: document.querySelector("label[for=speed]").firstChild.textContent.trim(),
   };
 });
 
@@ -71,6 +72,7 @@ for (const [system, tol] of [["kepler", "1e-12"], ["double-pendulum", "1e-8"]]) 
   if (!/tolerance/i.test(got.tolLabel) || /step/i.test(got.tolLabel)) fail(`${system}: the tolerance is labelled ${JSON.stringify(got.tolLabel)}`);
   if (!/adaptive/.test(got.info) || !/order \d+/.test(got.info) || /per step per step/.test(got.info)) fail(`${system}: method facts ${JSON.stringify(got.info)}`);
   if (got.tolerance !== Number(tol)) fail(`${system}: the lab runs at ${got.tolerance}, the menu says ${tol}`);
+  if (got.speedLabel !== "Outputs per frame") fail(`${system} taylor: the frame's count is labelled ${JSON.stringify(got.speedLabel)}`);
   if (got.exported !== got.tolerance) fail(`${system}: the JSON export says tol ${got.exported}, the lab runs at ${got.tolerance}`);
   // The page opens running: from the start, FRAMES frames exactly.
   const ran = await page.evaluate((n) => { window.physicskitLab.restart(); return window.physicskitLab.runFrames(n); }, FRAMES);
@@ -99,6 +101,7 @@ for (const [system, tol] of [["kepler", "1e-12"], ["double-pendulum", "1e-8"]]) 
   await page.selectOption("#method", got.system === "kepler" ? "yoshida4" : "rk4");
   const fixed = await look(page);
   const fixedHash = await page.evaluate(() => window.physicskitLab.shareHash());
+  if (fixed.speedLabel !== "Steps per frame") fail(`${system} ${fixed.method}: the frame's count is labelled ${JSON.stringify(fixed.speedLabel)}`);
   if (fixed.exported !== undefined) fail(`${system} ${fixed.method}: the JSON export carries a tolerance (${fixed.exported}) for a fixed-step method`);
   if (fixed.tolShown || !fixed.dtShown || fixedHash.includes("tol=")) fail(`${system} ${fixed.method}: tolerance shown ${fixed.tolShown}, dt shown ${fixed.dtShown}, link ${fixedHash}`);
   await page.close();
