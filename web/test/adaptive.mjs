@@ -9,24 +9,13 @@
 //   node web/test/adaptive.mjs SITE_DIR SCREENSHOT_DIR
 import { mkdirSync } from "node:fs";
 import { join } from "node:path";
-import { serve, launch } from "./harness.mjs";
+import { serve, launch, checks } from "./harness.mjs";
 
 const [site, shots] = process.argv.slice(2);
 mkdirSync(shots, { recursive: true });
 const { server, url } = await serve(site);
 const browser = await launch();
-const failures = [];
-const fail = (what) => { failures.push(what); console.log(`FAIL ${what}`); };
-const errors = [];
-
-async function open(hash = "") {
-  const page = await browser.newPage({ viewport: { width: 1280, height: 900 } });
-  page.on("console", (m) => { if (m.type() === "error") errors.push(m.text()); });
-  page.on("pageerror", (e) => errors.push(String(e)));
-  await page.goto(url + hash);
-  await page.evaluate(() => window.physicskitLab.ready);
-  return page;
-}
+const { failures, errors, fail, open } = checks(browser, url);
 
 // What the page shows and runs: the step controls, the lab's method, tolerance, state, energy.
 const look = (page) => page.evaluate(() => {

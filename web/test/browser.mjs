@@ -33,7 +33,7 @@
 //   node web/test/browser.mjs SITE_DIR NATIVE_OUTPUT SCREENSHOT_DIR [GALLERY_DIR]
 import { readFileSync, mkdirSync } from "node:fs";
 import { join } from "node:path";
-import { serve, launch } from "./harness.mjs";
+import { serve, launch, checks } from "./harness.mjs";
 
 const [site, nativeFile, shots, galleryDir] = process.argv.slice(2);
 mkdirSync(shots, { recursive: true });
@@ -43,18 +43,7 @@ const num = (hex) => new DataView(new BigUint64Array([BigInt(`0x${hex}`)]).buffe
 
 const { server, url } = await serve(site);
 const browser = await launch();
-const failures = [];
-const fail = (what) => { failures.push(what); console.log(`FAIL ${what}`); };
-const errors = [];
-
-async function open(hash = "") {
-  const page = await browser.newPage({ viewport: { width: 1280, height: 900 } });
-  page.on("console", (m) => { if (m.type() === "error") errors.push(m.text()); });
-  page.on("pageerror", (e) => errors.push(String(e)));
-  await page.goto(url + hash);
-  await page.evaluate(() => window.physicskitLab.ready);
-  return page;
-}
+const { failures, errors, fail, open } = checks(browser, url);
 
 // Non-white pixels of the scene, and a digest of its pixels, read in the page.
 const sceneInk = (page) => page.evaluate(() => {

@@ -34,3 +34,22 @@ export function launch() {
       "--disable-background-networking", "--disable-component-update", "--disable-sync"],
   });
 }
+
+/**
+ * One test run's bookkeeping: `fail(what)` records and prints a failure into `failures`, and
+ * `open(hash)` opens the lab at `url + hash` (1280 × 900) once its core is ready, collecting
+ * the page's console errors and uncaught exceptions into `errors`.
+ */
+export function checks(browser, url) {
+  const failures = [], errors = [];
+  const fail = (what) => { failures.push(what); console.log(`FAIL ${what}`); };
+  async function open(hash = "") {
+    const page = await browser.newPage({ viewport: { width: 1280, height: 900 } });
+    page.on("console", (m) => { if (m.type() === "error") errors.push(m.text()); });
+    page.on("pageerror", (e) => errors.push(String(e)));
+    await page.goto(url + hash);
+    await page.evaluate(() => window.physicskitLab.ready);
+    return page;
+  }
+  return { failures, errors, fail, open };
+}
