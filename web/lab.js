@@ -415,7 +415,7 @@ function describeMethod() {
   if (at >= 0) { per = what.slice(at + 1); what = what.slice(0, at); }
   const ev = m.evaluations_per_step === 1 ? what.replace(/s(?= of |$)/, "") : what;
   // An adaptive method's steps are its own (to the tolerance); dt spaces its outputs.
-  const how = m.adaptive ? ` · adaptive: its own steps to the tolerance, an output every dt = ${$("dt").value} s` : "";
+  const how = m.adaptive ? ` · adaptive: its own steps to the tolerance, an output every dt = ${$("dt").value}${timeUnit() ? ` ${timeUnit()}` : ""}` : "";
   $("method-info").textContent = `order ${m.order} · ${m.symplectic ? "symplectic" : "not symplectic"}${how} · ` +
     `${m.evaluations_per_step} ${ev} ${per}`;
   $("method-ref").textContent = m.reference;

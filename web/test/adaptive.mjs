@@ -34,6 +34,7 @@ const look = (page) => page.evaluate(() => {
     energyError: lab.energyError(),
     message: $("message").textContent,
     exported: L.exportJson().tol,
+    timeUnit: L.app.entry.presentation.time_unit,
     speedLabel: document.querySelector("label[for=speed]").firstChild.textContent.trim(),
   };
 });
@@ -61,6 +62,9 @@ for (const [system, tol] of [["kepler", "1e-12"], ["double-pendulum", "1e-8"]]) 
   if (!/tolerance/i.test(got.tolLabel) || /step/i.test(got.tolLabel)) fail(`${system}: the tolerance is labelled ${JSON.stringify(got.tolLabel)}`);
   if (!/adaptive/.test(got.info) || !/order \d+/.test(got.info) || /per step per step/.test(got.info)) fail(`${system}: method facts ${JSON.stringify(got.info)}`);
   if (got.tolerance !== Number(tol)) fail(`${system}: the lab runs at ${got.tolerance}, the menu says ${tol}`);
+  // The output spacing in the system's unit of time: seconds only where the catalogue says so.
+  const spacing = /an output every dt = [\d.e+-]+( s\b)?/.exec(got.info);
+  if (!spacing || (got.timeUnit === "s") !== Boolean(spacing[1])) fail(`${system}: the facts line's spacing ${JSON.stringify(spacing?.[0])} for a time unit ${JSON.stringify(got.timeUnit)}`);
   if (got.speedLabel !== "Outputs per frame") fail(`${system} taylor: the frame's count is labelled ${JSON.stringify(got.speedLabel)}`);
   if (got.exported !== got.tolerance) fail(`${system}: the JSON export says tol ${got.exported}, the lab runs at ${got.tolerance}`);
   // The page opens running: from the start, FRAMES frames exactly.
