@@ -279,16 +279,18 @@ def batch(batch_bin):
           f"{check['compiled_equals_ensemble']}")
     ours = {}
     for o in lines:
-        if o["kind"] in ("ensemble", "compiled") and "final" in o:
+        if o["kind"] in ("ensemble", "compiled", "lanes") and "final" in o:
             o["error"] = batch_error(o["final"], ref)
     for o in lines:
-        if o["kind"] in ("ensemble", "compiled"):
+        if o["kind"] in ("ensemble", "compiled", "lanes"):
             tol = o.get("tol", o.get("rtol"))
             one = next(p for p in lines if p["kind"] == o["kind"] and p.get("tol") == o.get("tol")
                        and p["threads"] == 1)
             ours[(o["kind"], tol, o["threads"])] = (o["seconds"], one["error"])
             bits = "" if o["threads"] == 1 else f", same bits as 1 thread: {o['same_bits']}"
             extra = (f" (rtol {o['rtol']:.0e}, atol {o['atol']:.0e})" if o["kind"] == "ensemble"
+                     else f", the compiled run's bits: {o['equals_compiled']}"
+                     if o["kind"] == "lanes"
                      else f", {o['steps']:.0f} steps, compile {o['compile_seconds'] * 1e3:.1f} ms")
             print(f"  ours {o['kind']}, {o['threads']} thread(s), tol {tol:.0e}{extra}: "
                   f"{one['error']:.1e} in {o['seconds'] * 1e3:.2f} ms{bits}")

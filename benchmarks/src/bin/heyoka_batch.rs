@@ -5,10 +5,11 @@
 //! - `starts`: the 1000 initial states (the script launches heyoka's orbits from these, so
 //!   both sides start from the same bits);
 //! - `ensemble`: the ensemble API as a user runs it (`ensemble::run` on the catalogue's
-//!   `henon-heiles`, method `taylor`). Its plan has no tolerances, so it runs at the default
-//!   ones (`rtol` 1e-10, `atol` 1e-12), and each member builds its own Taylor form, whose
-//!   recurrences stay interpreted (a member's few hundred expansions are far below
-//!   `TaylorProgram::COMPILE_AFTER`);
+//!   `henon-heiles`, method `taylor`), its plan without tolerances, so at the default ones
+//!   (`rtol` 1e-10, `atol` 1e-12): the members share one Taylor form and run in SIMD lanes
+//!   (8 with AVX-512, else 4; `integrators::taylor_batch`);
+//! - `lanes`: the same API with the plan's tolerances `rtol = atol = tol` for `tol` in 1e-6,
+//!   1e-10, 1e-14, and whether its final states are the `compiled` run's bits at that `tol`;
 //! - `compiled`: the same members' Taylor form (the catalogue system's trace) built once,
 //!   its recurrences compiled by the JIT outside the timing (as heyoka compiles in its
 //!   constructor), each member integrated by `integrate_taylor` on a clone (clones share the
@@ -116,6 +117,21 @@ fn compiled_run(
     })
 }
 
+/// The ensemble API's plan: method `taylor`, final states, on `threads` threads, at
+/// `tolerances` (`None`: the defaults).
+fn plan(threads: usize, tolerances: Option<Tolerances>) -> Plan {
+    Plan {
+        t_span: (0.0, T_END),
+        dt: T_END,
+        method: Some(Method::Taylor),
+        stride: None,
+        reductions: vec![],
+        final_state: true,
+        threads: Some(threads),
+        tolerances,
+    }
+}
+
 /// `values` as a JSON array (shortest round-trip digits).
 fn json(values: &[f64]) -> String {
     let items: Vec<String> = values.iter().map(|v| format!("{v:e}")).collect();
@@ -137,16 +153,7 @@ fn main() -> Result<()> {
     };
     let mut ensemble_finals = Vec::new();
     for (threads, _) in (1..).zip(&pools) {
-        let plan = Plan {
-            t_span: (0.0, T_END),
-            dt: T_END,
-            method: Some(Method::Taylor),
-            stride: None,
-            reductions: vec![],
-            final_state: true,
-            threads: Some(threads),
-            tolerances: None,
-        };
+        let plan = plan(threads, None);
         let (seconds, out) = best_of_five(|| ensemble::run(entry, &members, &plan, None))?;
         let finals: Vec<f64> = out.final_state.iter().copied().collect();
         let defaults = Tolerances::default();
@@ -182,6 +189,7 @@ fn main() -> Result<()> {
         finals == ensemble_finals
     );
 
+    let mut compiled_finals = Vec::new();
     for tol in [1e-6, 1e-10, 1e-14] {
         let tolerances = Tolerances::new(tol, tol)?;
         let start = Instant::now();
@@ -199,6 +207,28 @@ fn main() -> Result<()> {
                  \"seconds\": {seconds:e}, \"steps\": {steps}, \"build_seconds\": {build:e}, \
                  \"compile_seconds\": {compile:e}, \"native\": {}",
                 backend == Backend::Native
+            );
+            if threads == 1 {
+                println!("{head}, \"final\": {}}}", json(&finals));
+                first = finals;
+            } else {
+                println!("{head}, \"same_bits\": {}}}", finals == first);
+            }
+        }
+        compiled_finals.push(first);
+    }
+
+    // The ensemble API (members in SIMD lanes) at the same tolerances.
+    for (tol, compiled) in [1e-6, 1e-10, 1e-14].into_iter().zip(&compiled_finals) {
+        let mut first = Vec::new();
+        for (threads, _) in (1..).zip(&pools) {
+            let plan = plan(threads, Some(Tolerances::new(tol, tol)?));
+            let (seconds, out) = best_of_five(|| ensemble::run(entry, &members, &plan, None))?;
+            let finals: Vec<f64> = out.final_state.iter().copied().collect();
+            let head = format!(
+                "{{\"kind\": \"lanes\", \"threads\": {threads}, \"tol\": {tol:e}, \
+                 \"seconds\": {seconds:e}, \"equals_compiled\": {}",
+                &finals == compiled
             );
             if threads == 1 {
                 println!("{head}, \"final\": {}}}", json(&finals));

@@ -74,6 +74,23 @@ pub trait MemberSource: Sync {
     /// Whatever makes the member invalid; the engine prefixes the argument's name with
     /// `member {index}: `.
     fn build(&self, index: usize, t0: f64) -> Result<Box<dyn DynSystem>>;
+
+    /// Whether members `a` and `b` are the same system apart from their initial states (so
+    /// the same field, and the same Taylor form): the `taylor` method then builds one Taylor
+    /// form for both. `false`, the default, when the source cannot tell without building
+    /// them; the engine then compares their Taylor forms.
+    fn same_system(&self, a: usize, b: usize) -> bool {
+        let _ = (a, b);
+        false
+    }
+}
+
+/// Whether every sweep gives members `a` and `b` the same value, bit for bit.
+pub(crate) fn same_sweeps(members: &Members, a: usize, b: usize) -> bool {
+    members
+        .sweeps
+        .iter()
+        .all(|s| s.values[a].to_bits() == s.values[b].to_bits())
 }
 
 /// The members of a catalogue entry: the checked recipe of every member.
@@ -321,5 +338,10 @@ impl MemberSource for FromCatalogue<'_> {
             system.reset(Some(state), t0)?;
         }
         Ok(system)
+    }
+
+    /// Equal swept values: equal parameters (the per-member states are only states).
+    fn same_system(&self, a: usize, b: usize) -> bool {
+        same_sweeps(self.members, a, b)
     }
 }

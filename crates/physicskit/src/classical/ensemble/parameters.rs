@@ -10,7 +10,7 @@
 //! to `t0`, as a single run does before integrating: a member is the system a caller builds
 //! alone from the same numbers, bit for bit.
 
-use super::members::{check_counts, state_row, MemberSource, Members};
+use super::members::{check_counts, same_sweeps, state_row, MemberSource, Members};
 use crate::classical::core::{Error, Result};
 use crate::classical::model::{DynSystem, Value};
 
@@ -172,5 +172,10 @@ where
         let mut system = (self.build)(&params, state)?;
         system.reset(Some(state), t0)?;
         Ok(system)
+    }
+
+    /// Equal swept values: equal parameters, with which `build` makes the same system.
+    fn same_system(&self, a: usize, b: usize) -> bool {
+        same_sweeps(self.members, a, b)
     }
 }

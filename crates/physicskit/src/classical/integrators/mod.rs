@@ -53,6 +53,7 @@ pub mod splitting;
 pub mod stepper;
 pub mod system;
 pub mod tangent;
+pub mod taylor_batch;
 
 pub use dop853::Dop853;
 pub use ensemble::{integrate_ensemble, Ensemble, ENSEMBLE_CHUNK};

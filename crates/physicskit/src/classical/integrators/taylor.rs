@@ -104,8 +104,9 @@ fn system_name<S: ?Sized>() -> String {
 /// precision can deliver gain nothing from more terms.
 pub const MAX_ORDER: usize = 24;
 
-/// A vector field that can expand the solution through a point as a Taylor series.
-pub trait TaylorField {
+/// A vector field that can expand the solution through a point as a Taylor series (`Any`: an
+/// ensemble recognizes the program behind a system's Taylor form, to share it).
+pub trait TaylorField: std::any::Any {
     /// Dimension of the state.
     fn dim(&self) -> usize;
 
@@ -780,7 +781,7 @@ pub fn integrate_taylor<F: TaylorField + ?Sized>(
 const SAME_TIME_ULPS: f64 = 64.0;
 
 #[inline]
-fn same_time(a: f64, b: f64) -> bool {
+pub(crate) fn same_time(a: f64, b: f64) -> bool {
     (a - b).abs() <= SAME_TIME_ULPS * f64::EPSILON * a.abs().max(b.abs())
 }
 

@@ -16,7 +16,7 @@ pub use expr_diff::*;
 pub use expr_hamiltonian::*;
 pub use expr_ode::*;
 pub use tape::*;
-pub use taylor_tape::TaylorProgram;
+pub use taylor_tape::{native_lanes, TaylorLanes, TaylorProgram};
 pub use trace::{
     trace_hamiltonian, trace_lagrangian, traced_hamiltonian_taylor_field, traced_taylor_field,
     TracedHamiltonian,

@@ -41,6 +41,9 @@ mod jit;
 #[cfg(not(all(feature = "jit", not(target_arch = "wasm32"))))]
 #[path = "tape/taylor_interpreted.rs"]
 mod jit;
+#[path = "tape/taylor_lanes.rs"]
+mod lanes;
+pub use lanes::{native_lanes, TaylorLanes};
 
 /// An operand: a node's series or a constant.
 #[derive(Debug, Clone, Copy, PartialEq)]

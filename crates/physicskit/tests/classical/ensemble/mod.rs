@@ -8,4 +8,5 @@ mod chaos;
 mod engine;
 mod events;
 mod parameters;
+mod taylor_lanes;
 mod tolerances;

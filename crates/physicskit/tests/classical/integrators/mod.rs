@@ -24,3 +24,4 @@ mod session;
 mod taylor;
 mod taylor_builtin;
 mod taylor_jit;
+mod taylor_lanes;

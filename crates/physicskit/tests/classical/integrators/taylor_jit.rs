@@ -18,7 +18,7 @@ use crate::fixtures::{native, pseudo_random, same};
 /// The systems: every recurrence as the ODE `y0' = f(y1)`, `y1' = 1`, and the four
 /// mechanical expression forms, each with a point to expand at and the spread of the
 /// pseudo-random states around it.
-fn programs() -> Vec<(String, TaylorProgram, Vec<f64>, f64)> {
+pub(crate) fn programs() -> Vec<(String, TaylorProgram, Vec<f64>, f64)> {
     let mut out = Vec::new();
     for (text, x0) in RECURRENCES {
         let f = Expr::parse(text).unwrap();

@@ -1,0 +1,412 @@
+//! [`TaylorLanes`]: a [`TaylorProgram`]'s recurrences run for `L` states at once, one per
+//! vector lane, for ensembles of members that share one program
+//! ([`integrators::taylor_batch`](crate::classical::integrators::taylor_batch)).
+//!
+//! Every coefficient is an `[f64; L]`; each lane does exactly the interpreter's operations of
+//! [`TaylorProgram`]'s `order_k`, in the same order (sums from their first term, no fused
+//! multiply-add: Rust never contracts, and no clone enables `fma`), so each lane's
+//! coefficients are the scalar ones bit for bit. Values at order 0 of the transcendental
+//! operations (`sin`/`cos`, `exp`, `powf`, `ln`, ...) are computed lane by lane by the same
+//! scalar functions. The loops are compiled three times and chosen at run time (std's
+//! `is_x86_feature_detected!`, cached): with AVX-512 (8 lanes, one `zmm` per coefficient),
+//! with AVX2 (4 lanes, one `ymm`), and plain (SSE2 on x86-64, scalar elsewhere, wasm
+//! included); IEEE additions, multiplications, divisions and square roots give the same bits
+//! in every clone.
+
+use super::{func_value, powf_weight, Keyed, Node, TaylorProgram, Val};
+use crate::classical::core::{Error, Result};
+use crate::classical::integrators::taylor::{TaylorField, MAX_ORDER};
+use crate::classical::integrators::taylor_batch::LanesField;
+
+/// A [`TaylorProgram`]'s recurrences for `L` states at once (see the module documentation).
+#[derive(Debug, Clone)]
+pub struct TaylorLanes<const L: usize> {
+    dim: usize,
+    nodes: Vec<Node>,
+    outputs: Vec<Val>,
+    /// Coefficients of every node, `stride` per node, each an `[f64; L]`; sized at the first
+    /// expansion of an order and reused.
+    work: Vec<[f64; L]>,
+    stride: usize,
+}
+
+impl TaylorProgram {
+    /// The program behind a Taylor form, if it is one (every Taylor form the library builds
+    /// is).
+    pub fn from_field(field: &dyn TaylorField) -> Option<&Self> {
+        let any: &dyn std::any::Any = field;
+        any.downcast_ref::<Self>()
+    }
+
+    /// Whether `other` runs the same recurrences: the same operations on the same operands,
+    /// constants equal bit for bit (so the same coefficients, bit for bit, at every state).
+    pub fn same_recurrences(&self, other: &Self) -> bool {
+        let val_bits = |v: &Val| match *v {
+            Val::Node(n) => (0, u64::from(n)),
+            Val::Const(c) => (1, c.to_bits()),
+        };
+        self.dim == other.dim
+            && self.nodes.len() == other.nodes.len()
+            && self.outputs.len() == other.outputs.len()
+            && self
+                .nodes
+                .iter()
+                .zip(&other.nodes)
+                .all(|(a, b)| node_tag(*a) == node_tag(*b) && a.key() == b.key())
+            && self
+                .outputs
+                .iter()
+                .zip(&other.outputs)
+                .all(|(a, b)| val_bits(a) == val_bits(b))
+    }
+
+    /// These recurrences for `L` states at once.
+    pub fn lanes<const L: usize>(&self) -> TaylorLanes<L> {
+        TaylorLanes {
+            dim: self.dim,
+            nodes: self.nodes.clone(),
+            outputs: self.outputs.clone(),
+            work: Vec::new(),
+            stride: 0,
+        }
+    }
+}
+
+/// Tells apart the nodes that share a key ([`Node::State`], [`Node::Time`] and
+/// [`Node::Partner`] all key as zero).
+fn node_tag(node: Node) -> u8 {
+    match node {
+        Node::State => 1,
+        Node::Time => 2,
+        Node::Partner => 3,
+        _ => 0,
+    }
+}
+
+#[inline(always)]
+fn map<const L: usize>(a: [f64; L], f: impl Fn(f64) -> f64) -> [f64; L] {
+    let mut out = [0.0; L];
+    for (o, x) in out.iter_mut().zip(a) {
+        *o = f(x);
+    }
+    out
+}
+
+#[inline(always)]
+fn zip<const L: usize>(a: [f64; L], b: [f64; L], f: impl Fn(f64, f64) -> f64) -> [f64; L] {
+    let mut out = [0.0; L];
+    for ((o, x), y) in out.iter_mut().zip(a).zip(b) {
+        *o = f(x, y);
+    }
+    out
+}
+
+/// [`cauchy`] lane by lane: `Σ_j a_j b_{n-1-j}` from `j = 0` up, starting with the first
+/// product (zeros for empty slices).
+#[inline(always)]
+fn cauchy_lanes<const L: usize>(a: &[[f64; L]], b: &[[f64; L]]) -> [f64; L] {
+    let n = a.len().min(b.len());
+    if n == 0 {
+        return [0.0; L];
+    }
+    let mut s = zip(a[0], b[n - 1], |x, y| x * y);
+    for j in 1..n {
+        let t = zip(a[j], b[n - 1 - j], |x, y| x * y);
+        s = zip(s, t, |x, y| x + y);
+    }
+    s
+}
+
+/// Orders `0..=order` of every node for `L` states (the state's and time's order 0 set):
+/// the lanes form of `TaylorProgram::interpret`.
+#[inline(always)]
+fn interpret<const L: usize>(
+    nodes: &[Node],
+    outputs: &[Val],
+    w: &mut [[f64; L]],
+    order: usize,
+    stride: usize,
+) {
+    for k in 0..=order {
+        order_k(nodes, w, k, stride);
+        if k < order {
+            let next = (k + 1) as f64;
+            for (i, out) in outputs.iter().enumerate() {
+                let fk = match *out {
+                    Val::Node(n) => w[n as usize * stride + k],
+                    Val::Const(c) if k == 0 => [c; L],
+                    Val::Const(_) => [0.0; L],
+                };
+                w[i * stride + k + 1] = map(fk, |x| x / next);
+            }
+        }
+    }
+}
+
+/// Order `k` of every operation node for `L` states: `TaylorProgram::order_k` with every
+/// value an `[f64; L]`, each lane's operations those of the scalar code in its order.
+#[inline(always)]
+#[allow(clippy::too_many_lines)]
+fn order_k<const L: usize>(nodes: &[Node], w: &mut [[f64; L]], k: usize, stride: usize) {
+    let at = |n: u32, j: usize| n as usize * stride + j;
+    let kf = k as f64;
+    for (i, &node) in nodes.iter().enumerate() {
+        let me = i * stride;
+        let value = match node {
+            Node::State | Node::Time | Node::Partner => continue,
+            Node::Add(a, b) => zip(w[at(a, k)], w[at(b, k)], |x, y| x + y),
+            Node::Sub(a, b) => zip(w[at(a, k)], w[at(b, k)], |x, y| x - y),
+            Node::AddC(a, c) => {
+                if k == 0 {
+                    map(w[at(a, 0)], |x| x + c)
+                } else {
+                    w[at(a, k)]
+                }
+            }
+            Node::CSub(c, a) => {
+                if k == 0 {
+                    map(w[at(a, 0)], |x| c - x)
+                } else {
+                    map(w[at(a, k)], |x| -x)
+                }
+            }
+            Node::MulC(a, c) => map(w[at(a, k)], |x| c * x),
+            Node::Neg(a) => map(w[at(a, k)], |x| -x),
+            Node::Abs(a) => zip(
+                w[at(a, 0)],
+                w[at(a, k)],
+                |v, x| if v < 0.0 { -x } else { x },
+            ),
+            Node::Mul(a, b) => {
+                let (a, b) = (a as usize * stride, b as usize * stride);
+                cauchy_lanes(&w[a..=a + k], &w[b..=b + k])
+            }
+            Node::Square(a) => {
+                let a = a as usize * stride;
+                let half = k.div_ceil(2);
+                let twice = map(
+                    cauchy_lanes(&w[a..a + half], &w[a + k + 1 - half..=a + k]),
+                    |x| x * 2.0,
+                );
+                if k.is_multiple_of(2) {
+                    let m = map(w[a + k / 2], |x| x * x);
+                    if half == 0 {
+                        m
+                    } else {
+                        zip(twice, m, |x, y| x + y)
+                    }
+                } else {
+                    twice
+                }
+            }
+            Node::Div(a, b) => {
+                let b = b as usize * stride;
+                if k == 0 {
+                    zip(w[at(a, 0)], w[b], |x, y| x / y)
+                } else {
+                    let s = cauchy_lanes(&w[b + 1..=b + k], &w[me..me + k]);
+                    let d = zip(w[at(a, k)], s, |x, y| x - y);
+                    zip(d, w[b], |x, y| x / y)
+                }
+            }
+            Node::CDiv(c, a) => {
+                let a = a as usize * stride;
+                if k == 0 {
+                    map(w[a], |x| c / x)
+                } else {
+                    let s = cauchy_lanes(&w[a + 1..=a + k], &w[me..me + k]);
+                    zip(s, w[a], |x, y| -x / y)
+                }
+            }
+            Node::Sqrt(a) => {
+                if k == 0 {
+                    map(w[at(a, 0)], f64::sqrt)
+                } else {
+                    let mut s = w[at(a, k)];
+                    for j in 1..k {
+                        let t = zip(w[me + j], w[me + k - j], |x, y| x * y);
+                        s = zip(s, t, |x, y| x - y);
+                    }
+                    zip(s, w[me], |x, y| x / (2.0 * y))
+                }
+            }
+            Node::Powf(a, alpha) => {
+                let a = a as usize * stride;
+                if k == 0 {
+                    map(w[a], |x| x.powf(alpha))
+                } else {
+                    let term = |j: usize| {
+                        let weight = powf_weight(alpha, k, j);
+                        zip(w[a + k - j], w[me + j], |x, y| weight * x * y)
+                    };
+                    let mut s = term(0);
+                    for j in 1..k {
+                        s = zip(s, term(j), |x, y| x + y);
+                    }
+                    zip(s, w[a], |x, y| x / (kf * y))
+                }
+            }
+            Node::Exp(a) => {
+                let a = a as usize * stride;
+                if k == 0 {
+                    map(w[a], f64::exp)
+                } else {
+                    let term = |j: usize| {
+                        let jf = j as f64;
+                        zip(w[a + j], w[me + k - j], |x, y| jf * x * y)
+                    };
+                    let mut s = term(1);
+                    for j in 2..=k {
+                        s = zip(s, term(j), |x, y| x + y);
+                    }
+                    map(s, |x| x / kf)
+                }
+            }
+            Node::Integral { a, d, sign, func } => {
+                let (a, d) = (a as usize * stride, d as usize * stride);
+                if k == 0 {
+                    map(w[a], |x| func_value(func, x))
+                } else {
+                    let mut s = map(w[a + k], |x| sign * kf * x);
+                    for j in 1..k {
+                        let jf = j as f64;
+                        let t = zip(w[me + j], w[d + k - j], |x, y| jf * x * y);
+                        s = zip(s, t, |x, y| x - y);
+                    }
+                    zip(s, w[d], |x, y| x / (kf * y))
+                }
+            }
+            Node::SinCos(a, hyperbolic) => {
+                let a = a as usize * stride;
+                let partner = me + stride;
+                if k == 0 {
+                    let x = w[a];
+                    let (s, c) = if hyperbolic {
+                        (map(x, f64::sinh), map(x, f64::cosh))
+                    } else {
+                        (map(x, f64::sin), map(x, f64::cos))
+                    };
+                    w[partner] = c;
+                    s
+                } else {
+                    let ja = w[a + 1];
+                    let mut s = zip(ja, w[partner + k - 1], |x, y| x * y);
+                    let mut c = zip(ja, w[me + k - 1], |x, y| x * y);
+                    for j in 2..=k {
+                        let jf = j as f64;
+                        let ja = map(w[a + j], |x| jf * x);
+                        s = zip(s, zip(ja, w[partner + k - j], |x, y| x * y), |x, y| x + y);
+                        c = zip(c, zip(ja, w[me + k - j], |x, y| x * y), |x, y| x + y);
+                    }
+                    w[partner + k] = if hyperbolic {
+                        map(c, |x| x / kf)
+                    } else {
+                        map(c, |x| -x / kf)
+                    };
+                    map(s, |x| x / kf)
+                }
+            }
+        };
+        w[me + k] = value;
+    }
+}
+
+/// [`interpret`] compiled with AVX-512 (called only where the CPU has it).
+#[cfg(target_arch = "x86_64")]
+#[target_feature(enable = "avx512f")]
+fn interpret_avx512<const L: usize>(
+    nodes: &[Node],
+    outputs: &[Val],
+    w: &mut [[f64; L]],
+    order: usize,
+    stride: usize,
+) {
+    interpret(nodes, outputs, w, order, stride);
+}
+
+/// [`interpret`] compiled with AVX2 (called only where the CPU has it).
+#[cfg(target_arch = "x86_64")]
+#[target_feature(enable = "avx2")]
+fn interpret_avx2<const L: usize>(
+    nodes: &[Node],
+    outputs: &[Val],
+    w: &mut [[f64; L]],
+    order: usize,
+    stride: usize,
+) {
+    interpret(nodes, outputs, w, order, stride);
+}
+
+/// The lanes that fit one vector register of this CPU: 8 with AVX-512, 4 otherwise.
+pub fn native_lanes() -> usize {
+    #[cfg(target_arch = "x86_64")]
+    if std::arch::is_x86_feature_detected!("avx512f") {
+        return 8;
+    }
+    4
+}
+
+impl<const L: usize> LanesField<L> for TaylorLanes<L> {
+    fn dim(&self) -> usize {
+        self.dim
+    }
+
+    fn expand(&mut self, t: &[f64; L], y: &[[f64; L]], order: usize) -> Result<()> {
+        let stride = order + 1;
+        if order > MAX_ORDER || y.len() != self.dim {
+            return Err(Error::invalid(
+                "order",
+                order as f64,
+                format!(
+                    "a Taylor expansion takes an order <= {MAX_ORDER} and a state of {}",
+                    self.dim
+                ),
+            ));
+        }
+        let size = self.nodes.len() * stride;
+        if self.work.len() != size {
+            self.work = vec![[0.0; L]; size];
+        }
+        self.stride = stride;
+        for (i, yi) in y.iter().enumerate() {
+            self.work[i * stride] = *yi;
+        }
+        // The time's series is `t + τ`; its orders from 2 on are the allocation's zeros.
+        let time = self.dim * stride;
+        self.work[time] = *t;
+        if order >= 1 {
+            self.work[time + 1] = [1.0; L];
+        }
+        let (nodes, outputs, w) = (&self.nodes[..], &self.outputs[..], &mut self.work[..]);
+        #[cfg(target_arch = "x86_64")]
+        {
+            if L >= 8 && std::arch::is_x86_feature_detected!("avx512f") {
+                // SAFETY: the CPU has AVX-512F (checked just above), the one feature the
+                // function enables.
+                #[allow(unsafe_code)]
+                unsafe {
+                    interpret_avx512(nodes, outputs, w, order, stride);
+                }
+                return Ok(());
+            }
+            if std::arch::is_x86_feature_detected!("avx2") {
+                // SAFETY: the CPU has AVX2 (checked just above), the one feature the function
+                // enables.
+                #[allow(unsafe_code)]
+                unsafe {
+                    interpret_avx2(nodes, outputs, w, order, stride);
+                }
+                return Ok(());
+            }
+        }
+        interpret(nodes, outputs, w, order, stride);
+        Ok(())
+    }
+
+    fn lane(&self, lane: usize, coefficients: &mut [f64]) {
+        let n = self.dim * self.stride;
+        for (c, w) in coefficients.iter_mut().zip(&self.work[..n]) {
+            *c = w[lane];
+        }
+    }
+}

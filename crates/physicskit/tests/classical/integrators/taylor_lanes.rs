@@ -1,0 +1,138 @@
+//! The Taylor recurrences for several states at once, one per vector lane (`TaylorLanes`),
+//! against the interpreter run on each state alone: every recurrence and the expression
+//! forms of Kepler, Hénon–Heiles and the double pendulum, at every order, bit for bit, in
+//! 4 and 8 lanes (each lane at its own state and time); and the batch stepper's members
+//! against the registry's stepper on each alone.
+
+use physicskit::classical::core::TimeGrid;
+use physicskit::classical::integrators::taylor::TaylorField;
+use physicskit::classical::integrators::taylor_batch::{integrate_batch, LanesField};
+use physicskit::classical::integrators::TaylorStepper;
+use physicskit::classical::symbolic::{Expr, ExprOde, TaylorProgram};
+use physicskit::classical::{Error, Tolerances};
+
+use super::taylor::henon_heiles_expr;
+use crate::fixtures::{pseudo_random, same};
+
+/// The programs the compiled recurrences are tested on (every recurrence, and the
+/// mechanical expression forms), and one in the time.
+fn programs() -> Vec<(String, TaylorProgram, Vec<f64>, f64)> {
+    let mut out = super::taylor_jit::programs();
+    let text = "(* t (cos (* q1 q0)))";
+    let y0 = vec![0.25, 0.3];
+    let f = Expr::parse(text).unwrap();
+    let ode = ExprOde::new(vec![f, Expr::constant(1.0)], vec![], &y0, None).unwrap();
+    out.push((text.to_string(), TaylorProgram::ode(&ode).unwrap(), y0, 0.1));
+    out
+}
+
+/// Orders 1 to 24, lanes at distinct pseudo-random states and times: each lane's
+/// coefficients are the interpreter's at that lane's state, bit for bit.
+fn lanes_equal_the_interpreter<const L: usize>() {
+    for (name, program, y0, spread) in programs() {
+        let mut reference = program.interpreted_only();
+        let mut lanes = program.lanes::<L>();
+        let dim = reference.dim();
+        assert_eq!(LanesField::<L>::dim(&lanes), dim);
+        for order in 1..=24 {
+            let states: Vec<Vec<f64>> = (0..L)
+                .map(|l| {
+                    pseudo_random(dim, 131 * order as u64 + l as u64)
+                        .iter()
+                        .zip(&y0)
+                        .map(|(r, y)| y + spread * (2.0 * r - 1.0))
+                        .collect()
+                })
+                .collect();
+            let t: [f64; L] = std::array::from_fn(|l| 0.1 * l as f64 - 0.2);
+            let y: Vec<[f64; L]> = (0..dim)
+                .map(|i| std::array::from_fn(|l| states[l][i]))
+                .collect();
+            lanes.expand(&t, &y, order).unwrap();
+            let mut want = vec![0.0; dim * (order + 1)];
+            let mut got = want.clone();
+            for (l, state) in states.iter().enumerate() {
+                reference
+                    .coefficients(t[l], state, order, &mut want)
+                    .unwrap();
+                lanes.lane(l, &mut got);
+                for (i, (g, w)) in got.iter().zip(&want).enumerate() {
+                    assert!(
+                        same(*g, *w),
+                        "{name}, {L} lanes, order {order}, lane {l}, coefficient {i}: {g:e} vs {w:e}"
+                    );
+                }
+            }
+        }
+    }
+}
+
+#[test]
+fn four_lanes_have_the_interpreters_bits() {
+    lanes_equal_the_interpreter::<4>();
+}
+
+#[test]
+fn eight_lanes_have_the_interpreters_bits() {
+    lanes_equal_the_interpreter::<8>();
+}
+
+/// Hénon–Heiles members in a batch over t = 50 with outputs every 0.5: every output of every
+/// member is `integrate_taylor`'s alone, bit for bit, for member counts below, at and above a
+/// multiple of the lanes; an escaping member (E = 0.6, above the saddles' 1/6) fails with its
+/// own run's error, beside members that do not.
+#[test]
+fn batch_members_equal_their_runs_alone() {
+    let program = TaylorProgram::hamiltonian(&henon_heiles_expr()).unwrap();
+    let tolerances = Tolerances::new(1e-12, 1e-12).unwrap();
+    let grid = TimeGrid::new((0.0, 50.0), 0.5).unwrap();
+    let escaping = [0.0, 0.0, 0.8, 0.7];
+    for n in [3, 4, 9] {
+        let mut starts: Vec<f64> = (0..n)
+            .flat_map(|m| {
+                let y = -0.2 + 0.05 * m as f64;
+                let px = 0.1 - 0.02 * m as f64;
+                let v = 0.5 * y * y - y * y * y / 3.0;
+                let py = (2.0 * (0.12 - v) - px * px).sqrt();
+                [0.0, y, px, py]
+            })
+            .collect();
+        starts[4..8].copy_from_slice(&escaping);
+        let mut outputs = vec![vec![Vec::new(); grid.n_steps() + 1]; n];
+        let mut failures = Vec::new();
+        integrate_batch(
+            &mut program.lanes::<4>(),
+            &starts,
+            &grid,
+            tolerances,
+            |m, step, y| outputs[m][step] = y.to_vec(),
+            |m, e| failures.push((m, e)),
+            || false,
+        )
+        .unwrap();
+        assert_eq!(failures.len(), 1, "{n} members");
+        for m in 0..n {
+            // The registry's stepper from output to output, as `integrate` drives it.
+            let mut alone = TaylorStepper::on(Box::new(program.clone()), tolerances, grid.t_end());
+            let mut y = starts[4 * m..4 * m + 4].to_vec();
+            for (step, got) in outputs[m].iter().enumerate().skip(1) {
+                let run = alone.advance(grid.time(step - 1), &mut y, grid.dt());
+                if m == 1 {
+                    if let Err(want) = run {
+                        assert!(matches!(want, Error::StepSizeTooSmall { .. }), "{want}");
+                        assert_eq!(failures[0].0, 1);
+                        assert_eq!(failures[0].1.to_string(), want.to_string());
+                        break;
+                    }
+                    assert!(step < grid.n_steps(), "the escaping member did not fail");
+                    continue;
+                }
+                run.unwrap();
+                assert!(
+                    got.iter().zip(&y).all(|(g, w)| same(*g, *w)),
+                    "{n} members, member {m}, step {step}: {got:?} vs {y:?}"
+                );
+            }
+        }
+    }
+}
