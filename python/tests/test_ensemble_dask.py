@@ -186,3 +186,82 @@ def test_a_part_runs_from_unaligned_arrays(monkeypatch):
 
     monkeypatch.setattr(pc.ensembles._Job, "__call__", as_a_worker_gets_it)
     assert kepler().final_state.tobytes() == aligned.final_state.tobytes()
+
+
+def _within(seconds, run):
+    """``run()``'s outcome (its value or its exception), or a failure when it has not returned
+    within ``seconds``: a run that waits forever fails the test instead of hanging it."""
+    import threading
+
+    box = {}
+
+    def target():
+        try:
+            box["value"] = run()
+        except BaseException as e:  # noqa: BLE001 (what is checked is what reaches the client)
+            box["error"] = e
+
+    thread = threading.Thread(target=target, daemon=True)
+    thread.start()
+    thread.join(seconds)
+    assert not thread.is_alive(), f"the client still waits after {seconds} s"
+    return box
+
+
+def _small_kepler(**kw):
+    return pc.ensemble("kepler", (0.0, 1.0), 0.1, "rk4", sweep={"e": np.linspace(0.0, 0.8, 4)},
+                       **kw)
+
+
+class PanicException(BaseException):
+    """Stands for the engine's panic: a BaseException that is not an Exception."""
+
+
+def test_a_part_failing_with_a_base_exception_raises_in_the_client(monkeypatch):
+    # A Dask worker reports only an Exception to the client; after any other BaseException
+    # (the engine's PanicException) its task never finishes, and the client waited forever.
+    run = pc.ensembles._Job.__call__
+
+    def panics(job, **extra):
+        if extra.get("check_only"):
+            return run(job, **extra)  # the client's check of every member, before the parts
+        raise PanicException("the pointer must be aligned")
+
+    monkeypatch.setattr(pc.ensembles._Job, "__call__", panics)
+    # One worker thread in this process, where the patched class is the one the part runs.
+    with distributed.LocalCluster(n_workers=1, threads_per_worker=1, processes=False,
+                                  dashboard_address=None, silence_logs=50) as cluster:
+        with distributed.Client(cluster) as c:
+            # Seconds: the run itself takes milliseconds; a minute leaves room for a busy host.
+            box = _within(60, lambda: _small_kepler(client=c, chunk_size=2))
+    error = box.get("error")
+    assert isinstance(error, RuntimeError), box
+    assert "PanicException: the pointer must be aligned" in str(error)
+    assert "failed on its Dask worker" in str(error)
+
+
+def test_a_part_whose_worker_dies_raises_in_the_client():
+    # Every worker that takes a part dies (the nanny restarts it, and Dask tries the part
+    # again); after Dask's allowed failures the client raises instead of waiting.
+    class Dies(distributed.WorkerPlugin):
+        """Installed on every worker, restarted ones included: a part ends its process, as a
+        crash or the OOM killer would. Defined here so that it travels by value."""
+
+        def setup(self, worker):
+            import physicskit.classical.ensembles as ensembles
+
+            def dies(job, **extra):
+                os._exit(3)
+
+            ensembles._Job.__call__ = dies
+
+    with distributed.LocalCluster(n_workers=1, threads_per_worker=1, processes=True,
+                                  dashboard_address=None, silence_logs=50) as cluster:
+        with distributed.Client(cluster) as c:
+            c.register_plugin(Dies())
+            # Four deaths and restarts of a worker process: a few seconds; two minutes for a
+            # busy host.
+            box = _within(120, lambda: _small_kepler(client=c))
+    error = box.get("error")
+    assert isinstance(error, distributed.KilledWorker), box
+    assert "workers died while running it" in str(error)

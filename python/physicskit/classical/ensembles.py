@@ -399,8 +399,21 @@ def _run_part(part: _Job) -> dict[str, Any]:
     once as it has (the native call releases the GIL), so a host with several worker processes
     is not oversubscribed by each chunk spreading over all its cores. Its members were checked
     by the client before any chunk was sent (``prechecked``: the worker does not build each
-    member once more to check it before building it to run it)."""
-    return part(threads=1, prechecked=True)
+    member once more to check it before building it to run it).
+
+    A failure that is not an ``Exception`` (the engine's ``PanicException``, a
+    ``KeyboardInterrupt`` or ``SystemExit`` raised in the task) is raised as a
+    ``RuntimeError`` naming it: a Dask worker reports only an ``Exception`` to the client as the
+    task's error, and leaves the task running forever after any other."""
+    try:
+        return part(threads=1, prechecked=True)
+    except Exception:
+        raise
+    except BaseException as e:
+        raise RuntimeError(
+            f"a chunk of {part.n} members of the ensemble failed on its Dask worker: "
+            f"{type(e).__name__}: {e}"
+        ) from None
 
 
 #: The smallest default chunk holds about 1/``_SMALLEST`` of a worker core's share of the
