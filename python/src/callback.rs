@@ -29,7 +29,7 @@ use physicskit::classical::TimeGrid;
 use pyo3::types::PyDict;
 
 use crate::chaos;
-use crate::convert::{result_tuple, to_vec};
+use crate::convert::{result_tuple, Vector};
 use crate::errors::IntoPyResult;
 use crate::interrupt::{SignalObserver, CHECK_EVERY};
 use crate::native::{parse_method, sampling};
@@ -81,22 +81,25 @@ impl<'py> Callbacks<'py> {
         let r = self
             .call(name, args)
             .map_err(|e| self.stash(e, &name.to_string()))?;
-        match r.extract::<PyReadonlyArray1<'_, f64>>() {
-            Ok(a) => match a.as_slice() {
-                Ok(s) if s.len() == out.len() => {
+        // The common case, an aligned contiguous float64 array of the right length, is copied
+        // straight into `out`; anything else goes through the one reader, after the system's
+        // own conversion for what is not a float64 array.
+        if let Ok(a) = r.extract::<PyReadonlyArray1<'_, f64>>() {
+            if let Ok(s) = a.as_slice() {
+                if s.len() == out.len() {
                     out.copy_from_slice(s);
-                    Ok(())
+                    return Ok(());
                 }
-                _ => fill(out, &to_vec(&a), name),
-            },
-            Err(_) => match self.convert("as_vector", name, &r) {
-                Ok(a) => match a.extract::<PyReadonlyArray1<'_, f64>>() {
-                    Ok(a) => fill(out, &to_vec(&a), name),
-                    Err(e) => Err(self.stash(e, &name.to_string())),
-                },
-                Err(e) => Err(self.stash(e, &name.to_string())),
-            },
+            }
         }
+        let a = match r.extract::<Vector>() {
+            Ok(a) => a,
+            Err(_) => self
+                .convert("as_vector", name, &r)
+                .and_then(|a| a.extract::<Vector>())
+                .map_err(|e| self.stash(e, &name.to_string()))?,
+        };
+        fill(out, &a.0, name)
     }
 
     /// Calls `name(*args)` and copies the returned square matrix (any array-like of shape
@@ -113,7 +116,7 @@ impl<'py> Callbacks<'py> {
         let a = self.convert("as_array", name, &r).map_err(fail)?;
         let a = a
             .call_method0(intern!(self.obj.py(), "ravel"))
-            .and_then(|a| a.extract::<PyReadonlyArray1<'_, f64>>())
+            .and_then(|a| a.extract::<Vector>())
             .map_err(fail)?;
         let n = out.len().isqrt();
         let square = r
@@ -124,10 +127,10 @@ impl<'py> Callbacks<'py> {
             return Err(Error::DimensionMismatch {
                 name: format!("value returned by {name} (an ndof x ndof matrix)"),
                 expected: out.len(),
-                found: a.len().unwrap_or(0),
+                found: a.0.len(),
             });
         }
-        fill(out, &to_vec(&a), name)
+        fill(out, &a.0, name)
     }
 
     /// Calls `name(*args)` and converts the result to a float; NaN (and a stashed exception)
@@ -390,14 +393,14 @@ fn options(
 pub fn integrate_hamiltonian<'py>(
     py: Python<'py>,
     obj: Bound<'py, PyAny>,
-    state: PyReadonlyArray1<'_, f64>,
+    state: Vector,
     t0: f64,
     t_span: (f64, f64),
     dt: f64,
     method: &str,
     ndof: usize,
     separable: bool,
-    mass_inv: PyReadonlyArray1<'_, f64>,
+    mass_inv: Vector,
     stride: usize,
     final_only: bool,
     energy: bool,
@@ -407,8 +410,7 @@ pub fn integrate_hamiltonian<'py>(
     max_steps: Option<u64>,
 ) -> PyResult<Bound<'py, PyTuple>> {
     let method = parse_method(Some(method), Method::Yoshida4, separable, false).py()?;
-    let mut sys =
-        PyHamiltonian::new(obj, to_vec(&state), t0, ndof, separable, to_vec(&mass_inv)).py()?;
+    let mut sys = PyHamiltonian::new(obj, state.0, t0, ndof, separable, mass_inv.0).py()?;
     let mut observer = SignalObserver::new(progress);
     let options = options(
         &mut observer,
@@ -433,7 +435,7 @@ pub fn integrate_hamiltonian<'py>(
 pub fn integrate_ode<'py>(
     py: Python<'py>,
     obj: Bound<'py, PyAny>,
-    state: PyReadonlyArray1<'_, f64>,
+    state: Vector,
     t0: f64,
     t_span: (f64, f64),
     dt: f64,
@@ -447,7 +449,7 @@ pub fn integrate_ode<'py>(
     max_steps: Option<u64>,
 ) -> PyResult<Bound<'py, PyTuple>> {
     let method = parse_method(Some(method), Method::ImplicitMidpoint, false, false).py()?;
-    let mut sys = PyOde::new(obj, to_vec(&state), t0).py()?;
+    let mut sys = PyOde::new(obj, state.0, t0).py()?;
     let mut observer = SignalObserver::new(progress);
     let options = options(
         &mut observer,
@@ -471,21 +473,20 @@ pub fn integrate_ode<'py>(
 pub fn chaos_hamiltonian<'py>(
     py: Python<'py>,
     obj: Bound<'py, PyAny>,
-    state: PyReadonlyArray1<'_, f64>,
+    state: Vector,
     t0: f64,
     t_span: (f64, f64),
     dt: f64,
     method: &str,
     ndof: usize,
     separable: bool,
-    mass_inv: PyReadonlyArray1<'_, f64>,
+    mass_inv: Vector,
     kind: &str,
     options: Option<&Bound<'_, PyDict>>,
 ) -> PyResult<Bound<'py, PyDict>> {
     let job = chaos::job_from_py(kind, options)?;
     let method = parse_method(Some(method), Method::Yoshida4, separable, false).py()?;
-    let sys =
-        PyHamiltonian::new(obj, to_vec(&state), t0, ndof, separable, to_vec(&mass_inv)).py()?;
+    let sys = PyHamiltonian::new(obj, state.0, t0, ndof, separable, mass_inv.0).py()?;
     let mut observer = SignalObserver::default();
     let outcome = chaos_run(&sys, t_span, dt, &job, &mut observer, |s, k| {
         hamiltonian_flow(s, method, k)
@@ -502,7 +503,7 @@ pub fn chaos_hamiltonian<'py>(
 pub fn chaos_ode<'py>(
     py: Python<'py>,
     obj: Bound<'py, PyAny>,
-    state: PyReadonlyArray1<'_, f64>,
+    state: Vector,
     t0: f64,
     t_span: (f64, f64),
     dt: f64,
@@ -512,7 +513,7 @@ pub fn chaos_ode<'py>(
 ) -> PyResult<Bound<'py, PyDict>> {
     let job = chaos::job_from_py(kind, options)?;
     let method = parse_method(Some(method), Method::ImplicitMidpoint, false, false).py()?;
-    let sys = PyOde::new(obj, to_vec(&state), t0).py()?;
+    let sys = PyOde::new(obj, state.0, t0).py()?;
     let mut observer = SignalObserver::default();
     let outcome = chaos_run(&sys, t_span, dt, &job, &mut observer, |s, k| {
         ode_flow(s, method, k)

@@ -9,9 +9,7 @@
 //! / `chaos_map_systems` for a grid of initial conditions on all cores. Each returns a dict
 //! of arrays that `physicskit.classical.chaos` turns into its result objects.
 
-use numpy::{
-    IntoPyArray, PyArrayMethods, PyReadonlyArray1, PyReadonlyArray2, PyUntypedArrayMethods,
-};
+use numpy::{IntoPyArray, PyArrayMethods};
 use physicskit::classical::analysis::chaos_map::{chaos_map_by, Indicator, MapRun};
 use physicskit::classical::analysis::lyapunov::{lyapunov_on_flow, DEFAULT_RENORMALIZE_EVERY};
 use physicskit::classical::analysis::poincare::Direction;
@@ -26,7 +24,7 @@ use physicskit::classical::{Error, Method, Result, TimeGrid, Tolerances};
 use pyo3::prelude::*;
 use pyo3::types::PyDict;
 
-use crate::convert::to_vec;
+use crate::convert::{Matrix, Vector};
 use crate::errors::IntoPyResult;
 use crate::interrupt::{SignalObserver, CHECK_EVERY};
 use crate::native::{parse_method, NativeSystem};
@@ -305,7 +303,7 @@ pub fn to_dict<'py>(py: Python<'py>, (items, end): JobResult) -> PyResult<Bound<
 pub fn chaos_native<'py>(
     py: Python<'py>,
     mut native: PyRefMut<'_, NativeSystem>,
-    state: PyReadonlyArray1<'_, f64>,
+    state: Vector,
     t0: f64,
     t_span: (f64, f64),
     dt: f64,
@@ -314,7 +312,7 @@ pub fn chaos_native<'py>(
     options: Option<&Bound<'_, PyDict>>,
 ) -> PyResult<Bound<'py, PyDict>> {
     let job = job_from_py(kind, options)?;
-    let state = to_vec(&state);
+    let state = state.0;
     // Only a section runs on the Taylor form (crossings on the step polynomial); the tangent
     // flows of the other analyses have none.
     let taylor = matches!(job, Job::Section(_)) && native.has_taylor_form();
@@ -408,7 +406,7 @@ fn job_kind(indicator: &str) -> &str {
 pub fn chaos_map<'py>(
     py: Python<'py>,
     systems: Vec<PyRef<'py, NativeSystem>>,
-    states: PyReadonlyArray2<'_, f64>,
+    states: Matrix,
     t_span: (f64, f64),
     dt: f64,
     method: Option<&str>,
@@ -418,9 +416,8 @@ pub fn chaos_map<'py>(
     let job = job_from_py(job_kind(indicator_name), options)?;
     let indicator = indicator(indicator_name, job).py()?;
     let method = method.map(str::parse::<Method>).transpose().py()?;
-    let shape = states.shape().to_vec();
-    let states: Vec<f64> = states.as_array().iter().copied().collect();
-    let (n_points, dim) = (shape[0], shape[1]);
+    let [n_points, dim] = states.shape;
+    let states = states.values;
     if systems.is_empty() || (systems.len() != 1 && systems.len() != n_points) {
         return Err(Error::DimensionMismatch {
             name: "systems (one, or one per point)".into(),

@@ -6,7 +6,7 @@
 
 use std::ops::ControlFlow;
 
-use numpy::{IntoPyArray, PyReadonlyArray1, PyReadonlyArray2};
+use numpy::IntoPyArray;
 use physicskit::classical::catalog as core_catalog;
 use physicskit::classical::ensemble::{
     self as core_ensemble, Condition, Direction, EnsembleResult, Event, FromCatalogue,
@@ -17,6 +17,7 @@ use pyo3::exceptions::{PyTypeError, PyValueError};
 use pyo3::prelude::*;
 use pyo3::types::{PyDict, PyList, PyString};
 
+use crate::convert::{Matrix, Vector};
 use crate::errors::IntoPyResult;
 use crate::expr::ExprSpec;
 use crate::params::{key, to_value};
@@ -137,8 +138,8 @@ pub fn ensemble<'py>(
     py: Python<'py>,
     system: &Bound<'py, PyAny>,
     common: &Bound<'py, PyDict>,
-    sweeps: Vec<(String, PyReadonlyArray1<'py, f64>)>,
-    states: Option<PyReadonlyArray2<'py, f64>>,
+    sweeps: Vec<(String, Vector)>,
+    states: Option<Matrix>,
     n: usize,
     t_span: (f64, f64),
     dt: f64,
@@ -162,10 +163,10 @@ pub fn ensemble<'py>(
     let members = Members {
         common: given,
         sweeps: sweeps
-            .iter()
-            .map(|(target, values)| Sweep::new(target.clone(), values.as_array().to_vec()))
+            .into_iter()
+            .map(|(target, values)| Sweep::new(target, values.0))
             .collect(),
-        states: states.map(|s| s.as_array().iter().copied().collect()),
+        states: states.map(|s| s.values),
         n,
     };
     let mut reductions = Vec::new();

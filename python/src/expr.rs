@@ -5,7 +5,7 @@
 //! builds one (the expressions, named parameters, a state), for ensembles, which build one
 //! system per member.
 
-use numpy::{PyArray2, PyReadonlyArray1};
+use numpy::PyArray2;
 use physicskit::classical::lagrangian::LagrangianModel;
 use physicskit::classical::model::erased::{DynSystem, Hamiltonian, Lagrangian, Ode};
 use physicskit::classical::symbolic::{Expr, ExprHamiltonian, ExprLagrangian, ExprOde};
@@ -14,11 +14,9 @@ use pyo3::exceptions::PyValueError;
 use pyo3::prelude::*;
 use pyo3::types::PyDict;
 
-use crate::convert::to_vec;
+use crate::convert::Vector;
 use crate::errors::IntoPyResult;
 use crate::native::{check_len, NativeSystem, EXPRESSION_SYSTEM};
-
-type Arr<'a> = PyReadonlyArray1<'a, f64>;
 
 /// The name a `HamiltonianEngine` system reports (it is not in the catalogue).
 pub const HAMILTONIAN_EXPRESSION_SYSTEM: &str = "hamiltonian-expression";
@@ -32,12 +30,12 @@ pub const ODE_EXPRESSION_SYSTEM: &str = "ode-expression";
 pub fn expr_hamiltonian(
     sexpr: &str,
     ndof: usize,
-    params: Arr<'_>,
-    q0: Arr<'_>,
-    p0: Arr<'_>,
+    params: Vector,
+    q0: Vector,
+    p0: Vector,
 ) -> PyResult<NativeSystem> {
     let expr = Expr::parse(sexpr).py()?;
-    let system = hamiltonian(expr, ndof, to_vec(&params), &to_vec(&q0), &to_vec(&p0)).py()?;
+    let system = hamiltonian(expr, ndof, params.0, &q0.0, &p0.0).py()?;
     Ok(NativeSystem::unlisted(
         HAMILTONIAN_EXPRESSION_SYSTEM,
         system,
@@ -197,8 +195,8 @@ impl ExprSpec {
 #[pyo3(signature = (components, params, y0, energy=None))]
 pub fn expr_ode(
     components: Vec<String>,
-    params: Arr<'_>,
-    y0: Arr<'_>,
+    params: Vector,
+    y0: Vector,
     energy: Option<&str>,
 ) -> PyResult<NativeSystem> {
     let f = components
@@ -207,7 +205,7 @@ pub fn expr_ode(
         .collect::<Result<Vec<_>, _>>()
         .py()?;
     let energy = energy.map(Expr::parse).transpose().py()?;
-    let system = ode(f, to_vec(&params), &to_vec(&y0), energy).py()?;
+    let system = ode(f, params.0, &y0.0, energy).py()?;
     Ok(NativeSystem::unlisted(ODE_EXPRESSION_SYSTEM, system))
 }
 
@@ -222,9 +220,9 @@ pub fn system_jacobian<'py>(
     py: Python<'py>,
     system: PyRef<'_, NativeSystem>,
     t: f64,
-    state: Arr<'_>,
+    state: Vector,
 ) -> PyResult<Bound<'py, PyArray2<f64>>> {
-    let s = to_vec(&state);
+    let s = state.0;
     let dynamical = system.inner().dynamical();
     let dim = dynamical.state_dim();
     check_len("state", &s, dim).py()?;
@@ -261,14 +259,14 @@ fn square_array<'py>(
 pub fn force_jacobian<'py>(
     py: Python<'py>,
     system: PyRef<'_, NativeSystem>,
-    q: Arr<'_>,
+    q: Vector,
     t: f64,
 ) -> PyResult<Bound<'py, PyArray2<f64>>> {
     let h: &dyn HamiltonianSystem = system.inner().hamiltonian().ok_or_else(|| {
         pyo3::exceptions::PyValueError::new_err("force_jacobian: not a Hamiltonian system")
     })?;
     let n = h.ndof();
-    let q = to_vec(&q);
+    let q = q.0;
     check_len("q", &q, n).py()?;
     let mut out = vec![0.0; n * n];
     let answer = h.force_jacobian(&q, t, &mut out);
@@ -282,12 +280,12 @@ pub fn force_jacobian<'py>(
 pub fn expr_lagrangian(
     sexpr: &str,
     ndof: usize,
-    params: Arr<'_>,
-    q0: Arr<'_>,
-    qdot0: Arr<'_>,
+    params: Vector,
+    q0: Vector,
+    qdot0: Vector,
 ) -> PyResult<NativeSystem> {
     let expr = Expr::parse(sexpr).py()?;
-    let system = lagrangian(expr, ndof, to_vec(&params), &to_vec(&q0), &to_vec(&qdot0)).py()?;
+    let system = lagrangian(expr, ndof, params.0, &q0.0, &qdot0.0).py()?;
     Ok(NativeSystem::unlisted(EXPRESSION_SYSTEM, system))
 }
 

@@ -4,7 +4,7 @@
 //! reversal, sine-Gordon kink initial data). Each is a thin shell: numpy in, slices
 //! to the core function, numpy out.
 
-use numpy::{PyArray1, PyReadonlyArray1};
+use numpy::PyArray1;
 use physicskit::classical::analysis;
 use physicskit::classical::model::entry::Value;
 use physicskit::classical::systems::{
@@ -14,11 +14,10 @@ use physicskit::classical::systems::{
 use pyo3::exceptions::PyValueError;
 use pyo3::prelude::*;
 
-use crate::convert::to_vec;
+use crate::convert::Vector;
 use crate::errors::IntoPyResult;
 use crate::params;
 
-type Arr<'a> = PyReadonlyArray1<'a, f64>;
 /// Two numpy vectors returned together (`(x, y)`, `(q0, p0)`).
 type Pair<'py> = (Bound<'py, PyArray1<f64>>, Bound<'py, PyArray1<f64>>);
 
@@ -29,11 +28,10 @@ pub fn projectile_analytic_trajectory<'py>(
     speed: f64,
     angle_deg: f64,
     g: f64,
-    t: Arr<'_>,
+    t: Vector,
     height: f64,
 ) -> PyResult<Pair<'py>> {
-    let (x, y) =
-        ProjectileMotion::analytic_trajectory(speed, angle_deg, g, &to_vec(&t), height).py()?;
+    let (x, y) = ProjectileMotion::analytic_trajectory(speed, angle_deg, g, &t.0, height).py()?;
     Ok((PyArray1::from_vec(py, x), PyArray1::from_vec(py, y)))
 }
 
@@ -42,20 +40,13 @@ pub fn projectile_analytic_trajectory<'py>(
 #[pyfunction]
 pub fn foucault_analytic_solution<'py>(
     py: Python<'py>,
-    q0: Arr<'_>,
-    v0: Arr<'_>,
+    q0: Vector,
+    v0: Vector,
     omega0: f64,
     omega_z: f64,
-    t: Arr<'_>,
+    t: Vector,
 ) -> PyResult<Pair<'py>> {
-    let (x, y) = FoucaultPendulum::analytic_solution(
-        &to_vec(&q0),
-        &to_vec(&v0),
-        omega0,
-        omega_z,
-        &to_vec(&t),
-    )
-    .py()?;
+    let (x, y) = FoucaultPendulum::analytic_solution(&q0.0, &v0.0, omega0, omega_z, &t.0).py()?;
     Ok((PyArray1::from_vec(py, x), PyArray1::from_vec(py, y)))
 }
 
@@ -63,13 +54,13 @@ pub fn foucault_analytic_solution<'py>(
 #[pyfunction]
 pub fn eulers_disk_theta_analytic<'py>(
     py: Python<'py>,
-    t: Arr<'_>,
+    t: Vector,
     theta0: f64,
     decay_rate: f64,
 ) -> PyResult<Bound<'py, PyArray1<f64>>> {
     Ok(PyArray1::from_vec(
         py,
-        disk_theta(&to_vec(&t), theta0, decay_rate).py()?,
+        disk_theta(&t.0, theta0, decay_rate).py()?,
     ))
 }
 
@@ -149,22 +140,15 @@ pub fn pendulum_action_angle(E: f64, g_over_l: f64) -> PyResult<(f64, f64)> {
 #[allow(non_snake_case)]
 pub fn effective_potential_symmetric_top<'py>(
     py: Python<'py>,
-    theta: Arr<'_>,
+    theta: Vector,
     p_phi: f64,
     p_psi: f64,
     I1: f64,
     I3: f64,
     Mgl: f64,
 ) -> PyResult<Bound<'py, PyArray1<f64>>> {
-    let v = analysis::effective_potential_symmetric_top_many(
-        &to_vec(&theta),
-        p_phi,
-        p_psi,
-        I1,
-        I3,
-        Mgl,
-    )
-    .py()?;
+    let v = analysis::effective_potential_symmetric_top_many(&theta.0, p_phi, p_psi, I1, I3, Mgl)
+        .py()?;
     Ok(PyArray1::from_vec(py, v))
 }
 

@@ -9,7 +9,7 @@
 //! ...) is one method per [`Capabilities`] accessor, which raises `NotImplementedError` for a
 //! system without it. Nothing here knows a concrete system type.
 
-use numpy::{IntoPyArray, PyArray1, PyArray2, PyReadonlyArray1};
+use numpy::{IntoPyArray, PyArray1, PyArray2};
 use physicskit::classical::integrators::taylor::no_taylor_form;
 use physicskit::classical::model::entry::{SystemEntry, Values};
 use physicskit::classical::model::erased::{missing, offered, Capabilities, DynSystem};
@@ -20,7 +20,7 @@ use physicskit::classical::{
 use pyo3::prelude::*;
 use pyo3::types::{PyDict, PyTuple};
 
-use crate::convert::{array1, result_tuple, to_vec};
+use crate::convert::{array1, result_tuple, Vector};
 use crate::errors::IntoPyResult;
 use crate::interrupt::{SignalObserver, CHECK_EVERY};
 use crate::params::values_to_dict;
@@ -166,7 +166,6 @@ impl NativeSystem {
     }
 }
 
-type Arr<'a> = PyReadonlyArray1<'a, f64>;
 type Array<'py> = Bound<'py, PyArray1<f64>>;
 
 #[pymethods]
@@ -240,20 +239,20 @@ impl NativeSystem {
     }
 
     /// Sets state and clock after validating them.
-    fn reset(&mut self, state: Arr<'_>, t0: f64) -> PyResult<()> {
-        self.inner.reset(Some(&to_vec(&state)), t0).py()
+    fn reset(&mut self, state: Vector, t0: f64) -> PyResult<()> {
+        self.inner.reset(Some(&state.0), t0).py()
     }
 
     /// Total energy of `state`.
-    fn energy(&self, state: Arr<'_>) -> PyResult<f64> {
-        let s = to_vec(&state);
+    fn energy(&self, state: Vector) -> PyResult<f64> {
+        let s = state.0;
         check_len("state", &s, self.dim()).py()?;
         Ok(self.inner.dynamical().energy(&s))
     }
 
     /// `dstate/dt` at `(t, state)`.
-    fn derivatives<'py>(&self, py: Python<'py>, t: f64, state: Arr<'_>) -> PyResult<Array<'py>> {
-        let s = to_vec(&state);
+    fn derivatives<'py>(&self, py: Python<'py>, t: f64, state: Vector) -> PyResult<Array<'py>> {
+        let s = state.0;
         check_len("state", &s, self.dim()).py()?;
         let mut out = vec![0.0; s.len()];
         self.inner.dynamical().derivatives(t, &s, &mut out).py()?;
@@ -261,25 +260,25 @@ impl NativeSystem {
     }
 
     /// `T(p)` (Hamiltonian systems).
-    fn kinetic_energy(&self, p: Arr<'_>) -> PyResult<f64> {
+    fn kinetic_energy(&self, p: Vector) -> PyResult<f64> {
         let h = self.hamiltonian("kinetic_energy").py()?;
-        let p = to_vec(&p);
+        let p = p.0;
         check_len("p", &p, h.ndof()).py()?;
         Ok(h.kinetic_energy(&p))
     }
 
     /// `V(q)` (Hamiltonian systems).
-    fn potential_energy(&self, q: Arr<'_>) -> PyResult<f64> {
+    fn potential_energy(&self, q: Vector) -> PyResult<f64> {
         let h = self.hamiltonian("potential_energy").py()?;
-        let q = to_vec(&q);
+        let q = q.0;
         check_len("q", &q, h.ndof()).py()?;
         Ok(h.potential_energy(&q))
     }
 
     /// `-dV/dq` at `(q, t)` (separable Hamiltonian systems).
-    fn force<'py>(&self, py: Python<'py>, q: Arr<'_>, t: f64) -> PyResult<Array<'py>> {
+    fn force<'py>(&self, py: Python<'py>, q: Vector, t: f64) -> PyResult<Array<'py>> {
         let h = self.hamiltonian("force").py()?;
-        let q = to_vec(&q);
+        let q = q.0;
         check_len("q", &q, h.ndof()).py()?;
         let mut out = vec![0.0; q.len()];
         h.force(&q, t, &mut out).py()?;
@@ -290,12 +289,12 @@ impl NativeSystem {
     fn acceleration<'py>(
         &self,
         py: Python<'py>,
-        q: Arr<'_>,
-        qdot: Arr<'_>,
+        q: Vector,
+        qdot: Vector,
         t: f64,
     ) -> PyResult<Array<'py>> {
         let l = self.lagrangian("acceleration").py()?;
-        let (q, qdot) = (to_vec(&q), to_vec(&qdot));
+        let (q, qdot) = (q.0, qdot.0);
         check_len("q", &q, l.ndof()).py()?;
         check_len("qdot", &qdot, l.ndof()).py()?;
         let mut out = vec![0.0; q.len()];
@@ -307,12 +306,12 @@ impl NativeSystem {
     fn momentum<'py>(
         &self,
         py: Python<'py>,
-        q: Arr<'_>,
-        qdot: Arr<'_>,
+        q: Vector,
+        qdot: Vector,
         t: f64,
     ) -> PyResult<Array<'py>> {
         let l = self.lagrangian("momentum").py()?;
-        let (q, qdot) = (to_vec(&q), to_vec(&qdot));
+        let (q, qdot) = (q.0, qdot.0);
         check_len("q", &q, l.ndof()).py()?;
         check_len("qdot", &qdot, l.ndof()).py()?;
         let mut out = vec![0.0; q.len()];
@@ -321,15 +320,9 @@ impl NativeSystem {
     }
 
     /// The velocity `qdot(q, p, t)` inverting `p = dL/dqdot` (Lagrangian systems).
-    fn velocity<'py>(
-        &self,
-        py: Python<'py>,
-        q: Arr<'_>,
-        p: Arr<'_>,
-        t: f64,
-    ) -> PyResult<Array<'py>> {
+    fn velocity<'py>(&self, py: Python<'py>, q: Vector, p: Vector, t: f64) -> PyResult<Array<'py>> {
         let l = self.lagrangian("velocity").py()?;
-        let (q, p) = (to_vec(&q), to_vec(&p));
+        let (q, p) = (q.0, p.0);
         check_len("q", &q, l.ndof()).py()?;
         check_len("p", &p, l.ndof()).py()?;
         let mut out = vec![0.0; q.len()];
@@ -342,10 +335,10 @@ impl NativeSystem {
         &self,
         py: Python<'py>,
         t: f64,
-        state: Arr<'_>,
+        state: Vector,
     ) -> PyResult<Array<'py>> {
         let l = self.lagrangian("canonical_derivatives").py()?;
-        let s = to_vec(&state);
+        let s = state.0;
         check_len("state", &s, 2 * l.ndof()).py()?;
         let mut out = vec![0.0; s.len()];
         l.canonical_derivatives(t, &s, &mut out).py()?;
@@ -364,7 +357,7 @@ impl NativeSystem {
     fn integrate<'py>(
         &mut self,
         py: Python<'py>,
-        state: Arr<'_>,
+        state: Vector,
         t0: f64,
         t_span: (f64, f64),
         dt: f64,
@@ -377,7 +370,7 @@ impl NativeSystem {
         atol: Option<f64>,
         max_steps: Option<u64>,
     ) -> PyResult<Bound<'py, PyTuple>> {
-        let state = to_vec(&state);
+        let state = state.0;
         let splitting = self
             .inner
             .hamiltonian()
@@ -419,23 +412,20 @@ impl NativeSystem {
     // -- capabilities: one method per `Capabilities` accessor ------------------------------
 
     /// Cartesian positions of the drawn bodies for the configuration `q`, `[x1, y1, ...]`.
-    fn positions<'py>(&self, py: Python<'py>, q: Arr<'_>) -> PyResult<Array<'py>> {
-        let x = self.offer("positions", self.caps().positions(&to_vec(&q)));
+    fn positions<'py>(&self, py: Python<'py>, q: Vector) -> PyResult<Array<'py>> {
+        let x = self.offer("positions", self.caps().positions(&q.0));
         Ok(PyArray1::from_vec(py, x.and_then(|r| r).py()?))
     }
 
     /// Laplace-Runge-Lenz vector of `(q, p)`.
-    fn lrl_vector<'py>(&self, py: Python<'py>, q: Arr<'_>, p: Arr<'_>) -> PyResult<Array<'py>> {
-        let a = self.offer(
-            "lrl_vector",
-            self.caps().lrl_vector(&to_vec(&q), &to_vec(&p)),
-        );
+    fn lrl_vector<'py>(&self, py: Python<'py>, q: Vector, p: Vector) -> PyResult<Array<'py>> {
+        let a = self.offer("lrl_vector", self.caps().lrl_vector(&q.0, &p.0));
         Ok(array1(py, &a.and_then(|r| r).py()?))
     }
 
     /// Angular momentum about the force centre of `(q, p)`.
-    fn angular_momentum(&self, q: Arr<'_>, p: Arr<'_>) -> PyResult<f64> {
-        let l = self.caps().angular_momentum(&to_vec(&q), &to_vec(&p));
+    fn angular_momentum(&self, q: Vector, p: Vector) -> PyResult<f64> {
+        let l = self.caps().angular_momentum(&q.0, &p.0);
         self.offer("angular_momentum", l).and_then(|r| r).py()
     }
 
@@ -443,17 +433,17 @@ impl NativeSystem {
     fn per_particle_energy<'py>(
         &self,
         py: Python<'py>,
-        q: Arr<'_>,
-        p: Arr<'_>,
+        q: Vector,
+        p: Vector,
     ) -> PyResult<Array<'py>> {
-        let e = self.caps().per_particle_energy(&to_vec(&q), &to_vec(&p));
+        let e = self.caps().per_particle_energy(&q.0, &p.0);
         let e = self.offer("per_particle_energy", e).and_then(|r| r).py()?;
         Ok(PyArray1::from_vec(py, e))
     }
 
     /// Area of the phase-space patch the particles of `(q, p)` fill.
-    fn phase_space_area(&self, q: Arr<'_>, p: Arr<'_>) -> PyResult<f64> {
-        let a = self.caps().phase_space_area(&to_vec(&q), &to_vec(&p));
+    fn phase_space_area(&self, q: Vector, p: Vector) -> PyResult<f64> {
+        let a = self.caps().phase_space_area(&q.0, &p.0);
         self.offer("phase_space_area", a).and_then(|r| r).py()
     }
 
@@ -470,12 +460,10 @@ impl NativeSystem {
     fn normal_mode_coordinates<'py>(
         &self,
         py: Python<'py>,
-        q: Arr<'_>,
-        p: Arr<'_>,
+        q: Vector,
+        p: Vector,
     ) -> PyResult<(Array<'py>, Array<'py>)> {
-        let c = self
-            .caps()
-            .normal_mode_coordinates(&to_vec(&q), &to_vec(&p));
+        let c = self.caps().normal_mode_coordinates(&q.0, &p.0);
         let (bq, bp) = self
             .offer("normal_mode_coordinates", c)
             .and_then(|r| r)
@@ -484,8 +472,8 @@ impl NativeSystem {
     }
 
     /// Energy in each normal mode of `(q, p)`.
-    fn modal_energies<'py>(&self, py: Python<'py>, q: Arr<'_>, p: Arr<'_>) -> PyResult<Array<'py>> {
-        let e = self.caps().modal_energies(&to_vec(&q), &to_vec(&p));
+    fn modal_energies<'py>(&self, py: Python<'py>, q: Vector, p: Vector) -> PyResult<Array<'py>> {
+        let e = self.caps().modal_energies(&q.0, &p.0);
         let e = self.offer("modal_energies", e).and_then(|r| r).py()?;
         Ok(PyArray1::from_vec(py, e))
     }
@@ -494,33 +482,33 @@ impl NativeSystem {
     fn rotation_matrix<'py>(
         &self,
         py: Python<'py>,
-        state: Arr<'_>,
+        state: Vector,
     ) -> PyResult<Bound<'py, PyArray2<f64>>> {
-        let r = self.caps().rotation_matrix(&to_vec(&state));
+        let r = self.caps().rotation_matrix(&state.0);
         let r = self.offer("rotation_matrix", r).and_then(|r| r).py()?;
         let a = ndarray::Array2::from_shape_fn((3, 3), |(i, j)| r[3 * i + j]);
         Ok(a.into_pyarray(py))
     }
 
     /// `|L|^2` of `state`.
-    fn angular_momentum_squared(&self, state: Arr<'_>) -> PyResult<f64> {
-        let l2 = self.caps().angular_momentum_squared(&to_vec(&state));
+    fn angular_momentum_squared(&self, state: Vector) -> PyResult<f64> {
+        let l2 = self.caps().angular_momentum_squared(&state.0);
         self.offer("angular_momentum_squared", l2)
             .and_then(|r| r)
             .py()
     }
 
     /// Instantaneous precession and nutation rates `(phidot, thetadot)` of `state`.
-    fn precession_nutation_rate(&self, state: Arr<'_>) -> PyResult<(f64, f64)> {
-        let r = self.caps().precession_nutation_rate(&to_vec(&state));
+    fn precession_nutation_rate(&self, state: Vector) -> PyResult<(f64, f64)> {
+        let r = self.caps().precession_nutation_rate(&state.0);
         self.offer("precession_nutation_rate", r)
             .and_then(|r| r)
             .py()
     }
 
     /// Unit vector along a top's symmetry axis in space for the configuration `q`.
-    fn symmetry_axis<'py>(&self, py: Python<'py>, q: Arr<'_>) -> PyResult<Array<'py>> {
-        let a = self.caps().symmetry_axis(&to_vec(&q));
+    fn symmetry_axis<'py>(&self, py: Python<'py>, q: Vector) -> PyResult<Array<'py>> {
+        let a = self.caps().symmetry_axis(&q.0);
         Ok(array1(
             py,
             &self.offer("symmetry_axis", a).and_then(|r| r).py()?,
@@ -528,8 +516,8 @@ impl NativeSystem {
     }
 
     /// A rigid body's body-frame angular momentum `(I1 w1, I2 w2, I3 w3)` of `state`.
-    fn body_angular_momentum<'py>(&self, py: Python<'py>, state: Arr<'_>) -> PyResult<Array<'py>> {
-        let l = self.caps().body_angular_momentum(&to_vec(&state));
+    fn body_angular_momentum<'py>(&self, py: Python<'py>, state: Vector) -> PyResult<Array<'py>> {
+        let l = self.caps().body_angular_momentum(&state.0);
         let l = self
             .offer("body_angular_momentum", l)
             .and_then(|r| r)
@@ -556,8 +544,8 @@ impl NativeSystem {
     }
 
     /// Conserved quantities beyond the energy of `state`, sorted.
-    fn conserved_quantities<'py>(&self, py: Python<'py>, state: Arr<'_>) -> PyResult<Array<'py>> {
-        let c = self.caps().conserved_quantities(&to_vec(&state));
+    fn conserved_quantities<'py>(&self, py: Python<'py>, state: Vector) -> PyResult<Array<'py>> {
+        let c = self.caps().conserved_quantities(&state.0);
         let c = self.offer("conserved_quantities", c).and_then(|r| r).py()?;
         Ok(PyArray1::from_vec(py, c))
     }

@@ -22,13 +22,14 @@
 //! as a mass or a count is a mistake, not a 1. NaN and infinities are numbers here; the
 //! catalogue refuses them with its own message.
 
-use numpy::{PyArray1, PyArrayMethods};
+use numpy::PyArray1;
 use physicskit::classical::model::entry::{Default, ParamKind, ParamSpec, Value, Values};
 use physicskit::classical::Error;
 use pyo3::exceptions::{PyOverflowError, PyTypeError};
 use pyo3::prelude::*;
 use pyo3::types::{PyBool, PyDict, PyList, PyString};
 
+use crate::convert::floats;
 use crate::errors::to_py;
 
 /// The Python classes and functions the rules refer to, imported once per call.
@@ -142,8 +143,7 @@ fn real_array(rules: &Rules<'_>, name: &str, obj: &Bound<'_, PyAny>) -> PyResult
             let flat = arr
                 .call_method1("astype", ("float64",))?
                 .call_method1("reshape", (-1,))?;
-            let flat = flat.cast_into::<PyArray1<f64>>()?;
-            Ok(flat.readonly().as_array().to_vec())
+            Ok(floats(&flat, 1)?.0)
         }
         "O" => {
             let items = arr.call_method1("reshape", (-1,))?.call_method0("tolist")?;

@@ -208,18 +208,13 @@ class _Job:
     def __call__(self, **extra: Any) -> dict[str, Any]:
         """Runs the members on the local engine (what a Dask worker does with a part).
 
-        The arrays are handed over aligned: Dask's deserialization can place a small array at
-        any byte offset of its message, and the engine reads float64s in place."""
-        sweeps = [(k, _aligned(v)) for k, v in self.sweeps]
-        states = None if self.states is None else _aligned(self.states)
+        Dask's deserialization can place a small array at any byte offset of its message: the
+        engine reads an array of any address, strides and byte order (``_core``'s one reader
+        copies what it cannot read in place)."""
         return dict(
-            _core.ensemble(self.system, self.common, sweeps, states, self.n, **self.run, **extra)
+            _core.ensemble(self.system, self.common, self.sweeps, self.states, self.n,
+                           **self.run, **extra)
         )
-
-
-def _aligned(a: np.ndarray) -> np.ndarray:
-    """``a`` itself when its float64s are aligned and C-contiguous, else an aligned copy."""
-    return np.require(a, dtype=np.float64, requirements=["ALIGNED", "C_CONTIGUOUS"])
 
 
 class _Bar:
