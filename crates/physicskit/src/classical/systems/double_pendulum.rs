@@ -84,6 +84,7 @@ use crate::classical::model::entry::{
 };
 use crate::classical::model::entry::{Drawing, Pace, Presentation};
 use crate::classical::model::erased::{fill, Capabilities, Lagrangian as Erased};
+use crate::classical::systems::rod_chain::rod_chain_positions;
 
 /// Masses, rod lengths and gravity of a [`DoublePendulum`]; its [`Lagrangian`].
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -366,10 +367,9 @@ impl DoublePendulum {
             });
         }
         let DoublePendulumParams { l1, l2, .. } = *self.params();
-        let (s1, c1) = q[0].sin_cos();
-        let (s2, c2) = q[1].sin_cos();
-        let (x1, y1) = (l1 * s1, -l1 * c1);
-        Ok([x1, y1, x1 + l2 * s2, y1 - l2 * c2])
+        let mut out = [0.0; 4];
+        rod_chain_positions(q, &[l1, l2], &mut out);
+        Ok(out)
     }
 
     /// The engine deriving the equations of motion.

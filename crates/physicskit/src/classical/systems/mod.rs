@@ -99,6 +99,7 @@ mod double_pendulum;
 pub use double_pendulum::*;
 mod triple_pendulum;
 pub use triple_pendulum::*;
+mod rod_chain;
 mod hoop;
 pub use hoop::*;
 mod coupled_oscillators;

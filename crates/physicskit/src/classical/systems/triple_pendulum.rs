@@ -45,6 +45,7 @@ use crate::classical::model::entry::{
 };
 use crate::classical::model::entry::{Drawing, Pace, Presentation};
 use crate::classical::model::erased::{fill, Capabilities, Lagrangian as Erased};
+use crate::classical::systems::rod_chain::rod_chain_positions;
 
 /// Masses, rod lengths and gravity of a [`TriplePendulum`]; its [`Lagrangian`].
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -188,13 +189,7 @@ impl TriplePendulum {
         }
         let (_, l) = self.params().links();
         let mut out = [0.0; 6];
-        let (mut x, mut y) = (0.0, 0.0);
-        for ((&angle, length), point) in q.iter().zip(l).zip(out.chunks_exact_mut(2)) {
-            let (s, c) = angle.sin_cos();
-            x += length * s;
-            y -= length * c;
-            point.copy_from_slice(&[x, y]);
-        }
+        rod_chain_positions(q, &l, &mut out);
         Ok(out)
     }
 }

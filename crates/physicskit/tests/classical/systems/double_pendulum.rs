@@ -122,3 +122,24 @@ fn a_start_below_the_flip_energy_never_flips() {
     let lower = q.column(1).iter().fold(0.0f64, |m, &a| m.max(a.abs()));
     assert!(lower > 1.0, "{lower}");
 }
+
+/// The bobs are the rods' vectors summed from the pivot, to the bit: the closed form
+/// `(l1 sin θ1, -l1 cos θ1)`, plus `(l2 sin θ2, -l2 cos θ2)` for the second, at angles over
+/// several turns either way.
+#[test]
+fn positions_are_the_closed_form_to_the_bit() {
+    let params = DoublePendulumParams {
+        l1: 0.7,
+        l2: 1.3,
+        ..Default::default()
+    };
+    let (l1, l2) = (params.l1, params.l2);
+    let p = DoublePendulum::new(&[0.0; 2], &[0.0; 2], params).unwrap();
+    for i in 0..200 {
+        let q = [f64::from(i) * 0.137 - 13.0, 11.0 - f64::from(i) * 0.291];
+        let ((s1, c1), (s2, c2)) = (q[0].sin_cos(), q[1].sin_cos());
+        let expected = [l1 * s1, -(l1 * c1), l1 * s1 + l2 * s2, -(l1 * c1) - l2 * c2];
+        let at = p.positions(Some(&q)).unwrap();
+        assert_eq!(at.map(f64::to_bits), expected.map(f64::to_bits), "{q:?}");
+    }
+}

@@ -377,6 +377,34 @@ fn positions_hang_each_bob_from_the_last() {
     ));
 }
 
+/// The bobs are the rods' vectors `l_i (sin θ_i, -cos θ_i)` summed from the pivot in chain
+/// order, to the bit, at angles over several turns either way.
+#[test]
+fn positions_are_the_rods_summed_to_the_bit() {
+    let params = TriplePendulumParams {
+        l1: 0.7,
+        l2: 1.3,
+        l3: 0.4,
+        ..Default::default()
+    };
+    let l = [params.l1, params.l2, params.l3];
+    let p = TriplePendulum::new(&[0.0; 3], &[0.0; 3], params).unwrap();
+    for i in 0..200 {
+        let i = f64::from(i);
+        let q = [i * 0.137 - 13.0, 11.0 - i * 0.291, i * 0.05 - 4.0];
+        let (s, c): (Vec<f64>, Vec<f64>) = q.iter().map(|a| a.sin_cos()).unzip();
+        let (x1, y1) = (l[0] * s[0], -(l[0] * c[0]));
+        let (x2, y2) = (x1 + l[1] * s[1], y1 - l[1] * c[1]);
+        let (x3, y3) = (x2 + l[2] * s[2], y2 - l[2] * c[2]);
+        let at = p.positions(Some(&q)).unwrap();
+        assert_eq!(
+            at.map(f64::to_bits),
+            [x1, y1, x2, y2, x3, y3].map(f64::to_bits),
+            "{q:?}"
+        );
+    }
+}
+
 /// A bad parameter through the catalogue: the error names it.
 fn refused(name: &str, value: Value) -> String {
     find("triple-pendulum")
