@@ -8,6 +8,7 @@ mod henon_heiles;
 mod hoop;
 mod kepler;
 mod lagrangian;
+mod params_defaults;
 mod projectile;
 mod reduced_models;
 mod rigid_body;
