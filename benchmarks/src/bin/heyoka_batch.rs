@@ -7,7 +7,7 @@
 //! - `ensemble`: the ensemble API as a user runs it (`ensemble::run` on the catalogue's
 //!   `henon-heiles`, method `taylor`), its plan without tolerances, so at the default ones
 //!   (`rtol` 1e-10, `atol` 1e-12): the members share one Taylor form and run in SIMD lanes
-//!   (8 with AVX-512, else 4; `integrators::taylor_batch`);
+//!   (16 with AVX-512, 8 with AVX2; `integrators::taylor_batch`);
 //! - `lanes`: the same API with the plan's tolerances `rtol = atol = tol` for `tol` in 1e-6,
 //!   1e-10, 1e-14, and whether its final states are the `compiled` run's bits at that `tol`;
 //! - `compiled`: the same members' Taylor form (the catalogue system's trace) built once,

@@ -19,7 +19,7 @@
 //! over a Dask cluster).
 //!
 //! **`taylor` in SIMD lanes.** A plan with the `taylor` method and no reductions runs its
-//! members 8 at a time (AVX-512; 4 elsewhere) on one Taylor form per distinct system
+//! members 16 at a time (AVX-512; 8 with AVX2, else 4) on one Taylor form per distinct system
 //! (`taylor.rs`, [`integrate_batch`](crate::classical::integrators::taylor_batch::integrate_batch)),
 //! in chunks of 64 members: each lane does the scalar recurrences' operations and each member
 //! steps by the scalar stepper's code, so the bits are still those of its own `integrate`.

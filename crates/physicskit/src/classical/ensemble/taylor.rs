@@ -1,6 +1,6 @@
 //! The `taylor` method's members in SIMD lanes: members that share a Taylor form run `L` at
-//! a time on one program ([`integrate_batch`]; 8 lanes with AVX-512, else 4), each with
-//! exactly the outputs of its own `integrate`.
+//! a time on one program ([`integrate_batch`]; [`native_lanes`]: 16 with AVX-512, 8 with
+//! AVX2, else 4), each with exactly the outputs of its own `integrate`.
 //!
 //! Members whose systems are the same apart from their initial states
 //! ([`MemberSource::same_system`]) take the Taylor form built for the first of them; others
@@ -102,6 +102,7 @@ pub(super) fn run_chunk<S: MemberSource + ?Sized>(
             continue;
         };
         let run = match native_lanes() {
+            16 => run_group::<16, S>,
             8 => run_group::<8, S>,
             _ => run_group::<4, S>,
         };

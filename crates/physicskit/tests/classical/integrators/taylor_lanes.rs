@@ -1,7 +1,7 @@
 //! The Taylor recurrences for several states at once, one per vector lane (`TaylorLanes`),
 //! against the interpreter run on each state alone: every recurrence and the expression
 //! forms of Kepler, Hénon–Heiles and the double pendulum, at every order, bit for bit, in
-//! 4 and 8 lanes (each lane at its own state and time); and the batch stepper's members
+//! 4, 8 and 16 lanes (each lane at its own state and time); and the batch stepper's members
 //! against the registry's stepper on each alone.
 
 use physicskit::classical::core::TimeGrid;
@@ -75,6 +75,11 @@ fn four_lanes_have_the_interpreters_bits() {
 #[test]
 fn eight_lanes_have_the_interpreters_bits() {
     lanes_equal_the_interpreter::<8>();
+}
+
+#[test]
+fn sixteen_lanes_have_the_interpreters_bits() {
+    lanes_equal_the_interpreter::<16>();
 }
 
 /// Hénon–Heiles members in a batch over t = 50 with outputs every 0.5: every output of every

@@ -8,10 +8,15 @@
 //! coefficients are the scalar ones bit for bit. Values at order 0 of the transcendental
 //! operations (`sin`/`cos`, `exp`, `powf`, `ln`, ...) are computed lane by lane by the same
 //! scalar functions. The loops are compiled three times and chosen at run time (std's
-//! `is_x86_feature_detected!`, cached): with AVX-512 (8 lanes, one `zmm` per coefficient),
-//! with AVX2 (4 lanes, one `ymm`), and plain (SSE2 on x86-64, scalar elsewhere, wasm
-//! included); IEEE additions, multiplications, divisions and square roots give the same bits
-//! in every clone.
+//! `is_x86_feature_detected!`, cached): with AVX-512 (`zmm` registers of 8 doubles), with
+//! AVX2 (`ymm`, 4), and plain (SSE2 on x86-64, scalar elsewhere, wasm included); IEEE
+//! additions, multiplications, divisions and square roots give the same bits in every clone.
+//!
+//! [`native_lanes`] is two registers' worth (16 with AVX-512, 8 with AVX2): a coefficient's
+//! sums run term after term (the scalar order), so one register's lanes wait on the latency
+//! of each addition; two independent registers keep the adder busy. On Hénon–Heiles at order
+//! 15 (26 nodes) an expansion costs about the same per member at 16 and 32 lanes, and about
+//! 1.8x as much at 8 (`benchmarks/README.md`).
 
 use super::{func_value, powf_weight, Keyed, Node, TaylorProgram, Val};
 use crate::classical::core::{Error, Result};
@@ -337,11 +342,17 @@ fn interpret_avx2<const L: usize>(
     interpret(nodes, outputs, w, order, stride);
 }
 
-/// The lanes that fit one vector register of this CPU: 8 with AVX-512, 4 otherwise.
+/// The lanes an ensemble runs on this CPU: two vector registers' worth (see the module
+/// documentation), 16 with AVX-512, 8 with AVX2, 4 otherwise.
 pub fn native_lanes() -> usize {
     #[cfg(target_arch = "x86_64")]
-    if std::arch::is_x86_feature_detected!("avx512f") {
-        return 8;
+    {
+        if std::arch::is_x86_feature_detected!("avx512f") {
+            return 16;
+        }
+        if std::arch::is_x86_feature_detected!("avx2") {
+            return 8;
+        }
     }
     4
 }
