@@ -416,7 +416,11 @@ function describeMethod() {
   const ev = m.evaluations_per_step === 1 ? what.replace(/s(?= of |$)/, "") : what;
   // An adaptive method's steps are its own (to the tolerance); dt spaces its outputs.
   const how = m.adaptive ? ` · adaptive: its own steps to the tolerance, an output every dt = ${$("dt").value}${timeUnit() ? ` ${timeUnit()}` : ""}` : "";
-  $("method-info").textContent = `order ${m.order} · ${m.symplectic ? "symplectic" : "not symplectic"}${how} · ` +
+  // The order the method steps at: Taylor's follows the tolerance (the core's rule, asked of
+  // the module), up to the catalogue's maximum.
+  const order = app.core.methodOrder(m.name, tolerance());
+  const atTol = order === m.order ? "" : ` at this tolerance (at most ${m.order})`;
+  $("method-info").textContent = `order ${order}${atTol} · ${m.symplectic ? "symplectic" : "not symplectic"}${how} · ` +
     `${m.evaluations_per_step} ${ev} ${per}`;
   $("method-ref").textContent = m.reference;
 }
@@ -2414,6 +2418,7 @@ function applyHash(hash) {
       $("tol").value = String(tol);
     } else refused.push(`tol = ${quoted(tolText)} (a tolerance from ${MIN_TOL.toExponential()} to ${MAX_TOL.toExponential()})`);
   }
+  describeMethod(); // the facts line shows the link's step and the order at its tolerance
   const stepsText = h.get("steps");
   if (stepsText !== null) {
     const n = Number(stepsText), max = Number($("speed").max);
@@ -2542,6 +2547,7 @@ async function main() {
   };
   $("dt").onchange = () => { describeMethod(); restartRun(); };
   $("tol").onchange = () => {
+    describeMethod();
     try { app.lab.setTolerance(tolerance()); restartRun(); } catch (e) { message(e.message); }
   };
   $("timelapse").onchange = () => setTimeLapse($("timelapse").checked);

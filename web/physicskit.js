@@ -42,6 +42,17 @@ class Core {
     return JSON.parse(this.text(this.x.pk_text_ptr(), len));
   }
   /**
+   * The order the method `name` steps at with the tolerance `tol` (rtol = atol): Taylor's
+   * order is chosen by its tolerance, every other method's is its catalogue order.
+   */
+  methodOrder(name, tol) {
+    const bytes = utf8.encode(name);
+    this.putBytes(bytes);
+    const order = this.x.pk_method_order(bytes.length, tol);
+    if (order === 0) throw new Error(this.error());
+    return order;
+  }
+  /**
    * Builds `system` with `params` (an object; missing names take the defaults) and the method
    * named `method` (null: the system's default), an adaptive one at the tolerance `tol`
    * (rtol = atol; null: the lab's default).

@@ -1,5 +1,6 @@
 // The lab's adaptive methods in headless Chromium: taylor chosen from the method menu on Kepler
-// and on the double pendulum, where the step control becomes a tolerance (rtol = atol); the
+// and on the double pendulum, where the step control becomes a tolerance (rtol = atol) and the
+// facts line gives the order used at it (Taylor's rises as it tightens, dop853's is fixed); the
 // run keeps its energy to a bound that follows from the tolerance; the share link carries the
 // method and the tolerance and reopens the same run bit for bit; hostile tolerances in a link
 // (tol=-1, tol=NaN, a tolerance with a fixed-step method) are refused in the page's one line
@@ -99,6 +100,40 @@ for (const [system, tol] of [["kepler", "1e-12"], ["double-pendulum", "1e-8"]]) 
   if (fixed.tolShown || !fixed.dtShown || fixedHash.includes("tol=")) fail(`${system} ${fixed.method}: tolerance shown ${fixed.tolShown}, dt shown ${fixed.dtShown}, link ${fixedHash}`);
   await page.close();
   await again.close();
+}
+
+// The facts line gives the order the method steps at with the chosen tolerance, which the
+// page asks of the module (the core's rule, not a copy of it): Taylor's order rises as the
+// tolerance tightens, from below its catalogue maximum, and changes with the menu; dop853's is
+// its catalogue order at every tolerance. The page before said Taylor's maximum at every
+// tolerance.
+{
+  const page = await open("#system=kepler&method=taylor");
+  const catalogue = await page.evaluate(() => Object.fromEntries(
+    window.physicskitLab.app.catalogue.methods.map((m) => [m.name, m.order])));
+  const tols = await page.evaluate(() => [...document.getElementById("tol").options].map((o) => o.value));
+  const loosestFirst = [...tols].sort((a, b) => Number(b) - Number(a));
+  for (const method of ["taylor", "dop853"]) {
+    await page.selectOption("#method", method);
+    const orders = [];
+    for (const tol of loosestFirst) {
+      await page.selectOption("#tol", tol);
+      const { info } = await look(page);
+      const order = Number(/^order (\d+)/.exec(info)?.[1]);
+      if (!(order >= 2 && order <= catalogue[method])) fail(`${method} at ${tol}: facts line ${JSON.stringify(info)} (catalogue order ${catalogue[method]})`);
+      orders.push(order);
+    }
+    const rises = orders.every((p, i) => i === 0 || p >= orders[i - 1]);
+    if (method === "taylor" && (!rises || orders[0] >= orders.at(-1) || orders[0] === catalogue.taylor)) {
+      fail(`taylor's order from the loosest to the tightest tolerance: ${orders.join(", ")} (catalogue maximum ${catalogue.taylor})`);
+    }
+    if (method === "dop853" && !orders.every((p) => p === catalogue.dop853)) fail(`dop853's order over the tolerances: ${orders.join(", ")}`);
+    console.log(`ok ${method}'s order over the tolerances ${loosestFirst.join(", ")}: ${orders.join(", ")}`);
+  }
+  await page.selectOption("#method", "taylor");
+  await page.selectOption("#tol", loosestFirst[0]);
+  await page.screenshot({ path: join(shots, "adaptive-order.png"), fullPage: true });
+  await page.close();
 }
 
 // Hostile tolerances: refused in one line naming `tol`, the page opening the linked system with

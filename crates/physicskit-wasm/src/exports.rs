@@ -18,7 +18,7 @@
 
 use std::cell::RefCell;
 
-use crate::Lab;
+use crate::{method_order, Lab};
 
 #[derive(Default)]
 struct Registry {
@@ -106,6 +106,21 @@ pub extern "C" fn pk_catalogue() -> usize {
         r.text = physicskit_listing::catalogue_json();
         r.text.len()
     })
+}
+
+/// The order the method named by the input's first `len` bytes steps at with the tolerance
+/// `tol` (`rtol = atol`; see [`method_order`]), or 0 on failure (the error says why).
+#[no_mangle]
+pub extern "C" fn pk_method_order(len: usize, tol: f64) -> u32 {
+    with(
+        |r| match input_text(r, 0, len).and_then(|name| method_order(&name, tol)) {
+            Ok(order) => order,
+            Err(message) => {
+                r.error = message;
+                0
+            }
+        },
+    )
 }
 
 /// Address of the text buffer.

@@ -25,7 +25,7 @@
 
 use physicskit::classical::analysis::poincare::{Direction, HenonWork, Section};
 use physicskit::classical::catalog;
-use physicskit::classical::integrators::FirstOrder;
+use physicskit::classical::integrators::{taylor, FirstOrder};
 use physicskit::classical::model::erased::DynSystem;
 use physicskit::classical::model::Session;
 use physicskit::classical::model::SystemEntry;
@@ -55,6 +55,25 @@ pub const DEFAULT_TOLERANCE: f64 = 1e-10;
 fn tolerances_for(method: Method, tol: f64) -> Result<Option<Tolerances>, String> {
     let tolerances = Tolerances::new(tol, tol).map_err(|e| e.to_string())?;
     Ok(method.is_adaptive().then_some(tolerances))
+}
+
+/// The order the method `name` steps at with the lab's tolerance `tol` (`rtol = atol`): the
+/// Taylor method's order is chosen by its tolerances (`taylor::order_for`, the rule its
+/// stepper follows), every other method's is the one its catalogue row gives. The page's
+/// facts line shows it, so it asks here rather than repeat the rule.
+///
+/// # Errors
+/// An unknown method name, or a `tol` that is not finite and positive.
+pub fn method_order(name: &str, tol: f64) -> Result<u32, String> {
+    let method = name
+        .parse::<Method>()
+        .map_err(|_| format!("no method is called `{name}`"))?;
+    Ok(match tolerances_for(method, tol)? {
+        Some(tolerances) if method == Method::Taylor => {
+            u32::try_from(taylor::order_for(&tolerances)).unwrap_or(u32::MAX)
+        }
+        _ => method.order(),
+    })
 }
 
 /// The method `name`, if `entry` takes it in the lab. The name is untrusted (a share link, a

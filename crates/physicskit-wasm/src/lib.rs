@@ -31,5 +31,5 @@ pub mod exports;
 mod lab;
 mod params;
 
-pub use lab::Lab;
+pub use lab::{method_order, Lab};
 pub use params::{values_from_json, MAX_LAB_COUNT};
