@@ -230,7 +230,7 @@ def test_a_part_failing_with_a_base_exception_raises_in_the_client(monkeypatch):
     monkeypatch.setattr(pc.ensembles._Job, "__call__", panics)
     # One worker thread in this process, where the patched class is the one the part runs.
     with distributed.LocalCluster(n_workers=1, threads_per_worker=1, processes=False,
-                                  dashboard_address=None, silence_logs=50) as cluster:
+                                  dashboard_address=":0", silence_logs=50) as cluster:
         with distributed.Client(cluster) as c:
             # Seconds: the run itself takes milliseconds; a minute leaves room for a busy host.
             box = _within(60, lambda: _small_kepler(client=c, chunk_size=2))
@@ -256,7 +256,7 @@ def test_a_part_whose_worker_dies_raises_in_the_client():
             ensembles._Job.__call__ = dies
 
     with distributed.LocalCluster(n_workers=1, threads_per_worker=1, processes=True,
-                                  dashboard_address=None, silence_logs=50) as cluster:
+                                  dashboard_address=":0", silence_logs=50) as cluster:
         with distributed.Client(cluster) as c:
             c.register_plugin(Dies())
             # Four deaths and restarts of a worker process: a few seconds; two minutes for a
