@@ -21,8 +21,9 @@
 //! **`taylor` in SIMD lanes.** A plan with the `taylor` method and no reductions runs its
 //! members 16 at a time (AVX-512; 8 with AVX2, else 4) on one Taylor form per distinct system
 //! (`taylor.rs`, [`integrate_batch`](crate::classical::integrators::taylor_batch::integrate_batch)),
-//! in chunks of 64 members: each lane does the scalar recurrences' operations and each member
-//! steps by the scalar stepper's code, so the bits are still those of its own `integrate`.
+//! in chunks of 64 to 1024 members: each lane does the scalar recurrences' operations and
+//! each member steps by the scalar stepper's code, so the bits are still those of its own
+//! `integrate`.
 //! Reductions read every step of a member (energy errors, events, Lyapunov exponents): plans
 //! with them run members one at a time, as does a member whose lanes run fails (so its error
 //! is its own run's).
@@ -415,7 +416,11 @@ fn run_prepared<S: MemberSource + ?Sized>(
     let stop = AtomicBool::new(false);
     let done = AtomicUsize::new(0);
     let lanes = taylor::in_lanes(&prepared, plan);
-    let members_per_chunk = if lanes { taylor::CHUNK } else { MEMBER_CHUNK };
+    let members_per_chunk = if lanes {
+        taylor::chunk(n, in_pool(pool, rayon::current_num_threads))
+    } else {
+        MEMBER_CHUNK
+    };
     let work = |(out, steps): (&mut [f64], &mut [usize])| -> Result<()> {
         in_pool(pool, || {
             let results: Vec<Result<()>> = out

@@ -17,9 +17,14 @@ use crate::classical::integrators::taylor_batch::integrate_batch;
 use crate::classical::integrators::{Method, Sampling, TaylorField};
 use crate::classical::symbolic::{native_lanes, TaylorProgram};
 
-/// Members per parallel chunk of the lanes path: several lanes' worth, so a lane freed by a
-/// member that finishes takes the next one; few enough that 1000 members balance over cores.
-pub(super) const CHUNK: usize = 64;
+/// Members per parallel chunk of the lanes path, for `n` members on `threads` threads: about
+/// a quarter of each thread's share (at least 64, at most 1024). A chunk's lanes run out of
+/// members one by one at its end (members take different numbers of steps), and those
+/// expansions still cost all lanes: long chunks make that tail a small part of the work, and
+/// four per thread still balance the threads. The split changes no result.
+pub(super) fn chunk(n: usize, threads: usize) -> usize {
+    (n / (4 * threads.max(1))).clamp(64, 1024)
+}
 
 /// Whether `plan` runs its members in lanes: the `taylor` method keeping final states or
 /// strided trajectories only (no reductions), over at least one step.
