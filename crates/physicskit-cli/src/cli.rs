@@ -13,7 +13,7 @@ use physicskit::classical::analysis::lyapunov::DEFAULT_RENORMALIZE_EVERY;
 use physicskit::classical::analysis::sali::CHAOS_THRESHOLD;
 use physicskit::classical::catalog::{self, SYSTEMS};
 use physicskit::classical::model::SystemEntry;
-use physicskit::classical::Tolerances;
+use physicskit::classical::{Method, Tolerances};
 
 use crate::params;
 
@@ -154,20 +154,23 @@ pub struct EnsembleArgs {
     pub renormalize_every: Option<String>,
     /// Relative tolerance of an adaptive method for every member, > 0, as `simulate --rtol`.
     #[arg(long, value_name = "RTOL", allow_negative_numbers = true, help = format!(
-        "Relative tolerance of an adaptive method for every member, > 0 [default: {:e}]",
+        "Relative tolerance of an adaptive method ({}) for every member, > 0 [default: {:e}]",
+        adaptive_methods(),
         Tolerances::default().rtol
     ))]
     pub rtol: Option<String>,
     /// Absolute tolerance of an adaptive method for every member, > 0, as `simulate --atol`.
     #[arg(long, value_name = "ATOL", allow_negative_numbers = true, help = format!(
-        "Absolute tolerance of an adaptive method for every member, > 0 [default: {:e}]",
+        "Absolute tolerance of an adaptive method ({}) for every member, > 0 [default: {:e}]",
+        adaptive_methods(),
         Tolerances::default().atol
     ))]
     pub atol: Option<String>,
     /// Most steps an adaptive method may attempt per member, >= 1, as `simulate --max-steps`.
     #[arg(long, value_name = "N", allow_negative_numbers = true, help = format!(
-        "Most steps (accepted and rejected) an adaptive method may attempt per member before it \
-         stops with an error, >= 1 [default: {}]",
+        "Most steps (accepted and rejected) an adaptive method ({}) may attempt per member \
+         before it stops with an error, >= 1 [default: {}]",
+        adaptive_methods(),
         Tolerances::default().max_steps
     ))]
     pub max_steps: Option<String>,
@@ -257,6 +260,16 @@ impl Flag {
     }
 }
 
+/// The adaptive methods' names, from the method registry: what the tolerance flags apply to.
+pub fn adaptive_methods() -> String {
+    Method::ALL
+        .iter()
+        .filter(|m| m.is_adaptive())
+        .map(|m| m.name())
+        .collect::<Vec<_>>()
+        .join(", ")
+}
+
 /// A kind of run on one system: its subcommand name and its own flags.
 pub trait RunKind: std::fmt::Debug + Clone + Send + Sync + 'static {
     /// The subcommand, e.g. `simulate`.
@@ -285,7 +298,8 @@ impl RunKind for Simulate {
             required: false,
             help: Text::Made(|| {
                 format!(
-                    "relative tolerance of an adaptive method (dop853), > 0; default {:e}",
+                    "relative tolerance of an adaptive method ({}), > 0; default {:e}",
+                    adaptive_methods(),
                     Tolerances::default().rtol
                 )
             }),
@@ -297,7 +311,8 @@ impl RunKind for Simulate {
             required: false,
             help: Text::Made(|| {
                 format!(
-                    "absolute tolerance of an adaptive method (dop853), > 0; default {:e}",
+                    "absolute tolerance of an adaptive method ({}), > 0; default {:e}",
+                    adaptive_methods(),
                     Tolerances::default().atol
                 )
             }),
@@ -309,8 +324,9 @@ impl RunKind for Simulate {
             required: false,
             help: Text::Made(|| {
                 format!(
-                    "most steps (accepted and rejected) an adaptive method may attempt before it \
-                     stops with an error, >= 1; default {}",
+                    "most steps (accepted and rejected) an adaptive method ({}) may attempt before \
+                     it stops with an error, >= 1; default {}",
+                    adaptive_methods(),
                     Tolerances::default().max_steps
                 )
             }),

@@ -233,3 +233,37 @@ fn list_json_encodes_defaults_ranges_and_lengths() {
     let q0 = param(&system("coupled-oscillators"), "q0");
     assert_eq!(q0["length"], json!({"rule": "count", "param": "n"}));
 }
+
+/// The tolerance flags of `simulate` and `ensemble` name every adaptive method of the
+/// registry, and no fixed-step one (the help once named dop853 alone, after taylor joined).
+#[test]
+fn tolerance_help_names_the_registrys_adaptive_methods() {
+    let adaptive: Vec<&str> = Method::ALL
+        .iter()
+        .filter(|m| m.is_adaptive())
+        .map(|m| m.name())
+        .collect();
+    assert!(adaptive.len() >= 2, "{adaptive:?}");
+    let named = format!("({})", adaptive.join(", "));
+    for args in [&["simulate", "kepler"][..], &["ensemble"][..]] {
+        let help = crate::common::help(args);
+        let lines: Vec<&str> = help.lines().map(str::trim).collect();
+        for flag in ["--rtol", "--atol", "--max-steps"] {
+            // The flag's line, then its help up to the next flag or blank line.
+            let at = lines
+                .iter()
+                .position(|l| l.starts_with(&format!("{flag} ")))
+                .unwrap_or_else(|| panic!("{args:?}: no {flag}:\n{help}"));
+            let text = std::iter::once(lines[at])
+                .chain(
+                    lines[at + 1..]
+                        .iter()
+                        .take_while(|l| !l.is_empty() && !l.starts_with('-'))
+                        .copied(),
+                )
+                .collect::<Vec<_>>()
+                .join(" ");
+            assert!(text.contains(&named), "{args:?} {flag}: {text}");
+        }
+    }
+}
