@@ -13,6 +13,12 @@
 //! - `hh-energy`: the same start, `t = 1000`, largest energy error;
 //! - `pendulum`: the double pendulum (unit masses and arms, `g = 9.81`) from rest at
 //!   `(2, 1.5)` rad, `t = 10`, state `(q, p)`.
+//!
+//! Arguments (all optional, for timing one side alone): `--only WORKLOAD` and `--tol TOL`
+//! run that workload or tolerance alone, `--no-interpreted` skips the interpreted timing
+//! (its field is then `NaN`), `--repeats N` takes the best of `N` runs instead of five,
+//! `--form compact` or `--form unrolled` compiles the recurrences in that form whatever the
+//! program's size (by default the library picks it by size).
 
 use std::time::Instant;
 
@@ -69,17 +75,70 @@ fn workload(name: &str) -> Result<(ExprHamiltonian, Vec<f64>, f64)> {
     })
 }
 
+/// The command line's choices.
+struct Options {
+    only: Option<String>,
+    tol: Option<f64>,
+    interpreted: bool,
+    repeats: usize,
+    form: Option<String>,
+}
+
+fn options() -> Options {
+    let mut o = Options {
+        only: None,
+        tol: None,
+        interpreted: true,
+        repeats: 5,
+        form: None,
+    };
+    let mut args = std::env::args().skip(1);
+    while let Some(arg) = args.next() {
+        match arg.as_str() {
+            "--only" => o.only = args.next(),
+            "--tol" => o.tol = args.next().and_then(|t| t.parse().ok()),
+            "--no-interpreted" => o.interpreted = false,
+            "--form" => o.form = args.next(),
+            "--repeats" => o.repeats = args.next().and_then(|n| n.parse().ok()).unwrap_or(5),
+            _ => {
+                eprintln!(
+                    "usage: heyoka_taylor [--only WORKLOAD] [--tol TOL] [--no-interpreted] \
+                     [--repeats N] [--form compact|unrolled]"
+                );
+                std::process::exit(2);
+            }
+        }
+    }
+    o
+}
+
 fn main() -> Result<()> {
-    let tolerances = [1e-6, 1e-8, 1e-10, 1e-12, 1e-14, 1e-16];
+    let options = options();
+    let tolerances: [f64; 6] = [1e-6, 1e-8, 1e-10, 1e-12, 1e-14, 1e-16];
     for name in ["kepler", "hh-state", "hh-energy", "pendulum"] {
+        if options.only.as_deref().is_some_and(|only| only != name) {
+            continue;
+        }
         let (system, y0, t1) = workload(name)?;
         for tol in tolerances {
+            // Parsed from the same decimal as the list's literal, so the same double.
+            if options
+                .tol
+                .is_some_and(|only| only.to_bits() != tol.to_bits())
+            {
+                continue;
+            }
             let tol_pair = Tolerances::new(tol, tol)?;
             let start = Instant::now();
             let program = TaylorProgram::hamiltonian(&system)?;
             let build = start.elapsed().as_secs_f64();
             let start = Instant::now();
-            let backend = program.compile_native(order_for(&tol_pair));
+            let order = order_for(&tol_pair);
+            let backend = match options.form.as_deref() {
+                Some("compact") => program.compile_native_compact(order),
+                Some("unrolled") => program.compile_native_unrolled(order),
+                _ => program.compile_native(order),
+            };
             let compile = start.elapsed().as_secs_f64();
             if backend != Backend::Native {
                 eprintln!("{name} at {tol:e}: the recurrences were not compiled");
@@ -88,14 +147,18 @@ fn main() -> Result<()> {
             let timed = |mut program: TaylorProgram| -> Result<_> {
                 let mut best = f64::INFINITY;
                 let mut last = integrate_taylor(&mut program, &y0, (0.0, t1), dt, tol_pair)?;
-                for _ in 0..5 {
+                for _ in 0..options.repeats {
                     let start = Instant::now();
                     last = integrate_taylor(&mut program, &y0, (0.0, t1), dt, tol_pair)?;
                     best = best.min(start.elapsed().as_secs_f64());
                 }
                 Ok((best, last))
             };
-            let (interpreted, _) = timed(program.interpreted_only())?;
+            let interpreted = if options.interpreted {
+                timed(program.interpreted_only())?.0
+            } else {
+                f64::NAN
+            };
             let (best, r) = timed(program)?;
             let steps = r.extra_scalar("steps").unwrap_or(f64::NAN);
             let result = if name == "hh-energy" {

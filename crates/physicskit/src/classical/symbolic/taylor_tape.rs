@@ -562,6 +562,23 @@ impl TaylorProgram {
         self.backend(order)
     }
 
+    /// [`compile_native`](Self::compile_native) in the compact form (the orders and the sums
+    /// as loops, the form large programs are compiled in) whatever the program's size: what
+    /// tests compare with the unrolled form and the interpreter.
+    #[doc(hidden)]
+    pub fn compile_native_compact(&self, order: usize) -> Backend {
+        self.jit.compile_compact(&self.nodes, &self.outputs, order);
+        self.backend(order)
+    }
+
+    /// [`compile_native`](Self::compile_native) in the unrolled form (every order and term
+    /// written out, the form small programs are compiled in) whatever the program's size.
+    #[doc(hidden)]
+    pub fn compile_native_unrolled(&self, order: usize) -> Backend {
+        self.jit.compile_unrolled(&self.nodes, &self.outputs, order);
+        self.backend(order)
+    }
+
     /// This program with its recurrences interpreted for good (no code shared with the
     /// original, none ever compiled): the reference the compiled code is tested against.
     #[doc(hidden)]

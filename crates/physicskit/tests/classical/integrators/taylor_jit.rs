@@ -56,6 +56,15 @@ pub(crate) fn programs() -> Vec<(String, TaylorProgram, Vec<f64>, f64)> {
     out
 }
 
+/// A pseudo-random state within `spread` of `y0` in every component, drawn from `seed`.
+fn near(y0: &[f64], spread: f64, seed: u64) -> Vec<f64> {
+    pseudo_random(y0.len(), seed)
+        .iter()
+        .zip(y0)
+        .map(|(r, y)| y + spread * (2.0 * r - 1.0))
+        .collect()
+}
+
 /// Every order from 1 to 24 (each compiled on its own), at 10 pseudo-random states around each
 /// system's point: the compiled coefficients are the interpreter's, bit for bit.
 #[test]
@@ -73,11 +82,7 @@ fn compiled_coefficients_have_the_interpreters_bits() {
             );
             assert_eq!(interpreted.backend(order), Backend::Interpreter);
             for s in 0..10 {
-                let y: Vec<f64> = pseudo_random(dim, 97 * order as u64 + s)
-                    .iter()
-                    .zip(&y0)
-                    .map(|(r, y)| y + spread * (2.0 * r - 1.0))
-                    .collect();
+                let y = near(&y0, spread, 97 * order as u64 + s);
                 let t = 0.1 * s as f64;
                 let mut want = vec![0.0; dim * (order + 1)];
                 let mut got = want.clone();
@@ -87,6 +92,47 @@ fn compiled_coefficients_have_the_interpreters_bits() {
                     assert!(
                         same(*g, *w),
                         "{name}, order {order}, y = {y:?}, coefficient {i}: {g:e} vs {w:e}"
+                    );
+                }
+            }
+        }
+    }
+}
+
+/// The compact form (orders and sums as loops, what large programs are compiled to) and the
+/// unrolled form, each forced on every system whatever its size, at every order from 1 to 24
+/// and 3 pseudo-random states around each system's point: both give the interpreter's
+/// coefficients, so each other's, bit for bit.
+#[test]
+fn compact_and_unrolled_forms_have_the_interpreters_bits() {
+    for ((name, program, y0, spread), (_, twin, _, _)) in programs().into_iter().zip(programs()) {
+        let mut reference = program.interpreted_only();
+        let (mut compact, mut unrolled) = (program, twin);
+        let dim = compact.dim();
+        for order in 1..=24 {
+            assert_eq!(
+                compact.compile_native_compact(order),
+                native(),
+                "{name}, {order}"
+            );
+            assert_eq!(
+                unrolled.compile_native_unrolled(order),
+                native(),
+                "{name}, {order}"
+            );
+            for s in 0..3 {
+                let y = near(&y0, spread, 89 * order as u64 + s);
+                let t = 0.3 * s as f64;
+                let mut want = vec![0.0; dim * (order + 1)];
+                let (mut a, mut b) = (want.clone(), want.clone());
+                reference.coefficients(t, &y, order, &mut want).unwrap();
+                compact.coefficients(t, &y, order, &mut a).unwrap();
+                unrolled.coefficients(t, &y, order, &mut b).unwrap();
+                for (i, ((a, b), w)) in a.iter().zip(&b).zip(&want).enumerate() {
+                    assert!(
+                        same(*a, *w) && same(*b, *w),
+                        "{name}, order {order}, coefficient {i}: compact {a:e}, unrolled {b:e}, \
+                         interpreted {w:e}"
                     );
                 }
             }

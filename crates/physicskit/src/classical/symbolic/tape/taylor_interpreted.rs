@@ -24,6 +24,14 @@ impl Jit {
         None
     }
 
+    pub(super) fn compile_compact(&self, _: &[Node], _: &[Val], _: usize) -> Option<&Native> {
+        None
+    }
+
+    pub(super) fn compile_unrolled(&self, _: &[Node], _: &[Val], _: usize) -> Option<&Native> {
+        None
+    }
+
     pub(super) fn is_native(&self, _: usize) -> bool {
         false
     }

@@ -2,19 +2,28 @@
 //! Cranelift (feature `jit`, native targets only).
 //!
 //! One function per program and order `p`, `fn(w)`, on the program's work array `w` (every
-//! node's coefficients, `p + 1` per node, the state's and time's order 0 already set): the
-//! whole recurrence for that order unrolled, as heyoka compiles it (Biscani & Izzo 2021):
-//! for `k = 0..=p`, order `k` of every operation node, then the state's order `k + 1` from
-//! the field's. No loop, no branch, no dispatch: every coefficient is loaded from and stored
-//! to `w` at an offset known when compiling. Each operation is the interpreter's
-//! (`TaylorProgram::order_k`), in the same order: the sums start with their first term and
-//! run in the same direction, the constant weights (`k`, `j`, `α (k - j) - j`) are computed
-//! by the same `f64` operations while compiling, `+ - * /`, negation and `sqrt` are the IEEE
-//! operations, and order 0 of `exp`, `powf`, `sin`/`cos`, `sinh`/`cosh`, `ln`, `atan`,
-//! `asin`, `acos` calls an `extern "C"` shim running the interpreter's own Rust function.
-//! Cranelift does not contract a multiplication and an addition into a fused multiply-add
-//! (it is never asked to), so the coefficients are the interpreter's bit for bit
-//! (`tests/classical/integrators/taylor.rs` checks every recurrence and whole runs).
+//! node's coefficients, `p + 1` per node, the state's and time's order 0 already set), in one
+//! of two forms ([`Form`], chosen by the program's size at that order):
+//! - **unrolled**, as heyoka compiles it (Biscani & Izzo 2021): for `k = 0..=p`, order `k` of
+//!   every operation node, then the state's order `k + 1` from the field's, every term of
+//!   every sum written out. No loop, no branch, no dispatch: every coefficient is stored to
+//!   `w` at an offset known when compiling, and a coefficient of the order being computed is
+//!   used as the value just computed (not reloaded), older ones loaded from `w`;
+//! - **compact**, for large programs, whose unrolled code grows with the nodes times `p²` and
+//!   would take longer to compile than it saves: order 0 as above, then one loop over `k`
+//!   whose body is every node's order `k`, each sum a loop over its terms, the coefficients
+//!   loaded from and stored to `w` at addresses computed from `k` and the term's index.
+//!
+//! Each operation is the interpreter's (`TaylorProgram::order_k`), in the same order: the
+//! sums start with their first term and run in the same direction, the constant weights
+//! (`k`, `j`, `α (k - j) - j`) are computed by the same `f64` operations (while compiling, or
+//! in the compact loops at run time from exact integer conversions), `+ - * /`, negation and
+//! `sqrt` are the IEEE operations, and order 0 of `exp`, `powf`, `sin`/`cos`, `sinh`/`cosh`,
+//! `ln`, `atan`, `asin`, `acos` calls an `extern "C"` shim running the interpreter's own Rust
+//! function. Cranelift does not contract a multiplication and an addition into a fused
+//! multiply-add (it is never asked to), so the coefficients are the interpreter's bit for bit
+//! in both forms (`tests/classical/integrators/taylor_jit.rs` checks every recurrence, both
+//! forms and whole runs).
 //!
 //! The code of an order is compiled once, by the expansion that comes after
 //! [`TaylorProgram::COMPILE_AFTER`] interpreted ones (or by
@@ -84,15 +93,48 @@ impl Jit {
         self.compile(nodes, outputs, order)
     }
 
-    /// Compiles `order` now (once; later calls return the first outcome).
+    /// Compiles `order` now (once; later calls return the first outcome), in the form
+    /// [`Form::for_size`] picks.
     pub(super) fn compile(&self, nodes: &[Node], outputs: &[Val], order: usize) -> Option<&Native> {
+        self.compile_as(nodes, outputs, order, Form::for_size(nodes, order))
+    }
+
+    /// Compiles `order` now in [`Form::Compact`] whatever the program's size (once; later
+    /// calls return the first outcome, whatever its form).
+    pub(super) fn compile_compact(
+        &self,
+        nodes: &[Node],
+        outputs: &[Val],
+        order: usize,
+    ) -> Option<&Native> {
+        self.compile_as(nodes, outputs, order, Form::Compact)
+    }
+
+    /// Compiles `order` now in [`Form::Unrolled`] whatever the program's size (once; later
+    /// calls return the first outcome, whatever its form).
+    pub(super) fn compile_unrolled(
+        &self,
+        nodes: &[Node],
+        outputs: &[Val],
+        order: usize,
+    ) -> Option<&Native> {
+        self.compile_as(nodes, outputs, order, Form::Unrolled)
+    }
+
+    fn compile_as(
+        &self,
+        nodes: &[Node],
+        outputs: &[Val],
+        order: usize,
+        form: Form,
+    ) -> Option<&Native> {
         if self.0.never {
             return None;
         }
         self.0
             .code
             .get(order)?
-            .get_or_init(|| Native::compile(nodes, outputs, order))
+            .get_or_init(|| Native::compile(nodes, outputs, order, form))
             .as_ref()
     }
 
@@ -127,12 +169,17 @@ impl Native {
         }
     }
 
-    fn compile(nodes: &[Node], outputs: &[Val], order: usize) -> Option<Native> {
+    fn compile(nodes: &[Node], outputs: &[Val], order: usize, form: Form) -> Option<Native> {
         let mut flags = flag_builder()?;
         // The IR is generated, not written: verifying it costs compile time (a sixth of
         // Cranelift's samples in a profile of the comparison benchmark) and would find only
         // what the bit-for-bit tests against the interpreter find.
         flags.set("enable_verifier", "false").ok()?;
+        // Cranelift's optimizer merges equal constants and loads into values live across the
+        // whole function, which the register allocator then spills and reloads at every use
+        // (half the instructions of Kepler's code at order 18); unoptimized, each constant is
+        // an operand read from the constant pool where it is used, and compiling is faster.
+        flags.set("opt_level", "none").ok()?;
         let isa = cranelift_native::builder().ok()?;
         let (code, module) =
             compile_function(isa, flags, &[Param::Pointer], false, |b, params, shims| {
@@ -141,8 +188,13 @@ impl Native {
                     shims,
                     w: params[0],
                     stride: order + 1,
+                    k: 0,
+                    fresh: vec![None; nodes.len() * (order + 1)],
                 };
-                emit.recurrences(nodes, outputs, order);
+                match form {
+                    Form::Unrolled => emit.recurrences(nodes, outputs, order),
+                    Form::Compact => emit.compact(nodes, outputs, order),
+                }
                 Vec::new()
             })?;
         Some(Native {
@@ -151,6 +203,67 @@ impl Native {
             _module: module,
         })
     }
+}
+
+/// The shape of the compiled recurrences. Both run the interpreter's operations in its order,
+/// so they give the same bits.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+enum Form {
+    /// Every order and every term of every sum written out, each coefficient at an offset known
+    /// when compiling: the fastest code, of a size growing with the nodes times the order
+    /// squared.
+    Unrolled,
+    /// Order 0 written out, the orders from 1 on as a loop over `k` whose body is every node's
+    /// order `k`, each sum a loop over its terms: code of a size growing with the nodes alone,
+    /// compiled in a fraction of the time, run more slowly.
+    Compact,
+}
+
+impl Form {
+    /// The largest number of sum terms (over every node and order) compiled unrolled.
+    /// Unrolled code takes Cranelift 10–30 µs a term to compile, the compact form a
+    /// millisecond or two for the systems measured, and the compact code runs 1.3–2x slower.
+    /// heyoka's LLVM takes 45–180 ms cold to compile Kepler at orders 8–20 (220–1020 terms
+    /// here) and 83 ms the double pendulum at order 8 (1372 terms): below this size the
+    /// unrolled code compiles in about a tenth of heyoka's time for the same system, above it
+    /// in a fifth to a third, so large programs take the compact form (`benchmarks/README.md`,
+    /// "Adaptive Taylor method against heyoka").
+    const MAX_UNROLLED_TERMS: usize = 1200;
+
+    /// [`Form::Unrolled`] for programs of at most [`Form::MAX_UNROLLED_TERMS`] sum terms at
+    /// `order`, [`Form::Compact`] above.
+    fn for_size(nodes: &[Node], order: usize) -> Self {
+        if unrolled_terms(nodes, order) <= Self::MAX_UNROLLED_TERMS {
+            Self::Unrolled
+        } else {
+            Self::Compact
+        }
+    }
+}
+
+/// The number of terms of every sum of the recurrences to `order`, one for a node without a
+/// sum: what the unrolled code's size grows with.
+fn unrolled_terms(nodes: &[Node], order: usize) -> usize {
+    (0..=order)
+        .map(|k| {
+            nodes
+                .iter()
+                .map(|node| match node {
+                    Node::State | Node::Time | Node::Partner => 0,
+                    Node::Mul(..) => k + 1,
+                    Node::Square(_) => k / 2 + 1,
+                    Node::Div(..)
+                    | Node::CDiv(..)
+                    | Node::Sqrt(_)
+                    | Node::Powf(..)
+                    | Node::Exp(_)
+                    | Node::Integral { .. } => k.max(1),
+                    Node::SinCos(..) => 2 * k.max(1),
+                    _ => 1,
+                })
+                .sum::<usize>()
+        })
+        .sum()
 }
 
 /// The compiled function's pointer as its type.
@@ -197,11 +310,21 @@ struct Emitter<'a, 'b> {
     /// The work array.
     w: Value,
     stride: usize,
+    /// The order being emitted.
+    k: usize,
+    /// The value of each coefficient stored by this function, used instead of a load while
+    /// its order is at least the one being emitted.
+    fresh: Vec<Option<Value>>,
 }
 
 impl Emitter<'_, '_> {
     /// Coefficient `j` of node `n`.
     fn ld(&mut self, n: usize, j: usize) -> Value {
+        if j >= self.k {
+            if let Some(v) = self.fresh[n * self.stride + j] {
+                return v;
+            }
+        }
         let offset = (8 * (n * self.stride + j)) as i32;
         // In bounds and aligned: `Native::call` checks the work array's length.
         self.b
@@ -210,6 +333,7 @@ impl Emitter<'_, '_> {
     }
 
     fn st(&mut self, n: usize, j: usize, v: Value) {
+        self.fresh[n * self.stride + j] = Some(v);
         let offset = (8 * (n * self.stride + j)) as i32;
         self.b.ins().store(MemFlags::trusted(), v, self.w, offset);
     }
@@ -234,10 +358,23 @@ impl Emitter<'_, '_> {
         self.b.ins().fdiv(x, y)
     }
 
-    /// `x · c` with the constant on the side the interpreter has it: `c * x`.
+    /// `x · c` (the interpreter's `c * x`: IEEE multiplication commutes exactly), the
+    /// constant second, where x86 reads it from the constant pool as an operand.
     fn cmul(&mut self, c: f64, x: Value) -> Value {
         let c = self.c(c);
-        self.b.ins().fmul(c, x)
+        self.b.ins().fmul(x, c)
+    }
+
+    /// Order `k` of `|a|` from `a`'s orders 0 and `k`: `-x` where `a_0 < 0`, else `x`.
+    fn abs(&mut self, x0: Value, x: Value) -> Value {
+        let zero = self.c(0.0);
+        let negative = self.b.ins().fcmp(
+            cranelift_codegen::ir::condcodes::FloatCC::LessThan,
+            x0,
+            zero,
+        );
+        let minus = self.b.ins().fneg(x);
+        self.b.ins().select(negative, minus, x)
     }
 
     /// A call of the shim at `address`.
@@ -268,6 +405,7 @@ impl Emitter<'_, '_> {
     /// Orders `0..=order` of every node and of the state, as `TaylorProgram::interpret`.
     fn recurrences(&mut self, nodes: &[Node], outputs: &[Val], order: usize) {
         for k in 0..=order {
+            self.k = k;
             for (i, &node) in nodes.iter().enumerate() {
                 self.node(i, node, k);
             }
@@ -329,14 +467,7 @@ impl Emitter<'_, '_> {
             }
             Node::Abs(a) => {
                 let (x0, x) = (self.ld(u(a), 0), self.ld(u(a), k));
-                let zero = self.c(0.0);
-                let negative = self.b.ins().fcmp(
-                    cranelift_codegen::ir::condcodes::FloatCC::LessThan,
-                    x0,
-                    zero,
-                );
-                let minus = self.b.ins().fneg(x);
-                self.b.ins().select(negative, minus, x)
+                self.abs(x0, x)
             }
             Node::Mul(a, b) => self
                 .cauchy((u(a), 0), (u(b), 0), k + 1)
@@ -512,3 +643,336 @@ const INTEGRALS: [extern "C" fn(f64) -> f64; 13] = [
     integral::<11>,
     integral::<12>,
 ];
+
+/// The order `k` a [`Form::Compact`] loop body runs: `k` (`i64`), `k` as `f64`, and the
+/// address of coefficient `k` of node 0, `w + 8 k`.
+#[derive(Clone, Copy)]
+struct Order {
+    k: Value,
+    kf: Value,
+    wk: Value,
+}
+
+/// A term of a sum in a [`Form::Compact`] loop, from the term's index `j` (`i64`), `w + 8 j`
+/// and `w + 8 (k - j)`.
+type Term<'t, 'a, 'b> = &'t dyn Fn(&mut Emitter<'a, 'b>, Value, Value, Value) -> Value;
+
+impl<'a, 'b> Emitter<'a, 'b> {
+    /// Byte offset of coefficient `j` of node `n` from the work array (`j` may be negative:
+    /// added to a run-time address).
+    fn offset(&self, n: usize, j: isize) -> i32 {
+        (8 * (n as isize * self.stride as isize + j)) as i32
+    }
+
+    /// The `f64` at `address + offset`.
+    fn ld_at(&mut self, address: Value, offset: i32) -> Value {
+        // In bounds and aligned: every address is of a coefficient in `0..=order` of a node.
+        self.b
+            .ins()
+            .load(types::F64, MemFlags::trusted(), address, offset)
+    }
+
+    /// Coefficient `k - d` of node `n`.
+    fn ldk(&mut self, o: Order, n: usize, d: usize) -> Value {
+        let offset = self.offset(n, -(d as isize));
+        self.ld_at(o.wk, offset)
+    }
+
+    /// Stores coefficient `k` of node `n`.
+    fn stk(&mut self, o: Order, n: usize, v: Value) {
+        let offset = self.offset(n, 0);
+        self.b.ins().store(MemFlags::trusted(), v, o.wk, offset);
+    }
+
+    /// An integer as `f64` (exact for the orders and indices here).
+    fn float(&mut self, i: Value) -> Value {
+        self.b.ins().fcvt_from_sint(types::F64, i)
+    }
+
+    /// `s + Σ_{j = lo}^{hi - 1} term(j)` (or `s - ...`) summed in order of `j` as a loop,
+    /// none if `hi <= lo`.
+    fn sum_loop(
+        &mut self,
+        o: Order,
+        s: Value,
+        (lo, hi): (i64, Value),
+        subtract: bool,
+        term: Term<'_, 'a, 'b>,
+    ) -> Value {
+        let header = self.b.create_block();
+        let j = self.b.append_block_param(header, types::I64);
+        let acc = self.b.append_block_param(header, types::F64);
+        let body = self.b.create_block();
+        let exit = self.b.create_block();
+        let done = self.b.append_block_param(exit, types::F64);
+        let lo = self.b.ins().iconst(types::I64, lo);
+        self.b.ins().jump(header, &[lo.into(), s.into()]);
+
+        self.b.switch_to_block(header);
+        let more = self.b.ins().icmp(
+            cranelift_codegen::ir::condcodes::IntCC::SignedLessThan,
+            j,
+            hi,
+        );
+        self.b.ins().brif(more, body, &[], exit, &[acc.into()]);
+
+        self.b.switch_to_block(body);
+        self.b.seal_block(body);
+        let j8 = self.b.ins().ishl_imm(j, 3);
+        let wj = self.b.ins().iadd(self.w, j8);
+        let wkj = self.b.ins().isub(o.wk, j8);
+        let t = term(self, j, wj, wkj);
+        let next = if subtract {
+            self.sub(acc, t)
+        } else {
+            self.add(acc, t)
+        };
+        let j1 = self.b.ins().iadd_imm(j, 1);
+        self.b.ins().jump(header, &[j1.into(), next.into()]);
+        self.b.seal_block(header);
+
+        self.b.switch_to_block(exit);
+        self.b.seal_block(exit);
+        done
+    }
+
+    /// `Σ_j a_{a0 + j} b_{k - b0 - j}` for `j` from 0 below `n` (at least 1), as
+    /// [`cauchy`](Self::cauchy) sums it: the first term, then a loop over the others.
+    fn cauchy_loop(
+        &mut self,
+        o: Order,
+        (a, a0): (usize, usize),
+        (b, b0): (usize, usize),
+        n: Value,
+    ) -> Value {
+        let x = self.ld(a, a0);
+        let y = self.ldk(o, b, b0);
+        let first = self.mul(x, y);
+        let (oa, ob) = (self.offset(a, a0 as isize), self.offset(b, -(b0 as isize)));
+        self.sum_loop(o, first, (1, n), false, &move |e, _, wj, wkj| {
+            let x = e.ld_at(wj, oa);
+            let y = e.ld_at(wkj, ob);
+            e.mul(x, y)
+        })
+    }
+
+    /// The recurrences to `order` in [`Form::Compact`]: order 0 as the unrolled code has it,
+    /// then one loop over `k = 1..=order` whose body sets the state's order `k` from the field's
+    /// order `k - 1` and then every node's order `k` (the interpreter's sequence of operations).
+    fn compact(&mut self, nodes: &[Node], outputs: &[Val], order: usize) {
+        self.k = 0;
+        for (i, &node) in nodes.iter().enumerate() {
+            self.node(i, node, 0);
+        }
+        if order == 0 {
+            return;
+        }
+        // Only order 0's values stored above are reused as values; nothing from the loop.
+        self.k = 1;
+        let body = self.b.create_block();
+        let k = self.b.append_block_param(body, types::I64);
+        let exit = self.b.create_block();
+        let one = self.b.ins().iconst(types::I64, 1);
+        self.b.ins().jump(body, &[one.into()]);
+
+        self.b.switch_to_block(body);
+        let kf = self.float(k);
+        let k8 = self.b.ins().ishl_imm(k, 3);
+        let wk = self.b.ins().iadd(self.w, k8);
+        let o = Order { k, kf, wk };
+        for (i, out) in outputs.iter().enumerate() {
+            let fk = match *out {
+                Val::Node(n) => self.ldk(o, n as usize, 1),
+                Val::Const(c) => {
+                    let first =
+                        self.b
+                            .ins()
+                            .icmp_imm(cranelift_codegen::ir::condcodes::IntCC::Equal, k, 1);
+                    let (c, zero) = (self.c(c), self.c(0.0));
+                    self.b.ins().select(first, c, zero)
+                }
+            };
+            let v = self.div(fk, kf);
+            self.stk(o, i, v);
+        }
+        for (i, &node) in nodes.iter().enumerate() {
+            self.node_k(o, i, node);
+        }
+        let next = self.b.ins().iadd_imm(k, 1);
+        let more = self.b.ins().icmp_imm(
+            cranelift_codegen::ir::condcodes::IntCC::SignedLessThanOrEqual,
+            next,
+            order as i64,
+        );
+        self.b.ins().brif(more, body, &[next.into()], exit, &[]);
+        self.b.seal_block(body);
+        self.b.switch_to_block(exit);
+        self.b.seal_block(exit);
+    }
+
+    /// Order `k >= 1` of node `me` for the run-time `k` of `o`, as `TaylorProgram::order_k`.
+    #[allow(clippy::too_many_lines)]
+    fn node_k(&mut self, o: Order, me: usize, node: Node) {
+        let u = |n: u32| n as usize;
+        let value = match node {
+            Node::State | Node::Time | Node::Partner => return,
+            Node::Add(a, b) => {
+                let (x, y) = (self.ldk(o, u(a), 0), self.ldk(o, u(b), 0));
+                self.add(x, y)
+            }
+            Node::Sub(a, b) => {
+                let (x, y) = (self.ldk(o, u(a), 0), self.ldk(o, u(b), 0));
+                self.sub(x, y)
+            }
+            Node::AddC(a, _) => self.ldk(o, u(a), 0),
+            Node::CSub(_, a) | Node::Neg(a) => {
+                let x = self.ldk(o, u(a), 0);
+                self.b.ins().fneg(x)
+            }
+            Node::MulC(a, c) => {
+                let x = self.ldk(o, u(a), 0);
+                self.cmul(c, x)
+            }
+            Node::Abs(a) => {
+                let (x0, x) = (self.ld(u(a), 0), self.ldk(o, u(a), 0));
+                self.abs(x0, x)
+            }
+            Node::Mul(a, b) => {
+                let n = self.b.ins().iadd_imm(o.k, 1);
+                self.cauchy_loop(o, (u(a), 0), (u(b), 0), n)
+            }
+            Node::Square(a) => {
+                // 2 Σ_{j < ⌈k/2⌉} a_j a_{k-j}, plus a_{k/2}² for even k.
+                let k1 = self.b.ins().iadd_imm(o.k, 1);
+                let half = self.b.ins().sshr_imm(k1, 1);
+                let s = self.cauchy_loop(o, (u(a), 0), (u(a), 0), half);
+                let two = self.c(2.0);
+                let twice = self.mul(s, two);
+                let mid = self.b.ins().sshr_imm(o.k, 1);
+                let mid8 = self.b.ins().ishl_imm(mid, 3);
+                let at = self.b.ins().iadd(self.w, mid8);
+                let offset = self.offset(u(a), 0);
+                let m = self.ld_at(at, offset);
+                let m = self.mul(m, m);
+                let with_m = self.add(twice, m);
+                let odd = self.b.ins().band_imm(o.k, 1);
+                self.b.ins().select(odd, twice, with_m)
+            }
+            Node::Div(a, b) => {
+                let (x, b0) = (self.ldk(o, u(a), 0), self.ld(u(b), 0));
+                let s = self.cauchy_loop(o, (u(b), 1), (me, 1), o.k);
+                let num = self.sub(x, s);
+                self.div(num, b0)
+            }
+            Node::CDiv(_, a) => {
+                let a0 = self.ld(u(a), 0);
+                let s = self.cauchy_loop(o, (u(a), 1), (me, 1), o.k);
+                let minus = self.b.ins().fneg(s);
+                self.div(minus, a0)
+            }
+            Node::Sqrt(a) => {
+                let x = self.ldk(o, u(a), 0);
+                let om = self.offset(me, 0);
+                let s = self.sum_loop(o, x, (1, o.k), true, &move |e, _, wj, wkj| {
+                    let x = e.ld_at(wj, om);
+                    let y = e.ld_at(wkj, om);
+                    e.mul(x, y)
+                });
+                let me0 = self.ld(me, 0);
+                let d = self.cmul(2.0, me0);
+                self.div(s, d)
+            }
+            Node::Powf(a, alpha) => {
+                let a0 = self.ld(u(a), 0);
+                let (oa, om) = (self.offset(u(a), 0), self.offset(me, 0));
+                // The weight `α (k - j) - j` by the `f64` operations of `powf_weight`.
+                let term = move |e: &mut Self, j: Value, wj: Value, wkj: Value| {
+                    let kj = e.b.ins().isub(o.k, j);
+                    let kj = e.float(kj);
+                    let jf = e.float(j);
+                    let alpha = e.c(alpha);
+                    let wt = e.mul(alpha, kj);
+                    let wt = e.sub(wt, jf);
+                    let x = e.ld_at(wkj, oa);
+                    let wx = e.mul(wt, x);
+                    let y = e.ld_at(wj, om);
+                    e.mul(wx, y)
+                };
+                let (zero, w) = (self.b.ins().iconst(types::I64, 0), self.w);
+                let first = term(self, zero, w, o.wk);
+                let s = self.sum_loop(o, first, (1, o.k), false, &term);
+                let d = self.mul(o.kf, a0);
+                self.div(s, d)
+            }
+            Node::Exp(a) => {
+                let (oa, om) = (self.offset(u(a), 0), self.offset(me, 0));
+                let term = move |e: &mut Self, j: Value, wj: Value, wkj: Value| {
+                    let jf = e.float(j);
+                    let x = e.ld_at(wj, oa);
+                    let jx = e.mul(jf, x);
+                    let y = e.ld_at(wkj, om);
+                    e.mul(jx, y)
+                };
+                let one = self.b.ins().iconst(types::I64, 1);
+                let (w1, wk1) = (
+                    self.b.ins().iadd_imm(self.w, 8),
+                    self.b.ins().iadd_imm(o.wk, -8),
+                );
+                let first = term(self, one, w1, wk1);
+                let k1 = self.b.ins().iadd_imm(o.k, 1);
+                let s = self.sum_loop(o, first, (2, k1), false, &term);
+                self.div(s, o.kf)
+            }
+            Node::Integral {
+                a,
+                d,
+                sign,
+                func: _,
+            } => {
+                let x = self.ldk(o, u(a), 0);
+                let sign = self.c(sign);
+                let sk = self.mul(sign, o.kf);
+                let s = self.mul(sk, x);
+                let (om, od) = (self.offset(me, 0), self.offset(u(d), 0));
+                let s = self.sum_loop(o, s, (1, o.k), true, &move |e, j, wj, wkj| {
+                    let jf = e.float(j);
+                    let m = e.ld_at(wj, om);
+                    let jm = e.mul(jf, m);
+                    let y = e.ld_at(wkj, od);
+                    e.mul(jm, y)
+                });
+                let d0 = self.ld(u(d), 0);
+                let den = self.mul(o.kf, d0);
+                self.div(s, den)
+            }
+            Node::SinCos(a, hyperbolic) => {
+                let partner = me + 1;
+                let ja = self.ld(u(a), 1);
+                let (p, m) = (self.ldk(o, partner, 1), self.ldk(o, me, 1));
+                let s = self.mul(ja, p);
+                let c = self.mul(ja, m);
+                let k1 = self.b.ins().iadd_imm(o.k, 1);
+                // The sine's and the cosine's sums are independent: one loop each gives
+                // each the operations of the interpreter's joint loop.
+                let oa = self.offset(u(a), 0);
+                let sum = |e: &mut Self, s: Value, of: usize| {
+                    let of = e.offset(of, 0);
+                    e.sum_loop(o, s, (2, k1), false, &move |e, j, wj, wkj| {
+                        let jf = e.float(j);
+                        let x = e.ld_at(wj, oa);
+                        let ja = e.mul(jf, x);
+                        let y = e.ld_at(wkj, of);
+                        e.mul(ja, y)
+                    })
+                };
+                let s = sum(self, s, partner);
+                let c = sum(self, c, me);
+                let c = if hyperbolic { c } else { self.b.ins().fneg(c) };
+                let pc = self.div(c, o.kf);
+                self.stk(o, partner, pc);
+                self.div(s, o.kf)
+            }
+        };
+        self.stk(o, me, value);
+    }
+}
