@@ -20,10 +20,14 @@
 //! output spacing.
 //!
 //! **Long runs**: the polynomial is evaluated by compensated Horner (Graillat, Langlois &
-//! Louvet 2005: error-free products and sums, the rounding errors summed alongside and added
-//! once at the end), so the new state carries about one rounding, not `p`; the clock is a
-//! double-double (its rounding errors kept in a second word), so it does not drift over
-//! millions of steps.
+//! Louvet 2005: error-free products and sums, the rounding errors summed alongside), and the
+//! state is carried as a double-double: the sum's error, with the state's own low word, is kept
+//! in a second word rather than rounded away, so a step adds no rounding of the state (its
+//! double, which the field is expanded at and every output reads, is the pair rounded once).
+//! Over 100 Kepler orbits (e = 0.5) at tol 1e-16 this cuts the median final error over many
+//! starts about eightfold, below 1e-12 (the energy error is a random walk of the per-step
+//! errors, and the rounding of the state was the largest of them; `benchmarks/README.md`).
+//! The clock is a double-double too, so it does not drift over millions of steps.
 //!
 //! **Instruction sets**: the error-free product `a b = p + e` is one fused multiply-add,
 //! `e = fma(a, b, -p)`, on x86-64 CPUs with FMA (detected at run time by std's
@@ -270,17 +274,30 @@ fn eval_rows(c: &[f64], n1: usize, x: f64, out: &mut [f64]) {
 
 /// Compensated Horner of the rows held side by side in `blocks` (each block `n1` groups of
 /// `LANES` lanes, group `k` holding coefficient `k` of `LANES` rows; lanes past the last row
-/// hold zeros) at `x` into `out`: per row the operations of [`compensated_horner`], in its
-/// order, each group's lanes as one vector operation where the target has vectors of four
-/// doubles. Error-free products by FMA if `FUSED`.
+/// hold zeros) at `x`, plus each row's low word `lo`, into `out`: per row the operations of
+/// [`compensated_horner`], in its order, each group's lanes as one vector operation where the
+/// target has vectors of four doubles; the low word joins the summed errors before the one
+/// rounding. With `out_lo`, the rounding's error goes there (`out + out_lo` is the sum as a
+/// double-double). Error-free products by FMA if `FUSED`.
 #[inline(always)]
-fn horner_blocks<const FUSED: bool>(blocks: &[[f64; LANES]], n1: usize, x: f64, out: &mut [f64]) {
+fn horner_blocks<const FUSED: bool>(
+    blocks: &[[f64; LANES]],
+    n1: usize,
+    x: f64,
+    lo: &[f64],
+    out: &mut [f64],
+    mut out_lo: Option<&mut [f64]>,
+) {
     let product = if FUSED {
         two_product_fused
     } else {
         two_product
     };
-    for (block, out) in blocks.chunks_exact(n1).zip(out.chunks_mut(LANES)) {
+    for (b, (block, out)) in blocks
+        .chunks_exact(n1)
+        .zip(out.chunks_mut(LANES))
+        .enumerate()
+    {
         let mut s = block[n1 - 1];
         let mut err = [0.0; LANES];
         for c in block[..n1 - 1].iter().rev() {
@@ -291,8 +308,13 @@ fn horner_blocks<const FUSED: bool>(blocks: &[[f64; LANES]], n1: usize, x: f64, 
                 err[r] = err[r] * x + (pi + sigma);
             }
         }
-        for ((o, sr), er) in out.iter_mut().zip(&s).zip(&err) {
-            *o = sr + er;
+        for (r, o) in out.iter_mut().enumerate() {
+            let row = b * LANES + r;
+            let (hi, low) = two_sum(s[r], err[r] + lo[row]);
+            *o = hi;
+            if let Some(out_lo) = out_lo.as_deref_mut() {
+                out_lo[row] = low;
+            }
         }
     }
 }
@@ -301,22 +323,44 @@ fn horner_blocks<const FUSED: bool>(blocks: &[[f64; LANES]], n1: usize, x: f64, 
 /// where the CPU has both).
 #[cfg(target_arch = "x86_64")]
 #[target_feature(enable = "avx2,fma")]
-fn horner_blocks_avx2(blocks: &[[f64; LANES]], n1: usize, x: f64, out: &mut [f64]) {
-    horner_blocks::<true>(blocks, n1, x, out);
+fn horner_blocks_avx2(
+    blocks: &[[f64; LANES]],
+    n1: usize,
+    x: f64,
+    lo: &[f64],
+    out: &mut [f64],
+    out_lo: Option<&mut [f64]>,
+) {
+    horner_blocks::<true>(blocks, n1, x, lo, out, out_lo);
 }
 
 /// [`horner_blocks`] with FMA, without vectors (called only where the CPU has FMA).
 #[cfg(target_arch = "x86_64")]
 #[target_feature(enable = "fma")]
-fn horner_blocks_fma(blocks: &[[f64; LANES]], n1: usize, x: f64, out: &mut [f64]) {
-    horner_blocks::<true>(blocks, n1, x, out);
+fn horner_blocks_fma(
+    blocks: &[[f64; LANES]],
+    n1: usize,
+    x: f64,
+    lo: &[f64],
+    out: &mut [f64],
+    out_lo: Option<&mut [f64]>,
+) {
+    horner_blocks::<true>(blocks, n1, x, lo, out, out_lo);
 }
 
 /// Compensated Horner of the rows side by side in `blocks` (as [`horner_blocks`], `n1 >= 1`,
-/// `out.len()` rows) at `x` into `out`: the same bits as [`eval_rows`] on the rows, in vector
-/// lanes where the CPU has AVX2 and FMA.
+/// `out.len()` rows, `lo` at least as many low words) at `x` into `out` (and the low words of
+/// the results into `out_lo`): with zero low words the same bits as [`eval_rows`] on the rows,
+/// in vector lanes where the CPU has AVX2 and FMA.
 #[inline]
-fn eval_blocks(blocks: &[[f64; LANES]], n1: usize, x: f64, out: &mut [f64]) {
+fn eval_blocks(
+    blocks: &[[f64; LANES]],
+    n1: usize,
+    x: f64,
+    lo: &[f64],
+    out: &mut [f64],
+    out_lo: Option<&mut [f64]>,
+) {
     #[cfg(target_arch = "x86_64")]
     if std::arch::is_x86_feature_detected!("fma") {
         if std::arch::is_x86_feature_detected!("avx2") {
@@ -324,19 +368,19 @@ fn eval_blocks(blocks: &[[f64; LANES]], n1: usize, x: f64, out: &mut [f64]) {
             // function enables.
             #[allow(unsafe_code)]
             unsafe {
-                horner_blocks_avx2(blocks, n1, x, out);
+                horner_blocks_avx2(blocks, n1, x, lo, out, out_lo);
             }
         } else {
             // SAFETY: the CPU has FMA (checked just above), the one feature the function
             // enables.
             #[allow(unsafe_code)]
             unsafe {
-                horner_blocks_fma(blocks, n1, x, out);
+                horner_blocks_fma(blocks, n1, x, lo, out, out_lo);
             }
         }
         return;
     }
-    horner_blocks::<false>(blocks, n1, x, out);
+    horner_blocks::<false>(blocks, n1, x, lo, out, out_lo);
 }
 
 /// The rows of `c` (`n1` coefficients each) side by side in `blocks` (`n1` groups of `LANES`
@@ -415,8 +459,12 @@ pub struct Taylor {
     start: (f64, f64),
     /// The clock after the last step (the end of the current polynomial's step).
     t: (f64, f64),
-    /// The state at `t`.
+    /// The state at `t`, rounded: `y + lo` is the state carried.
     y: Vec<f64>,
+    /// The state's low words (see the module documentation: the state as a double-double).
+    lo: Vec<f64>,
+    /// The low words of the current polynomial's start, whose high words are its order 0.
+    start_lo: Vec<f64>,
     /// Length of the current polynomial's step (signed); 0 before the first step.
     h: f64,
     /// The end of the integration: the last step lands on it exactly.
@@ -462,6 +510,8 @@ impl Taylor {
             start: (t0, 0.0),
             t: (t0, 0.0),
             y: y0.to_vec(),
+            lo: vec![0.0; dim],
+            start_lo: vec![0.0; dim],
             h: 0.0,
             t_bound,
             accepted: 0,
@@ -565,7 +615,16 @@ impl Taylor {
     fn take(&mut self, h: f64, lands: bool) {
         let n1 = self.order + 1;
         to_blocks(&self.coefficients, n1, &mut self.blocks);
-        eval_blocks(&self.blocks, n1, h, &mut self.y);
+        // The old state's low words become the polynomial's start's; the new ones are written.
+        std::mem::swap(&mut self.lo, &mut self.start_lo);
+        eval_blocks(
+            &self.blocks,
+            n1,
+            h,
+            &self.start_lo,
+            &mut self.y,
+            Some(&mut self.lo),
+        );
         self.start = self.t;
         if lands {
             self.t = (self.t_bound, 0.0);
@@ -612,7 +671,7 @@ impl Taylor {
             if self.h != 0.0 {
                 let from_start = (t_out - self.start.0) - self.start.1;
                 if from_start * direction <= self.h.abs() {
-                    eval_blocks(&self.blocks, n1, from_start, y_out);
+                    eval_blocks(&self.blocks, n1, from_start, &self.start_lo, y_out, None);
                     return Ok(());
                 }
             } else if t_out == self.t.0 {
@@ -681,7 +740,8 @@ impl Taylor {
     }
 
     /// Component `i` of the current step's polynomial and its derivative in `τ`, at `τ` from
-    /// the step's start: the value by compensated Horner, the derivative by Horner.
+    /// the step's start: the value by compensated Horner (with the start's low word, as the
+    /// state update and the outputs), the derivative by Horner.
     ///
     /// # Panics
     /// Never for `i < dim`; `i >= dim` is a caller's bug (an index into the state).
@@ -692,13 +752,20 @@ impl Taylor {
         for (k, &c) in row.iter().enumerate().skip(1).rev() {
             d = d * tau + k as f64 * c;
         }
-        (compensated_horner(row, tau), d)
+        (compensated_horner(row, tau) + self.start_lo[i], d)
     }
 
     /// The whole state on the current step's polynomial at `τ` from its start.
     pub fn eval_state(&self, tau: f64, out: &mut [f64]) {
         let n = out.len().min(self.dim);
-        eval_blocks(&self.blocks, self.order + 1, tau, &mut out[..n]);
+        eval_blocks(
+            &self.blocks,
+            self.order + 1,
+            tau,
+            &self.start_lo,
+            &mut out[..n],
+            None,
+        );
     }
 }
 
