@@ -63,13 +63,15 @@ fn tolerances_for(method: Method, tol: f64) -> Result<Option<Tolerances>, String
 /// facts line shows it, so it asks here rather than repeat the rule.
 ///
 /// # Errors
-/// An unknown method name, or a `tol` that is not finite and positive.
+/// An unknown method name, a `tol` that is not finite and positive, or one the Taylor method
+/// refuses (as its stepper does: `taylor::check_tolerances`).
 pub fn method_order(name: &str, tol: f64) -> Result<u32, String> {
     let method = name
         .parse::<Method>()
         .map_err(|_| format!("no method is called `{name}`"))?;
     Ok(match tolerances_for(method, tol)? {
         Some(tolerances) if method == Method::Taylor => {
+            taylor::check_tolerances(&tolerances).map_err(|e| e.to_string())?;
             u32::try_from(taylor::order_for(&tolerances)).unwrap_or(u32::MAX)
         }
         _ => method.order(),

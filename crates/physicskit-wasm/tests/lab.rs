@@ -305,3 +305,38 @@ fn a_hostile_tolerance_is_refused_and_the_run_goes_on() {
     lab.set_method("taylor").unwrap();
     assert_eq!(lab.tolerance().to_bits(), 1e-7_f64.to_bits());
 }
+
+/// The facts line's order comes from untrusted input (a share link's method and tolerance):
+/// an unknown name, a tolerance that is not finite and positive, and one the Taylor stepper
+/// refuses (relative tolerance below 2^-54 or at least 1) are refused with a message naming
+/// them; every tolerance Taylor accepts gives an order within its range, and a fixed-step
+/// method has its catalogue order whatever the tolerance.
+#[test]
+fn method_order_refuses_hostile_input_by_name() {
+    use physicskit::classical::Method;
+    use physicskit_wasm::method_order;
+    let unknown = method_order("<script>", 1e-10).unwrap_err();
+    assert!(unknown.contains("<script>"), "{unknown}");
+    for tol in [
+        f64::NAN,
+        f64::INFINITY,
+        f64::NEG_INFINITY,
+        0.0,
+        -1e-10,
+        1e-300,
+        1.0,
+        1e300,
+    ] {
+        let refused = method_order("taylor", tol).unwrap_err();
+        assert!(refused.contains("rtol"), "{tol}: {refused}");
+    }
+    let max = Method::Taylor.order();
+    for tol in [1e-16, 1e-10, 1e-6, 0.5] {
+        let order = method_order("taylor", tol).unwrap();
+        assert!((2..=max).contains(&order), "{tol}: order {order}");
+    }
+    assert_eq!(
+        method_order("verlet", 1e300).unwrap(),
+        Method::Verlet.order()
+    );
+}
