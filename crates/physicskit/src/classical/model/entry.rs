@@ -944,6 +944,23 @@ impl SystemEntry {
         })
     }
 
+    /// What `read` makes of the entry's defaults, nothing given: how a system's
+    /// `Params::default()` takes its values from the entry, where they are written once.
+    ///
+    /// # Panics
+    /// If the entry's own defaults do not check or `read` refuses them: a catalogue bug, which
+    /// the catalogue's tests (building every entry from its defaults, and every `Params`
+    /// default) catch before a release.
+    pub(crate) fn defaults<T>(&self, read: fn(&Values) -> Result<T>) -> T {
+        match self.values(std::iter::empty()).and_then(|v| read(&v)) {
+            Ok(t) => t,
+            Err(e) => panic!(
+                "`{}`: the catalogue's defaults do not build: {e}",
+                self.name
+            ),
+        }
+    }
+
     /// Checks `given` (parameter name and value) and fills in the defaults.
     ///
     /// # Errors

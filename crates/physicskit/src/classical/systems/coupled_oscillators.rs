@@ -34,6 +34,7 @@ use crate::classical::core::sum::lane_sum_map;
 use crate::classical::core::{check_items_fit, Error, Phase, Result};
 use crate::classical::integrators::Method;
 use crate::classical::lagrangian::{singular_mass_matrix, Lagrangian, LagrangianEngine, Scalar};
+use crate::classical::model::entry::Values;
 use crate::classical::model::entry::{
     Default as D, Family, Length, ParamSpec as P, Range, SystemEntry,
 };
@@ -52,13 +53,20 @@ pub struct CoupledOscillatorsParams {
 }
 
 impl Default for CoupledOscillatorsParams {
-    /// The spec's defaults: `n = 3`, `m = 1`, `k = 1`.
+    /// The defaults of [`COUPLED_OSCILLATORS_ENTRY`], where they are written.
     fn default() -> Self {
-        Self {
-            n: 3,
-            m: 1.0,
-            k: 1.0,
-        }
+        COUPLED_OSCILLATORS_ENTRY.defaults(Self::from_values)
+    }
+}
+
+impl CoupledOscillatorsParams {
+    /// The parameters as its catalogue entry's values hold them.
+    fn from_values(v: &Values) -> Result<Self> {
+        Ok(Self {
+            n: v.count("n")?,
+            m: v.scalar("m")?,
+            k: v.scalar("k")?,
+        })
     }
 }
 
@@ -264,11 +272,7 @@ pub static COUPLED_OSCILLATORS_ENTRY: SystemEntry = SystemEntry {
         let q0 = v.vector("q0")?;
         let zeros = vec![0.0; q0.len()];
         let qdot0 = v.opt_vector("qdot0")?.unwrap_or(&zeros);
-        let params = CoupledOscillatorsParams {
-            n: v.count("n")?,
-            m: v.scalar("m")?,
-            k: v.scalar("k")?,
-        };
+        let params = CoupledOscillatorsParams::from_values(v)?;
         Ok(Box::new(Erased(CoupledOscillators::new(
             q0, qdot0, params,
         )?)))

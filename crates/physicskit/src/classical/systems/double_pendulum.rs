@@ -79,6 +79,7 @@ use crate::classical::integrators::Method;
 use crate::classical::lagrangian::{
     singular_mass_matrix, FieldScalar, Lagrangian, LagrangianEngine, Scalar,
 };
+use crate::classical::model::entry::Values;
 use crate::classical::model::entry::{
     Default as D, Family, Length, ParamSpec as P, Range, SystemEntry,
 };
@@ -102,15 +103,22 @@ pub struct DoublePendulumParams {
 }
 
 impl Default for DoublePendulumParams {
-    /// The spec's defaults: `m1 = m2 = 1`, `l1 = l2 = 1`, `g = 9.81`.
+    /// The defaults of [`DOUBLE_PENDULUM_ENTRY`], where they are written.
     fn default() -> Self {
-        Self {
-            m1: 1.0,
-            m2: 1.0,
-            l1: 1.0,
-            l2: 1.0,
-            g: 9.81,
-        }
+        DOUBLE_PENDULUM_ENTRY.defaults(Self::from_values)
+    }
+}
+
+impl DoublePendulumParams {
+    /// The parameters as its catalogue entry's values hold them.
+    fn from_values(v: &Values) -> Result<Self> {
+        Ok(Self {
+            m1: v.scalar("m1")?,
+            m2: v.scalar("m2")?,
+            l1: v.scalar("l1")?,
+            l2: v.scalar("l2")?,
+            g: v.scalar("g")?,
+        })
     }
 }
 
@@ -465,13 +473,7 @@ pub static DOUBLE_PENDULUM_ENTRY: SystemEntry = SystemEntry {
         energy_conserved: true,
     },
     build: |v| {
-        let params = DoublePendulumParams {
-            m1: v.scalar("m1")?,
-            m2: v.scalar("m2")?,
-            l1: v.scalar("l1")?,
-            l2: v.scalar("l2")?,
-            g: v.scalar("g")?,
-        };
+        let params = DoublePendulumParams::from_values(v)?;
         Ok(Box::new(Erased(DoublePendulum::new(
             v.vector("theta0")?,
             v.vector("thetadot0")?,

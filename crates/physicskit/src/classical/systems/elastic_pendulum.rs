@@ -85,6 +85,7 @@ use crate::classical::core::trig::sin_cos;
 use crate::classical::core::{Error, Phase, Result};
 use crate::classical::integrators::Method;
 use crate::classical::lagrangian::{FieldScalar, Lagrangian, LagrangianEngine, Scalar};
+use crate::classical::model::entry::Values;
 use crate::classical::model::entry::{
     Default as D, Family, Length, ParamSpec as P, Range, SystemEntry,
 };
@@ -106,14 +107,21 @@ pub struct ElasticPendulumParams {
 }
 
 impl Default for ElasticPendulumParams {
-    /// The Python class's defaults: `m = 1`, `k = 39.24` (`4 m g / L0`), `L0 = 1`, `g = 9.81`.
+    /// The defaults of [`ELASTIC_PENDULUM_ENTRY`], where they are written.
     fn default() -> Self {
-        Self {
-            m: 1.0,
-            k: 39.24,
-            l0: 1.0,
-            g: 9.81,
-        }
+        ELASTIC_PENDULUM_ENTRY.defaults(Self::from_values)
+    }
+}
+
+impl ElasticPendulumParams {
+    /// The parameters as its catalogue entry's values hold them.
+    fn from_values(v: &Values) -> Result<Self> {
+        Ok(Self {
+            m: v.scalar("m")?,
+            k: v.scalar("k")?,
+            l0: v.scalar("L0")?,
+            g: v.scalar("g")?,
+        })
     }
 }
 
@@ -515,12 +523,7 @@ pub static ELASTIC_PENDULUM_ENTRY: SystemEntry = SystemEntry {
         energy_conserved: true,
     },
     build: |v| {
-        let params = ElasticPendulumParams {
-            m: v.scalar("m")?,
-            k: v.scalar("k")?,
-            l0: v.scalar("L0")?,
-            g: v.scalar("g")?,
-        };
+        let params = ElasticPendulumParams::from_values(v)?;
         Ok(Box::new(Erased(ElasticPendulum::new(
             v.vector("q0")?,
             v.vector("qdot0")?,

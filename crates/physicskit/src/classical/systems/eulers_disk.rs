@@ -27,6 +27,7 @@
 use crate::classical::core::error::{check_finite_scalar, check_non_negative, check_positive};
 use crate::classical::core::{Phase, Result};
 use crate::classical::integrators::Method;
+use crate::classical::model::entry::Values;
 use crate::classical::model::entry::{Default as D, Family, ParamSpec as P, Range, SystemEntry};
 use crate::classical::model::entry::{Drawing, Pace, Presentation};
 use crate::classical::model::erased::{Capabilities, Ode};
@@ -44,13 +45,20 @@ pub struct EulersDiskParams {
 }
 
 impl Default for EulersDiskParams {
-    /// The peer's defaults: `decay_rate = 0.05`, `precession_const = 1`, `theta_floor = 1e-3`.
+    /// The defaults of [`EULERS_DISK_ENTRY`], where they are written.
     fn default() -> Self {
-        Self {
-            decay_rate: 0.05,
-            precession_const: 1.0,
-            theta_floor: 1e-3,
-        }
+        EULERS_DISK_ENTRY.defaults(Self::from_values)
+    }
+}
+
+impl EulersDiskParams {
+    /// The parameters as its catalogue entry's values hold them.
+    fn from_values(v: &Values) -> Result<Self> {
+        Ok(Self {
+            decay_rate: v.scalar("decay_rate")?,
+            precession_const: v.scalar("precession_const")?,
+            theta_floor: v.scalar("theta_floor")?,
+        })
     }
 }
 
@@ -231,11 +239,7 @@ pub static EULERS_DISK_ENTRY: SystemEntry = SystemEntry {
         energy_conserved: false,
     },
     build: |v| {
-        let params = EulersDiskParams {
-            decay_rate: v.scalar("decay_rate")?,
-            precession_const: v.scalar("precession_const")?,
-            theta_floor: v.scalar("theta_floor")?,
-        };
+        let params = EulersDiskParams::from_values(v)?;
         Ok(Box::new(Ode(EulersDisk::new(
             v.scalar("theta0")?,
             v.scalar("phi0")?,

@@ -36,6 +36,7 @@
 use crate::classical::core::error::{check_finite_scalar, check_positive, check_vector};
 use crate::classical::core::{Error, Phase, Result};
 use crate::classical::integrators::Method;
+use crate::classical::model::entry::Values;
 use crate::classical::model::entry::{
     Default as D, Family, Length, ParamSpec as P, Range, SystemEntry,
 };
@@ -59,15 +60,22 @@ pub struct FoucaultParams {
 }
 
 impl Default for FoucaultParams {
-    /// Foucault's 1851 pendulum in the Panthéon: `length = 67`, `g = 9.81`, latitude `48.85`,
-    /// Earth's sidereal rate.
+    /// Foucault's 1851 pendulum in the Panthéon, on the Earth's sidereal rate: the
+    /// defaults of [`FOUCAULT_ENTRY`], where they are written.
     fn default() -> Self {
-        Self {
-            length: 67.0,
-            g: 9.81,
-            latitude_deg: 48.85,
-            omega_earth: OMEGA_EARTH,
-        }
+        FOUCAULT_ENTRY.defaults(Self::from_values)
+    }
+}
+
+impl FoucaultParams {
+    /// The parameters as its catalogue entry's values hold them.
+    fn from_values(v: &Values) -> Result<Self> {
+        Ok(Self {
+            length: v.scalar("length")?,
+            g: v.scalar("g")?,
+            latitude_deg: v.scalar("latitude_deg")?,
+            omega_earth: v.scalar("omega_earth")?,
+        })
     }
 }
 
@@ -344,12 +352,7 @@ pub static FOUCAULT_ENTRY: SystemEntry = SystemEntry {
         energy_conserved: true,
     },
     build: |v| {
-        let params = FoucaultParams {
-            length: v.scalar("length")?,
-            g: v.scalar("g")?,
-            latitude_deg: v.scalar("latitude_deg")?,
-            omega_earth: v.scalar("omega_earth")?,
-        };
+        let params = FoucaultParams::from_values(v)?;
         Ok(Box::new(Ode(FoucaultPendulum::new(
             v.vector("q0")?,
             v.vector("v0")?,

@@ -41,6 +41,7 @@ use crate::classical::integrators::Method;
 use crate::classical::lagrangian::{
     singular_mass_matrix, FieldScalar, Lagrangian, LagrangianEngine, Scalar,
 };
+use crate::classical::model::entry::Values;
 use crate::classical::model::entry::{Default as D, Family, ParamSpec as P, Range, SystemEntry};
 use crate::classical::model::entry::{Drawing, Pace, Presentation};
 use crate::classical::model::erased::{fill, Capabilities, Lagrangian as Erased};
@@ -57,13 +58,20 @@ pub struct HoopParams {
 }
 
 impl Default for HoopParams {
-    /// The spec's defaults: `R = 1`, `omega = 2`, `g = 9.81`.
+    /// The defaults of [`HOOP_ENTRY`], where they are written.
     fn default() -> Self {
-        Self {
-            r: 1.0,
-            omega: 2.0,
-            g: 9.81,
-        }
+        HOOP_ENTRY.defaults(Self::from_values)
+    }
+}
+
+impl HoopParams {
+    /// The parameters as its catalogue entry's values hold them.
+    fn from_values(v: &Values) -> Result<Self> {
+        Ok(Self {
+            r: v.scalar("R")?,
+            omega: v.scalar("omega")?,
+            g: v.scalar("g")?,
+        })
     }
 }
 
@@ -412,11 +420,7 @@ pub static HOOP_ENTRY: SystemEntry = SystemEntry {
         energy_conserved: true,
     },
     build: |v| {
-        let params = HoopParams {
-            r: v.scalar("R")?,
-            omega: v.scalar("omega")?,
-            g: v.scalar("g")?,
-        };
+        let params = HoopParams::from_values(v)?;
         Ok(Box::new(Erased(BeadOnRotatingHoop::new(
             v.scalar("theta0")?,
             v.scalar("thetadot0")?,

@@ -32,6 +32,7 @@ use crate::classical::core::error::{
 };
 use crate::classical::core::{Phase, Result};
 use crate::classical::integrators::Method;
+use crate::classical::model::entry::Values;
 use crate::classical::model::entry::{
     Default as D, Family, Length, ParamSpec as P, Range, SystemEntry,
 };
@@ -56,16 +57,23 @@ pub struct RattlebackParams {
 }
 
 impl Default for RattlebackParams {
-    /// The peer's defaults: `I = (1, 1.5, 2)`, `gamma = 1`, `mu = eta = 0.01`.
+    /// The defaults of [`RATTLEBACK_ENTRY`], where they are written.
     fn default() -> Self {
-        Self {
-            i1: 1.0,
-            i2: 1.5,
-            i3: 2.0,
-            gamma: 1.0,
-            mu: 0.01,
-            eta: 0.01,
-        }
+        RATTLEBACK_ENTRY.defaults(Self::from_values)
+    }
+}
+
+impl RattlebackParams {
+    /// The parameters as its catalogue entry's values hold them.
+    fn from_values(v: &Values) -> Result<Self> {
+        Ok(Self {
+            i1: v.scalar("I1")?,
+            i2: v.scalar("I2")?,
+            i3: v.scalar("I3")?,
+            gamma: v.scalar("gamma")?,
+            mu: v.scalar("mu")?,
+            eta: v.scalar("eta")?,
+        })
     }
 }
 
@@ -237,14 +245,7 @@ pub static RATTLEBACK_ENTRY: SystemEntry = SystemEntry {
         energy_conserved: false,
     },
     build: |v| {
-        let params = RattlebackParams {
-            i1: v.scalar("I1")?,
-            i2: v.scalar("I2")?,
-            i3: v.scalar("I3")?,
-            gamma: v.scalar("gamma")?,
-            mu: v.scalar("mu")?,
-            eta: v.scalar("eta")?,
-        };
+        let params = RattlebackParams::from_values(v)?;
         Ok(Box::new(Ode(Rattleback::new(v.vector("n0")?, params)?)))
     },
 };

@@ -19,6 +19,7 @@
 use crate::classical::core::error::{check_len, check_positive, check_vector};
 use crate::classical::core::{Error, Phase, Result};
 use crate::classical::integrators::Method;
+use crate::classical::model::entry::Values;
 use crate::classical::model::entry::{
     Default as D, Family, Length, ParamSpec as P, Range, SystemEntry,
 };
@@ -37,13 +38,20 @@ pub struct EulerTopParams {
 }
 
 impl Default for EulerTopParams {
-    /// The spec's defaults: `I = (1, 2, 3)`.
+    /// The defaults of [`EULER_TOP_ENTRY`], where they are written.
     fn default() -> Self {
-        Self {
-            i1: 1.0,
-            i2: 2.0,
-            i3: 3.0,
-        }
+        EULER_TOP_ENTRY.defaults(Self::from_values)
+    }
+}
+
+impl EulerTopParams {
+    /// The parameters as its catalogue entry's values hold them.
+    fn from_values(v: &Values) -> Result<Self> {
+        Ok(Self {
+            i1: v.scalar("I1")?,
+            i2: v.scalar("I2")?,
+            i3: v.scalar("I3")?,
+        })
     }
 }
 
@@ -364,11 +372,7 @@ pub static EULER_TOP_ENTRY: SystemEntry = SystemEntry {
         energy_conserved: true,
     },
     build: |v| {
-        let params = EulerTopParams {
-            i1: v.scalar("I1")?,
-            i2: v.scalar("I2")?,
-            i3: v.scalar("I3")?,
-        };
+        let params = EulerTopParams::from_values(v)?;
         Ok(Box::new(Ode(EulerTop::new(
             v.vector("omega0")?,
             params,

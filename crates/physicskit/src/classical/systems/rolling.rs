@@ -75,6 +75,7 @@ use crate::classical::core::trig::sin_cos;
 use crate::classical::core::{Error, Phase, Result};
 use crate::classical::integrators::Method;
 use crate::classical::lagrangian::{forward_jacobian, Scalar};
+use crate::classical::model::entry::Values;
 use crate::classical::model::entry::{
     Bound, Default as D, Family, Length, ParamSpec as P, Range, SystemEntry,
 };
@@ -455,19 +456,27 @@ const KL_I2: f64 = 1.600_285_656_000_464e-3;
 const KL_DELTA: f64 = 0.014_281_828_919_38;
 
 impl Default for RollingRattlebackParams {
+    /// The defaults of [`ROLLING_RATTLEBACK_ENTRY`], where they are written.
     fn default() -> Self {
-        Self {
-            a: 0.2,
-            b: 0.03,
-            c: 0.02,
-            h: 0.01,
-            m: 1.0,
-            i1: KL_I1,
-            i2: KL_I2,
-            i3: 1.7e-3,
-            delta: KL_DELTA,
-            g: 9.81,
-        }
+        ROLLING_RATTLEBACK_ENTRY.defaults(Self::from_values)
+    }
+}
+
+impl RollingRattlebackParams {
+    /// The parameters as its catalogue entry's values hold them.
+    fn from_values(v: &Values) -> Result<Self> {
+        Ok(Self {
+            a: v.scalar("a")?,
+            b: v.scalar("b")?,
+            c: v.scalar("c")?,
+            h: v.scalar("h")?,
+            m: v.scalar("m")?,
+            i1: v.scalar("I1")?,
+            i2: v.scalar("I2")?,
+            i3: v.scalar("I3")?,
+            delta: v.scalar("delta")?,
+            g: v.scalar("g")?,
+        })
     }
 }
 
@@ -751,14 +760,10 @@ pub struct RollingDiskParams {
 }
 
 impl Default for RollingDiskParams {
-    /// A coin-sized disk: radius 5 cm, 1 kg (the motion does not depend on the mass), `g =
-    /// 9.81`.
+    /// A coin-sized disk (the motion does not depend on the mass): the defaults of
+    /// [`ROLLING_DISK_ENTRY`], where they are written.
     fn default() -> Self {
-        Self {
-            a: 0.05,
-            m: 1.0,
-            g: 9.81,
-        }
+        ROLLING_DISK_ENTRY.defaults(disk_params)
     }
 }
 
@@ -1006,18 +1011,7 @@ pub static ROLLING_RATTLEBACK_ENTRY: SystemEntry = SystemEntry {
         energy_conserved: true,
     },
     build: |v| {
-        let params = RollingRattlebackParams {
-            a: v.scalar("a")?,
-            b: v.scalar("b")?,
-            c: v.scalar("c")?,
-            h: v.scalar("h")?,
-            m: v.scalar("m")?,
-            i1: v.scalar("I1")?,
-            i2: v.scalar("I2")?,
-            i3: v.scalar("I3")?,
-            delta: v.scalar("delta")?,
-            g: v.scalar("g")?,
-        };
+        let params = RollingRattlebackParams::from_values(v)?;
         Ok(Box::new(Ode(RollingRattleback::new(
             v.vector("omega0")?,
             params,
@@ -1044,7 +1038,8 @@ const DISK_PARAMS: [P; 3] = [
     ),
 ];
 
-fn disk_params(v: &crate::classical::model::Values) -> Result<RollingDiskParams> {
+/// The disk's parameters as either rolling-disk entry's values hold them.
+fn disk_params(v: &Values) -> Result<RollingDiskParams> {
     Ok(RollingDiskParams {
         a: v.scalar("a")?,
         m: v.scalar("m")?,

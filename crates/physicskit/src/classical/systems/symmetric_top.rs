@@ -52,6 +52,7 @@ use crate::classical::integrators::Method;
 use crate::classical::lagrangian::{
     singular_mass_matrix, FieldScalar, Lagrangian, LagrangianEngine, Scalar,
 };
+use crate::classical::model::entry::Values;
 use crate::classical::model::entry::{
     Default as D, Family, Length, ParamSpec as P, Range, SystemEntry,
 };
@@ -74,15 +75,22 @@ pub struct SymmetricTopParams {
 }
 
 impl Default for SymmetricTopParams {
-    /// The spec's defaults: `I1 = 1`, `I3 = 0.5`, `M = 1`, `l = 1`, `g = 9.81`.
+    /// The defaults of [`HEAVY_TOP_ENTRY`], where they are written.
     fn default() -> Self {
-        Self {
-            i1: 1.0,
-            i3: 0.5,
-            m: 1.0,
-            l: 1.0,
-            g: 9.81,
-        }
+        HEAVY_TOP_ENTRY.defaults(Self::from_values)
+    }
+}
+
+impl SymmetricTopParams {
+    /// The parameters as its catalogue entry's values hold them.
+    fn from_values(v: &Values) -> Result<Self> {
+        Ok(Self {
+            i1: v.scalar("I1")?,
+            i3: v.scalar("I3")?,
+            m: v.scalar("M")?,
+            l: v.scalar("l")?,
+            g: v.scalar("g")?,
+        })
     }
 }
 
@@ -434,13 +442,7 @@ pub static HEAVY_TOP_ENTRY: SystemEntry = SystemEntry {
         energy_conserved: true,
     },
     build: |v| {
-        let params = SymmetricTopParams {
-            i1: v.scalar("I1")?,
-            i3: v.scalar("I3")?,
-            m: v.scalar("M")?,
-            l: v.scalar("l")?,
-            g: v.scalar("g")?,
-        };
+        let params = SymmetricTopParams::from_values(v)?;
         Ok(Box::new(Erased(HeavySymmetricTop::new(
             v.vector("angles0")?,
             v.vector("angledots0")?,

@@ -40,6 +40,7 @@ use crate::classical::core::error::{check_finite_scalar, check_positive};
 use crate::classical::core::{Error, Phase, Result};
 use crate::classical::integrators::Method;
 use crate::classical::lagrangian::{Lagrangian, LagrangianEngine, Scalar};
+use crate::classical::model::entry::Values;
 use crate::classical::model::entry::{
     Default as D, Family, Length, ParamSpec as P, Range, SystemEntry,
 };
@@ -67,17 +68,24 @@ pub struct TriplePendulumParams {
 }
 
 impl Default for TriplePendulumParams {
-    /// Unit masses and rods, `g = 9.81`.
+    /// The defaults of [`TRIPLE_PENDULUM_ENTRY`], where they are written.
     fn default() -> Self {
-        Self {
-            m1: 1.0,
-            m2: 1.0,
-            m3: 1.0,
-            l1: 1.0,
-            l2: 1.0,
-            l3: 1.0,
-            g: 9.81,
-        }
+        TRIPLE_PENDULUM_ENTRY.defaults(Self::from_values)
+    }
+}
+
+impl TriplePendulumParams {
+    /// The parameters as its catalogue entry's values hold them.
+    fn from_values(v: &Values) -> Result<Self> {
+        Ok(Self {
+            m1: v.scalar("m1")?,
+            m2: v.scalar("m2")?,
+            m3: v.scalar("m3")?,
+            l1: v.scalar("l1")?,
+            l2: v.scalar("l2")?,
+            l3: v.scalar("l3")?,
+            g: v.scalar("g")?,
+        })
     }
 }
 
@@ -289,15 +297,7 @@ pub static TRIPLE_PENDULUM_ENTRY: SystemEntry = SystemEntry {
         energy_conserved: true,
     },
     build: |v| {
-        let params = TriplePendulumParams {
-            m1: v.scalar("m1")?,
-            m2: v.scalar("m2")?,
-            m3: v.scalar("m3")?,
-            l1: v.scalar("l1")?,
-            l2: v.scalar("l2")?,
-            l3: v.scalar("l3")?,
-            g: v.scalar("g")?,
-        };
+        let params = TriplePendulumParams::from_values(v)?;
         Ok(Box::new(Erased(TriplePendulum::new(
             v.vector("theta0")?,
             v.vector("thetadot0")?,

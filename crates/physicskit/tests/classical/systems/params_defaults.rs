@@ -1,6 +1,9 @@
 //! Each system's `Params::default()` (what a user of the Rust API starts from) holds the
-//! defaults its catalogue entry gives every front end: the two are written apart, and this
-//! ties them, field by field.
+//! defaults its catalogue entry gives every front end. `default()` reads them from the entry
+//! through the same mapping of parameter names to fields as the entry's builder; this checks,
+//! field by field, that the mapping puts each parameter's default in the field of its name
+//! (a swapped `I1`/`I2`, or a field read from another parameter, fails here) and that every
+//! field has a catalogue default.
 //!
 //! A struct's fields are read from its `Debug` text (`Name { a: 1.0, b: 3 }`; `f64`'s `Debug`
 //! prints the shortest text that reads back to the same bits), and matched to the entry's
