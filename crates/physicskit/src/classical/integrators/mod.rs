@@ -53,6 +53,7 @@ pub mod splitting;
 pub mod stepper;
 pub mod system;
 pub mod tangent;
+mod taylor_arith;
 pub mod taylor_batch;
 
 pub use dop853::Dop853;

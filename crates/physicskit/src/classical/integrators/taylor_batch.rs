@@ -1,32 +1,39 @@
 //! The adaptive Taylor method ([`taylor`](super::taylor)) on `L` members at once: one
 //! expansion of a shared field computes the Taylor coefficients of `L` states, one per vector
-//! lane ([`LanesField`]), and each member then steps by its own scalar [`Taylor`] stepper.
+//! lane ([`LanesField`]), and the whole step is then taken across the lanes.
 //!
 //! Each member's run is the one [`TaylorStepper`](super::TaylorStepper) gives it on the
 //! output grid (what `integrate` with `method = taylor` does), bit for bit:
 //!
-//! - a member's [`Taylor`] takes the coefficients of its lane in place of a scalar expansion
-//!   (the lanes do the scalar recurrences' operations in their order, so the same bits), and
-//!   everything else of the step is [`Taylor::advance`]'s own code: the order, the step size
-//!   from the last two coefficients, clamping to the output time and the end, the state
-//!   update, dense output and its errors;
+//! - the lanes' coefficients are the scalar recurrences' (each lane does their operations in
+//!   their order);
+//! - the rest of the step is [`Taylor`](super::taylor::Taylor)'s, done on `[f64; L]` values,
+//!   each lane with the scalar code's operations in its order: the norms of the state and of
+//!   the last two orders, the step size (its `powf` lane by lane, the same roots chosen as
+//!   the scalar rule chooses them), the clamp to the end, the state update by compensated
+//!   Horner with the double-double low words (the error-free products by FMA where the scalar
+//!   code uses it, by Dekker's product where it does not), the double-double clock, and the
+//!   dense output of the step's polynomial at each output time;
 //! - the outputs are those of the grid, `t_i + dt` from output `i` (snapped to the end as
 //!   [`TaylorStepper`](super::TaylorStepper) snaps it), each member restarting its stepper
-//!   where `TaylorStepper` would.
+//!   where `TaylorStepper` would; the errors (step budget, coefficients not finite, step
+//!   size underflow, an output not finite) are the scalar run's.
 //!
-//! A member asks for an expansion when [`Taylor::advance`] needs one: its lane's field
-//! records the state and declines; once every running member has asked (or finished its
-//! outputs), one expansion serves them all, and the members resume. A member that finishes
-//! hands its lane to the next member, so lanes stay busy while members take different
-//! numbers of steps; a lane without a member computes a copy of a running lane's state.
+//! All running members take their steps together: after each step, each lane emits the
+//! outputs its new polynomial covers; a member that has all its outputs (or fails) hands its
+//! lane to the next member, so lanes stay busy while members take different numbers of steps;
+//! a lane without a member computes a copy of a running lane's state, and its results are
+//! dropped. Nothing is allocated per step.
 //!
-//! A member whose run fails (its stepper's error, or an output that is not finite) is
-//! reported with the error; the caller reruns it alone for the error its single run gives.
-//! Per-step data (energy errors, events, Lyapunov exponents) is not computed here: callers
-//! that need it run members one at a time.
+//! A member whose run fails is reported with its run's error. Per-step data (energy errors,
+//! events, Lyapunov exponents) is not computed here: callers that need it run members one at
+//! a time.
 
 use crate::classical::core::{Error, Result, TimeGrid};
-use crate::classical::integrators::taylor::{order_for, same_time, Taylor, TaylorField};
+use crate::classical::integrators::taylor::{check_tolerances, order_for, same_time};
+use crate::classical::integrators::taylor_arith::{
+    smaller_root, two_product, two_product_fused, two_sum,
+};
 use crate::classical::integrators::Tolerances;
 
 /// A field whose Taylor coefficients can be computed for `L` states at once, one per lane.
@@ -36,144 +43,385 @@ pub trait LanesField<const L: usize> {
 
     /// Expands the solution through `(t[l], y[.][l])` for every lane `l` (`y` holds `dim`
     /// components, each an `[f64; L]`) to `order`; the coefficients stay in the field until
-    /// the next expansion ([`lane`](Self::lane)).
+    /// the next expansion ([`coefficients`](Self::coefficients), [`lane`](Self::lane)).
     ///
     /// # Errors
     /// An `order` or a state length the field cannot expand.
     fn expand(&mut self, t: &[f64; L], y: &[[f64; L]], order: usize) -> Result<()>;
 
+    /// The coefficients of the last expansion, every lane's: `dim` rows of `order + 1`
+    /// (row `i` holding `y_i^[0..=order]`, as [`TaylorField::coefficients`] fills them),
+    /// each an `[f64; L]`.
+    ///
+    /// [`TaylorField::coefficients`]: super::taylor::TaylorField::coefficients
+    fn coefficients(&self) -> &[[f64; L]];
+
     /// Lane `lane`'s coefficients of the last expansion into `coefficients` (`dim` rows of
     /// `order + 1`, as [`TaylorField::coefficients`] fills them).
-    fn lane(&self, lane: usize, coefficients: &mut [f64]);
-}
-
-/// One lane's scalar field: the coefficients of the lane's last expansion, handed to the
-/// member's [`Taylor`] once, or a request for the next expansion.
-#[derive(Debug)]
-struct Slot {
-    dim: usize,
-    coefficients: Vec<f64>,
-    /// The coefficients are fresh, at the state the member asked for.
-    ready: bool,
-    /// The member asked for an expansion at `(t, y)`.
-    wanted: bool,
-    t: f64,
-    y: Vec<f64>,
-}
-
-impl TaylorField for Slot {
-    fn dim(&self) -> usize {
-        self.dim
-    }
-
-    /// The fresh coefficients of the lane, once; else records the request and declines
-    /// with [`Error::Interrupted`] (no allocation), which the batch tells from a failure by
-    /// `wanted`.
-    fn coefficients(
-        &mut self,
-        t: f64,
-        y: &[f64],
-        _order: usize,
-        coefficients: &mut [f64],
-    ) -> Result<()> {
-        if self.ready {
-            debug_assert!(t.to_bits() == self.t.to_bits() && y == self.y.as_slice());
-            self.ready = false;
-            coefficients.copy_from_slice(&self.coefficients);
-            Ok(())
-        } else {
-            self.wanted = true;
-            self.t = t;
-            self.y.copy_from_slice(y);
-            Err(Error::Interrupted { t })
+    ///
+    /// [`TaylorField::coefficients`]: super::taylor::TaylorField::coefficients
+    fn lane(&self, lane: usize, coefficients: &mut [f64]) {
+        for (c, w) in coefficients.iter_mut().zip(self.coefficients()) {
+            *c = w[lane];
         }
     }
 }
 
-/// A lane: its member's run from output to output.
-#[derive(Debug)]
-struct Lane {
-    /// The member running here, if any.
-    member: Option<usize>,
-    slot: Slot,
-    stepper: Option<Taylor>,
-    /// The output being computed (`1..=n_steps`).
-    step: usize,
-    /// Its time, once the output has begun.
-    target: Option<f64>,
-    /// The last output, and its time.
-    out: Vec<f64>,
-    out_t: f64,
-    next: Vec<f64>,
+/// How the error-free product is computed: as the scalar stepper computes it on this CPU
+/// (one FMA where the CPU has it, else Dekker's product), and which vector instructions
+/// the lanes' loops are compiled for.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+enum Isa {
+    /// Dekker's product, no FMA (the scalar path of CPUs without FMA).
+    Plain,
+    /// FMA, without wide vectors.
+    #[cfg(target_arch = "x86_64")]
+    Fma,
+    /// FMA and AVX2 (vectors of four doubles).
+    #[cfg(target_arch = "x86_64")]
+    Avx2,
+    /// FMA and AVX-512 (vectors of eight doubles).
+    #[cfg(target_arch = "x86_64")]
+    Avx512,
+}
+
+impl Isa {
+    fn detect() -> Self {
+        #[cfg(target_arch = "x86_64")]
+        if std::arch::is_x86_feature_detected!("fma") {
+            if std::arch::is_x86_feature_detected!("avx512f") {
+                return Self::Avx512;
+            }
+            if std::arch::is_x86_feature_detected!("avx2") {
+                return Self::Avx2;
+            }
+            return Self::Fma;
+        }
+        Self::Plain
+    }
+
+    fn fused(self) -> bool {
+        self != Self::Plain
+    }
+}
+
+/// Compensated Horner of `dim` rows of `n1` coefficients in lanes (`c`, row-major, each an
+/// `[f64; L]`) at `x[l]` in lane `l`, plus the low words `lo_in`, into `out` and the
+/// rounding's errors into `out_lo`: per lane the operations of the scalar stepper's state
+/// update in its order (`taylor.rs`'s `horner_blocks`). Error-free products by FMA if `FUSED`.
+#[inline(always)]
+fn horner_lanes<const L: usize, const FUSED: bool>(
+    c: &[[f64; L]],
+    n1: usize,
+    x: &[f64; L],
+    lo_in: &[[f64; L]],
+    out: &mut [[f64; L]],
+    out_lo: &mut [[f64; L]],
+) {
+    let product = if FUSED {
+        two_product_fused
+    } else {
+        two_product
+    };
+    for (((row, lo_in), out), out_lo) in c
+        .chunks_exact(n1)
+        .zip(lo_in)
+        .zip(out.iter_mut())
+        .zip(out_lo.iter_mut())
+    {
+        let mut s = row[n1 - 1];
+        let mut err = [0.0; L];
+        for ck in row[..n1 - 1].iter().rev() {
+            for l in 0..L {
+                let (p, pi) = product(s[l], x[l]);
+                let (sum, sigma) = two_sum(p, ck[l]);
+                s[l] = sum;
+                err[l] = err[l] * x[l] + (pi + sigma);
+            }
+        }
+        for l in 0..L {
+            let (hi, low) = two_sum(s[l], err[l] + lo_in[l]);
+            out[l] = hi;
+            out_lo[l] = low;
+        }
+    }
+}
+
+/// The largest `|c|` of orders 0, `p - 1` and `p` over the rows of `c` (`dim` rows of
+/// `p + 1`), lane by lane (in row order, by `f64::max`, as the scalar step takes them), and
+/// whether every coefficient of a lane is finite.
+#[inline(always)]
+fn norms<const L: usize>(c: &[[f64; L]], p: usize) -> [[f64; L]; 3] {
+    let (mut norm, mut second_last, mut last) = ([0.0_f64; L], [0.0_f64; L], [0.0_f64; L]);
+    for row in c.chunks_exact(p + 1) {
+        for l in 0..L {
+            norm[l] = norm[l].max(row[0][l].abs());
+            second_last[l] = second_last[l].max(row[p - 1][l].abs());
+            last[l] = last[l].max(row[p][l].abs());
+        }
+    }
+    [norm, second_last, last]
+}
+
+/// Whether every coefficient of each lane is finite.
+#[inline(always)]
+fn finite<const L: usize>(c: &[[f64; L]]) -> [bool; L] {
+    let mut ok = [true; L];
+    for v in c {
+        for (ok, v) in ok.iter_mut().zip(v) {
+            *ok &= v.is_finite();
+        }
+    }
+    ok
+}
+
+/// The kernels of a step, compiled for one instruction set.
+macro_rules! kernels {
+    ($name:ident, $features:literal, $fused:literal) => {
+        #[cfg(target_arch = "x86_64")]
+        #[target_feature(enable = $features)]
+        fn $name<const L: usize>(
+            c: &[[f64; L]],
+            p: usize,
+            x: &[f64; L],
+            lo_in: &[[f64; L]],
+            out: &mut [[f64; L]],
+            out_lo: &mut [[f64; L]],
+        ) {
+            horner_lanes::<L, $fused>(c, p + 1, x, lo_in, out, out_lo);
+        }
+    };
+}
+kernels!(horner_avx512, "avx512f,fma", true);
+kernels!(horner_avx2, "avx2,fma", true);
+kernels!(horner_fma, "fma", true);
+
+/// [`norms`] and [`finite`] compiled with AVX-512 (called only where the CPU has it).
+#[cfg(target_arch = "x86_64")]
+#[target_feature(enable = "avx512f")]
+fn norms_avx512<const L: usize>(c: &[[f64; L]], p: usize) -> ([[f64; L]; 3], [bool; L]) {
+    (norms(c, p), finite(c))
+}
+
+/// [`norms`] and [`finite`] compiled with AVX2 (called only where the CPU has it).
+#[cfg(target_arch = "x86_64")]
+#[target_feature(enable = "avx2")]
+fn norms_avx2<const L: usize>(c: &[[f64; L]], p: usize) -> ([[f64; L]; 3], [bool; L]) {
+    (norms(c, p), finite(c))
+}
+
+impl Isa {
+    /// The state update: [`horner_lanes`] on this instruction set.
+    #[inline]
+    fn horner<const L: usize>(
+        self,
+        c: &[[f64; L]],
+        p: usize,
+        x: &[f64; L],
+        lo_in: &[[f64; L]],
+        out: &mut [[f64; L]],
+        out_lo: &mut [[f64; L]],
+    ) {
+        // SAFETY (each arm): `detect` chose the variant because the CPU has the features
+        // the function enables.
+        #[allow(unsafe_code)]
+        match self {
+            Self::Plain => horner_lanes::<L, false>(c, p + 1, x, lo_in, out, out_lo),
+            #[cfg(target_arch = "x86_64")]
+            Self::Fma => unsafe { horner_fma(c, p, x, lo_in, out, out_lo) },
+            #[cfg(target_arch = "x86_64")]
+            Self::Avx2 => unsafe { horner_avx2(c, p, x, lo_in, out, out_lo) },
+            #[cfg(target_arch = "x86_64")]
+            Self::Avx512 => unsafe { horner_avx512(c, p, x, lo_in, out, out_lo) },
+        }
+    }
+
+    /// [`norms`] and [`finite`] on this instruction set.
+    #[inline]
+    fn norms<const L: usize>(self, c: &[[f64; L]], p: usize) -> ([[f64; L]; 3], [bool; L]) {
+        // SAFETY (each arm): `detect` chose the variant because the CPU has the features
+        // the function enables (AVX-512F and AVX2 respectively).
+        #[allow(unsafe_code)]
+        match self {
+            #[cfg(target_arch = "x86_64")]
+            Self::Avx512 => unsafe { norms_avx512(c, p) },
+            #[cfg(target_arch = "x86_64")]
+            Self::Avx2 => unsafe { norms_avx2(c, p) },
+            _ => (norms(c, p), finite(c)),
+        }
+    }
+}
+
+/// Compensated Horner of lane `lane` of the rows `c` (`n1` coefficients each) at `x`, plus
+/// the low words `lo`, into `out`: the scalar stepper's dense output (`horner_blocks`
+/// without the low words out), error-free products by FMA if `fused`.
+fn horner_lane<const L: usize>(
+    c: &[[f64; L]],
+    n1: usize,
+    lane: usize,
+    x: f64,
+    lo: &[[f64; L]],
+    out: &mut [f64],
+    fused: bool,
+) {
+    for ((row, lo), o) in c.chunks_exact(n1).zip(lo).zip(out.iter_mut()) {
+        let mut s = row[n1 - 1][lane];
+        let mut err = 0.0;
+        for ck in row[..n1 - 1].iter().rev() {
+            let (p, pi) = if fused {
+                two_product_fused(s, x)
+            } else {
+                two_product(s, x)
+            };
+            let (sum, sigma) = two_sum(p, ck[lane]);
+            s = sum;
+            err = err * x + (pi + sigma);
+        }
+        *o = two_sum(s, err + lo[lane]).0;
+    }
+}
+
+/// The members in the lanes and their steppers' state, lane by lane (see the module
+/// documentation).
+struct Batch<const L: usize> {
+    dim: usize,
+    order: usize,
+    tolerances: Tolerances,
+    t_bound: f64,
+    /// The step-size rule's factor, as the scalar stepper computes it.
+    safety: f64,
+    isa: Isa,
+    /// The member running in each lane.
+    member: [Option<usize>; L],
+    /// The output being computed (`1..=n_steps`), its time once begun, and the direction of
+    /// the run at its beginning.
+    step: [usize; L],
+    target: [Option<f64>; L],
+    direction: [f64; L],
+    /// Whether the lane's stepper is set up (for its member's current run).
+    started: [bool; L],
+    /// The last output's time; the last output itself is `out`.
+    out_t: [f64; L],
+    out: Vec<[f64; L]>,
+    /// The clock (double-double), the start of the current polynomial's step, its length
+    /// (0 before the first step), the steps taken.
+    t: [f64; L],
+    t_lo: [f64; L],
+    start: [f64; L],
+    start_t_lo: [f64; L],
+    h: [f64; L],
+    accepted: [u64; L],
+    /// The state at `t` as a double-double (`y + lo`), and the low words of the current
+    /// polynomial's start.
+    y: Vec<[f64; L]>,
+    lo: Vec<[f64; L]>,
+    start_lo: Vec<[f64; L]>,
+    /// One output.
+    scratch: Vec<f64>,
 }
 
 /// What a lane does next.
 enum Serve {
-    /// Its member waits for an expansion.
-    Expand,
+    /// Its member needs a step.
+    Step,
     /// Its member has every output, or failed: the lane is free.
     Free,
 }
 
-impl Lane {
-    fn new(dim: usize, order: usize) -> Self {
+impl<const L: usize> Batch<L> {
+    fn new(dim: usize, tolerances: Tolerances, t_bound: f64) -> Self {
+        let order = order_for(&tolerances);
         Self {
-            member: None,
-            slot: Slot {
-                dim,
-                coefficients: vec![0.0; dim * (order + 1)],
-                ready: false,
-                wanted: false,
-                t: 0.0,
-                y: vec![0.0; dim],
-            },
-            stepper: None,
-            step: 1,
-            target: None,
-            out: vec![0.0; dim],
-            out_t: f64::NAN,
-            next: vec![0.0; dim],
+            dim,
+            order,
+            tolerances,
+            t_bound,
+            safety: (-0.7 / (order - 1) as f64).exp(),
+            isa: Isa::detect(),
+            member: [None; L],
+            step: [1; L],
+            target: [None; L],
+            direction: [0.0; L],
+            started: [false; L],
+            out_t: [f64::NAN; L],
+            out: vec![[0.0; L]; dim],
+            t: [0.0; L],
+            t_lo: [0.0; L],
+            start: [0.0; L],
+            start_t_lo: [0.0; L],
+            h: [0.0; L],
+            accepted: [0; L],
+            y: vec![[0.0; L]; dim],
+            lo: vec![[0.0; L]; dim],
+            start_lo: vec![[0.0; L]; dim],
+            scratch: vec![0.0; dim],
         }
     }
 
-    /// Starts member `member` from `y0`.
-    fn load(&mut self, member: usize, y0: &[f64]) {
-        self.member = Some(member);
-        self.stepper = None;
-        self.step = 1;
-        self.target = None;
-        self.out.copy_from_slice(y0);
-        self.out_t = f64::NAN;
-        self.slot.ready = false;
-        self.slot.wanted = false;
+    /// Starts member `member` from `y0` in lane `l`.
+    fn load(&mut self, l: usize, member: usize, y0: &[f64]) {
+        self.member[l] = Some(member);
+        self.step[l] = 1;
+        self.target[l] = None;
+        self.started[l] = false;
+        self.out_t[l] = f64::NAN;
+        for (o, v) in self.out.iter_mut().zip(y0) {
+            o[l] = *v;
+        }
     }
 
-    /// Runs the member until it needs an expansion, has all its outputs (each passed to
-    /// `output(member, step, y)`) or fails (into `failed`).
-    // Exact comparison: as TaylorStepper's, a grid time beyond the end.
+    /// Frees lane `l`, passing its member's error to `failed`.
+    fn fail(&mut self, l: usize, e: Error, failed: &mut impl FnMut(usize, Error)) -> Serve {
+        if let Some(member) = self.member[l].take() {
+            failed(member, e);
+        }
+        Serve::Free
+    }
+
+    /// A fresh stepper in lane `l` at `(t0, out)`: `Taylor::new`'s state and checks.
+    fn restart(&mut self, l: usize, t0: f64) -> Result<()> {
+        check_tolerances(&self.tolerances)?;
+        if let Some(bad) = self.out.iter().map(|o| o[l]).find(|v| !v.is_finite()) {
+            return Err(Error::invalid("y0", bad, "must be finite"));
+        }
+        for i in 0..self.dim {
+            self.y[i][l] = self.out[i][l];
+            self.lo[i][l] = 0.0;
+            self.start_lo[i][l] = 0.0;
+        }
+        (self.t[l], self.t_lo[l]) = (t0, 0.0);
+        (self.start[l], self.start_t_lo[l]) = (t0, 0.0);
+        self.h[l] = 0.0;
+        self.accepted[l] = 0;
+        self.started[l] = true;
+        Ok(())
+    }
+
+    /// Runs lane `l`'s member on the current polynomial (the last step's, its coefficients
+    /// `c`): its outputs (each passed to `output(member, step, y)`) until it needs a step,
+    /// has all its outputs, or fails (into `failed`): `TaylorStepper::advance` and
+    /// `Taylor::advance` up to the expansion.
+    // Exact comparisons: as the scalar stepper's, a grid time beyond the end, the clock at
+    // the end, an output at the clock.
     #[allow(clippy::float_cmp)]
     fn serve(
         &mut self,
+        l: usize,
+        c: &[[f64; L]],
         grid: &TimeGrid,
-        tolerances: Tolerances,
         output: &mut impl FnMut(usize, usize, &[f64]),
         failed: &mut impl FnMut(usize, Error),
     ) -> Serve {
-        let Some(member) = self.member else {
+        let Some(member) = self.member[l] else {
             return Serve::Free;
         };
-        let (n, t_bound, dt) = (grid.n_steps(), grid.t_end(), grid.dt());
-        let fail = |lane: &mut Self, failed: &mut dyn FnMut(usize, Error), e: Error| {
-            lane.member = None;
-            failed(member, e);
-            Serve::Free
-        };
-        while self.step <= n {
-            let target = match self.target {
+        let (n, t_bound, dt) = (grid.n_steps(), self.t_bound, grid.dt());
+        let n1 = self.order + 1;
+        while self.step[l] <= n {
+            let target = match self.target[l] {
                 Some(target) => target,
                 None => {
-                    // TaylorStepper::advance from the grid's time of the last output.
-                    let t = grid.time(self.step - 1);
+                    let t = grid.time(self.step[l] - 1);
                     let mut target = t + dt;
                     if same_time(target, t_bound) {
                         target = t_bound;
@@ -182,42 +430,158 @@ impl Lane {
                             name: "h".into(),
                             reason: format!("t + h = {target} lies beyond the end {t_bound}"),
                         };
-                        return fail(self, failed, e);
+                        return self.fail(l, e, failed);
                     }
-                    if self.stepper.is_none() || !same_time(t, self.out_t) {
-                        match Taylor::new(self.slot.dim, tolerances, t, &self.out, t_bound) {
-                            Ok(stepper) => self.stepper = Some(stepper),
-                            Err(e) => return fail(self, failed, e),
+                    if !self.started[l] || !same_time(t, self.out_t[l]) {
+                        if let Err(e) = self.restart(l, t) {
+                            return self.fail(l, e, failed);
                         }
                     }
-                    self.target = Some(target);
+                    self.target[l] = Some(target);
+                    self.direction[l] = (t_bound - self.t[l]).signum();
                     target
                 }
             };
-            let Some(stepper) = self.stepper.as_mut() else {
-                return Serve::Free;
-            };
-            match stepper.advance(&mut self.slot, target, &mut self.next) {
-                Ok(()) => {
-                    if !self.next.iter().all(|v| v.is_finite()) {
-                        let e = Error::NonFinite {
-                            name: "state".into(),
-                            t: target,
-                        };
-                        return fail(self, failed, e);
-                    }
-                    self.out.copy_from_slice(&self.next);
-                    self.out_t = target;
-                    output(member, self.step, &self.out);
-                    self.step += 1;
-                    self.target = None;
+            // The current polynomial covers the target?
+            let covered = if self.h[l] != 0.0 {
+                let from_start = (target - self.start[l]) - self.start_t_lo[l];
+                if from_start * self.direction[l] <= self.h[l].abs() {
+                    horner_lane(
+                        c,
+                        n1,
+                        l,
+                        from_start,
+                        &self.start_lo,
+                        &mut self.scratch,
+                        self.isa.fused(),
+                    );
+                    true
+                } else {
+                    false
                 }
-                Err(_) if self.slot.wanted => return Serve::Expand,
-                Err(e) => return fail(self, failed, e),
+            } else if target == self.t[l] {
+                for (s, y) in self.scratch.iter_mut().zip(&self.y) {
+                    *s = y[l];
+                }
+                true
+            } else {
+                false
+            };
+            if !covered {
+                if self.t[l] == t_bound {
+                    let e = Error::invalid("t", target, "lies beyond the end of the integration");
+                    return self.fail(l, e, failed);
+                }
+                if self.accepted[l] >= self.tolerances.max_steps {
+                    let e = Error::StepSizeTooSmall {
+                        t: self.t[l],
+                        step: self.h[l],
+                        reason: format!(
+                            "the step budget max_steps = {} is spent; raise max_steps or \
+                             loosen the tolerances",
+                            self.tolerances.max_steps
+                        ),
+                    };
+                    return self.fail(l, e, failed);
+                }
+                return Serve::Step;
             }
+            if !self.scratch.iter().all(|v| v.is_finite()) {
+                let e = Error::NonFinite {
+                    name: "state".into(),
+                    t: target,
+                };
+                return self.fail(l, e, failed);
+            }
+            for (o, v) in self.out.iter_mut().zip(&self.scratch) {
+                o[l] = *v;
+            }
+            self.out_t[l] = target;
+            output(member, self.step[l], &self.scratch);
+            self.step[l] += 1;
+            self.target[l] = None;
         }
-        self.member = None;
+        self.member[l] = None;
         Serve::Free
+    }
+
+    /// The step size of lane `l` toward the end from its norms (`Taylor::expand` after the
+    /// expansion), or its error.
+    fn step_size(
+        &self,
+        l: usize,
+        [norm, second_last, last]: [f64; 3],
+        finite: bool,
+    ) -> Result<f64> {
+        let p = self.order;
+        let t = self.t[l];
+        let fail = |step: f64, reason: String| Error::StepSizeTooSmall { t, step, reason };
+        let scale = if self.tolerances.rtol * norm <= self.tolerances.atol {
+            1.0
+        } else {
+            norm
+        };
+        let radius = |c: f64, k: usize| {
+            if c > 0.0 {
+                (scale / c).powf(1.0 / k as f64)
+            } else {
+                f64::INFINITY
+            }
+        };
+        let rho = match smaller_root(scale / second_last, p - 1, scale / last, p) {
+            Some(true) => radius(second_last, p - 1),
+            Some(false) => radius(last, p),
+            None => radius(second_last, p - 1).min(radius(last, p)),
+        };
+        let remaining = (self.t_bound - self.t[l]) - self.t_lo[l];
+        let h = if rho.is_infinite() {
+            remaining.abs().min(f64::MAX)
+        } else {
+            rho / std::f64::consts::E.powi(2) * self.safety
+        };
+        if !h.is_finite() || !finite {
+            return Err(fail(
+                h,
+                "the Taylor coefficients are not finite (a singularity of the field?)".into(),
+            ));
+        }
+        let span = if remaining.is_finite() {
+            remaining.abs()
+        } else {
+            0.0
+        };
+        if h <= f64::EPSILON * t.abs().max(span) * 4.0 && h < remaining.abs() {
+            return Err(fail(
+                h,
+                "the step size underflowed (the solution's radius of convergence shrinks to \
+                 zero: a singularity?)"
+                    .into(),
+            ));
+        }
+        Ok(h.min(remaining.abs()).copysign(remaining))
+    }
+
+    /// Takes the step of length `h[l]` in every lane on the coefficients `c`: the state
+    /// update and the clock (`Taylor::take`).
+    // Exact comparison: the step lands on the end exactly.
+    #[allow(clippy::float_cmp)]
+    fn take(&mut self, c: &[[f64; L]], h: &[f64; L]) {
+        std::mem::swap(&mut self.lo, &mut self.start_lo);
+        self.isa
+            .horner(c, self.order, h, &self.start_lo, &mut self.y, &mut self.lo);
+        for (l, &h) in h.iter().enumerate() {
+            let remaining = (self.t_bound - self.t[l]) - self.t_lo[l];
+            (self.start[l], self.start_t_lo[l]) = (self.t[l], self.t_lo[l]);
+            if h == remaining {
+                (self.t[l], self.t_lo[l]) = (self.t_bound, 0.0);
+            } else {
+                let (hi, lo) = two_sum(self.t[l], h);
+                let (hi, lo2) = two_sum(hi, lo + self.t_lo[l]);
+                (self.t[l], self.t_lo[l]) = (hi, lo2);
+            }
+            self.h[l] = h;
+            self.accepted[l] += 1;
+        }
     }
 }
 
@@ -225,7 +589,7 @@ impl Lane {
 /// row-major) on the grid `grid` by the adaptive Taylor method at `tolerances`, `L` at a
 /// time on `field`: passes each output to `output(member, step, state)` (steps `1..=n_steps`,
 /// in order per member) and each failed member's error to `failed(member, error)`, after
-/// which that member gives no more outputs. `stop()` is asked before every expansion.
+/// which that member gives no more outputs. `stop()` is asked before every step.
 ///
 /// # Errors
 /// [`Error::Interrupted`] once `stop()` says so; [`Error::DimensionMismatch`] for `starts`
@@ -247,22 +611,26 @@ pub fn integrate_batch<const L: usize, F: LanesField<L>>(
             found: starts.len(),
         });
     }
-    let order = order_for(&tolerances);
+    let mut batch = Batch::<L>::new(dim, tolerances, grid.t_end());
+    let order = batch.order;
     let mut members = starts.chunks_exact(dim).enumerate();
-    let mut lanes: Vec<Lane> = (0..L).map(|_| Lane::new(dim, order)).collect();
+    let mut h = [0.0; L];
     let mut t = [0.0; L];
-    let mut y = vec![[0.0; L]; dim];
+    let mut stepping = [false; L];
     loop {
+        let c = field.coefficients();
         let mut any = None;
-        for (l, lane) in lanes.iter_mut().enumerate() {
+        for (l, lane_steps) in stepping.iter_mut().enumerate() {
+            *lane_steps = false;
             loop {
-                if lane.member.is_none() {
+                if batch.member[l].is_none() {
                     match members.next() {
-                        Some((member, y0)) => lane.load(member, y0),
+                        Some((member, y0)) => batch.load(l, member, y0),
                         None => break,
                     }
                 }
-                if let Serve::Expand = lane.serve(grid, tolerances, &mut output, &mut failed) {
+                if let Serve::Step = batch.serve(l, c, grid, &mut output, &mut failed) {
+                    *lane_steps = true;
                     any = Some(l);
                     break;
                 }
@@ -274,25 +642,32 @@ pub fn integrate_batch<const L: usize, F: LanesField<L>>(
         if stop() {
             return Err(Error::Interrupted { t: f64::NAN });
         }
-        for (l, lane) in lanes.iter().enumerate() {
-            // A lane without a request computes a running lane's state: finite work.
-            let slot = if lane.slot.wanted {
-                &lane.slot
-            } else {
-                &lanes[running].slot
-            };
-            t[l] = slot.t;
-            for (yi, v) in y.iter_mut().zip(&slot.y) {
-                yi[l] = *v;
+        // A lane without a step to take computes a running lane's: finite work, dropped.
+        for l in 0..L {
+            let from = if stepping[l] { l } else { running };
+            t[l] = batch.t[from];
+            if from != l {
+                for yi in &mut batch.y {
+                    yi[l] = yi[from];
+                }
             }
         }
-        field.expand(&t, &y, order)?;
-        for (l, lane) in lanes.iter_mut().enumerate() {
-            if lane.slot.wanted {
-                field.lane(l, &mut lane.slot.coefficients);
-                lane.slot.wanted = false;
-                lane.slot.ready = true;
+        field.expand(&t, &batch.y, order)?;
+        let c = field.coefficients();
+        let (norms, finite) = batch.isa.norms(c, order);
+        for l in 0..L {
+            h[l] = 0.0;
+            if !stepping[l] {
+                continue;
+            }
+            let lane = [norms[0][l], norms[1][l], norms[2][l]];
+            match batch.step_size(l, lane, finite[l]) {
+                Ok(step) => h[l] = step,
+                Err(e) => {
+                    batch.fail(l, e, &mut failed);
+                }
             }
         }
+        batch.take(c, &h);
     }
 }

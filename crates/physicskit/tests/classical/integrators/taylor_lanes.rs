@@ -82,21 +82,22 @@ fn sixteen_lanes_have_the_interpreters_bits() {
     lanes_equal_the_interpreter::<16>();
 }
 
-/// Hénon–Heiles members in a batch over t = 50 with outputs every 0.5: every output of every
-/// member is `integrate_taylor`'s alone, bit for bit, for member counts below, at and above a
-/// multiple of the lanes; an escaping member (E = 0.6, above the saddles' 1/6) fails with its
-/// own run's error, beside members that do not.
-#[test]
-fn batch_members_equal_their_runs_alone() {
+/// Hénon–Heiles members in a batch over t = 50 with outputs every 0.5, in `L` lanes at `tol`:
+/// every output of every member is the registry's stepper's alone, bit for bit, for member
+/// counts below, at and above a multiple of the lanes (members take different numbers of
+/// steps, so lanes finish at different times and take the next member); an escaping member
+/// (E = 0.6, above the saddles' 1/6) fails with its own run's error, beside members that do
+/// not.
+fn batch_members_equal_their_runs_alone<const L: usize>(tol: f64) {
     let program = TaylorProgram::hamiltonian(&henon_heiles_expr()).unwrap();
-    let tolerances = Tolerances::new(1e-12, 1e-12).unwrap();
+    let tolerances = Tolerances::new(tol, tol).unwrap();
     let grid = TimeGrid::new((0.0, 50.0), 0.5).unwrap();
     let escaping = [0.0, 0.0, 0.8, 0.7];
-    for n in [3, 4, 9] {
+    for n in [3, L, 2 * L + 1] {
         let mut starts: Vec<f64> = (0..n)
             .flat_map(|m| {
-                let y = -0.2 + 0.05 * m as f64;
-                let px = 0.1 - 0.02 * m as f64;
+                let y = -0.2 + 0.4 * m as f64 / n as f64;
+                let px = 0.1 - 0.2 * m as f64 / n as f64;
                 let v = 0.5 * y * y - y * y * y / 3.0;
                 let py = (2.0 * (0.12 - v) - px * px).sqrt();
                 [0.0, y, px, py]
@@ -106,7 +107,7 @@ fn batch_members_equal_their_runs_alone() {
         let mut outputs = vec![vec![Vec::new(); grid.n_steps() + 1]; n];
         let mut failures = Vec::new();
         integrate_batch(
-            &mut program.lanes::<4>(),
+            &mut program.lanes::<L>(),
             &starts,
             &grid,
             tolerances,
@@ -127,6 +128,7 @@ fn batch_members_equal_their_runs_alone() {
                         assert!(matches!(want, Error::StepSizeTooSmall { .. }), "{want}");
                         assert_eq!(failures[0].0, 1);
                         assert_eq!(failures[0].1.to_string(), want.to_string());
+                        assert!(got.is_empty(), "an output after the failure");
                         break;
                     }
                     assert!(step < grid.n_steps(), "the escaping member did not fail");
@@ -135,9 +137,23 @@ fn batch_members_equal_their_runs_alone() {
                 run.unwrap();
                 assert!(
                     got.iter().zip(&y).all(|(g, w)| same(*g, *w)),
-                    "{n} members, member {m}, step {step}: {got:?} vs {y:?}"
+                    "{L} lanes, tol {tol:e}, {n} members, member {m}, step {step}: {got:?} vs \
+                     {y:?}"
                 );
             }
         }
     }
+}
+
+/// Four lanes (the plain or AVX2 loops) at the orders of tol 1e-12 and 1e-6.
+#[test]
+fn batch_members_in_four_lanes_equal_their_runs_alone() {
+    batch_members_equal_their_runs_alone::<4>(1e-12);
+    batch_members_equal_their_runs_alone::<4>(1e-6);
+}
+
+/// Sixteen lanes (the AVX-512 loops where the CPU has them) at tol 1e-14.
+#[test]
+fn batch_members_in_sixteen_lanes_equal_their_runs_alone() {
+    batch_members_equal_their_runs_alone::<16>(1e-14);
 }

@@ -414,10 +414,9 @@ impl<const L: usize> LanesField<L> for TaylorLanes<L> {
         Ok(())
     }
 
-    fn lane(&self, lane: usize, coefficients: &mut [f64]) {
-        let n = self.dim * self.stride;
-        for (c, w) in coefficients.iter_mut().zip(&self.work[..n]) {
-            *c = w[lane];
-        }
+    /// The state's rows, which come first in the work array (empty before the first
+    /// expansion).
+    fn coefficients(&self) -> &[[f64; L]] {
+        &self.work[..self.dim * self.stride]
     }
 }
