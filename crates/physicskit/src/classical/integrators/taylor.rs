@@ -383,17 +383,65 @@ fn eval_blocks(
     horner_blocks::<false>(blocks, n1, x, lo, out, out_lo);
 }
 
-/// The rows of `c` (`n1` coefficients each) side by side in `blocks` (`n1` groups of `LANES`
-/// per `LANES` rows, zeros past the last row).
-fn to_blocks(c: &[f64], n1: usize, blocks: &mut [[f64; LANES]]) {
-    let rows = c.len() / n1;
-    for (b, block) in blocks.chunks_exact_mut(n1).enumerate() {
-        for (k, group) in block.iter_mut().enumerate() {
-            for (r, lane) in group.iter_mut().enumerate() {
-                let row = b * LANES + r;
-                *lane = if row < rows { c[row * n1 + k] } else { 0.0 };
+/// What one pass over a step's coefficients finds: the largest magnitudes over the rows of
+/// the orders 0, `p - 1` and `p` (for the step-size rule; `f64::max`, which passes over a
+/// NaN, from 0), and whether every coefficient is finite.
+struct Scan {
+    norm: f64,
+    second_last: f64,
+    last: f64,
+    finite: bool,
+}
+
+/// The rows of `c` (`n1 >= 2` coefficients each) side by side in `blocks` (`n1` groups of
+/// `LANES` per `LANES` rows; the lanes past the last row are left as they are: zeros in the
+/// stepper's buffers, which never write them), and the [`Scan`] of them, in one pass over the
+/// groups. The maxima are those of the rows in any order (`f64::max` of magnitudes ignores
+/// NaNs and is associative), so the step is the one the rows give. Not inlined: as a
+/// function of its own its slices are known not to overlap, which spares the vectorized
+/// transposition run-time overlap checks.
+#[inline(never)]
+fn to_blocks_scanned(c: &[f64], n1: usize, blocks: &mut [[f64; LANES]]) -> Scan {
+    for (block, rows) in blocks.chunks_exact_mut(n1).zip(c.chunks(n1 * LANES)) {
+        if rows.len() == n1 * LANES {
+            let (r0, rest) = rows.split_at(n1);
+            let (r1, rest) = rest.split_at(n1);
+            let (r2, r3) = rest.split_at(n1);
+            for ((((group, &a), &b), &c), &d) in block.iter_mut().zip(r0).zip(r1).zip(r2).zip(r3) {
+                *group = [a, b, c, d];
+            }
+            continue;
+        }
+        for (r, row) in rows.chunks_exact(n1).enumerate() {
+            for (group, &x) in block.iter_mut().zip(row) {
+                group[r] = x;
             }
         }
+    }
+    let p = n1 - 1;
+    let (mut norm, mut second_last, mut last) =
+        ([0.0_f64; LANES], [0.0_f64; LANES], [0.0_f64; LANES]);
+    // `x · 0` is a zero for finite `x` and NaN otherwise: a lane's sum of them is a zero
+    // exactly when all its coefficients are finite (no branch, in vector lanes).
+    let mut zero = [0.0_f64; LANES];
+    for block in blocks.chunks_exact(n1) {
+        for r in 0..LANES {
+            norm[r] = norm[r].max(block[0][r].abs());
+            second_last[r] = second_last[r].max(block[p - 1][r].abs());
+            last[r] = last[r].max(block[p][r].abs());
+        }
+        for group in block {
+            for r in 0..LANES {
+                zero[r] += group[r] * 0.0;
+            }
+        }
+    }
+    let max = |lanes: [f64; LANES]| lanes.into_iter().fold(0.0_f64, f64::max);
+    Scan {
+        norm: max(norm),
+        second_last: max(second_last),
+        last: max(last),
+        finite: zero.iter().all(|&z| z == 0.0),
     }
 }
 
@@ -453,8 +501,11 @@ pub struct Taylor {
     tolerances: Tolerances,
     /// The current step's Taylor coefficients (`dim` rows of `order + 1`).
     coefficients: Vec<f64>,
-    /// Room for the coefficients side by side in vector lanes, for the state update.
+    /// The current step's coefficients side by side in vector lanes, for the state update
+    /// and the outputs.
     blocks: Vec<[f64; LANES]>,
+    /// The next step's, filled by its expansion and swapped in when it is taken.
+    next_blocks: Vec<[f64; LANES]>,
     /// Start of the current polynomial's step, as a double-double `(hi, lo)`.
     start: (f64, f64),
     /// The clock after the last step (the end of the current polynomial's step).
@@ -507,6 +558,7 @@ impl Taylor {
             tolerances,
             coefficients: vec![0.0; dim * (order + 1)],
             blocks: vec![[0.0; LANES]; dim.div_ceil(LANES) * (order + 1)],
+            next_blocks: vec![[0.0; LANES]; dim.div_ceil(LANES) * (order + 1)],
             start: (t0, 0.0),
             t: (t0, 0.0),
             y: y0.to_vec(),
@@ -553,12 +605,14 @@ impl Taylor {
             ));
         }
         field.coefficients(t, &self.y, p, &mut self.coefficients)?;
-        let (mut norm, mut last, mut second_last) = (0.0_f64, 0.0_f64, 0.0_f64);
-        for row in self.coefficients.chunks_exact(n1) {
-            norm = norm.max(row[0].abs());
-            second_last = second_last.max(row[p - 1].abs());
-            last = last.max(row[p].abs());
-        }
+        // Into the spare blocks: the current ones hold the polynomial outputs read until the
+        // step is taken.
+        let Scan {
+            norm,
+            second_last,
+            last,
+            finite,
+        } = to_blocks_scanned(&self.coefficients, n1, &mut self.next_blocks);
         let scale = if self.tolerances.rtol * norm <= self.tolerances.atol {
             1.0
         } else {
@@ -587,7 +641,7 @@ impl Taylor {
         } else {
             rho / std::f64::consts::E.powi(2) * self.safety
         };
-        if !h.is_finite() || !self.coefficients.iter().all(|c| c.is_finite()) {
+        if !h.is_finite() || !finite {
             return Err(fail(
                 h,
                 "the Taylor coefficients are not finite (a singularity of the field?)".into(),
@@ -614,7 +668,7 @@ impl Taylor {
     /// Takes one step on the current expansion of length `h`, moving the clock.
     fn take(&mut self, h: f64, lands: bool) {
         let n1 = self.order + 1;
-        to_blocks(&self.coefficients, n1, &mut self.blocks);
+        std::mem::swap(&mut self.blocks, &mut self.next_blocks);
         // The old state's low words become the polynomial's start's; the new ones are written.
         std::mem::swap(&mut self.lo, &mut self.start_lo);
         eval_blocks(

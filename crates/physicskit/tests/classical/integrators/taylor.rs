@@ -12,7 +12,7 @@ use physicskit::classical::analysis::section::{
     poincare_section, taylor_section, SurfaceOfSection,
 };
 use physicskit::classical::integrators::taylor::{
-    compensated_horner, integrate_taylor, order_for, TaylorField, MAX_ORDER, MIN_RTOL,
+    compensated_horner, integrate_taylor, order_for, Taylor, TaylorField, MAX_ORDER, MIN_RTOL,
 };
 use physicskit::classical::lagrangian::LagrangianModel;
 use physicskit::classical::model::erased::{DynSystem, Hamiltonian};
@@ -449,6 +449,83 @@ fn failures_are_errors() {
         matches!(err, Error::StepSizeTooSmall { t, .. } if t == 0.0),
         "{err}"
     );
+}
+
+/// The solution `y = y0 e^{-t}` of `y' = -y`, six components (a block of four rows and a
+/// partly filled one in the stepper), its series exact; the second expansion gets one
+/// coefficient replaced by `poison` (row, order, value).
+struct PoisonedDecay {
+    calls: usize,
+    poison: (usize, usize, f64),
+}
+
+impl TaylorField for PoisonedDecay {
+    fn dim(&self) -> usize {
+        6
+    }
+
+    fn coefficients(
+        &mut self,
+        _t: f64,
+        y: &[f64],
+        order: usize,
+        coefficients: &mut [f64],
+    ) -> physicskit::classical::Result<()> {
+        let n1 = order + 1;
+        for (row, &yi) in coefficients.chunks_exact_mut(n1).zip(y) {
+            let mut term = yi;
+            for (k, c) in row.iter_mut().enumerate() {
+                *c = term;
+                term *= -1.0 / (k + 1) as f64;
+            }
+        }
+        self.calls += 1;
+        if self.calls == 2 {
+            let (row, k, value) = self.poison;
+            coefficients[row * n1 + k] = value;
+        }
+        Ok(())
+    }
+}
+
+/// A non-finite coefficient anywhere in an expansion (every row, the partly filled block of
+/// four rows included, orders low, middle and high, an infinity or a NaN) stops the step with
+/// an error naming it, even where the orders the step size reads are finite; and the
+/// polynomial of the step before still gives the outputs, bit for bit.
+#[test]
+fn a_non_finite_coefficient_anywhere_stops_the_step() {
+    let tol = Tolerances::new(1e-10, 1e-10).unwrap();
+    let p = order_for(&tol);
+    let y0 = [1.0, 2.0, 3.0, 4.0, 5.0, 6.0];
+    for row in 0..6 {
+        for k in [1, p / 2, p - 2] {
+            for value in [f64::INFINITY, f64::NEG_INFINITY, f64::NAN] {
+                let mut field = PoisonedDecay {
+                    calls: 0,
+                    poison: (row, k, value),
+                };
+                let mut stepper = Taylor::new(6, tol, 0.0, &y0, 10.0).unwrap();
+                assert!(stepper.step(&mut field).unwrap());
+                let half = stepper.step_length() / 2.0;
+                let mut before = [0.0; 6];
+                stepper.eval_state(half, &mut before);
+                // The step's truncation error is about tol relative to the state (the
+                // step-size rule); 10x that.
+                for (v, y) in before.iter().zip(y0) {
+                    assert!((v - y * (-half).exp()).abs() <= 1e-9 * y, "{v} {y}");
+                }
+                let err = stepper.step(&mut field).unwrap_err();
+                assert!(
+                    matches!(err, Error::StepSizeTooSmall { .. })
+                        && err.to_string().contains("not finite"),
+                    "row {row}, order {k}, {value}: {err}"
+                );
+                let mut after = [0.0; 6];
+                stepper.eval_state(half, &mut after);
+                assert_eq!(before.map(f64::to_bits), after.map(f64::to_bits));
+            }
+        }
+    }
 }
 
 /// `Method::Taylor` through `integrate` on an expression system runs the system's Taylor
