@@ -21,9 +21,9 @@
 //! **`taylor` in SIMD lanes.** A plan with the `taylor` method and no reductions runs its
 //! members 16 at a time (AVX-512; 8 with AVX2, else 4) on one Taylor form per distinct system
 //! (`taylor.rs`, [`integrate_batch`](crate::classical::integrators::taylor_batch::integrate_batch)),
-//! in chunks of 64 to 1024 members: each lane does the scalar recurrences' operations and
-//! each member steps by the scalar stepper's code, so the bits are still those of its own
-//! `integrate`.
+//! in chunks of 64 to 1024 members: each lane does the scalar recurrences' operations, and
+//! then the scalar step's (step size, state update, clock, dense output) in their order, so
+//! the bits are still those of its own `integrate`.
 //! Reductions read every step of a member (energy errors, events, Lyapunov exponents): plans
 //! with them run members one at a time, as does a member whose lanes run fails (so its error
 //! is its own run's).
