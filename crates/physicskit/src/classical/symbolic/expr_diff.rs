@@ -4,13 +4,13 @@
 //! plain `f64` every step (a forward-mode dual pass per step would cost a dual operation per
 //! node instead).
 //!
-//! The rules are the textbook ones (sum, product, quotient and chain rules;
-//! `d(a^b) = a^b (b' ln a + b a' / a)`). Results are built by simplifying constructors
-//! ([`sum`], [`product`], [`negate`]) that flatten nested sums and products, fold their
-//! constant operands into one and drop zero terms and unit factors, so that the derivative of
-//! `x^2/2 + x^2 y` is `x + 2 x y`, not a tree of zeros and ones. Folding constants
-//! re-associates them (`0.5 * (2 * x)` becomes `1 * x = x`), so a derived force can differ
-//! from a hand-written one in the last bits; it is never less accurate.
+//! The rules are the textbook ones (sum, product and chain rules, the quotient rule as
+//! `(a/b)' = (a' - (a/b) b') / b`, `d(a^b) = a^b (b' ln a + b a' / a)`). Results are built by
+//! simplifying constructors ([`sum`], [`product`], [`negate`]) that flatten nested sums and
+//! products, fold their constant operands into one and drop zero terms and unit factors, so
+//! that the derivative of `x^2/2 + x^2 y` is `x + 2 x y`, not a tree of zeros and ones.
+//! Folding constants re-associates them (`0.5 * (2 * x)` becomes `1 * x = x`), so a derived
+//! force can differ from a hand-written one in the last bits; it is never less accurate.
 
 use super::expr::{Expr, Func};
 
@@ -182,14 +182,15 @@ impl Expr {
             })),
             Expr::Sub(a, b) => sum([d(a), negate(d(b))]),
             Expr::Div(a, b) => {
-                // (a/b)' = a'/b - a b' / b^2
+                // (a/b)' = (a' - (a/b) b') / b: the quotient itself is reused (a program built
+                // from the derivatives computes it once for every variable) and `b` is not
+                // squared, so each derivative costs a product and a division more than `a/b`.
                 let db = d(b);
-                let first = quotient(d(a), (**b).clone());
                 if is_const(&db, 0.0) {
-                    return first;
+                    return quotient(d(a), (**b).clone());
                 }
-                let second = quotient(product([(**a).clone(), db]), power((**b).clone(), 2));
-                sum([first, negate(second)])
+                let numerator = sum([d(a), negate(product([self.clone(), db]))]);
+                quotient(numerator, (**b).clone())
             }
             Expr::Neg(a) => negate(d(a)),
             Expr::Powi(a, n) => {

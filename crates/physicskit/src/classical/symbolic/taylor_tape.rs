@@ -5,10 +5,15 @@
 //! Compilation walks the expression trees bottom-up, as the [`Tape`](super::Tape) does: every
 //! distinct operation gets one node (hash-consing, so a subexpression shared between
 //! components, such as `cos(q0 - q1)` or `r^-3`, is expanded once), operations on constants
-//! are folded and parameters become constants. Each node holds a truncated power series;
-//! order `k` of every node follows from orders `< k` of its operands by one recurrence per
-//! operation (automatic differentiation of truncated series; Jorba & Zou, *Exp. Math.* 14
-//! (2005) 99, §3; Griewank & Walther, *Evaluating Derivatives*, ch. 13):
+//! are folded and parameters become constants. Constant factors are carried beside the values
+//! while building and moved out of products, quotients, negations and sums (`c a + c b =
+//! c (a + b)`), and the operands of `+` and `×` are put in one order: values that differ by a
+//! constant factor or the order of their operands share their nodes, and a factor is written
+//! out (one multiplication per order) only where a sum, a function or an output needs it.
+//! Each node holds a truncated power series; order `k` of every node follows from orders
+//! `< k` of its operands by one recurrence per operation (automatic differentiation of
+//! truncated series; Jorba & Zou, *Exp. Math.* 14 (2005) 99, §3; Griewank & Walther,
+//! *Evaluating Derivatives*, ch. 13):
 //!
 //! - `a ± b`, `c a`: term by term; `a b`: the Cauchy product; `a / b`, `√a`: the product
 //!   solved for the new term;
@@ -139,6 +144,25 @@ struct Builder<'a> {
     nodes: HashCons<Node>,
 }
 
+/// A value while the program is built: a constant, or a node's series times a constant factor.
+/// The factor is kept apart until an operation needs the product itself, so that constant
+/// factors fold into one, move out through products, quotients and negations, and values
+/// that differ by a factor share their node (`2 x` and `-x` are `x`; the double pendulum's
+/// `∂H/∂q0` and `∂H/∂q1` share the products in which they differ only by sign).
+#[derive(Debug, Clone, Copy)]
+enum Scaled {
+    Const(f64),
+    Node(u32, f64),
+}
+
+impl From<u32> for Scaled {
+    fn from(node: u32) -> Self {
+        Scaled::Node(node, 1.0)
+    }
+}
+
+// Exact comparisons: recognizing the factors 1 and -1 and equal factors.
+#[allow(clippy::float_cmp)]
 impl Builder<'_> {
     fn node(&mut self, node: Node) -> u32 {
         let (i, new) = self.nodes.intern(node);
@@ -148,59 +172,123 @@ impl Builder<'_> {
         i
     }
 
-    fn add(&mut self, a: Val, b: Val) -> Val {
+    /// The value as an operand of the recurrences: the node times its factor written out (a
+    /// negation for -1, nothing for 1).
+    fn val(&mut self, v: Scaled) -> Val {
+        match v {
+            Scaled::Const(c) => Val::Const(c),
+            Scaled::Node(a, c) => Val::Node(self.materialize(a, c)),
+        }
+    }
+
+    fn materialize(&mut self, a: u32, c: f64) -> u32 {
+        if c == 1.0 {
+            a
+        } else if c == -1.0 {
+            self.node(Node::Neg(a))
+        } else {
+            self.node(Node::MulC(a, c))
+        }
+    }
+
+    /// `a + b`. Commutative operations take their operands in index order (so `x + y` and
+    /// `y + x` are one node), and the factor of the first is moved out of the sum:
+    /// `c a + e b = c (a + (e/c) b)`, which is `c (a ± b)` when `e = ±c`.
+    fn add(&mut self, a: Scaled, b: Scaled) -> Scaled {
         match (a, b) {
-            (Val::Const(x), Val::Const(y)) => Val::Const(x + y),
-            (Val::Node(a), Val::Const(c)) | (Val::Const(c), Val::Node(a)) => {
-                Val::Node(self.node(Node::AddC(a, c)))
+            (Scaled::Const(x), Scaled::Const(y)) => Scaled::Const(x + y),
+            (Scaled::Node(a, c), Scaled::Const(k)) | (Scaled::Const(k), Scaled::Node(a, c)) => {
+                if k == 0.0 {
+                    Scaled::Node(a, c)
+                } else if c == -1.0 {
+                    self.node(Node::CSub(k, a)).into()
+                } else {
+                    let a = self.materialize(a, c);
+                    self.node(Node::AddC(a, k)).into()
+                }
             }
-            (Val::Node(a), Val::Node(b)) => Val::Node(self.node(Node::Add(a, b))),
-        }
-    }
-
-    fn sub(&mut self, a: Val, b: Val) -> Val {
-        match (a, b) {
-            (Val::Const(x), Val::Const(y)) => Val::Const(x - y),
-            (Val::Node(a), Val::Const(c)) => Val::Node(self.node(Node::AddC(a, -c))),
-            (Val::Const(c), Val::Node(a)) => Val::Node(self.node(Node::CSub(c, a))),
-            (Val::Node(a), Val::Node(b)) => Val::Node(self.node(Node::Sub(a, b))),
-        }
-    }
-
-    fn mul(&mut self, a: Val, b: Val) -> Val {
-        match (a, b) {
-            (Val::Const(x), Val::Const(y)) => Val::Const(x * y),
-            (Val::Node(a), Val::Const(c)) | (Val::Const(c), Val::Node(a)) => {
-                Val::Node(self.node(Node::MulC(a, c)))
+            (Scaled::Node(a, ca), Scaled::Node(b, cb)) if a == b => Scaled::Node(a, ca + cb),
+            (Scaled::Node(a, ca), Scaled::Node(b, cb)) => {
+                let ((lo, cl), (hi, ch)) = if a < b {
+                    ((a, ca), (b, cb))
+                } else {
+                    ((b, cb), (a, ca))
+                };
+                if ch == cl {
+                    return Scaled::Node(self.node(Node::Add(lo, hi)), cl);
+                }
+                if ch == -cl {
+                    return Scaled::Node(self.node(Node::Sub(lo, hi)), cl);
+                }
+                let ratio = ch / cl;
+                if ratio.is_finite() && ratio != 0.0 {
+                    let hi = self.materialize(hi, ratio);
+                    Scaled::Node(self.node(Node::Add(lo, hi)), cl)
+                } else {
+                    let (lo, hi) = (self.materialize(lo, cl), self.materialize(hi, ch));
+                    self.node(Node::Add(lo, hi)).into()
+                }
             }
-            (Val::Node(a), Val::Node(b)) if a == b => Val::Node(self.node(Node::Square(a))),
-            (Val::Node(a), Val::Node(b)) => Val::Node(self.node(Node::Mul(a, b))),
         }
     }
 
-    fn div(&mut self, a: Val, b: Val) -> Val {
+    fn neg(v: Scaled) -> Scaled {
+        match v {
+            Scaled::Const(c) => Scaled::Const(-c),
+            Scaled::Node(a, c) => Scaled::Node(a, -c),
+        }
+    }
+
+    fn sub(&mut self, a: Scaled, b: Scaled) -> Scaled {
+        self.add(a, Self::neg(b))
+    }
+
+    fn mul(&mut self, a: Scaled, b: Scaled) -> Scaled {
         match (a, b) {
-            (Val::Const(x), Val::Const(y)) => Val::Const(x / y),
-            (Val::Node(a), Val::Const(c)) => Val::Node(self.node(Node::MulC(a, 1.0 / c))),
-            (Val::Const(c), Val::Node(a)) => Val::Node(self.node(Node::CDiv(c, a))),
-            (Val::Node(a), Val::Node(b)) => Val::Node(self.node(Node::Div(a, b))),
+            (Scaled::Const(x), Scaled::Const(y)) => Scaled::Const(x * y),
+            (Scaled::Node(a, c), Scaled::Const(k)) | (Scaled::Const(k), Scaled::Node(a, c)) => {
+                Scaled::Node(a, c * k)
+            }
+            (Scaled::Node(a, ca), Scaled::Node(b, cb)) if a == b => {
+                Scaled::Node(self.node(Node::Square(a)), ca * cb)
+            }
+            (Scaled::Node(a, ca), Scaled::Node(b, cb)) => {
+                Scaled::Node(self.node(Node::Mul(a.min(b), a.max(b))), ca * cb)
+            }
         }
     }
 
-    fn unary(&mut self, a: Val, value: impl Fn(f64) -> f64, node: impl Fn(u32) -> Node) -> Val {
-        match a {
-            Val::Const(x) => Val::Const(value(x)),
-            Val::Node(a) => Val::Node(self.node(node(a))),
+    fn div(&mut self, a: Scaled, b: Scaled) -> Scaled {
+        match (a, b) {
+            (Scaled::Const(x), Scaled::Const(y)) => Scaled::Const(x / y),
+            (Scaled::Node(a, c), Scaled::Const(k)) => Scaled::Node(a, c / k),
+            (Scaled::Const(k), Scaled::Node(a, c)) => self.node(Node::CDiv(k / c, a)).into(),
+            (Scaled::Node(a, ca), Scaled::Node(b, cb)) => {
+                Scaled::Node(self.node(Node::Div(a, b)), ca / cb)
+            }
+        }
+    }
+
+    /// A function of one operand with no rule for its factor: the factor is written out.
+    fn unary(
+        &mut self,
+        a: Scaled,
+        value: impl Fn(f64) -> f64,
+        node: impl Fn(u32) -> Node,
+    ) -> Scaled {
+        match self.val(a) {
+            Val::Const(x) => Scaled::Const(value(x)),
+            Val::Node(a) => self.node(node(a)).into(),
         }
     }
 
     /// `a^n` by repeated squaring (products: exact where `a` vanishes).
-    fn powi(&mut self, a: Val, n: i32) -> Val {
-        if let Val::Const(x) = a {
-            return Val::Const(x.powi(n));
+    fn powi(&mut self, a: Scaled, n: i32) -> Scaled {
+        if let Scaled::Const(x) = a {
+            return Scaled::Const(x.powi(n));
         }
         let mut m = n.unsigned_abs();
-        let mut result = Val::Const(1.0);
+        let mut result = Scaled::Const(1.0);
         let mut base = a;
         while m > 0 {
             if m & 1 == 1 {
@@ -212,51 +300,53 @@ impl Builder<'_> {
             }
         }
         if n < 0 {
-            self.div(Val::Const(1.0), result)
+            self.div(Scaled::Const(1.0), result)
         } else {
             result
         }
     }
 
+    /// `a^x`; a positive factor moves out as `c^x`.
     // Exact comparisons: recognizing integer and half-integer exponents.
-    #[allow(clippy::float_cmp)]
-    fn powf(&mut self, a: Val, x: f64) -> Val {
+    fn powf(&mut self, a: Scaled, x: f64) -> Scaled {
         if x == x.trunc() && x.abs() <= 64.0 {
             return self.powi(a, x as i32);
         }
-        if x == 0.5 {
-            return self.unary(a, f64::sqrt, Node::Sqrt);
+        match a {
+            Scaled::Node(n, c) if c > 0.0 && c != 1.0 => {
+                let power = self.powf(n.into(), x);
+                self.mul(power, Scaled::Const(c.powf(x)))
+            }
+            _ if x == 0.5 => self.unary(a, f64::sqrt, Node::Sqrt),
+            _ => self.unary(a, |v| v.powf(x), |a| Node::Powf(a, x)),
         }
-        self.unary(a, |v| v.powf(x), |a| Node::Powf(a, x))
     }
 
-    fn exp(&mut self, a: Val) -> Val {
+    fn exp(&mut self, a: Scaled) -> Scaled {
         self.unary(a, f64::exp, Node::Exp)
     }
 
-    fn integral(&mut self, a: Val, d: Val, sign: f64, func: Func) -> Val {
-        match (a, d) {
-            (Val::Node(a), Val::Node(d)) => {
-                Val::Node(self.node(Node::Integral { a, d, sign, func }))
-            }
-            (Val::Const(x), _) => Val::Const(func_value(func, x)),
+    fn integral(&mut self, a: Scaled, d: Scaled, sign: f64, func: Func) -> Scaled {
+        match (self.val(a), self.val(d)) {
+            (Val::Node(a), Val::Node(d)) => self.node(Node::Integral { a, d, sign, func }).into(),
+            (Val::Const(x), _) => Scaled::Const(func_value(func, x)),
             // `d` is a function of `a`: constant only when `a` is.
             (Val::Node(_), Val::Const(_)) => unreachable_const(),
         }
     }
 
-    fn sin_cos(&mut self, a: Val, hyperbolic: bool) -> (Val, Val) {
-        match a {
-            Val::Const(x) if hyperbolic => (Val::Const(x.sinh()), Val::Const(x.cosh())),
-            Val::Const(x) => (Val::Const(x.sin()), Val::Const(x.cos())),
+    fn sin_cos(&mut self, a: Scaled, hyperbolic: bool) -> (Scaled, Scaled) {
+        match self.val(a) {
+            Val::Const(x) if hyperbolic => (Scaled::Const(x.sinh()), Scaled::Const(x.cosh())),
+            Val::Const(x) => (Scaled::Const(x.sin()), Scaled::Const(x.cos())),
             Val::Node(a) => {
                 let s = self.node(Node::SinCos(a, hyperbolic));
-                (Val::Node(s), Val::Node(s + 1))
+                (s.into(), (s + 1).into())
             }
         }
     }
 
-    fn func(&mut self, f: Func, a: Val) -> Val {
+    fn func(&mut self, f: Func, a: Scaled) -> Scaled {
         match f {
             Func::Sin => self.sin_cos(a, false).0,
             Func::Cos => self.sin_cos(a, false).1,
@@ -267,17 +357,21 @@ impl Builder<'_> {
                 self.div(s, c)
             }
             Func::Exp => self.exp(a),
-            Func::Sqrt => self.unary(a, f64::sqrt, Node::Sqrt),
-            Func::Abs => self.unary(a, f64::abs, Node::Abs),
+            Func::Sqrt => self.powf(a, 0.5),
+            // |c a| = |c| |a|
+            Func::Abs => match a {
+                Scaled::Node(n, c) => Scaled::Node(self.node(Node::Abs(n)), c.abs()),
+                Scaled::Const(x) => Scaled::Const(x.abs()),
+            },
             Func::Ln => self.integral(a, a, 1.0, Func::Ln),
             Func::Atan => {
                 let a2 = self.mul(a, a);
-                let d = self.add(a2, Val::Const(1.0));
+                let d = self.add(a2, Scaled::Const(1.0));
                 self.integral(a, d, 1.0, Func::Atan)
             }
             Func::Asin | Func::Acos => {
                 let a2 = self.mul(a, a);
-                let one_minus = self.sub(Val::Const(1.0), a2);
+                let one_minus = self.sub(Scaled::Const(1.0), a2);
                 let d = self.unary(one_minus, f64::sqrt, Node::Sqrt);
                 let sign = if f == Func::Asin { 1.0 } else { -1.0 };
                 self.integral(a, d, sign, f)
@@ -285,7 +379,7 @@ impl Builder<'_> {
         }
     }
 
-    fn compile(&mut self, e: &Expr) -> Result<Val> {
+    fn compile(&mut self, e: &Expr) -> Result<Scaled> {
         let bad = |kind: &str, i: usize, limit: usize| {
             Err(Error::invalid(
                 "expression",
@@ -295,18 +389,18 @@ impl Builder<'_> {
         };
         let (nf, ns) = (self.n_first, self.n_second);
         Ok(match e {
-            Expr::Const(c) => Val::Const(*c),
-            Expr::Q(i) if *i < nf => Val::Node(*i as u32),
+            Expr::Const(c) => Scaled::Const(*c),
+            Expr::Q(i) if *i < nf => (*i as u32).into(),
             Expr::Q(i) => return bad("q", *i, nf),
-            Expr::Qdot(i) if *i < ns => Val::Node((nf + i) as u32),
+            Expr::Qdot(i) if *i < ns => ((nf + i) as u32).into(),
             Expr::Qdot(i) => return bad("qdot/p", *i, ns),
-            Expr::T => Val::Node((nf + ns) as u32),
+            Expr::T => ((nf + ns) as u32).into(),
             Expr::Param(i) => match self.params.get(*i) {
-                Some(&p) => Val::Const(p),
+                Some(&p) => Scaled::Const(p),
                 None => return bad("param", *i, self.params.len()),
             },
             Expr::Add(v) => {
-                let mut acc = Val::Const(0.0);
+                let mut acc = Scaled::Const(0.0);
                 for (i, term) in v.iter().enumerate() {
                     let b = self.compile(term)?;
                     acc = if i == 0 { b } else { self.add(acc, b) };
@@ -314,7 +408,7 @@ impl Builder<'_> {
                 acc
             }
             Expr::Mul(v) => {
-                let mut acc = Val::Const(1.0);
+                let mut acc = Scaled::Const(1.0);
                 for (i, factor) in v.iter().enumerate() {
                     let b = self.compile(factor)?;
                     acc = if i == 0 { b } else { self.mul(acc, b) };
@@ -329,10 +423,7 @@ impl Builder<'_> {
                 let (a, b) = (self.compile(a)?, self.compile(b)?);
                 self.div(a, b)
             }
-            Expr::Neg(a) => {
-                let a = self.compile(a)?;
-                self.unary(a, |x| -x, Node::Neg)
-            }
+            Expr::Neg(a) => Self::neg(self.compile(a)?),
             Expr::Powi(a, n) => {
                 let a = self.compile(a)?;
                 self.powi(a, *n)
@@ -344,9 +435,9 @@ impl Builder<'_> {
             Expr::Pow(a, b) => {
                 let (a, b) = (self.compile(a)?, self.compile(b)?);
                 match (a, b) {
-                    (_, Val::Const(x)) => self.powf(a, x),
-                    (Val::Const(c), _) => {
-                        let exponent = self.mul(b, Val::Const(c.ln()));
+                    (_, Scaled::Const(x)) => self.powf(a, x),
+                    (Scaled::Const(c), _) => {
+                        let exponent = self.mul(b, Scaled::Const(c.ln()));
                         self.exp(exponent)
                     }
                     _ => {
@@ -389,8 +480,8 @@ fn func_value(func: Func, x: f64) -> f64 {
 /// A function of a non-constant operand folded to a constant cannot happen (the builder
 /// folds only operations whose operands are all constants); a NaN then makes the stepper
 /// refuse the run rather than panic.
-fn unreachable_const() -> Val {
-    Val::Const(f64::NAN)
+fn unreachable_const() -> Scaled {
+    Scaled::Const(f64::NAN)
 }
 
 impl TaylorProgram {
@@ -428,14 +519,15 @@ impl TaylorProgram {
             params,
             nodes: HashCons::new(nodes),
         };
-        let outputs = outputs
-            .iter()
-            .map(|e| builder.compile(e))
-            .collect::<Result<Vec<_>>>()?;
+        let mut compiled = Vec::with_capacity(dim);
+        for e in outputs {
+            let value = builder.compile(e)?;
+            compiled.push(builder.val(value));
+        }
         Ok(Self {
             dim,
             nodes: builder.nodes.items,
-            outputs,
+            outputs: compiled,
             work: Vec::new(),
             jit: jit::Jit::default(),
         })
