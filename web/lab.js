@@ -41,8 +41,7 @@ const TAU = 2 * Math.PI;
 function stepDefaults(entry) {
   const p = entry.presentation.pace;
   if (p.kind !== "fixed") return null;
-  const [mant, exp] = p.energy_error.toExponential().split("e");
-  const bound = `${mant === "1" ? "" : `${mant}×`}10${superscriptInt(Number(exp))}`;
+  const bound = scientific(p.energy_error);
   return {
     method: p.method, dt: p.dt, steps: p.steps_per_frame,
     note: `Step: ${p.method} at dt = ${p.dt} s, ${p.steps_per_frame} steps a frame (real time at 60 frames a second), which keeps the energy error below ${bound}; the catalogue's own method, ${entry.default_method}, is in the menu too, at a tolerance instead of a step.`,
@@ -159,8 +158,7 @@ function setRuns(el, runs) {
 // The catalogue's unit words for people: powers as superscripts (`kg m^2`, as people.rs does
 // for parameter units).
 function unitWords(unit) {
-  const SUP = { "-": "⁻", 0: "⁰", 1: "¹", 2: "²", 3: "³", 4: "⁴", 5: "⁵", 6: "⁶", 7: "⁷", 8: "⁸", 9: "⁹" };
-  return (unit ?? "").replace(/\^\{?(-?\d+)\}?/g, (_, p) => [...p].map((c) => SUP[c]).join(""));
+  return (unit ?? "").replace(/\^\{?(-?\d+)\}?/g, (_, p) => superscriptInt(p));
 }
 
 // A label: TeX symbol and unit; `text` is what the page shows and the tests read.
@@ -399,7 +397,7 @@ function addToleranceControl() {
   label.textContent = "Tolerance (rtol = atol)";
   const sel = document.createElement("select");
   sel.id = "tol";
-  sel.replaceChildren(...TOLS.map((t) => new Option(String(t), String(t))));
+  sel.replaceChildren(...TOLS.map((t) => new Option(scientific(t), String(t))));
   sel.value = String(DEFAULT_TOL);
   row.append(label, sel);
   $("dt").closest(".param").after(row);
@@ -821,9 +819,18 @@ function tickText(x, step) {
   return s.replace("e+", "e").replaceAll("-", "−");
 }
 
+// An integer (or its digits as a string) in superscript: -12 as ⁻¹².
 function superscriptInt(n) {
   const SUP = { "-": "⁻", 0: "⁰", 1: "¹", 2: "²", 3: "³", 4: "⁴", 5: "⁵", 6: "⁶", 7: "⁷", 8: "⁸", 9: "⁹" };
   return String(n).split("").map((c) => SUP[c]).join("");
+}
+// A number as a physicist writes it in prose: 10⁻⁶, 2.5×10⁻⁸ (not 0.000001 or 2.5e-8);
+// `digits` after the point when given (4.263×10⁻¹⁴), else as few as give the number back.
+function scientific(x, digits) {
+  if (x === 0) return "0";
+  if (!Number.isFinite(x)) return String(x);
+  const [mant, exp] = (digits === undefined ? x.toExponential() : x.toExponential(digits)).split("e");
+  return `${mant === "1" ? "" : `${mant.replace("-", "−")}×`}10${superscriptInt(Number(exp))}`;
 }
 
 // Axes on the plot area of `v`: a frame, light grid lines, ticks with labels and the axis
@@ -2102,7 +2109,7 @@ function draw() {
   // The readout names seconds only: "4.50 time" would read as a word.
   const tu = timeUnit() === "s" ? "s" : "";
   $("time").textContent = `${app.lab.time().toFixed(2)}${tu ? ` ${tu}` : ""}`;
-  $("energy-error").textContent = app.lab.energyError().toExponential(3);
+  $("energy-error").textContent = scientific(app.lab.energyError(), 3);
   drawScene(); drawPhase(); if (!$("energy-figure").hidden) drawEnergy(); drawSection();
 }
 
@@ -2416,7 +2423,7 @@ function applyHash(hash) {
     } else if (tolText.trim() !== "" && Number.isFinite(tol) && tol >= MIN_TOL && tol <= MAX_TOL) {
       if (![...$("tol").options].some((o) => Number(o.value) === tol)) $("tol").append(new Option(String(tol), String(tol)));
       $("tol").value = String(tol);
-    } else refused.push(`tol = ${quoted(tolText)} (a tolerance from ${MIN_TOL.toExponential()} to ${MAX_TOL.toExponential()})`);
+    } else refused.push(`tol = ${quoted(tolText)} (a tolerance from ${scientific(MIN_TOL)} to ${scientific(MAX_TOL)})`);
   }
   describeMethod(); // the facts line shows the link's step and the order at its tolerance
   const stepsText = h.get("steps");

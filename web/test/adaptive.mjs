@@ -25,6 +25,7 @@ const look = (page) => page.evaluate(() => {
     system: L.app.entry.name,
     method: $("method").value,
     tolMenu: $("tol").value,
+    tolTexts: Array.from($("tol").options, (o) => o.textContent),
     tolShown: !$("tol-row").hidden,
     tolLabel: document.querySelector("label[for=tol]")?.textContent ?? "",
     dtShown: !$("dt").closest(".param").hidden,
@@ -60,6 +61,9 @@ for (const [system, tol] of [["kepler", "1e-12"], ["double-pendulum", "1e-8"]]) 
   let got = await look(page);
   if (got.method !== "taylor") fail(`${system}: taylor not chosen (${got.method})`);
   if (!got.tolShown || got.dtShown) fail(`${system} taylor: the step control is not the tolerance (tolerance shown ${got.tolShown}, dt shown ${got.dtShown})`);
+  // The menu reads as a physicist writes a tolerance: powers of ten, 10⁻⁶ … 10⁻¹⁴, not
+  // 0.000001 or 1e-8.
+  if (!got.tolTexts.length || !got.tolTexts.every((t) => /^10⁻[¹²³⁴⁵⁶⁷⁸⁹⁰]+$/.test(t))) fail(`${system}: the tolerance menu reads ${JSON.stringify(got.tolTexts)}`);
   if (!/tolerance/i.test(got.tolLabel) || /step/i.test(got.tolLabel)) fail(`${system}: the tolerance is labelled ${JSON.stringify(got.tolLabel)}`);
   if (!/adaptive/.test(got.info) || !/order \d+/.test(got.info) || /per step per step/.test(got.info)) fail(`${system}: method facts ${JSON.stringify(got.info)}`);
   if (got.tolerance !== Number(tol)) fail(`${system}: the lab runs at ${got.tolerance}, the menu says ${tol}`);

@@ -39,6 +39,14 @@ const [site, nativeFile, shots, galleryDir] = process.argv.slice(2);
 mkdirSync(shots, { recursive: true });
 const native = new Map(readFileSync(nativeFile, "utf8").trim().split("\n")
   .map((l) => JSON.parse(l)).map((r) => [`${r.system} ${r.method}`, r]));
+// The page's readout as a physicist writes it (4.263×10⁻¹⁴, −2.500×10³) back in JavaScript's
+// notation (4.263e-14, -2.500e+3); any other text as it is.
+function readExponent(text) {
+  const m = /^(−?\d\.\d+)×10(⁻?[⁰¹²³⁴⁵⁶⁷⁸⁹]+)$/.exec(text);
+  if (!m) return text;
+  const exp = [...m[2]].map((c) => (c === "⁻" ? "-" : String("⁰¹²³⁴⁵⁶⁷⁸⁹".indexOf(c)))).join("");
+  return `${m[1].replace("−", "-")}e${exp.startsWith("-") ? exp : `+${exp}`}`;
+}
 const num = (hex) => new DataView(new BigUint64Array([BigInt(`0x${hex}`)]).buffer).getFloat64(0, true);
 
 const { server, url } = await serve(site);
@@ -106,9 +114,10 @@ for (let [name, method] of systems) {
   const ref = native.get(`${name} ${method}`);
   if (!ok || !ref || ref.error) { fail(`${name}: run failed or no native reference`); continue; }
   const want = num(ref.energy_error);
-  // The readout shows 4 significant digits; the number behind it must be the native one
-  // (bit for bit but for the libm-bound systems, see node_compare.mjs: 1e-14 of the energy).
-  if (readout !== want.toExponential(3)) fail(`${name}: readout ${readout}, native ${want.toExponential(3)}`);
+  // The readout shows 4 significant digits as a physicist writes them (4.263×10⁻¹⁴, 0 for
+  // none); the number behind it must be the native one (bit for bit but for the libm-bound
+  // systems, see node_compare.mjs: 1e-14 of the energy).
+  if (readExponent(readout) !== (want === 0 ? "0" : want.toExponential(3))) fail(`${name}: readout ${readout}, native ${want.toExponential(3)}`);
   if (Math.abs(exact - want) > 1e-14) fail(`${name}: energy error ${exact} vs native ${want}`);
   // Non-blank: at least 200 inked pixels (a body of radius 10 alone has ~300; an empty
   // canvas with its axis labels ~100 at most).
