@@ -39,9 +39,12 @@
 //! the operations of one row alone.
 //!
 //! **Step size without a second `powf`**: of the two roots of the step-size rule only the
-//! smaller is computed where bounds on their logarithms (from the doubles' exponents) tell
-//! which it is; the same `powf` of the same argument, so the same step. The Taylor coefficients
-//! themselves never use FMA (`symbolic/taylor_tape.rs`).
+//! smaller is computed where their logarithms, within 0.001 from the doubles' bits (the
+//! exponent, and a cubic in the mantissa), tell which it is; the same `powf` of the same
+//! argument, so the same step. Both roots are estimates of the series' radius of convergence
+//! and often close: the bound decides all but the pairs within 0.02 % (order 8) to 0.007 %
+//! (order 20) of each other.
+//! The Taylor coefficients themselves never use FMA (`symbolic/taylor_tape.rs`).
 
 use std::collections::BTreeMap;
 
@@ -457,36 +460,37 @@ pub fn compensated_horner(c: &[f64], x: f64) -> f64 {
     out[0]
 }
 
-/// `log2 x` from below, within 0.087, for a positive normal `x`: its exponent plus its
-/// mantissa's fraction (the chord of `log2` over each binade).
+/// `log2 x` within [`LOG2_NEAR_ERROR`] either way, for a positive normal `x`: its exponent
+/// plus its mantissa's fraction `m` plus `m (1 - m)(0.4229 - 0.1592 m)`, a fit of the gap
+/// between `log2(1 + m)` and its chord `m` (largest error 0.00089 over `[0, 1)`).
 #[inline(always)]
-fn log2_below(x: f64) -> f64 {
+fn log2_near(x: f64) -> f64 {
     let bits = x.to_bits();
     let exponent = (bits >> 52) as i64 - 1023;
-    let mantissa = f64::from_bits((bits & ((1 << 52) - 1)) | 1.0_f64.to_bits());
-    exponent as f64 + (mantissa - 1.0)
+    let m = f64::from_bits((bits & ((1 << 52) - 1)) | 1.0_f64.to_bits()) - 1.0;
+    exponent as f64 + (m + m * (1.0 - m) * (0.4229 - 0.1592 * m))
 }
 
-/// Largest error of [`log2_below`] (`1 - (1 + ln ln 2)/ln 2`, rounded up).
-const LOG2_BELOW_ERROR: f64 = 0.087;
+/// Largest error of [`log2_near`], rounded up.
+const LOG2_NEAR_ERROR: f64 = 0.001;
 
 /// Whether `x1^(1/k1)` is the smaller of the two roots (`Some(true)`), `x2^(1/k2)` is
-/// (`Some(false)`), or neither is told apart from their logarithms' bounds (`None`: roots
-/// within a factor `2^(0.087/k + 0.001)` of each other, 0.4 % at `k = 20`, or an argument
-/// not positive and normal). The margin of 1e-3 in `log2` beyond the bounds keeps the roots,
-/// once rounded by `powf`, in the same order.
+/// (`Some(false)`), or neither is told apart from their logarithms by [`log2_near`] (`None`:
+/// roots within a factor `2^(0.001/k1 + 0.001/k2 + 1e-9)` of each other, 0.007 % at
+/// `k = 20`, or an argument not positive and normal). The margin of 1e-9 in `log2` is far
+/// above the rounding of the estimates (about 1e-13) and of `powf` (an ulp, 3e-16 in `log2`),
+/// so the roots, once rounded by `powf`, keep the order told.
 #[inline]
 fn smaller_root(x1: f64, k1: usize, x2: f64, k2: usize) -> Option<bool> {
     if !(x1.is_normal() && x2.is_normal() && x1 > 0.0 && x2 > 0.0) {
         return None;
     }
     let (k1, k2) = (k1 as f64, k2 as f64);
-    // log2 of each root lies in [low, low + LOG2_BELOW_ERROR / k].
-    let (low1, low2) = (log2_below(x1) / k1, log2_below(x2) / k2);
-    let margin = 1e-3;
-    if low1 + LOG2_BELOW_ERROR / k1 + margin < low2 {
+    let (mid1, mid2) = (log2_near(x1) / k1, log2_near(x2) / k2);
+    let gap = LOG2_NEAR_ERROR / k1 + LOG2_NEAR_ERROR / k2 + 1e-9;
+    if mid1 + gap < mid2 {
         Some(true)
-    } else if low2 + LOG2_BELOW_ERROR / k2 + margin < low1 {
+    } else if mid2 + gap < mid1 {
         Some(false)
     } else {
         None
@@ -626,8 +630,8 @@ impl Taylor {
             }
         };
         // The smaller root alone where the two roots' logarithms, bounded from the doubles'
-        // exponents, tell it apart (the same `powf` of the same argument: the same ρ); both
-        // where they are close or not normal.
+        // bits, tell it apart (the same `powf` of the same argument: the same ρ); both where
+        // they are close or not normal.
         let rho = match smaller_root(scale / second_last, p - 1, scale / last, p) {
             Some(true) => radius(second_last, p - 1),
             Some(false) => radius(last, p),
@@ -1075,10 +1079,29 @@ impl Report for TaylorStepper {
 
 #[cfg(test)]
 mod tests {
-    use super::smaller_root;
+    use super::{log2_near, smaller_root, LOG2_NEAR_ERROR};
 
-    /// The root `smaller_root` names is the smaller `powf` (or equal to it), over arguments
-    /// from 1e-300 to 1e300 and every order, in pseudo-random pairs close and far apart.
+    /// `log2_near` is within its stated error of `log2` over doubles from 1e-300 to 1e300,
+    /// and comes within 80 % of that bound somewhere (the bound is not loose by a factor).
+    #[test]
+    fn log2_near_is_within_its_error() {
+        let mut state = 0x2545_F491_4F6C_DD1D_u64;
+        let mut worst = 0.0_f64;
+        for _ in 0..1_000_000 {
+            state ^= state << 13;
+            state ^= state >> 7;
+            state ^= state << 17;
+            let x = 10f64.powf(600.0 * ((state >> 11) as f64 / (1u64 << 53) as f64) - 300.0);
+            let error = (log2_near(x) - x.log2()).abs();
+            assert!(error <= LOG2_NEAR_ERROR, "{x:e}: {error}");
+            worst = worst.max(error);
+        }
+        assert!(worst > 0.8 * LOG2_NEAR_ERROR, "{worst}");
+    }
+
+    /// The root `smaller_root` names is the smaller `powf`, over arguments from 1e-300 to
+    /// 1e300 and every order, in pseudo-random pairs close (within 2.5 % in root) and far
+    /// apart; and it leaves few pairs untold.
     #[test]
     fn smaller_root_agrees_with_powf() {
         let mut state = 0x9E37_79B9_7F4A_7C15_u64;
@@ -1108,7 +1131,11 @@ mod tests {
                 told += 1;
             }
         }
-        // Most pairs are told apart (the pairs within 2.5 % of each other often are not).
-        assert!(close < told / 2, "{close} of {told} not told apart");
+        // Untold are the pairs with an argument not normal (a close pair's second argument,
+        // about the first's power k/(k - 1), overflows or underflows near the ends of the
+        // range: about 5 % of all pairs, which no bound can tell) and the close pairs within
+        // 2^(0.002/k) of each other (well under 1 %): 2 449 of 46 000 in this draw. The
+        // chord bound of the exponent alone (0.087/k) left an estimated 15 % more untold.
+        assert!(close * 10 < told, "{close} of {told} not told apart");
     }
 }
