@@ -191,7 +191,7 @@ impl Builder<'_> {
         }
     }
 
-    /// `a + b`. Commutative operations take their operands in index order (so `x + y` and
+    /// `a + b`. Commutative operations take their operands in one order (so `x + y` and
     /// `y + x` are one node), and the factor of the first is moved out of the sum:
     /// `c a + e b = c (a + (e/c) b)`, which is `c (a ± b)` when `e = ±c`.
     fn add(&mut self, a: Scaled, b: Scaled) -> Scaled {
@@ -252,8 +252,10 @@ impl Builder<'_> {
             (Scaled::Node(a, ca), Scaled::Node(b, cb)) if a == b => {
                 Scaled::Node(self.node(Node::Square(a)), ca * cb)
             }
+            // The later node first: the Cauchy product's sum starts with `a_0 b_k` and ends
+            // with `a_k b_0`, so the coefficient computed last in the same order enters last.
             (Scaled::Node(a, ca), Scaled::Node(b, cb)) => {
-                Scaled::Node(self.node(Node::Mul(a.min(b), a.max(b))), ca * cb)
+                Scaled::Node(self.node(Node::Mul(a.max(b), a.min(b))), ca * cb)
             }
         }
     }
