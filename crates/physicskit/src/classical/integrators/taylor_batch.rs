@@ -32,7 +32,7 @@
 use crate::classical::core::{Error, Result, TimeGrid};
 use crate::classical::integrators::taylor::{check_tolerances, order_for, same_time};
 use crate::classical::integrators::taylor_arith::{
-    smaller_root, two_product, two_product_fused, two_sum,
+    step_size, two_product, two_product_fused, two_sum,
 };
 use crate::classical::integrators::Tolerances;
 
@@ -505,60 +505,18 @@ impl<const L: usize> Batch<L> {
         Serve::Free
     }
 
-    /// The step size of lane `l` toward the end from its norms (`Taylor::expand` after the
-    /// expansion), or its error.
-    fn step_size(
-        &self,
-        l: usize,
-        [norm, second_last, last]: [f64; 3],
-        finite: bool,
-    ) -> Result<f64> {
-        let p = self.order;
-        let t = self.t[l];
-        let fail = |step: f64, reason: String| Error::StepSizeTooSmall { t, step, reason };
-        let scale = if self.tolerances.rtol * norm <= self.tolerances.atol {
-            1.0
-        } else {
-            norm
-        };
-        let radius = |c: f64, k: usize| {
-            if c > 0.0 {
-                (scale / c).powf(1.0 / k as f64)
-            } else {
-                f64::INFINITY
-            }
-        };
-        let rho = match smaller_root(scale / second_last, p - 1, scale / last, p) {
-            Some(true) => radius(second_last, p - 1),
-            Some(false) => radius(last, p),
-            None => radius(second_last, p - 1).min(radius(last, p)),
-        };
-        let remaining = (self.t_bound - self.t[l]) - self.t_lo[l];
-        let h = if rho.is_infinite() {
-            remaining.abs().min(f64::MAX)
-        } else {
-            rho / std::f64::consts::E.powi(2) * self.safety
-        };
-        if !h.is_finite() || !finite {
-            return Err(fail(
-                h,
-                "the Taylor coefficients are not finite (a singularity of the field?)".into(),
-            ));
-        }
-        let span = if remaining.is_finite() {
-            remaining.abs()
-        } else {
-            0.0
-        };
-        if h <= f64::EPSILON * t.abs().max(span) * 4.0 && h < remaining.abs() {
-            return Err(fail(
-                h,
-                "the step size underflowed (the solution's radius of convergence shrinks to \
-                 zero: a singularity?)"
-                    .into(),
-            ));
-        }
-        Ok(h.min(remaining.abs()).copysign(remaining))
+    /// The step size of lane `l` toward the end from its norms (`Taylor::expand`'s rule), or
+    /// its error.
+    fn step_size(&self, l: usize, norms: [f64; 3], finite: bool) -> Result<f64> {
+        step_size(
+            &self.tolerances,
+            self.safety,
+            self.order,
+            norms,
+            finite,
+            self.t[l],
+            (self.t_bound - self.t[l]) - self.t_lo[l],
+        )
     }
 
     /// Takes the step of length `h[l]` in every lane on the coefficients `c`: the state
