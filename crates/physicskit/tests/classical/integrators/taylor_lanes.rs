@@ -12,7 +12,7 @@ use physicskit::classical::symbolic::{Expr, ExprOde, TaylorProgram};
 use physicskit::classical::{Error, Tolerances};
 
 use super::taylor::henon_heiles_expr;
-use crate::fixtures::{pseudo_random, same};
+use crate::fixtures::{native, pseudo_random, same};
 
 /// The programs the compiled recurrences are tested on (every recurrence, and the
 /// mechanical expression forms), and one in the time.
@@ -65,6 +65,67 @@ fn lanes_equal_the_interpreter<const L: usize>() {
             }
         }
     }
+}
+
+/// Orders 1 to 24, each compiled on its own (whatever the program's size), lanes at distinct
+/// pseudo-random states and times: the compiled lanes' coefficients are the lanes
+/// interpreter's, bit for bit (the state's coefficients, which every node's feed).
+fn compiled_lanes_equal_the_interpreted<const L: usize>() {
+    for (name, program, y0, spread) in programs() {
+        let dim = program.dim();
+        let mut reference = program.lanes::<L>().interpreted_only();
+        for order in 1..=24 {
+            let mut compiled = program.lanes::<L>();
+            assert_eq!(
+                compiled.compile_native_any_size(order),
+                native(),
+                "{name}, {L} lanes, order {order}"
+            );
+            let t: [f64; L] = std::array::from_fn(|l| 0.3 - 0.07 * l as f64);
+            let y: Vec<[f64; L]> = (0..dim)
+                .map(|i| {
+                    std::array::from_fn(|l| {
+                        let r = pseudo_random(dim, 977 * order as u64 + l as u64)[i];
+                        y0[i] + spread * (2.0 * r - 1.0)
+                    })
+                })
+                .collect();
+            reference.expand(&t, &y, order).unwrap();
+            compiled.expand(&t, &y, order).unwrap();
+            assert_eq!(compiled.backend(order), native());
+            for (i, (g, w)) in compiled
+                .coefficients()
+                .iter()
+                .zip(reference.coefficients())
+                .enumerate()
+            {
+                for l in 0..L {
+                    assert!(
+                        same(g[l], w[l]),
+                        "{name}, {L} lanes, order {order}, lane {l}, coefficient {i}: {:e} vs \
+                         {:e}",
+                        g[l],
+                        w[l]
+                    );
+                }
+            }
+        }
+    }
+}
+
+#[test]
+fn compiled_four_lanes_have_the_interpreters_bits() {
+    compiled_lanes_equal_the_interpreted::<4>();
+}
+
+#[test]
+fn compiled_eight_lanes_have_the_interpreters_bits() {
+    compiled_lanes_equal_the_interpreted::<8>();
+}
+
+#[test]
+fn compiled_sixteen_lanes_have_the_interpreters_bits() {
+    compiled_lanes_equal_the_interpreted::<16>();
 }
 
 #[test]

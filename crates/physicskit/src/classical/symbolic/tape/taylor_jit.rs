@@ -243,7 +243,7 @@ impl Form {
 
 /// The number of terms of every sum of the recurrences to `order`, one for a node without a
 /// sum: what the unrolled code's size grows with.
-fn unrolled_terms(nodes: &[Node], order: usize) -> usize {
+pub(super) fn unrolled_terms(nodes: &[Node], order: usize) -> usize {
     (0..=order)
         .map(|k| {
             nodes
@@ -274,27 +274,27 @@ fn entry_point(code: *const u8) -> Entry {
     unsafe { std::mem::transmute::<*const u8, Entry>(code) }
 }
 
-extern "C" fn exp(x: f64) -> f64 {
+pub(super) extern "C" fn exp(x: f64) -> f64 {
     x.exp()
 }
 
-extern "C" fn sin(x: f64) -> f64 {
+pub(super) extern "C" fn sin(x: f64) -> f64 {
     x.sin()
 }
 
-extern "C" fn cos(x: f64) -> f64 {
+pub(super) extern "C" fn cos(x: f64) -> f64 {
     x.cos()
 }
 
-extern "C" fn sinh(x: f64) -> f64 {
+pub(super) extern "C" fn sinh(x: f64) -> f64 {
     x.sinh()
 }
 
-extern "C" fn cosh(x: f64) -> f64 {
+pub(super) extern "C" fn cosh(x: f64) -> f64 {
     x.cosh()
 }
 
-extern "C" fn powf(x: f64, y: f64) -> f64 {
+pub(super) extern "C" fn powf(x: f64, y: f64) -> f64 {
     x.powf(y)
 }
 
@@ -628,7 +628,7 @@ impl Emitter<'_, '_> {
 
 /// The shims of [`Node::Integral`]'s functions, indexed by [`Func`] (`ln`, `atan`, `asin`,
 /// `acos`; the others are never called).
-const INTEGRALS: [extern "C" fn(f64) -> f64; 13] = [
+pub(super) const INTEGRALS: [extern "C" fn(f64) -> f64; 13] = [
     integral::<0>,
     integral::<1>,
     integral::<2>,

@@ -22,6 +22,57 @@ use super::{func_value, powf_weight, Keyed, Node, TaylorProgram, Val};
 use crate::classical::core::{Error, Result};
 use crate::classical::integrators::taylor::{TaylorField, MAX_ORDER};
 use crate::classical::integrators::taylor_batch::LanesField;
+use crate::classical::symbolic::Backend;
+
+#[cfg(all(feature = "jit", not(target_arch = "wasm32")))]
+#[path = "taylor_lanes_jit.rs"]
+mod jit;
+
+/// The stand-in for `taylor_lanes_jit.rs` where no JIT is built (feature `jit` off, or
+/// WebAssembly): the lanes' recurrences are always interpreted.
+#[cfg(not(all(feature = "jit", not(target_arch = "wasm32"))))]
+mod jit {
+    use super::{Node, Val};
+
+    /// No native code, ever.
+    #[derive(Debug, Clone, Default)]
+    pub(super) struct Jit(());
+
+    /// Native code, which this build cannot have.
+    pub(super) enum Native {}
+
+    impl Jit {
+        pub(super) fn never() -> Self {
+            Self(())
+        }
+
+        #[inline(always)]
+        pub(super) fn code(&self, _: &[Node], _: &[Val], _: usize, _: usize) -> Option<&Native> {
+            None
+        }
+
+        pub(super) fn compile(
+            &self,
+            _: &[Node],
+            _: &[Val],
+            _: usize,
+            _: usize,
+            _: usize,
+        ) -> Option<&Native> {
+            None
+        }
+
+        pub(super) fn is_native(&self, _: usize) -> bool {
+            false
+        }
+    }
+
+    impl Native {
+        pub(super) fn call<const L: usize>(&self, _: &mut [[f64; L]]) {
+            match *self {}
+        }
+    }
+}
 
 /// A [`TaylorProgram`]'s recurrences for `L` states at once (see the module documentation).
 #[derive(Debug, Clone)]
@@ -33,6 +84,8 @@ pub struct TaylorLanes<const L: usize> {
     /// expansion of an order and reused.
     work: Vec<[f64; L]>,
     stride: usize,
+    /// Machine code compiled from the recurrences (feature `jit`), per order.
+    jit: jit::Jit,
 }
 
 impl TaylorProgram {
@@ -73,6 +126,50 @@ impl TaylorProgram {
             outputs: self.outputs.clone(),
             work: Vec::new(),
             stride: 0,
+            jit: jit::Jit::default(),
+        }
+    }
+}
+
+impl<const L: usize> TaylorLanes<L> {
+    /// Which code runs expansions to `order` now: native code once that order has been
+    /// expanded (compiled at its first expansion, or by
+    /// [`compile_native`](Self::compile_native)), else the interpreter.
+    pub fn backend(&self, order: usize) -> Backend {
+        if self.jit.is_native(order) {
+            Backend::Native
+        } else {
+            Backend::Interpreter
+        }
+    }
+
+    /// Compiles the recurrences up to `order` for `L` lanes now, rather than at the first
+    /// expansion of that order, and returns the backend that then runs them:
+    /// [`Backend::Interpreter`] without the feature `jit`, in WebAssembly, for an order above
+    /// [`MAX_ORDER`], a lane count not a multiple of 4, a program too large to compile
+    /// quickly, or if Cranelift cannot compile for this host. Clones share the code.
+    pub fn compile_native(&self, order: usize) -> Backend {
+        self.jit.code(&self.nodes, &self.outputs, L, order);
+        self.backend(order)
+    }
+
+    /// [`compile_native`](Self::compile_native) whatever the program's size: what tests
+    /// compare with the interpreter on large programs.
+    #[doc(hidden)]
+    pub fn compile_native_any_size(&self, order: usize) -> Backend {
+        self.jit
+            .compile(&self.nodes, &self.outputs, L, order, usize::MAX);
+        self.backend(order)
+    }
+
+    /// These lanes with their recurrences interpreted for good (no code shared with the
+    /// original, none ever compiled): the reference the compiled code is tested against.
+    #[doc(hidden)]
+    #[must_use]
+    pub fn interpreted_only(&self) -> Self {
+        Self {
+            jit: jit::Jit::never(),
+            ..self.clone()
         }
     }
 }
@@ -387,6 +484,10 @@ impl<const L: usize> LanesField<L> for TaylorLanes<L> {
         self.work[time] = *t;
         if order >= 1 {
             self.work[time + 1] = [1.0; L];
+        }
+        if let Some(code) = self.jit.code(&self.nodes, &self.outputs, L, order) {
+            code.call(&mut self.work);
+            return Ok(());
         }
         let (nodes, outputs, w) = (&self.nodes[..], &self.outputs[..], &mut self.work[..]);
         #[cfg(target_arch = "x86_64")]
