@@ -812,11 +812,14 @@ function tickText(x, step) {
   const d = Math.max(0, -Math.floor(Math.log10(step) + 1e-9));
   if (Math.abs(x) < step * 1e-6) x = 0;
   x = Math.round(x / step) * step === 0 ? 0 : x;
-  // Fixed decimals while they are few; else enough significant digits to tell ticks apart.
-  const exp = Math.abs(x) >= 1e5 || d > 6;
-  const k = Math.max(1, Math.min(12, Math.ceil(Math.log10(Math.max(Math.abs(x), step) / step))));
-  const s = exp ? (x === 0 ? "0" : x.toExponential(k)) : x.toFixed(d);
-  return s.replace("e+", "e").replaceAll("-", "−");
+  // Fixed decimals while they are few; else a power of ten as a physicist writes it
+  // (2×10⁻⁷, 1.5×10⁵), with the mantissa digits down to the step's decade, so ticks differ.
+  if (Math.abs(x) >= 1e5 || d > 6) {
+    if (x === 0) return "0";
+    const k = Math.floor(Math.log10(Math.abs(x)) + 1e-9) - Math.floor(Math.log10(step) + 1e-9);
+    return scientific(x, Math.max(0, Math.min(12, k)));
+  }
+  return x.toFixed(d).replaceAll("-", "−");
 }
 
 // An integer (or its digits as a string) in superscript: -12 as ⁻¹².
@@ -2608,6 +2611,7 @@ window.physicskitLab = {
   openHash: (hash) => { setRunning(false); return applyHash(hash); },
   exportJson: () => JSON.parse(JSON.stringify(exportData())),
   ticks: () => JSON.parse(JSON.stringify(app.ticks)),
+  tickLabels: (lo, hi, count) => { const t = tickValues(lo, hi, count); return t.values.map((x) => tickText(x, t.step)); },
   bodiesOnScreen: () => {
     const c = $("scene"), r = c.getBoundingClientRect(), v = app.sceneView;
     return bodiesOf(app.lab.positions()).map(([x, y]) => [r.left + v.X(x), r.top + v.Y(y)]);

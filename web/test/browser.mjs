@@ -66,6 +66,16 @@ const sceneInk = (page) => page.evaluate(() => {
 });
 
 const page = await open();
+// Tick labels beyond fixed decimals (a step below 10⁻⁶, a value of 10⁵ or more) read as powers
+// of ten, 2×10⁻⁷ and 1.5×10⁵ (never 2.0e−7), distinct, and back to the tick values they name.
+for (const [lo, hi] of [[0, 3e-7], [-2e-8, 2e-8], [1e5, 3e5], [-4e6, 1e6], [1.2e-9, 1.9e-9]]) {
+  const labels = await page.evaluate(([a, b]) => window.physicskitLab.tickLabels(a, b, 5), [lo, hi]);
+  const values = labels.map((t) => (t === "0" ? 0 : Number(readExponent(t.startsWith("10") ? `1.0×${t}` : t.replace(/^(−?\d)×/, "$1.0×")))));
+  if (labels.length < 2 || new Set(labels).size !== labels.length || labels.some((t) => /e/.test(t))
+      || values.some((v, i) => !Number.isFinite(v) || v < lo - (hi - lo) * 1e-9 || v > hi + (hi - lo) * 1e-9 || (i > 0 && v <= values[i - 1]))) {
+    fail(`tick labels on [${lo}, ${hi}]: ${JSON.stringify(labels)}`);
+  }
+}
 const systems = await page.evaluate(() => window.physicskitLab.app.catalogue.systems.map((s) => [s.name, s.default_method]));
 // Text a person should never meet in the page: code, flags, ASCII powers, notes to developers.
 // Symbols left as words or with a bare index ("ω earth", "ω_c") are code-isms too.
