@@ -9,7 +9,9 @@
 //!   (`rtol` 1e-10, `atol` 1e-12): the members share one Taylor form and run in SIMD lanes
 //!   (16 with AVX-512, 8 with AVX2; `integrators::taylor_batch`);
 //! - `lanes`: the same API with the plan's tolerances `rtol = atol = tol` for `tol` in 1e-6,
-//!   1e-10, 1e-14, and whether its final states are the `compiled` run's bits at that `tol`;
+//!   1e-10, 1e-14, whether its final states are the `compiled` run's bits at that `tol`, and
+//!   the time to compile the recurrences for the ensemble's lanes at that `tol`'s order
+//!   (measured first, before any run has compiled them);
 //! - `compiled`: the same members' Taylor form (the catalogue system's trace) built once,
 //!   its recurrences compiled by the JIT outside the timing (as heyoka compiles in its
 //!   constructor), each member integrated by `integrate_taylor` on a clone (clones share the
@@ -25,7 +27,7 @@ use std::time::Instant;
 use physicskit::classical::catalog;
 use physicskit::classical::ensemble::{self, Members, Plan};
 use physicskit::classical::integrators::taylor::{integrate_taylor, order_for};
-use physicskit::classical::symbolic::{trace_hamiltonian, Backend, TaylorProgram};
+use physicskit::classical::symbolic::{native_lanes, trace_hamiltonian, Backend, TaylorProgram};
 use physicskit::classical::systems::HenonHeilesSystem;
 use physicskit::classical::{Error, Method, Result, Tolerances};
 use rayon::prelude::*;
@@ -132,6 +134,22 @@ fn plan(threads: usize, tolerances: Option<Tolerances>) -> Plan {
     }
 }
 
+/// The time to compile `program`'s recurrences at `order` for the lanes an ensemble takes on
+/// this CPU (fresh lanes, so the code is compiled, not found), and whether they were compiled.
+fn lanes_compile(program: &TaylorProgram, order: usize) -> (f64, bool) {
+    fn time<const L: usize>(program: &TaylorProgram, order: usize) -> (f64, bool) {
+        let lanes = program.lanes::<L>();
+        let start = Instant::now();
+        let backend = lanes.compile_native(order);
+        (start.elapsed().as_secs_f64(), backend == Backend::Native)
+    }
+    match native_lanes() {
+        16 => time::<16>(program, order),
+        8 => time::<8>(program, order),
+        _ => time::<4>(program, order),
+    }
+}
+
 /// `values` as a JSON array (shortest round-trip digits).
 fn json(values: &[f64]) -> String {
     let items: Vec<String> = values.iter().map(|v| format!("{v:e}")).collect();
@@ -143,6 +161,21 @@ fn main() -> Result<()> {
     let flat: Vec<f64> = starts.iter().flatten().copied().collect();
     println!("{{\"kind\": \"starts\", \"states\": {}}}", json(&flat));
     let pools = [pool(1)?, pool(2)?];
+
+    // The lanes' compile times, first: later lanes of the same recurrences reuse the code.
+    let system = HenonHeilesSystem::new(&starts[0][..2], &starts[0][2..])?;
+    let traced = TaylorProgram::hamiltonian(&trace_hamiltonian(
+        &system,
+        &starts[0][..2],
+        &starts[0][2..],
+    )?)?;
+    let mut lanes_compiles = Vec::new();
+    for tol in [1e-6, 1e-10, 1e-14] {
+        lanes_compiles.push(lanes_compile(
+            &traced,
+            order_for(&Tolerances::new(tol, tol)?),
+        ));
+    }
 
     // The ensemble API, at its (the default) tolerances.
     let entry = catalog::find("henon-heiles")?;
@@ -219,7 +252,12 @@ fn main() -> Result<()> {
     }
 
     // The ensemble API (members in SIMD lanes) at the same tolerances.
-    for (tol, compiled) in [1e-6, 1e-10, 1e-14].into_iter().zip(&compiled_finals) {
+    for (i, (tol, compiled)) in [1e-6, 1e-10, 1e-14]
+        .into_iter()
+        .zip(&compiled_finals)
+        .enumerate()
+    {
+        let (compile, native) = lanes_compiles[i];
         let mut first = Vec::new();
         for (threads, _) in (1..).zip(&pools) {
             let plan = plan(threads, Some(Tolerances::new(tol, tol)?));
@@ -227,7 +265,8 @@ fn main() -> Result<()> {
             let finals: Vec<f64> = out.final_state.iter().copied().collect();
             let head = format!(
                 "{{\"kind\": \"lanes\", \"threads\": {threads}, \"tol\": {tol:e}, \
-                 \"seconds\": {seconds:e}, \"equals_compiled\": {}",
+                 \"seconds\": {seconds:e}, \"equals_compiled\": {}, \
+                 \"compile_seconds\": {compile:e}, \"native\": {native}",
                 &finals == compiled
             );
             if threads == 1 {

@@ -35,7 +35,7 @@ mod jit {
     use super::{Node, Val};
 
     /// No native code, ever.
-    #[derive(Debug, Clone, Default)]
+    #[derive(Debug, Clone)]
     pub(super) struct Jit(());
 
     /// Native code, which this build cannot have.
@@ -43,6 +43,10 @@ mod jit {
 
     impl Jit {
         pub(super) fn never() -> Self {
+            Self(())
+        }
+
+        pub(super) fn shared(_: &[Node], _: &[Val], _: usize) -> Self {
             Self(())
         }
 
@@ -99,23 +103,8 @@ impl TaylorProgram {
     /// Whether `other` runs the same recurrences: the same operations on the same operands,
     /// constants equal bit for bit (so the same coefficients, bit for bit, at every state).
     pub fn same_recurrences(&self, other: &Self) -> bool {
-        let val_bits = |v: &Val| match *v {
-            Val::Node(n) => (0, u64::from(n)),
-            Val::Const(c) => (1, c.to_bits()),
-        };
         self.dim == other.dim
-            && self.nodes.len() == other.nodes.len()
-            && self.outputs.len() == other.outputs.len()
-            && self
-                .nodes
-                .iter()
-                .zip(&other.nodes)
-                .all(|(a, b)| node_tag(*a) == node_tag(*b) && a.key() == b.key())
-            && self
-                .outputs
-                .iter()
-                .zip(&other.outputs)
-                .all(|(a, b)| val_bits(a) == val_bits(b))
+            && same_recurrences((&self.nodes, &self.outputs), (&other.nodes, &other.outputs))
     }
 
     /// These recurrences for `L` states at once.
@@ -126,7 +115,7 @@ impl TaylorProgram {
             outputs: self.outputs.clone(),
             work: Vec::new(),
             stride: 0,
-            jit: jit::Jit::default(),
+            jit: jit::Jit::shared(&self.nodes, &self.outputs, L),
         }
     }
 }
@@ -172,6 +161,28 @@ impl<const L: usize> TaylorLanes<L> {
             ..self.clone()
         }
     }
+}
+
+/// Whether two programs' nodes and outputs are the same operations on the same operands,
+/// constants equal bit for bit.
+fn same_recurrences(
+    (a_nodes, a_out): (&[Node], &[Val]),
+    (b_nodes, b_out): (&[Node], &[Val]),
+) -> bool {
+    let val_bits = |v: &Val| match *v {
+        Val::Node(n) => (0, u64::from(n)),
+        Val::Const(c) => (1, c.to_bits()),
+    };
+    a_nodes.len() == b_nodes.len()
+        && a_out.len() == b_out.len()
+        && a_nodes
+            .iter()
+            .zip(b_nodes)
+            .all(|(a, b)| node_tag(*a) == node_tag(*b) && a.key() == b.key())
+        && a_out
+            .iter()
+            .zip(b_out)
+            .all(|(a, b)| val_bits(a) == val_bits(b))
 }
 
 /// Tells apart the nodes that share a key ([`Node::State`], [`Node::Time`] and

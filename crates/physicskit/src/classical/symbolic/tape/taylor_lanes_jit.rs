@@ -6,12 +6,10 @@
 //! The code is the scalar JIT's unrolled form (`taylor_jit.rs`: for `k = 0..=p`, order `k` of
 //! every operation node, then the state's order `k + 1`, every term of every sum written out,
 //! a coefficient of the order being computed used as the value just computed) on Cranelift's
-//! `f64x2` vectors: each value is [`VECTORS`] vectors of two lanes, operated on one after the
-//! other, so that their independent chains of additions overlap (a sum's terms are added one
-//! after the other, as the interpreter adds them). One pass of that code covers
-//! `2 VECTORS` lanes; a loop runs it over the `L` lanes, its base address moving by
-//! `2 VECTORS` doubles. The work array is only 8-byte aligned, so the loads and stores claim
-//! no more.
+//! `f64x2` vectors (its x86-64 backend has no wider ones): each value is [`VECTORS`] vectors
+//! of two lanes. One pass of that code covers `2 VECTORS` lanes; a loop runs it over the `L`
+//! lanes, its base address moving by `2 VECTORS` doubles. The work array is only 8-byte
+//! aligned, so the loads and stores claim no more.
 //!
 //! `f64x2` addition, subtraction, multiplication, division, negation and square root are the
 //! IEEE operations lane by lane, and Cranelift does not contract a multiplication and an
@@ -21,11 +19,16 @@
 //! interpreter's own functions), and `|x|`'s sign test lane by lane as the scalar JIT does it
 //! (`tests/classical/integrators/taylor_lanes.rs` checks every recurrence at orders 1–24).
 //!
-//! Programs whose unrolled code would take long to compile ([`MAX_TERMS`]) stay interpreted.
-//! The code lives in a [`JITModule`](cranelift_jit::JITModule) shared by the lanes' clones
-//! behind an `Arc` and freed with the last of them.
+//! An order is compiled at its first expansion: an ensemble's lanes expand thousands of times
+//! (1000 Hénon–Heiles members to t = 100 take 300 000 member steps, 38 000 expansions in 8
+//! lanes), and compiling costs about as much as the scalar JIT's unrolled code (1–3 ms for
+//! Hénon–Heiles, `benchmarks/README.md`), about a thousand interpreted expansions. Programs whose
+//! unrolled code would take long to compile ([`MAX_TERMS`]) stay interpreted. The code lives in
+//! a [`JITModule`](cranelift_jit::JITModule) shared behind an `Arc` by the lanes' clones and by
+//! later lanes of the same recurrences ([`KEPT`]), and freed with the last of them.
 
-use std::sync::{Arc, OnceLock};
+use std::sync::atomic::{AtomicBool, Ordering};
+use std::sync::{Arc, Mutex, OnceLock};
 
 use cranelift_codegen::ir::condcodes::{FloatCC, IntCC};
 use cranelift_codegen::ir::{types, ConstantData, InstBuilder, MemFlags, Value};
@@ -42,14 +45,27 @@ use crate::classical::symbolic::tape::jit::{
 /// The compiled function: the work array.
 type Entry = unsafe extern "C" fn(*mut f64);
 
-/// `f64x2` vectors per value: interleaved, their chains of dependent additions overlap.
-const VECTORS: usize = 2;
+/// `f64x2` vectors per value. Two or four, interleaved so that their chains of dependent
+/// additions overlap, ran no faster on an AVX2 EPYC (the out-of-order core already overlaps
+/// the independent nodes of the unrolled code) and took two and five times as long to compile
+/// (`benchmarks/README.md`).
+const VECTORS: usize = 1;
 
 /// The largest number of sum terms (over every node and order, as the scalar JIT counts them)
-/// compiled; larger programs stay interpreted.
+/// compiled; larger programs stay interpreted. The scalar JIT's limit for its unrolled form:
+/// this code has its size and compile time.
 const MAX_TERMS: usize = 1200;
 
-/// The lanes' native code per order, or its absence, shared by the lanes' clones.
+/// Lanes (of programs with the same recurrences, for the same lane count) whose code is kept
+/// for the next lanes of those recurrences: an ensemble builds its members' program and lanes
+/// afresh for each chunk of members, and each would otherwise compile the same code again.
+const KEPT: usize = 8;
+
+/// The code of the last [`KEPT`] lanes built, with their nodes, outputs and lane count.
+static RECENT: Mutex<Vec<(Vec<Node>, Vec<Val>, usize, Jit)>> = Mutex::new(Vec::new());
+
+/// The lanes' native code per order, or its absence, shared by the lanes' clones and by
+/// lanes of the same recurrences ([`Jit::shared`]).
 #[derive(Clone, Default)]
 pub(super) struct Jit(Arc<State>);
 
@@ -58,6 +74,9 @@ struct State {
     /// Set for lanes that are never compiled.
     never: bool,
     code: [OnceLock<Option<Native>>; MAX_ORDER + 1],
+    /// Orders found above [`MAX_TERMS`] sum terms (not compiled at expansions, but on demand
+    /// at any size).
+    too_large: [AtomicBool; MAX_ORDER + 1],
 }
 
 impl std::fmt::Debug for Jit {
@@ -74,6 +93,27 @@ impl Jit {
             never: true,
             ..State::default()
         }))
+    }
+
+    /// The code of lanes of these recurrences for `lanes` lanes: one of the last [`KEPT`]
+    /// built if it runs the same recurrences (so the same coefficients, bit for bit), else
+    /// code of its own, kept in their place.
+    pub(super) fn shared(nodes: &[Node], outputs: &[Val], lanes: usize) -> Self {
+        let Ok(mut recent) = RECENT.lock() else {
+            return Self::default();
+        };
+        let same = |(n, o, l, _): &&(Vec<Node>, Vec<Val>, usize, Jit)| {
+            *l == lanes && super::same_recurrences((n, o), (nodes, outputs))
+        };
+        if let Some((.., jit)) = recent.iter().find(same) {
+            return jit.clone();
+        }
+        let jit = Self::default();
+        if recent.len() == KEPT {
+            recent.remove(0);
+        }
+        recent.push((nodes.to_vec(), outputs.to_vec(), lanes, jit.clone()));
+        jit
     }
 
     /// The native code of `order` for `lanes` lanes, compiled at the first expansion of that
@@ -106,13 +146,17 @@ impl Jit {
         if let Some(code) = slot.get() {
             return code.as_ref();
         }
-        slot.get_or_init(|| {
-            if unrolled_terms(nodes, order) > max_terms {
-                return None;
-            }
-            Native::compile(nodes, outputs, lanes, order)
-        })
-        .as_ref()
+        let too_large = &self.0.too_large[order];
+        if max_terms <= MAX_TERMS && too_large.load(Ordering::Relaxed) {
+            return None;
+        }
+        // Recorded apart from the code: a call allowing more terms may still compile it.
+        if unrolled_terms(nodes, order) > max_terms {
+            too_large.store(true, Ordering::Relaxed);
+            return None;
+        }
+        slot.get_or_init(|| Native::compile(nodes, outputs, lanes, order))
+            .as_ref()
     }
 
     /// Whether native code runs the expansions to `order`.
@@ -150,7 +194,17 @@ impl Native {
     }
 
     fn compile(nodes: &[Node], outputs: &[Val], lanes: usize, order: usize) -> Option<Native> {
-        if lanes == 0 || !lanes.is_multiple_of(2 * VECTORS) {
+        Self::compile_with::<VECTORS>(nodes, outputs, lanes, order)
+    }
+
+    /// The recurrences with values of `V` vectors.
+    fn compile_with<const V: usize>(
+        nodes: &[Node],
+        outputs: &[Val],
+        lanes: usize,
+        order: usize,
+    ) -> Option<Native> {
+        if lanes == 0 || !lanes.is_multiple_of(2 * V) {
             return None;
         }
         let mut flags = flag_builder()?;
@@ -163,13 +217,13 @@ impl Native {
         let (code, module) =
             compile_function(isa, flags, &[Param::Pointer], false, |b, params, shims| {
                 let w = params[0];
-                let pass = (16 * VECTORS) as i64;
+                let pass = (16 * V) as i64;
                 let end = b.ins().iadd_imm(w, 8 * lanes as i64);
                 let body = b.create_block();
                 let base = b.append_block_param(body, types::I64);
                 b.ins().jump(body, &[w.into()]);
                 b.switch_to_block(body);
-                Emitter {
+                Emitter::<V> {
                     b: &mut *b,
                     shims,
                     base,
@@ -201,7 +255,7 @@ impl Native {
 }
 
 /// A value of `2 VECTORS` lanes: [`VECTORS`] `f64x2` values.
-type Lanes = [Value; VECTORS];
+type Lanes<const V: usize> = [Value; V];
 
 /// The flags of every load and store: in bounds (`Native::call` checks the length), but only
 /// 8-byte aligned.
@@ -210,7 +264,7 @@ fn flags() -> MemFlags {
 }
 
 /// Emits the recurrences for one pass of `2 VECTORS` lanes at `base`.
-struct Emitter<'a, 'b> {
+struct Emitter<'a, 'b, const V: usize> {
     b: &'a mut FunctionBuilder<'b>,
     shims: &'a mut Shims,
     /// Address of this pass's first lane of the work array's first coefficient.
@@ -221,17 +275,17 @@ struct Emitter<'a, 'b> {
     k: usize,
     /// The value of each coefficient stored by this function, used instead of a load while
     /// its order is at least the one being emitted.
-    fresh: Vec<Option<Lanes>>,
+    fresh: Vec<Option<Lanes<V>>>,
 }
 
-impl Emitter<'_, '_> {
+impl<const V: usize> Emitter<'_, '_, V> {
     /// Byte offset of vector `v` of coefficient `j` of node `n` from `base`.
     fn offset(&self, n: usize, j: usize, v: usize) -> i32 {
         (8 * self.lanes * (n * self.stride + j) + 16 * v) as i32
     }
 
     /// Coefficient `j` of node `n`.
-    fn ld(&mut self, n: usize, j: usize) -> Lanes {
+    fn ld(&mut self, n: usize, j: usize) -> Lanes<V> {
         if j >= self.k {
             if let Some(v) = self.fresh[n * self.stride + j] {
                 return v;
@@ -243,7 +297,7 @@ impl Emitter<'_, '_> {
         })
     }
 
-    fn st(&mut self, n: usize, j: usize, x: Lanes) {
+    fn st(&mut self, n: usize, j: usize, x: Lanes<V>) {
         self.fresh[n * self.stride + j] = Some(x);
         for (v, &x) in x.iter().enumerate() {
             let offset = self.offset(n, j, v);
@@ -252,52 +306,56 @@ impl Emitter<'_, '_> {
     }
 
     /// `c` in every lane (one constant-pool entry).
-    fn c(&mut self, c: f64) -> Lanes {
+    fn c(&mut self, c: f64) -> Lanes<V> {
         let bytes: Vec<u8> = [c, c].iter().flat_map(|x| x.to_le_bytes()).collect();
         let handle = self.b.func.dfg.constants.insert(ConstantData::from(bytes));
         let x = self.b.ins().vconst(types::F64X2, handle);
-        [x; VECTORS]
+        [x; V]
     }
 
     /// `op` vector by vector.
     fn zip(
         &mut self,
-        x: Lanes,
-        y: Lanes,
+        x: Lanes<V>,
+        y: Lanes<V>,
         op: fn(&mut FunctionBuilder<'_>, Value, Value) -> Value,
-    ) -> Lanes {
+    ) -> Lanes<V> {
         std::array::from_fn(|v| op(self.b, x[v], y[v]))
     }
 
-    fn add(&mut self, x: Lanes, y: Lanes) -> Lanes {
+    fn add(&mut self, x: Lanes<V>, y: Lanes<V>) -> Lanes<V> {
         self.zip(x, y, |b, x, y| b.ins().fadd(x, y))
     }
 
-    fn sub(&mut self, x: Lanes, y: Lanes) -> Lanes {
+    fn sub(&mut self, x: Lanes<V>, y: Lanes<V>) -> Lanes<V> {
         self.zip(x, y, |b, x, y| b.ins().fsub(x, y))
     }
 
-    fn mul(&mut self, x: Lanes, y: Lanes) -> Lanes {
+    fn mul(&mut self, x: Lanes<V>, y: Lanes<V>) -> Lanes<V> {
         self.zip(x, y, |b, x, y| b.ins().fmul(x, y))
     }
 
-    fn div(&mut self, x: Lanes, y: Lanes) -> Lanes {
+    fn div(&mut self, x: Lanes<V>, y: Lanes<V>) -> Lanes<V> {
         self.zip(x, y, |b, x, y| b.ins().fdiv(x, y))
     }
 
-    fn neg(&mut self, x: Lanes) -> Lanes {
+    fn neg(&mut self, x: Lanes<V>) -> Lanes<V> {
         std::array::from_fn(|v| self.b.ins().fneg(x[v]))
     }
 
     /// `x · c` (the interpreter's `c * x`: IEEE multiplication commutes exactly).
-    fn cmul(&mut self, c: f64, x: Lanes) -> Lanes {
+    fn cmul(&mut self, c: f64, x: Lanes<V>) -> Lanes<V> {
         let c = self.c(c);
         self.mul(x, c)
     }
 
     /// `f` lane by lane on the lanes of `args` (scalar `f64` values), the results gathered
     /// back into vectors.
-    fn per_lane(&mut self, args: &[Lanes], f: impl Fn(&mut Self, &[Value]) -> Value) -> Lanes {
+    fn per_lane(
+        &mut self,
+        args: &[Lanes<V>],
+        f: impl Fn(&mut Self, &[Value]) -> Value,
+    ) -> Lanes<V> {
         std::array::from_fn(|v| {
             let mut lanes = [None; 2];
             for (lane, out) in lanes.iter_mut().enumerate() {
@@ -316,13 +374,13 @@ impl Emitter<'_, '_> {
     }
 
     /// The shim at `address` lane by lane on `x`.
-    fn call(&mut self, address: usize, x: Lanes) -> Lanes {
+    fn call(&mut self, address: usize, x: Lanes<V>) -> Lanes<V> {
         self.per_lane(&[x], |e, x| e.shims.call(e.b, address, x))
     }
 
     /// Order `k` of `|a|` from `a`'s orders 0 and `k`: `-x` where `a_0 < 0`, else `x`, lane
     /// by lane.
-    fn abs(&mut self, x0: Lanes, x: Lanes) -> Lanes {
+    fn abs(&mut self, x0: Lanes<V>, x: Lanes<V>) -> Lanes<V> {
         self.per_lane(&[x0, x], |e, v| {
             let zero = e.b.ins().f64const(0.0);
             let negative = e.b.ins().fcmp(FloatCC::LessThan, v[0], zero);
@@ -338,7 +396,7 @@ impl Emitter<'_, '_> {
         (a, a0): (usize, usize),
         (b, b0): (usize, usize),
         n: usize,
-    ) -> Option<Lanes> {
+    ) -> Option<Lanes<V>> {
         let mut s = None;
         for j in 0..n {
             let (x, y) = (self.ld(a, a0 + j), self.ld(b, b0 + n - 1 - j));
@@ -355,8 +413,8 @@ impl Emitter<'_, '_> {
     fn sum(
         &mut self,
         range: impl Iterator<Item = usize>,
-        mut term: impl FnMut(&mut Self, usize) -> Lanes,
-    ) -> Option<Lanes> {
+        mut term: impl FnMut(&mut Self, usize) -> Lanes<V>,
+    ) -> Option<Lanes<V>> {
         let mut s = None;
         for j in range {
             let t = term(self, j);
