@@ -61,8 +61,16 @@ const MAX_TERMS: usize = 1200;
 /// afresh for each chunk of members, and each would otherwise compile the same code again.
 const KEPT: usize = 8;
 
-/// The code of the last [`KEPT`] lanes built, with their nodes, outputs and lane count.
-static RECENT: Mutex<Vec<(Vec<Node>, Vec<Val>, usize, Jit)>> = Mutex::new(Vec::new());
+/// The code of the last [`KEPT`] lanes built.
+static RECENT: Mutex<Vec<Kept>> = Mutex::new(Vec::new());
+
+/// Lanes' code kept for later lanes, with the recurrences and lane count it was built for.
+struct Kept {
+    nodes: Vec<Node>,
+    outputs: Vec<Val>,
+    lanes: usize,
+    jit: Jit,
+}
 
 /// The lanes' native code per order, or its absence, shared by the lanes' clones and by
 /// lanes of the same recurrences ([`Jit::shared`]).
@@ -102,17 +110,22 @@ impl Jit {
         let Ok(mut recent) = RECENT.lock() else {
             return Self::default();
         };
-        let same = |(n, o, l, _): &&(Vec<Node>, Vec<Val>, usize, Jit)| {
-            *l == lanes && super::same_recurrences((n, o), (nodes, outputs))
+        let same = |k: &&Kept| {
+            k.lanes == lanes && super::same_recurrences((&k.nodes, &k.outputs), (nodes, outputs))
         };
-        if let Some((.., jit)) = recent.iter().find(same) {
-            return jit.clone();
+        if let Some(kept) = recent.iter().find(same) {
+            return kept.jit.clone();
         }
         let jit = Self::default();
         if recent.len() == KEPT {
             recent.remove(0);
         }
-        recent.push((nodes.to_vec(), outputs.to_vec(), lanes, jit.clone()));
+        recent.push(Kept {
+            nodes: nodes.to_vec(),
+            outputs: outputs.to_vec(),
+            lanes,
+            jit: jit.clone(),
+        });
         jit
     }
 
