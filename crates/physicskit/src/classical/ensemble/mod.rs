@@ -24,6 +24,14 @@
 //! in chunks of 64 to 1024 members: each lane does the scalar recurrences' operations, and
 //! then the scalar step's (step size, state update, clock, dense output) in their order, so
 //! the bits are still those of its own `integrate`.
+//!
+//! **Splitting methods in SIMD lanes.** A plan with a splitting method and no reductions runs
+//! the members of a system whose force is written over a lanes type (Kepler, Hénon–Heiles:
+//! [`SplittingLanes`](crate::classical::integrators::lanes::SplittingLanes)) and that share
+//! their parameters 16, 8 or 4 at a time (`lanes.rs`, `integrators/lanes.rs`), in chunks of
+//! four batches of lanes: each lane does the scalar step's operations in their order, so the
+//! bits are again those of its own `integrate`. Other members run alone.
+//!
 //! Reductions read every step of a member (energy errors, events, Lyapunov exponents): plans
 //! with them run members one at a time, as does a member whose lanes run fails (so its error
 //! is its own run's).
@@ -55,6 +63,7 @@
 //! the run (Ctrl-C): running members stop within 1024 steps. The calling thread waits on the
 //! workers (not a sleep), so a short ensemble costs only its work.
 
+mod lanes;
 mod members;
 mod parameters;
 pub mod reduction;
@@ -415,9 +424,12 @@ fn run_prepared<S: MemberSource + ?Sized>(
     let mut steps = vec![0; n];
     let stop = AtomicBool::new(false);
     let done = AtomicUsize::new(0);
-    let lanes = taylor::in_lanes(&prepared, plan);
-    let members_per_chunk = if lanes {
+    let taylor_lanes = taylor::in_lanes(&prepared, plan);
+    let splitting_lanes = lanes::in_lanes(&prepared, plan);
+    let members_per_chunk = if taylor_lanes {
         taylor::chunk(n, in_pool(pool, rayon::current_num_threads))
+    } else if splitting_lanes {
+        lanes::chunk()
     } else {
         MEMBER_CHUNK
     };
@@ -429,8 +441,13 @@ fn run_prepared<S: MemberSource + ?Sized>(
                 .enumerate()
                 .map(|(chunk, (rows, steps))| {
                     let first = chunk * members_per_chunk;
-                    if lanes {
+                    if taylor_lanes {
                         return taylor::run_chunk(
+                            &prepared, plan, first, rows, steps, width, &stop, &done,
+                        );
+                    }
+                    if splitting_lanes {
+                        return lanes::run_chunk(
                             &prepared, plan, first, rows, steps, width, &stop, &done,
                         );
                     }

@@ -47,6 +47,7 @@
 
 use multiversion::multiversion;
 
+use super::lanes::Real;
 use crate::classical::integrators::MassInv;
 
 /// Shortest slices worth the indirect call into the SIMD clones below (the generic integrator
@@ -70,26 +71,26 @@ pub(crate) const PLAIN: u8 = 2;
 /// updates `p` then `q` with one rounding each and leaves the corrections alone.
 #[inline(always)]
 #[allow(clippy::too_many_arguments)]
-fn update<const KIND: u8>(
-    q: &mut f64,
-    p: &mut f64,
-    eq: &mut f64,
-    ep: &mut f64,
-    f: f64,
+fn update<const KIND: u8, R: Real>(
+    q: &mut R,
+    p: &mut R,
+    eq: &mut R,
+    ep: &mut R,
+    f: R,
     kick: f64,
     dm: f64,
     g: f64,
 ) {
     let (q0, p0) = (*q, *p);
     if KIND == PLAIN {
-        let s = p0 + kick * f;
+        let s = p0 + f * kick;
         *p = s;
-        *q = q0 + dm * s;
+        *q = q0 + s * dm;
         return;
     }
-    let v = dm * p0;
+    let v = p0 * dm;
     let c = q0 + v;
-    let w = g * f;
+    let w = f * g;
     if KIND == LAST {
         *q = c + (w + (((q0 - c) + v) + *eq));
     } else {
@@ -97,7 +98,7 @@ fn update<const KIND: u8>(
         *eq += ((q0 - c) + v) + ((c - s) + w);
         *q = s;
     }
-    let a = kick * f;
+    let a = f * kick;
     let s = p0 + a;
     *ep += (p0 - s) + a;
     *p = s;
@@ -106,11 +107,11 @@ fn update<const KIND: u8>(
 /// The step's closing kick of one coordinate: `p ← p + (k f + ep)`, the momentum's one
 /// rounding of the step; `p ← p + k f` in a plain step (`PLAIN`), whose `ep` is unused.
 #[inline(always)]
-fn close<const PLAIN: bool>(p: &mut f64, ep: f64, f: f64, k: f64) {
+fn close<const PLAIN: bool, R: Real>(p: &mut R, ep: R, f: R, k: f64) {
     if PLAIN {
-        *p += k * f;
+        *p += f * k;
     } else {
-        *p += k * f + ep;
+        *p += f * k + ep;
     }
 }
 
@@ -224,9 +225,7 @@ fn closing_kick<const PLAIN: bool>(p: &mut [f64], ep: &[f64], force: &[f64], k: 
             <&[f64; N]>::try_from(ep),
             <&[f64; N]>::try_from(force),
         ) {
-            for i in 0..N {
-                close::<PLAIN>(&mut p[i], ep[i], force[i], k);
-            }
+            closing_array::<N, PLAIN, f64>(p, ep, force, k);
         }
     }
     match p.len() {
@@ -259,11 +258,78 @@ fn fixed<const N: usize, const KIND: u8>(
     ) else {
         return;
     };
+    fixed_array::<N, KIND, f64>(q, p, eq, ep, force, kick, dm);
+}
+
+/// [`fixed`] on arrays of any [`Real`]: `f64`, or members in SIMD lanes (`lanes.rs`), each
+/// lane doing the scalar loop's operations.
+#[inline(always)]
+fn fixed_array<const N: usize, const KIND: u8, R: Real>(
+    q: &mut [R; N],
+    p: &mut [R; N],
+    eq: &mut [R; N],
+    ep: &mut [R; N],
+    force: &[R; N],
+    kick: f64,
+    dm: f64,
+) {
     let g = dm * kick;
     for i in 0..N {
-        update::<KIND>(
+        update::<KIND, R>(
             &mut q[i], &mut p[i], &mut eq[i], &mut ep[i], force[i], kick, dm, g,
         );
+    }
+}
+
+/// The closing kick of [`closing_kick`] on arrays of any [`Real`], as [`fixed_array`].
+#[inline(always)]
+fn closing_array<const N: usize, const PLAIN: bool, R: Real>(
+    p: &mut [R; N],
+    ep: &[R; N],
+    force: &[R; N],
+    k: f64,
+) {
+    for i in 0..N {
+        close::<PLAIN, R>(&mut p[i], ep[i], force[i], k);
+    }
+}
+
+/// [`substep`] on `N` coordinates held in arrays of any [`Real`] with uniform inverse mass
+/// folded into `dm = drift m`: the same update kinds, through the same [`fixed_array`] as the
+/// scalar path's fixed-length copies.
+#[inline(always)]
+#[allow(clippy::too_many_arguments)]
+pub(crate) fn substep_array<const S: usize, const N: usize, R: Real>(
+    i: usize,
+    q: &mut [R; N],
+    p: &mut [R; N],
+    eq: &mut [R; N],
+    ep: &mut [R; N],
+    force: &[R; N],
+    kick: f64,
+    dm: f64,
+) {
+    if S <= PLAIN_MAX_DRIFTS {
+        fixed_array::<N, PLAIN, R>(q, p, eq, ep, force, kick, dm);
+    } else if i + 1 == S {
+        fixed_array::<N, LAST, R>(q, p, eq, ep, force, kick, dm);
+    } else {
+        fixed_array::<N, MIDDLE, R>(q, p, eq, ep, force, kick, dm);
+    }
+}
+
+/// [`end_step`] on arrays of any [`Real`].
+#[inline(always)]
+pub(crate) fn end_step_array<const S: usize, const N: usize, R: Real>(
+    p: &mut [R; N],
+    ep: &[R; N],
+    force: &[R; N],
+    k: f64,
+) {
+    if S <= PLAIN_MAX_DRIFTS {
+        closing_array::<N, true, R>(p, ep, force, k);
+    } else {
+        closing_array::<N, false, R>(p, ep, force, k);
     }
 }
 
@@ -285,7 +351,7 @@ fn uniform<const KIND: u8>(
         .zip(ep.iter_mut())
         .zip(force)
     {
-        update::<KIND>(qi, pi, eqi, epi, *fi, kick, dm, g);
+        update::<KIND, _>(qi, pi, eqi, epi, *fi, kick, dm, g);
     }
 }
 
@@ -310,14 +376,14 @@ fn per_coordinate<const KIND: u8>(
         .zip(m)
     {
         let dm = drift * mi;
-        update::<KIND>(qi, pi, eqi, epi, *fi, kick, dm, dm * kick);
+        update::<KIND, _>(qi, pi, eqi, epi, *fi, kick, dm, dm * kick);
     }
 }
 
 #[inline(always)]
 fn closing_kick_body<const PLAIN: bool>(p: &mut [f64], ep: &[f64], force: &[f64], k: f64) {
     for ((pi, epi), fi) in p.iter_mut().zip(ep).zip(force) {
-        close::<PLAIN>(pi, *epi, *fi, k);
+        close::<PLAIN, _>(pi, *epi, *fi, k);
     }
 }
 

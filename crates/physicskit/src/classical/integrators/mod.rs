@@ -47,6 +47,7 @@ pub mod driver;
 pub mod ensemble;
 pub mod field;
 pub mod implicit_solve;
+pub mod lanes;
 mod method;
 pub mod options;
 pub mod splitting;

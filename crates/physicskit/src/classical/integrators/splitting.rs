@@ -40,6 +40,7 @@
 use std::collections::BTreeMap;
 
 use super::compensated;
+use super::lanes::Real;
 use super::stepper::{Report, Stepper};
 use crate::classical::core::{Error, ExtraValue, Result};
 use crate::classical::integrators::{HamiltonianSystem, Method};
@@ -320,6 +321,34 @@ impl<const S: usize, B: AsRef<[f64]> + AsMut<[f64]>> SplittingStepper<S, B> {
         self.force_valid = true;
         Ok(v)
     }
+}
+
+/// One step of the method `c` from `q`, `p`, with `force` the force at `q` (replaced by the
+/// force at the new `q`), on `N` coordinates in arrays of any [`Real`] with the uniform
+/// inverse mass `m`; `evaluate(q, out)` is the (autonomous) force. Per element the
+/// operations of [`SplittingStepper::step`] on `N` coordinates of uniform mass, in their
+/// order (its fixed-length kernels are these, at `f64`), so a lane of
+/// [`Lanes`](super::lanes::Lanes) repeats a scalar run's bits.
+#[inline(always)]
+#[allow(clippy::too_many_arguments)]
+pub(crate) fn step_array<const S: usize, const N: usize, R: Real>(
+    c: &Coefficients<S>,
+    m: f64,
+    q: &mut [R; N],
+    p: &mut [R; N],
+    force: &mut [R; N],
+    h: f64,
+    mut evaluate: impl FnMut(&[R; N], &mut [R; N]),
+) {
+    // The corrections start at -0.0 as `compensated::begin_step` sets them (unused by the
+    // plain steps).
+    let (mut eq, mut ep) = ([R::splat(-0.0); N], [R::splat(-0.0); N]);
+    for i in 0..S {
+        let (kick, drift) = (c.kicks[i] * h, c.drifts[i] * h);
+        compensated::substep_array::<S, N, R>(i, q, p, &mut eq, &mut ep, force, kick, drift * m);
+        evaluate(q, force);
+    }
+    compensated::end_step_array::<S, N, R>(p, &ep, force, c.last_kick * h);
 }
 
 impl<const S: usize, B, H> Stepper<H> for SplittingStepper<S, B>

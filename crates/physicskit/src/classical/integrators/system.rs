@@ -111,6 +111,13 @@ pub trait DynamicalSystem {
         None
     }
 
+    /// The system's force across SIMD lanes, where the ensemble engine runs members of a
+    /// splitting method `L` at a time (`integrators/lanes.rs`); `None` (the default) for
+    /// systems whose force is written for `f64` only.
+    fn splitting_lanes(&self) -> Option<&dyn super::lanes::SplittingLanes> {
+        None
+    }
+
     /// Current state vector.
     fn state(&self) -> &[f64] {
         self.phase().state()
@@ -333,14 +340,19 @@ pub fn separable_jacobian<S: HamiltonianSystem + ?Sized>(
 /// `force_jacobian`, default method `yoshida4`. With `taylor: path`, the system's Taylor form
 /// is `path(&system)` (a function from `&Type` to `Result<Box<dyn TaylorField>>`, such as
 /// `symbolic::traced_hamiltonian_taylor_field` for a system whose `H` is written once over any
-/// number type); without, it has none.
+/// number type); without, it has none. Items in braces after it (or in its place) go into
+/// the impl too (e.g. `splitting_lanes`).
 #[macro_export]
 macro_rules! impl_separable_dynamics {
     ($ty:ty) => {
         $crate::impl_separable_dynamics!($ty, {});
     };
     ($ty:ty, taylor: $field:path) => {
+        $crate::impl_separable_dynamics!($ty, taylor: $field, {});
+    };
+    ($ty:ty, taylor: $field:path, { $($extra:item)* }) => {
         $crate::impl_separable_dynamics!($ty, {
+            $($extra)*
             fn taylor_field(
                 &self,
             ) -> Option<

@@ -11,6 +11,7 @@
 
 use crate::classical::core::error::{check_len, check_vector};
 use crate::classical::core::{Phase, Result};
+use crate::classical::integrators::lanes::{LanesForce, Real, SplittingLanes};
 use crate::classical::integrators::{HamiltonianSystem, Method};
 use crate::classical::model::entry::{Default as D, Family, Length, ParamSpec as P, SystemEntry};
 use crate::classical::model::entry::{Drawing, Pace, Presentation};
@@ -47,12 +48,10 @@ impl HamiltonianSystem for HenonHeilesSystem {
         let (x, y) = (q[0], q[1]);
         0.5 * (x * x + y * y) + x * x * y - y * y * y / 3.0
     }
-    /// `F = -(x + 2 x y, y + x^2 - y^2)`.
+    /// `F = -(x + 2 x y, y + x^2 - y^2)` ([`LanesForce::force_of`] at `f64`).
     #[inline]
     fn force(&self, q: &[f64], _t: f64, out: &mut [f64]) -> Result<()> {
-        let (x, y) = (q[0], q[1]);
-        out[0] = -x - 2.0 * x * y;
-        out[1] = -y - x * x + y * y;
+        self.force_of(q, out);
         Ok(())
     }
     fn force_jacobian(&self, q: &[f64], _t: f64, out: &mut [f64]) -> Option<Result<()>> {
@@ -65,7 +64,27 @@ impl HamiltonianSystem for HenonHeilesSystem {
     }
 }
 
-crate::impl_separable_dynamics!(HenonHeilesSystem, taylor: crate::classical::symbolic::traced_hamiltonian_taylor_field);
+/// The force written once, over `f64` and over members in SIMD lanes.
+impl LanesForce for HenonHeilesSystem {
+    /// `F = -(x + 2 x y, y + x^2 - y^2)`.
+    #[inline(always)]
+    fn force_of<R: Real>(&self, q: &[R], out: &mut [R]) {
+        let (x, y) = (q[0], q[1]);
+        out[0] = -x - x * 2.0 * y;
+        out[1] = -y - x * x + y * y;
+    }
+
+    /// No parameters: every Hénon–Heiles system has the same force.
+    fn same_force(&self, _: &Self) -> bool {
+        true
+    }
+}
+
+crate::impl_separable_dynamics!(HenonHeilesSystem, taylor: crate::classical::symbolic::traced_hamiltonian_taylor_field, {
+    fn splitting_lanes(&self) -> Option<&dyn SplittingLanes> {
+        Some(self)
+    }
+});
 
 /// `H` written once over any number type, for the system's Taylor form
 /// ([`traced_hamiltonian_taylor_field`](crate::classical::symbolic::traced_hamiltonian_taylor_field)).

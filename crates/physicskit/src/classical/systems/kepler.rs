@@ -22,6 +22,7 @@
 use crate::classical::core::error::check_len;
 use crate::classical::core::error::{check_finite_scalar, check_non_negative, check_positive};
 use crate::classical::core::{Error, Phase, Result};
+use crate::classical::integrators::lanes::{LanesForce, Real, SplittingLanes};
 use crate::classical::integrators::{HamiltonianSystem, MassInv, Method};
 use crate::classical::model::entry::{
     Default as D, Family, Length, ParamSpec as P, Range, SystemEntry, Values,
@@ -201,36 +202,51 @@ impl KeplerSystem {
         [p[1] * l - mk * rx, -p[0] * l - mk * ry]
     }
 
-    /// `V(r_s)` and its first two derivatives with respect to `r_s`.
-    #[inline]
-    fn radial(&self, s: f64) -> (f64, f64, f64) {
+    /// `V(r_s)` and its first two derivatives with respect to `r_s`, for any [`Real`] (`f64`,
+    /// or members in SIMD lanes).
+    #[inline(always)]
+    fn radial<R: Real>(&self, s: R) -> (R, R, R) {
         let KeplerPerturbations {
             eps, c_eps, c_pn, ..
         } = self.pert;
-        let inv = 1.0 / s;
+        let inv = R::splat(1.0) / s;
         let inv2 = inv * inv;
-        let mut v = -self.k * inv;
-        let mut dv = self.k * inv2;
-        let mut d2v = -2.0 * self.k * inv2 * inv;
+        let mut v = inv * -self.k;
+        let mut dv = inv2 * self.k;
+        let mut d2v = inv2 * (-2.0 * self.k) * inv;
         if c_eps != 0.0 {
-            let t = c_eps * s.powf(-(1.0 + eps));
+            let t = s.powf(-(1.0 + eps)) * c_eps;
             v += t;
-            dv -= (1.0 + eps) * t * inv;
-            d2v += (1.0 + eps) * (2.0 + eps) * t * inv2;
+            dv -= t * (1.0 + eps) * inv;
+            d2v += t * ((1.0 + eps) * (2.0 + eps)) * inv2;
         }
         if c_pn != 0.0 {
-            let t = c_pn * inv2 * inv;
+            let t = inv2 * c_pn * inv;
             v += t;
-            dv -= 3.0 * t * inv;
-            d2v += 12.0 * t * inv2;
+            dv -= t * 3.0 * inv;
+            d2v += t * 12.0 * inv2;
         }
         (v, dv, d2v)
     }
 
-    #[inline]
-    fn softened_radius(&self, q: &[f64]) -> f64 {
+    #[inline(always)]
+    fn softened_radius<R: Real>(&self, q: &[R]) -> R {
         let s = self.pert.softening;
         (q[0] * q[0] + q[1] * q[1] + s * s).sqrt()
+    }
+
+    /// The force into `out` and `V(r_s)`, from the same radial evaluation (no second square
+    /// root), for any [`Real`].
+    #[inline(always)]
+    fn force_and_potential_of<R: Real>(&self, q: &[R], out: &mut [R]) -> R {
+        let s = self.softened_radius(q);
+        let (v, dv, _) = self.radial(s);
+        // Times the reciprocal `radial` already formed (the compiler merges the two), not a
+        // second division: a division's latency was a sixth of a Kepler step.
+        let f = -dv * (R::splat(1.0) / s);
+        out[0] = f * q[0];
+        out[1] = f * q[1];
+        v
     }
 }
 
@@ -254,14 +270,7 @@ impl HamiltonianSystem for KeplerSystem {
     /// The force and `V(r_s)` from the same radial evaluation (no second square root).
     #[inline]
     fn force_and_potential(&self, q: &[f64], _t: f64, out: &mut [f64]) -> Result<Option<f64>> {
-        let s = self.softened_radius(q);
-        let (v, dv, _) = self.radial(s);
-        // Times the reciprocal `radial` already formed (the compiler merges the two), not a
-        // second division: a division's latency was a sixth of a Kepler step.
-        let f = -dv * (1.0 / s);
-        out[0] = f * q[0];
-        out[1] = f * q[1];
-        Ok(Some(v))
+        Ok(Some(self.force_and_potential_of(q, out)))
     }
     /// `dF_i/dq_j = f delta_ij + f'(r_s) q_i q_j / r_s` with `f = -V'/r_s`.
     fn force_jacobian(&self, q: &[f64], _t: f64, out: &mut [f64]) -> Option<Result<()>> {
@@ -279,7 +288,28 @@ impl HamiltonianSystem for KeplerSystem {
     }
 }
 
-crate::impl_separable_dynamics!(KeplerSystem, taylor: crate::classical::symbolic::traced_hamiltonian_taylor_field);
+/// The force written once, over `f64` and over members in SIMD lanes.
+impl LanesForce for KeplerSystem {
+    #[inline(always)]
+    fn force_of<R: Real>(&self, q: &[R], out: &mut [R]) {
+        self.force_and_potential_of(q, out);
+    }
+
+    /// Equal coupling, mass and perturbations, bit for bit.
+    fn same_force(&self, other: &Self) -> bool {
+        let bits = |s: &Self| {
+            let p = s.pert;
+            [s.k, s.mu, p.eps, p.c_eps, p.c_pn, p.softening].map(f64::to_bits)
+        };
+        bits(self) == bits(other)
+    }
+}
+
+crate::impl_separable_dynamics!(KeplerSystem, taylor: crate::classical::symbolic::traced_hamiltonian_taylor_field, {
+    fn splitting_lanes(&self) -> Option<&dyn SplittingLanes> {
+        Some(self)
+    }
+});
 
 /// `H` written once over any number type, for the system's Taylor form
 /// ([`traced_hamiltonian_taylor_field`](crate::classical::symbolic::traced_hamiltonian_taylor_field)):

@@ -8,5 +8,6 @@ mod chaos;
 mod engine;
 mod events;
 mod parameters;
+mod splitting_lanes;
 mod taylor_lanes;
 mod tolerances;
