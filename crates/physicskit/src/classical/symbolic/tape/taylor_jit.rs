@@ -274,23 +274,23 @@ fn entry_point(code: *const u8) -> Entry {
     unsafe { std::mem::transmute::<*const u8, Entry>(code) }
 }
 
-pub(super) extern "C" fn exp(x: f64) -> f64 {
+extern "C" fn exp(x: f64) -> f64 {
     x.exp()
 }
 
-pub(super) extern "C" fn sin(x: f64) -> f64 {
+extern "C" fn sin(x: f64) -> f64 {
     x.sin()
 }
 
-pub(super) extern "C" fn cos(x: f64) -> f64 {
+extern "C" fn cos(x: f64) -> f64 {
     x.cos()
 }
 
-pub(super) extern "C" fn sinh(x: f64) -> f64 {
+extern "C" fn sinh(x: f64) -> f64 {
     x.sinh()
 }
 
-pub(super) extern "C" fn cosh(x: f64) -> f64 {
+extern "C" fn cosh(x: f64) -> f64 {
     x.cosh()
 }
 
@@ -317,8 +317,13 @@ struct Emitter<'a, 'b> {
     fresh: Vec<Option<Value>>,
 }
 
-impl Emitter<'_, '_> {
-    /// Coefficient `j` of node `n`.
+impl Recurrences for Emitter<'_, '_> {
+    type X = Value;
+
+    fn set_k(&mut self, k: usize) {
+        self.k = k;
+    }
+
     fn ld(&mut self, n: usize, j: usize) -> Value {
         if j >= self.k {
             if let Some(v) = self.fresh[n * self.stride + j] {
@@ -358,14 +363,14 @@ impl Emitter<'_, '_> {
         self.b.ins().fdiv(x, y)
     }
 
-    /// `x · c` (the interpreter's `c * x`: IEEE multiplication commutes exactly), the
-    /// constant second, where x86 reads it from the constant pool as an operand.
-    fn cmul(&mut self, c: f64, x: Value) -> Value {
-        let c = self.c(c);
-        self.b.ins().fmul(x, c)
+    fn neg(&mut self, x: Value) -> Value {
+        self.b.ins().fneg(x)
     }
 
-    /// Order `k` of `|a|` from `a`'s orders 0 and `k`: `-x` where `a_0 < 0`, else `x`.
+    fn sqrt(&mut self, x: Value) -> Value {
+        self.b.ins().sqrt(x)
+    }
+
     fn abs(&mut self, x0: Value, x: Value) -> Value {
         let zero = self.c(0.0);
         let negative = self.b.ins().fcmp(
@@ -377,9 +382,62 @@ impl Emitter<'_, '_> {
         self.b.ins().select(negative, minus, x)
     }
 
-    /// A call of the shim at `address`.
-    fn call(&mut self, address: usize, args: &[Value]) -> Value {
-        self.shims.call(self.b, address, args)
+    fn call(&mut self, address: usize, x: Value) -> Value {
+        self.shims.call(self.b, address, &[x])
+    }
+
+    fn powf(&mut self, x: Value, alpha: f64) -> Value {
+        let alpha = self.b.ins().f64const(alpha);
+        self.shims
+            .call(self.b, powf as *const () as usize, &[x, alpha])
+    }
+}
+
+/// The operations the recurrences are emitted from, on values of one `f64` (this file's
+/// [`Emitter`]) or of several lanes (`taylor_lanes_jit.rs`): the provided methods emit the
+/// interpreter's operations in its order from them, once for both.
+pub(super) trait Recurrences {
+    /// A value: one `f64`, or lanes of them.
+    type X: Copy;
+
+    /// Sets the order being emitted.
+    fn set_k(&mut self, k: usize);
+
+    /// Coefficient `j` of node `n`.
+    fn ld(&mut self, n: usize, j: usize) -> Self::X;
+
+    /// Stores coefficient `j` of node `n`.
+    fn st(&mut self, n: usize, j: usize, x: Self::X);
+
+    /// The constant `c`.
+    fn c(&mut self, c: f64) -> Self::X;
+
+    fn add(&mut self, x: Self::X, y: Self::X) -> Self::X;
+
+    fn sub(&mut self, x: Self::X, y: Self::X) -> Self::X;
+
+    fn mul(&mut self, x: Self::X, y: Self::X) -> Self::X;
+
+    fn div(&mut self, x: Self::X, y: Self::X) -> Self::X;
+
+    fn neg(&mut self, x: Self::X) -> Self::X;
+
+    fn sqrt(&mut self, x: Self::X) -> Self::X;
+
+    /// Order `k` of `|a|` from `a`'s orders 0 and `k`: `-x` where `a_0 < 0`, else `x`.
+    fn abs(&mut self, x0: Self::X, x: Self::X) -> Self::X;
+
+    /// The unary shim at `address` on `x`.
+    fn call(&mut self, address: usize, x: Self::X) -> Self::X;
+
+    /// `x^alpha` by the [`powf`] shim.
+    fn powf(&mut self, x: Self::X, alpha: f64) -> Self::X;
+
+    /// `x · c` (the interpreter's `c * x`: IEEE multiplication commutes exactly), the
+    /// constant second, where x86 reads it from the constant pool as an operand.
+    fn cmul(&mut self, c: f64, x: Self::X) -> Self::X {
+        let c = self.c(c);
+        self.mul(x, c)
     }
 
     /// `Σ_{j < n} a_j b_{n-1-j}` from `j = 0` (the interpreter's `cauchy` of the slices
@@ -389,7 +447,7 @@ impl Emitter<'_, '_> {
         (a, a0): (usize, usize),
         (b, b0): (usize, usize),
         n: usize,
-    ) -> Option<Value> {
+    ) -> Option<Self::X> {
         let mut s = None;
         for j in 0..n {
             let (x, y) = (self.ld(a, a0 + j), self.ld(b, b0 + n - 1 - j));
@@ -405,7 +463,7 @@ impl Emitter<'_, '_> {
     /// Orders `0..=order` of every node and of the state, as `TaylorProgram::interpret`.
     fn recurrences(&mut self, nodes: &[Node], outputs: &[Val], order: usize) {
         for k in 0..=order {
-            self.k = k;
+            self.set_k(k);
             for (i, &node) in nodes.iter().enumerate() {
                 self.node(i, node, k);
             }
@@ -454,7 +512,7 @@ impl Emitter<'_, '_> {
                     let c = self.c(c);
                     self.sub(c, x)
                 } else {
-                    self.b.ins().fneg(x)
+                    self.neg(x)
                 }
             }
             Node::MulC(a, c) => {
@@ -463,7 +521,7 @@ impl Emitter<'_, '_> {
             }
             Node::Neg(a) => {
                 let x = self.ld(u(a), k);
-                self.b.ins().fneg(x)
+                self.neg(x)
             }
             Node::Abs(a) => {
                 let (x0, x) = (self.ld(u(a), 0), self.ld(u(a), k));
@@ -503,7 +561,7 @@ impl Emitter<'_, '_> {
                 let a0 = self.ld(u(a), 0);
                 match self.cauchy((u(a), 1), (me, 0), k) {
                     Some(s) => {
-                        let minus = self.b.ins().fneg(s);
+                        let minus = self.neg(s);
                         self.div(minus, a0)
                     }
                     None => {
@@ -515,7 +573,7 @@ impl Emitter<'_, '_> {
             Node::Sqrt(a) => {
                 if k == 0 {
                     let x = self.ld(u(a), 0);
-                    self.b.ins().sqrt(x)
+                    self.sqrt(x)
                 } else {
                     let mut s = self.ld(u(a), k);
                     for j in 1..k {
@@ -531,8 +589,7 @@ impl Emitter<'_, '_> {
             Node::Powf(a, alpha) => {
                 let a0 = self.ld(u(a), 0);
                 if k == 0 {
-                    let alpha = self.c(alpha);
-                    self.call(powf as *const () as usize, &[a0, alpha])
+                    self.powf(a0, alpha)
                 } else {
                     let mut s = None;
                     for j in 0..k {
@@ -553,7 +610,7 @@ impl Emitter<'_, '_> {
             Node::Exp(a) => {
                 if k == 0 {
                     let x = self.ld(u(a), 0);
-                    self.call(exp as *const () as usize, &[x])
+                    self.call(exp as *const () as usize, x)
                 } else {
                     let mut s = None;
                     for j in 1..=k {
@@ -574,7 +631,7 @@ impl Emitter<'_, '_> {
             Node::Integral { a, d, sign, func } => {
                 if k == 0 {
                     let x = self.ld(u(a), 0);
-                    self.call(INTEGRALS[func as usize] as usize, &[x])
+                    self.call(INTEGRALS[func as usize] as usize, x)
                 } else {
                     let x = self.ld(u(a), k);
                     let mut s = self.cmul(sign * kf, x);
@@ -596,8 +653,8 @@ impl Emitter<'_, '_> {
                     let x = self.ld(u(a), 0);
                     let (fs, fc): (extern "C" fn(f64) -> f64, extern "C" fn(f64) -> f64) =
                         if hyperbolic { (sinh, cosh) } else { (sin, cos) };
-                    let s = self.call(fs as usize, &[x]);
-                    let c = self.call(fc as usize, &[x]);
+                    let s = self.call(fs as usize, x);
+                    let c = self.call(fc as usize, x);
                     self.st(partner, 0, c);
                     s
                 } else {
@@ -615,7 +672,7 @@ impl Emitter<'_, '_> {
                         c = self.add(c, tc);
                     }
                     let kf = self.c(kf);
-                    let c = if hyperbolic { c } else { self.b.ins().fneg(c) };
+                    let c = if hyperbolic { c } else { self.neg(c) };
                     let pc = self.div(c, kf);
                     self.st(partner, k, pc);
                     self.div(s, kf)
@@ -628,7 +685,7 @@ impl Emitter<'_, '_> {
 
 /// The shims of [`Node::Integral`]'s functions, indexed by [`Func`] (`ln`, `atan`, `asin`,
 /// `acos`; the others are never called).
-pub(super) const INTEGRALS: [extern "C" fn(f64) -> f64; 13] = [
+const INTEGRALS: [extern "C" fn(f64) -> f64; 13] = [
     integral::<0>,
     integral::<1>,
     integral::<2>,

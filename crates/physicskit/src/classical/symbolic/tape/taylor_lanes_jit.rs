@@ -3,9 +3,10 @@
 //! `L`, `fn(w)`, on the lanes' work array `w` (every node's coefficients, `p + 1` per node,
 //! each an `[f64; L]`, the state's and time's order 0 already set).
 //!
-//! The code is the scalar JIT's unrolled form (`taylor_jit.rs`: for `k = 0..=p`, order `k` of
-//! every operation node, then the state's order `k + 1`, every term of every sum written out,
-//! a coefficient of the order being computed used as the value just computed) on Cranelift's
+//! The code is the scalar JIT's unrolled form, emitted by the same code (`taylor_jit.rs`'s
+//! `Recurrences`: for `k = 0..=p`, order `k` of every operation node, then the state's order
+//! `k + 1`, every term of every sum written out, a coefficient of the order being computed
+//! used as the value just computed) on Cranelift's
 //! `f64x2` vectors (its x86-64 backend has no wider ones): each value is [`VECTORS`] vectors
 //! of two lanes. One pass of that code covers `2 VECTORS` lanes; a loop runs it over the `L`
 //! lanes, its base address moving by `2 VECTORS` doubles. The work array is only 8-byte
@@ -35,8 +36,8 @@ use cranelift_codegen::ir::{types, ConstantData, InstBuilder, MemFlags, Value};
 use cranelift_codegen::settings::Configurable;
 use cranelift_frontend::FunctionBuilder;
 
-use super::super::jit::{cos, cosh, exp, powf, sin, sinh, unrolled_terms, INTEGRALS};
-use super::super::{powf_weight, Node, Val};
+use super::super::jit::{powf, unrolled_terms, Recurrences};
+use super::super::{Node, Val};
 use crate::classical::integrators::taylor::MAX_ORDER;
 use crate::classical::symbolic::tape::jit::{
     compile_function, flag_builder, OwnedModule, Param, Shims,
@@ -268,7 +269,7 @@ impl Native {
 }
 
 /// A value of `2 VECTORS` lanes: [`VECTORS`] `f64x2` values.
-type Lanes<const V: usize> = [Value; V];
+type Lanes<const N: usize> = [Value; N];
 
 /// The flags of every load and store: in bounds (`Native::call` checks the length), but only
 /// 8-byte aligned.
@@ -276,8 +277,9 @@ fn flags() -> MemFlags {
     MemFlags::new().with_notrap()
 }
 
-/// Emits the recurrences for one pass of `2 VECTORS` lanes at `base`.
-struct Emitter<'a, 'b, const V: usize> {
+/// Emits the recurrences (the scalar JIT's [`Recurrences`]) for one pass of `2 N` lanes at
+/// `base`.
+struct Emitter<'a, 'b, const N: usize> {
     b: &'a mut FunctionBuilder<'b>,
     shims: &'a mut Shims,
     /// Address of this pass's first lane of the work array's first coefficient.
@@ -288,17 +290,56 @@ struct Emitter<'a, 'b, const V: usize> {
     k: usize,
     /// The value of each coefficient stored by this function, used instead of a load while
     /// its order is at least the one being emitted.
-    fresh: Vec<Option<Lanes<V>>>,
+    fresh: Vec<Option<Lanes<N>>>,
 }
 
-impl<const V: usize> Emitter<'_, '_, V> {
+impl<const N: usize> Emitter<'_, '_, N> {
     /// Byte offset of vector `v` of coefficient `j` of node `n` from `base`.
     fn offset(&self, n: usize, j: usize, v: usize) -> i32 {
         (8 * self.lanes * (n * self.stride + j) + 16 * v) as i32
     }
 
-    /// Coefficient `j` of node `n`.
-    fn ld(&mut self, n: usize, j: usize) -> Lanes<V> {
+    /// `op` vector by vector.
+    fn zip(
+        &mut self,
+        x: Lanes<N>,
+        y: Lanes<N>,
+        op: fn(&mut FunctionBuilder<'_>, Value, Value) -> Value,
+    ) -> Lanes<N> {
+        std::array::from_fn(|v| op(self.b, x[v], y[v]))
+    }
+
+    /// `f` lane by lane on the lanes of `args` (scalar `f64` values), the results gathered
+    /// back into vectors.
+    fn per_lane(
+        &mut self,
+        args: &[Lanes<N>],
+        f: impl Fn(&mut Self, &[Value]) -> Value,
+    ) -> Lanes<N> {
+        std::array::from_fn(|v| {
+            let lane = |e: &mut Self, lane: u8| {
+                let scalars: Vec<Value> = args
+                    .iter()
+                    .map(|x| e.b.ins().extractlane(x[v], lane))
+                    .collect();
+                f(e, &scalars)
+            };
+            let x0 = lane(self, 0);
+            let x1 = lane(self, 1);
+            let x = self.b.ins().scalar_to_vector(types::F64X2, x0);
+            self.b.ins().insertlane(x, x1, 1)
+        })
+    }
+}
+
+impl<const N: usize> Recurrences for Emitter<'_, '_, N> {
+    type X = Lanes<N>;
+
+    fn set_k(&mut self, k: usize) {
+        self.k = k;
+    }
+
+    fn ld(&mut self, n: usize, j: usize) -> Lanes<N> {
         if j >= self.k {
             if let Some(v) = self.fresh[n * self.stride + j] {
                 return v;
@@ -310,7 +351,7 @@ impl<const V: usize> Emitter<'_, '_, V> {
         })
     }
 
-    fn st(&mut self, n: usize, j: usize, x: Lanes<V>) {
+    fn st(&mut self, n: usize, j: usize, x: Lanes<N>) {
         self.fresh[n * self.stride + j] = Some(x);
         for (v, &x) in x.iter().enumerate() {
             let offset = self.offset(n, j, v);
@@ -319,81 +360,39 @@ impl<const V: usize> Emitter<'_, '_, V> {
     }
 
     /// `c` in every lane (one constant-pool entry).
-    fn c(&mut self, c: f64) -> Lanes<V> {
+    fn c(&mut self, c: f64) -> Lanes<N> {
         let bytes: Vec<u8> = [c, c].iter().flat_map(|x| x.to_le_bytes()).collect();
         let handle = self.b.func.dfg.constants.insert(ConstantData::from(bytes));
         let x = self.b.ins().vconst(types::F64X2, handle);
-        [x; V]
+        [x; N]
     }
 
-    /// `op` vector by vector.
-    fn zip(
-        &mut self,
-        x: Lanes<V>,
-        y: Lanes<V>,
-        op: fn(&mut FunctionBuilder<'_>, Value, Value) -> Value,
-    ) -> Lanes<V> {
-        std::array::from_fn(|v| op(self.b, x[v], y[v]))
-    }
-
-    fn add(&mut self, x: Lanes<V>, y: Lanes<V>) -> Lanes<V> {
+    fn add(&mut self, x: Lanes<N>, y: Lanes<N>) -> Lanes<N> {
         self.zip(x, y, |b, x, y| b.ins().fadd(x, y))
     }
 
-    fn sub(&mut self, x: Lanes<V>, y: Lanes<V>) -> Lanes<V> {
+    fn sub(&mut self, x: Lanes<N>, y: Lanes<N>) -> Lanes<N> {
         self.zip(x, y, |b, x, y| b.ins().fsub(x, y))
     }
 
-    fn mul(&mut self, x: Lanes<V>, y: Lanes<V>) -> Lanes<V> {
+    fn mul(&mut self, x: Lanes<N>, y: Lanes<N>) -> Lanes<N> {
         self.zip(x, y, |b, x, y| b.ins().fmul(x, y))
     }
 
-    fn div(&mut self, x: Lanes<V>, y: Lanes<V>) -> Lanes<V> {
+    fn div(&mut self, x: Lanes<N>, y: Lanes<N>) -> Lanes<N> {
         self.zip(x, y, |b, x, y| b.ins().fdiv(x, y))
     }
 
-    fn neg(&mut self, x: Lanes<V>) -> Lanes<V> {
+    fn neg(&mut self, x: Lanes<N>) -> Lanes<N> {
         std::array::from_fn(|v| self.b.ins().fneg(x[v]))
     }
 
-    /// `x · c` (the interpreter's `c * x`: IEEE multiplication commutes exactly).
-    fn cmul(&mut self, c: f64, x: Lanes<V>) -> Lanes<V> {
-        let c = self.c(c);
-        self.mul(x, c)
+    fn sqrt(&mut self, x: Lanes<N>) -> Lanes<N> {
+        std::array::from_fn(|v| self.b.ins().sqrt(x[v]))
     }
 
-    /// `f` lane by lane on the lanes of `args` (scalar `f64` values), the results gathered
-    /// back into vectors.
-    fn per_lane(
-        &mut self,
-        args: &[Lanes<V>],
-        f: impl Fn(&mut Self, &[Value]) -> Value,
-    ) -> Lanes<V> {
-        std::array::from_fn(|v| {
-            let mut lanes = [None; 2];
-            for (lane, out) in lanes.iter_mut().enumerate() {
-                let scalars: Vec<Value> = args
-                    .iter()
-                    .map(|x| self.b.ins().extractlane(x[v], lane as u8))
-                    .collect();
-                *out = Some(f(self, &scalars));
-            }
-            let [Some(x0), Some(x1)] = lanes else {
-                unreachable!("both lanes are set above")
-            };
-            let x = self.b.ins().scalar_to_vector(types::F64X2, x0);
-            self.b.ins().insertlane(x, x1, 1)
-        })
-    }
-
-    /// The shim at `address` lane by lane on `x`.
-    fn call(&mut self, address: usize, x: Lanes<V>) -> Lanes<V> {
-        self.per_lane(&[x], |e, x| e.shims.call(e.b, address, x))
-    }
-
-    /// Order `k` of `|a|` from `a`'s orders 0 and `k`: `-x` where `a_0 < 0`, else `x`, lane
-    /// by lane.
-    fn abs(&mut self, x0: Lanes<V>, x: Lanes<V>) -> Lanes<V> {
+    /// Lane by lane, as the scalar JIT tests the sign.
+    fn abs(&mut self, x0: Lanes<N>, x: Lanes<N>) -> Lanes<N> {
         self.per_lane(&[x0, x], |e, v| {
             let zero = e.b.ins().f64const(0.0);
             let negative = e.b.ins().fcmp(FloatCC::LessThan, v[0], zero);
@@ -402,256 +401,17 @@ impl<const V: usize> Emitter<'_, '_, V> {
         })
     }
 
-    /// `Σ_{j < n} a_j b_{n-1-j}` from `j = 0` (the interpreter's `cauchy` of the slices
-    /// starting at coefficient `a0` of node `a` and `b0` of node `b`); `None` for `n = 0`.
-    fn cauchy(
-        &mut self,
-        (a, a0): (usize, usize),
-        (b, b0): (usize, usize),
-        n: usize,
-    ) -> Option<Lanes<V>> {
-        let mut s = None;
-        for j in 0..n {
-            let (x, y) = (self.ld(a, a0 + j), self.ld(b, b0 + n - 1 - j));
-            let t = self.mul(x, y);
-            s = Some(match s {
-                Some(s) => self.add(s, t),
-                None => t,
-            });
-        }
-        s
+    /// Lane by lane.
+    fn call(&mut self, address: usize, x: Lanes<N>) -> Lanes<N> {
+        self.per_lane(&[x], |e, x| e.shims.call(e.b, address, x))
     }
 
-    /// `Σ term(j)` for `j` in `range`, from its first term, `None` for an empty range.
-    fn sum(
-        &mut self,
-        range: impl Iterator<Item = usize>,
-        mut term: impl FnMut(&mut Self, usize) -> Lanes<V>,
-    ) -> Option<Lanes<V>> {
-        let mut s = None;
-        for j in range {
-            let t = term(self, j);
-            s = Some(match s {
-                Some(s) => self.add(s, t),
-                None => t,
-            });
-        }
-        s
-    }
-
-    /// Orders `0..=order` of every node and of the state, as `TaylorProgram::interpret`.
-    fn recurrences(&mut self, nodes: &[Node], outputs: &[Val], order: usize) {
-        for k in 0..=order {
-            self.k = k;
-            for (i, &node) in nodes.iter().enumerate() {
-                self.node(i, node, k);
-            }
-            if k < order {
-                let next = self.c((k + 1) as f64);
-                for (i, out) in outputs.iter().enumerate() {
-                    let fk = match *out {
-                        Val::Node(n) => self.ld(n as usize, k),
-                        Val::Const(c) if k == 0 => self.c(c),
-                        Val::Const(_) => self.c(0.0),
-                    };
-                    let v = self.div(fk, next);
-                    self.st(i, k + 1, v);
-                }
-            }
-        }
-    }
-
-    /// Order `k` of node `me`, as `TaylorProgram::order_k` (and the scalar JIT's `node`).
-    #[allow(clippy::too_many_lines)]
-    fn node(&mut self, me: usize, node: Node, k: usize) {
-        let kf = k as f64;
-        let u = |n: u32| n as usize;
-        let value = match node {
-            Node::State | Node::Time | Node::Partner => return,
-            Node::Add(a, b) => {
-                let (x, y) = (self.ld(u(a), k), self.ld(u(b), k));
-                self.add(x, y)
-            }
-            Node::Sub(a, b) => {
-                let (x, y) = (self.ld(u(a), k), self.ld(u(b), k));
-                self.sub(x, y)
-            }
-            Node::AddC(a, c) => {
-                let x = self.ld(u(a), k);
-                if k == 0 {
-                    let c = self.c(c);
-                    self.add(x, c)
-                } else {
-                    x
-                }
-            }
-            Node::CSub(c, a) => {
-                let x = self.ld(u(a), k);
-                if k == 0 {
-                    let c = self.c(c);
-                    self.sub(c, x)
-                } else {
-                    self.neg(x)
-                }
-            }
-            Node::MulC(a, c) => {
-                let x = self.ld(u(a), k);
-                self.cmul(c, x)
-            }
-            Node::Neg(a) => {
-                let x = self.ld(u(a), k);
-                self.neg(x)
-            }
-            Node::Abs(a) => {
-                let (x0, x) = (self.ld(u(a), 0), self.ld(u(a), k));
-                self.abs(x0, x)
-            }
-            Node::Mul(a, b) => self
-                .cauchy((u(a), 0), (u(b), 0), k + 1)
-                .unwrap_or_else(|| self.c(0.0)),
-            Node::Square(a) => {
-                let half = k.div_ceil(2);
-                let twice = self.cauchy((u(a), 0), (u(a), k + 1 - half), half).map(|s| {
-                    let two = self.c(2.0);
-                    self.mul(s, two)
-                });
-                if k.is_multiple_of(2) {
-                    let m = self.ld(u(a), k / 2);
-                    let m = self.mul(m, m);
-                    match twice {
-                        Some(t) => self.add(t, m),
-                        None => m,
-                    }
-                } else {
-                    twice.unwrap_or_else(|| self.c(0.0))
-                }
-            }
-            Node::Div(a, b) => {
-                let (x, b0) = (self.ld(u(a), k), self.ld(u(b), 0));
-                match self.cauchy((u(b), 1), (me, 0), k) {
-                    Some(s) => {
-                        let num = self.sub(x, s);
-                        self.div(num, b0)
-                    }
-                    None => self.div(x, b0),
-                }
-            }
-            Node::CDiv(c, a) => {
-                let a0 = self.ld(u(a), 0);
-                match self.cauchy((u(a), 1), (me, 0), k) {
-                    Some(s) => {
-                        let minus = self.neg(s);
-                        self.div(minus, a0)
-                    }
-                    None => {
-                        let c = self.c(c);
-                        self.div(c, a0)
-                    }
-                }
-            }
-            Node::Sqrt(a) => {
-                if k == 0 {
-                    let x = self.ld(u(a), 0);
-                    std::array::from_fn(|v| self.b.ins().sqrt(x[v]))
-                } else {
-                    let mut s = self.ld(u(a), k);
-                    for j in 1..k {
-                        let (x, y) = (self.ld(me, j), self.ld(me, k - j));
-                        let t = self.mul(x, y);
-                        s = self.sub(s, t);
-                    }
-                    let me0 = self.ld(me, 0);
-                    let d = self.cmul(2.0, me0);
-                    self.div(s, d)
-                }
-            }
-            Node::Powf(a, alpha) => {
-                let a0 = self.ld(u(a), 0);
-                if k == 0 {
-                    self.per_lane(&[a0], |e, x| {
-                        let alpha = e.b.ins().f64const(alpha);
-                        e.shims
-                            .call(e.b, powf as *const () as usize, &[x[0], alpha])
-                    })
-                } else {
-                    let s = self.sum(0..k, |e, j| {
-                        let x = e.ld(u(a), k - j);
-                        let wx = e.cmul(powf_weight(alpha, k, j), x);
-                        let y = e.ld(me, j);
-                        e.mul(wx, y)
-                    });
-                    let d = self.cmul(kf, a0);
-                    let s = s.unwrap_or(d);
-                    self.div(s, d)
-                }
-            }
-            Node::Exp(a) => {
-                if k == 0 {
-                    let x = self.ld(u(a), 0);
-                    self.call(exp as *const () as usize, x)
-                } else {
-                    let s = self.sum(1..=k, |e, j| {
-                        let x = e.ld(u(a), j);
-                        let jx = e.cmul(j as f64, x);
-                        let y = e.ld(me, k - j);
-                        e.mul(jx, y)
-                    });
-                    let kf = self.c(kf);
-                    let s = s.unwrap_or(kf);
-                    self.div(s, kf)
-                }
-            }
-            Node::Integral { a, d, sign, func } => {
-                if k == 0 {
-                    let x = self.ld(u(a), 0);
-                    self.call(INTEGRALS[func as usize] as usize, x)
-                } else {
-                    let x = self.ld(u(a), k);
-                    let mut s = self.cmul(sign * kf, x);
-                    for j in 1..k {
-                        let m = self.ld(me, j);
-                        let jm = self.cmul(j as f64, m);
-                        let y = self.ld(u(d), k - j);
-                        let t = self.mul(jm, y);
-                        s = self.sub(s, t);
-                    }
-                    let d0 = self.ld(u(d), 0);
-                    let den = self.cmul(kf, d0);
-                    self.div(s, den)
-                }
-            }
-            Node::SinCos(a, hyperbolic) => {
-                let partner = me + 1;
-                if k == 0 {
-                    let x = self.ld(u(a), 0);
-                    let (fs, fc): (extern "C" fn(f64) -> f64, extern "C" fn(f64) -> f64) =
-                        if hyperbolic { (sinh, cosh) } else { (sin, cos) };
-                    let s = self.call(fs as usize, x);
-                    let c = self.call(fc as usize, x);
-                    self.st(partner, 0, c);
-                    s
-                } else {
-                    let ja = self.ld(u(a), 1);
-                    let (p, m) = (self.ld(partner, k - 1), self.ld(me, k - 1));
-                    let mut s = self.mul(ja, p);
-                    let mut c = self.mul(ja, m);
-                    for j in 2..=k {
-                        let x = self.ld(u(a), j);
-                        let ja = self.cmul(j as f64, x);
-                        let (p, m) = (self.ld(partner, k - j), self.ld(me, k - j));
-                        let ts = self.mul(ja, p);
-                        s = self.add(s, ts);
-                        let tc = self.mul(ja, m);
-                        c = self.add(c, tc);
-                    }
-                    let kf = self.c(kf);
-                    let c = if hyperbolic { c } else { self.neg(c) };
-                    let pc = self.div(c, kf);
-                    self.st(partner, k, pc);
-                    self.div(s, kf)
-                }
-            }
-        };
-        self.st(me, k, value);
+    /// Lane by lane.
+    fn powf(&mut self, x: Lanes<N>, alpha: f64) -> Lanes<N> {
+        self.per_lane(&[x], |e, x| {
+            let alpha = e.b.ins().f64const(alpha);
+            e.shims
+                .call(e.b, powf as *const () as usize, &[x[0], alpha])
+        })
     }
 }
