@@ -1,11 +1,12 @@
 //! Splitting-method members in SIMD lanes: members of a system whose force runs across lanes
-//! ([`SplittingLanes`]: Kepler, Hénon–Heiles) with equal forces run `L` at a time
+//! ([`SplittingLanes`](crate::classical::integrators::lanes::SplittingLanes): Kepler,
+//! Hénon–Heiles) with equal forces run `L` at a time
 //! ([`native_lanes`]: 16 with AVX-512, 8 with AVX2, else 4), each with exactly the outputs of
 //! its own `integrate` (`integrators/lanes.rs`).
 //!
 //! Members whose systems are the same apart from their initial states
 //! ([`MemberSource::same_system`]), or whose forces compare equal
-//! ([`SplittingLanes::same_force_as`]), share a group; a member without a lanes force, or
+//! ([`SplittingLanes::same_force_as`](crate::classical::integrators::lanes::SplittingLanes::same_force_as)), share a group; a member without a lanes force, or
 //! whose lanes run fails (a state that is not finite), runs alone by `run_member`, so its
 //! error is its own run's. Plans with reductions, which read every step, run members alone.
 

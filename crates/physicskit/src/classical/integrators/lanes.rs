@@ -9,8 +9,8 @@
 //! operations (additions, multiplications, divisions and square roots, all correctly rounded
 //! per lane; `powf` is the scalar `powf` of each lane). The step is the scalar step's kernels
 //! ([`compensated`](super::compensated)'s kick–drift update and closing kick, generic over the
-//! same scalar) run by [`step_array`](super::splitting::step_array), the splitting loop on
-//! fixed-length arrays. No FMA is enabled anywhere, so the AVX-512 (16 lanes), AVX2 (8) and
+//! same scalar) run by `splitting.rs`'s `step_array`, the splitting loop on fixed-length
+//! arrays. No FMA is enabled anywhere, so the AVX-512 (16 lanes), AVX2 (8) and
 //! plain (4) clones give the same bits; the lane count is the caller's
 //! ([`symbolic::native_lanes`](crate::classical::symbolic::native_lanes), as the Taylor
 //! members' lanes take it).
@@ -78,17 +78,17 @@ macro_rules! lanes_op {
             #[inline(always)]
             fn $method(mut self, rhs: Self) -> Self {
                 for (a, b) in self.0.iter_mut().zip(rhs.0) {
-                    *a = *a $op b;
+                    *a $op b;
                 }
                 self
             }
         }
     };
 }
-lanes_op!(Add, add, +);
-lanes_op!(Sub, sub, -);
-lanes_op!(Mul, mul, *);
-lanes_op!(Div, div, /);
+lanes_op!(Add, add, +=);
+lanes_op!(Sub, sub, -=);
+lanes_op!(Mul, mul, *=);
+lanes_op!(Div, div, /=);
 
 impl<const L: usize> Mul<f64> for Lanes<L> {
     type Output = Self;
@@ -233,7 +233,9 @@ impl<T: LanesForce + Any + Sync> SplittingLanes for T {
                 "not a splitting method on a system it runs in lanes",
             ));
         };
-        if batch.starts.len() > lanes * 4 || batch.starts.is_empty() || batch.starts.len() % 4 != 0
+        if batch.starts.len() > lanes * 4
+            || batch.starts.is_empty()
+            || !batch.starts.len().is_multiple_of(4)
         {
             return Err(refused("a batch holds 1 to `lanes` states of 4 values"));
         }
@@ -359,7 +361,7 @@ fn run<const S: usize, const L: usize, T: LanesForce + ?Sized>(
             system.force_of(q, f)
         });
         let last = done == n;
-        if last || done % b.check_every == 0 {
+        if last || done.is_multiple_of(b.check_every) {
             for (l, failed) in failed.iter_mut().enumerate() {
                 *failed |= !q.iter().chain(&p).all(|v| v.0[l].is_finite());
             }
@@ -369,7 +371,7 @@ fn run<const S: usize, const L: usize, T: LanesForce + ?Sized>(
                 });
             }
         }
-        if last || b.every.is_some_and(|k| done % k == 0) {
+        if last || b.every.is_some_and(|k| done.is_multiple_of(k)) {
             for (l, _) in failed.iter().enumerate().filter(|(_, f)| !**f) {
                 for k in 0..N {
                     row[k] = q[k].0[l];
