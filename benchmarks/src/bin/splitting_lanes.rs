@@ -1,0 +1,142 @@
+//! Fixed-step ensembles of splitting-method members: 1000 Hénon–Heiles orbits (`E = 1/8`,
+//! launched on `x = 0`) and 1000 Kepler orbits (eccentricities 0.1 to 0.6), `t = 100`, by
+//! `yoshida4` and `sofroniou_spaletta10`.
+//!
+//! Per workload, three timings:
+//! - `alone`: every member built through the catalogue and run by its own `integrate`, one
+//!   after another on this thread (the member-by-member path, and the scalar step's cost);
+//! - `ensemble1`, `ensemble2`: `ensemble::run` of the same members on one and two threads,
+//!   final states only (with a splitting method and no reductions, the members of a separable
+//!   system whose force runs across lanes go in SIMD lanes).
+//!
+//! Each time is the best of `N` (first argument, default 7) after one untimed run. The
+//! ensemble's final states are checked against the `alone` runs bit for bit (`same_bits`).
+
+use std::time::Instant;
+
+use physicskit::classical::catalog;
+use physicskit::classical::ensemble::{self, FromCatalogue, MemberSource, Members, Plan, Sweep};
+use physicskit::classical::{IntegrateOptions, Method, Sampling};
+
+const MEMBERS: usize = 1000;
+const T_END: f64 = 100.0;
+
+/// Hénon–Heiles states at `E = 1/8` on `x = 0`: 50 heights by 20 momenta.
+fn henon_heiles() -> Members {
+    let states = (0..MEMBERS)
+        .flat_map(|m| {
+            let y = -0.2 + 0.4 * (m / 20) as f64 / 49.0;
+            let px = -0.3 + 0.6 * ((m % 20) as f64 + 0.5) / 20.0;
+            let v = 0.5 * y * y - y * y * y / 3.0;
+            [0.0, y, px, (2.0 * (0.125 - v) - px * px).sqrt()]
+        })
+        .collect();
+    Members {
+        states: Some(states),
+        n: MEMBERS,
+        ..Members::default()
+    }
+}
+
+/// Kepler orbits of eccentricities 0.1 to 0.6 (`a = 1`, period `2 pi`).
+fn kepler() -> Members {
+    Members {
+        sweeps: vec![Sweep::new(
+            "e",
+            (0..MEMBERS)
+                .map(|i| 0.1 + 0.5 * i as f64 / MEMBERS as f64)
+                .collect(),
+        )],
+        n: MEMBERS,
+        ..Members::default()
+    }
+}
+
+fn best_of(n: usize, mut f: impl FnMut() -> Vec<f64>) -> (f64, Vec<f64>) {
+    let out = f();
+    let mut best = f64::INFINITY;
+    for _ in 0..n {
+        let start = Instant::now();
+        std::hint::black_box(f());
+        best = best.min(start.elapsed().as_secs_f64());
+    }
+    (best * 1e3, out)
+}
+
+fn main() {
+    let n: usize = std::env::args()
+        .nth(1)
+        .and_then(|a| a.parse().ok())
+        .unwrap_or(7);
+    let workloads = [
+        ("henon-heiles", henon_heiles(), Method::Yoshida4, 0.01),
+        (
+            "henon-heiles",
+            henon_heiles(),
+            Method::SofroniouSpaletta10,
+            0.05,
+        ),
+        ("kepler", kepler(), Method::Yoshida4, 0.001),
+        ("kepler", kepler(), Method::SofroniouSpaletta10, 0.01),
+    ];
+    for (name, members, method, dt) in workloads {
+        let entry = catalog::find(name).expect("catalogue entry");
+        let source = FromCatalogue::new(entry, &members).expect("members");
+        let (alone, reference) = best_of(n, || {
+            (0..MEMBERS)
+                .flat_map(|i| {
+                    let result = source
+                        .build(i, 0.0)
+                        .expect("member")
+                        .integrate(
+                            (0.0, T_END),
+                            dt,
+                            method,
+                            IntegrateOptions {
+                                sampling: Sampling::FinalOnly,
+                                skip_energy: true,
+                                ..IntegrateOptions::default()
+                            },
+                        )
+                        .expect("run");
+                    result.y.row(result.y.nrows() - 1).to_vec()
+                })
+                .collect()
+        });
+        let run = |threads: usize| {
+            let plan = Plan {
+                t_span: (0.0, T_END),
+                dt,
+                method: Some(method),
+                stride: None,
+                reductions: vec![],
+                final_state: true,
+                threads: Some(threads),
+                tolerances: None,
+            };
+            best_of(n, || {
+                ensemble::run(entry, &members, &plan, None)
+                    .expect("ensemble")
+                    .final_state
+                    .iter()
+                    .copied()
+                    .collect()
+            })
+        };
+        let (one, out1) = run(1);
+        let (two, out2) = run(2);
+        let same = |a: &[f64]| {
+            a.iter()
+                .zip(&reference)
+                .all(|(x, y)| x.to_bits() == y.to_bits())
+        };
+        println!(
+            "{{\"system\": \"{name}\", \"method\": \"{}\", \"dt\": {dt}, \"steps\": {}, \
+             \"alone_ms\": {alone:.2}, \"ensemble1_ms\": {one:.2}, \"ensemble2_ms\": {two:.2}, \
+             \"same_bits\": {}}}",
+            method.name(),
+            (T_END / dt).round(),
+            same(&out1) && same(&out2)
+        );
+    }
+}
