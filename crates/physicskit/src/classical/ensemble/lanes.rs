@@ -77,6 +77,12 @@ pub(super) fn run_chunk<S: MemberSource + ?Sized>(
             .splitting_lanes()
             .filter(|l| l.accepts(p.method))
         else {
+            if j == 0 {
+                // The first member has no lanes force (nor, as a rule, its kind): all run
+                // alone, each built once more by its run, as without lanes.
+                alone.fill(true);
+                break;
+            }
             alone[j] = true;
             continue;
         };
