@@ -12,19 +12,23 @@
 //! - `hh-state`: Hénon–Heiles at `E = 1/6` from `q = (0, 0.1)`, `p_x = 0.4`, `t = 100`;
 //! - `hh-energy`: the same start, `t = 1000`, largest energy error;
 //! - `pendulum`: the double pendulum (unit masses and arms, `g = 9.81`) from rest at
-//!   `(2, 1.5)` rad, `t = 10`, state `(q, p)`.
+//!   `(2, 1.5)` rad, `t = 10`, state `(q, p)`; its program is Hamilton's equations from the
+//!   system's traced `L`.
 //!
 //! Arguments (all optional, for timing one side alone): `--only WORKLOAD` and `--tol TOL`
 //! run that workload or tolerance alone, `--no-interpreted` skips the interpreted timing
 //! (its field is then `NaN`), `--repeats N` takes the best of `N` runs instead of five,
 //! `--form compact` or `--form unrolled` compiles the recurrences in that form whatever the
-//! program's size (by default the library picks it by size).
+//! program's size (by default the library picks it by size), `--pendulum-from-h` builds the
+//! pendulum's program from its `H` (the inverse mass matrix written out, differentiated)
+//! instead of from its `L` (`TaylorProgram::lagrangian_canonical`).
 
 use std::time::Instant;
 
 use physicskit::classical::integrators::taylor::{integrate_taylor, order_for};
+use physicskit::classical::symbolic::{trace_lagrangian, Expr, ExprHamiltonian};
 use physicskit::classical::symbolic::{Backend, TaylorProgram};
-use physicskit::classical::symbolic::{Expr, ExprHamiltonian};
+use physicskit::classical::systems::DoublePendulumParams;
 use physicskit::classical::{Result, Tolerances};
 
 /// `H` of each workload as the expression the program is built from, and its start.
@@ -82,6 +86,7 @@ struct Options {
     interpreted: bool,
     repeats: usize,
     form: Option<String>,
+    pendulum_from_h: bool,
 }
 
 fn options() -> Options {
@@ -91,6 +96,7 @@ fn options() -> Options {
         interpreted: true,
         repeats: 5,
         form: None,
+        pendulum_from_h: false,
     };
     let mut args = std::env::args().skip(1);
     while let Some(arg) = args.next() {
@@ -99,11 +105,12 @@ fn options() -> Options {
             "--tol" => o.tol = args.next().and_then(|t| t.parse().ok()),
             "--no-interpreted" => o.interpreted = false,
             "--form" => o.form = args.next(),
+            "--pendulum-from-h" => o.pendulum_from_h = true,
             "--repeats" => o.repeats = args.next().and_then(|n| n.parse().ok()).unwrap_or(5),
             _ => {
                 eprintln!(
                     "usage: heyoka_taylor [--only WORKLOAD] [--tol TOL] [--no-interpreted] \
-                     [--repeats N] [--form compact|unrolled]"
+                     [--repeats N] [--form compact|unrolled] [--pendulum-from-h]"
                 );
                 std::process::exit(2);
             }
@@ -130,7 +137,21 @@ fn main() -> Result<()> {
             }
             let tol_pair = Tolerances::new(tol, tol)?;
             let start = Instant::now();
-            let program = TaylorProgram::hamiltonian(&system)?;
+            let program = if name == "pendulum" && !options.pendulum_from_h {
+                // The system's own L (traced): its kinetic energy is quadratic, so the
+                // velocities `w = M^-1 p` are solved for once and shared, as in heyoka's
+                // equations.
+                let params = DoublePendulumParams {
+                    m1: 1.0,
+                    m2: 1.0,
+                    l1: 1.0,
+                    l2: 1.0,
+                    g: 9.81,
+                };
+                TaylorProgram::lagrangian_canonical(&trace_lagrangian(&params)?)?
+            } else {
+                TaylorProgram::hamiltonian(&system)?
+            };
             let build = start.elapsed().as_secs_f64();
             let start = Instant::now();
             let order = order_for(&tol_pair);

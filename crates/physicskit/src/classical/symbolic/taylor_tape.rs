@@ -10,6 +10,12 @@
 //! c (a + b)`), and the operands of `+` and `×` are put in one order: values that differ by a
 //! constant factor or the order of their operands share their nodes, and a factor is written
 //! out (one multiplication per order) only where a sum, a function or an output needs it.
+//! A sum's terms that are one monomial up to a constant factor (the same factors' nodes, in
+//! any order) are merged, and dropped where they cancel, as the terms of `∂L/∂q` and
+//! `d/dt ∂L/∂qdot` of a kinetic energy quadratic in `qdot` do; nodes that no output then
+//! needs are removed. A Lagrangian quadratic in `qdot` also gives Hamilton's equations on
+//! `(q, p)` with the velocities `w = M^-1 p` solved for once and shared
+//! ([`TaylorProgram::lagrangian_canonical`]).
 //! Each node holds a truncated power series; order `k` of every node follows from orders
 //! `< k` of its operands by one recurrence per operation (automatic differentiation of
 //! truncated series; Jorba & Zou, *Exp. Math.* 14 (2005) 99, §3; Griewank & Walther,
@@ -37,6 +43,7 @@ use crate::classical::core::{Error, Result};
 use crate::classical::integrators::taylor::{TaylorField, MAX_ORDER};
 use crate::classical::integrators::HamiltonianSystem;
 use crate::classical::lagrangian::Lagrangian;
+use std::collections::HashMap;
 
 use super::tape::Backend;
 
@@ -124,6 +131,36 @@ impl Keyed for Node {
     }
 }
 
+impl Node {
+    /// The node with each operand `a` replaced by `f(a)` (called on every operand).
+    fn map_operands(self, mut f: impl FnMut(u32) -> u32) -> Node {
+        match self {
+            Node::State | Node::Time | Node::Partner => self,
+            Node::Add(a, b) => Node::Add(f(a), f(b)),
+            Node::Sub(a, b) => Node::Sub(f(a), f(b)),
+            Node::Mul(a, b) => Node::Mul(f(a), f(b)),
+            Node::Div(a, b) => Node::Div(f(a), f(b)),
+            Node::AddC(a, c) => Node::AddC(f(a), c),
+            Node::CSub(c, a) => Node::CSub(c, f(a)),
+            Node::MulC(a, c) => Node::MulC(f(a), c),
+            Node::CDiv(c, a) => Node::CDiv(c, f(a)),
+            Node::Neg(a) => Node::Neg(f(a)),
+            Node::Square(a) => Node::Square(f(a)),
+            Node::Sqrt(a) => Node::Sqrt(f(a)),
+            Node::Powf(a, x) => Node::Powf(f(a), x),
+            Node::Exp(a) => Node::Exp(f(a)),
+            Node::Integral { a, d, sign, func } => Node::Integral {
+                a: f(a),
+                d: f(d),
+                sign,
+                func,
+            },
+            Node::SinCos(a, hyperbolic) => Node::SinCos(f(a), hyperbolic),
+            Node::Abs(a) => Node::Abs(f(a)),
+        }
+    }
+}
+
 /// An expression field compiled into Taylor recurrences (see the module documentation).
 #[derive(Debug, Clone)]
 pub struct TaylorProgram {
@@ -142,6 +179,36 @@ struct Builder<'a> {
     n_second: usize,
     params: &'a [f64],
     nodes: HashCons<Node>,
+    /// What `qdot_i` stands for when it is not a state component: the velocities
+    /// `w = M^-1 (p - b)` of [`TaylorProgram::lagrangian_canonical`].
+    velocity: Option<Vec<Scaled>>,
+    /// The values of the subexpressions of the expression being compiled, by address.
+    memo: HashMap<*const Expr, Scaled>,
+}
+
+/// The shape of a sum (its `Add`, `Sub` and `Neg` nodes) over its terms, numbered in the
+/// order they are met: the terms are added in this association when none of them merge.
+enum SumTree {
+    Term(usize),
+    Add(Vec<SumTree>),
+    Sub(Box<SumTree>, Box<SumTree>),
+    Neg(Box<SumTree>),
+}
+
+/// A sum's terms and the tree that adds them.
+fn sum_tree<'e>(e: &'e Expr, terms: &mut Vec<(&'e Expr, f64)>, sign: f64) -> SumTree {
+    match e {
+        Expr::Add(v) => SumTree::Add(v.iter().map(|t| sum_tree(t, terms, sign)).collect()),
+        Expr::Sub(a, b) => SumTree::Sub(
+            Box::new(sum_tree(a, terms, sign)),
+            Box::new(sum_tree(b, terms, -sign)),
+        ),
+        Expr::Neg(a) => SumTree::Neg(Box::new(sum_tree(a, terms, -sign))),
+        e => {
+            terms.push((e, sign));
+            SumTree::Term(terms.len() - 1)
+        }
+    }
 }
 
 /// A value while the program is built: a constant, or a node's series times a constant factor.
@@ -207,7 +274,13 @@ impl Builder<'_> {
                     self.node(Node::AddC(a, k)).into()
                 }
             }
-            (Scaled::Node(a, ca), Scaled::Node(b, cb)) if a == b => Scaled::Node(a, ca + cb),
+            (Scaled::Node(a, ca), Scaled::Node(b, cb)) if a == b => {
+                if ca + cb == 0.0 {
+                    Scaled::Const(0.0)
+                } else {
+                    Scaled::Node(a, ca + cb)
+                }
+            }
             (Scaled::Node(a, ca), Scaled::Node(b, cb)) => {
                 let ((lo, cl), (hi, ch)) = if a < b {
                     ((a, ca), (b, cb))
@@ -246,6 +319,12 @@ impl Builder<'_> {
     fn mul(&mut self, a: Scaled, b: Scaled) -> Scaled {
         match (a, b) {
             (Scaled::Const(x), Scaled::Const(y)) => Scaled::Const(x * y),
+            // A zero factor: the term drops out (`0 x` is 0 for every finite `x`).
+            (Scaled::Node(_, _), Scaled::Const(k)) | (Scaled::Const(k), Scaled::Node(_, _))
+                if k == 0.0 =>
+            {
+                Scaled::Const(0.0)
+            }
             (Scaled::Node(a, c), Scaled::Const(k)) | (Scaled::Const(k), Scaled::Node(a, c)) => {
                 Scaled::Node(a, c * k)
             }
@@ -381,7 +460,135 @@ impl Builder<'_> {
         }
     }
 
+    /// A product as written (its factors in order, nested products first).
+    fn product(&mut self, v: &[Expr]) -> Result<Scaled> {
+        let mut acc = Scaled::Const(1.0);
+        for (i, factor) in v.iter().enumerate() {
+            let b = self.compile(factor)?;
+            acc = if i == 0 { b } else { self.mul(acc, b) };
+        }
+        Ok(acc)
+    }
+
+    /// A term of a sum as a monomial: the nodes of its factors (nested products flattened),
+    /// sorted, and the product of their constant factors; `x v0 v1` and `v1 (2 x) v0` are the
+    /// same nodes. The factors are compiled, the products not (the sum decides how).
+    fn monomial(&mut self, e: &Expr, nodes: &mut Vec<u32>) -> Result<f64> {
+        let mut factor = 1.0;
+        if let Expr::Mul(v) = e {
+            for f in v {
+                factor *= self.monomial(f, nodes)?;
+            }
+        } else {
+            match self.compile(e)? {
+                Scaled::Const(c) => factor = c,
+                Scaled::Node(n, c) => {
+                    nodes.push(n);
+                    factor = c;
+                }
+            }
+        }
+        Ok(factor)
+    }
+
+    /// A sum (its nested sums, differences and negations flattened into terms). Terms that
+    /// are the same monomial up to a constant factor are merged into the first of them, and
+    /// dropped where their factors cancel, as the terms of `∂L/∂q` and `d/dt ∂L/∂qdot` do in
+    /// the Euler–Lagrange equations of a kinetic energy quadratic in `qdot`; the sum is
+    /// otherwise added as written.
+    fn sum(&mut self, e: &Expr) -> Result<Scaled> {
+        let mut terms = Vec::new();
+        let tree = sum_tree(e, &mut terms, 1.0);
+        // Each distinct monomial with its summed factor and its terms.
+        let mut merged: Vec<(Vec<u32>, f64, Vec<usize>)> = Vec::new();
+        let mut factors = Vec::with_capacity(terms.len());
+        for (i, &(term, sign)) in terms.iter().enumerate() {
+            let mut nodes = Vec::new();
+            let c = self.monomial(term, &mut nodes)?;
+            factors.push(c);
+            nodes.sort_unstable();
+            if nodes.is_empty() {
+                continue;
+            }
+            match merged.iter_mut().find(|m| m.0 == nodes) {
+                Some(m) => {
+                    m.1 += sign * c;
+                    m.2.push(i);
+                }
+                None => merged.push((nodes, sign * c, vec![i])),
+            }
+        }
+        // Each term as written (`None`), or scaled by a factor: the first of a merged group
+        // carries the group's sum (`total / (sign factor)`, its written value's factor scaled
+        // to it), the others 0.
+        let mut scale: Vec<Option<f64>> = vec![None; terms.len()];
+        for (_, total, members) in merged {
+            if let [first, rest @ ..] = members.as_slice() {
+                if rest.is_empty() {
+                    continue;
+                }
+                scale[*first] = Some(total / (terms[*first].1 * factors[*first]));
+                for &i in rest {
+                    scale[i] = Some(0.0);
+                }
+            }
+        }
+        self.add_tree(&tree, &terms, &scale)
+    }
+
+    /// The terms, each scaled as `scale` says, added in the association of `tree`.
+    fn add_tree(
+        &mut self,
+        tree: &SumTree,
+        terms: &[(&Expr, f64)],
+        scale: &[Option<f64>],
+    ) -> Result<Scaled> {
+        Ok(match tree {
+            SumTree::Term(i) => match (scale[*i], self.compile(terms[*i].0)?) {
+                (None, value) => value,
+                (Some(m), _) if m == 0.0 => Scaled::Const(0.0),
+                (Some(m), Scaled::Node(node, c)) => Scaled::Node(node, c * m),
+                (Some(m), Scaled::Const(c)) => Scaled::Const(c * m),
+            },
+            SumTree::Add(v) => {
+                let mut acc = Scaled::Const(0.0);
+                for (i, t) in v.iter().enumerate() {
+                    let b = self.add_tree(t, terms, scale)?;
+                    acc = if i == 0 { b } else { self.add(acc, b) };
+                }
+                acc
+            }
+            SumTree::Sub(a, b) => {
+                let a = self.add_tree(a, terms, scale)?;
+                let b = self.add_tree(b, terms, scale)?;
+                self.sub(a, b)
+            }
+            SumTree::Neg(a) => Self::neg(self.add_tree(a, terms, scale)?),
+        })
+    }
+
+    /// `e` compiled on its own (its subexpressions remembered for it alone: they are known by
+    /// their address, which is theirs only while `e` is borrowed).
+    fn compile_root(&mut self, e: &Expr) -> Result<Scaled> {
+        self.memo.clear();
+        let value = self.compile(e);
+        self.memo.clear();
+        value
+    }
+
+    /// `e`'s value; a subexpression met again (by a sum, which looks at its terms before it
+    /// adds them) is taken from the memo of the expression being compiled.
     fn compile(&mut self, e: &Expr) -> Result<Scaled> {
+        let key: *const Expr = e;
+        if let Some(&value) = self.memo.get(&key) {
+            return Ok(value);
+        }
+        let value = self.compile_new(e)?;
+        self.memo.insert(key, value);
+        Ok(value)
+    }
+
+    fn compile_new(&mut self, e: &Expr) -> Result<Scaled> {
         let bad = |kind: &str, i: usize, limit: usize| {
             Err(Error::invalid(
                 "expression",
@@ -394,6 +601,12 @@ impl Builder<'_> {
             Expr::Const(c) => Scaled::Const(*c),
             Expr::Q(i) if *i < nf => (*i as u32).into(),
             Expr::Q(i) => return bad("q", *i, nf),
+            Expr::Qdot(i) if self.velocity.is_some() => {
+                match self.velocity.as_ref().and_then(|w| w.get(*i)) {
+                    Some(&w) => w,
+                    None => return bad("qdot", *i, nf),
+                }
+            }
             Expr::Qdot(i) if *i < ns => ((nf + i) as u32).into(),
             Expr::Qdot(i) => return bad("qdot/p", *i, ns),
             Expr::T => ((nf + ns) as u32).into(),
@@ -401,26 +614,8 @@ impl Builder<'_> {
                 Some(&p) => Scaled::Const(p),
                 None => return bad("param", *i, self.params.len()),
             },
-            Expr::Add(v) => {
-                let mut acc = Scaled::Const(0.0);
-                for (i, term) in v.iter().enumerate() {
-                    let b = self.compile(term)?;
-                    acc = if i == 0 { b } else { self.add(acc, b) };
-                }
-                acc
-            }
-            Expr::Mul(v) => {
-                let mut acc = Scaled::Const(1.0);
-                for (i, factor) in v.iter().enumerate() {
-                    let b = self.compile(factor)?;
-                    acc = if i == 0 { b } else { self.mul(acc, b) };
-                }
-                acc
-            }
-            Expr::Sub(a, b) => {
-                let (a, b) = (self.compile(a)?, self.compile(b)?);
-                self.sub(a, b)
-            }
+            Expr::Add(_) | Expr::Sub(..) => self.sum(e)?,
+            Expr::Mul(v) => self.product(v)?,
             Expr::Div(a, b) => {
                 let (a, b) = (self.compile(a)?, self.compile(b)?);
                 self.div(a, b)
@@ -466,6 +661,21 @@ fn cauchy(a: &[f64], b: &[f64]) -> f64 {
     match terms.next() {
         Some(first) => terms.fold(first, |s, t| s + t),
         None => 0.0,
+    }
+}
+
+/// Whether `e` refers to a velocity `qdot_i`.
+fn mentions_velocity(e: &Expr) -> bool {
+    match e {
+        Expr::Qdot(_) => true,
+        Expr::Const(_) | Expr::Q(_) | Expr::T | Expr::Param(_) => false,
+        Expr::Add(v) | Expr::Mul(v) => v.iter().any(mentions_velocity),
+        Expr::Sub(a, b) | Expr::Div(a, b) | Expr::Pow(a, b) => {
+            mentions_velocity(a) || mentions_velocity(b)
+        }
+        Expr::Neg(a) | Expr::Powi(a, _) | Expr::Powf(a, _) | Expr::Func(_, a) => {
+            mentions_velocity(a)
+        }
     }
 }
 
@@ -520,19 +730,68 @@ impl TaylorProgram {
             n_second,
             params,
             nodes: HashCons::new(nodes),
+            velocity: None,
+            memo: HashMap::new(),
         };
         let mut compiled = Vec::with_capacity(dim);
         for e in outputs {
-            let value = builder.compile(e)?;
+            let value = builder.compile_root(e)?;
             compiled.push(builder.val(value));
         }
-        Ok(Self {
+        Ok(Self::from_built(dim, builder.nodes.items, compiled))
+    }
+
+    /// The program of `nodes` and `outputs` without the nodes no output needs (forms the
+    /// builder tried and did not take); the state and time keep their places.
+    fn from_built(dim: usize, nodes: Vec<Node>, outputs: Vec<Val>) -> Self {
+        let mut live = vec![false; nodes.len()];
+        live[..=dim].fill(true);
+        for out in &outputs {
+            if let Val::Node(n) = *out {
+                live[n as usize] = true;
+            }
+        }
+        for i in (0..nodes.len()).rev() {
+            // A sin/cos pair lives or dies together.
+            if matches!(nodes[i], Node::Partner) && live[i] {
+                live[i - 1] = true;
+            }
+            if let Node::SinCos(..) = nodes[i] {
+                live[i] |= live[i + 1];
+                live[i + 1] = live[i];
+            }
+            if live[i] {
+                nodes[i].map_operands(|a| {
+                    live[a as usize] = true;
+                    a
+                });
+            }
+        }
+        let mut index = vec![0_u32; nodes.len()];
+        let mut kept = Vec::with_capacity(nodes.len());
+        for (i, node) in nodes.into_iter().enumerate() {
+            if live[i] {
+                index[i] = kept.len() as u32;
+                kept.push(node);
+            }
+        }
+        for node in &mut kept {
+            *node = node.map_operands(|a| index[a as usize]);
+        }
+        let outputs = outputs
+            .into_iter()
+            .map(|out| match out {
+                Val::Node(n) => Val::Node(index[n as usize]),
+                c => c,
+            })
+            .collect();
+        Self {
             dim,
-            nodes: builder.nodes.items,
-            outputs: compiled,
+            nodes: kept,
+            outputs,
             work: Vec::new(),
             jit: jit::Jit::default(),
-        })
+        }
     }
 
     /// The recurrences of an [`ExprOde`]'s field `dy/dt = f(t, y)`.
@@ -628,6 +887,93 @@ impl TaylorProgram {
         }
         let outputs: Vec<Expr> = (0..n).map(Expr::Qdot).chain(acceleration).collect();
         Self::new(&outputs, n, n, system.params())
+    }
+
+    /// The recurrences of Hamilton's equations of an [`ExprLagrangian`] whose kinetic energy
+    /// is quadratic in `qdot` (`L = ½ qdotᵀ M(q, t) qdot + b(q, t)·qdot - V(q, t)`), on the
+    /// state `(q, p)` with the momenta `p = ∂L/∂qdot = M qdot + b`: the velocities
+    /// `w = M^-1 (p - b)` are solved for once (Gaussian elimination without pivoting, as in
+    /// [`lagrangian`](Self::lagrangian), on `M = ∂²L/∂qdot²` and `b = ∂L/∂qdot` at
+    /// `qdot = 0`), and then `dq/dt = w` and `dp/dt = ∂L/∂q` at `qdot = w`. That is `-∂H/∂q`
+    /// (the Legendre transform's envelope: `∂H/∂q = -∂L/∂q` at the velocity that gives `p`),
+    /// which for `b = 0` and `V` is `½ wᵀ (∂M/∂q) w - ∂V/∂q`: the equations written with
+    /// `w` shared, not `H = ½ pᵀ M^-1 p + V` differentiated entry by entry of `M^-1`.
+    ///
+    /// # Errors
+    /// [`Error::InvalidParameter`] naming `lagrangian` when `∂²L/∂qdot²` depends on `qdot`
+    /// (the kinetic energy is not quadratic); otherwise as [`TaylorProgram::new`].
+    pub fn lagrangian_canonical(system: &ExprLagrangian) -> Result<Self> {
+        let n = system.ndof();
+        let l = system.expr();
+        let dl_dqdot: Vec<Expr> = (0..n).map(|i| l.diff(Var::Second(i))).collect();
+        let m: Vec<Vec<Expr>> = dl_dqdot
+            .iter()
+            .map(|d| (0..n).map(|j| d.diff(Var::Second(j))).collect())
+            .collect();
+        if m.iter().flatten().any(mentions_velocity) {
+            return Err(Error::invalid(
+                "lagrangian",
+                n as f64,
+                "has a mass matrix d2L/dqdot2 that depends on qdot: its kinetic energy is not \
+                 quadratic in qdot, so the momenta are not linear in it",
+            ));
+        }
+        let dim = 2 * n;
+        let mut nodes = vec![Node::State; dim];
+        nodes.push(Node::Time);
+        let mut builder = Builder {
+            n_first: n,
+            n_second: n,
+            params: system.params(),
+            nodes: HashCons::new(nodes),
+            velocity: Some(vec![Scaled::Const(0.0); n]),
+            memo: HashMap::new(),
+        };
+        // `p - b`, `b` the momenta at `qdot = 0`.
+        let mut rhs = Vec::with_capacity(n);
+        for (i, d) in dl_dqdot.iter().enumerate() {
+            let b = builder.compile_root(d)?;
+            rhs.push(builder.sub(((n + i) as u32).into(), b));
+        }
+        let mut mass = Vec::with_capacity(n);
+        for row in &m {
+            let mut compiled = Vec::with_capacity(n);
+            for e in row {
+                compiled.push(builder.compile_root(e)?);
+            }
+            mass.push(compiled);
+        }
+        // Forward elimination, row i -= (m_ik / m_kk) row k, then back substitution.
+        for k in 0..n {
+            for i in k + 1..n {
+                let factor = builder.div(mass[i][k], mass[k][k]);
+                for j in k + 1..n {
+                    let product = builder.mul(factor, mass[k][j]);
+                    mass[i][j] = builder.sub(mass[i][j], product);
+                }
+                let product = builder.mul(factor, rhs[k]);
+                rhs[i] = builder.sub(rhs[i], product);
+            }
+        }
+        let mut w = vec![Scaled::Const(0.0); n];
+        for i in (0..n).rev() {
+            let mut acc = rhs[i];
+            for j in i + 1..n {
+                let product = builder.mul(mass[i][j], w[j]);
+                acc = builder.sub(acc, product);
+            }
+            w[i] = builder.div(acc, mass[i][i]);
+        }
+        builder.velocity = Some(w.clone());
+        let mut outputs = Vec::with_capacity(dim);
+        for &wi in &w {
+            outputs.push(builder.val(wi));
+        }
+        for i in 0..n {
+            let force = builder.compile_root(&l.diff(Var::First(i)))?;
+            outputs.push(builder.val(force));
+        }
+        Ok(Self::from_built(dim, builder.nodes.items, outputs))
     }
 
     /// Number of recurrence nodes (state, time and operations).

@@ -16,7 +16,7 @@ use physicskit::classical::integrators::taylor::{
 };
 use physicskit::classical::lagrangian::LagrangianModel;
 use physicskit::classical::model::erased::{DynSystem, Hamiltonian};
-use physicskit::classical::symbolic::TaylorProgram;
+use physicskit::classical::symbolic::{trace_lagrangian, TaylorProgram};
 use physicskit::classical::symbolic::{Expr, ExprHamiltonian, ExprLagrangian, ExprOde};
 use physicskit::classical::systems::{
     DoublePendulum, DoublePendulumParams, HenonHeilesSystem, KeplerPerturbations, KeplerSystem,
@@ -176,24 +176,37 @@ fn double_pendulum_hand_written() -> Vec<Expr> {
     .collect()
 }
 
-/// The program built from the double pendulum's `H` by symbolic differentiation is the
-/// hand-written equations' vector field (at 50 pseudo-random states every component agrees
-/// to 1e-13 relative to the field's size: the two are ~20 roundings of quantities of that
-/// size, in different orders, and a wrong term is off by order one), and it is not much
-/// larger: the derivatives of the quotient `N/D` reuse `N/D`, and the constant factors, in
-/// which `∂H/∂q0` and `∂H/∂q1` differ, move out of their products, which are then shared.
-/// The node counts are printed; the bound, at most 1.5 times the hand-written equations'
-/// nodes, fails on a program that writes out every constant factor where it stands (69
-/// nodes, 2.3 times).
+/// The programs built from the double pendulum's `H` by symbolic differentiation and from
+/// the built-in system's own `L` (traced) are the hand-written equations' vector field on
+/// `(q, p)` (at 50 pseudo-random states every component agrees to 1e-13 relative to the
+/// field's size: each is ~20 roundings of quantities of that size, in different orders, and a
+/// wrong term is off by order one).
+///
+/// Their sizes: from `H`, the derivatives of the quotient `N/D` reuse `N/D` and the constant
+/// factors move out of the products, which are then shared: at most 1.5 times the
+/// hand-written equations' nodes (a program that writes out every constant factor where it
+/// stands has 69, 2.3 times). From `L`, whose kinetic energy is quadratic in `qdot`, the
+/// velocities `w = M^-1 p` are solved for once and shared by `dp/dt = ∂L/∂q` at `qdot = w`:
+/// no more nodes than the hand-written equations (30), where `H` differentiated entry by
+/// entry of `M^-1` gives 41. The Euler–Lagrange program on `(q, qdot)` from the same `L`
+/// merges the terms of `∂L/∂q` and `d/dt ∂L/∂qdot` that cancel (the sum `-b sin D v0 v1` of
+/// `∂L/∂q0` against the same product from `d/dt ∂L/∂qdot0`): at most one node more than the
+/// hand-written equations (a builder that keeps them has 38).
 #[test]
 fn the_derived_double_pendulum_program_is_the_hand_written_one() {
     let params = DoublePendulumParams::default();
     let values = double_pendulum_params(params);
     let mut derived = TaylorProgram::hamiltonian(&double_pendulum_expr(params)).unwrap();
     let mut hand = TaylorProgram::new(&double_pendulum_hand_written(), 2, 2, &values).unwrap();
+    let traced = trace_lagrangian(&params).unwrap();
+    let mut from_l = TaylorProgram::lagrangian_canonical(&traced).unwrap();
+    let euler_lagrange = TaylorProgram::lagrangian(&traced).unwrap();
     println!(
-        "double pendulum: {} nodes derived from H, {} from the hand-written equations",
+        "double pendulum: {} nodes derived from H, {} from L on (q, p), {} from L on \
+         (q, qdot), {} from the hand-written equations",
         derived.nodes(),
+        from_l.nodes(),
+        euler_lagrange.nodes(),
         hand.nodes()
     );
     assert!(
@@ -202,15 +215,43 @@ fn the_derived_double_pendulum_program_is_the_hand_written_one() {
         derived.nodes(),
         hand.nodes()
     );
+    assert!(
+        from_l.nodes() <= hand.nodes(),
+        "{} nodes against {}",
+        from_l.nodes(),
+        hand.nodes()
+    );
+    assert!(
+        euler_lagrange.nodes() <= hand.nodes() + 1,
+        "{} nodes against {}",
+        euler_lagrange.nodes(),
+        hand.nodes()
+    );
     for s in 0..50 {
         let y: Vec<f64> = pseudo_random(4, 7000 + s).iter().map(|v| 3.0 * v).collect();
         let want = first_order(&mut hand, &y);
-        let got = first_order(&mut derived, &y);
         let size = want.iter().fold(1.0_f64, |m, v| m.max(v.abs()));
-        for (g, w) in got.iter().zip(&want) {
-            assert!((g - w).abs() <= 1e-13 * size, "{y:?}: {got:?} {want:?}");
+        for program in [&mut derived, &mut from_l] {
+            let got = first_order(program, &y);
+            for (g, w) in got.iter().zip(&want) {
+                assert!((g - w).abs() <= 1e-13 * size, "{y:?}: {got:?} {want:?}");
+            }
         }
     }
+}
+
+/// A Lagrangian whose kinetic energy is not quadratic in `qdot` (`L = qdot^4/4 - q^2/2`: the
+/// momentum `qdot^3` is not linear in it) has no canonical program built by solving for the
+/// velocities, and says so, naming the Lagrangian.
+#[test]
+fn a_canonical_program_needs_a_quadratic_kinetic_energy() {
+    let l = Expr::parse("(- (* 0.25 (^ qdot0 4)) (* 0.5 (^ q0 2)))").unwrap();
+    let system = ExprLagrangian::new(l, 1, vec![]).unwrap();
+    let err = TaylorProgram::lagrangian_canonical(&system).unwrap_err();
+    let Error::InvalidParameter { name, .. } = &err else {
+        panic!("{err}");
+    };
+    assert_eq!(name, "lagrangian", "{err}");
 }
 
 /// One expression in `q1` per recurrence (every function, power and quotient form), with a
