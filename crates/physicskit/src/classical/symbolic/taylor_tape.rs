@@ -546,7 +546,7 @@ impl Builder<'_> {
         Ok(match tree {
             SumTree::Term(i) => match (scale[*i], self.compile(terms[*i].0)?) {
                 (None, value) => value,
-                (Some(m), _) if m == 0.0 => Scaled::Const(0.0),
+                (Some(0.0), _) => Scaled::Const(0.0),
                 (Some(m), Scaled::Node(node, c)) => Scaled::Node(node, c * m),
                 (Some(m), Scaled::Const(c)) => Scaled::Const(c * m),
             },
@@ -947,9 +947,10 @@ impl TaylorProgram {
         for k in 0..n {
             for i in k + 1..n {
                 let factor = builder.div(mass[i][k], mass[k][k]);
-                for j in k + 1..n {
-                    let product = builder.mul(factor, mass[k][j]);
-                    mass[i][j] = builder.sub(mass[i][j], product);
+                let row_k = mass[k].clone();
+                for (mij, &mkj) in mass[i][k + 1..].iter_mut().zip(&row_k[k + 1..]) {
+                    let product = builder.mul(factor, mkj);
+                    *mij = builder.sub(*mij, product);
                 }
                 let product = builder.mul(factor, rhs[k]);
                 rhs[i] = builder.sub(rhs[i], product);
