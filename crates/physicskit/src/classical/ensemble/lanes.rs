@@ -1,21 +1,22 @@
 //! Splitting-method members in SIMD lanes: members of a system whose force runs across lanes
-//! ([`SplittingLanes`](crate::classical::integrators::lanes::SplittingLanes): Kepler,
-//! Hénon–Heiles) with equal forces run `L` at a time
+//! ([`SplittingLanes`]: Kepler, Hénon–Heiles) with equal forces run `L` at a time
 //! ([`native_lanes`]: 16 with AVX-512, 8 with AVX2, else 4), each with exactly the outputs of
 //! its own `integrate` (`integrators/lanes.rs`).
 //!
 //! Members whose systems are the same apart from their initial states
 //! ([`MemberSource::same_system`]), or whose forces compare equal
-//! ([`SplittingLanes::same_force_as`](crate::classical::integrators::lanes::SplittingLanes::same_force_as)), share a group; a member without a lanes force, or
-//! whose lanes run fails (a state that is not finite), runs alone by `run_member`, so its
-//! error is its own run's. Plans with reductions, which read every step, run members alone.
+//! ([`SplittingLanes::same_force_as`]), share a group (`chunk.rs`); a member without a lanes
+//! force, or whose lanes run fails (a state that is not finite), runs alone by `run_member`,
+//! so its error is its own run's. Plans with reductions, which read every step, run members
+//! alone.
 
-use std::sync::atomic::{AtomicBool, AtomicUsize, Ordering};
+use std::sync::atomic::Ordering;
 
-use super::{in_member, run_member, MemberSource, Plan, Prepared, OBSERVE_EVERY};
+use super::chunk::{Kind, Lanes, Member};
+use super::{MemberSource, Plan, Prepared, OBSERVE_EVERY};
 use crate::classical::core::{Error, Result};
-use crate::classical::integrators::lanes::Batch;
-use crate::classical::integrators::Sampling;
+use crate::classical::integrators::lanes::{Batch, SplittingLanes};
+use crate::classical::integrators::Method;
 use crate::classical::model::DynSystem;
 use crate::classical::symbolic::native_lanes;
 
@@ -35,118 +36,51 @@ pub(super) fn in_lanes<S: MemberSource + ?Sized>(p: &Prepared<'_, S>, plan: &Pla
         && p.grid.n_steps() > 0
 }
 
-/// Members sharing one force: the first one's system runs them all.
-struct Group {
-    system: Box<dyn DynSystem>,
-    /// Chunk positions of the members.
-    members: Vec<usize>,
+/// The splitting methods' [`Kind`]: a group is the members of one lanes force, run by the
+/// lead's [`SplittingLanes::run_lanes`], `L` members at a time.
+pub(super) struct Splitting(pub Method);
+
+impl Splitting {
+    /// `system`'s lanes force, if it runs the method in lanes.
+    fn force<'s>(&self, system: &'s dyn DynSystem) -> Option<&'s dyn SplittingLanes> {
+        let force = system.dynamical().splitting_lanes()?;
+        force.accepts(self.0).then_some(force)
+    }
 }
 
-/// Runs the members `first..first + steps.len()` (rows of `width` in `rows`) as
-/// [`run_member`] would, in lanes where they share a force; returns the error of the lowest
-/// failing member, named by its index.
-#[allow(clippy::too_many_arguments)]
-pub(super) fn run_chunk<S: MemberSource + ?Sized>(
-    p: &Prepared<'_, S>,
-    plan: &Plan,
-    first: usize,
-    rows: &mut [f64],
-    steps: &mut [usize],
-    width: usize,
-    stop: &AtomicBool,
-    done: &AtomicUsize,
-) -> Result<()> {
-    let count = steps.len();
-    let dim = p.dim;
-    let t0 = p.grid.t0();
-    let mut starts = vec![0.0; count * dim];
-    let mut alone = vec![false; count];
-    let mut groups: Vec<Group> = Vec::new();
-    for j in 0..count {
-        let index = first + j;
-        let system = match p.source.build(index, t0) {
-            Ok(s) if s.dynamical().state_dim() == dim => s,
-            _ => {
-                alone[j] = true;
-                continue;
-            }
-        };
-        starts[j * dim..(j + 1) * dim].copy_from_slice(system.dynamical().state());
-        let Some(lanes) = system
-            .dynamical()
-            .splitting_lanes()
-            .filter(|l| l.accepts(p.method))
-        else {
-            if j == 0 {
-                // The first member has no lanes force (nor, as a rule, its kind): all run
-                // alone, each built once more by its run, as without lanes.
-                alone.fill(true);
-                break;
-            }
-            alone[j] = true;
-            continue;
-        };
-        let same = |g: &&mut Group| {
-            p.source.same_system(first + g.members[0], index)
-                || g.system
-                    .dynamical()
-                    .splitting_lanes()
-                    .is_some_and(|o| o.same_force_as(lanes))
-        };
-        match groups.iter_mut().find(same) {
-            Some(g) => g.members.push(j),
-            None => groups.push(Group {
-                system,
-                members: vec![j],
-            }),
+impl Kind for Splitting {
+    type Form = ();
+
+    fn form(&self, system: &dyn DynSystem) -> Option<()> {
+        self.force(system).map(|_| ())
+    }
+
+    fn shares(&self, (lead, ()): Member<'_, ()>, (member, ()): Member<'_, ()>) -> bool {
+        match (self.force(lead), self.force(member)) {
+            (Some(a), Some(b)) => a.same_force_as(b),
+            _ => false,
         }
     }
-    let n = p.grid.n_steps();
-    let kept = |step: usize| -> Option<usize> {
-        let k = plan.stride?;
-        if step.is_multiple_of(k) {
-            Some(step / k)
-        } else if step == n {
-            Some(Sampling::Stride(k).count(n) - 1)
-        } else {
-            None
-        }
-    };
-    let width_lanes = native_lanes();
-    let should_stop = || stop.load(Ordering::Relaxed);
-    for g in &groups {
-        let Some(force) = g.system.dynamical().splitting_lanes() else {
-            continue;
+
+    fn run(&self, (lead, ()): Member<'_, ()>, run: Lanes<'_>) -> Result<()> {
+        let dim = lead.dynamical().state_dim();
+        let Some(force) = self.force(lead) else {
+            // Not a lead `form` accepted: each member's own run says why.
+            (0..run.starts.len() / dim).for_each(run.failed);
+            return Ok(());
         };
-        for batch in g.members.chunks(width_lanes) {
-            let batch_starts: Vec<f64> = batch
-                .iter()
-                .flat_map(|&j| starts[j * dim..(j + 1) * dim].iter().copied())
-                .collect();
-            // The trajectory's first row is the initial state, as `integrate` stores it.
-            if plan.stride.is_some() {
-                for &j in batch {
-                    let at = j * width + p.final_width;
-                    rows[at..at + dim].copy_from_slice(&starts[j * dim..(j + 1) * dim]);
-                }
-            }
-            let mut record = |m: usize, step: usize, y: &[f64]| {
-                let row = &mut rows[batch[m] * width..][..width];
-                if step == n {
-                    row[..p.final_width].copy_from_slice(&y[..p.final_width]);
-                }
-                if let Some(r) = kept(step) {
-                    let at = p.final_width + r * dim;
-                    row[at..at + dim].copy_from_slice(y);
-                }
-            };
+        let width = native_lanes();
+        let should_stop = || run.stop.load(Ordering::Relaxed);
+        for (b, batch_starts) in run.starts.chunks(width * dim).enumerate() {
+            let base = b * width;
+            let mut record = |m: usize, step: usize, y: &[f64]| (run.record)(base + m, step, y);
             let failed = force.run_lanes(
-                width_lanes,
-                p.method,
+                width,
+                run.method,
                 Batch {
-                    starts: &batch_starts,
-                    grid: &p.grid,
-                    every: plan.stride,
+                    starts: batch_starts,
+                    grid: run.grid,
+                    every: run.every,
                     check_every: OBSERVE_EVERY,
                     record: &mut record,
                     stop: &should_stop,
@@ -156,29 +90,14 @@ pub(super) fn run_chunk<S: MemberSource + ?Sized>(
                 Ok(failed) => failed,
                 Err(e @ Error::Interrupted { .. }) => return Err(e),
                 // Not run in lanes after all: each member's own run says why.
-                Err(_) => vec![true; batch.len()],
+                Err(_) => vec![true; batch_starts.len() / dim],
             };
-            for (&j, failed) in batch.iter().zip(failed) {
+            for (m, failed) in failed.into_iter().enumerate() {
                 if failed {
-                    alone[j] = true;
-                } else {
-                    steps[j] = n;
-                    done.fetch_add(1, Ordering::Relaxed);
+                    (run.failed)(base + m);
                 }
             }
         }
+        Ok(())
     }
-    for j in (0..count).filter(|&j| alone[j]) {
-        let index = first + j;
-        if stop.load(Ordering::Relaxed) {
-            return Err(Error::Interrupted { t: f64::NAN });
-        }
-        let row = &mut rows[j * width..(j + 1) * width];
-        steps[j] = run_member(p, plan, index, row, stop).map_err(|e| match e {
-            Error::Interrupted { .. } => e,
-            e => in_member(index, e),
-        })?;
-        done.fetch_add(1, Ordering::Relaxed);
-    }
-    Ok(())
 }

@@ -63,6 +63,7 @@
 //! the run (Ctrl-C): running members stop within 1024 steps. The calling thread waits on the
 //! workers (not a sleep), so a short ensemble costs only its work.
 
+mod chunk;
 mod lanes;
 mod members;
 mod parameters;
@@ -439,33 +440,24 @@ fn run_prepared<S: MemberSource + ?Sized>(
                 .par_chunks_mut(members_per_chunk * width.max(1))
                 .zip(steps.par_chunks_mut(members_per_chunk))
                 .enumerate()
-                .map(|(chunk, (rows, steps))| {
-                    let first = chunk * members_per_chunk;
+                .map(|(k, (rows, steps))| {
+                    let mut c = chunk::Chunk {
+                        first: k * members_per_chunk,
+                        rows,
+                        steps,
+                        width,
+                        stop: &stop,
+                        done: &done,
+                    };
                     if taylor_lanes {
-                        return taylor::run_chunk(
-                            &prepared, plan, first, rows, steps, width, &stop, &done,
-                        );
+                        chunk::run_chunk(&taylor::Taylor, &prepared, plan, c)
+                    } else if splitting_lanes {
+                        let kind = lanes::Splitting(prepared.method);
+                        chunk::run_chunk(&kind, &prepared, plan, c)
+                    } else {
+                        let members = 0..c.steps.len();
+                        chunk::run_alone(&prepared, plan, &mut c, members)
                     }
-                    if splitting_lanes {
-                        return lanes::run_chunk(
-                            &prepared, plan, first, rows, steps, width, &stop, &done,
-                        );
-                    }
-                    for (j, step_count) in steps.iter_mut().enumerate() {
-                        let row = &mut rows[j * width..(j + 1) * width];
-                        let index = first + j;
-                        if stop.load(Ordering::Relaxed) {
-                            return Err(Error::Interrupted { t: f64::NAN });
-                        }
-                        *step_count = run_member(&prepared, plan, index, row, &stop).map_err(
-                            |e| match e {
-                                Error::Interrupted { .. } => e,
-                                e => in_member(index, e),
-                            },
-                        )?;
-                        done.fetch_add(1, Ordering::Relaxed);
-                    }
-                    Ok(())
                 })
                 .collect();
             // The lowest chunk's error: the same whatever the thread count.

@@ -1,0 +1,225 @@
+//! The chunk runner of the lanes paths: one skeleton for the splitting methods' members
+//! (`lanes.rs`) and the `taylor` method's (`taylor.rs`), which differ only in how a member
+//! joins a group and how a group runs ([`Kind`]).
+//!
+//! Each member of the chunk is built once. Members whose systems are the same apart from their
+//! initial states ([`MemberSource::same_system`]), or whose kind says they share a form (an
+//! equal force, equal Taylor recurrences: [`Kind::shares`]), form a group, and each group runs
+//! in lanes ([`Kind::run`]); the states the lanes report are written into the members' rows as
+//! `run_member` lays them out. A member that cannot run in lanes (no lanes form, a state of
+//! another length) or whose lanes run fails is marked alone and then run by `run_member`, so
+//! its error is its own run's, named by its index.
+
+use std::sync::atomic::{AtomicBool, AtomicUsize, Ordering};
+
+use super::{in_member, run_member, MemberSource, Plan, Prepared};
+use crate::classical::core::{Error, Result, TimeGrid};
+use crate::classical::integrators::{Method, Sampling, Tolerances};
+use crate::classical::model::DynSystem;
+
+/// One kind of lanes path: what the members of a group share and how a group runs.
+pub(super) trait Kind {
+    /// What a group's members share beyond their system (the Taylor form; nothing for a
+    /// splitting method, whose lanes force is the system itself).
+    type Form;
+
+    /// The form of a member that leads a new group; `None`: the member runs alone.
+    fn form(&self, system: &dyn DynSystem) -> Option<Self::Form>;
+
+    /// Whether the member `(system, form)` runs in the group led by `(lead, lead_form)`.
+    fn shares(&self, lead: Member<'_, Self::Form>, member: Member<'_, Self::Form>) -> bool;
+
+    /// Runs the members of `run.starts` in lanes on the group led by `lead`.
+    ///
+    /// # Errors
+    /// [`Error::Interrupted`] when `run.stop` is set; an error of the whole group (not of one
+    /// member: those go to `run.failed`).
+    fn run(&self, lead: Member<'_, Self::Form>, run: Lanes<'_>) -> Result<()>;
+}
+
+/// A member as a [`Kind`] sees it: its system and its form.
+pub(super) type Member<'a, F> = (&'a dyn DynSystem, &'a F);
+
+/// One group's run in lanes.
+pub(super) struct Lanes<'a> {
+    /// The members' initial states, one row of the state's length each.
+    pub starts: &'a [f64],
+    /// The output grid.
+    pub grid: &'a TimeGrid,
+    /// The method.
+    pub method: Method,
+    /// An adaptive method's tolerances (`None`: the defaults).
+    pub tolerances: Option<Tolerances>,
+    /// The steps to report besides the last: every `k`-th (`None`: only the last). A kind
+    /// may report more steps; the runner keeps those it needs.
+    pub every: Option<usize>,
+    /// `record(member, step, state)`: member `member`'s state at step `step` of the grid
+    /// (`1..=n_steps`), in the order of the steps.
+    pub record: &'a mut dyn FnMut(usize, usize, &[f64]),
+    /// `failed(member)`: the member's run failed; it reports no more states.
+    pub failed: &'a mut dyn FnMut(usize),
+    /// Stops the run with [`Error::Interrupted`].
+    pub stop: &'a AtomicBool,
+}
+
+/// A group: the members (chunk positions; the first leads) and the lead's form.
+struct Group<F> {
+    form: F,
+    members: Vec<usize>,
+}
+
+/// One chunk of members: the members `first..first + steps.len()`, their output rows of
+/// `width` in `rows` and the steps each took, with the run's stop flag and count of members
+/// done.
+pub(super) struct Chunk<'a> {
+    pub first: usize,
+    pub rows: &'a mut [f64],
+    pub steps: &'a mut [usize],
+    pub width: usize,
+    pub stop: &'a AtomicBool,
+    pub done: &'a AtomicUsize,
+}
+
+/// Runs the members of chunk `c` at the positions `members`, one after another, each by
+/// [`run_member`]; returns the error of the first that fails, named by its index.
+pub(super) fn run_alone<S: MemberSource + ?Sized>(
+    p: &Prepared<'_, S>,
+    plan: &Plan,
+    c: &mut Chunk<'_>,
+    members: impl IntoIterator<Item = usize>,
+) -> Result<()> {
+    for j in members {
+        let index = c.first + j;
+        if c.stop.load(Ordering::Relaxed) {
+            return Err(Error::Interrupted { t: f64::NAN });
+        }
+        let row = &mut c.rows[j * c.width..(j + 1) * c.width];
+        c.steps[j] = run_member(p, plan, index, row, c.stop).map_err(|e| match e {
+            Error::Interrupted { .. } => e,
+            e => in_member(index, e),
+        })?;
+        c.done.fetch_add(1, Ordering::Relaxed);
+    }
+    Ok(())
+}
+
+/// Runs the members of chunk `c` as [`run_member`] would, in lanes where `kind` groups them;
+/// returns the error of the lowest failing member, named by its index.
+pub(super) fn run_chunk<K: Kind, S: MemberSource + ?Sized>(
+    kind: &K,
+    p: &Prepared<'_, S>,
+    plan: &Plan,
+    mut c: Chunk<'_>,
+) -> Result<()> {
+    let (first, width, stop) = (c.first, c.width, c.stop);
+    let count = c.steps.len();
+    let dim = p.dim;
+    let t0 = p.grid.t0();
+    // Chunk position -> its system and initial state; members left to run alone.
+    let mut systems: Vec<Option<Box<dyn DynSystem>>> = Vec::with_capacity(count);
+    let mut starts = vec![0.0; count * dim];
+    let mut alone = vec![false; count];
+    let mut groups: Vec<Group<K::Form>> = Vec::new();
+    for j in 0..count {
+        let index = first + j;
+        let system = match p.source.build(index, t0) {
+            Ok(s) if s.dynamical().state_dim() == dim => s,
+            _ => {
+                alone[j] = true;
+                systems.push(None);
+                continue;
+            }
+        };
+        starts[j * dim..(j + 1) * dim].copy_from_slice(system.dynamical().state());
+        let same = groups
+            .iter_mut()
+            .find(|g| p.source.same_system(first + g.members[0], index));
+        if let Some(g) = same {
+            g.members.push(j);
+            systems.push(Some(system));
+            continue;
+        }
+        let Some(form) = kind.form(&*system) else {
+            if j == 0 {
+                // The first member has no lanes form (nor, as a rule, its kind): all run
+                // alone, each built once more by its run, as without lanes.
+                alone.fill(true);
+                break;
+            }
+            alone[j] = true;
+            systems.push(None);
+            continue;
+        };
+        let shares = |g: &&mut Group<K::Form>| {
+            let lead = systems[g.members[0]].as_deref();
+            lead.is_some_and(|lead| kind.shares((lead, &g.form), (&*system, &form)))
+        };
+        match groups.iter_mut().find(shares) {
+            Some(g) => g.members.push(j),
+            None => groups.push(Group {
+                form,
+                members: vec![j],
+            }),
+        }
+        systems.push(Some(system));
+    }
+    let n = p.grid.n_steps();
+    let kept = |step: usize| -> Option<usize> {
+        let k = plan.stride?;
+        if step.is_multiple_of(k) {
+            Some(step / k)
+        } else if step == n {
+            Some(Sampling::Stride(k).count(n) - 1)
+        } else {
+            None
+        }
+    };
+    for g in &groups {
+        let Some(lead) = systems[g.members[0]].as_deref() else {
+            continue;
+        };
+        let group_starts: Vec<f64> = g
+            .members
+            .iter()
+            .flat_map(|&j| starts[j * dim..(j + 1) * dim].iter().copied())
+            .collect();
+        // The trajectory's first row is the initial state, as `integrate` stores it.
+        if plan.stride.is_some() {
+            for &j in &g.members {
+                let at = j * width + p.final_width;
+                c.rows[at..at + dim].copy_from_slice(&starts[j * dim..(j + 1) * dim]);
+            }
+        }
+        let mut record = |m: usize, step: usize, y: &[f64]| {
+            let row = &mut c.rows[g.members[m] * width..][..width];
+            if step == n {
+                row[..p.final_width].copy_from_slice(&y[..p.final_width]);
+            }
+            if let Some(r) = kept(step) {
+                let at = p.final_width + r * dim;
+                row[at..at + dim].copy_from_slice(y);
+            }
+        };
+        let mut failed = |m: usize| alone[g.members[m]] = true;
+        kind.run(
+            (lead, &g.form),
+            Lanes {
+                starts: &group_starts,
+                grid: &p.grid,
+                method: p.method,
+                tolerances: plan.tolerances,
+                every: plan.stride,
+                record: &mut record,
+                failed: &mut failed,
+                stop,
+            },
+        )?;
+        for &j in &g.members {
+            if !alone[j] {
+                c.steps[j] = n;
+                c.done.fetch_add(1, Ordering::Relaxed);
+            }
+        }
+    }
+    run_alone(p, plan, &mut c, (0..count).filter(|&j| alone[j]))
+}
