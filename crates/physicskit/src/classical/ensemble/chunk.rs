@@ -2,7 +2,8 @@
 //! (`lanes.rs`) and the `taylor` method's (`taylor.rs`), which differ only in how a member
 //! joins a group and how a group runs ([`Kind`]).
 //!
-//! Each member of the chunk is built once. Members whose systems are the same apart from their
+//! Each member of the chunk is built once (by the checks before the run, which keep it for
+//! the chunk, or here). Members whose systems are the same apart from their
 //! initial states ([`MemberSource::same_system`]), or whose kind says they share a form (an
 //! equal force, equal Taylor recurrences: [`Kind::shares`]), form a group, and each group runs
 //! in lanes ([`Kind::run`]); the states the lanes report are written into the members' rows as
@@ -114,7 +115,6 @@ pub(super) fn run_chunk<K: Kind, S: MemberSource + ?Sized>(
     let (first, width, stop) = (c.first, c.width, c.stop);
     let count = c.steps.len();
     let dim = p.dim;
-    let t0 = p.grid.t0();
     // Chunk position -> its system and initial state; members left to run alone.
     let mut systems: Vec<Option<Box<dyn DynSystem>>> = Vec::with_capacity(count);
     let mut starts = vec![0.0; count * dim];
@@ -122,7 +122,7 @@ pub(super) fn run_chunk<K: Kind, S: MemberSource + ?Sized>(
     let mut groups: Vec<Group<K::Form>> = Vec::new();
     for j in 0..count {
         let index = first + j;
-        let system = match p.source.build(index, t0) {
+        let system = match p.member(index) {
             Ok(s) if s.dynamical().state_dim() == dim => s,
             _ => {
                 alone[j] = true;

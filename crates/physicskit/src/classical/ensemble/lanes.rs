@@ -4,7 +4,7 @@
 //! its own `integrate` (`integrators/lanes.rs`).
 //!
 //! Members whose systems are the same apart from their initial states
-//! ([`MemberSource::same_system`]), or whose forces compare equal
+//! ([`MemberSource::same_system`](super::MemberSource::same_system)), or whose forces compare equal
 //! ([`SplittingLanes::same_force_as`]), share a group (`chunk.rs`); a member without a lanes
 //! force, or whose lanes run fails (a state that is not finite), runs alone by `run_member`,
 //! so its error is its own run's. Plans with reductions, which read every step, run members
@@ -13,7 +13,7 @@
 use std::sync::atomic::Ordering;
 
 use super::chunk::{Kind, Lanes, Member};
-use super::{MemberSource, Plan, Prepared, OBSERVE_EVERY};
+use super::{Plan, OBSERVE_EVERY};
 use crate::classical::core::{Error, Result};
 use crate::classical::integrators::lanes::{Batch, SplittingLanes};
 use crate::classical::integrators::Method;
@@ -28,12 +28,10 @@ pub(super) fn chunk() -> usize {
 }
 
 /// Whether `plan` runs its members in lanes: a splitting method keeping final states or
-/// strided trajectories only (no reductions), over at least one step.
-pub(super) fn in_lanes<S: MemberSource + ?Sized>(p: &Prepared<'_, S>, plan: &Plan) -> bool {
-    p.method.needs_separable()
-        && plan.reductions.is_empty()
-        && p.early.is_none()
-        && p.grid.n_steps() > 0
+/// strided trajectories only (no reductions). The engine runs a plan of events only, or of no
+/// steps, member by member whatever the method.
+pub(super) fn in_lanes(method: Method, plan: &Plan) -> bool {
+    method.needs_separable() && plan.reductions.is_empty()
 }
 
 /// The splitting methods' [`Kind`]: a group is the members of one lanes force, run by the

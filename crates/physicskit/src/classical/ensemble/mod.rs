@@ -8,7 +8,9 @@
 //! checks every value), [`FromParameters`] by a closure from named real parameters and a state
 //! (the SymPy engines' expression systems, which are not in the catalogue). Every member is
 //! built and checked **before any integration starts**; the first bad member is reported by
-//! index (`member 731: ...`). [`run`] is [`run_source`] on a [`FromCatalogue`].
+//! index (`member 731: ...`). A run in lanes (below) keeps the members the checks built (up
+//! to 65536 of them) and runs those, so each is built once. [`run`] is [`run_source`] on a
+//! [`FromCatalogue`].
 //!
 //! Each member is then integrated by its own `integrate` (the same monomorphized loop as a
 //! single run), so a member's results equal those of building it alone and calling
@@ -72,6 +74,7 @@ mod taylor;
 
 use std::ops::ControlFlow;
 use std::sync::atomic::{AtomicBool, AtomicUsize, Ordering};
+use std::sync::Mutex;
 
 use ndarray::{Array1, Array2, Array3};
 use rayon::prelude::*;
@@ -141,6 +144,22 @@ pub struct EnsembleResult {
     pub reductions: Vec<(&'static str, Array1<f64>)>,
 }
 
+/// Members a lanes run keeps from the checks, at most: beyond, its chunks build their members
+/// again rather than hold them all at once (a catalogue system is a few hundred bytes, but a
+/// system built from expressions holds its trees).
+const KEEP_BUILT: usize = 1 << 16;
+
+/// How the members of a plan run.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+enum Path {
+    /// Each by its own `integrate` (or a session, for a plan of events only).
+    Alone,
+    /// The `taylor` method in lanes (`taylor.rs`).
+    Taylor,
+    /// A splitting method in lanes (`lanes.rs`).
+    Splitting,
+}
+
 /// The checked ensemble, ready to run.
 struct Prepared<'s, S: ?Sized> {
     source: &'s S,
@@ -152,6 +171,10 @@ struct Prepared<'s, S: ?Sized> {
     final_width: usize,
     /// The events of a plan of events only, run by `events_only`; `None` otherwise.
     early: Option<Vec<Event>>,
+    /// How the members run.
+    path: Path,
+    /// The members the checks built, kept for a lanes run to take (empty: none kept).
+    built: Vec<Mutex<Option<Box<dyn DynSystem>>>>,
     /// Stored rows of the run of one member, and of its kept trajectory.
     run_rows: usize,
     kept_rows: usize,
@@ -273,6 +296,18 @@ pub fn method<S: MemberSource + ?Sized>(source: &S, plan: &Plan) -> Result<Metho
     }
 }
 
+impl<S: MemberSource + ?Sized> Prepared<'_, S> {
+    /// Member `index` at its initial state: the one the checks built and kept, else built
+    /// now (its errors not yet named by the index).
+    fn member(&self, index: usize) -> Result<Box<dyn DynSystem>> {
+        let kept = self.built.get(index).and_then(|m| m.lock().ok()?.take());
+        match kept {
+            Some(system) => Ok(system),
+            None => self.source.build(index, self.grid.t0()),
+        }
+    }
+}
+
 /// Member `index` of `source`, its errors named by the index.
 fn build<S: MemberSource + ?Sized>(
     source: &S,
@@ -343,39 +378,7 @@ fn prepare<'s, S: MemberSource + ?Sized>(
     if let Some(k) = vectors.filter(|&k| k > 0) {
         first.flow(method, k)?;
     }
-    // Every member is built and checked up front (in parallel; the lowest bad index wins).
-    let others = if every_member { 1..n } else { n..n };
-    let bad = others
-        .into_par_iter()
-        .find_map_first(|i| match build(source, i, grid.t0()) {
-            Err(e) => Some(e),
-            Ok(s) if s.dynamical().state_dim() != dim => Some(in_member(
-                i,
-                Error::DimensionMismatch {
-                    name: "state".into(),
-                    expected: dim,
-                    found: s.dynamical().state_dim(),
-                },
-            )),
-            Ok(_) => None,
-        });
-    if let Some(e) = bad {
-        return Err(e);
-    }
     let n_steps = grid.n_steps();
-    let reduce = plan.reductions.iter().any(Reduction::needs_steps);
-    let sampling = match (reduce, plan.stride) {
-        (true, _) => Sampling::All,
-        (false, Some(k)) => Sampling::Stride(k),
-        (false, None) => Sampling::FinalOnly,
-    };
-    let kept_rows = plan
-        .stride
-        .map_or(0, |k| Sampling::Stride(k).count(n_steps));
-    let run_rows = sampling.count(n_steps);
-    let skip_energy = !plan.reductions.iter().any(Reduction::needs_energy);
-    let final_width = if plan.final_state { dim } else { 0 };
-    let width = final_width + kept_rows * dim + plan.reductions.len();
     let fixed_step = !method.is_adaptive();
     let early = (!plan.final_state && plan.stride.is_none() && fixed_step)
         .then(|| {
@@ -389,6 +392,58 @@ fn prepare<'s, S: MemberSource + ?Sized>(
         })
         .flatten()
         .filter(|events| !events.is_empty());
+    let path = if early.is_some() || n_steps == 0 {
+        Path::Alone
+    } else if taylor::in_lanes(method, plan) {
+        Path::Taylor
+    } else if lanes::in_lanes(method, plan) {
+        Path::Splitting
+    } else {
+        Path::Alone
+    };
+    // Every member is built and checked up front (in parallel; the lowest bad index wins).
+    // A lanes run keeps them for its chunks, which would otherwise build each again.
+    let checked = |i: usize| -> Result<Box<dyn DynSystem>> {
+        let s = build(source, i, grid.t0())?;
+        let found = s.dynamical().state_dim();
+        if found != dim {
+            return Err(in_member(
+                i,
+                Error::DimensionMismatch {
+                    name: "state".into(),
+                    expected: dim,
+                    found,
+                },
+            ));
+        }
+        Ok(s)
+    };
+    let others = if every_member { 1..n } else { n..n };
+    let mut built = Vec::new();
+    if every_member && path != Path::Alone && n <= KEEP_BUILT {
+        let mut others: Vec<Result<Box<dyn DynSystem>>> =
+            others.into_par_iter().map(checked).collect();
+        if let Some(bad) = others.iter().position(Result::is_err) {
+            others.swap_remove(bad)?;
+        }
+        built.push(Mutex::new(Some(first)));
+        built.extend(others.into_iter().map(|s| Mutex::new(s.ok())));
+    } else if let Some(e) = others.into_par_iter().find_map_first(|i| checked(i).err()) {
+        return Err(e);
+    }
+    let reduce = plan.reductions.iter().any(Reduction::needs_steps);
+    let sampling = match (reduce, plan.stride) {
+        (true, _) => Sampling::All,
+        (false, Some(k)) => Sampling::Stride(k),
+        (false, None) => Sampling::FinalOnly,
+    };
+    let kept_rows = plan
+        .stride
+        .map_or(0, |k| Sampling::Stride(k).count(n_steps));
+    let run_rows = sampling.count(n_steps);
+    let skip_energy = !plan.reductions.iter().any(Reduction::needs_energy);
+    let final_width = if plan.final_state { dim } else { 0 };
+    let width = final_width + kept_rows * dim + plan.reductions.len();
     // Outputs, counted twice (the member-major buffer and the assembled arrays coexist), and
     // one member's run per thread.
     memory_check(n, 2 * width)?;
@@ -404,6 +459,8 @@ fn prepare<'s, S: MemberSource + ?Sized>(
         dim,
         final_width,
         early,
+        path,
+        built,
         run_rows,
         kept_rows,
         sampling,
@@ -425,14 +482,10 @@ fn run_prepared<S: MemberSource + ?Sized>(
     let mut steps = vec![0; n];
     let stop = AtomicBool::new(false);
     let done = AtomicUsize::new(0);
-    let taylor_lanes = taylor::in_lanes(&prepared, plan);
-    let splitting_lanes = lanes::in_lanes(&prepared, plan);
-    let members_per_chunk = if taylor_lanes {
-        taylor::chunk(n, in_pool(pool, rayon::current_num_threads))
-    } else if splitting_lanes {
-        lanes::chunk()
-    } else {
-        MEMBER_CHUNK
+    let members_per_chunk = match prepared.path {
+        Path::Taylor => taylor::chunk(n, in_pool(pool, rayon::current_num_threads)),
+        Path::Splitting => lanes::chunk(),
+        Path::Alone => MEMBER_CHUNK,
     };
     let work = |(out, steps): (&mut [f64], &mut [usize])| -> Result<()> {
         in_pool(pool, || {
@@ -449,14 +502,16 @@ fn run_prepared<S: MemberSource + ?Sized>(
                         stop: &stop,
                         done: &done,
                     };
-                    if taylor_lanes {
-                        chunk::run_chunk(&taylor::Taylor, &prepared, plan, c)
-                    } else if splitting_lanes {
-                        let kind = lanes::Splitting(prepared.method);
-                        chunk::run_chunk(&kind, &prepared, plan, c)
-                    } else {
-                        let members = 0..c.steps.len();
-                        chunk::run_alone(&prepared, plan, &mut c, members)
+                    match prepared.path {
+                        Path::Taylor => chunk::run_chunk(&taylor::Taylor, &prepared, plan, c),
+                        Path::Splitting => {
+                            let kind = lanes::Splitting(prepared.method);
+                            chunk::run_chunk(&kind, &prepared, plan, c)
+                        }
+                        Path::Alone => {
+                            let members = 0..c.steps.len();
+                            chunk::run_alone(&prepared, plan, &mut c, members)
+                        }
                     }
                 })
                 .collect();

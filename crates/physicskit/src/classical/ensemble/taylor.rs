@@ -3,7 +3,7 @@
 //! AVX2, else 4), each with exactly the outputs of its own `integrate`.
 //!
 //! Members whose systems are the same apart from their initial states
-//! ([`MemberSource::same_system`]) take the Taylor form built for the first of them; others
+//! ([`MemberSource::same_system`](super::MemberSource::same_system)) take the Taylor form built for the first of them; others
 //! build theirs, and members with equal recurrences ([`TaylorProgram::same_recurrences`])
 //! share one (`chunk.rs`). A member without a Taylor form (the error its `integrate`
 //! reports), or whose batch run fails, runs alone by `run_member`, so its error is its own
@@ -12,7 +12,7 @@
 use std::sync::atomic::Ordering;
 
 use super::chunk::{Kind, Lanes, Member};
-use super::{MemberSource, Plan, Prepared};
+use super::Plan;
 use crate::classical::core::Result;
 use crate::classical::integrators::taylor_batch::integrate_batch;
 use crate::classical::integrators::{Method, TaylorField};
@@ -29,12 +29,10 @@ pub(super) fn chunk(n: usize, threads: usize) -> usize {
 }
 
 /// Whether `plan` runs its members in lanes: the `taylor` method keeping final states or
-/// strided trajectories only (no reductions), over at least one step.
-pub(super) fn in_lanes<S: MemberSource + ?Sized>(p: &Prepared<'_, S>, plan: &Plan) -> bool {
-    p.method == Method::Taylor
-        && plan.reductions.is_empty()
-        && p.early.is_none()
-        && p.grid.n_steps() > 0
+/// strided trajectories only (no reductions). The engine runs a plan of events only, or of no
+/// steps, member by member whatever the method.
+pub(super) fn in_lanes(method: Method, plan: &Plan) -> bool {
+    method == Method::Taylor && plan.reductions.is_empty()
 }
 
 /// The `taylor` method's [`Kind`]: a group is the members of one Taylor form (its program),
