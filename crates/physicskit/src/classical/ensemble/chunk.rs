@@ -7,13 +7,18 @@
 //! initial states ([`MemberSource::same_system`]), or whose kind says they share a form (an
 //! equal force, equal Taylor recurrences: [`Kind::shares`]), form a group, and each group runs
 //! in lanes ([`Kind::run`]); the states the lanes report are written into the members' rows as
-//! `run_member` lays them out. A member that cannot run in lanes (no lanes form, a state of
+//! `run_member` lays them out. The reductions that read the member's steps (energy error,
+//! first events) are computed from the states the lanes report at every step
+//! ([`Stepwise`]), with the bits of the member's own run; the chaos reductions (max Lyapunov
+//! exponent, SALI), which integrate deviation vectors on a flow of their own, then run member
+//! by member, as `run_member` runs them. A member that cannot run in lanes (no lanes form, a state of
 //! another length) or whose lanes run fails is marked alone and then run by `run_member`, so
 //! its error is its own run's, named by its index.
 
 use std::sync::atomic::{AtomicBool, AtomicUsize, Ordering};
 
-use super::{in_member, run_member, MemberSource, Plan, Prepared};
+use super::reduction::Stepwise;
+use super::{in_member, run_member, MemberSource, Plan, Prepared, StopFlag, OBSERVE_EVERY};
 use crate::classical::core::{Error, Result, TimeGrid};
 use crate::classical::integrators::{Method, Sampling, Tolerances};
 use crate::classical::model::DynSystem;
@@ -174,6 +179,14 @@ pub(super) fn run_chunk<K: Kind, S: MemberSource + ?Sized>(
             None
         }
     };
+    let mut stepwise = Stepwise::new(&plan.reductions, count, dim);
+    // Every step when a reduction reads them, else the kept trajectory's.
+    let every = if stepwise.reads_steps() {
+        Some(1)
+    } else {
+        plan.stride
+    };
+    let reduced_at = p.final_width + p.kept_rows * dim;
     for g in &groups {
         let Some(lead) = systems[g.members[0]].as_deref() else {
             continue;
@@ -183,21 +196,29 @@ pub(super) fn run_chunk<K: Kind, S: MemberSource + ?Sized>(
             .iter()
             .flat_map(|&j| starts[j * dim..(j + 1) * dim].iter().copied())
             .collect();
-        // The trajectory's first row is the initial state, as `integrate` stores it.
-        if plan.stride.is_some() {
-            for &j in &g.members {
+        for &j in &g.members {
+            let start = &starts[j * dim..(j + 1) * dim];
+            // The trajectory's first row is the initial state, as `integrate` stores it.
+            if plan.stride.is_some() {
                 let at = j * width + p.final_width;
-                c.rows[at..at + dim].copy_from_slice(&starts[j * dim..(j + 1) * dim]);
+                c.rows[at..at + dim].copy_from_slice(start);
+            }
+            if let Some(system) = systems[j].as_deref() {
+                stepwise.start(j, system, p.grid.t0(), start);
             }
         }
         let mut record = |m: usize, step: usize, y: &[f64]| {
-            let row = &mut c.rows[g.members[m] * width..][..width];
+            let j = g.members[m];
+            let row = &mut c.rows[j * width..][..width];
             if step == n {
                 row[..p.final_width].copy_from_slice(&y[..p.final_width]);
             }
             if let Some(r) = kept(step) {
                 let at = p.final_width + r * dim;
                 row[at..at + dim].copy_from_slice(y);
+            }
+            if let Some(system) = systems[j].as_deref() {
+                stepwise.step(j, system, &p.grid, step, y);
             }
         };
         let mut failed = |m: usize| alone[g.members[m]] = true;
@@ -208,13 +229,48 @@ pub(super) fn run_chunk<K: Kind, S: MemberSource + ?Sized>(
                 grid: &p.grid,
                 method: p.method,
                 tolerances: plan.tolerances,
-                every: plan.stride,
+                every,
                 record: &mut record,
                 failed: &mut failed,
                 stop,
             },
         )?;
         for &j in &g.members {
+            alone[j] |= stepwise.spoilt(j);
+            if alone[j] {
+                continue;
+            }
+            let Some(system) = systems[j].as_deref() else {
+                continue;
+            };
+            // The chaos reductions, member by member on their own flows.
+            let start = &starts[j * dim..(j + 1) * dim];
+            let row = &mut c.rows[j * width..(j + 1) * width];
+            let reduced = plan.reductions.iter().zip(stepwise.values(j));
+            for (k, (r, &value)) in reduced.enumerate() {
+                row[reduced_at + k] = if r.is_stepwise() {
+                    value
+                } else {
+                    let mut flag = StopFlag(stop);
+                    let own = r.on_own_flow(
+                        system,
+                        p.method,
+                        start,
+                        &p.grid,
+                        Some(&mut flag),
+                        OBSERVE_EVERY,
+                    );
+                    match own {
+                        Ok(v) => v,
+                        Err(e @ Error::Interrupted { .. }) => return Err(e),
+                        // Its own run reports it, named by its index.
+                        Err(_) => {
+                            alone[j] = true;
+                            break;
+                        }
+                    }
+                };
+            }
             if !alone[j] {
                 c.steps[j] = n;
                 c.done.fetch_add(1, Ordering::Relaxed);

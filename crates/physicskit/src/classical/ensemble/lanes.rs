@@ -7,13 +7,12 @@
 //! ([`MemberSource::same_system`](super::MemberSource::same_system)), or whose forces compare equal
 //! ([`SplittingLanes::same_force_as`]), share a group (`chunk.rs`); a member without a lanes
 //! force, or whose lanes run fails (a state that is not finite), runs alone by `run_member`,
-//! so its error is its own run's. Plans with reductions, which read every step, run members
-//! alone.
+//! so its error is its own run's.
 
 use std::sync::atomic::Ordering;
 
 use super::chunk::{Kind, Lanes, Member};
-use super::{Plan, OBSERVE_EVERY};
+use super::OBSERVE_EVERY;
 use crate::classical::core::{Error, Result};
 use crate::classical::integrators::lanes::{Batch, SplittingLanes};
 use crate::classical::integrators::Method;
@@ -27,11 +26,11 @@ pub(super) fn chunk() -> usize {
     4 * native_lanes()
 }
 
-/// Whether `plan` runs its members in lanes: a splitting method keeping final states or
-/// strided trajectories only (no reductions). The engine runs a plan of events only, or of no
-/// steps, member by member whatever the method.
-pub(super) fn in_lanes(method: Method, plan: &Plan) -> bool {
-    method.needs_separable() && plan.reductions.is_empty()
+/// Whether a plan with `method` runs its members in lanes: a splitting method, whatever it
+/// keeps (reductions are computed from the lanes' states, `chunk.rs`). The engine runs a plan
+/// of events only, or of no steps, member by member whatever the method.
+pub(super) fn in_lanes(method: Method) -> bool {
+    method.needs_separable()
 }
 
 /// The splitting methods' [`Kind`]: a group is the members of one lanes force, run by the

@@ -20,23 +20,27 @@
 //! split of the members into runs (which is how the Python front end distributes an ensemble
 //! over a Dask cluster).
 //!
-//! **`taylor` in SIMD lanes.** A plan with the `taylor` method and no reductions runs its
+//! **`taylor` in SIMD lanes.** A plan with the `taylor` method runs its
 //! members 16 at a time (AVX-512; 8 with AVX2, else 4) on one Taylor form per distinct system
 //! (`taylor.rs`, [`integrate_batch`](crate::classical::integrators::taylor_batch::integrate_batch)),
 //! in chunks of 64 to 1024 members: each lane does the scalar recurrences' operations, and
 //! then the scalar step's (step size, state update, clock, dense output) in their order, so
 //! the bits are still those of its own `integrate`.
 //!
-//! **Splitting methods in SIMD lanes.** A plan with a splitting method and no reductions runs
+//! **Splitting methods in SIMD lanes.** A plan with a splitting method runs
 //! the members of a system whose force is written over a lanes type (Kepler, Hénon–Heiles:
 //! [`SplittingLanes`](crate::classical::integrators::lanes::SplittingLanes)) and that share
 //! their parameters 16, 8 or 4 at a time (`lanes.rs`, `integrators/lanes.rs`), in chunks of
 //! four batches of lanes: each lane does the scalar step's operations in their order, so the
 //! bits are again those of its own `integrate`. Other members run alone.
 //!
-//! Reductions read every step of a member (energy errors, events, Lyapunov exponents): plans
-//! with them run members one at a time, as does a member whose lanes run fails (so its error
-//! is its own run's).
+//! In lanes, the reductions that read a member's steps (the energy error, first events) are
+//! computed from the state each lane reports at every step, with the energies and the event
+//! location of the member's own run, so again with its bits (`chunk.rs`,
+//! `reduction::Stepwise`); the chaos reductions (max Lyapunov exponent, SALI), which follow
+//! deviation vectors on a flow of their own, run member by member after the lanes. A member
+//! whose lanes run fails (a state or an energy not finite) runs alone, so its error is its
+//! own run's; other methods run every member alone.
 //!
 //! An adaptive method (`dop853`, `taylor`) runs every member at the plan's
 //! [`Plan::tolerances`] (`None`: [`Tolerances::default`], as `integrate`'s); a fixed-step
@@ -48,9 +52,10 @@
 //!   `Sampling::Stride(stride)` stores); its memory is checked before anything is allocated;
 //! * any [`Reduction`]s: the maximum relative energy error, the time of a first event located
 //!   inside its step, the largest Lyapunov exponent or SALI by the chaos toolkit's loops (see
-//!   [`reduction`]). A member's steps are stored while it runs (one member per thread at a
-//!   time; only when a reduction reads them) and reduced as soon as it is done, so memory
-//!   stays `O(members x outputs)`.
+//!   [`reduction`]). A member run alone has its steps stored while it runs (one member per
+//!   thread at a time; only when a reduction reads them) and reduced as soon as it is done;
+//!   in lanes they are reduced step by step as the lanes report them. Memory stays
+//!   `O(members x outputs)`.
 //!
 //! **Early stop.** When every requested output is a first-event time (no final state, no
 //! trajectory, no other reduction) and the method has a fixed step, a member is stepped one
@@ -394,9 +399,9 @@ fn prepare<'s, S: MemberSource + ?Sized>(
         .filter(|events| !events.is_empty());
     let path = if early.is_some() || n_steps == 0 {
         Path::Alone
-    } else if taylor::in_lanes(method, plan) {
+    } else if taylor::in_lanes(method) {
         Path::Taylor
-    } else if lanes::in_lanes(method, plan) {
+    } else if lanes::in_lanes(method) {
         Path::Splitting
     } else {
         Path::Alone

@@ -200,32 +200,193 @@ impl Reduction {
         observer: Option<&mut dyn Observer>,
         observe_every: usize,
     ) -> Result<f64> {
-        let options = || AnalysisOptions {
-            observer,
-            observe_every,
-            history_stride: 1,
-        };
         match self {
             Reduction::MaxEnergyError => {
                 Ok(run.result.max_relative_energy_error().unwrap_or(f64::NAN))
             }
             Reduction::FirstEvent(event) => first_event(event, run),
-            Reduction::MaxLyapunov { renormalize_every } => max_exponent_on_flow(
-                run.system.flow(run.method, 1)?.as_mut(),
+            Reduction::MaxLyapunov { .. } | Reduction::Sali { .. } => self.on_own_flow(
+                run.system,
+                run.method,
                 run.state0,
                 run.grid,
-                *renormalize_every,
-                options(),
-            ),
-            Reduction::Sali { renormalize_every } => sali_on_flow(
-                run.system.flow(run.method, 2)?.as_mut(),
-                run.state0,
-                run.grid,
-                *renormalize_every,
-                0.0,
-                options(),
+                observer,
+                observe_every,
             ),
         }
+    }
+
+    /// Whether the reduction follows the member's steps (as [`Stepwise`] does in lanes),
+    /// rather than integrating a flow of its own.
+    pub(crate) fn is_stepwise(&self) -> bool {
+        self.vectors() == 0
+    }
+
+    /// A chaos reduction of the member `system` started at `state0`, on its own flow with
+    /// `method` over `grid` (what [`reduce`](Self::reduce) does for it).
+    ///
+    /// # Errors
+    /// As [`reduce`](Self::reduce); [`Error::Unsupported`] for a reduction of the member's
+    /// steps.
+    pub(crate) fn on_own_flow(
+        &self,
+        system: &dyn DynSystem,
+        method: Method,
+        state0: &[f64],
+        grid: &TimeGrid,
+        observer: Option<&mut dyn Observer>,
+        observe_every: usize,
+    ) -> Result<f64> {
+        let options = AnalysisOptions {
+            observer,
+            observe_every,
+            history_stride: 1,
+        };
+        match self {
+            Reduction::MaxLyapunov { renormalize_every } => max_exponent_on_flow(
+                system.flow(method, 1)?.as_mut(),
+                state0,
+                grid,
+                *renormalize_every,
+                options,
+            ),
+            Reduction::Sali { renormalize_every } => sali_on_flow(
+                system.flow(method, 2)?.as_mut(),
+                state0,
+                grid,
+                *renormalize_every,
+                0.0,
+                options,
+            ),
+            Reduction::MaxEnergyError | Reduction::FirstEvent(_) => Err(Error::Unsupported {
+                operation: self.name().into(),
+                reason: "reduced from the member's steps, not on a flow of its own".into(),
+            }),
+        }
+    }
+}
+
+/// The stepwise reductions ([`Reduction::is_stepwise`]: the energy error, first events) of
+/// the members of a lanes run, fed each member's state at every step of the grid in order
+/// ([`start`](Self::start), then [`step`](Self::step) for steps `1..=n`), with the bits
+/// [`Reduction::reduce`] gives on the member's own run: the same energies (the system's
+/// `energy` of each stored state, as `integrate` stores them) folded in the same order, and
+/// an event located in the same step from the same two states. Storage for every member is
+/// allocated once; a step allocates nothing (locating an event, once per event, does).
+pub(crate) struct Stepwise<'r> {
+    reductions: &'r [Reduction],
+    dim: usize,
+    /// Per member, one value per reduction (a chaos reduction's is left for the caller).
+    values: Vec<f64>,
+    /// Per member, `E_0` and the error's scale (`|E_0|`, 1 if `E_0 = 0`), with an energy
+    /// error to reduce.
+    energy: Vec<(f64, f64)>,
+    /// Per member, the last state, with events to locate.
+    previous: Vec<f64>,
+    /// Per member: its own run fails where this one did not (an energy not finite, an
+    /// event's derivatives refused), so it must be run alone for its error.
+    spoilt: Vec<bool>,
+}
+
+impl<'r> Stepwise<'r> {
+    /// Storage for `members` members of states of `dim` entries.
+    pub(crate) fn new(reductions: &'r [Reduction], members: usize, dim: usize) -> Self {
+        let energy = reductions.contains(&Reduction::MaxEnergyError);
+        let events = reductions
+            .iter()
+            .any(|r| matches!(r, Reduction::FirstEvent(_)));
+        Self {
+            reductions,
+            dim,
+            values: vec![f64::NAN; members * reductions.len()],
+            energy: vec![(0.0, 1.0); if energy { members } else { 0 }],
+            previous: vec![0.0; if events { members * dim } else { 0 }],
+            spoilt: vec![false; members],
+        }
+    }
+
+    /// Whether any reduction reads the steps.
+    pub(crate) fn reads_steps(&self) -> bool {
+        self.reductions.iter().any(Reduction::is_stepwise)
+    }
+
+    /// Member `m` (its `system`) starts from `y0` at `t0`.
+    pub(crate) fn start(&mut self, m: usize, system: &dyn DynSystem, t0: f64, y0: &[f64]) {
+        let r = self.reductions.len();
+        for (reduction, value) in self.reductions.iter().zip(&mut self.values[m * r..]) {
+            match reduction {
+                Reduction::MaxEnergyError => {
+                    let e0 = system.dynamical().energy(y0);
+                    self.spoilt[m] |= !e0.is_finite();
+                    // As `SimulationResult::max_relative_energy_error`: relative to `|E_0|`,
+                    // absolute if `E_0 = 0`, folded from 0 over every stored energy; its
+                    // first term, `|E_0 - E_0| / scale`, is +0 for a finite `E_0`.
+                    let scale = if e0 == 0.0 { 1.0 } else { e0.abs() };
+                    self.energy[m] = (e0, scale);
+                    *value = 0.0;
+                }
+                Reduction::FirstEvent(e) => {
+                    *value = if e.condition.at_start(y0[e.index]) {
+                        t0
+                    } else {
+                        f64::NAN
+                    };
+                }
+                Reduction::MaxLyapunov { .. } | Reduction::Sali { .. } => {}
+            }
+        }
+        if !self.previous.is_empty() {
+            self.previous[m * self.dim..(m + 1) * self.dim].copy_from_slice(y0);
+        }
+    }
+
+    /// Member `m` (its `system`) reached `y` at step `step` (`>= 1`) of `grid`.
+    pub(crate) fn step(
+        &mut self,
+        m: usize,
+        system: &dyn DynSystem,
+        grid: &TimeGrid,
+        step: usize,
+        y: &[f64],
+    ) {
+        let (r, dim) = (self.reductions.len(), self.dim);
+        for (reduction, value) in self.reductions.iter().zip(&mut self.values[m * r..]) {
+            match reduction {
+                Reduction::MaxEnergyError => {
+                    let e = system.dynamical().energy(y);
+                    // `integrate` refuses a stored energy that is not finite.
+                    self.spoilt[m] |= !e.is_finite();
+                    let (e0, scale) = self.energy[m];
+                    *value = value.max((e - e0).abs() / scale);
+                }
+                Reduction::FirstEvent(event) if value.is_nan() => {
+                    let c = event.index;
+                    let previous = &self.previous[m * dim..(m + 1) * dim];
+                    if let Some(target) = event.condition.target(previous[c], y[c]) {
+                        let span = (grid.time(step - 1), grid.time(step));
+                        match locate(system, span, previous, y, c, target) {
+                            Ok(t) => *value = t,
+                            Err(_) => self.spoilt[m] = true,
+                        }
+                    }
+                }
+                _ => {}
+            }
+        }
+        if !self.previous.is_empty() {
+            self.previous[m * dim..(m + 1) * dim].copy_from_slice(y);
+        }
+    }
+
+    /// Whether member `m`'s own run fails where the lanes' did not.
+    pub(crate) fn spoilt(&self, m: usize) -> bool {
+        self.spoilt[m]
+    }
+
+    /// Member `m`'s values, one per reduction (a chaos reduction's `NaN`).
+    pub(crate) fn values(&self, m: usize) -> &[f64] {
+        let r = self.reductions.len();
+        &self.values[m * r..(m + 1) * r]
     }
 }
 

@@ -7,12 +7,11 @@
 //! build theirs, and members with equal recurrences ([`TaylorProgram::same_recurrences`])
 //! share one (`chunk.rs`). A member without a Taylor form (the error its `integrate`
 //! reports), or whose batch run fails, runs alone by `run_member`, so its error is its own
-//! run's. Plans with reductions, which read every step, run members alone.
+//! run's.
 
 use std::sync::atomic::Ordering;
 
 use super::chunk::{Kind, Lanes, Member};
-use super::Plan;
 use crate::classical::core::Result;
 use crate::classical::integrators::taylor_batch::integrate_batch;
 use crate::classical::integrators::{Method, TaylorField};
@@ -28,11 +27,11 @@ pub(super) fn chunk(n: usize, threads: usize) -> usize {
     (n / (4 * threads.max(1))).clamp(64, 1024)
 }
 
-/// Whether `plan` runs its members in lanes: the `taylor` method keeping final states or
-/// strided trajectories only (no reductions). The engine runs a plan of events only, or of no
-/// steps, member by member whatever the method.
-pub(super) fn in_lanes(method: Method, plan: &Plan) -> bool {
-    method == Method::Taylor && plan.reductions.is_empty()
+/// Whether a plan with `method` runs its members in lanes: the `taylor` method, whatever it
+/// keeps (reductions are computed from the lanes' states, `chunk.rs`). The engine runs a plan
+/// of events only, or of no steps, member by member whatever the method.
+pub(super) fn in_lanes(method: Method) -> bool {
+    method == Method::Taylor
 }
 
 /// The `taylor` method's [`Kind`]: a group is the members of one Taylor form (its program),

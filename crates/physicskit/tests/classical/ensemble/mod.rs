@@ -8,6 +8,7 @@ mod chaos;
 mod engine;
 mod events;
 mod parameters;
+mod reductions_lanes;
 mod splitting_lanes;
 mod taylor_lanes;
 mod tolerances;

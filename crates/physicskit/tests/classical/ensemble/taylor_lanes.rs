@@ -28,7 +28,7 @@ fn plan(t1: f64, dt: f64, threads: usize, tol: Option<f64>) -> Plan {
 
 /// Hénon–Heiles states at `E = 1/8` on `x = 0`, `n` of them, with `escaping` members at
 /// `E = 0.565` (above the saddles' 1/6: they leave and run to infinity in finite time).
-fn henon_heiles_states(n: usize, escaping: &[usize]) -> Vec<f64> {
+pub(super) fn henon_heiles_states(n: usize, escaping: &[usize]) -> Vec<f64> {
     (0..n)
         .flat_map(|m| {
             if escaping.contains(&m) {
