@@ -12,10 +12,14 @@
 //! out (one multiplication per order) only where a sum, a function or an output needs it.
 //! A sum's terms that are one monomial up to a constant factor (the same factors' nodes, in
 //! any order) are merged, and dropped where they cancel, as the terms of `∂L/∂q` and
-//! `d/dt ∂L/∂qdot` of a kinetic energy quadratic in `qdot` do; nodes that no output then
-//! needs are removed. A Lagrangian quadratic in `qdot` also gives Hamilton's equations on
-//! `(q, p)` with the velocities `w = M^-1 p` solved for once and shared
-//! ([`TaylorProgram::lagrangian_canonical`]).
+//! `d/dt ∂L/∂qdot` of a kinetic energy quadratic in `qdot` do; the factors of a product or
+//! quotient that are powers of one base (`√a`, `a^α`, `a²`, `c / a` of one node `a`) with
+//! exponents adding up to a non-integer are one power of it (`r^-1 · r^-1 / r` with `r =
+//! √(x² + y²)` is `(x² + y²)^-3/2`). A program is built with these merges and without, and
+//! the smaller kept: a merge rewrites a sum in place, which can duplicate partial sums that
+//! other expressions share. Nodes that no output needs are removed. A Lagrangian quadratic
+//! in `qdot` also gives Hamilton's equations on `(q, p)` with the velocities `w = M^-1 p`
+//! solved for once and shared ([`TaylorProgram::lagrangian_canonical`]).
 //! Each node holds a truncated power series; order `k` of every node follows from orders
 //! `< k` of its operands by one recurrence per operation (automatic differentiation of
 //! truncated series; Jorba & Zou, *Exp. Math.* 14 (2005) 99, §3; Griewank & Walther,
@@ -184,6 +188,14 @@ struct Builder<'a> {
     velocity: Option<Vec<Scaled>>,
     /// The values of the subexpressions of the expression being compiled, by address.
     memo: HashMap<*const Expr, Scaled>,
+    /// Whether like terms of sums and powers of one base in products are merged (see
+    /// `TaylorProgram::smaller_of`).
+    merge: bool,
+}
+
+thread_local! {
+    /// Off inside [`TaylorProgram::without_merging`].
+    static MERGE: std::cell::Cell<bool> = const { std::cell::Cell::new(true) };
 }
 
 /// The shape of a sum (its `Add`, `Sub` and `Neg` nodes) over its terms, numbered in the
@@ -470,6 +482,110 @@ impl Builder<'_> {
         Ok(acc)
     }
 
+    /// A product or quotient, first compiled as written (as a builder that merges nothing
+    /// compiles it: the same nodes in the same order); then, where two or more of its
+    /// factors (nested products, quotients and negations flattened) are powers of one base
+    /// whose exponents add up to a non-integer `E` (`r^-1 · r^-1/2 / r^1/2`, with `r` itself
+    /// `(x² + y²)^1/2`, is `(x² + y²)^-3/2`), with those factors replaced by the one power
+    /// `b^E` (the product as written is left to the removal of unused nodes). A
+    /// non-integer `E` keeps the domain (`b ≥ 0`, where every factor's non-integer power is
+    /// real) and costs one node; an integer one would define the product where a factor was
+    /// not (`√b · √b` at `b < 0`), so those factors stay.
+    fn product_or_quotient(&mut self, e: &Expr) -> Result<Scaled> {
+        let written = match e {
+            Expr::Div(a, b) => {
+                let (a, b) = (self.compile(a)?, self.compile(b)?);
+                self.div(a, b)
+            }
+            Expr::Mul(v) => self.product(v)?,
+            _ => unreachable_const(),
+        };
+        if !self.merge {
+            return Ok(written);
+        }
+        // The factors' values are the memo's: compiling the product as written compiled them.
+        let mut leaves = Vec::new();
+        let mut constant = 1.0;
+        flatten_product(e, 1, &mut leaves, &mut constant);
+        // Each factor as (node, its factor, exponent ±1), and as a power `k b^x` of a base.
+        let mut items = Vec::with_capacity(leaves.len());
+        for (leaf, sign) in leaves {
+            match self.compile(leaf)? {
+                Scaled::Const(c) => constant *= if sign > 0 { c } else { 1.0 / c },
+                Scaled::Node(n, c) => {
+                    let (base, x, k) = self.power_of(n);
+                    items.push((n, c, sign, base, x * f64::from(sign), k));
+                }
+            }
+        }
+        // The exponent of each base that two or more factors share, where it is not an
+        // integer.
+        let mut merged: Vec<(u32, f64)> = Vec::new();
+        for (i, item) in items.iter().enumerate() {
+            let base = item.3;
+            if merged.iter().any(|m| m.0 == base) {
+                continue;
+            }
+            let (count, exponent) = items[i..]
+                .iter()
+                .filter(|o| o.3 == base)
+                .fold((0, 0.0), |(n, sum), o| (n + 1, sum + o.4));
+            if count > 1 && exponent != exponent.trunc() {
+                merged.push((base, exponent));
+            }
+        }
+        if merged.is_empty() {
+            return Ok(written);
+        }
+        let mut numerator = Scaled::Const(constant);
+        let mut denominator = Scaled::Const(1.0);
+        let mut emitted = Vec::new();
+        for &(n, c, sign, base, _, k) in &items {
+            match merged.iter().find(|m| m.0 == base) {
+                Some(&(_, exponent)) => {
+                    let factor = if sign > 0 { c * k } else { 1.0 / (c * k) };
+                    numerator = self.mul(numerator, Scaled::Const(factor));
+                    if !emitted.contains(&base) {
+                        emitted.push(base);
+                        let power = self.powf(base.into(), exponent);
+                        numerator = self.mul(numerator, power);
+                    }
+                }
+                None if sign > 0 => numerator = self.mul(numerator, Scaled::Node(n, c)),
+                None => denominator = self.mul(denominator, Scaled::Node(n, c)),
+            }
+        }
+        Ok(self.div(numerator, denominator))
+    }
+
+    /// Node `n` as a power `k b^x` of a base node `b` (through `√`, `a^α`, `a²` and `c / a`),
+    /// or `(n, 1, 1)`. A power of a power composes only where the identity holds wherever
+    /// the outer one is defined: not through an even integer power (`√(a²)` is `|a|`).
+    fn power_of(&self, n: u32) -> (u32, f64, f64) {
+        let of_power = |this: &Self, a: u32, alpha: f64| {
+            let (b, x, k) = this.power_of(a);
+            let even = x == x.trunc() && (x / 2.0) == (x / 2.0).trunc();
+            if k == 1.0 && !even {
+                (b, x * alpha, 1.0)
+            } else {
+                (a, alpha, 1.0)
+            }
+        };
+        match self.nodes.items[n as usize] {
+            Node::Sqrt(a) => of_power(self, a, 0.5),
+            Node::Powf(a, alpha) => of_power(self, a, alpha),
+            Node::Square(a) => {
+                let (b, x, k) = self.power_of(a);
+                (b, 2.0 * x, k * k)
+            }
+            Node::CDiv(c, a) => {
+                let (b, x, k) = self.power_of(a);
+                (b, -x, c / k)
+            }
+            _ => (n, 1.0, 1.0),
+        }
+    }
+
     /// A term of a sum as a monomial: the nodes of its factors (nested products flattened),
     /// sorted, and the product of their constant factors; `x v0 v1` and `v1 (2 x) v0` are the
     /// same nodes. The factors are compiled, the products not (the sum decides how).
@@ -499,6 +615,9 @@ impl Builder<'_> {
     fn sum(&mut self, e: &Expr) -> Result<Scaled> {
         let mut terms = Vec::new();
         let tree = sum_tree(e, &mut terms, 1.0);
+        if !self.merge {
+            return self.add_tree(&tree, &terms, &vec![None; terms.len()]);
+        }
         // Each distinct monomial with its summed factor and its terms.
         let mut merged: Vec<(Vec<u32>, f64, Vec<usize>)> = Vec::new();
         let mut factors = Vec::with_capacity(terms.len());
@@ -615,11 +734,7 @@ impl Builder<'_> {
                 None => return bad("param", *i, self.params.len()),
             },
             Expr::Add(_) | Expr::Sub(..) => self.sum(e)?,
-            Expr::Mul(v) => self.product(v)?,
-            Expr::Div(a, b) => {
-                let (a, b) = (self.compile(a)?, self.compile(b)?);
-                self.div(a, b)
-            }
+            Expr::Mul(_) | Expr::Div(..) => self.product_or_quotient(e)?,
             Expr::Neg(a) => Self::neg(self.compile(a)?),
             Expr::Powi(a, n) => {
                 let a = self.compile(a)?;
@@ -661,6 +776,26 @@ fn cauchy(a: &[f64], b: &[f64]) -> f64 {
     match terms.next() {
         Some(first) => terms.fold(first, |s, t| s + t),
         None => 0.0,
+    }
+}
+
+/// The factors of a product or quotient (nested products, quotients and negations
+/// flattened), each with the exponent `±1` it enters with; negations multiply `constant` by
+/// -1.
+fn flatten_product<'e>(e: &'e Expr, sign: i32, out: &mut Vec<(&'e Expr, i32)>, constant: &mut f64) {
+    match e {
+        Expr::Mul(v) => v
+            .iter()
+            .for_each(|f| flatten_product(f, sign, out, constant)),
+        Expr::Div(a, b) => {
+            flatten_product(a, sign, out, constant);
+            flatten_product(b, -sign, out, constant);
+        }
+        Expr::Neg(a) => {
+            *constant = -*constant;
+            flatten_product(a, sign, out, constant);
+        }
+        e => out.push((e, sign)),
     }
 }
 
@@ -723,22 +858,47 @@ impl TaylorProgram {
                 format!("needs one output per state component ({dim}), at least one"),
             ));
         }
-        let mut nodes = vec![Node::State; dim];
-        nodes.push(Node::Time);
-        let mut builder = Builder {
-            n_first,
-            n_second,
-            params,
-            nodes: HashCons::new(nodes),
-            velocity: None,
-            memo: HashMap::new(),
-        };
-        let mut compiled = Vec::with_capacity(dim);
-        for e in outputs {
-            let value = builder.compile_root(e)?;
-            compiled.push(builder.val(value));
+        Self::smaller_of(|merge| {
+            let mut nodes = vec![Node::State; dim];
+            nodes.push(Node::Time);
+            let mut builder = Builder {
+                n_first,
+                n_second,
+                params,
+                nodes: HashCons::new(nodes),
+                velocity: None,
+                memo: HashMap::new(),
+                merge,
+            };
+            let mut compiled = Vec::with_capacity(dim);
+            for e in outputs {
+                let value = builder.compile_root(e)?;
+                compiled.push(builder.val(value));
+            }
+            Ok(Self::from_built(dim, builder.nodes.items, compiled))
+        })
+    }
+
+    /// The program `build` makes with merging (its argument: like terms of sums, powers of
+    /// one base in products) unless the one it makes without has fewer nodes; without
+    /// merging alone inside [`without_merging`](Self::without_merging). Both are the same
+    /// field. A merge rewrites a sum or product in place, and where other expressions share
+    /// the partial sums it changed (the elimination's rows of the triple pendulum's
+    /// Euler–Lagrange equations reuse each other's sums), the rewritten ones are new nodes
+    /// beside the shared ones: merging alone would grow such a program (the triple pendulum:
+    /// 112 nodes merged, 104 as written). Building twice costs microseconds to a
+    /// millisecond, against the milliseconds of compiling the recurrences.
+    fn smaller_of(build: impl Fn(bool) -> Result<Self>) -> Result<Self> {
+        let written = build(false)?;
+        if !MERGE.get() {
+            return Ok(written);
         }
-        Ok(Self::from_built(dim, builder.nodes.items, compiled))
+        let merged = build(true)?;
+        Ok(if merged.nodes() <= written.nodes() {
+            merged
+        } else {
+            written
+        })
     }
 
     /// The program of `nodes` and `outputs` without the nodes no output needs (forms the
@@ -919,62 +1079,79 @@ impl TaylorProgram {
             ));
         }
         let dim = 2 * n;
-        let mut nodes = vec![Node::State; dim];
-        nodes.push(Node::Time);
-        let mut builder = Builder {
-            n_first: n,
-            n_second: n,
-            params: system.params(),
-            nodes: HashCons::new(nodes),
-            velocity: Some(vec![Scaled::Const(0.0); n]),
-            memo: HashMap::new(),
-        };
-        // `p - b`, `b` the momenta at `qdot = 0`.
-        let mut rhs = Vec::with_capacity(n);
-        for (i, d) in dl_dqdot.iter().enumerate() {
-            let b = builder.compile_root(d)?;
-            rhs.push(builder.sub(((n + i) as u32).into(), b));
-        }
-        let mut mass = Vec::with_capacity(n);
-        for row in &m {
-            let mut compiled = Vec::with_capacity(n);
-            for e in row {
-                compiled.push(builder.compile_root(e)?);
+        Self::smaller_of(|merge| {
+            let mut nodes = vec![Node::State; dim];
+            nodes.push(Node::Time);
+            let mut builder = Builder {
+                n_first: n,
+                n_second: n,
+                params: system.params(),
+                nodes: HashCons::new(nodes),
+                velocity: Some(vec![Scaled::Const(0.0); n]),
+                memo: HashMap::new(),
+                merge,
+            };
+            // `p - b`, `b` the momenta at `qdot = 0`.
+            let mut rhs = Vec::with_capacity(n);
+            for (i, d) in dl_dqdot.iter().enumerate() {
+                let b = builder.compile_root(d)?;
+                rhs.push(builder.sub(((n + i) as u32).into(), b));
             }
-            mass.push(compiled);
-        }
-        // Forward elimination, row i -= (m_ik / m_kk) row k, then back substitution.
-        for k in 0..n {
-            for i in k + 1..n {
-                let factor = builder.div(mass[i][k], mass[k][k]);
-                let row_k = mass[k].clone();
-                for (mij, &mkj) in mass[i][k + 1..].iter_mut().zip(&row_k[k + 1..]) {
-                    let product = builder.mul(factor, mkj);
-                    *mij = builder.sub(*mij, product);
+            let mut mass = Vec::with_capacity(n);
+            for row in &m {
+                let mut compiled = Vec::with_capacity(n);
+                for e in row {
+                    compiled.push(builder.compile_root(e)?);
                 }
-                let product = builder.mul(factor, rhs[k]);
-                rhs[i] = builder.sub(rhs[i], product);
+                mass.push(compiled);
+            }
+            // Forward elimination, row i -= (m_ik / m_kk) row k, then back substitution.
+            for k in 0..n {
+                for i in k + 1..n {
+                    let factor = builder.div(mass[i][k], mass[k][k]);
+                    let row_k = mass[k].clone();
+                    for (mij, &mkj) in mass[i][k + 1..].iter_mut().zip(&row_k[k + 1..]) {
+                        let product = builder.mul(factor, mkj);
+                        *mij = builder.sub(*mij, product);
+                    }
+                    let product = builder.mul(factor, rhs[k]);
+                    rhs[i] = builder.sub(rhs[i], product);
+                }
+            }
+            let mut w = vec![Scaled::Const(0.0); n];
+            for i in (0..n).rev() {
+                let mut acc = rhs[i];
+                for j in i + 1..n {
+                    let product = builder.mul(mass[i][j], w[j]);
+                    acc = builder.sub(acc, product);
+                }
+                w[i] = builder.div(acc, mass[i][i]);
+            }
+            builder.velocity = Some(w.clone());
+            let mut outputs = Vec::with_capacity(dim);
+            for &wi in &w {
+                outputs.push(builder.val(wi));
+            }
+            for i in 0..n {
+                let force = builder.compile_root(&l.diff(Var::First(i)))?;
+                outputs.push(builder.val(force));
+            }
+            Ok(Self::from_built(dim, builder.nodes.items, outputs))
+        })
+    }
+
+    /// `f()` with the programs it builds on this thread compiled without merging (each sum
+    /// and product as written): the reference a test compares the programs' sizes with.
+    #[doc(hidden)]
+    pub fn without_merging<T>(f: impl FnOnce() -> T) -> T {
+        struct Restore(bool);
+        impl Drop for Restore {
+            fn drop(&mut self) {
+                MERGE.set(self.0);
             }
         }
-        let mut w = vec![Scaled::Const(0.0); n];
-        for i in (0..n).rev() {
-            let mut acc = rhs[i];
-            for j in i + 1..n {
-                let product = builder.mul(mass[i][j], w[j]);
-                acc = builder.sub(acc, product);
-            }
-            w[i] = builder.div(acc, mass[i][i]);
-        }
-        builder.velocity = Some(w.clone());
-        let mut outputs = Vec::with_capacity(dim);
-        for &wi in &w {
-            outputs.push(builder.val(wi));
-        }
-        for i in 0..n {
-            let force = builder.compile_root(&l.diff(Var::First(i)))?;
-            outputs.push(builder.val(force));
-        }
-        Ok(Self::from_built(dim, builder.nodes.items, outputs))
+        let _restore = Restore(MERGE.replace(false));
+        f()
     }
 
     /// Number of recurrence nodes (state, time and operations).

@@ -13,7 +13,7 @@ use physicskit::classical::integrators::Family;
 use physicskit::classical::lagrangian::{Lagrangian, LagrangianModel, Scalar};
 use physicskit::classical::model::DynSystem;
 use physicskit::classical::symbolic::trace_lagrangian;
-use physicskit::classical::symbolic::TracedHamiltonian;
+use physicskit::classical::symbolic::{TaylorProgram, TracedHamiltonian};
 use physicskit::classical::systems::{HenonHeilesSystem, KeplerPerturbations, KeplerSystem};
 use physicskit::classical::{
     DynamicalSystem, Error, HamiltonianSystem, IntegrateOptions, LagrangianSystem, Method,
@@ -339,4 +339,50 @@ fn the_catalogue_kepler_runs_taylor_to_its_closed_form() {
         .zip(want)
         .fold(0.0_f64, |m, (a, b)| m.max((a - b).abs()));
     assert!(err < 1e-10, "error {err:e} after 10 orbits");
+}
+
+/// The nodes of a catalogue system's Taylor form (the program its `taylor` runs).
+fn taylor_nodes(system: &dyn DynSystem) -> usize {
+    let field = system.dynamical().taylor_field().unwrap().unwrap();
+    TaylorProgram::from_field(&*field).unwrap().nodes()
+}
+
+/// Merging never makes a program larger: for every catalogue system with a Taylor form, its
+/// program has at most the nodes of the same builder taking every sum and product as written
+/// (`TaylorProgram::without_merging`), computed here from the same system. A merge that
+/// rewrites a sum whose partial sums other expressions share (the elimination's rows of the
+/// triple pendulum reuse each other's sums: 112 nodes merged against 104 as written) must not
+/// be kept.
+#[test]
+fn merging_like_terms_never_grows_a_catalogue_program() {
+    let mut checked = 0;
+    for entry in SYSTEMS.iter().filter(|e| e.taylor_form) {
+        let system = entry.build_from([]).unwrap();
+        let merged = taylor_nodes(&*system);
+        let written = TaylorProgram::without_merging(|| taylor_nodes(&*system));
+        println!("{}: {merged} nodes, {written} without merging", entry.name);
+        assert!(merged <= written, "{}: {merged} > {written}", entry.name);
+        checked += 1;
+    }
+    // Double pendulum, coupled oscillators, elastic pendulum, hoop, heavy top, triple
+    // pendulum, Kepler (two entries), Hénon–Heiles.
+    assert!(checked >= 9, "{checked} systems with a Taylor form");
+}
+
+/// Kepler's `H` as the system writes it (`-k / r` with `r = √(x² + y²)`, traced) gives a
+/// program no larger than its expression form `-(x² + y²)^-1/2` (13 nodes): the factors
+/// `r^-1`, `r^-1` and `1/r` of the traced derivative are powers of `x² + y²` and merge into
+/// its power -3/2. Without merging it has 18, so the comparison sees a builder that stops
+/// merging powers.
+#[test]
+fn keplers_traced_program_is_as_small_as_its_expression_form() {
+    let system = physicskit::classical::catalog::build("kepler", []).unwrap();
+    let traced = taylor_nodes(&*system);
+    let written = TaylorProgram::without_merging(|| taylor_nodes(&*system));
+    let expression = TaylorProgram::hamiltonian(&super::taylor::kepler_expr())
+        .unwrap()
+        .nodes();
+    println!("kepler: traced {traced} nodes ({written} without merging), expression {expression}");
+    assert!(traced <= expression, "{traced} > {expression}");
+    assert!(written > expression, "{written} <= {expression}");
 }
