@@ -165,11 +165,30 @@ pub(crate) fn kick_drift<const KIND: u8>(
 /// benchmarks/README.md, the peer comparison).
 pub(crate) const PLAIN_MAX_DRIFTS: usize = 3;
 
-/// Kick–drift pass `i` of a step of `S` drifts, as [`SplittingStepper`] and the tangent
-/// stepper both take it: [`PLAIN`] for `S <= PLAIN_MAX_DRIFTS`, otherwise [`MIDDLE`] and, for
-/// the last pass, [`LAST`].
+/// `$run` with the const `$kind` the update kind of kick–drift pass `$i` of a step of `$s`
+/// drifts, as [`SplittingStepper`], the tangent stepper and the lanes all take it: [`PLAIN`]
+/// for `$s <= PLAIN_MAX_DRIFTS`, otherwise [`MIDDLE`] and, for the last pass, [`LAST`]. The one
+/// place that chooses ([`substep`] on slices, [`substep_array`] on arrays); `$s` is a const
+/// and, in the unrolled substep loops, `$i` a constant, so the choice compiles away.
 ///
 /// [`SplittingStepper`]: super::splitting::SplittingStepper
+macro_rules! with_pass_kind {
+    ($s:expr, $i:expr, |$kind:ident| $run:expr) => {
+        if $s <= PLAIN_MAX_DRIFTS {
+            const $kind: u8 = PLAIN;
+            $run
+        } else if $i + 1 == $s {
+            const $kind: u8 = LAST;
+            $run
+        } else {
+            const $kind: u8 = MIDDLE;
+            $run
+        }
+    };
+}
+
+/// Kick–drift pass `i` of a step of `S` drifts: [`kick_drift`] of the kind
+/// [`with_pass_kind!`] chooses.
 #[inline(always)]
 #[allow(clippy::too_many_arguments)]
 pub(crate) fn substep<const S: usize>(
@@ -183,13 +202,9 @@ pub(crate) fn substep<const S: usize>(
     kick: f64,
     drift: f64,
 ) {
-    if S <= PLAIN_MAX_DRIFTS {
-        kick_drift::<PLAIN>(mass_inv, q, p, eq, ep, force, kick, drift);
-    } else if i + 1 == S {
-        kick_drift::<LAST>(mass_inv, q, p, eq, ep, force, kick, drift);
-    } else {
-        kick_drift::<MIDDLE>(mass_inv, q, p, eq, ep, force, kick, drift);
-    }
+    with_pass_kind!(S, i, |KIND| kick_drift::<KIND>(
+        mass_inv, q, p, eq, ep, force, kick, drift
+    ));
 }
 
 /// Starts a step of `S` drifts: the corrections of a compensated step start at `-0.0` (the
@@ -295,8 +310,8 @@ fn closing_array<const N: usize, const PLAIN: bool, R: Real>(
 }
 
 /// [`substep`] on `N` coordinates held in arrays of any [`Real`] with uniform inverse mass
-/// folded into `dm = drift m`: the same update kinds, through the same [`fixed_array`] as the
-/// scalar path's fixed-length copies.
+/// folded into `dm = drift m`: the same update kinds, chosen by the same [`with_pass_kind!`],
+/// through the same [`fixed_array`] as the scalar path's fixed-length copies.
 #[inline(always)]
 #[allow(clippy::too_many_arguments)]
 pub(crate) fn substep_array<const S: usize, const N: usize, R: Real>(
@@ -309,13 +324,9 @@ pub(crate) fn substep_array<const S: usize, const N: usize, R: Real>(
     kick: f64,
     dm: f64,
 ) {
-    if S <= PLAIN_MAX_DRIFTS {
-        fixed_array::<N, PLAIN, R>(q, p, eq, ep, force, kick, dm);
-    } else if i + 1 == S {
-        fixed_array::<N, LAST, R>(q, p, eq, ep, force, kick, dm);
-    } else {
-        fixed_array::<N, MIDDLE, R>(q, p, eq, ep, force, kick, dm);
-    }
+    with_pass_kind!(S, i, |KIND| fixed_array::<N, KIND, R>(
+        q, p, eq, ep, force, kick, dm
+    ));
 }
 
 /// [`end_step`] on arrays of any [`Real`].
