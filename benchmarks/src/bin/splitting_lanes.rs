@@ -1,6 +1,9 @@
-//! Fixed-step ensembles of splitting-method members: 1000 Hénon–Heiles orbits (`E = 1/8`,
-//! launched on `x = 0`) and 1000 Kepler orbits (eccentricities 0.1 to 0.6), `t = 100`, by
-//! `yoshida4` and `sofroniou_spaletta10`.
+//! Fixed-step ensembles of splitting-method members, `t = 100`: 1000 Hénon–Heiles orbits
+//! (`E = 1/8`, launched on `x = 0`) and 1000 Kepler orbits (eccentricities 0.1 to 0.6) by
+//! `yoshida4` and `sofroniou_spaletta10`; 1000 pendulums (amplitudes 0.1 to 3), 1000 FPUT
+//! chains of 32 sites (mode 1, amplitudes 0.5 to 2.5, `beta = 0.7`) and 1000 Toda rings of 8
+//! particles (momenta 0.2 to 1.2 in a fixed pattern) by `yoshida4`. Name workloads (`fput`,
+//! `kepler`, ...) after `N` to run only those.
 //!
 //! Per workload, three timings:
 //! - `alone`: every member built through the catalogue and run by its own `integrate`, one
@@ -16,6 +19,7 @@ use std::time::Instant;
 
 use physicskit::classical::catalog;
 use physicskit::classical::ensemble::{self, FromCatalogue, MemberSource, Members, Plan, Sweep};
+use physicskit::classical::model::Value;
 use physicskit::classical::{IntegrateOptions, Method, Sampling};
 
 const MEMBERS: usize = 1000;
@@ -38,15 +42,32 @@ fn henon_heiles() -> Members {
     }
 }
 
-/// Kepler orbits of eccentricities 0.1 to 0.6 (`a = 1`, period `2 pi`).
-fn kepler() -> Members {
+/// `target` swept linearly from `from` towards `to` over the members.
+fn swept(target: &str, from: f64, to: f64) -> Members {
     Members {
         sweeps: vec![Sweep::new(
-            "e",
+            target,
             (0..MEMBERS)
-                .map(|i| 0.1 + 0.5 * i as f64 / MEMBERS as f64)
+                .map(|i| from + (to - from) * i as f64 / MEMBERS as f64)
                 .collect(),
         )],
+        n: MEMBERS,
+        ..Members::default()
+    }
+}
+
+/// Toda rings of 8 particles at rest positions, momenta `s (1.5, 0, 0, 0, -0.5, 0, 0, -1)` (the
+/// catalogue's pattern) scaled by `s` from 0.2 to 1.2.
+fn toda() -> Members {
+    let pattern = [1.5, 0.0, 0.0, 0.0, -0.5, 0.0, 0.0, -1.0];
+    let states = (0..MEMBERS)
+        .flat_map(|m| {
+            let s = 0.2 + m as f64 / MEMBERS as f64;
+            [0.0; 8].into_iter().chain(pattern.map(|p| s * p))
+        })
+        .collect();
+    Members {
+        states: Some(states),
         n: MEMBERS,
         ..Members::default()
     }
@@ -76,10 +97,33 @@ fn main() {
             Method::SofroniouSpaletta10,
             0.05,
         ),
-        ("kepler", kepler(), Method::Yoshida4, 0.001),
-        ("kepler", kepler(), Method::SofroniouSpaletta10, 0.01),
+        // Kepler orbits of eccentricities 0.1 to 0.6 (`a = 1`, period `2 pi`).
+        ("kepler", swept("e", 0.1, 0.6), Method::Yoshida4, 0.001),
+        (
+            "kepler",
+            swept("e", 0.1, 0.6),
+            Method::SofroniouSpaletta10,
+            0.01,
+        ),
+        // Pendulums released from rest at amplitudes 0.1 to 3 rad.
+        ("pendulum", swept("q0", 0.1, 3.0), Method::Yoshida4, 0.01),
+        // FPUT chains of 32 sites (the default), mode 1 at amplitudes 0.5 to 2.5, beta 0.7.
+        (
+            "fput",
+            Members {
+                common: vec![("beta".into(), Value::Scalar(0.7))],
+                ..swept("amplitude", 0.5, 2.5)
+            },
+            Method::Yoshida4,
+            0.05,
+        ),
+        ("toda", toda(), Method::Yoshida4, 0.01),
     ];
+    let only: Vec<String> = std::env::args().skip(2).collect();
     for (name, members, method, dt) in workloads {
+        if !only.is_empty() && !only.iter().any(|o| o == name) {
+            continue;
+        }
         let entry = catalog::find(name).expect("catalogue entry");
         let source = FromCatalogue::new(entry, &members).expect("members");
         let (alone, reference) = best_of(n, || {

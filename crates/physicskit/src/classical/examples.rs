@@ -5,6 +5,7 @@
 use crate::classical::core::error::check_len;
 use crate::classical::core::error::{check_finite_scalar, check_positive};
 use crate::classical::core::{Phase, Result};
+use crate::classical::integrators::lanes::{LanesForce, Real, SplittingLanes};
 use crate::classical::integrators::{HamiltonianSystem, MassInv, Method};
 use crate::classical::model::entry::{Default as D, Family, ParamSpec as P, Range, SystemEntry};
 use crate::classical::model::entry::{Drawing, Ends, Pace, Presentation};
@@ -44,8 +45,9 @@ impl HamiltonianSystem for Pendulum {
         -self.g_over_l * q[0].cos()
     }
     #[inline]
+    /// `F = -(g/l) sin q` ([`LanesForce::force_of`] at `f64`).
     fn force(&self, q: &[f64], _t: f64, out: &mut [f64]) -> Result<()> {
-        out[0] = -self.g_over_l * q[0].sin();
+        self.force_of(q, out);
         Ok(())
     }
     fn force_jacobian(&self, q: &[f64], _t: f64, out: &mut [f64]) -> Option<Result<()>> {
@@ -54,7 +56,26 @@ impl HamiltonianSystem for Pendulum {
     }
 }
 
-crate::impl_separable_dynamics!(Pendulum);
+/// The force written once, over `f64` and over members in SIMD lanes (std's `sin` per lane).
+impl LanesForce for Pendulum {
+    const NDOF: usize = 1;
+
+    #[inline(always)]
+    fn force_of<R: Real>(&self, q: &[R], out: &mut [R]) {
+        out[0] = q[0].sin() * -self.g_over_l;
+    }
+
+    /// Equal `g/l`, bit for bit.
+    fn same_force(&self, other: &Self) -> bool {
+        self.g_over_l.to_bits() == other.g_over_l.to_bits()
+    }
+}
+
+crate::impl_separable_dynamics!(Pendulum, {
+    fn splitting_lanes(&self) -> Option<&dyn SplittingLanes> {
+        Some(self)
+    }
+});
 
 /// The harmonic oscillator `H = p^2/(2m) + k q^2/2`, exactly solvable.
 #[derive(Debug, Clone)]
@@ -103,8 +124,9 @@ impl HamiltonianSystem for HarmonicOscillator {
         MassInv::Uniform(self.m_inv)
     }
     #[inline]
+    /// `F = -k q` ([`LanesForce::force_of`] at `f64`).
     fn force(&self, q: &[f64], _t: f64, out: &mut [f64]) -> Result<()> {
-        out[0] = -self.k * q[0];
+        self.force_of(q, out);
         Ok(())
     }
     fn force_jacobian(&self, _q: &[f64], _t: f64, out: &mut [f64]) -> Option<Result<()>> {
@@ -113,7 +135,27 @@ impl HamiltonianSystem for HarmonicOscillator {
     }
 }
 
-crate::impl_separable_dynamics!(HarmonicOscillator);
+/// The force written once, over `f64` and over members in SIMD lanes.
+impl LanesForce for HarmonicOscillator {
+    const NDOF: usize = 1;
+
+    #[inline(always)]
+    fn force_of<R: Real>(&self, q: &[R], out: &mut [R]) {
+        out[0] = q[0] * -self.k;
+    }
+
+    /// Equal `k` and mass, bit for bit.
+    fn same_force(&self, other: &Self) -> bool {
+        let bits = |s: &Self| [s.k, s.m_inv].map(f64::to_bits);
+        bits(self) == bits(other)
+    }
+}
+
+crate::impl_separable_dynamics!(HarmonicOscillator, {
+    fn splitting_lanes(&self) -> Option<&dyn SplittingLanes> {
+        Some(self)
+    }
+});
 
 impl Capabilities for Pendulum {
     fn positions_into(&self, q: &[f64], out: &mut Vec<f64>) -> Option<Result<()>> {

@@ -7,23 +7,28 @@
 //! system's own [`HamiltonianSystem::force`] instantiates it with `f64` (so the scalar path's
 //! code is what it was), and the lanes with [`Lanes<L>`], `L` doubles under elementwise IEEE
 //! operations (additions, multiplications, divisions and square roots, all correctly rounded
-//! per lane; `powf` is the scalar `powf` of each lane). The step is the scalar step's kernels
-//! ([`compensated`](super::compensated)'s kick–drift update and closing kick, generic over the
-//! same scalar) run by `splitting.rs`'s `step_array`, the splitting loop on fixed-length
-//! arrays. No FMA is enabled anywhere, so the AVX-512 (16 lanes), AVX2 (8) and
-//! plain (4) clones give the same bits; the lane count is the caller's
-//! ([`symbolic::native_lanes`](crate::classical::symbolic::native_lanes), as the Taylor
-//! members' lanes take it).
+//! per lane; `powf`, `sin` and `exp` are the scalar std functions of each lane). The step is the
+//! scalar step's kernels ([`compensated`](super::compensated)'s kick–drift update and closing
+//! kick, generic over the same scalar): `splitting.rs`'s `step_array` on fixed-length arrays
+//! where the type fixes one to three degrees of freedom of uniform mass ([`LanesForce::NDOF`]:
+//! Kepler, Hénon–Heiles, the projectile, the pendulum, the oscillator), else the same kernels
+//! one coordinate at a time over slices with each coordinate's own inverse mass (the chains,
+//! the Toda lattice), as the scalar path's loop over a slice does them. No FMA is enabled
+//! anywhere, so the AVX-512 (16 lanes), AVX2 (8) and plain (4) clones give the same bits; the
+//! lane count is the caller's ([`symbolic::native_lanes`](crate::classical::symbolic::native_lanes),
+//! as the Taylor members' lanes take it).
 //!
 //! A system opts in by implementing [`LanesForce`] and returning itself from
 //! [`DynamicalSystem::splitting_lanes`](super::DynamicalSystem::splitting_lanes); the ensemble
 //! engine finds it there through the type-erased member ([`SplittingLanes`]). Only autonomous
-//! forces (`F(q)`, no clock) on two degrees of freedom with uniform masses run in lanes (Kepler,
-//! Hénon–Heiles); [`SplittingLanes::accepts`] says which method and system do.
+//! forces (`F(q)`, no clock) run in lanes; [`SplittingLanes::accepts`] says which method and
+//! system do.
 
 use std::any::Any;
+use std::array::{from_mut, from_ref};
 use std::ops::{Add, AddAssign, Div, Mul, Neg, Sub, SubAssign};
 
+use super::compensated;
 use super::splitting::{check_system, step_array, Coefficients};
 use super::stepper::{AdaptiveStepper, Dispatch, FieldStepper};
 use super::{HamiltonianSystem, MassInv, Method};
@@ -49,6 +54,10 @@ pub trait Real:
     fn sqrt(self) -> Self;
     /// `f64::powf` of each lane.
     fn powf(self, e: f64) -> Self;
+    /// `f64::sin` (std's) of each lane.
+    fn sin(self) -> Self;
+    /// `f64::exp` (std's) of each lane.
+    fn exp(self) -> Self;
 }
 
 impl Real for f64 {
@@ -63,6 +72,14 @@ impl Real for f64 {
     #[inline(always)]
     fn powf(self, e: f64) -> Self {
         f64::powf(self, e)
+    }
+    #[inline(always)]
+    fn sin(self) -> Self {
+        f64::sin(self)
+    }
+    #[inline(always)]
+    fn exp(self) -> Self {
+        f64::exp(self)
     }
 }
 
@@ -109,11 +126,8 @@ impl<const L: usize> Add<f64> for Lanes<L> {
 impl<const L: usize> Neg for Lanes<L> {
     type Output = Self;
     #[inline(always)]
-    fn neg(mut self) -> Self {
-        for a in &mut self.0 {
-            *a = -*a;
-        }
-        self
+    fn neg(self) -> Self {
+        self.map(|a| -a)
     }
 }
 
@@ -137,16 +151,29 @@ impl<const L: usize> Real for Lanes<L> {
         Self([x; L])
     }
     #[inline(always)]
-    fn sqrt(mut self) -> Self {
-        for a in &mut self.0 {
-            *a = a.sqrt();
-        }
-        self
+    fn sqrt(self) -> Self {
+        self.map(f64::sqrt)
     }
     #[inline(always)]
-    fn powf(mut self, e: f64) -> Self {
+    fn powf(self, e: f64) -> Self {
+        self.map(|a| a.powf(e))
+    }
+    #[inline(always)]
+    fn sin(self) -> Self {
+        self.map(f64::sin)
+    }
+    #[inline(always)]
+    fn exp(self) -> Self {
+        self.map(f64::exp)
+    }
+}
+
+impl<const L: usize> Lanes<L> {
+    /// `f` of each lane.
+    #[inline(always)]
+    fn map(mut self, f: impl Fn(f64) -> f64) -> Self {
         for a in &mut self.0 {
-            *a = a.powf(e);
+            *a = f(*a);
         }
         self
     }
@@ -156,10 +183,16 @@ impl<const L: usize> Real for Lanes<L> {
 /// `force_of::<f64>`, and members of equal parameters run in lanes on `force_of::<Lanes<L>>`.
 /// The force must not depend on the clock.
 pub trait LanesForce: HamiltonianSystem {
+    /// The degrees of freedom where the type fixes them (1 to 3: the lanes run on fixed-length
+    /// arrays, as the scalar step's fixed-length kernels); 0 where they are the instance's (a
+    /// chain's sites), run over slices.
+    const NDOF: usize = 0;
+
     /// `F(q)` into `out` (`ndof` entries each).
     fn force_of<R: Real>(&self, q: &[R], out: &mut [R]);
 
-    /// Whether `other` has the same force, bit for bit (equal parameters).
+    /// Whether `other` has the same force and masses, bit for bit (every parameter the force
+    /// and the inverse masses read, and the degrees of freedom).
     fn same_force(&self, other: &Self) -> bool;
 }
 
@@ -190,17 +223,17 @@ pub trait SplittingLanes: Sync {
     /// Whether `other` is the same type of system with the same force.
     fn same_force_as(&self, other: &dyn SplittingLanes) -> bool;
 
-    /// Whether `method` runs in lanes on this system: a splitting method the system accepts,
-    /// two degrees of freedom, uniform masses.
+    /// Whether `method` runs in lanes on this system: a splitting method the system accepts.
     fn accepts(&self, method: Method) -> bool;
 
     /// Runs the members of `batch` (at most `lanes` of them; `lanes` is 16, 8 or else 4) by
-    /// `method` with this system's force; returns which failed (a state not finite at a
-    /// check).
+    /// `method` with this system's force and masses; returns which failed (a state not finite
+    /// at a check).
     ///
     /// # Errors
     /// [`Error::UnsupportedMethod`] where [`accepts`](Self::accepts) is false, more members
-    /// than lanes, or [`Error::Interrupted`] when `batch.stop` says so.
+    /// than lanes or states not of `2 ndof` values, or [`Error::Interrupted`] when
+    /// `batch.stop` says so.
     fn run_lanes(&self, lanes: usize, method: Method, batch: Batch<'_>) -> Result<Vec<bool>>;
 }
 
@@ -217,10 +250,7 @@ impl<T: LanesForce + Any + Sync> SplittingLanes for T {
     }
 
     fn accepts(&self, method: Method) -> bool {
-        method.needs_separable()
-            && self.ndof() == 2
-            && matches!(self.mass_inv(), MassInv::Uniform(_))
-            && check_system(method, self).is_ok()
+        method.needs_separable() && check_system(method, self).is_ok()
     }
 
     fn run_lanes(&self, lanes: usize, method: Method, batch: Batch<'_>) -> Result<Vec<bool>> {
@@ -228,20 +258,23 @@ impl<T: LanesForce + Any + Sync> SplittingLanes for T {
             method: method.name().into(),
             reason: reason.into(),
         };
-        let (MassInv::Uniform(m), true) = (self.mass_inv(), self.accepts(method)) else {
+        if !self.accepts(method) {
             return Err(refused(
                 "not a splitting method on a system it runs in lanes",
             ));
-        };
-        if batch.starts.len() > lanes * 4
+        }
+        let width = 2 * self.ndof();
+        if width == 0
+            || batch.starts.len() > lanes * width
             || batch.starts.is_empty()
-            || !batch.starts.len().is_multiple_of(4)
+            || !batch.starts.len().is_multiple_of(width)
         {
-            return Err(refused("a batch holds 1 to `lanes` states of 4 values"));
+            return Err(refused(
+                "a batch holds 1 to `lanes` states of 2 ndof values",
+            ));
         }
         method.dispatch(Run {
             system: self,
-            m,
             lanes,
             batch,
         })
@@ -252,7 +285,6 @@ impl<T: LanesForce + Any + Sync> SplittingLanes for T {
 /// of drifts from the registry.
 struct Run<'s, 'b, T: ?Sized> {
     system: &'s T,
-    m: f64,
     lanes: usize,
     batch: Batch<'b>,
 }
@@ -263,7 +295,6 @@ impl<T: LanesForce + ?Sized> Dispatch for Run<'_, '_, T> {
     fn splitting<const S: usize>(self, _: Method, c: Coefficients<S>) -> Self::Output {
         let Run {
             system,
-            m,
             lanes,
             mut batch,
         } = self;
@@ -273,16 +304,16 @@ impl<T: LanesForce + ?Sized> Dispatch for Run<'_, '_, T> {
         #[allow(unsafe_code)]
         {
             if lanes == 16 && std::arch::is_x86_feature_detected!("avx512f") {
-                return unsafe { run_avx512::<S, T>(system, &c, m, b) };
+                return unsafe { run_avx512::<S, T>(system, &c, b) };
             }
             if lanes == 8 && std::arch::is_x86_feature_detected!("avx2") {
-                return unsafe { run_avx2::<S, T>(system, &c, m, b) };
+                return unsafe { run_avx2::<S, T>(system, &c, b) };
             }
         }
         match lanes {
-            16 => run::<S, 16, T>(system, &c, m, b),
-            8 => run::<S, 8, T>(system, &c, m, b),
-            _ => run::<S, 4, T>(system, &c, m, b),
+            16 => run::<S, 16, T>(system, &c, b),
+            8 => run::<S, 8, T>(system, &c, b),
+            _ => run::<S, 4, T>(system, &c, b),
         }
     }
 
@@ -312,10 +343,9 @@ fn not_splitting(method: Method) -> Error {
 fn run_avx512<const S: usize, T: LanesForce + ?Sized>(
     system: &T,
     c: &Coefficients<S>,
-    m: f64,
     b: &mut Batch<'_>,
 ) -> Result<Vec<bool>> {
-    run::<S, 16, T>(system, c, m, b)
+    run::<S, 16, T>(system, c, b)
 }
 
 /// [`run`] on 8 lanes, compiled for AVX2 (called only where the CPU has it).
@@ -324,62 +354,180 @@ fn run_avx512<const S: usize, T: LanesForce + ?Sized>(
 fn run_avx2<const S: usize, T: LanesForce + ?Sized>(
     system: &T,
     c: &Coefficients<S>,
-    m: f64,
     b: &mut Batch<'_>,
 ) -> Result<Vec<bool>> {
-    run::<S, 8, T>(system, c, m, b)
+    run::<S, 8, T>(system, c, b)
 }
 
-/// The members of `b` in `L` lanes (lanes past the last member repeat its state; their
-/// results are dropped): the scalar driver's loop, `n` steps of `dt`, the force at the
-/// start evaluated once and then reused (first same as last).
+/// The members of `b` in `L` lanes: on fixed-length arrays where the type fixes one to three
+/// degrees of freedom of uniform mass (the scalar step's fixed-length kernels), else over
+/// slices.
 #[inline(always)]
 fn run<const S: usize, const L: usize, T: LanesForce + ?Sized>(
+    system: &T,
+    c: &Coefficients<S>,
+    b: &mut Batch<'_>,
+) -> Result<Vec<bool>> {
+    let mass = system.mass_inv();
+    match (T::NDOF, mass) {
+        (1, MassInv::Uniform(m)) => run_array::<S, 1, L, T>(system, c, m, b),
+        (2, MassInv::Uniform(m)) => run_array::<S, 2, L, T>(system, c, m, b),
+        (3, MassInv::Uniform(m)) => run_array::<S, 3, L, T>(system, c, m, b),
+        _ => {
+            let n = system.ndof();
+            let mut state = State {
+                q: vec![Lanes([0.0; L]); n],
+                p: vec![Lanes([0.0; L]); n],
+            };
+            let count = state.load(b);
+            let (mut force, mut eq, mut ep) = (state.q.clone(), state.q.clone(), state.q.clone());
+            system.force_of(&state.q, &mut force);
+            let h = b.grid.dt();
+            state.drive(count, b, |q, p| {
+                step_slices(c, mass, q, p, &mut force, &mut eq, &mut ep, h, |q, f| {
+                    system.force_of(q, f)
+                })
+            })
+        }
+    }
+}
+
+/// [`run`] on `N` coordinates of uniform inverse mass `m` in arrays: `step_array`, the scalar
+/// step's fixed-length kernels.
+#[inline(always)]
+fn run_array<const S: usize, const N: usize, const L: usize, T: LanesForce + ?Sized>(
     system: &T,
     c: &Coefficients<S>,
     m: f64,
     b: &mut Batch<'_>,
 ) -> Result<Vec<bool>> {
-    const N: usize = 2;
-    let count = b.starts.len() / (2 * N);
-    let mut q = [Lanes([0.0; L]); N];
-    let mut p = [Lanes([0.0; L]); N];
-    for l in 0..L {
-        let start = &b.starts[l.min(count - 1) * 2 * N..][..2 * N];
-        for k in 0..N {
-            q[k].0[l] = start[k];
-            p[k].0[l] = start[N + k];
-        }
-    }
+    let mut state = State {
+        q: [Lanes([0.0; L]); N],
+        p: [Lanes([0.0; L]); N],
+    };
+    let count = state.load(b);
     let mut force = [Lanes([0.0; L]); N];
-    system.force_of(&q, &mut force);
-    let (n, h) = (b.grid.n_steps(), b.grid.dt());
-    let mut failed = vec![false; count];
-    let mut row = [0.0; 2 * N];
-    for done in 1..=n {
-        step_array::<S, N, Lanes<L>>(c, m, &mut q, &mut p, &mut force, h, |q, f| {
-            system.force_of(q, f)
-        });
-        let last = done == n;
-        if last || done.is_multiple_of(b.check_every) {
-            for (l, failed) in failed.iter_mut().enumerate() {
-                *failed |= !q.iter().chain(&p).all(|v| v.0[l].is_finite());
-            }
-            if !last && (b.stop)() {
-                return Err(Error::Interrupted {
-                    t: b.grid.time(done),
-                });
-            }
+    system.force_of(&state.q, &mut force);
+    let h = b.grid.dt();
+    state.drive(count, b, |q, p| {
+        step_array::<S, N, Lanes<L>>(c, m, q, p, &mut force, h, |q, f| system.force_of(q, f))
+    })
+}
+
+/// One step of the method `c` on coordinates held in slices, with inverse masses `mass`:
+/// `step_array`'s operations in its order, each coordinate through the one-coordinate
+/// kernels with its own `drift m_i` (the scalar path's per-coordinate loop forms the same
+/// product; with uniform masses, its `drift m`).
+#[inline(always)]
+#[allow(clippy::too_many_arguments)]
+fn step_slices<const S: usize, R: Real>(
+    c: &Coefficients<S>,
+    mass: MassInv<'_>,
+    q: &mut [R],
+    p: &mut [R],
+    force: &mut [R],
+    eq: &mut [R],
+    ep: &mut [R],
+    h: f64,
+    mut evaluate: impl FnMut(&[R], &mut [R]),
+) {
+    // The corrections start at -0.0 as `compensated::begin_step` sets them.
+    eq.fill(R::splat(-0.0));
+    ep.fill(R::splat(-0.0));
+    for i in 0..S {
+        let (kick, drift) = (c.kicks[i] * h, c.drifts[i] * h);
+        for k in 0..q.len() {
+            compensated::substep_array::<S, 1, R>(
+                i,
+                from_mut(&mut q[k]),
+                from_mut(&mut p[k]),
+                from_mut(&mut eq[k]),
+                from_mut(&mut ep[k]),
+                from_ref(&force[k]),
+                kick,
+                drift * mass.get(k),
+            );
         }
-        if last || b.every.is_some_and(|k| done.is_multiple_of(k)) {
-            for (l, _) in failed.iter().enumerate().filter(|(_, f)| !**f) {
-                for k in 0..N {
-                    row[k] = q[k].0[l];
-                    row[N + k] = p[k].0[l];
-                }
-                (b.record)(l, done, &row);
-            }
-        }
+        evaluate(q, force);
     }
-    Ok(failed)
+    for (k, f) in force.iter().enumerate() {
+        compensated::end_step_array::<S, 1, R>(
+            from_mut(&mut p[k]),
+            from_ref(&ep[k]),
+            from_ref(f),
+            c.last_kick * h,
+        );
+    }
+}
+
+/// The members' coordinates and momenta, `q[k].0[l]` coordinate `k` of lane `l`'s member:
+/// arrays of fixed length or vectors.
+struct State<Q> {
+    q: Q,
+    p: Q,
+}
+
+impl<Q> State<Q> {
+    /// Loads the initial states of `b` into the lanes (lanes past the last member repeat its
+    /// state; their results are dropped); returns the number of members.
+    #[inline(always)]
+    fn load<const L: usize>(&mut self, b: &Batch<'_>) -> usize
+    where
+        Q: AsMut<[Lanes<L>]>,
+    {
+        let (q, p) = (self.q.as_mut(), self.p.as_mut());
+        let n = q.len();
+        let count = b.starts.len() / (2 * n);
+        for l in 0..L {
+            let start = &b.starts[l.min(count - 1) * 2 * n..][..2 * n];
+            for k in 0..n {
+                q[k].0[l] = start[k];
+                p[k].0[l] = start[n + k];
+            }
+        }
+        count
+    }
+
+    /// The scalar driver's loop over the `count` members loaded from `b`: `n` steps of `dt`
+    /// by `step(q, p)` (the force at the start evaluated once by the caller and then reused,
+    /// first same as last), the finiteness and `stop` checks where `integrate` makes them,
+    /// the recorded rows.
+    #[inline(always)]
+    fn drive<const L: usize>(
+        &mut self,
+        count: usize,
+        b: &mut Batch<'_>,
+        mut step: impl FnMut(&mut Q, &mut Q),
+    ) -> Result<Vec<bool>>
+    where
+        Q: AsRef<[Lanes<L>]>,
+    {
+        let dof = self.q.as_ref().len();
+        let (n, mut failed, mut row) = (b.grid.n_steps(), vec![false; count], vec![0.0; 2 * dof]);
+        for done in 1..=n {
+            step(&mut self.q, &mut self.p);
+            let (q, p) = (self.q.as_ref(), self.p.as_ref());
+            let last = done == n;
+            if last || done.is_multiple_of(b.check_every) {
+                for (l, failed) in failed.iter_mut().enumerate() {
+                    *failed |= !q.iter().chain(p).all(|v| v.0[l].is_finite());
+                }
+                if !last && (b.stop)() {
+                    return Err(Error::Interrupted {
+                        t: b.grid.time(done),
+                    });
+                }
+            }
+            if last || b.every.is_some_and(|k| done.is_multiple_of(k)) {
+                for (l, _) in failed.iter().enumerate().filter(|(_, f)| !**f) {
+                    for k in 0..dof {
+                        row[k] = q[k].0[l];
+                        row[dof + k] = p[k].0[l];
+                    }
+                    (b.record)(l, done, &row);
+                }
+            }
+        }
+        Ok(failed)
+    }
 }

@@ -17,6 +17,7 @@ use crate::classical::core::error::{
     check_finite_scalar, check_len, check_non_negative, check_positive, check_vector,
 };
 use crate::classical::core::{Phase, Result};
+use crate::classical::integrators::lanes::{LanesForce, Real, SplittingLanes};
 use crate::classical::integrators::{
     hamiltonian_energy, DynamicalSystem, HamiltonianSystem, MassInv, Method,
 };
@@ -184,12 +185,11 @@ impl HamiltonianSystem for ProjectileMotion {
     fn mass_inv(&self) -> MassInv<'_> {
         MassInv::Uniform(self.m_inv)
     }
-    /// The conservative force only, gravity `(0, -m g)`; drag enters through
-    /// [`DynamicalSystem::derivatives`].
+    /// The conservative force only, gravity `(0, -m g)` ([`LanesForce::force_of`] at `f64`);
+    /// drag enters through [`DynamicalSystem::derivatives`].
     #[inline]
-    fn force(&self, _q: &[f64], _t: f64, out: &mut [f64]) -> Result<()> {
-        out[0] = 0.0;
-        out[1] = -self.m * self.g;
+    fn force(&self, q: &[f64], _t: f64, out: &mut [f64]) -> Result<()> {
+        self.force_of(q, out);
         Ok(())
     }
     fn force_jacobian(&self, _q: &[f64], _t: f64, out: &mut [f64]) -> Option<Result<()>> {
@@ -198,7 +198,28 @@ impl HamiltonianSystem for ProjectileMotion {
     }
 }
 
+/// The force written once, over `f64` and over members in SIMD lanes. With drag the
+/// splitting methods are refused (`conservative` is false), in lanes as alone.
+impl LanesForce for ProjectileMotion {
+    const NDOF: usize = 2;
+
+    #[inline(always)]
+    fn force_of<R: Real>(&self, _q: &[R], out: &mut [R]) {
+        out[0] = R::splat(0.0);
+        out[1] = R::splat(-self.m * self.g);
+    }
+
+    /// Equal mass, gravity and drag coefficient, bit for bit.
+    fn same_force(&self, other: &Self) -> bool {
+        let bits = |s: &Self| [s.m, s.g, s.drag_coeff].map(f64::to_bits);
+        bits(self) == bits(other)
+    }
+}
+
 impl DynamicalSystem for ProjectileMotion {
+    fn splitting_lanes(&self) -> Option<&dyn SplittingLanes> {
+        Some(self)
+    }
     fn phase(&self) -> &Phase {
         &self.phase
     }

@@ -55,6 +55,7 @@ use nalgebra::{DMatrix, SymmetricEigen};
 
 use crate::classical::core::error::{check_positive, check_vector};
 use crate::classical::core::{Error, Phase, Result};
+use crate::classical::integrators::lanes::{LanesForce, Real, SplittingLanes};
 use crate::classical::integrators::{HamiltonianSystem, MassInv, Method};
 use crate::classical::model::entry::{
     Default as D, Family, Length, ParamSpec as P, Range, SystemEntry,
@@ -146,16 +147,17 @@ impl TodaLattice {
     /// Calls `site(i, e_left, e_right)` for every particle `i` with the exponentials
     /// `e^{-b r_{i-1}}` and `e^{-b r_i}` of its two bonds, and returns `sum_i e^{-b r_i}`
     /// (bonds `0..n-1` in order, the wrap-around bond `q_1 - q_n` last). One `exp` per bond;
-    /// the force, its potential and the energies all use it, so they agree bit for bit.
+    /// the force, its potential and the energies all use it, so they agree bit for bit. For
+    /// any [`Real`] (`f64`, or members in SIMD lanes: std's `exp` per lane).
     #[inline(always)]
-    fn sweep(&self, q: &[f64], mut site: impl FnMut(usize, f64, f64)) -> f64 {
+    fn sweep<R: Real>(&self, q: &[R], mut site: impl FnMut(usize, R, R)) -> R {
         let n = q.len();
-        let b = self.b;
-        let wrap = (-b * (q[0] - q[n - 1])).exp();
+        let b = -self.b;
+        let wrap = ((q[0] - q[n - 1]) * b).exp();
         let mut left = wrap;
-        let mut sum = 0.0;
+        let mut sum = R::splat(0.0);
         for i in 0..n - 1 {
-            let right = (-b * (q[i + 1] - q[i])).exp();
+            let right = ((q[i + 1] - q[i]) * b).exp();
             site(i, left, right);
             sum += right;
             left = right;
@@ -269,8 +271,7 @@ impl HamiltonianSystem for TodaLattice {
     /// `F_i = a (e^{-b r_{i-1}} - e^{-b r_i})`.
     #[inline]
     fn force(&self, q: &[f64], _t: f64, out: &mut [f64]) -> Result<()> {
-        let a = self.a;
-        self.sweep(q, |i, left, right| out[i] = a * (left - right));
+        self.force_of(q, out);
         Ok(())
     }
 
@@ -278,7 +279,7 @@ impl HamiltonianSystem for TodaLattice {
     #[inline]
     fn force_and_potential(&self, q: &[f64], _t: f64, out: &mut [f64]) -> Result<Option<f64>> {
         let a = self.a;
-        let sum = self.sweep(q, |i, left, right| out[i] = a * (left - right));
+        let sum = self.sweep(q, |i, left, right| out[i] = (left - right) * a);
         Ok(Some(self.a_over_b * sum))
     }
 
@@ -300,7 +301,27 @@ impl HamiltonianSystem for TodaLattice {
     }
 }
 
-crate::impl_separable_dynamics!(TodaLattice);
+/// The force written once, over `f64` and over members in SIMD lanes.
+impl LanesForce for TodaLattice {
+    /// `F_i = a (e^{-b r_{i-1}} - e^{-b r_i})`.
+    #[inline(always)]
+    fn force_of<R: Real>(&self, q: &[R], out: &mut [R]) {
+        let a = self.a;
+        self.sweep(q, |i, left, right| out[i] = (left - right) * a);
+    }
+
+    /// Equal particles, `a` and `b`, bit for bit (unit masses).
+    fn same_force(&self, other: &Self) -> bool {
+        self.n() == other.n()
+            && [self.a, self.b].map(f64::to_bits) == [other.a, other.b].map(f64::to_bits)
+    }
+}
+
+crate::impl_separable_dynamics!(TodaLattice, {
+    fn splitting_lanes(&self) -> Option<&dyn SplittingLanes> {
+        Some(self)
+    }
+});
 
 impl Capabilities for TodaLattice {
     fn per_particle_energy(&self, q: &[f64], p: &[f64]) -> Option<Result<Vec<f64>>> {

@@ -1,14 +1,23 @@
-//! Splitting-method members run in SIMD lanes (Kepler, Hénon–Heiles): each member's final
-//! state and strided trajectory are its own `integrate`'s bit for bit, for every splitting
-//! method, on one thread and on two, for member counts 1, 3, a lane width, twice it plus one
-//! (so batches that do not fill their lanes), and members of different forces in one
-//! ensemble (Kepler with swept `c_pn`: one group per value); a member that escapes fails with
-//! its own run's error, named by index, beside members that do not.
+//! Splitting-method members run in SIMD lanes (Kepler, Hénon–Heiles, the pendulum, the
+//! harmonic oscillator, the projectile, the harmonic and FPUT chains, the Toda lattice): each
+//! member's final state and strided trajectory are its own `integrate`'s bit for bit, for
+//! every splitting method, on one thread and on two, for member counts 1, 3, a lane width,
+//! twice it plus one (so batches that do not fill their lanes), and members of different
+//! forces in one ensemble (a parameter swept between two values, interleaved: two groups, the
+//! masses among them for the oscillator and the projectile); a member that escapes fails with
+//! its own run's error, named by index, beside members that do not (Hénon–Heiles, FPUT with
+//! `beta < 0`). The lanes runner itself is checked directly too (`run_lanes` accepts every
+//! such system and reproduces each member), so the equalities above cannot come from members
+//! that silently ran alone.
 
 use physicskit::classical::catalog;
 use physicskit::classical::ensemble::{self, FromCatalogue, MemberSource, Members, Plan, Sweep};
+use physicskit::classical::integrators::lanes::Batch;
+use physicskit::classical::model::Value;
 use physicskit::classical::symbolic::native_lanes;
-use physicskit::classical::{Error, IntegrateOptions, Method, Sampling};
+use physicskit::classical::{
+    Error, IntegrateOptions, Method, Sampling, SimulationResult, TimeGrid,
+};
 use std::f64::consts::TAU;
 
 const STRIDE: usize = 7;
@@ -79,11 +88,156 @@ fn ensembles(n: usize) -> Vec<(&'static str, Members, f64, f64)> {
         n,
         ..Members::default()
     };
-    vec![
+    let mut all = vec![
         ("kepler", kepler, 2.0 * TAU, TAU / 500.0),
         ("kepler", precessing, 2.0 * TAU, TAU / 500.0),
         ("henon-heiles", henon_heiles, 20.0, 0.02),
+    ];
+    all.extend(more_ensembles(n));
+    all
+}
+
+/// `n` values from `a` towards `b`.
+fn spread(n: usize, a: f64, b: f64) -> Vec<f64> {
+    (0..n).map(|i| a + (b - a) * i as f64 / n as f64).collect()
+}
+
+/// `x` and `y` interleaved over `n` members (two force groups).
+fn alternating(n: usize, x: f64, y: f64) -> Vec<f64> {
+    (0..n).map(|i| if i % 2 == 0 { x } else { y }).collect()
+}
+
+/// `n` states of an `ndof`-site lattice, each a different smooth displacement and momentum.
+fn lattice_states(n: usize, ndof: usize) -> Vec<f64> {
+    (0..n)
+        .flat_map(|m| {
+            let phase = 0.37 * m as f64;
+            let q = (0..ndof).map(move |j| 0.3 * (phase + 0.9 * j as f64).sin());
+            let p = (0..ndof).map(move |j| 0.2 * (phase - 0.5 * j as f64).cos());
+            q.chain(p).collect::<Vec<_>>()
+        })
+        .collect()
+}
+
+/// The systems whose forces took lanes after Kepler and Hénon–Heiles, each with one
+/// parameter of the force (or mass) alternating between two values.
+fn more_ensembles(n: usize) -> Vec<(&'static str, Members, f64, f64)> {
+    let members = |sweeps: Vec<Sweep>, states: Option<Vec<f64>>| Members {
+        sweeps,
+        states,
+        n,
+        ..Members::default()
+    };
+    vec![
+        (
+            "pendulum",
+            members(
+                vec![
+                    Sweep::new("q0", spread(n, 0.2, 2.9)),
+                    Sweep::new("g_over_l", alternating(n, 1.0, 2.0)),
+                ],
+                None,
+            ),
+            10.0,
+            0.05,
+        ),
+        (
+            "harmonic-oscillator",
+            members(
+                vec![
+                    Sweep::new("q0", spread(n, -1.0, 1.0)),
+                    Sweep::new("m", alternating(n, 1.0, 2.5)),
+                ],
+                None,
+            ),
+            10.0,
+            0.05,
+        ),
+        (
+            "projectile",
+            members(
+                vec![
+                    Sweep::new("speed", spread(n, 5.0, 25.0)),
+                    Sweep::new("angle_deg", spread(n, 20.0, 70.0)),
+                    Sweep::new("m", alternating(n, 1.0, 0.5)),
+                ],
+                None,
+            ),
+            2.0,
+            0.01,
+        ),
+        (
+            "harmonic-chain",
+            members(
+                vec![Sweep::new("k", alternating(n, 1.0, 1.5))],
+                Some(lattice_states(n, 8)),
+            ),
+            10.0,
+            0.05,
+        ),
+        (
+            "fput",
+            members(
+                vec![
+                    Sweep::new("amplitude", spread(n, 0.5, 2.0)),
+                    Sweep::new("beta", alternating(n, 0.7, 0.3)),
+                ],
+                None,
+            ),
+            10.0,
+            0.05,
+        ),
+        (
+            "toda",
+            members(
+                vec![Sweep::new("a", alternating(n, 1.0, 2.0))],
+                Some(lattice_states(n, 8)),
+            ),
+            10.0,
+            0.05,
+        ),
     ]
+}
+
+/// Member `i`'s own `integrate` over `(0, t1)` by `method`, every `STRIDE`-th step stored
+/// as the plans keep them (so an error names the first stored non-finite row, as theirs).
+fn own_run(
+    source: &impl MemberSource,
+    i: usize,
+    (t1, dt): (f64, f64),
+    method: Method,
+) -> physicskit::classical::Result<SimulationResult> {
+    source.build(i, 0.0)?.integrate(
+        (0.0, t1),
+        dt,
+        method,
+        IntegrateOptions {
+            sampling: Sampling::Stride(STRIDE),
+            ..IntegrateOptions::default()
+        },
+    )
+}
+
+/// `ensemble::run` of `members` fails by every splitting method, on one thread and on two,
+/// with member `bad`'s own run's error (a state that is not finite), named by its index.
+fn fails_with_the_members_own_error(name: &str, members: &Members, bad: usize, span: (f64, f64)) {
+    let entry = catalog::find(name).unwrap();
+    let source = FromCatalogue::new(entry, members).unwrap();
+    for method in splitting_methods() {
+        let alone = own_run(&source, bad, span, method).unwrap_err();
+        let Error::NonFinite { name, t } = alone else {
+            panic!("{method:?}: member {bad} ran: {alone}");
+        };
+        let want = Error::NonFinite {
+            name: format!("member {bad}: {name}"),
+            t,
+        };
+        for threads in [1, 2] {
+            let got = ensemble::run(entry, members, &plan(span.0, span.1, method, threads), None)
+                .unwrap_err();
+            assert_eq!(got, want, "{method:?}, {threads} threads");
+        }
+    }
 }
 
 /// The splitting methods, read from the method table.
@@ -109,19 +263,7 @@ fn members_in_lanes_equal_their_own_integrate_on_one_and_two_threads() {
                 assert_eq!(one, two, "{name}, {method:?}, {n} members: 1 and 2 threads");
                 let trajectory = one.trajectory.as_ref().unwrap();
                 for i in 0..n {
-                    let alone = source
-                        .build(i, 0.0)
-                        .unwrap()
-                        .integrate(
-                            (0.0, t1),
-                            dt,
-                            method,
-                            IntegrateOptions {
-                                sampling: Sampling::Stride(STRIDE),
-                                ..IntegrateOptions::default()
-                            },
-                        )
-                        .unwrap();
+                    let alone = own_run(&source, i, (t1, dt), method).unwrap();
                     let last = alone.y.nrows() - 1;
                     let bits = |v: Vec<f64>| v.into_iter().map(f64::to_bits).collect::<Vec<_>>();
                     assert_eq!(
@@ -148,40 +290,143 @@ fn members_in_lanes_equal_their_own_integrate_on_one_and_two_threads() {
 /// without the escaping members' rows the same ensemble's final states are theirs.
 #[test]
 fn an_escaping_member_fails_with_its_own_error_beside_good_ones() {
-    let entry = catalog::find("henon-heiles").unwrap();
     let members = Members {
         states: Some(henon_heiles_states(12, &[5, 9])),
         n: 12,
         ..Members::default()
     };
-    let (t1, dt) = (40.0, 0.05);
+    fails_with_the_members_own_error("henon-heiles", &members, 5, (40.0, 0.05));
+}
+
+/// `run_lanes` of each system above, called directly on a batch of a lane width of members
+/// sharing the first member's force: accepted for every splitting method, no member fails,
+/// and every recorded row is the member's own strided trajectory's, bit for bit.
+#[test]
+fn run_lanes_accepts_every_lanes_system_and_reproduces_each_member() {
+    let l = native_lanes();
+    for (name, members, t1, dt) in ensembles(l) {
+        let entry = catalog::find(name).unwrap();
+        let source = FromCatalogue::new(entry, &members).unwrap();
+        // Members of the first member's force: every other one where a parameter alternates.
+        let same: Vec<usize> = (0..l)
+            .filter(|&i| {
+                let (a, b) = (source.build(0, 0.0).unwrap(), source.build(i, 0.0).unwrap());
+                let (a, b) = (a.dynamical(), b.dynamical());
+                a.splitting_lanes()
+                    .unwrap()
+                    .same_force_as(b.splitting_lanes().unwrap())
+            })
+            .collect();
+        if !matches!(name, "kepler" | "henon-heiles") {
+            // One of two alternating values of a parameter the force or the mass reads.
+            assert_eq!(same, (0..l).step_by(2).collect::<Vec<_>>(), "{name}");
+        }
+        let first = source.build(0, 0.0).unwrap();
+        let lanes = first.dynamical().splitting_lanes().unwrap();
+        let starts: Vec<f64> = same
+            .iter()
+            .flat_map(|&i| source.build(i, 0.0).unwrap().dynamical().state().to_vec())
+            .collect();
+        let grid = TimeGrid::new((0.0, t1), dt).unwrap();
+        for method in splitting_methods() {
+            assert!(lanes.accepts(method), "{name}, {method:?}");
+            let mut rows: Vec<Vec<Vec<f64>>> = vec![Vec::new(); same.len()];
+            let failed = lanes
+                .run_lanes(
+                    l,
+                    method,
+                    Batch {
+                        starts: &starts,
+                        grid: &grid,
+                        every: Some(STRIDE),
+                        check_every: 16,
+                        record: &mut |m: usize, _: usize, y: &[f64]| rows[m].push(y.to_vec()),
+                        stop: &|| false,
+                    },
+                )
+                .unwrap_or_else(|e| panic!("{name}, {method:?}: {e}"));
+            assert_eq!(failed, vec![false; same.len()], "{name}, {method:?}");
+            for (m, &i) in same.iter().enumerate() {
+                let alone = own_run(&source, i, (t1, dt), method).unwrap();
+                // Row 0 of the trajectory is the initial state, which the runner does not
+                // record.
+                let want: Vec<u64> = alone
+                    .y
+                    .iter()
+                    .skip(alone.y.ncols())
+                    .map(|v| v.to_bits())
+                    .collect();
+                let got: Vec<u64> = rows[m].iter().flatten().map(|v| v.to_bits()).collect();
+                assert_eq!(got, want, "{name}, {method:?}, member {i}");
+            }
+        }
+    }
+}
+
+/// FPUT chains with `beta < 0` whose bonds start beyond the barrier of
+/// `phi(r) = r^2/2 + beta r^4/4` (`|r| > 1` at `beta = -1`) fly apart and overflow: members 2
+/// and 6 of 9 fail with their own runs' error, named by index, on one and two threads, while
+/// the other seven, in the lanes of the same force, run to the end.
+#[test]
+fn an_escaping_chain_fails_with_its_own_error_beside_good_ones() {
+    let entry = catalog::find("fput").unwrap();
+    let amplitudes = (0..9)
+        .map(|i| {
+            if i == 2 || i == 6 {
+                8.0
+            } else {
+                0.2 + 0.05 * i as f64
+            }
+        })
+        .collect();
+    let members = Members {
+        common: vec![
+            ("n".into(), Value::Integer(8)),
+            ("beta".into(), Value::Scalar(-1.0)),
+        ],
+        sweeps: vec![Sweep::new("amplitude", amplitudes)],
+        n: 9,
+        ..Members::default()
+    };
+    let (t1, dt) = (20.0, 0.05);
+    fails_with_the_members_own_error("fput", &members, 2, (t1, dt));
     let source = FromCatalogue::new(entry, &members).unwrap();
+    // In one batch of lanes beside them, the good members run to the end, each with its own
+    // run's final state, and only the escaping ones are reported failed.
+    let count = native_lanes().min(9);
+    let starts: Vec<f64> = (0..count)
+        .flat_map(|i| source.build(i, 0.0).unwrap().dynamical().state().to_vec())
+        .collect();
+    let first = source.build(0, 0.0).unwrap();
+    let lanes = first.dynamical().splitting_lanes().unwrap();
+    let grid = TimeGrid::new((0.0, t1), dt).unwrap();
     for method in splitting_methods() {
-        let alone = source
-            .build(5, 0.0)
-            .unwrap()
-            .integrate(
-                (0.0, t1),
-                dt,
+        let mut finals = vec![Vec::new(); count];
+        let n = grid.n_steps();
+        let failed = lanes
+            .run_lanes(
+                native_lanes(),
                 method,
-                IntegrateOptions {
-                    // The plan's sampling: the error names the first stored non-finite row.
-                    sampling: Sampling::Stride(STRIDE),
-                    ..IntegrateOptions::default()
+                Batch {
+                    starts: &starts,
+                    grid: &grid,
+                    every: None,
+                    check_every: 16,
+                    record: &mut |m: usize, step: usize, y: &[f64]| {
+                        assert_eq!(step, n);
+                        finals[m] = y.to_vec();
+                    },
+                    stop: &|| false,
                 },
             )
-            .unwrap_err();
-        let Error::NonFinite { name, t } = alone else {
-            panic!("{method:?}: the escaping member ran: {alone}");
-        };
-        let want = Error::NonFinite {
-            name: format!("member 5: {name}"),
-            t,
-        };
-        for threads in [1, 2] {
-            let got =
-                ensemble::run(entry, &members, &plan(t1, dt, method, threads), None).unwrap_err();
-            assert_eq!(got, want, "{method:?}, {threads} threads");
+            .unwrap();
+        let escaping: Vec<usize> = (0..count).filter(|&i| failed[i]).collect();
+        assert_eq!(escaping, vec![2, 6], "{method:?}");
+        for i in (0..count).filter(|&i| !failed[i]) {
+            let alone = own_run(&source, i, (t1, dt), method).unwrap();
+            let last = alone.y.row(alone.y.nrows() - 1).to_vec();
+            let bits = |v: &[f64]| v.iter().map(|x| x.to_bits()).collect::<Vec<_>>();
+            assert_eq!(bits(&finals[i]), bits(&last), "{method:?}, member {i}");
         }
     }
 }
