@@ -431,12 +431,13 @@ fn step_slices<const S: usize, R: Real>(
     h: f64,
     mut evaluate: impl FnMut(&[R], &mut [R]),
 ) {
+    let n = q.len();
     // The corrections start at -0.0 as `compensated::begin_step` sets them.
     eq.fill(R::splat(-0.0));
     ep.fill(R::splat(-0.0));
     for i in 0..S {
         let (kick, drift) = (c.kicks[i] * h, c.drifts[i] * h);
-        for k in 0..q.len() {
+        let mut pass = |k: usize, dm: f64| {
             compensated::substep_array::<S, 1, R>(
                 i,
                 from_mut(&mut q[k]),
@@ -445,8 +446,13 @@ fn step_slices<const S: usize, R: Real>(
                 from_mut(&mut ep[k]),
                 from_ref(&force[k]),
                 kick,
-                drift * mass.get(k),
+                dm,
             );
+        };
+        // The mass's kind decided once per pass, not per coordinate.
+        match mass {
+            MassInv::Uniform(m) => (0..n).for_each(|k| pass(k, drift * m)),
+            MassInv::PerCoordinate(m) => (0..n).for_each(|k| pass(k, drift * m[k])),
         }
         evaluate(q, force);
     }

@@ -263,8 +263,9 @@ fn interior_bond_differences<R: Real>(
 }
 
 /// Fixed-end nearest-neighbour force `F_i = phi'(q_{i+1} - q_i) - phi'(q_i - q_{i-1})` with
-/// walls `q_0 = q_{N+1} = 0`, for any [`Real`] (`f64`, or members in SIMD lanes).
-#[inline]
+/// walls `q_0 = q_{N+1} = 0`, for any [`Real`] (`f64`, or members in SIMD lanes). Always
+/// inlined: the lanes' AVX2 and AVX-512 clones then compile it for their own instruction set.
+#[inline(always)]
 pub(super) fn fixed_end_force<R: Real>(q: &[R], out: &mut [R], dphi: impl Fn(R) -> R) {
     let n = q.len();
     let zero = R::splat(0.0);

@@ -66,6 +66,8 @@ impl HamiltonianSystem for HenonHeilesSystem {
 
 /// The force written once, over `f64` and over members in SIMD lanes.
 impl LanesForce for HenonHeilesSystem {
+    const NDOF: usize = 2;
+
     /// `F = -(x + 2 x y, y + x^2 - y^2)`.
     #[inline(always)]
     fn force_of<R: Real>(&self, q: &[R], out: &mut [R]) {

@@ -290,6 +290,8 @@ impl HamiltonianSystem for KeplerSystem {
 
 /// The force written once, over `f64` and over members in SIMD lanes.
 impl LanesForce for KeplerSystem {
+    const NDOF: usize = 2;
+
     #[inline(always)]
     fn force_of<R: Real>(&self, q: &[R], out: &mut [R]) {
         self.force_and_potential_of(q, out);
