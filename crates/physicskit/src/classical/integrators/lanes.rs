@@ -8,7 +8,7 @@
 //! code is what it was), and the lanes with [`Lanes<L>`], `L` doubles under elementwise IEEE
 //! operations (additions, multiplications, divisions and square roots, all correctly rounded
 //! per lane; `powf`, `sin` and `exp` are the scalar std functions of each lane). The step is the
-//! scalar step's kernels ([`compensated`](super::compensated)'s kick–drift update and closing
+//! scalar step's kernels ([`compensated`]'s kick–drift update and closing
 //! kick, generic over the same scalar): `splitting.rs`'s `step_array` on fixed-length arrays
 //! where the type fixes one to three degrees of freedom of uniform mass ([`LanesForce::NDOF`]:
 //! Kepler, Hénon–Heiles, the projectile, the pendulum, the oscillator), else the same kernels
