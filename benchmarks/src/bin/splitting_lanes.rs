@@ -9,8 +9,9 @@
 //! - `alone`: every member built through the catalogue and run by its own `integrate`, one
 //!   after another on this thread (the member-by-member path, and the scalar step's cost);
 //! - `ensemble1`, `ensemble2`: `ensemble::run` of the same members on one and two threads,
-//!   final states only (with a splitting method and no reductions, the members of a separable
-//!   system whose force runs across lanes go in SIMD lanes).
+//!   final states only (with a splitting method, the members of a separable system whose
+//!   force runs across lanes go in SIMD lanes; the FPUT chain, which has none, is the control:
+//!   its ensemble runs member by member).
 //!
 //! Each time is the best of `N` (first argument, default 7) after one untimed run. The
 //! ensemble's final states are checked against the `alone` runs bit for bit (`same_bits`).

@@ -1,6 +1,6 @@
 //! Splitting-method members in SIMD lanes: members of a system whose force runs across lanes
 //! ([`SplittingLanes`]: Kepler, Hénon–Heiles, the pendulum, the harmonic oscillator, the
-//! projectile, the harmonic and FPUT chains, the Toda lattice) with equal forces run `L` at a time
+//! projectile, the Toda lattice) with equal forces run `L` at a time
 //! ([`native_lanes`]: 16 with AVX-512, 8 with AVX2, else 4), each with exactly the outputs of
 //! its own `integrate` (`integrators/lanes.rs`).
 //!

@@ -29,7 +29,7 @@
 //!
 //! **Splitting methods in SIMD lanes.** A plan with a splitting method runs
 //! the members of a system whose force is written over a lanes type (Kepler, Hénon–Heiles, the pendulum,
-//! the harmonic oscillator, the projectile, the harmonic and FPUT chains, the Toda lattice:
+//! the harmonic oscillator, the projectile, the Toda lattice:
 //! [`SplittingLanes`](crate::classical::integrators::lanes::SplittingLanes)) and that share
 //! their parameters 16, 8 or 4 at a time (`lanes.rs`, `integrators/lanes.rs`), in chunks of
 //! four batches of lanes: each lane does the scalar step's operations in their order, so the

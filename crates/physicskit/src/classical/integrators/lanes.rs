@@ -12,11 +12,14 @@
 //! kick, generic over the same scalar): `splitting.rs`'s `step_array` on fixed-length arrays
 //! where the type fixes one to three degrees of freedom of uniform mass ([`LanesForce::NDOF`]:
 //! Kepler, Hénon–Heiles, the projectile, the pendulum, the oscillator), else the same kernels
-//! one coordinate at a time over slices with each coordinate's own inverse mass (the chains,
-//! the Toda lattice), as the scalar path's loop over a slice does them. No FMA is enabled
-//! anywhere, so the AVX-512 (16 lanes), AVX2 (8) and plain (4) clones give the same bits; the
-//! lane count is the caller's ([`symbolic::native_lanes`](crate::classical::symbolic::native_lanes),
-//! as the Taylor members' lanes take it).
+//! one coordinate at a time over slices with each coordinate's own inverse mass (the Toda
+//! lattice), as the scalar path's loop over a slice does them. The fixed-end chains (harmonic,
+//! FPUT) have no lanes force: their scalar step already runs across the sites in vector
+//! registers, and their members ran slower in lanes than one by one (`benchmarks/README.md`).
+//! No FMA is enabled anywhere, so the AVX-512 (16 lanes), AVX2 (8) and plain (4) clones give
+//! the same bits; the lane count is the caller's
+//! ([`symbolic::native_lanes`](crate::classical::symbolic::native_lanes), as the Taylor
+//! members' lanes take it).
 //!
 //! A system opts in by implementing [`LanesForce`] and returning itself from
 //! [`DynamicalSystem::splitting_lanes`](super::DynamicalSystem::splitting_lanes); the ensemble
@@ -383,11 +386,26 @@ fn run<const S: usize, const L: usize, T: LanesForce + ?Sized>(
             let (mut force, mut eq, mut ep) = (state.q.clone(), state.q.clone(), state.q.clone());
             system.force_of(&state.q, &mut force);
             let h = b.grid.dt();
-            state.drive(count, b, |q, p| {
-                step_slices(c, mass, q, p, &mut force, &mut eq, &mut ep, h, |q, f| {
-                    system.force_of(q, f)
-                })
-            })
+            // Every closure of the step inlined (as below): see `run_array`.
+            state.drive(
+                count,
+                b,
+                #[inline(always)]
+                |q, p| {
+                    step_slices(
+                        c,
+                        mass,
+                        q,
+                        p,
+                        &mut force,
+                        &mut eq,
+                        &mut ep,
+                        h,
+                        #[inline(always)]
+                        |q, f| system.force_of(q, f),
+                    );
+                },
+            )
         }
     }
 }
@@ -409,9 +427,26 @@ fn run_array<const S: usize, const N: usize, const L: usize, T: LanesForce + ?Si
     let mut force = [Lanes([0.0; L]); N];
     system.force_of(&state.q, &mut force);
     let h = b.grid.dt();
-    state.drive(count, b, |q, p| {
-        step_array::<S, N, Lanes<L>>(c, m, q, p, &mut force, h, |q, f| system.force_of(q, f))
-    })
+    // The step's closures are inlined by force: a closure left a function of its own is
+    // compiled without the AVX-512 or AVX2 of the `run_*` clone that calls it (it is not
+    // lexically inside it), and the kernels then run on SSE2 at half the speed.
+    state.drive(
+        count,
+        b,
+        #[inline(always)]
+        |q, p| {
+            step_array::<S, N, Lanes<L>>(
+                c,
+                m,
+                q,
+                p,
+                &mut force,
+                h,
+                #[inline(always)]
+                |q, f| system.force_of(q, f),
+            );
+        },
+    )
 }
 
 /// One step of the method `c` on coordinates held in slices, with inverse masses `mass`:
@@ -437,7 +472,11 @@ fn step_slices<const S: usize, R: Real>(
     ep.fill(R::splat(-0.0));
     for i in 0..S {
         let (kick, drift) = (c.kicks[i] * h, c.drifts[i] * h);
-        let mut pass = |k: usize, dm: f64| {
+        for k in 0..n {
+            let dm = match mass {
+                MassInv::Uniform(m) => drift * m,
+                MassInv::PerCoordinate(m) => drift * m[k],
+            };
             compensated::substep_array::<S, 1, R>(
                 i,
                 from_mut(&mut q[k]),
@@ -448,11 +487,6 @@ fn step_slices<const S: usize, R: Real>(
                 kick,
                 dm,
             );
-        };
-        // The mass's kind decided once per pass, not per coordinate.
-        match mass {
-            MassInv::Uniform(m) => (0..n).for_each(|k| pass(k, drift * m)),
-            MassInv::PerCoordinate(m) => (0..n).for_each(|k| pass(k, drift * m[k])),
         }
         evaluate(q, force);
     }

@@ -37,7 +37,6 @@ use crate::classical::core::error::{check_finite_scalar, check_positive, check_v
 use crate::classical::core::sum::lane_sum_map2;
 use crate::classical::core::trig::{sin_into, sin_into_sum_cos, sum_cos};
 use crate::classical::core::{check_items_fit, Error, Phase, Result};
-use crate::classical::integrators::lanes::{LanesForce, Real, SplittingLanes};
 use crate::classical::integrators::{HamiltonianSystem, MassInv, Method};
 use crate::classical::model::entry::{
     Default as D, Family, Length, Literal, ParamSpec as P, Range, SystemEntry,
@@ -65,12 +64,6 @@ pub struct ChainModes {
 }
 
 impl ChainModes {
-    /// Whether `other` is a chain of as many sites of the same mass, bit for bit (what the
-    /// splitting step reads of the modes).
-    fn same_chain(&self, other: &Self) -> bool {
-        self.n == other.n && self.m_inv.to_bits() == other.m_inv.to_bits()
-    }
-
     /// The modes of a chain of `n >= 1` masses `m > 0` and springs `k > 0`.
     ///
     /// # Errors
@@ -245,11 +238,11 @@ pub trait NormalModes {
 /// one site to the next and the loop vectorizes; the values are the same bits as a single
 /// evaluation.
 #[inline(always)]
-fn interior_bond_differences<R: Real>(
-    q: &[R],
-    out: &mut [R],
-    bond: impl Fn(R) -> R,
-    site: impl Fn(R, R) -> R,
+fn interior_bond_differences(
+    q: &[f64],
+    out: &mut [f64],
+    bond: impl Fn(f64) -> f64,
+    site: impl Fn(f64, f64) -> f64,
 ) {
     let n = q.len();
     for (((o, &prev), &here), &next) in out[1..n - 1]
@@ -263,23 +256,21 @@ fn interior_bond_differences<R: Real>(
 }
 
 /// Fixed-end nearest-neighbour force `F_i = phi'(q_{i+1} - q_i) - phi'(q_i - q_{i-1})` with
-/// walls `q_0 = q_{N+1} = 0`, for any [`Real`] (`f64`, or members in SIMD lanes). Always
-/// inlined: the lanes' AVX2 and AVX-512 clones then compile it for their own instruction set.
-#[inline(always)]
-pub(super) fn fixed_end_force<R: Real>(q: &[R], out: &mut [R], dphi: impl Fn(R) -> R) {
+/// walls `q_0 = q_{N+1} = 0`.
+#[inline]
+pub(super) fn fixed_end_force(q: &[f64], out: &mut [f64], dphi: impl Fn(f64) -> f64) {
     let n = q.len();
-    let zero = R::splat(0.0);
     // The wall bonds are `q_1 - 0` and `0 - q_N`, written as such (`0.0 - x` and `-x` differ
     // for x = 0).
     if n == 1 {
-        out[0] = dphi(zero - q[0]) - dphi(q[0]);
+        out[0] = dphi(0.0 - q[0]) - dphi(q[0]);
         return;
     }
     out[0] = dphi(q[1] - q[0]) - dphi(q[0]);
     if n > 2 {
         interior_bond_differences(q, out, &dphi, |difference, _| difference);
     }
-    out[n - 1] = dphi(zero - q[n - 1]) - dphi(q[n - 1] - q[n - 2]);
+    out[n - 1] = dphi(0.0 - q[n - 1]) - dphi(q[n - 1] - q[n - 2]);
 }
 
 /// Tridiagonal force Jacobian of [`fixed_end_force`] written densely (`N x N`).
@@ -365,10 +356,10 @@ impl HamiltonianSystem for HarmonicChain {
     fn mass_inv(&self) -> MassInv<'_> {
         MassInv::Uniform(self.modes.m_inv)
     }
-    /// `F_i = k (q_{i+1} - q_i) - k (q_i - q_{i-1})` ([`LanesForce::force_of`] at `f64`).
     #[inline]
     fn force(&self, q: &[f64], _t: f64, out: &mut [f64]) -> Result<()> {
-        self.force_of(q, out);
+        let k = self.k;
+        fixed_end_force(q, out, |r| k * r);
         Ok(())
     }
     fn force_jacobian(&self, q: &[f64], _t: f64, out: &mut [f64]) -> Option<Result<()>> {
@@ -378,25 +369,7 @@ impl HamiltonianSystem for HarmonicChain {
     }
 }
 
-/// The force written once, over `f64` and over members in SIMD lanes.
-impl LanesForce for HarmonicChain {
-    #[inline(always)]
-    fn force_of<R: Real>(&self, q: &[R], out: &mut [R]) {
-        let k = self.k;
-        fixed_end_force(q, out, |r| r * k);
-    }
-
-    /// Equal sites, mass and spring constant, bit for bit.
-    fn same_force(&self, other: &Self) -> bool {
-        self.modes.same_chain(&other.modes) && self.k.to_bits() == other.k.to_bits()
-    }
-}
-
-crate::impl_separable_dynamics!(HarmonicChain, {
-    fn splitting_lanes(&self) -> Option<&dyn SplittingLanes> {
-        Some(self)
-    }
-});
+crate::impl_separable_dynamics!(HarmonicChain);
 
 // ---------------------------------------------------------------------------------------------
 
@@ -500,11 +473,10 @@ impl HamiltonianSystem for FPUTChain {
     fn mass_inv(&self) -> MassInv<'_> {
         MassInv::Uniform(self.modes.m_inv)
     }
-    /// `F_i = phi'(q_{i+1} - q_i) - phi'(q_i - q_{i-1})`, `phi'(r) = r (k + beta r^2)`
-    /// ([`LanesForce::force_of`] at `f64`).
     #[inline]
     fn force(&self, q: &[f64], _t: f64, out: &mut [f64]) -> Result<()> {
-        self.force_of(q, out);
+        let (k, b) = (self.k, self.beta);
+        fixed_end_force(q, out, |r| r * (k + b * r * r));
         Ok(())
     }
     fn force_jacobian(&self, q: &[f64], _t: f64, out: &mut [f64]) -> Option<Result<()>> {
@@ -514,26 +486,7 @@ impl HamiltonianSystem for FPUTChain {
     }
 }
 
-/// The force written once, over `f64` and over members in SIMD lanes.
-impl LanesForce for FPUTChain {
-    #[inline(always)]
-    fn force_of<R: Real>(&self, q: &[R], out: &mut [R]) {
-        let (k, b) = (self.k, self.beta);
-        fixed_end_force(q, out, |r| r * (r * b * r + k));
-    }
-
-    /// Equal sites, mass, spring constant and `beta`, bit for bit.
-    fn same_force(&self, other: &Self) -> bool {
-        self.modes.same_chain(&other.modes)
-            && [self.k, self.beta].map(f64::to_bits) == [other.k, other.beta].map(f64::to_bits)
-    }
-}
-
-crate::impl_separable_dynamics!(FPUTChain, {
-    fn splitting_lanes(&self) -> Option<&dyn SplittingLanes> {
-        Some(self)
-    }
-});
+crate::impl_separable_dynamics!(FPUTChain);
 
 // ---------------------------------------------------------------------------------------------
 

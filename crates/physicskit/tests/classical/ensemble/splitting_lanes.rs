@@ -1,12 +1,12 @@
 //! Splitting-method members run in SIMD lanes (Kepler, Hénon–Heiles, the pendulum, the
-//! harmonic oscillator, the projectile, the harmonic and FPUT chains, the Toda lattice): each
+//! harmonic oscillator, the projectile, the Toda lattice): each
 //! member's final state and strided trajectory are its own `integrate`'s bit for bit, for
 //! every splitting method, on one thread and on two, for member counts 1, 3, a lane width,
 //! twice it plus one (so batches that do not fill their lanes), and members of different
 //! forces in one ensemble (a parameter swept between two values, interleaved: two groups, the
 //! masses among them for the oscillator and the projectile); a member that escapes fails with
-//! its own run's error, named by index, beside members that do not (Hénon–Heiles, FPUT with
-//! `beta < 0`). The lanes runner itself is checked directly too (`run_lanes` accepts every
+//! its own run's error, named by index, beside members that do not, and a batch of lanes flags
+//! exactly its escaping members (Hénon–Heiles above the saddles' energy). The lanes runner itself is checked directly too (`run_lanes` accepts every
 //! such system and reproduces each member), so the equalities above cannot come from members
 //! that silently ran alone.
 
@@ -64,14 +64,8 @@ fn ensembles(n: usize) -> Vec<(&'static str, Members, f64, f64)> {
     // Two forces (c_pn = 0 and -0.01) interleaved, and a perturbation through `powf`.
     let precessing = Members {
         common: vec![
-            (
-                "eps".into(),
-                physicskit::classical::model::Value::Scalar(0.3),
-            ),
-            (
-                "c_eps".into(),
-                physicskit::classical::model::Value::Scalar(0.002),
-            ),
+            ("eps".into(), Value::Scalar(0.3)),
+            ("c_eps".into(), Value::Scalar(0.002)),
         ],
         sweeps: vec![
             Sweep::new(
@@ -165,27 +159,6 @@ fn more_ensembles(n: usize) -> Vec<(&'static str, Members, f64, f64)> {
             ),
             2.0,
             0.01,
-        ),
-        (
-            "harmonic-chain",
-            members(
-                vec![Sweep::new("k", alternating(n, 1.0, 1.5))],
-                Some(lattice_states(n, 8)),
-            ),
-            10.0,
-            0.05,
-        ),
-        (
-            "fput",
-            members(
-                vec![
-                    Sweep::new("amplitude", spread(n, 0.5, 2.0)),
-                    Sweep::new("beta", alternating(n, 0.7, 0.3)),
-                ],
-                None,
-            ),
-            10.0,
-            0.05,
         ),
         (
             "toda",
@@ -363,37 +336,22 @@ fn run_lanes_accepts_every_lanes_system_and_reproduces_each_member() {
     }
 }
 
-/// FPUT chains with `beta < 0` whose bonds start beyond the barrier of
-/// `phi(r) = r^2/2 + beta r^4/4` (`|r| > 1` at `beta = -1`) fly apart and overflow: members 2
-/// and 6 of 9 fail with their own runs' error, named by index, on one and two threads, while
-/// the other seven, in the lanes of the same force, run to the end.
+/// In one batch of lanes (9 members, or a lane width if fewer), member 2 and the last
+/// (Hénon–Heiles above the saddles' energy) leave and overflow: `run_lanes` flags exactly
+/// those two, and the others, in the lanes of the same force, run to the end, each with its
+/// own run's final state.
 #[test]
-fn an_escaping_chain_fails_with_its_own_error_beside_good_ones() {
-    let entry = catalog::find("fput").unwrap();
-    let amplitudes = (0..9)
-        .map(|i| {
-            if i == 2 || i == 6 {
-                8.0
-            } else {
-                0.2 + 0.05 * i as f64
-            }
-        })
-        .collect();
+fn run_lanes_flags_only_the_escaping_members_of_a_batch() {
+    let entry = catalog::find("henon-heiles").unwrap();
+    let count = native_lanes().min(9);
+    let escaping = [2, count - 1];
     let members = Members {
-        common: vec![
-            ("n".into(), Value::Integer(8)),
-            ("beta".into(), Value::Scalar(-1.0)),
-        ],
-        sweeps: vec![Sweep::new("amplitude", amplitudes)],
-        n: 9,
+        states: Some(henon_heiles_states(count, &escaping)),
+        n: count,
         ..Members::default()
     };
-    let (t1, dt) = (20.0, 0.05);
-    fails_with_the_members_own_error("fput", &members, 2, (t1, dt));
+    let (t1, dt) = (40.0, 0.05);
     let source = FromCatalogue::new(entry, &members).unwrap();
-    // In one batch of lanes beside them, the good members run to the end, each with its own
-    // run's final state, and only the escaping ones are reported failed.
-    let count = native_lanes().min(9);
     let starts: Vec<f64> = (0..count)
         .flat_map(|i| source.build(i, 0.0).unwrap().dynamical().state().to_vec())
         .collect();
@@ -420,8 +378,8 @@ fn an_escaping_chain_fails_with_its_own_error_beside_good_ones() {
                 },
             )
             .unwrap();
-        let escaping: Vec<usize> = (0..count).filter(|&i| failed[i]).collect();
-        assert_eq!(escaping, vec![2, 6], "{method:?}");
+        let flagged: Vec<usize> = (0..count).filter(|&i| failed[i]).collect();
+        assert_eq!(flagged, escaping, "{method:?}");
         for i in (0..count).filter(|&i| !failed[i]) {
             let alone = own_run(&source, i, (t1, dt), method).unwrap();
             let last = alone.y.row(alone.y.nrows() - 1).to_vec();
