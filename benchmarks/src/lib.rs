@@ -1,6 +1,8 @@
-//! Benchmarks of physicskit: the peer-comparison workloads ([`workloads`]) and the plain-loop
-//! references ([`plain`]) that the library's per-step time is held against.
+//! Benchmarks of physicskit: the peer-comparison workloads ([`workloads`]), the plain-loop
+//! references ([`plain`]) that the library's per-step time is held against, and what the
+//! ensemble binaries share ([`ensembles`]).
 
+pub mod ensembles;
 pub mod plain;
 pub mod workloads;
 

@@ -8,44 +8,12 @@
 //! both runs' energy errors and final states equal, bit for bit, those of each member's own
 //! `integrate` (`SimulationResult::max_relative_energy_error`, every step stored).
 
-use std::time::Instant;
-
 use physicskit::classical::catalog;
-use physicskit::classical::ensemble::{
-    self, FromCatalogue, MemberSource, Members, Plan, Reduction,
-};
+use physicskit::classical::ensemble::{self, FromCatalogue, MemberSource, Plan, Reduction};
 use physicskit::classical::{IntegrateOptions, Method, Sampling};
+use physicskit_benchmarks::ensembles::{best_of, henon_heiles, MEMBERS};
 
-const MEMBERS: usize = 1000;
 const T_END: f64 = 100.0;
-
-/// Hénon–Heiles states at `E = 1/8` on `x = 0`: 50 heights by 20 momenta.
-fn henon_heiles() -> Members {
-    let states = (0..MEMBERS)
-        .flat_map(|m| {
-            let y = -0.2 + 0.4 * (m / 20) as f64 / 49.0;
-            let px = -0.3 + 0.6 * ((m % 20) as f64 + 0.5) / 20.0;
-            let v = 0.5 * y * y - y * y * y / 3.0;
-            [0.0, y, px, (2.0 * (0.125 - v) - px * px).sqrt()]
-        })
-        .collect();
-    Members {
-        states: Some(states),
-        n: MEMBERS,
-        ..Members::default()
-    }
-}
-
-fn best_of(n: usize, mut f: impl FnMut() -> Vec<f64>) -> (f64, Vec<f64>) {
-    let out = f();
-    let mut best = f64::INFINITY;
-    for _ in 0..n {
-        let start = Instant::now();
-        std::hint::black_box(f());
-        best = best.min(start.elapsed().as_secs_f64());
-    }
-    (best * 1e3, out)
-}
 
 fn main() {
     let n: usize = std::env::args()

@@ -16,32 +16,13 @@
 //! Each time is the best of `N` (first argument, default 7) after one untimed run. The
 //! ensemble's final states are checked against the `alone` runs bit for bit (`same_bits`).
 
-use std::time::Instant;
-
 use physicskit::classical::catalog;
 use physicskit::classical::ensemble::{self, FromCatalogue, MemberSource, Members, Plan, Sweep};
 use physicskit::classical::model::Value;
 use physicskit::classical::{IntegrateOptions, Method, Sampling};
+use physicskit_benchmarks::ensembles::{best_of, henon_heiles, MEMBERS};
 
-const MEMBERS: usize = 1000;
 const T_END: f64 = 100.0;
-
-/// Hénon–Heiles states at `E = 1/8` on `x = 0`: 50 heights by 20 momenta.
-fn henon_heiles() -> Members {
-    let states = (0..MEMBERS)
-        .flat_map(|m| {
-            let y = -0.2 + 0.4 * (m / 20) as f64 / 49.0;
-            let px = -0.3 + 0.6 * ((m % 20) as f64 + 0.5) / 20.0;
-            let v = 0.5 * y * y - y * y * y / 3.0;
-            [0.0, y, px, (2.0 * (0.125 - v) - px * px).sqrt()]
-        })
-        .collect();
-    Members {
-        states: Some(states),
-        n: MEMBERS,
-        ..Members::default()
-    }
-}
 
 /// `target` swept linearly from `from` towards `to` over the members.
 fn swept(target: &str, from: f64, to: f64) -> Members {
@@ -72,17 +53,6 @@ fn toda() -> Members {
         n: MEMBERS,
         ..Members::default()
     }
-}
-
-fn best_of(n: usize, mut f: impl FnMut() -> Vec<f64>) -> (f64, Vec<f64>) {
-    let out = f();
-    let mut best = f64::INFINITY;
-    for _ in 0..n {
-        let start = Instant::now();
-        std::hint::black_box(f());
-        best = best.min(start.elapsed().as_secs_f64());
-    }
-    (best * 1e3, out)
 }
 
 fn main() {

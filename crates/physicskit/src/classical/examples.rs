@@ -42,7 +42,7 @@ impl HamiltonianSystem for Pendulum {
         1
     }
     fn potential_energy(&self, q: &[f64]) -> f64 {
-        -self.g_over_l * q[0].cos()
+        self.potential(q)
     }
     #[inline]
     /// `F = -(g/l) sin q` ([`LanesForce::force_of`] at `f64`).
@@ -68,6 +68,24 @@ impl LanesForce for Pendulum {
     /// Equal `g/l`, bit for bit.
     fn same_force(&self, other: &Self) -> bool {
         self.g_over_l.to_bits() == other.g_over_l.to_bits()
+    }
+
+    /// `sin` (and for the energy `cos`) per lane.
+    fn calls_per_lane(&self) -> bool {
+        true
+    }
+
+    #[inline(always)]
+    fn potential_of<R: Real>(&self, q: &[R]) -> Option<R> {
+        Some(self.potential(q))
+    }
+}
+
+impl Pendulum {
+    /// `V = -(g/l) cos q`, over `f64` and over members in SIMD lanes.
+    #[inline(always)]
+    fn potential<R: Real>(&self, q: &[R]) -> R {
+        q[0].cos() * -self.g_over_l
     }
 }
 
@@ -118,7 +136,7 @@ impl HamiltonianSystem for HarmonicOscillator {
         1
     }
     fn potential_energy(&self, q: &[f64]) -> f64 {
-        0.5 * self.k * q[0] * q[0]
+        self.potential(q)
     }
     fn mass_inv(&self) -> MassInv<'_> {
         MassInv::Uniform(self.m_inv)
@@ -148,6 +166,19 @@ impl LanesForce for HarmonicOscillator {
     fn same_force(&self, other: &Self) -> bool {
         let bits = |s: &Self| [s.k, s.m_inv].map(f64::to_bits);
         bits(self) == bits(other)
+    }
+
+    #[inline(always)]
+    fn potential_of<R: Real>(&self, q: &[R]) -> Option<R> {
+        Some(self.potential(q))
+    }
+}
+
+impl HarmonicOscillator {
+    /// `V = k q^2 / 2`, over `f64` and over members in SIMD lanes.
+    #[inline(always)]
+    fn potential<R: Real>(&self, q: &[R]) -> R {
+        R::splat(0.5 * self.k) * q[0] * q[0]
     }
 }
 

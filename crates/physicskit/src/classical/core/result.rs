@@ -65,12 +65,8 @@ impl SimulationResult {
     /// `None` without an energy diagnostic.
     pub fn max_relative_energy_error(&self) -> Option<f64> {
         let e = self.energy.as_ref()?;
-        let e0 = *e.first()?;
-        let scale = if e0 == 0.0 { 1.0 } else { e0.abs() };
-        Some(
-            e.iter()
-                .fold(0.0_f64, |m, &v| m.max((v - e0).abs() / scale)),
-        )
+        let error = EnergyError::new(*e.first()?);
+        Some(e.iter().fold(0.0_f64, |m, &v| m.max(error.of(v))))
     }
 
     /// The last stored state.
@@ -84,6 +80,30 @@ impl SimulationResult {
             ExtraValue::Scalar(v) => Some(*v),
             ExtraValue::Array(_) => None,
         }
+    }
+}
+
+/// The relative energy error against a starting energy `E_0`: `|E - E_0| / |E_0|`, or
+/// `|E - E_0|` where `E_0 = 0` (no scale to divide by). Written once for
+/// [`SimulationResult::max_relative_energy_error`] and the ensembles' stepwise reduction,
+/// which must agree bit for bit.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub(crate) struct EnergyError {
+    e0: f64,
+    scale: f64,
+}
+
+impl EnergyError {
+    /// The error against `e0`.
+    pub(crate) fn new(e0: f64) -> Self {
+        let scale = if e0 == 0.0 { 1.0 } else { e0.abs() };
+        Self { e0, scale }
+    }
+
+    /// The error of `e`.
+    #[inline]
+    pub(crate) fn of(self, e: f64) -> f64 {
+        (e - self.e0).abs() / self.scale
     }
 }
 

@@ -79,17 +79,31 @@ pub fn lane_sum_map(x: &[f64], f: impl Fn(f64) -> f64) -> f64 {
 #[inline(always)]
 pub fn lane_sum_map2(x: &[f64], y: &[f64], f: impl Fn(f64, f64) -> f64) -> f64 {
     let n = x.len().min(y.len());
-    let t = |i: usize| f(x[i], y[i]);
-    // Up to four terms, the tree over lanes holding one term each or `-0.0`, written out:
-    // the same bits, without the loop (the kinetic energy of a 1-3 dof system, every sample).
-    match n {
-        0 => -0.0,
+    match short_lane_sum(n, -0.0, |i| f(x[i], y[i])) {
+        Some(sum) => sum,
+        None => lane_sum_map2_long(x, y, f),
+    }
+}
+
+/// `t(0) + ... + t(n - 1)` for `n <= 4` in the order of [`lane_sum_map`], over any type with
+/// addition (`f64`, or members in SIMD lanes, whose lanes then hold the `f64` sums); `zero`
+/// for `n = 0`, `None` past four terms. The tree over lanes holding one term each or `-0.0`,
+/// written out: the same bits, without the loop (the kinetic energy of a 1-3 dof system,
+/// every sample).
+#[inline(always)]
+pub fn short_lane_sum<T: Copy + std::ops::Add<Output = T>>(
+    n: usize,
+    zero: T,
+    t: impl Fn(usize) -> T,
+) -> Option<T> {
+    Some(match n {
+        0 => zero,
         1 => t(0),
         2 => t(0) + t(1),
         3 => (t(0) + t(2)) + t(1),
         4 => (t(0) + t(2)) + (t(1) + t(3)),
-        _ => lane_sum_map2_long(x, y, f),
-    }
+        _ => return None,
+    })
 }
 
 /// [`lane_sum_map2`] past four terms: out of line, so that the short sums stay small enough

@@ -20,6 +20,7 @@ use std::sync::atomic::{AtomicBool, AtomicUsize, Ordering};
 use super::reduction::Stepwise;
 use super::{in_member, run_member, MemberSource, Plan, Prepared, StopFlag, OBSERVE_EVERY};
 use crate::classical::core::{Error, Result, TimeGrid};
+use crate::classical::integrators::lanes::Record;
 use crate::classical::integrators::{Method, Sampling, Tolerances};
 use crate::classical::model::DynSystem;
 
@@ -59,9 +60,13 @@ pub(super) struct Lanes<'a> {
     /// The steps to report besides the last: every `k`-th (`None`: only the last). A kind
     /// may report more steps; the runner keeps those it needs.
     pub every: Option<usize>,
-    /// `record(member, step, state)`: member `member`'s state at step `step` of the grid
-    /// (`1..=n_steps`), in the order of the steps.
-    pub record: &'a mut dyn FnMut(usize, usize, &[f64]),
+    /// Whether the reductions read each step's energy (a kind that computes it alongside
+    /// the states gives it to `record`).
+    pub energy: bool,
+    /// `record(member, step, state, energy)`: member `member`'s state at step `step` of the
+    /// grid (`1..=n_steps`), in the order of the steps, with its energy where the kind
+    /// computed it (bit for bit the member's own `energy`), else `None`.
+    pub record: &'a mut Record<'a>,
     /// `failed(member)`: the member's run failed; it reports no more states.
     pub failed: &'a mut dyn FnMut(usize),
     /// Stops the run with [`Error::Interrupted`].
@@ -187,6 +192,7 @@ pub(super) fn run_chunk<K: Kind, S: MemberSource + ?Sized>(
         plan.stride
     };
     let reduced_at = p.final_width + p.kept_rows * dim;
+    let reads_energy = stepwise.reads_energy();
     for g in &groups {
         let Some(lead) = systems[g.members[0]].as_deref() else {
             continue;
@@ -207,7 +213,7 @@ pub(super) fn run_chunk<K: Kind, S: MemberSource + ?Sized>(
                 stepwise.start(j, system, p.grid.t0(), start);
             }
         }
-        let mut record = |m: usize, step: usize, y: &[f64]| {
+        let mut record = |m: usize, step: usize, y: &[f64], energy: Option<f64>| {
             let j = g.members[m];
             let row = &mut c.rows[j * width..][..width];
             if step == n {
@@ -218,7 +224,7 @@ pub(super) fn run_chunk<K: Kind, S: MemberSource + ?Sized>(
                 row[at..at + dim].copy_from_slice(y);
             }
             if let Some(system) = systems[j].as_deref() {
-                stepwise.step(j, system, &p.grid, step, y);
+                stepwise.step(j, system, &p.grid, step, y, energy);
             }
         };
         let mut failed = |m: usize| alone[g.members[m]] = true;
@@ -230,6 +236,7 @@ pub(super) fn run_chunk<K: Kind, S: MemberSource + ?Sized>(
                 method: p.method,
                 tolerances: plan.tolerances,
                 every,
+                energy: reads_energy,
                 record: &mut record,
                 failed: &mut failed,
                 stop,

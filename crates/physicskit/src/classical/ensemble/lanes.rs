@@ -71,7 +71,9 @@ impl Kind for Splitting {
         let should_stop = || run.stop.load(Ordering::Relaxed);
         for (b, batch_starts) in run.starts.chunks(width * dim).enumerate() {
             let base = b * width;
-            let mut record = |m: usize, step: usize, y: &[f64]| (run.record)(base + m, step, y);
+            let mut record = |m: usize, step: usize, y: &[f64], energy: Option<f64>| {
+                (run.record)(base + m, step, y, energy);
+            };
             let failed = force.run_lanes(
                 width,
                 run.method,
@@ -80,6 +82,7 @@ impl Kind for Splitting {
                     grid: run.grid,
                     every: run.every,
                     check_every: OBSERVE_EVERY,
+                    energy: run.energy,
                     record: &mut record,
                     stop: &should_stop,
                 },

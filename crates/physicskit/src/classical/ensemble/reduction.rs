@@ -46,6 +46,7 @@
 use crate::classical::analysis::lyapunov::{check_vectors, max_exponent_on_flow};
 use crate::classical::analysis::sali::sali_on_flow;
 use crate::classical::analysis::watch::AnalysisOptions;
+use crate::classical::core::result::EnergyError;
 use crate::classical::core::{Error, Result, SimulationResult, TimeGrid};
 use crate::classical::integrators::{Method, Observer};
 use crate::classical::model::DynSystem;
@@ -278,9 +279,8 @@ pub(crate) struct Stepwise<'r> {
     dim: usize,
     /// Per member, one value per reduction (a chaos reduction's is left for the caller).
     values: Vec<f64>,
-    /// Per member, `E_0` and the error's scale (`|E_0|`, 1 if `E_0 = 0`), with an energy
-    /// error to reduce.
-    energy: Vec<(f64, f64)>,
+    /// Per member, the error against its `E_0`, with an energy error to reduce.
+    energy: Vec<EnergyError>,
     /// Per member, the last state, with events to locate.
     previous: Vec<f64>,
     /// Per member: its own run fails where this one did not (an energy not finite, an
@@ -299,10 +299,15 @@ impl<'r> Stepwise<'r> {
             reductions,
             dim,
             values: vec![f64::NAN; members * reductions.len()],
-            energy: vec![(0.0, 1.0); if energy { members } else { 0 }],
+            energy: vec![EnergyError::new(0.0); if energy { members } else { 0 }],
             previous: vec![0.0; if events { members * dim } else { 0 }],
             spoilt: vec![false; members],
         }
+    }
+
+    /// Whether a reduction reads each step's energy.
+    pub(crate) fn reads_energy(&self) -> bool {
+        !self.energy.is_empty()
     }
 
     /// Whether any reduction reads the steps.
@@ -318,11 +323,10 @@ impl<'r> Stepwise<'r> {
                 Reduction::MaxEnergyError => {
                     let e0 = system.dynamical().energy(y0);
                     self.spoilt[m] |= !e0.is_finite();
-                    // As `SimulationResult::max_relative_energy_error`: relative to `|E_0|`,
-                    // absolute if `E_0 = 0`, folded from 0 over every stored energy; its
-                    // first term, `|E_0 - E_0| / scale`, is +0 for a finite `E_0`.
-                    let scale = if e0 == 0.0 { 1.0 } else { e0.abs() };
-                    self.energy[m] = (e0, scale);
+                    // As `SimulationResult::max_relative_energy_error`: folded from 0 over
+                    // every stored energy; its first term, the error of `E_0` itself, is +0
+                    // for a finite `E_0`.
+                    self.energy[m] = EnergyError::new(e0);
                     *value = 0.0;
                 }
                 Reduction::FirstEvent(e) => {
@@ -340,7 +344,8 @@ impl<'r> Stepwise<'r> {
         }
     }
 
-    /// Member `m` (its `system`) reached `y` at step `step` (`>= 1`) of `grid`.
+    /// Member `m` (its `system`) reached `y` at step `step` (`>= 1`) of `grid`; `energy` is
+    /// `y`'s energy where the caller computed it (bit for bit `system`'s), else it is taken here.
     pub(crate) fn step(
         &mut self,
         m: usize,
@@ -348,16 +353,16 @@ impl<'r> Stepwise<'r> {
         grid: &TimeGrid,
         step: usize,
         y: &[f64],
+        energy: Option<f64>,
     ) {
         let (r, dim) = (self.reductions.len(), self.dim);
         for (reduction, value) in self.reductions.iter().zip(&mut self.values[m * r..]) {
             match reduction {
                 Reduction::MaxEnergyError => {
-                    let e = system.dynamical().energy(y);
+                    let e = energy.unwrap_or_else(|| system.dynamical().energy(y));
                     // `integrate` refuses a stored energy that is not finite.
                     self.spoilt[m] |= !e.is_finite();
-                    let (e0, scale) = self.energy[m];
-                    *value = value.max((e - e0).abs() / scale);
+                    *value = value.max(self.energy[m].of(e));
                 }
                 Reduction::FirstEvent(event) if value.is_nan() => {
                     let c = event.index;

@@ -87,7 +87,7 @@ fn run_lanes<const L: usize>(program: &TaylorProgram, run: Lanes<'_>) -> Result<
         starts,
         grid,
         tolerances.unwrap_or_default(),
-        record,
+        |m, step, y| record(m, step, y, None),
         |m, _| failed(m),
         || stop.load(Ordering::Relaxed),
     )

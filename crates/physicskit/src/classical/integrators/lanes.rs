@@ -16,8 +16,9 @@
 //! lattice), as the scalar path's loop over a slice does them. The fixed-end chains (harmonic,
 //! FPUT) have no lanes force: their scalar step already runs across the sites in vector
 //! registers, and their members ran slower in lanes than one by one (`benchmarks/README.md`).
-//! No FMA is enabled anywhere, so the AVX-512 (16 lanes), AVX2 (8) and plain (4) clones give
-//! the same bits; the lane count is the caller's
+//! No FMA is enabled anywhere, so the AVX-512 (16 lanes), AVX2 (8, or 16 for a force that
+//! calls std's `sin`, `exp` or `powf` per lane: [`LanesForce::calls_per_lane`]) and plain (4)
+//! clones give the same bits; the lane count is the caller's
 //! ([`symbolic::native_lanes`](crate::classical::symbolic::native_lanes), as the Taylor
 //! members' lanes take it).
 //!
@@ -35,6 +36,7 @@ use super::compensated;
 use super::splitting::{check_system, step_array, Coefficients};
 use super::stepper::{AdaptiveStepper, Dispatch, FieldStepper};
 use super::{HamiltonianSystem, MassInv, Method};
+use crate::classical::core::sum::short_lane_sum;
 use crate::classical::core::{Error, Result, TimeGrid};
 
 /// A scalar the splitting step and a [`LanesForce`] are written over: `f64`, or [`Lanes`].
@@ -61,6 +63,8 @@ pub trait Real:
     fn sin(self) -> Self;
     /// `f64::exp` (std's) of each lane.
     fn exp(self) -> Self;
+    /// `f64::cos` (std's) of each lane.
+    fn cos(self) -> Self;
 }
 
 impl Real for f64 {
@@ -83,6 +87,10 @@ impl Real for f64 {
     #[inline(always)]
     fn exp(self) -> Self {
         f64::exp(self)
+    }
+    #[inline(always)]
+    fn cos(self) -> Self {
+        f64::cos(self)
     }
 }
 
@@ -169,6 +177,10 @@ impl<const L: usize> Real for Lanes<L> {
     fn exp(self) -> Self {
         self.map(f64::exp)
     }
+    #[inline(always)]
+    fn cos(self) -> Self {
+        self.map(f64::cos)
+    }
 }
 
 impl<const L: usize> Lanes<L> {
@@ -197,7 +209,30 @@ pub trait LanesForce: HamiltonianSystem {
     /// Whether `other` has the same force and masses, bit for bit (every parameter the force
     /// and the inverse masses read, and the degrees of freedom).
     fn same_force(&self, other: &Self) -> bool;
+
+    /// `V(q)`, where the system's energy is `T(p) + V(q)` with this `V` its
+    /// `potential_energy` and `T` the [`quadratic_kinetic_energy`](super::quadratic_kinetic_energy)
+    /// of its masses, and the type fixes its degrees of freedom ([`NDOF`](Self::NDOF)): the
+    /// lanes then give each recorded state's energy, bit for bit that of the member's own
+    /// `energy` ([`Batch::energy`]). `None` (the default): the caller takes each member's
+    /// energy alone.
+    fn potential_of<R: Real>(&self, _q: &[R]) -> Option<R> {
+        None
+    }
+
+    /// Whether this force calls a scalar function once per lane ([`Real::sin`],
+    /// [`Real::exp`], [`Real::powf`]: std's, so that each lane rounds as its member). Such a
+    /// force runs its 16 lanes in the AVX2 clone rather than the AVX-512 one: around each call
+    /// the 512-bit registers are spilled and their upper halves cleared, and the pendulum and
+    /// the Toda lattice ran 1.35-1.45x slower in AVX-512 than in AVX2 (`benchmarks/README.md`).
+    fn calls_per_lane(&self) -> bool {
+        false
+    }
 }
+
+/// `record(member, step, state, energy)`: a member's state at a step of the grid, with its
+/// energy where the lanes computed it.
+pub type Record<'a> = dyn FnMut(usize, usize, &[f64], Option<f64>) + 'a;
 
 /// One batch of at most `lanes` members for [`SplittingLanes::run_lanes`].
 pub struct Batch<'a> {
@@ -211,8 +246,13 @@ pub struct Batch<'a> {
     /// `observe_every`: a member fails when its state is not finite at such a step or at the
     /// end, where its own run would.
     pub check_every: usize,
-    /// `record(member, step, state)` for each recorded step of each member that has not failed.
-    pub record: &'a mut dyn FnMut(usize, usize, &[f64]),
+    /// Also give each recorded state's energy where the lanes can compute it (a system with a
+    /// [`potential_of`](LanesForce::potential_of), on fixed-length arrays).
+    pub energy: bool,
+    /// `record(member, step, state, energy)` for each recorded step of each member that has
+    /// not failed; `energy` is the state's energy where [`energy`](Self::energy) asked for it
+    /// and the lanes computed it, else `None`.
+    pub record: &'a mut Record<'a>,
     /// Polled at each check: stops the run with [`Error::Interrupted`].
     pub stop: &'a dyn Fn() -> bool,
 }
@@ -306,11 +346,18 @@ impl<T: LanesForce + ?Sized> Dispatch for Run<'_, '_, T> {
         #[cfg(target_arch = "x86_64")]
         #[allow(unsafe_code)]
         {
-            if lanes == 16 && std::arch::is_x86_feature_detected!("avx512f") {
+            if lanes == 16
+                && !system.calls_per_lane()
+                && std::arch::is_x86_feature_detected!("avx512f")
+            {
                 return unsafe { run_avx512::<S, T>(system, &c, b) };
             }
-            if lanes == 8 && std::arch::is_x86_feature_detected!("avx2") {
-                return unsafe { run_avx2::<S, T>(system, &c, b) };
+            if std::arch::is_x86_feature_detected!("avx2") {
+                match lanes {
+                    16 => return unsafe { run_avx2::<S, 16, T>(system, &c, b) },
+                    8 => return unsafe { run_avx2::<S, 8, T>(system, &c, b) },
+                    _ => {}
+                }
             }
         }
         match lanes {
@@ -351,15 +398,16 @@ fn run_avx512<const S: usize, T: LanesForce + ?Sized>(
     run::<S, 16, T>(system, c, b)
 }
 
-/// [`run`] on 8 lanes, compiled for AVX2 (called only where the CPU has it).
+/// [`run`] on 8 lanes, or on 16 for a force that [calls per lane](LanesForce::calls_per_lane),
+/// compiled for AVX2 (called only where the CPU has it).
 #[cfg(target_arch = "x86_64")]
 #[target_feature(enable = "avx2")]
-fn run_avx2<const S: usize, T: LanesForce + ?Sized>(
+fn run_avx2<const S: usize, const L: usize, T: LanesForce + ?Sized>(
     system: &T,
     c: &Coefficients<S>,
     b: &mut Batch<'_>,
 ) -> Result<Vec<bool>> {
-    run::<S, 8, T>(system, c, b)
+    run::<S, L, T>(system, c, b)
 }
 
 /// The members of `b` in `L` lanes: on fixed-length arrays where the type fixes one to three
@@ -405,6 +453,7 @@ fn run<const S: usize, const L: usize, T: LanesForce + ?Sized>(
                         |q, f| system.force_of(q, f),
                     );
                 },
+                |_, _| None,
             )
         }
     }
@@ -445,6 +494,14 @@ fn run_array<const S: usize, const N: usize, const L: usize, T: LanesForce + ?Si
                 #[inline(always)]
                 |q, f| system.force_of(q, f),
             );
+        },
+        // `hamiltonian_energy`'s `T(p) + V(q)`, `T = 0.5 m sum p_k^2` as
+        // `quadratic_kinetic_energy` sums it.
+        #[inline(always)]
+        |q, p| {
+            let v = system.potential_of(q)?;
+            let sum = short_lane_sum(N, Lanes([-0.0; L]), |k| p[k] * p[k])?;
+            Some(Lanes::splat(0.5 * m) * sum + v)
         },
     )
 }
@@ -531,13 +588,14 @@ impl<Q> State<Q> {
     /// The scalar driver's loop over the `count` members loaded from `b`: `n` steps of `dt`
     /// by `step(q, p)` (the force at the start evaluated once by the caller and then reused,
     /// first same as last), the finiteness and `stop` checks where `integrate` makes them,
-    /// the recorded rows.
+    /// the recorded rows, with their energies by `energy(q, p)` where `b` asks for them.
     #[inline(always)]
     fn drive<const L: usize>(
         &mut self,
         count: usize,
         b: &mut Batch<'_>,
         mut step: impl FnMut(&mut Q, &mut Q),
+        energy: impl Fn(&Q, &Q) -> Option<Lanes<L>>,
     ) -> Result<Vec<bool>>
     where
         Q: AsRef<[Lanes<L>]>,
@@ -559,12 +617,17 @@ impl<Q> State<Q> {
                 }
             }
             if last || b.every.is_some_and(|k| done.is_multiple_of(k)) {
+                let e = if b.energy {
+                    energy(&self.q, &self.p)
+                } else {
+                    None
+                };
                 for (l, _) in failed.iter().enumerate().filter(|(_, f)| !**f) {
                     for k in 0..dof {
                         row[k] = q[k].0[l];
                         row[dof + k] = p[k].0[l];
                     }
-                    (b.record)(l, done, &row);
+                    (b.record)(l, done, &row, e.map(|e| e.0[l]));
                 }
             }
         }

@@ -45,8 +45,7 @@ impl HamiltonianSystem for HenonHeilesSystem {
     }
     #[inline]
     fn potential_energy(&self, q: &[f64]) -> f64 {
-        let (x, y) = (q[0], q[1]);
-        0.5 * (x * x + y * y) + x * x * y - y * y * y / 3.0
+        potential(q)
     }
     /// `F = -(x + 2 x y, y + x^2 - y^2)` ([`LanesForce::force_of`] at `f64`).
     #[inline]
@@ -80,6 +79,18 @@ impl LanesForce for HenonHeilesSystem {
     fn same_force(&self, _: &Self) -> bool {
         true
     }
+
+    #[inline(always)]
+    fn potential_of<R: Real>(&self, q: &[R]) -> Option<R> {
+        Some(potential(q))
+    }
+}
+
+/// `V = (x^2 + y^2)/2 + x^2 y - y^3/3`, over `f64` and over members in SIMD lanes.
+#[inline(always)]
+fn potential<R: Real>(q: &[R]) -> R {
+    let (x, y) = (q[0], q[1]);
+    (x * x + y * y) * 0.5 + x * x * y - y * y * y / R::splat(3.0)
 }
 
 crate::impl_separable_dynamics!(HenonHeilesSystem, taylor: crate::classical::symbolic::traced_hamiltonian_taylor_field, {

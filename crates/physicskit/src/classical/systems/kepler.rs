@@ -235,6 +235,12 @@ impl KeplerSystem {
         (q[0] * q[0] + q[1] * q[1] + s * s).sqrt()
     }
 
+    /// `V(r_s)` for any [`Real`].
+    #[inline(always)]
+    fn potential<R: Real>(&self, q: &[R]) -> R {
+        self.radial(self.softened_radius(q)).0
+    }
+
     /// The force into `out` and `V(r_s)`, from the same radial evaluation (no second square
     /// root), for any [`Real`].
     #[inline(always)]
@@ -256,7 +262,7 @@ impl HamiltonianSystem for KeplerSystem {
     }
     #[inline]
     fn potential_energy(&self, q: &[f64]) -> f64 {
-        self.radial(self.softened_radius(q)).0
+        self.potential(q)
     }
     fn mass_inv(&self) -> MassInv<'_> {
         MassInv::Uniform(self.mu_inv)
@@ -304,6 +310,16 @@ impl LanesForce for KeplerSystem {
             [s.k, s.mu, p.eps, p.c_eps, p.c_pn, p.softening].map(f64::to_bits)
         };
         bits(self) == bits(other)
+    }
+
+    /// `powf` per lane where the power-law perturbation is on.
+    fn calls_per_lane(&self) -> bool {
+        self.pert.c_eps != 0.0
+    }
+
+    #[inline(always)]
+    fn potential_of<R: Real>(&self, q: &[R]) -> Option<R> {
+        Some(self.potential(q))
     }
 }
 

@@ -315,6 +315,11 @@ impl LanesForce for TodaLattice {
         self.n() == other.n()
             && [self.a, self.b].map(f64::to_bits) == [other.a, other.b].map(f64::to_bits)
     }
+
+    /// `exp` per spring.
+    fn calls_per_lane(&self) -> bool {
+        true
+    }
 }
 
 crate::impl_separable_dynamics!(TodaLattice, {

@@ -3,7 +3,9 @@
 //! `Reduction::reduce`, the member-by-member path's code) bit for bit, for Kepler (swept
 //! eccentricities: groups by equal forces and equal Taylor recurrences) and Hénon–Heiles
 //! (per-member states: the same system), by `yoshida4` and by `taylor`, for 1, 3, `L` and
-//! `2L + 1` members (`L` the lanes), on one thread and on two. A plan that mixes them with a
+//! `2L + 1` members (`L` the lanes), on one thread and on two; also, by the splitting method,
+//! pendulums and oscillators of two masses (whose energies the lanes compute) and Toda rings
+//! (whose energies are taken member by member). A plan that mixes them with a
 //! chaos reduction (run member by member on its own flow; `yoshida4`, as the chaos
 //! reductions need a fixed step) gives the same numbers, and a member whose energy stops
 //! being finite fails with its own run's error.
@@ -54,7 +56,7 @@ fn henon_heiles(n: usize, escaping: &[usize]) -> Members {
 fn workloads(n: usize, method: Method) -> Vec<(&'static str, Members, f64, f64)> {
     let taylor = method == Method::Taylor;
     let period = std::f64::consts::TAU;
-    vec![
+    let mut all = vec![
         (
             "kepler",
             kepler(n),
@@ -67,7 +69,46 @@ fn workloads(n: usize, method: Method) -> Vec<(&'static str, Members, f64, f64)>
             20.0,
             if taylor { 0.5 } else { 0.05 },
         ),
-    ]
+    ];
+    if !taylor {
+        // Two forces (or masses) interleaved; every member crosses `q = 0` upward by t = 20
+        // (periods 2 pi sqrt(m) <= 10 for the oscillators; the widest pendulum swing, 2.8 rad
+        // at g/l = 1, about 17).
+        let spread = |a: f64, b: f64| (0..n).map(|i| a + (b - a) * i as f64 / n as f64).collect();
+        let alternating = |x: f64, y: f64| (0..n).map(|i| if i % 2 == 0 { x } else { y }).collect();
+        let swept = |sweeps: Vec<Sweep>| Members {
+            sweeps,
+            n,
+            ..Members::default()
+        };
+        all.extend([
+            (
+                "pendulum",
+                swept(vec![
+                    Sweep::new("q0", spread(0.2, 2.8)),
+                    Sweep::new("g_over_l", alternating(1.0, 2.0)),
+                ]),
+                20.0,
+                0.05,
+            ),
+            (
+                "harmonic-oscillator",
+                swept(vec![
+                    Sweep::new("q0", spread(-1.0, 1.0)),
+                    Sweep::new("m", alternating(1.0, 2.5)),
+                ]),
+                20.0,
+                0.05,
+            ),
+            (
+                "toda",
+                swept(vec![Sweep::new("a", alternating(1.0, 1.5))]),
+                20.0,
+                0.05,
+            ),
+        ]);
+    }
+    all
 }
 
 fn plan(t1: f64, dt: f64, method: Method, reductions: Vec<Reduction>, threads: usize) -> Plan {

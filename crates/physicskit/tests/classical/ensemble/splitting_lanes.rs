@@ -273,7 +273,11 @@ fn an_escaping_member_fails_with_its_own_error_beside_good_ones() {
 
 /// `run_lanes` of each system above, called directly on a batch of a lane width of members
 /// sharing the first member's force: accepted for every splitting method, no member fails,
-/// and every recorded row is the member's own strided trajectory's, bit for bit.
+/// and every recorded row is the member's own strided trajectory's, bit for bit. Asked for
+/// energies, the lanes give them for the systems with a potential over lanes (Kepler,
+/// Hénon–Heiles, the pendulum, the oscillator), each bit for bit the member's own `energy` of
+/// the row, and `None` for the others (the projectile's energy is its own, the Toda lattice
+/// runs over slices).
 #[test]
 fn run_lanes_accepts_every_lanes_system_and_reproduces_each_member() {
     let l = native_lanes();
@@ -296,6 +300,10 @@ fn run_lanes_accepts_every_lanes_system_and_reproduces_each_member() {
         }
         let first = source.build(0, 0.0).unwrap();
         let lanes = first.dynamical().splitting_lanes().unwrap();
+        let in_lanes = matches!(
+            name,
+            "kepler" | "henon-heiles" | "pendulum" | "harmonic-oscillator"
+        );
         let starts: Vec<f64> = same
             .iter()
             .flat_map(|&i| source.build(i, 0.0).unwrap().dynamical().state().to_vec())
@@ -304,6 +312,7 @@ fn run_lanes_accepts_every_lanes_system_and_reproduces_each_member() {
         for method in splitting_methods() {
             assert!(lanes.accepts(method), "{name}, {method:?}");
             let mut rows: Vec<Vec<Vec<f64>>> = vec![Vec::new(); same.len()];
+            let mut energies: Vec<Vec<Option<f64>>> = vec![Vec::new(); same.len()];
             let failed = lanes
                 .run_lanes(
                     l,
@@ -313,7 +322,11 @@ fn run_lanes_accepts_every_lanes_system_and_reproduces_each_member() {
                         grid: &grid,
                         every: Some(STRIDE),
                         check_every: 16,
-                        record: &mut |m: usize, _: usize, y: &[f64]| rows[m].push(y.to_vec()),
+                        energy: true,
+                        record: &mut |m: usize, _: usize, y: &[f64], e: Option<f64>| {
+                            rows[m].push(y.to_vec());
+                            energies[m].push(e);
+                        },
                         stop: &|| false,
                     },
                 )
@@ -331,6 +344,16 @@ fn run_lanes_accepts_every_lanes_system_and_reproduces_each_member() {
                     .collect();
                 let got: Vec<u64> = rows[m].iter().flatten().map(|v| v.to_bits()).collect();
                 assert_eq!(got, want, "{name}, {method:?}, member {i}");
+                let member = source.build(i, 0.0).unwrap();
+                let own_energy = |row: &Vec<f64>| member.dynamical().energy(row).to_bits();
+                let got: Vec<Option<u64>> =
+                    energies[m].iter().map(|e| e.map(f64::to_bits)).collect();
+                let want: Vec<Option<u64>> = if in_lanes {
+                    rows[m].iter().map(|row| Some(own_energy(row))).collect()
+                } else {
+                    vec![None; rows[m].len()]
+                };
+                assert_eq!(got, want, "{name}, {method:?}, member {i}: energies");
             }
         }
     }
@@ -370,7 +393,8 @@ fn run_lanes_flags_only_the_escaping_members_of_a_batch() {
                     grid: &grid,
                     every: None,
                     check_every: 16,
-                    record: &mut |m: usize, step: usize, y: &[f64]| {
+                    energy: false,
+                    record: &mut |m: usize, step: usize, y: &[f64], _: Option<f64>| {
                         assert_eq!(step, n);
                         finals[m] = y.to_vec();
                     },
