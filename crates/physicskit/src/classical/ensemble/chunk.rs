@@ -67,6 +67,11 @@ pub(super) struct Lanes<'a> {
     /// grid (`1..=n_steps`), in the order of the steps, with its energy where the kind
     /// computed it (bit for bit the member's own `energy`), else `None`.
     pub record: &'a mut Record<'a>,
+    /// Where the maximum energy error is the only reduction that reads the steps:
+    /// `largest_error(member, error)`, for a kind that folds it over every step itself and
+    /// then need not report them (NaN where an energy was not finite). A kind that does not
+    /// fold it reports every step.
+    pub largest_error: Option<&'a mut dyn FnMut(usize, f64)>,
     /// `failed(member)`: the member's run failed; it reports no more states.
     pub failed: &'a mut dyn FnMut(usize),
     /// Stops the run with [`Error::Interrupted`].
@@ -185,8 +190,10 @@ pub(super) fn run_chunk<K: Kind, S: MemberSource + ?Sized>(
         }
     };
     let mut stepwise = Stepwise::new(&plan.reductions, count, dim);
-    // Every step when a reduction reads them, else the kept trajectory's.
-    let every = if stepwise.reads_steps() {
+    // Every step when a reduction reads them, else the kept trajectory's (a kind that folds
+    // the energy error itself needs no more, and reports every step where it cannot).
+    let folds = stepwise.reads_only_energy();
+    let every = if stepwise.reads_steps() && !folds {
         Some(1)
     } else {
         plan.stride
@@ -228,6 +235,8 @@ pub(super) fn run_chunk<K: Kind, S: MemberSource + ?Sized>(
             }
         };
         let mut failed = |m: usize| alone[g.members[m]] = true;
+        let mut largest: Vec<Option<f64>> = vec![None; g.members.len()];
+        let mut fold = |m: usize, error: f64| largest[m] = Some(error);
         kind.run(
             (lead, &g.form),
             Lanes {
@@ -238,10 +247,16 @@ pub(super) fn run_chunk<K: Kind, S: MemberSource + ?Sized>(
                 every,
                 energy: reads_energy,
                 record: &mut record,
+                largest_error: folds.then_some(&mut fold as &mut dyn FnMut(usize, f64)),
                 failed: &mut failed,
                 stop,
             },
         )?;
+        for (&j, error) in g.members.iter().zip(largest) {
+            if let Some(error) = error {
+                stepwise.largest_energy_error(j, error);
+            }
+        }
         for &j in &g.members {
             alone[j] |= stepwise.spoilt(j);
             if alone[j] {

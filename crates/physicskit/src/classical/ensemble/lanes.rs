@@ -60,7 +60,7 @@ impl Kind for Splitting {
         }
     }
 
-    fn run(&self, (lead, ()): Member<'_, ()>, run: Lanes<'_>) -> Result<()> {
+    fn run(&self, (lead, ()): Member<'_, ()>, mut run: Lanes<'_>) -> Result<()> {
         let dim = lead.dynamical().state_dim();
         let Some(force) = self.force(lead) else {
             // Not a lead `form` accepted: each member's own run says why.
@@ -69,10 +69,16 @@ impl Kind for Splitting {
         };
         let width = native_lanes();
         let should_stop = || run.stop.load(Ordering::Relaxed);
+        let folds = run.largest_error.is_some();
         for (b, batch_starts) in run.starts.chunks(width * dim).enumerate() {
             let base = b * width;
             let mut record = |m: usize, step: usize, y: &[f64], energy: Option<f64>| {
                 (run.record)(base + m, step, y, energy);
+            };
+            let mut fold = |m: usize, error: f64| {
+                if let Some(largest_error) = run.largest_error.as_deref_mut() {
+                    largest_error(base + m, error);
+                }
             };
             let failed = force.run_lanes(
                 width,
@@ -84,6 +90,7 @@ impl Kind for Splitting {
                     check_every: OBSERVE_EVERY,
                     energy: run.energy,
                     record: &mut record,
+                    largest_error: folds.then_some(&mut fold as &mut dyn FnMut(usize, f64)),
                     stop: &should_stop,
                 },
             );

@@ -310,6 +310,29 @@ impl<'r> Stepwise<'r> {
         !self.energy.is_empty()
     }
 
+    /// Whether the maximum energy error is the only reduction that reads the steps (a lanes
+    /// kind may then fold it itself: [`largest_energy_error`](Self::largest_energy_error)).
+    pub(crate) fn reads_only_energy(&self) -> bool {
+        self.reads_energy()
+            && self
+                .reductions
+                .iter()
+                .all(|r| !r.is_stepwise() || *r == Reduction::MaxEnergyError)
+    }
+
+    /// Member `m`'s largest energy error over every step, folded by the caller as
+    /// [`step`](Self::step) folds it; NaN where an energy was not finite (the member's own
+    /// run then gives its error).
+    pub(crate) fn largest_energy_error(&mut self, m: usize, error: f64) {
+        let r = self.reductions.len();
+        for (reduction, value) in self.reductions.iter().zip(&mut self.values[m * r..]) {
+            if *reduction == Reduction::MaxEnergyError {
+                self.spoilt[m] |= error.is_nan();
+                *value = value.max(error);
+            }
+        }
+    }
+
     /// Whether any reduction reads the steps.
     pub(crate) fn reads_steps(&self) -> bool {
         self.reductions.iter().any(Reduction::is_stepwise)

@@ -36,6 +36,7 @@ use super::compensated;
 use super::splitting::{check_system, step_array, Coefficients};
 use super::stepper::{AdaptiveStepper, Dispatch, FieldStepper};
 use super::{HamiltonianSystem, MassInv, Method};
+use crate::classical::core::result::EnergyError;
 use crate::classical::core::sum::short_lane_sum;
 use crate::classical::core::{Error, Result, TimeGrid};
 
@@ -253,6 +254,14 @@ pub struct Batch<'a> {
     /// not failed; `energy` is the state's energy where [`energy`](Self::energy) asked for it
     /// and the lanes computed it, else `None`.
     pub record: &'a mut Record<'a>,
+    /// Fold each member's largest relative energy error over every step inside the lanes
+    /// (against its start's energy, from 0, as `max_relative_energy_error` folds a run's
+    /// stored energies) where they compute energies, and give it once at the end for each
+    /// member that has not failed: `largest_error(member, error)`, NaN where an energy was not
+    /// finite. Where they cannot (no [`potential_of`](LanesForce::potential_of), or the slice
+    /// path), every step is recorded instead, whatever [`every`](Self::every) says, for the
+    /// caller to fold.
+    pub largest_error: Option<&'a mut dyn FnMut(usize, f64)>,
     /// Polled at each check: stops the run with [`Error::Interrupted`].
     pub stop: &'a dyn Fn() -> bool,
 }
@@ -588,7 +597,8 @@ impl<Q> State<Q> {
     /// The scalar driver's loop over the `count` members loaded from `b`: `n` steps of `dt`
     /// by `step(q, p)` (the force at the start evaluated once by the caller and then reused,
     /// first same as last), the finiteness and `stop` checks where `integrate` makes them,
-    /// the recorded rows, with their energies by `energy(q, p)` where `b` asks for them.
+    /// the recorded rows, with their energies by `energy(q, p)` where `b` asks for them, and
+    /// each member's largest energy error where `b` asks for it and `energy` gives them.
     #[inline(always)]
     fn drive<const L: usize>(
         &mut self,
@@ -602,8 +612,38 @@ impl<Q> State<Q> {
     {
         let dof = self.q.as_ref().len();
         let (n, mut failed, mut row) = (b.grid.n_steps(), vec![false; count], vec![0.0; 2 * dof]);
+        // Each lane's error against its start, where the largest is folded here.
+        let start = match b.largest_error {
+            Some(_) => energy(&self.q, &self.p),
+            None => None,
+        };
+        let against = start.map(|e0| e0.0.map(EnergyError::new));
+        let (mut largest, mut finite) = (
+            [0.0_f64; L],
+            start.map_or([true; L], |e0| e0.0.map(f64::is_finite)),
+        );
+        let every = match (&b.largest_error, against) {
+            (Some(_), None) => Some(1),
+            _ => b.every,
+        };
         for done in 1..=n {
             step(&mut self.q, &mut self.p);
+            if let Some(against) = &against {
+                match energy(&self.q, &self.p) {
+                    Some(e) => {
+                        let lanes = largest
+                            .iter_mut()
+                            .zip(&mut finite)
+                            .zip(against.iter().zip(e.0));
+                        for ((largest, finite), (against, e)) in lanes {
+                            *largest = largest.max(against.of(e));
+                            *finite &= e.is_finite();
+                        }
+                    }
+                    // Not given after all: each member's own run says.
+                    None => finite = [false; L],
+                }
+            }
             let (q, p) = (self.q.as_ref(), self.p.as_ref());
             let last = done == n;
             if last || done.is_multiple_of(b.check_every) {
@@ -616,7 +656,7 @@ impl<Q> State<Q> {
                     });
                 }
             }
-            if last || b.every.is_some_and(|k| done.is_multiple_of(k)) {
+            if last || every.is_some_and(|k| done.is_multiple_of(k)) {
                 let e = if b.energy {
                     energy(&self.q, &self.p)
                 } else {
@@ -629,6 +669,11 @@ impl<Q> State<Q> {
                     }
                     (b.record)(l, done, &row, e.map(|e| e.0[l]));
                 }
+            }
+        }
+        if let (Some(report), Some(_)) = (b.largest_error.as_deref_mut(), against) {
+            for (l, _) in failed.iter().enumerate().filter(|(_, f)| !**f) {
+                report(l, if finite[l] { largest[l] } else { f64::NAN });
             }
         }
         Ok(failed)

@@ -234,6 +234,16 @@ fn energy_errors_and_events_in_lanes_equal_each_members_own_run() {
     }
 }
 
+/// The energy error alone: the splitting lanes fold it themselves and record only the last
+/// step (Toda's slice lanes, which do not compute energies, record every step instead), the
+/// `taylor` lanes report every output as before; the same numbers either way.
+#[test]
+fn the_energy_error_alone_equals_each_members_own_run() {
+    for method in [Method::Yoshida4, Method::Taylor] {
+        check_against_own_runs(method, &[Reduction::MaxEnergyError]);
+    }
+}
+
 /// The chaos reductions need a fixed-step flow (the `taylor` method is refused for them, by
 /// the ensemble as by `max_lyapunov`), so the mixed plan runs by `yoshida4`.
 #[test]

@@ -271,6 +271,24 @@ fn an_escaping_member_fails_with_its_own_error_beside_good_ones() {
     fails_with_the_members_own_error("henon-heiles", &members, 5, (40.0, 0.05));
 }
 
+/// Among the first `l` members, those of the first member's force (every other one where a
+/// parameter alternates), and their initial states one after another: a batch for `run_lanes`.
+fn first_force_batch(source: &FromCatalogue<'_>, l: usize) -> (Vec<usize>, Vec<f64>) {
+    let first = source.build(0, 0.0).unwrap();
+    let lanes = first.dynamical().splitting_lanes().unwrap();
+    let same: Vec<usize> = (0..l)
+        .filter(|&i| {
+            let b = source.build(i, 0.0).unwrap();
+            lanes.same_force_as(b.dynamical().splitting_lanes().unwrap())
+        })
+        .collect();
+    let starts = same
+        .iter()
+        .flat_map(|&i| source.build(i, 0.0).unwrap().dynamical().state().to_vec())
+        .collect();
+    (same, starts)
+}
+
 /// `run_lanes` of each system above, called directly on a batch of a lane width of members
 /// sharing the first member's force: accepted for every splitting method, no member fails,
 /// and every recorded row is the member's own strided trajectory's, bit for bit. Asked for
@@ -284,16 +302,7 @@ fn run_lanes_accepts_every_lanes_system_and_reproduces_each_member() {
     for (name, members, t1, dt) in ensembles(l) {
         let entry = catalog::find(name).unwrap();
         let source = FromCatalogue::new(entry, &members).unwrap();
-        // Members of the first member's force: every other one where a parameter alternates.
-        let same: Vec<usize> = (0..l)
-            .filter(|&i| {
-                let (a, b) = (source.build(0, 0.0).unwrap(), source.build(i, 0.0).unwrap());
-                let (a, b) = (a.dynamical(), b.dynamical());
-                a.splitting_lanes()
-                    .unwrap()
-                    .same_force_as(b.splitting_lanes().unwrap())
-            })
-            .collect();
+        let (same, starts) = first_force_batch(&source, l);
         if !matches!(name, "kepler" | "henon-heiles") {
             // One of two alternating values of a parameter the force or the mass reads.
             assert_eq!(same, (0..l).step_by(2).collect::<Vec<_>>(), "{name}");
@@ -304,10 +313,6 @@ fn run_lanes_accepts_every_lanes_system_and_reproduces_each_member() {
             name,
             "kepler" | "henon-heiles" | "pendulum" | "harmonic-oscillator"
         );
-        let starts: Vec<f64> = same
-            .iter()
-            .flat_map(|&i| source.build(i, 0.0).unwrap().dynamical().state().to_vec())
-            .collect();
         let grid = TimeGrid::new((0.0, t1), dt).unwrap();
         for method in splitting_methods() {
             assert!(lanes.accepts(method), "{name}, {method:?}");
@@ -327,6 +332,7 @@ fn run_lanes_accepts_every_lanes_system_and_reproduces_each_member() {
                             rows[m].push(y.to_vec());
                             energies[m].push(e);
                         },
+                        largest_error: None,
                         stop: &|| false,
                     },
                 )
@@ -398,6 +404,7 @@ fn run_lanes_flags_only_the_escaping_members_of_a_batch() {
                         assert_eq!(step, n);
                         finals[m] = y.to_vec();
                     },
+                    largest_error: None,
                     stop: &|| false,
                 },
             )
@@ -409,6 +416,76 @@ fn run_lanes_flags_only_the_escaping_members_of_a_batch() {
             let last = alone.y.row(alone.y.nrows() - 1).to_vec();
             let bits = |v: &[f64]| v.iter().map(|x| x.to_bits()).collect::<Vec<_>>();
             assert_eq!(bits(&finals[i]), bits(&last), "{method:?}, member {i}");
+        }
+    }
+}
+
+/// Asked for each member's largest energy error and no rows but the last, the lanes fold it
+/// themselves where they compute energies (Hénon–Heiles, the pendulum: one record per member,
+/// and the error, bit for bit that of the member's own run with every step stored), and
+/// record every step instead where they do not (the Toda lattice, run over slices: no error
+/// given, a row per step).
+#[test]
+fn run_lanes_folds_the_largest_energy_error_where_it_computes_energies() {
+    let l = native_lanes();
+    for (name, members, t1, dt) in ensembles(l) {
+        let folds = match name {
+            "henon-heiles" | "pendulum" => true,
+            "toda" => false,
+            _ => continue,
+        };
+        let entry = catalog::find(name).unwrap();
+        let source = FromCatalogue::new(entry, &members).unwrap();
+        let first = source.build(0, 0.0).unwrap();
+        let lanes = first.dynamical().splitting_lanes().unwrap();
+        let (same, starts) = first_force_batch(&source, l);
+        let grid = TimeGrid::new((0.0, t1), dt).unwrap();
+        let method = Method::Yoshida4;
+        let mut records = vec![0_usize; same.len()];
+        let mut errors = vec![None; same.len()];
+        let failed = lanes
+            .run_lanes(
+                l,
+                method,
+                Batch {
+                    starts: &starts,
+                    grid: &grid,
+                    every: None,
+                    check_every: 16,
+                    energy: false,
+                    record: &mut |m: usize, _: usize, _: &[f64], _: Option<f64>| records[m] += 1,
+                    largest_error: Some(&mut |m: usize, e: f64| errors[m] = Some(e)),
+                    stop: &|| false,
+                },
+            )
+            .unwrap();
+        assert_eq!(failed, vec![false; same.len()], "{name}");
+        for (m, &i) in same.iter().enumerate() {
+            if !folds {
+                assert_eq!((records[m], errors[m]), (grid.n_steps(), None), "{name}");
+                continue;
+            }
+            let own = source
+                .build(i, 0.0)
+                .unwrap()
+                .integrate(
+                    (0.0, t1),
+                    dt,
+                    method,
+                    IntegrateOptions {
+                        sampling: Sampling::All,
+                        ..IntegrateOptions::default()
+                    },
+                )
+                .unwrap()
+                .max_relative_energy_error()
+                .unwrap();
+            assert_eq!(records[m], 1, "{name}, member {i}");
+            assert_eq!(
+                errors[m].map(f64::to_bits),
+                Some(own.to_bits()),
+                "{name}, member {i}"
+            );
         }
     }
 }
