@@ -15,7 +15,7 @@
 //! one coordinate at a time over slices with each coordinate's own inverse mass (the Toda
 //! lattice), as the scalar path's loop over a slice does them. The fixed-end chains (harmonic,
 //! FPUT) have no lanes force: their scalar step already runs across the sites in vector
-//! registers, and their members ran slower in lanes than one by one (`benchmarks/README.md`).
+//! registers, and their members run faster one by one than in lanes (`benchmarks/README.md`).
 //! No FMA is enabled anywhere, so the AVX-512 (16 lanes), AVX2 (8, or 16 for a force that
 //! calls std's `sin`, `exp` or `powf` per lane: [`LanesForce::calls_per_lane`]) and plain (4)
 //! clones give the same bits; the lane count is the caller's
@@ -223,9 +223,9 @@ pub trait LanesForce: HamiltonianSystem {
 
     /// Whether this force calls a scalar function once per lane ([`Real::sin`],
     /// [`Real::exp`], [`Real::powf`]: std's, so that each lane rounds as its member). Such a
-    /// force runs its 16 lanes in the AVX2 clone rather than the AVX-512 one: around each call
-    /// the 512-bit registers are spilled and their upper halves cleared, and the pendulum and
-    /// the Toda lattice ran 1.35-1.45x slower in AVX-512 than in AVX2 (`benchmarks/README.md`).
+    /// force runs its 16 lanes in the AVX2 clone rather than the AVX-512 one, where (not
+    /// profiled) the 512-bit registers are spilled and their upper halves cleared around each
+    /// call, which makes it slower there (`benchmarks/README.md`).
     fn calls_per_lane(&self) -> bool {
         false
     }
