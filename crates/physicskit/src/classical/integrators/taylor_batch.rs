@@ -9,8 +9,8 @@
 //!   their order);
 //! - the rest of the step is [`Taylor`](super::taylor::Taylor)'s, done on `[f64; L]` values,
 //!   each lane with the scalar code's operations in its order: the norms of the state and of
-//!   the last two orders, the step size (its `powf` lane by lane, the same roots chosen as
-//!   the scalar rule chooses them), the clamp to the end, the state update by compensated
+//!   the last two orders, the step-size rule's radius (its `log2` and `2^y` in plain
+//!   arithmetic, in vector registers), the clamp to the end, the state update by compensated
 //!   Horner with the double-double low words (the error-free products by FMA where the scalar
 //!   code uses it, by Dekker's product where it does not), the double-double clock, and the
 //!   dense output of the step's polynomial at each output time;
@@ -32,7 +32,7 @@
 use crate::classical::core::{Error, Result, TimeGrid};
 use crate::classical::integrators::taylor::{check_tolerances, order_for, same_time};
 use crate::classical::integrators::taylor_arith::{
-    step_size, two_product, two_product_fused, two_sum,
+    two_product, two_product_fused, two_sum, StepRule,
 };
 use crate::classical::integrators::Tolerances;
 
@@ -147,11 +147,11 @@ fn horner_lanes<const L: usize, const FUSED: bool>(
     }
 }
 
-/// The largest `|c|` of orders 0, `p - 1` and `p` over the rows of `c` (`dim` rows of
-/// `p + 1`), lane by lane (in row order, by `f64::max`, as the scalar step takes them), and
-/// whether every coefficient of a lane is finite.
+/// The step-size rule's radius of each lane from the largest `|c|` of orders 0, `p - 1` and
+/// `p` over the rows of `c` (`dim` rows of `p + 1`), lane by lane (in row order, by
+/// `f64::max`, as the scalar step takes them).
 #[inline(always)]
-fn norms<const L: usize>(c: &[[f64; L]], p: usize) -> [[f64; L]; 3] {
+fn radii<const L: usize>(c: &[[f64; L]], p: usize, rule: &StepRule) -> [f64; L] {
     let (mut norm, mut second_last, mut last) = ([0.0_f64; L], [0.0_f64; L], [0.0_f64; L]);
     for row in c.chunks_exact(p + 1) {
         for l in 0..L {
@@ -160,7 +160,11 @@ fn norms<const L: usize>(c: &[[f64; L]], p: usize) -> [[f64; L]; 3] {
             last[l] = last[l].max(row[p][l].abs());
         }
     }
-    [norm, second_last, last]
+    let mut rho = [0.0; L];
+    for (l, rho) in rho.iter_mut().enumerate() {
+        *rho = rule.radius([norm[l], second_last[l], last[l]]);
+    }
+    rho
 }
 
 /// Whether every coefficient of each lane is finite.
@@ -196,18 +200,22 @@ kernels!(horner_avx512, "avx512f,fma", true);
 kernels!(horner_avx2, "avx2,fma", true);
 kernels!(horner_fma, "fma", true);
 
-/// [`norms`] and [`finite`] compiled with AVX-512 (called only where the CPU has it).
+/// [`radii`] and [`finite`] compiled with AVX-512 (called only where the CPU has it).
 #[cfg(target_arch = "x86_64")]
 #[target_feature(enable = "avx512f")]
-fn norms_avx512<const L: usize>(c: &[[f64; L]], p: usize) -> ([[f64; L]; 3], [bool; L]) {
-    (norms(c, p), finite(c))
+fn radii_avx512<const L: usize>(
+    c: &[[f64; L]],
+    p: usize,
+    rule: &StepRule,
+) -> ([f64; L], [bool; L]) {
+    (radii(c, p, rule), finite(c))
 }
 
-/// [`norms`] and [`finite`] compiled with AVX2 (called only where the CPU has it).
+/// [`radii`] and [`finite`] compiled with AVX2 (called only where the CPU has it).
 #[cfg(target_arch = "x86_64")]
 #[target_feature(enable = "avx2")]
-fn norms_avx2<const L: usize>(c: &[[f64; L]], p: usize) -> ([[f64; L]; 3], [bool; L]) {
-    (norms(c, p), finite(c))
+fn radii_avx2<const L: usize>(c: &[[f64; L]], p: usize, rule: &StepRule) -> ([f64; L], [bool; L]) {
+    (radii(c, p, rule), finite(c))
 }
 
 impl Isa {
@@ -236,18 +244,23 @@ impl Isa {
         }
     }
 
-    /// [`norms`] and [`finite`] on this instruction set.
+    /// [`radii`] and [`finite`] on this instruction set.
     #[inline]
-    fn norms<const L: usize>(self, c: &[[f64; L]], p: usize) -> ([[f64; L]; 3], [bool; L]) {
+    fn radii<const L: usize>(
+        self,
+        c: &[[f64; L]],
+        p: usize,
+        rule: &StepRule,
+    ) -> ([f64; L], [bool; L]) {
         // SAFETY (each arm): `detect` chose the variant because the CPU has the features
         // the function enables (AVX-512F and AVX2 respectively).
         #[allow(unsafe_code)]
         match self {
             #[cfg(target_arch = "x86_64")]
-            Self::Avx512 => unsafe { norms_avx512(c, p) },
+            Self::Avx512 => unsafe { radii_avx512(c, p, rule) },
             #[cfg(target_arch = "x86_64")]
-            Self::Avx2 => unsafe { norms_avx2(c, p) },
-            _ => (norms(c, p), finite(c)),
+            Self::Avx2 => unsafe { radii_avx2(c, p, rule) },
+            _ => (radii(c, p, rule), finite(c)),
         }
     }
 }
@@ -288,8 +301,8 @@ struct Batch<const L: usize> {
     order: usize,
     tolerances: Tolerances,
     t_bound: f64,
-    /// The step-size rule's factor, as the scalar stepper computes it.
-    safety: f64,
+    /// The step-size rule at the run's order, the scalar stepper's.
+    rule: StepRule,
     isa: Isa,
     /// The member running in each lane.
     member: [Option<usize>; L],
@@ -336,7 +349,7 @@ impl<const L: usize> Batch<L> {
             order,
             tolerances,
             t_bound,
-            safety: (-0.7 / (order - 1) as f64).exp(),
+            rule: StepRule::new(&tolerances, order),
             isa: Isa::detect(),
             member: [None; L],
             step: [1; L],
@@ -505,14 +518,11 @@ impl<const L: usize> Batch<L> {
         Serve::Free
     }
 
-    /// The step size of lane `l` toward the end from its norms (`Taylor::expand`'s rule), or
-    /// its error.
-    fn step_size(&self, l: usize, norms: [f64; 3], finite: bool) -> Result<f64> {
-        step_size(
-            &self.tolerances,
-            self.safety,
-            self.order,
-            norms,
+    /// The step size of lane `l` toward the end on an expansion of radius `rho`
+    /// (`Taylor::expand`'s rule), or its error.
+    fn step_size(&self, l: usize, rho: f64, finite: bool) -> Result<f64> {
+        self.rule.step(
+            rho,
             finite,
             self.t[l],
             (self.t_bound - self.t[l]) - self.t_lo[l],
@@ -612,14 +622,13 @@ pub fn integrate_batch<const L: usize, F: LanesField<L>>(
         }
         field.expand(&t, &batch.y, order)?;
         let c = field.coefficients();
-        let (norms, finite) = batch.isa.norms(c, order);
+        let (rho, finite) = batch.isa.radii(c, order, &batch.rule);
         for l in 0..L {
             h[l] = 0.0;
             if !stepping[l] {
                 continue;
             }
-            let lane = [norms[0][l], norms[1][l], norms[2][l]];
-            match batch.step_size(l, lane, finite[l]) {
+            match batch.step_size(l, rho[l], finite[l]) {
                 Ok(step) => h[l] = step,
                 Err(e) => {
                     batch.fail(l, e, &mut failed);

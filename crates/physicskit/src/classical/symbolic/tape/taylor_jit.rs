@@ -468,14 +468,14 @@ pub(super) trait Recurrences {
                 self.node(i, node, k);
             }
             if k < order {
-                let next = self.c((k + 1) as f64);
+                let next = self.c(1.0 / (k + 1) as f64);
                 for (i, out) in outputs.iter().enumerate() {
                     let fk = match *out {
                         Val::Node(n) => self.ld(n as usize, k),
                         Val::Const(c) if k == 0 => self.c(c),
                         Val::Const(_) => self.c(0.0),
                     };
-                    let v = self.div(fk, next);
+                    let v = self.mul(fk, next);
                     self.st(i, k + 1, v);
                 }
             }
@@ -623,9 +623,9 @@ pub(super) trait Recurrences {
                             None => t,
                         });
                     }
-                    let kf = self.c(kf);
-                    let s = s.unwrap_or(kf);
-                    self.div(s, kf)
+                    let rk = self.c(1.0 / kf);
+                    let s = s.unwrap_or(rk);
+                    self.mul(s, rk)
                 }
             }
             Node::Integral { a, d, sign, func } => {
@@ -671,11 +671,11 @@ pub(super) trait Recurrences {
                         let tc = self.mul(ja, m);
                         c = self.add(c, tc);
                     }
-                    let kf = self.c(kf);
+                    let rk = self.c(1.0 / kf);
                     let c = if hyperbolic { c } else { self.neg(c) };
-                    let pc = self.div(c, kf);
+                    let pc = self.mul(c, rk);
                     self.st(partner, k, pc);
-                    self.div(s, kf)
+                    self.mul(s, rk)
                 }
             }
         };
@@ -707,6 +707,8 @@ const INTEGRALS: [extern "C" fn(f64) -> f64; 13] = [
 struct Order {
     k: Value,
     kf: Value,
+    /// `1/k`, rounded once (the interpreter's `1.0 / kf`).
+    rk: Value,
     wk: Value,
 }
 
@@ -834,9 +836,11 @@ impl<'a, 'b> Emitter<'a, 'b> {
 
         self.b.switch_to_block(body);
         let kf = self.float(k);
+        let one = self.c(1.0);
+        let rk = self.div(one, kf);
         let k8 = self.b.ins().ishl_imm(k, 3);
         let wk = self.b.ins().iadd(self.w, k8);
-        let o = Order { k, kf, wk };
+        let o = Order { k, kf, rk, wk };
         for (i, out) in outputs.iter().enumerate() {
             let fk = match *out {
                 Val::Node(n) => self.ldk(o, n as usize, 1),
@@ -849,7 +853,7 @@ impl<'a, 'b> Emitter<'a, 'b> {
                     self.b.ins().select(first, c, zero)
                 }
             };
-            let v = self.div(fk, kf);
+            let v = self.mul(fk, rk);
             self.stk(o, i, v);
         }
         for (i, &node) in nodes.iter().enumerate() {
@@ -978,7 +982,7 @@ impl<'a, 'b> Emitter<'a, 'b> {
                 let first = term(self, one, w1, wk1);
                 let k1 = self.b.ins().iadd_imm(o.k, 1);
                 let s = self.sum_loop(o, first, (2, k1), false, &term);
-                self.div(s, o.kf)
+                self.mul(s, o.rk)
             }
             Node::Integral {
                 a,
@@ -1025,9 +1029,9 @@ impl<'a, 'b> Emitter<'a, 'b> {
                 let s = sum(self, s, partner);
                 let c = sum(self, c, me);
                 let c = if hyperbolic { c } else { self.b.ins().fneg(c) };
-                let pc = self.div(c, o.kf);
+                let pc = self.mul(c, o.rk);
                 self.stk(o, partner, pc);
-                self.div(s, o.kf)
+                self.mul(s, o.rk)
             }
         };
         self.stk(o, me, value);

@@ -243,14 +243,14 @@ fn interpret<const L: usize>(
     for k in 0..=order {
         order_k(nodes, w, k, stride);
         if k < order {
-            let next = (k + 1) as f64;
+            let next = 1.0 / (k + 1) as f64;
             for (i, out) in outputs.iter().enumerate() {
                 let fk = match *out {
                     Val::Node(n) => w[n as usize * stride + k],
                     Val::Const(c) if k == 0 => [c; L],
                     Val::Const(_) => [0.0; L],
                 };
-                w[i * stride + k + 1] = map(fk, |x| x / next);
+                w[i * stride + k + 1] = map(fk, |x| x * next);
             }
         }
     }
@@ -372,7 +372,8 @@ fn order_k<const L: usize>(nodes: &[Node], w: &mut [[f64; L]], k: usize, stride:
                     for j in 2..=k {
                         s = zip(s, term(j), |x, y| x + y);
                     }
-                    map(s, |x| x / kf)
+                    let rk = 1.0 / kf;
+                    map(s, |x| x * rk)
                 }
             }
             Node::Integral { a, d, sign, func } => {
@@ -411,12 +412,13 @@ fn order_k<const L: usize>(nodes: &[Node], w: &mut [[f64; L]], k: usize, stride:
                         s = zip(s, zip(ja, w[partner + k - j], |x, y| x * y), |x, y| x + y);
                         c = zip(c, zip(ja, w[me + k - j], |x, y| x * y), |x, y| x + y);
                     }
+                    let rk = 1.0 / kf;
                     w[partner + k] = if hyperbolic {
-                        map(c, |x| x / kf)
+                        map(c, |x| x * rk)
                     } else {
-                        map(c, |x| -x / kf)
+                        map(c, |x| -x * rk)
                     };
-                    map(s, |x| x / kf)
+                    map(s, |x| x * rk)
                 }
             }
         };
