@@ -260,6 +260,21 @@ fn a_chaos_reduction_beside_them_gives_the_same_numbers() {
     );
 }
 
+/// Without an event, the energy error is the only reduction the lanes see beside a chaos
+/// reduction (run on its own flow), so they fold it themselves: the same numbers again.
+#[test]
+fn the_folded_energy_error_beside_a_chaos_reduction_gives_the_same_numbers() {
+    check_against_own_runs(
+        Method::Yoshida4,
+        &[
+            Reduction::MaxLyapunov {
+                renormalize_every: 10,
+            },
+            Reduction::MaxEnergyError,
+        ],
+    );
+}
+
 /// Members 1 and 4 of 6 escape: their energies stop being finite, so the ensemble reports
 /// member 1's error as its own run (every step stored, with energies) reports it.
 #[test]

@@ -208,7 +208,7 @@ impl Native {
 /// The shape of the compiled recurrences. Both run the interpreter's operations in its order,
 /// so they give the same bits.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
-enum Form {
+pub(super) enum Form {
     /// Every order and every term of every sum written out, each coefficient at an offset known
     /// when compiling: the fastest code, of a size growing with the nodes times the order
     /// squared.
@@ -221,14 +221,15 @@ enum Form {
 
 impl Form {
     /// The largest number of sum terms (over every node and order) compiled unrolled.
-    /// Unrolled code takes Cranelift 10–30 µs a term to compile, the compact form a
-    /// millisecond or two for the systems measured, and the compact code runs 1.3–2x slower.
-    /// heyoka's LLVM takes 45–180 ms cold to compile Kepler at orders 8–20 (220–1020 terms
-    /// here) and 83 ms the double pendulum at order 8 (1372 terms): below this size the
-    /// unrolled code compiles in about a tenth of heyoka's time for the same system, above it
-    /// in a fifth to a third, so large programs take the compact form (`benchmarks/README.md`,
-    /// "Adaptive Taylor method against heyoka").
-    const MAX_UNROLLED_TERMS: usize = 1200;
+    /// Unrolled code takes Cranelift a few µs a term to compile on an idle machine (the
+    /// double pendulum's 13 to 20 orders in 6–14 ms), the compact form a millisecond or two,
+    /// and the compact code runs 1.3–2x slower. heyoka's LLVM takes 60–200 µs a term cold
+    /// (the double pendulum at tol 1e-10 to 1e-16 in 120–300 ms), so to this size the
+    /// unrolled code compiles in about a twentieth of heyoka's time for the same system;
+    /// larger programs (the triple pendulum from order 10 or so) take the compact form, whose
+    /// compile time does not grow with the order (`benchmarks/README.md`, "Adaptive Taylor
+    /// method against heyoka").
+    pub(super) const MAX_UNROLLED_TERMS: usize = 6000;
 
     /// [`Form::Unrolled`] for programs of at most [`Form::MAX_UNROLLED_TERMS`] sum terms at
     /// `order`, [`Form::Compact`] above.

@@ -36,7 +36,7 @@ use cranelift_codegen::ir::{types, ConstantData, InstBuilder, MemFlags, Value};
 use cranelift_codegen::settings::Configurable;
 use cranelift_frontend::FunctionBuilder;
 
-use super::super::jit::{powf, unrolled_terms, Recurrences};
+use super::super::jit::{powf, unrolled_terms, Form, Recurrences};
 use super::super::{Node, Val};
 use crate::classical::integrators::taylor::MAX_ORDER;
 use crate::classical::symbolic::tape::jit::{
@@ -55,7 +55,7 @@ const VECTORS: usize = 1;
 /// The largest number of sum terms (over every node and order, as the scalar JIT counts them)
 /// compiled; larger programs stay interpreted. The scalar JIT's limit for its unrolled form:
 /// this code has its size and compile time.
-const MAX_TERMS: usize = 1200;
+const MAX_TERMS: usize = Form::MAX_UNROLLED_TERMS;
 
 /// Lanes (of programs with the same recurrences, for the same lane count) whose code is kept
 /// for the next lanes of those recurrences: an ensemble builds its members' program and lanes
