@@ -221,14 +221,12 @@ pub(super) enum Form {
 
 impl Form {
     /// The largest number of sum terms (over every node and order) compiled unrolled.
-    /// Unrolled code takes Cranelift a few µs a term to compile on an idle machine (the
-    /// double pendulum's 13 to 20 orders in 6–14 ms), the compact form a millisecond or two,
-    /// and the compact code runs 1.3–2x slower. heyoka's LLVM takes 60–200 µs a term cold
-    /// (the double pendulum at tol 1e-10 to 1e-16 in 120–300 ms), so to this size the
-    /// unrolled code compiles in about a twentieth of heyoka's time for the same system;
-    /// larger programs (the triple pendulum from order 10 or so) take the compact form, whose
-    /// compile time does not grow with the order (`benchmarks/README.md`, "Adaptive Taylor
-    /// method against heyoka").
+    /// Unrolled code, and Cranelift's time to compile it, grow with the nodes times the order
+    /// squared; the compact form compiles in about the same time at any order and runs more
+    /// slowly. Up to this size the unrolled code compiles in well under a tenth of the time
+    /// heyoka's LLVM takes for the same system (the compile-time goal); larger programs take
+    /// the compact form. The measured compile and run times are in `benchmarks/README.md`
+    /// ("Adaptive Taylor method against heyoka").
     pub(super) const MAX_UNROLLED_TERMS: usize = 6000;
 
     /// [`Form::Unrolled`] for programs of at most [`Form::MAX_UNROLLED_TERMS`] sum terms at
