@@ -256,7 +256,7 @@ fn a_canonical_program_needs_a_quadratic_kinetic_energy() {
 
 /// One expression in `q1` per recurrence (every function, power and quotient form), with a
 /// point `x0` inside its domain, at least 0.4 from its nearest singularity.
-pub(crate) const RECURRENCES: [(&str, f64); 23] = [
+pub(crate) const RECURRENCES: [(&str, f64); 26] = [
     ("(sin q1)", 0.3),
     ("(cos q1)", 0.3),
     ("(tan q1)", 0.3),
@@ -272,6 +272,9 @@ pub(crate) const RECURRENCES: [(&str, f64); 23] = [
     ("(abs q1)", -0.7),
     ("(^ q1 1.5)", 0.7),
     ("(^ q1 -1.5)", 0.7),
+    ("(^ q1 -0.5)", 0.7),
+    ("(^ q1 2.5)", 0.7),
+    ("(^ q1 -2.5)", 0.7),
     ("(^ q1 3)", -0.3),
     ("(^ q1 -2)", 0.7),
     ("(^ q1 q1)", 0.7),

@@ -39,7 +39,9 @@ use cranelift_codegen::ir::{types, InstBuilder, MemFlags, Value};
 use cranelift_codegen::settings::Configurable;
 use cranelift_frontend::FunctionBuilder;
 
-use super::{func_value, powf_weight, Node, TaylorProgram, Val};
+#[cfg(doc)]
+use super::power0;
+use super::{func_value, powf_weight, Node, Power, TaylorProgram, Val};
 use crate::classical::integrators::taylor::MAX_ORDER;
 use crate::classical::symbolic::tape::jit::{
     compile_function, flag_builder, OwnedModule, Param, Shims,
@@ -432,6 +434,26 @@ pub(super) trait Recurrences {
     /// `x^alpha` by the [`powf`] shim.
     fn powf(&mut self, x: Self::X, alpha: f64) -> Self::X;
 
+    /// Order 0 of `x^alpha`: [`power0`]'s operations in its order, the [`powf`] shim for
+    /// the exponents [`Power::of`] leaves to it.
+    fn power(&mut self, x: Self::X, alpha: f64) -> Self::X {
+        match Power::of(alpha) {
+            Power::Half { n, reciprocal } => {
+                let mut r = self.sqrt(x);
+                for _ in 0..n {
+                    r = self.mul(r, x);
+                }
+                if reciprocal {
+                    let one = self.c(1.0);
+                    self.div(one, r)
+                } else {
+                    r
+                }
+            }
+            Power::General => self.powf(x, alpha),
+        }
+    }
+
     /// `x · c` (the interpreter's `c * x`: IEEE multiplication commutes exactly), the
     /// constant second, where x86 reads it from the constant pool as an operand.
     fn cmul(&mut self, c: f64, x: Self::X) -> Self::X {
@@ -588,7 +610,7 @@ pub(super) trait Recurrences {
             Node::Powf(a, alpha) => {
                 let a0 = self.ld(u(a), 0);
                 if k == 0 {
-                    self.powf(a0, alpha)
+                    self.power(a0, alpha)
                 } else {
                     let mut s = None;
                     for j in 0..k {

@@ -18,7 +18,7 @@
 //! 15 (26 nodes) an expansion costs about the same per member at 16 and 32 lanes, and about
 //! 1.8x as much at 8 (`benchmarks/README.md`).
 
-use super::{func_value, powf_weight, Keyed, Node, TaylorProgram, Val};
+use super::{func_value, power0, powf_weight, Keyed, Node, TaylorProgram, Val};
 use crate::classical::core::{Error, Result};
 use crate::classical::integrators::taylor::{TaylorField, MAX_ORDER};
 use crate::classical::integrators::taylor_batch::LanesField;
@@ -346,7 +346,7 @@ fn order_k<const L: usize>(nodes: &[Node], w: &mut [[f64; L]], k: usize, stride:
             Node::Powf(a, alpha) => {
                 let a = a as usize * stride;
                 if k == 0 {
-                    map(w[a], |x| x.powf(alpha))
+                    map(w[a], |x| power0(x, alpha))
                 } else {
                     let term = |j: usize| {
                         let weight = powf_weight(alpha, k, j);
