@@ -8,14 +8,14 @@
 //!   `henon-heiles`, method `taylor`), its plan without tolerances, so at the default ones
 //!   (`rtol` 1e-10, `atol` 1e-12): the members share one Taylor form and run in SIMD lanes
 //!   (16 with AVX-512, 8 with AVX2; `integrators::taylor_batch`);
-//! - `lanes`: the same API with the plan's tolerances `rtol = atol = tol` for `tol` in 1e-6,
-//!   1e-10, 1e-14, whether its final states are the `compiled` run's bits at that `tol`, and
+//! - `lanes`: the same API with the plan's tolerances `rtol = atol = tol` for `tol` at every
+//!   half decade from 1e-6 to 1e-14 ([`half_decades`]), whether its final states are the `compiled` run's bits at that `tol`, and
 //!   the time to compile the recurrences for the ensemble's lanes at that `tol`'s order
 //!   (measured first, before any run has compiled them);
 //! - `compiled`: the same members' Taylor form (the catalogue system's trace) built once,
 //!   its recurrences compiled by the JIT outside the timing (as heyoka compiles in its
 //!   constructor), each member integrated by `integrate_taylor` on a clone (clones share the
-//!   code) in parallel with rayon, at `rtol = atol = tol` for `tol` in 1e-6, 1e-10, 1e-14.
+//!   code) in parallel with rayon, at the same tolerances.
 //!
 //! Each time is the best of five after one untimed run. The final states are printed for
 //! one thread; the two-thread runs report whether they are the same bits. The compiled run at
@@ -23,6 +23,8 @@
 //! the same bits). The script measures the errors against its extended-precision reference.
 
 use std::time::Instant;
+
+use physicskit_benchmarks::half_decades;
 
 use physicskit::classical::catalog;
 use physicskit::classical::ensemble::{self, Members, Plan};
@@ -169,8 +171,9 @@ fn main() -> Result<()> {
         &starts[0][..2],
         &starts[0][2..],
     )?)?;
+    let tolerances = half_decades(6, 14);
     let mut lanes_compiles = Vec::new();
-    for tol in [1e-6, 1e-10, 1e-14] {
+    for &tol in &tolerances {
         lanes_compiles.push(lanes_compile(
             &traced,
             order_for(&Tolerances::new(tol, tol)?),
@@ -223,7 +226,7 @@ fn main() -> Result<()> {
     );
 
     let mut compiled_finals = Vec::new();
-    for tol in [1e-6, 1e-10, 1e-14] {
+    for &tol in &tolerances {
         let tolerances = Tolerances::new(tol, tol)?;
         let start = Instant::now();
         let backend = program.compile_native(order_for(&tolerances));
@@ -252,11 +255,7 @@ fn main() -> Result<()> {
     }
 
     // The ensemble API (members in SIMD lanes) at the same tolerances.
-    for (i, (tol, compiled)) in [1e-6, 1e-10, 1e-14]
-        .into_iter()
-        .zip(&compiled_finals)
-        .enumerate()
-    {
+    for (i, (&tol, compiled)) in tolerances.iter().zip(&compiled_finals).enumerate() {
         let (compile, native) = lanes_compiles[i];
         let mut first = Vec::new();
         for (threads, _) in (1..).zip(&pools) {

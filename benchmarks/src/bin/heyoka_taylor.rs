@@ -1,6 +1,7 @@
 //! Our side of `benchmarks/heyoka_compare.py`: the adaptive Taylor method
-//! ([`integrate_taylor`] on a [`TaylorProgram`]) on the comparison's workloads, one JSON
-//! object per line: workload, tolerance, the best wall time of five runs after one untimed
+//! ([`integrate_taylor`] on a [`TaylorProgram`]) on the comparison's workloads at every half
+//! decade of tolerance from 1e-6 to 1e-16 ([`half_decades`]), one JSON object per line:
+//! workload, tolerance, the best wall time of five runs after one untimed
 //! run with the recurrences compiled by the JIT (built and compiled once, outside the timing,
 //! as heyoka's integrator is), the same with the recurrences interpreted, the time to build
 //! them and to compile them, the steps and the final state (or, for `hh-energy`, the largest
@@ -24,6 +25,8 @@
 //! instead of from its `L` (`TaylorProgram::lagrangian_canonical`).
 
 use std::time::Instant;
+
+use physicskit_benchmarks::half_decades;
 
 use physicskit::classical::integrators::taylor::{integrate_taylor, order_for};
 use physicskit::classical::symbolic::{trace_lagrangian, Expr, ExprHamiltonian};
@@ -121,14 +124,14 @@ fn options() -> Options {
 
 fn main() -> Result<()> {
     let options = options();
-    let tolerances: [f64; 6] = [1e-6, 1e-8, 1e-10, 1e-12, 1e-14, 1e-16];
+    let tolerances = half_decades(6, 16);
     for name in ["kepler", "hh-state", "hh-energy", "pendulum"] {
         if options.only.as_deref().is_some_and(|only| only != name) {
             continue;
         }
         let (system, y0, t1) = workload(name)?;
-        for tol in tolerances {
-            // Parsed from the same decimal as the list's literal, so the same double.
+        for &tol in &tolerances {
+            // Parsed from the same decimal as the list's, so the same double.
             if options
                 .tol
                 .is_some_and(|only| only.to_bits() != tol.to_bits())
