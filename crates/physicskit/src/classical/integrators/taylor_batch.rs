@@ -109,9 +109,40 @@ impl Isa {
 /// `[f64; L]`) at `x[l]` in lane `l`, plus the low words `lo_in`, into `out` and the
 /// rounding's errors into `out_lo`: per lane the operations of the scalar stepper's state
 /// update in its order (`taylor.rs`'s `horner_blocks`). Error-free products by FMA if `FUSED`.
+/// Two rows at a time ([`horner_rows`]): each row's chain of products and sums waits on the
+/// latency of the one before, and two rows' chains overlap.
 #[inline(always)]
 fn horner_lanes<const L: usize, const FUSED: bool>(
     c: &[[f64; L]],
+    n1: usize,
+    x: &[f64; L],
+    lo_in: &[[f64; L]],
+    out: &mut [[f64; L]],
+    out_lo: &mut [[f64; L]],
+) {
+    let pairs = c.len() / n1 / 2;
+    let (c2, c1) = c.split_at(2 * n1 * pairs);
+    let (lo2, lo1) = lo_in.split_at(2 * pairs);
+    let (out2, out1) = out.split_at_mut(2 * pairs);
+    let (out_lo2, out_lo1) = out_lo.split_at_mut(2 * pairs);
+    for (((rows, lo_in), out), out_lo) in c2
+        .chunks_exact(2 * n1)
+        .zip(lo2.chunks_exact(2))
+        .zip(out2.chunks_exact_mut(2))
+        .zip(out_lo2.chunks_exact_mut(2))
+    {
+        horner_rows::<L, 2, FUSED>(rows, n1, x, lo_in, out, out_lo);
+    }
+    if !c1.is_empty() {
+        horner_rows::<L, 1, FUSED>(c1, n1, x, lo1, out1, out_lo1);
+    }
+}
+
+/// [`horner_lanes`] on `R` rows (`rows` holds `R` rows of `n1`), their steps interleaved
+/// order by order; each row's operations are those of one row alone, in its order.
+#[inline(always)]
+fn horner_rows<const L: usize, const R: usize, const FUSED: bool>(
+    rows: &[[f64; L]],
     n1: usize,
     x: &[f64; L],
     lo_in: &[[f64; L]],
@@ -123,15 +154,11 @@ fn horner_lanes<const L: usize, const FUSED: bool>(
     } else {
         two_product
     };
-    for (((row, lo_in), out), out_lo) in c
-        .chunks_exact(n1)
-        .zip(lo_in)
-        .zip(out.iter_mut())
-        .zip(out_lo.iter_mut())
-    {
-        let mut s = row[n1 - 1];
-        let mut err = [0.0; L];
-        for ck in row[..n1 - 1].iter().rev() {
+    let mut s: [[f64; L]; R] = std::array::from_fn(|r| rows[r * n1 + n1 - 1]);
+    let mut err = [[0.0; L]; R];
+    for k in (0..n1 - 1).rev() {
+        for (r, (s, err)) in s.iter_mut().zip(err.iter_mut()).enumerate() {
+            let ck = &rows[r * n1 + k];
             for l in 0..L {
                 let (p, pi) = product(s[l], x[l]);
                 let (sum, sigma) = two_sum(p, ck[l]);
@@ -139,10 +166,12 @@ fn horner_lanes<const L: usize, const FUSED: bool>(
                 err[l] = err[l] * x[l] + (pi + sigma);
             }
         }
+    }
+    for (r, (s, err)) in s.iter().zip(&err).enumerate() {
         for l in 0..L {
-            let (hi, low) = two_sum(s[l], err[l] + lo_in[l]);
-            out[l] = hi;
-            out_lo[l] = low;
+            let (hi, low) = two_sum(s[l], err[l] + lo_in[r][l]);
+            out[r][l] = hi;
+            out_lo[r][l] = low;
         }
     }
 }
@@ -167,16 +196,27 @@ fn radii<const L: usize>(c: &[[f64; L]], p: usize, rule: &StepRule) -> [f64; L] 
     rho
 }
 
-/// Whether every coefficient of each lane is finite.
+/// Whether every coefficient of each lane is finite: `x · 0` is a zero for finite `x` and
+/// NaN otherwise, so a lane's sum of them is a zero exactly when all its coefficients are
+/// finite, in whatever order they are summed. Four sums side by side, each along the lanes
+/// (so the vector registers hold lanes, and four chains of additions overlap).
 #[inline(always)]
 fn finite<const L: usize>(c: &[[f64; L]]) -> [bool; L] {
-    let mut ok = [true; L];
-    for v in c {
-        for (ok, v) in ok.iter_mut().zip(v) {
-            *ok &= v.is_finite();
+    let mut zero = [[0.0_f64; L]; 4];
+    let mut quads = c.chunks_exact(4);
+    for quad in &mut quads {
+        for (zero, v) in zero.iter_mut().zip(quad) {
+            for l in 0..L {
+                zero[l] += v[l] * 0.0;
+            }
         }
     }
-    ok
+    for (zero, v) in zero.iter_mut().zip(quads.remainder()) {
+        for l in 0..L {
+            zero[l] += v[l] * 0.0;
+        }
+    }
+    std::array::from_fn(|l| zero.iter().map(|z| z[l]).sum::<f64>() == 0.0)
 }
 
 /// The kernels of a step, compiled for one instruction set.
