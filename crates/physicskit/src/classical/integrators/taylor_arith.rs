@@ -199,28 +199,27 @@ impl StepRule {
         exp2_portable(first.min(second))
     }
 
-    /// The step toward an end `remaining` away (signed; infinite for a run without an end)
-    /// on an expansion of radius `rho` (from [`radius`](Self::radius)) whose coefficients
-    /// were all finite or not, at the clock `t`.
-    ///
-    /// # Errors
-    /// [`Error::StepSizeTooSmall`] for coefficients that are not finite or a step too small
-    /// to move the clock.
-    pub(crate) fn step(&self, rho: f64, finite: bool, t: f64, remaining: f64) -> Result<f64> {
-        let fail = |step: f64, reason: String| Error::StepSizeTooSmall { t, step, reason };
-        // A series that ends before order p - 1 (a polynomial solution) is exact: one step
-        // to the end, or over all time for a run without one (a session: the end infinite).
-        let h = if rho.is_infinite() {
+    /// The step's length before the clamp to the end: the safety factor times the radius
+    /// `rho`. A series that ends before order p - 1 (a polynomial solution, `rho` infinite)
+    /// is exact: one step to the end, or over all time for a run without one (a session: the
+    /// end infinite).
+    #[inline(always)]
+    fn length(&self, rho: f64, remaining: f64) -> f64 {
+        if rho.is_infinite() {
             remaining.abs().min(f64::MAX)
         } else {
             rho * self.factor
-        };
-        if !h.is_finite() || !finite {
-            return Err(fail(
-                h,
-                "the Taylor coefficients are not finite (a singularity of the field?)".into(),
-            ));
         }
+    }
+
+    /// The step toward an end `remaining` away (signed; infinite for a run without an end)
+    /// on an expansion of radius `rho` (from [`radius`](Self::radius)) whose coefficients
+    /// were all finite or not, at the clock `t`, and whether it may be taken: `(step, true)`
+    /// where [`step`](Self::step) gives `Ok(step)`, `false` where it refuses. Without
+    /// branches, so the lanes take theirs in vector registers.
+    #[inline(always)]
+    pub(crate) fn try_step(&self, rho: f64, finite: bool, t: f64, remaining: f64) -> (f64, bool) {
+        let h = self.length(rho, remaining);
         // The span sets the scale of a step too small to move the clock; a run without an
         // end has only its clock's.
         let span = if remaining.is_finite() {
@@ -228,15 +227,35 @@ impl StepRule {
         } else {
             0.0
         };
-        if h <= f64::EPSILON * t.abs().max(span) * 4.0 && h < remaining.abs() {
-            return Err(fail(
-                h,
-                "the step size underflowed (the solution's radius of convergence shrinks to \
-                 zero: a singularity?)"
-                    .into(),
-            ));
+        let underflow = h <= f64::EPSILON * t.abs().max(span) * 4.0 && h < remaining.abs();
+        (
+            h.min(remaining.abs()).copysign(remaining),
+            h.is_finite() && finite && !underflow,
+        )
+    }
+
+    /// [`try_step`](Self::try_step)'s step, or why it may not be taken.
+    ///
+    /// # Errors
+    /// [`Error::StepSizeTooSmall`] for coefficients that are not finite or a step too small
+    /// to move the clock.
+    pub(crate) fn step(&self, rho: f64, finite: bool, t: f64, remaining: f64) -> Result<f64> {
+        let (step, ok) = self.try_step(rho, finite, t, remaining);
+        if ok {
+            return Ok(step);
         }
-        Ok(h.min(remaining.abs()).copysign(remaining))
+        let h = self.length(rho, remaining);
+        let reason = if !h.is_finite() || !finite {
+            "the Taylor coefficients are not finite (a singularity of the field?)"
+        } else {
+            "the step size underflowed (the solution's radius of convergence shrinks to zero: \
+             a singularity?)"
+        };
+        Err(Error::StepSizeTooSmall {
+            t,
+            step: h,
+            reason: reason.into(),
+        })
     }
 }
 

@@ -450,6 +450,26 @@ impl<const L: usize> Batch<L> {
         Ok(())
     }
 
+    /// The lanes whose member needs a step and nothing else: a target the current polynomial
+    /// does not reach, the clock short of the end, steps left. That is what
+    /// [`serve`](Self::serve) finds in most lanes after most steps; here by its comparisons,
+    /// for every lane at once (a lane without a target compares a NaN, which is false, and
+    /// goes to `serve`).
+    #[inline(always)]
+    // Exact comparison: the clock lands on the end exactly.
+    #[allow(clippy::float_cmp)]
+    fn needs_step(&self) -> [bool; L] {
+        std::array::from_fn(|l| {
+            let target = self.target[l].unwrap_or(f64::NAN);
+            let from_start = (target - self.start[l]) - self.start_t_lo[l];
+            self.member[l].is_some()
+                && self.h[l] != 0.0
+                && from_start * self.direction[l] > self.h[l].abs()
+                && self.t[l] != self.t_bound
+                && self.accepted[l] < self.tolerances.max_steps
+        })
+    }
+
     /// Runs lane `l`'s member on the current polynomial (the last step's, its coefficients
     /// `c`): its outputs (each passed to `output(member, step, y)`) until it needs a step,
     /// has all its outputs, or fails (into `failed`): `TaylorStepper::advance` and
@@ -628,8 +648,13 @@ pub fn integrate_batch<const L: usize, F: LanesField<L>>(
     loop {
         let c = field.coefficients();
         let mut any = None;
+        let quick = batch.needs_step();
         for (l, lane_steps) in stepping.iter_mut().enumerate() {
-            *lane_steps = false;
+            *lane_steps = quick[l];
+            if quick[l] {
+                any = Some(l);
+                continue;
+            }
             loop {
                 if batch.member[l].is_none() {
                     match members.next() {
@@ -663,14 +688,18 @@ pub fn integrate_batch<const L: usize, F: LanesField<L>>(
         field.expand(&t, &batch.y, order)?;
         let c = field.coefficients();
         let (rho, finite) = batch.isa.radii(c, order, &batch.rule);
+        let mut refused = [false; L];
         for l in 0..L {
-            h[l] = 0.0;
-            if !stepping[l] {
-                continue;
-            }
-            match batch.step_size(l, rho[l], finite[l]) {
-                Ok(step) => h[l] = step,
-                Err(e) => {
+            let remaining = (batch.t_bound - batch.t[l]) - batch.t_lo[l];
+            let (step, ok) = batch
+                .rule
+                .try_step(rho[l], finite[l], batch.t[l], remaining);
+            h[l] = if stepping[l] && ok { step } else { 0.0 };
+            refused[l] = stepping[l] && !ok;
+        }
+        for l in 0..L {
+            if refused[l] {
+                if let Err(e) = batch.step_size(l, rho[l], finite[l]) {
                     batch.fail(l, e, &mut failed);
                 }
             }
