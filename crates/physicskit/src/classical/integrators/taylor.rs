@@ -20,7 +20,10 @@
 //! output spacing.
 //!
 //! **Long runs**: the polynomial is evaluated by compensated Horner (Graillat, Langlois &
-//! Louvet 2005: error-free products and sums, the rounding errors summed alongside), and the
+//! Louvet 2005: error-free products and sums, the rounding errors summed alongside) over its
+//! orders 0 to 3; the higher orders, which the step size makes small beside the state, are
+//! summed by plain Horner first (`taylor_arith.rs`'s `COMPENSATED_ORDERS` gives the bound),
+//! and the
 //! state is carried as a double-double: the sum's error, with the state's own low word, is kept
 //! in a second word rather than rounded away, so a step adds no rounding of the state (its
 //! double, which the field is expanded at and every output reads, is the pair rounded once).
@@ -55,7 +58,7 @@ use crate::classical::integrators::field::VectorField;
 use crate::classical::integrators::stepper::{AdaptiveStepper, FieldStepper, Report};
 use crate::classical::integrators::system::DynamicalSystem;
 use crate::classical::integrators::taylor_arith::{
-    two_product, two_product_fused, two_sum, StepRule,
+    two_product, two_product_fused, two_sum, StepRule, COMPENSATED_ORDERS,
 };
 use crate::classical::integrators::Tolerances;
 
@@ -244,12 +247,12 @@ fn eval_rows(c: &[f64], n1: usize, x: f64, out: &mut [f64]) {
     horner_rows::<false>(c, n1, x, out);
 }
 
-/// Compensated Horner of the rows held side by side in `blocks` (each block `n1` groups of
-/// `LANES` lanes, group `k` holding coefficient `k` of `LANES` rows; lanes past the last row
-/// hold zeros) at `x`, plus each row's low word `lo`, into `out`: per row the operations of
-/// [`compensated_horner`], in its order, each group's lanes as one vector operation where the
-/// target has vectors of four doubles; the low word joins the summed errors before the one
-/// rounding. With `out_lo`, the rounding's error goes there (`out + out_lo` is the sum as a
+/// Horner of the rows held side by side in `blocks` (each block `n1` groups of `LANES`
+/// lanes, group `k` holding coefficient `k` of `LANES` rows; lanes past the last row hold
+/// zeros) at `x`, plus each row's low word `lo`, into `out`: plain from the highest order down
+/// to [`COMPENSATED_ORDERS`], then compensated (the operations of [`compensated_horner`]),
+/// each group's lanes as one vector operation where the target has vectors of four doubles;
+/// the low word joins the summed errors before the one rounding. With `out_lo`, the rounding's error goes there (`out + out_lo` is the sum as a
 /// double-double). Error-free products by FMA if `FUSED`.
 #[inline(always)]
 fn horner_blocks<const FUSED: bool>(
@@ -272,7 +275,13 @@ fn horner_blocks<const FUSED: bool>(
     {
         let mut s = block[n1 - 1];
         let mut err = [0.0; LANES];
-        for c in block[..n1 - 1].iter().rev() {
+        let plain = COMPENSATED_ORDERS.min(n1 - 1);
+        for c in block[plain..n1 - 1].iter().rev() {
+            for r in 0..LANES {
+                s[r] = s[r] * x + c[r];
+            }
+        }
+        for c in block[..plain].iter().rev() {
             for r in 0..LANES {
                 let (p, pi) = product(s[r], x);
                 let (sum, sigma) = two_sum(p, c[r]);
@@ -322,8 +331,7 @@ fn horner_blocks_fma(
 
 /// Compensated Horner of the rows side by side in `blocks` (as [`horner_blocks`], `n1 >= 1`,
 /// `out.len()` rows, `lo` at least as many low words) at `x` into `out` (and the low words of
-/// the results into `out_lo`): with zero low words the same bits as [`eval_rows`] on the rows,
-/// in vector lanes where the CPU has AVX2 and FMA.
+/// the results into `out_lo`), in vector lanes where the CPU has AVX2 and FMA.
 #[inline]
 fn eval_blocks(
     blocks: &[[f64; LANES]],

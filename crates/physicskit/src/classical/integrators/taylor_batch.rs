@@ -10,10 +10,11 @@
 //! - the rest of the step is [`Taylor`](super::taylor::Taylor)'s, done on `[f64; L]` values,
 //!   each lane with the scalar code's operations in its order: the norms of the state and of
 //!   the last two orders, the step-size rule's radius (its `log2` and `2^y` in plain
-//!   arithmetic, in vector registers), the clamp to the end, the state update by compensated
-//!   Horner with the double-double low words (the error-free products by FMA where the scalar
-//!   code uses it, by Dekker's product where it does not), the double-double clock, and the
-//!   dense output of the step's polynomial at each output time;
+//!   arithmetic, in vector registers), the clamp to the end, the state update by Horner
+//!   (plain over the high orders, compensated over the low ones) with the double-double low
+//!   words (the error-free products by FMA where the scalar code uses it, by Dekker's product
+//!   where it does not), the double-double clock, and the dense output of the step's
+//!   polynomial at each output time;
 //! - the outputs are those of the grid, `t_i + dt` from output `i` (snapped to the end as
 //!   [`TaylorStepper`](super::TaylorStepper) snaps it), each member restarting its stepper
 //!   where `TaylorStepper` would; the errors (step budget, coefficients not finite, step
@@ -32,7 +33,7 @@
 use crate::classical::core::{Error, Result, TimeGrid};
 use crate::classical::integrators::taylor::{check_tolerances, order_for, same_time};
 use crate::classical::integrators::taylor_arith::{
-    two_product, two_product_fused, two_sum, StepRule,
+    two_product, two_product_fused, two_sum, StepRule, COMPENSATED_ORDERS,
 };
 use crate::classical::integrators::Tolerances;
 
@@ -156,7 +157,16 @@ fn horner_rows<const L: usize, const R: usize, const FUSED: bool>(
     };
     let mut s: [[f64; L]; R] = std::array::from_fn(|r| rows[r * n1 + n1 - 1]);
     let mut err = [[0.0; L]; R];
-    for k in (0..n1 - 1).rev() {
+    let plain = COMPENSATED_ORDERS.min(n1 - 1);
+    for k in (plain..n1 - 1).rev() {
+        for (r, s) in s.iter_mut().enumerate() {
+            let ck = &rows[r * n1 + k];
+            for l in 0..L {
+                s[l] = s[l] * x[l] + ck[l];
+            }
+        }
+    }
+    for k in (0..plain).rev() {
         for (r, (s, err)) in s.iter_mut().zip(err.iter_mut()).enumerate() {
             let ck = &rows[r * n1 + k];
             for l in 0..L {
@@ -320,7 +330,11 @@ fn horner_lane<const L: usize>(
     for ((row, lo), o) in c.chunks_exact(n1).zip(lo).zip(out.iter_mut()) {
         let mut s = row[n1 - 1][lane];
         let mut err = 0.0;
-        for ck in row[..n1 - 1].iter().rev() {
+        let plain = COMPENSATED_ORDERS.min(n1 - 1);
+        for ck in row[plain..n1 - 1].iter().rev() {
+            s = s * x + ck[lane];
+        }
+        for ck in row[..plain].iter().rev() {
             let (p, pi) = if fused {
                 two_product_fused(s, x)
             } else {
