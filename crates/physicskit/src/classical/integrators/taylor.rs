@@ -23,14 +23,14 @@
 //! Louvet 2005: error-free products and sums, the rounding errors summed alongside) over its
 //! orders 0 to 3; the higher orders, which the step size makes small beside the state, are
 //! summed by plain Horner first (`taylor_arith.rs`'s `COMPENSATED_ORDERS` gives the bound),
-//! and the
-//! state is carried as a double-double: the sum's error, with the state's own low word, is kept
-//! in a second word rather than rounded away, so a step adds no rounding of the state (its
-//! double, which the field is expanded at and every output reads, is the pair rounded once).
-//! Over 100 Kepler orbits (e = 0.5) at tol 1e-16 this cuts the median final error over many
-//! starts about eightfold, below 1e-12 (the energy error is a random walk of the per-step
-//! errors, and the rounding of the state was the largest of them; `benchmarks/README.md`).
-//! The clock is a double-double too, so it does not drift over millions of steps.
+//! and the state is carried as a double-double: the sum's error, with the state's own low
+//! word, is kept in a second word rather than rounded away, so a step adds no rounding of the
+//! state (its double, which the field is expanded at and every output reads, is the pair
+//! rounded once). Over 100 Kepler orbits (e = 0.5) at tol 1e-16 this cuts the median final
+//! error over many starts about eightfold, below 1e-12 (the energy error is a random walk of
+//! the per-step errors, and the rounding of the state was the largest of them;
+//! `benchmarks/README.md`). The clock is a double-double too, so it does not drift over
+//! millions of steps.
 //!
 //! **Instruction sets**: the error-free product `a b = p + e` is one fused multiply-add,
 //! `e = fma(a, b, -p)`, on x86-64 CPUs with FMA (detected at run time by std's
@@ -252,8 +252,9 @@ fn eval_rows(c: &[f64], n1: usize, x: f64, out: &mut [f64]) {
 /// zeros) at `x`, plus each row's low word `lo`, into `out`: plain from the highest order down
 /// to [`COMPENSATED_ORDERS`], then compensated (the operations of [`compensated_horner`]),
 /// each group's lanes as one vector operation where the target has vectors of four doubles;
-/// the low word joins the summed errors before the one rounding. With `out_lo`, the rounding's error goes there (`out + out_lo` is the sum as a
-/// double-double). Error-free products by FMA if `FUSED`.
+/// the low word joins the summed errors before the one rounding. With `out_lo`, the
+/// rounding's error goes there (`out + out_lo` is the sum as a double-double). Error-free
+/// products by FMA if `FUSED`.
 #[inline(always)]
 fn horner_blocks<const FUSED: bool>(
     blocks: &[[f64; LANES]],

@@ -11,13 +11,15 @@ use crate::classical::integrators::Tolerances;
 /// The orders of a step's polynomial summed by compensated Horner in the state update and
 /// the dense output; the orders from this one up are summed first by plain Horner (`s x + c`,
 /// two roundings an order, no error kept), their sum then entering the compensated part as
-/// its highest coefficient. The step-size rule keeps `|c_k| h^k` near `‖x‖ e^{-2k}` or below
-/// (the step is the radius of convergence over `e²` and more), so the plain part sums terms
-/// below `e^{-8} ≈ 3.4e-4` of the state, and its rounding errors, about an ulp per order of
-/// that sum, stay below a hundredth of an ulp of the state: far under the one rounding the
-/// compensated sum ends with. (A polynomial solution, taken to the end in one step, has no
-/// such bound: its orders from four up, if it has any, are summed plain.) The compensated step costs about five times the plain one's
-/// operations, and the plain part holds all but four orders.
+/// its highest coefficient. The step is about `e^-2` of the radius of convergence that the
+/// last two orders estimate, so for coefficients falling like that radius's powers the terms
+/// `|c_k| h^k` fall like `‖x‖ e^{-2k}`: the plain part sums terms below `e^{-8} ≈ 3.4e-4` of
+/// the state, and its rounding errors, about an ulp of that sum per order, stay below a
+/// hundredth of an ulp of the state, far under the one rounding the compensated sum ends
+/// with. (A polynomial solution, taken to the end in one step, has no such bound: its orders
+/// from four up, if it has any, are summed plain.) The compensated step costs about five
+/// times the plain one's operations, and the plain part holds all but four orders. The
+/// accuracy floors (`benchmarks/README.md`) did not move.
 pub(crate) const COMPENSATED_ORDERS: usize = 4;
 
 /// `a + b = s + e` exactly (Knuth's TwoSum).

@@ -1393,8 +1393,8 @@ impl TaylorProgram {
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub(super) enum Power {
     /// `α = ±(n + ½)`, `n <= 2`: `r = √a · a · … · a` (`n` products, left to right), then
-    /// `1/r` for a negative `α`. At most four roundings (2 ulp), against libm's `pow` at
-    /// about a fifth of its time on the critical path of every expansion.
+    /// `1/r` for a negative `α`. At most four roundings (2 ulp), and no libm call on the
+    /// critical path of every expansion.
     Half { n: u32, reciprocal: bool },
     /// `a.powf(α)`.
     General,
