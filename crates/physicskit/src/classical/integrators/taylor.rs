@@ -330,7 +330,8 @@ fn horner_blocks_fma(
     horner_blocks::<true>(blocks, n1, x, lo, out, out_lo);
 }
 
-/// Compensated Horner of the rows side by side in `blocks` (as [`horner_blocks`], `n1 >= 1`,
+/// [`horner_blocks`] (plain over the high orders, compensated over the low ones) of the rows
+/// side by side in `blocks` (`n1 >= 1`,
 /// `out.len()` rows, `lo` at least as many low words) at `x` into `out` (and the low words of
 /// the results into `out_lo`), in vector lanes where the CPU has AVX2 and FMA.
 #[inline]
@@ -691,8 +692,9 @@ impl Taylor {
     }
 
     /// Component `i` of the current step's polynomial and its derivative in `τ`, at `τ` from
-    /// the step's start: the value by compensated Horner (with the start's low word, as the
-    /// state update and the outputs), the derivative by Horner.
+    /// the step's start: the value by compensated Horner over every order (with the start's
+    /// low word; the state update and the outputs compensate the low orders only, so the two
+    /// may differ in the last bit), the derivative by Horner.
     ///
     /// # Panics
     /// Never for `i < dim`; `i >= dim` is a caller's bug (an index into the state).

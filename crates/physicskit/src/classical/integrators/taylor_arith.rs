@@ -12,14 +12,17 @@ use crate::classical::integrators::Tolerances;
 /// the dense output; the orders from this one up are summed first by plain Horner (`s x + c`,
 /// two roundings an order, no error kept), their sum then entering the compensated part as
 /// its highest coefficient. The step is about `e^-2` of the radius of convergence that the
-/// last two orders estimate, so for coefficients falling like that radius's powers the terms
-/// `|c_k| h^k` fall like `‖x‖ e^{-2k}`: the plain part sums terms below `e^{-8} ≈ 3.4e-4` of
-/// the state, and its rounding errors, about an ulp of that sum per order, stay below a
-/// hundredth of an ulp of the state, far under the one rounding the compensated sum ends
-/// with. (A polynomial solution, taken to the end in one step, has no such bound: its orders
-/// from four up, if it has any, are summed plain.) The compensated step costs about five
-/// times the plain one's operations, and the plain part holds all but four orders. The
-/// accuracy floors (`benchmarks/README.md`) did not move.
+/// last two orders estimate, measured against the scale `s = max(‖x‖, atol/rtol)` of the
+/// step rule; for coefficients falling like that radius's powers the terms `|c_k| h^k` fall
+/// like `s e^{-2k}`, so the plain part sums terms below `e^{-8} ≈ 3.4e-4` of `s`, and its
+/// rounding errors, about an ulp of that sum per order, stay below a hundredth of an ulp of
+/// `s`: far under the truncation the tolerance allows (`tol · s`, at least `1e-16 s`) and
+/// under the one rounding the compensated sum ends with. (A polynomial or nearly polynomial
+/// solution, whose last two orders vanish or nearly, takes a step longer than its lower
+/// orders' radius, which this bound does not cover: its orders from four up are summed
+/// plain.) The compensated step costs about five times the plain one's operations, and the
+/// plain part holds all but four orders. The accuracy floors (`benchmarks/README.md`) did
+/// not move.
 pub(crate) const COMPENSATED_ORDERS: usize = 4;
 
 /// `a + b = s + e` exactly (Knuth's TwoSum).
@@ -229,8 +232,8 @@ impl StepRule {
     /// The step toward an end `remaining` away (signed; infinite for a run without an end)
     /// on an expansion of radius `rho` (from [`radius`](Self::radius)) whose coefficients
     /// were all finite or not, at the clock `t`, and whether it may be taken: `(step, true)`
-    /// where [`step`](Self::step) gives `Ok(step)`, `false` where it refuses. Without
-    /// branches, so the lanes take theirs in vector registers.
+    /// where [`step`](Self::step) gives `Ok(step)`, `false` where it refuses. Its choices
+    /// are selects once inlined, so the lanes take their steps in vector registers.
     #[inline(always)]
     pub(crate) fn try_step(&self, rho: f64, finite: bool, t: f64, remaining: f64) -> (f64, bool) {
         let h = self.length(rho, remaining);

@@ -106,7 +106,8 @@ impl Isa {
     }
 }
 
-/// Compensated Horner of `dim` rows of `n1` coefficients in lanes (`c`, row-major, each an
+/// Horner (plain over the high orders, compensated over the low ones) of `dim` rows of `n1`
+/// coefficients in lanes (`c`, row-major, each an
 /// `[f64; L]`) at `x[l]` in lane `l`, plus the low words `lo_in`, into `out` and the
 /// rounding's errors into `out_lo`: per lane the operations of the scalar stepper's state
 /// update in its order (`taylor.rs`'s `horner_blocks`). Error-free products by FMA if `FUSED`.
@@ -315,7 +316,8 @@ impl Isa {
     }
 }
 
-/// Compensated Horner of lane `lane` of the rows `c` (`n1` coefficients each) at `x`, plus
+/// Horner (plain, then compensated, as [`horner_lanes`]) of lane `lane` of the rows `c`
+/// (`n1` coefficients each) at `x`, plus
 /// the low words `lo`, into `out`: the scalar stepper's dense output (`horner_blocks`
 /// without the low words out), error-free products by FMA if `fused`.
 fn horner_lane<const L: usize>(

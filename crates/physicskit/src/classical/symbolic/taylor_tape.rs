@@ -1393,8 +1393,11 @@ impl TaylorProgram {
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub(super) enum Power {
     /// `α = ±(n + ½)`, `n <= 2`: `r = √a · a · … · a` (`n` products, left to right), then
-    /// `1/r` for a negative `α`. At most four roundings (2 ulp), and no libm call on the
-    /// critical path of every expansion.
+    /// `1/r` for a negative `α`. At most four roundings (a relative error of at most 2 ε),
+    /// and no libm call on the critical path of every expansion. It differs from `pow` only
+    /// off any state a step can have: the sign of the result at `a = -0`, NaN (not `pow`'s
+    /// `+0` or `+inf`) at `a = -inf`, and zero where `r` overflows while `a^α` is subnormal
+    /// (`a > 1e123` at `α = -2.5`).
     Half { n: u32, reciprocal: bool },
     /// `a.powf(α)`.
     General,
@@ -1496,9 +1499,11 @@ impl TaylorField for TaylorProgram {
 mod tests {
     use super::{power0, Power};
 
-    /// The half-integer powers are within 2 ulp of libm's `pow` (their at most four
-    /// roundings of half an ulp each) over 24 binades around 1, and agree with it on the
-    /// special values; other exponents are `pow` itself.
+    /// The half-integer powers are within 2.5 ε (relative) of libm's `pow` over 24 binades
+    /// around 1: their at most four roundings of half an ulp (2 ε), plus `pow`'s own error,
+    /// below half an ulp. They agree with it at `+0`, `+inf`, negative and NaN arguments
+    /// (the differences at `-0` and `-inf` are documented on `Power::Half`); other exponents
+    /// are `pow` itself.
     #[test]
     // Exact comparisons: the special values and `pow`'s own bits.
     #[allow(clippy::float_cmp)]
@@ -1510,7 +1515,7 @@ mod tests {
                 let want = x.powf(alpha);
                 let got = power0(x, alpha);
                 assert!(
-                    (got - want).abs() <= 2.0 * f64::EPSILON * want,
+                    (got - want).abs() <= 2.5 * f64::EPSILON * want,
                     "{x}^{alpha}: {got:e} against {want:e}"
                 );
                 x *= 1.001_3;
