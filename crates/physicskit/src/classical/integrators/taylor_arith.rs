@@ -21,8 +21,8 @@ use crate::classical::integrators::Tolerances;
 /// solution, whose last two orders vanish or nearly, takes a step longer than its lower
 /// orders' radius, which this bound does not cover: its orders from four up are summed
 /// plain.) The compensated step costs about five times the plain one's operations, and the
-/// plain part holds all but four orders. The accuracy floors (`benchmarks/README.md`) did
-/// not move.
+/// plain part holds all but four orders. The measured accuracy floors are in
+/// `benchmarks/README.md`.
 pub(crate) const COMPENSATED_ORDERS: usize = 4;
 
 /// `a + b = s + e` exactly (Knuth's TwoSum).

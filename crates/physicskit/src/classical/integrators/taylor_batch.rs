@@ -107,10 +107,10 @@ impl Isa {
 }
 
 /// Horner (plain over the high orders, compensated over the low ones) of `dim` rows of `n1`
-/// coefficients in lanes (`c`, row-major, each an
-/// `[f64; L]`) at `x[l]` in lane `l`, plus the low words `lo_in`, into `out` and the
-/// rounding's errors into `out_lo`: per lane the operations of the scalar stepper's state
-/// update in its order (`taylor.rs`'s `horner_blocks`). Error-free products by FMA if `FUSED`.
+/// coefficients in lanes (`c`, row-major, each an `[f64; L]`) at `x[l]` in lane `l`, plus the
+/// low words `lo_in`, into `out` and the rounding's errors into `out_lo`: per lane the
+/// operations of the scalar stepper's state update in its order (`taylor.rs`'s
+/// `horner_blocks`). Error-free products by FMA if `FUSED`.
 /// Two rows at a time ([`horner_rows`]): each row's chain of products and sums waits on the
 /// latency of the one before, and two rows' chains overlap.
 #[inline(always)]
