@@ -6,11 +6,11 @@
 //! The code is the scalar JIT's unrolled form, emitted by the same code (`taylor_jit.rs`'s
 //! `Recurrences`: for `k = 0..=p`, order `k` of every operation node, then the state's order
 //! `k + 1`, every term of every sum written out, a coefficient of the order being computed
-//! used as the value just computed) on Cranelift's
-//! `f64x2` vectors (its x86-64 backend has no wider ones): each value is [`VECTORS`] vectors
-//! of two lanes. One pass of that code covers `2 VECTORS` lanes; a loop runs it over the `L`
-//! lanes, its base address moving by `2 VECTORS` doubles. The work array is only 8-byte
-//! aligned, so the loads and stores claim no more.
+//! used as the value just computed) on Cranelift's `f64x2` vectors (its x86-64 backend has no
+//! wider ones): each value is `N` vectors of two lanes ([`vectors`]: two with 16 lanes or
+//! more, else one). One pass of that code covers `2 N` lanes; a loop runs it over the `L`
+//! lanes, its base address moving by `2 N` doubles. The work array is only 8-byte aligned,
+//! so the loads and stores claim no more.
 //!
 //! `f64x2` addition, subtraction, multiplication, division, negation and square root are the
 //! IEEE operations lane by lane, and Cranelift does not contract a multiplication and an
@@ -46,11 +46,19 @@ use crate::classical::symbolic::tape::jit::{
 /// The compiled function: the work array.
 type Entry = unsafe extern "C" fn(*mut f64);
 
-/// `f64x2` vectors per value. Two or four, interleaved so that their chains of dependent
-/// additions overlap, ran no faster on an AVX2 EPYC (the out-of-order core already overlaps
-/// the independent nodes of the unrolled code) and took two and five times as long to compile
-/// (`benchmarks/README.md`).
-const VECTORS: usize = 1;
+/// `f64x2` vectors per value for `lanes` lanes: two, interleaved so that their chains of
+/// dependent additions overlap, for 16 lanes or more (AVX-512 hosts: on an AVX-512 Xeon an
+/// expansion of Hénon–Heiles at orders 8–17 takes 13–17 % less time than with one, for about
+/// twice the compile time); one for fewer (AVX2 and older: on an AVX2 EPYC two ran no faster
+/// than one, the out-of-order core already overlapping the independent nodes of the unrolled
+/// code, and four were no faster on either). Figures in `benchmarks/README.md`.
+fn vectors(lanes: usize) -> usize {
+    if lanes >= 16 {
+        2
+    } else {
+        1
+    }
+}
 
 /// The largest number of sum terms (over every node and order, as the scalar JIT counts them)
 /// compiled; larger programs stay interpreted. The scalar JIT's limit for its unrolled form:
@@ -208,7 +216,11 @@ impl Native {
     }
 
     fn compile(nodes: &[Node], outputs: &[Val], lanes: usize, order: usize) -> Option<Native> {
-        Self::compile_with::<VECTORS>(nodes, outputs, lanes, order)
+        if vectors(lanes) == 2 {
+            Self::compile_with::<2>(nodes, outputs, lanes, order)
+        } else {
+            Self::compile_with::<1>(nodes, outputs, lanes, order)
+        }
     }
 
     /// The recurrences with values of `V` vectors.
@@ -268,7 +280,7 @@ impl Native {
     }
 }
 
-/// A value of `2 VECTORS` lanes: [`VECTORS`] `f64x2` values.
+/// A value of `2 N` lanes: `N` `f64x2` values ([`vectors`]).
 type Lanes<const N: usize> = [Value; N];
 
 /// The flags of every load and store: in bounds (`Native::call` checks the length), but only
