@@ -251,6 +251,46 @@ kernels!(horner_avx512, "avx512f,fma", true);
 kernels!(horner_avx2, "avx2,fma", true);
 kernels!(horner_fma, "fma", true);
 
+/// Each lane's step from its radius `rho` and finiteness (zero where it takes none), and
+/// whether the rule refused a lane that steps: [`StepRule::try_step`] lane by lane.
+#[inline(always)]
+fn steps<const L: usize>(
+    batch: &Batch<L>,
+    rho: [f64; L],
+    finite: [bool; L],
+    stepping: [bool; L],
+) -> ([f64; L], [bool; L]) {
+    let mut h = [0.0; L];
+    let mut refused = [false; L];
+    for l in 0..L {
+        let remaining = (batch.t_bound - batch.t[l]) - batch.t_lo[l];
+        let (step, ok) = batch
+            .rule
+            .try_step(rho[l], finite[l], batch.t[l], remaining);
+        h[l] = if stepping[l] && ok { step } else { 0.0 };
+        refused[l] = stepping[l] && !ok;
+    }
+    (h, refused)
+}
+
+/// [`steps`] compiled for one instruction set (called only where the CPU has it).
+macro_rules! steps_kernel {
+    ($name:ident, $features:literal) => {
+        #[cfg(target_arch = "x86_64")]
+        #[target_feature(enable = $features)]
+        fn $name<const L: usize>(
+            batch: &Batch<L>,
+            rho: [f64; L],
+            finite: [bool; L],
+            stepping: [bool; L],
+        ) -> ([f64; L], [bool; L]) {
+            steps(batch, rho, finite, stepping)
+        }
+    };
+}
+steps_kernel!(steps_avx512, "avx512f");
+steps_kernel!(steps_avx2, "avx2");
+
 /// [`radii`] and [`finite`] compiled with AVX-512 (called only where the CPU has it).
 #[cfg(target_arch = "x86_64")]
 #[target_feature(enable = "avx512f")]
@@ -292,6 +332,27 @@ impl Isa {
             Self::Avx2 => unsafe { horner_avx2(c, p, x, lo_in, out, out_lo) },
             #[cfg(target_arch = "x86_64")]
             Self::Avx512 => unsafe { horner_avx512(c, p, x, lo_in, out, out_lo) },
+        }
+    }
+
+    /// [`steps`] on this instruction set.
+    #[inline]
+    fn steps<const L: usize>(
+        self,
+        batch: &Batch<L>,
+        rho: [f64; L],
+        finite: [bool; L],
+        stepping: [bool; L],
+    ) -> ([f64; L], [bool; L]) {
+        // SAFETY (each arm): `detect` chose the variant because the CPU has the features
+        // the function enables (AVX-512F and AVX2 respectively).
+        #[allow(unsafe_code)]
+        match self {
+            #[cfg(target_arch = "x86_64")]
+            Self::Avx512 => unsafe { steps_avx512(batch, rho, finite, stepping) },
+            #[cfg(target_arch = "x86_64")]
+            Self::Avx2 => unsafe { steps_avx2(batch, rho, finite, stepping) },
+            _ => steps(batch, rho, finite, stepping),
         }
     }
 
@@ -658,7 +719,6 @@ pub fn integrate_batch<const L: usize, F: LanesField<L>>(
     let mut batch = Batch::<L>::new(dim, tolerances, grid.t_end());
     let order = batch.order;
     let mut members = starts.chunks_exact(dim).enumerate();
-    let mut h = [0.0; L];
     let mut t = [0.0; L];
     let mut stepping = [false; L];
     loop {
@@ -704,15 +764,7 @@ pub fn integrate_batch<const L: usize, F: LanesField<L>>(
         field.expand(&t, &batch.y, order)?;
         let c = field.coefficients();
         let (rho, finite) = batch.isa.radii(c, order, &batch.rule);
-        let mut refused = [false; L];
-        for l in 0..L {
-            let remaining = (batch.t_bound - batch.t[l]) - batch.t_lo[l];
-            let (step, ok) = batch
-                .rule
-                .try_step(rho[l], finite[l], batch.t[l], remaining);
-            h[l] = if stepping[l] && ok { step } else { 0.0 };
-            refused[l] = stepping[l] && !ok;
-        }
+        let (h, refused) = batch.isa.steps(&batch, rho, finite, stepping);
         for l in 0..L {
             if refused[l] {
                 if let Err(e) = batch.step_size(l, rho[l], finite[l]) {
