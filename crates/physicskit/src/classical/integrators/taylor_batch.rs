@@ -291,6 +291,19 @@ macro_rules! steps_kernel {
 steps_kernel!(steps_avx512, "avx512f");
 steps_kernel!(steps_avx2, "avx2");
 
+/// [`Batch::clocks`] compiled for one instruction set (called only where the CPU has it).
+macro_rules! clocks_kernel {
+    ($name:ident, $features:literal) => {
+        #[cfg(target_arch = "x86_64")]
+        #[target_feature(enable = $features)]
+        fn $name<const L: usize>(batch: &mut Batch<L>, h: &[f64; L]) {
+            batch.clocks(h);
+        }
+    };
+}
+clocks_kernel!(clocks_avx512, "avx512f");
+clocks_kernel!(clocks_avx2, "avx2");
+
 /// [`radii`] and [`finite`] compiled with AVX-512 (called only where the CPU has it).
 #[cfg(target_arch = "x86_64")]
 #[target_feature(enable = "avx512f")]
@@ -353,6 +366,21 @@ impl Isa {
             #[cfg(target_arch = "x86_64")]
             Self::Avx2 => unsafe { steps_avx2(batch, rho, finite, stepping) },
             _ => steps(batch, rho, finite, stepping),
+        }
+    }
+
+    /// [`Batch::clocks`] on this instruction set.
+    #[inline]
+    fn clocks<const L: usize>(self, batch: &mut Batch<L>, h: &[f64; L]) {
+        // SAFETY (each arm): `detect` chose the variant because the CPU has the features
+        // the function enables (AVX-512F and AVX2 respectively).
+        #[allow(unsafe_code)]
+        match self {
+            #[cfg(target_arch = "x86_64")]
+            Self::Avx512 => unsafe { clocks_avx512(batch, h) },
+            #[cfg(target_arch = "x86_64")]
+            Self::Avx2 => unsafe { clocks_avx2(batch, h) },
+            _ => batch.clocks(h),
         }
     }
 
@@ -668,22 +696,28 @@ impl<const L: usize> Batch<L> {
 
     /// Takes the step of length `h[l]` in every lane on the coefficients `c`: the state
     /// update and the clock (`Taylor::take`).
-    // Exact comparison: the step lands on the end exactly.
-    #[allow(clippy::float_cmp)]
     fn take(&mut self, c: &[[f64; L]], h: &[f64; L]) {
         std::mem::swap(&mut self.lo, &mut self.start_lo);
         self.isa
             .horner(c, self.order, h, &self.start_lo, &mut self.y, &mut self.lo);
+        self.isa.clocks(self, h);
+    }
+
+    /// Each lane's clock moved on by its step `h` (to the end exactly where the step is what
+    /// remains), the step's start and length kept: without branches, so the lanes do it in
+    /// vector registers.
+    // Exact comparison: the step lands on the end exactly.
+    #[allow(clippy::float_cmp)]
+    #[inline(always)]
+    fn clocks(&mut self, h: &[f64; L]) {
         for (l, &h) in h.iter().enumerate() {
             let remaining = (self.t_bound - self.t[l]) - self.t_lo[l];
             (self.start[l], self.start_t_lo[l]) = (self.t[l], self.t_lo[l]);
-            if h == remaining {
-                (self.t[l], self.t_lo[l]) = (self.t_bound, 0.0);
-            } else {
-                let (hi, lo) = two_sum(self.t[l], h);
-                let (hi, lo2) = two_sum(hi, lo + self.t_lo[l]);
-                (self.t[l], self.t_lo[l]) = (hi, lo2);
-            }
+            let (hi, lo) = two_sum(self.t[l], h);
+            let (hi, lo2) = two_sum(hi, lo + self.t_lo[l]);
+            let ends = h == remaining;
+            self.t[l] = if ends { self.t_bound } else { hi };
+            self.t_lo[l] = if ends { 0.0 } else { lo2 };
             self.h[l] = h;
             self.accepted[l] += 1;
         }
