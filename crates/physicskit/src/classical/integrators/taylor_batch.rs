@@ -704,8 +704,8 @@ impl<const L: usize> Batch<L> {
     }
 
     /// Each lane's clock moved on by its step `h` (to the end exactly where the step is what
-    /// remains), the step's start and length kept: without branches, so the lanes do it in
-    /// vector registers.
+    /// remains), the step's start and length kept and the step counted: without branches, so
+    /// the lanes do it in vector registers.
     // Exact comparison: the step lands on the end exactly.
     #[allow(clippy::float_cmp)]
     #[inline(always)]

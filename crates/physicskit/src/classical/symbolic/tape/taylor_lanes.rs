@@ -135,9 +135,8 @@ impl<const L: usize> TaylorLanes<L> {
     /// Compiles the recurrences up to `order` for `L` lanes now, rather than at the first
     /// expansion of that order, and returns the backend that then runs them:
     /// [`Backend::Interpreter`] without the feature `jit`, in WebAssembly, for an order above
-    /// [`MAX_ORDER`], an odd lane count (or one of 16 or more not a multiple of 4), a program
-    /// too large to compile quickly, or if Cranelift cannot compile for this host. Clones
-    /// share the code.
+    /// [`MAX_ORDER`], an odd lane count, a program too large to compile quickly, or if
+    /// Cranelift cannot compile for this host. Clones share the code.
     pub fn compile_native(&self, order: usize) -> Backend {
         self.jit.code(&self.nodes, &self.outputs, L, order);
         self.backend(order)

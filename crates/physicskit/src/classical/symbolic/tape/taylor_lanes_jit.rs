@@ -8,7 +8,7 @@
 //! `k + 1`, every term of every sum written out, a coefficient of the order being computed
 //! used as the value just computed) on Cranelift's `f64x2` vectors (its x86-64 backend has no
 //! wider ones): each value is `N` vectors of two lanes ([`vectors`]: two with 16 lanes or
-//! more, else one). One pass of that code covers `2 N` lanes; a loop runs it over the `L`
+//! more in multiples of 4, else one). One pass of that code covers `2 N` lanes; a loop runs it over the `L`
 //! lanes, its base address moving by `2 N` doubles. The work array is only 8-byte aligned,
 //! so the loads and stores claim no more.
 //!
@@ -22,9 +22,10 @@
 //!
 //! An order is compiled at its first expansion: an ensemble's lanes expand thousands of times
 //! (1000 Hénon–Heiles members to t = 100 take 300 000 member steps, 38 000 expansions in 8
-//! lanes), and compiling costs about as much as the scalar JIT's unrolled code (1–3 ms for
-//! Hénon–Heiles, `benchmarks/README.md`), about a thousand interpreted expansions. Programs whose
-//! unrolled code would take long to compile ([`MAX_TERMS`]) stay interpreted. The code lives in
+//! lanes), and compiling costs about as much as the scalar JIT's unrolled code with one vector
+//! per value and about twice that with two (a few milliseconds for Hénon–Heiles,
+//! `benchmarks/README.md`), a thousand or two interpreted expansions. Programs whose unrolled
+//! code would take long to compile ([`MAX_TERMS`]) stay interpreted. The code lives in
 //! a [`JITModule`](cranelift_jit::JITModule) shared behind an `Arc` by the lanes' clones and by
 //! later lanes of the same recurrences ([`KEPT`]), and freed with the last of them.
 
@@ -47,13 +48,14 @@ use crate::classical::symbolic::tape::jit::{
 type Entry = unsafe extern "C" fn(*mut f64);
 
 /// `f64x2` vectors per value for `lanes` lanes: two, interleaved so that their chains of
-/// dependent additions overlap, for 16 lanes or more (AVX-512 hosts: on an AVX-512 Xeon an
-/// expansion of Hénon–Heiles at orders 8–17 takes 13–17 % less time than with one, for about
-/// twice the compile time); one for fewer (AVX2 and older: on an AVX2 EPYC two ran no faster
-/// than one, the out-of-order core already overlapping the independent nodes of the unrolled
-/// code, and four were no faster on either). Figures in `benchmarks/README.md`.
+/// dependent additions overlap, for 16 lanes or more in multiples of 4 (what
+/// [`native_lanes`](super::native_lanes) gives on AVX-512 hosts, where two vectors measured
+/// faster than one for about twice the compile time); one otherwise (AVX2 and older hosts'
+/// 8 and 4 lanes, where two measured no faster: the out-of-order core already overlaps the
+/// independent nodes of the unrolled code). Four were no faster on either. The figures are in
+/// `benchmarks/README.md`.
 fn vectors(lanes: usize) -> usize {
-    if lanes >= 16 {
+    if lanes >= 16 && lanes.is_multiple_of(4) {
         2
     } else {
         1
