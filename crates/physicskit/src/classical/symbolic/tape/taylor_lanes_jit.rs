@@ -8,9 +8,9 @@
 //! `k + 1`, every term of every sum written out, a coefficient of the order being computed
 //! used as the value just computed) on Cranelift's `f64x2` vectors (its x86-64 backend has no
 //! wider ones): each value is `N` vectors of two lanes ([`vectors`]: two with 16 lanes or
-//! more in multiples of 4, else one). One pass of that code covers `2 N` lanes; a loop runs it over the `L`
-//! lanes, its base address moving by `2 N` doubles. The work array is only 8-byte aligned,
-//! so the loads and stores claim no more.
+//! more in multiples of 4, else one). One pass of that code covers `2 N` lanes; a loop runs
+//! it over the `L` lanes, its base address moving by `2 N` doubles. The work array is only
+//! 8-byte aligned, so the loads and stores claim no more.
 //!
 //! `f64x2` addition, subtraction, multiplication, division, negation and square root are the
 //! IEEE operations lane by lane, and Cranelift does not contract a multiplication and an
