@@ -230,26 +230,19 @@ fn finite<const L: usize>(c: &[[f64; L]]) -> [bool; L] {
     std::array::from_fn(|l| zero.iter().map(|z| z[l]).sum::<f64>() == 0.0)
 }
 
-/// The kernels of a step, compiled for one instruction set.
+/// [`Batch::update`] compiled for one instruction set (called only where the CPU has it).
 macro_rules! kernels {
     ($name:ident, $features:literal, $fused:literal) => {
         #[cfg(target_arch = "x86_64")]
         #[target_feature(enable = $features)]
-        fn $name<const L: usize>(
-            c: &[[f64; L]],
-            p: usize,
-            x: &[f64; L],
-            lo_in: &[[f64; L]],
-            out: &mut [[f64; L]],
-            out_lo: &mut [[f64; L]],
-        ) {
-            horner_lanes::<L, $fused>(c, p + 1, x, lo_in, out, out_lo);
+        fn $name<const L: usize>(batch: &mut Batch<L>, c: &[[f64; L]], h: &[f64; L]) {
+            batch.update::<$fused>(c, h);
         }
     };
 }
-kernels!(horner_avx512, "avx512f,fma", true);
-kernels!(horner_avx2, "avx2,fma", true);
-kernels!(horner_fma, "fma", true);
+kernels!(update_avx512, "avx512f,fma", true);
+kernels!(update_avx2, "avx2,fma", true);
+kernels!(update_fma, "fma", true);
 
 /// Each lane's step from its radius `rho` and finiteness (zero where it takes none), and
 /// whether the rule refused a lane that steps: [`StepRule::try_step`] lane by lane.
@@ -291,19 +284,6 @@ macro_rules! steps_kernel {
 steps_kernel!(steps_avx512, "avx512f");
 steps_kernel!(steps_avx2, "avx2");
 
-/// [`Batch::clocks`] compiled for one instruction set (called only where the CPU has it).
-macro_rules! clocks_kernel {
-    ($name:ident, $features:literal) => {
-        #[cfg(target_arch = "x86_64")]
-        #[target_feature(enable = $features)]
-        fn $name<const L: usize>(batch: &mut Batch<L>, h: &[f64; L]) {
-            batch.clocks(h);
-        }
-    };
-}
-clocks_kernel!(clocks_avx512, "avx512f");
-clocks_kernel!(clocks_avx2, "avx2");
-
 /// [`radii`] and [`finite`] compiled with AVX-512 (called only where the CPU has it).
 #[cfg(target_arch = "x86_64")]
 #[target_feature(enable = "avx512f")]
@@ -323,28 +303,20 @@ fn radii_avx2<const L: usize>(c: &[[f64; L]], p: usize, rule: &StepRule) -> ([f6
 }
 
 impl Isa {
-    /// The state update: [`horner_lanes`] on this instruction set.
+    /// The state update and the clocks ([`Batch::update`]) on this instruction set.
     #[inline]
-    fn horner<const L: usize>(
-        self,
-        c: &[[f64; L]],
-        p: usize,
-        x: &[f64; L],
-        lo_in: &[[f64; L]],
-        out: &mut [[f64; L]],
-        out_lo: &mut [[f64; L]],
-    ) {
+    fn update<const L: usize>(self, batch: &mut Batch<L>, c: &[[f64; L]], h: &[f64; L]) {
         // SAFETY (each arm): `detect` chose the variant because the CPU has the features
         // the function enables.
         #[allow(unsafe_code)]
         match self {
-            Self::Plain => horner_lanes::<L, false>(c, p + 1, x, lo_in, out, out_lo),
+            Self::Plain => batch.update::<false>(c, h),
             #[cfg(target_arch = "x86_64")]
-            Self::Fma => unsafe { horner_fma(c, p, x, lo_in, out, out_lo) },
+            Self::Fma => unsafe { update_fma(batch, c, h) },
             #[cfg(target_arch = "x86_64")]
-            Self::Avx2 => unsafe { horner_avx2(c, p, x, lo_in, out, out_lo) },
+            Self::Avx2 => unsafe { update_avx2(batch, c, h) },
             #[cfg(target_arch = "x86_64")]
-            Self::Avx512 => unsafe { horner_avx512(c, p, x, lo_in, out, out_lo) },
+            Self::Avx512 => unsafe { update_avx512(batch, c, h) },
         }
     }
 
@@ -366,21 +338,6 @@ impl Isa {
             #[cfg(target_arch = "x86_64")]
             Self::Avx2 => unsafe { steps_avx2(batch, rho, finite, stepping) },
             _ => steps(batch, rho, finite, stepping),
-        }
-    }
-
-    /// [`Batch::clocks`] on this instruction set.
-    #[inline]
-    fn clocks<const L: usize>(self, batch: &mut Batch<L>, h: &[f64; L]) {
-        // SAFETY (each arm): `detect` chose the variant because the CPU has the features
-        // the function enables (AVX-512F and AVX2 respectively).
-        #[allow(unsafe_code)]
-        match self {
-            #[cfg(target_arch = "x86_64")]
-            Self::Avx512 => unsafe { clocks_avx512(batch, h) },
-            #[cfg(target_arch = "x86_64")]
-            Self::Avx2 => unsafe { clocks_avx2(batch, h) },
-            _ => batch.clocks(h),
         }
     }
 
@@ -698,9 +655,23 @@ impl<const L: usize> Batch<L> {
     /// update and the clock (`Taylor::take`).
     fn take(&mut self, c: &[[f64; L]], h: &[f64; L]) {
         std::mem::swap(&mut self.lo, &mut self.start_lo);
-        self.isa
-            .horner(c, self.order, h, &self.start_lo, &mut self.y, &mut self.lo);
-        self.isa.clocks(self, h);
+        self.isa.update(self, c, h);
+    }
+
+    /// [`take`](Self::take)'s work after the swap of the low words: the state by
+    /// [`horner_lanes`] from the step's start, then [`clocks`](Self::clocks). Error-free
+    /// products by FMA if `FUSED`.
+    #[inline(always)]
+    fn update<const FUSED: bool>(&mut self, c: &[[f64; L]], h: &[f64; L]) {
+        horner_lanes::<L, FUSED>(
+            c,
+            self.order + 1,
+            h,
+            &self.start_lo,
+            &mut self.y,
+            &mut self.lo,
+        );
+        self.clocks(h);
     }
 
     /// Each lane's clock moved on by its step `h` (to the end exactly where the step is what
