@@ -122,21 +122,39 @@ pub trait TaylorField: std::any::Any {
     /// Dimension of the state.
     fn dim(&self) -> usize;
 
-    /// Fills `coefficients` (`dim` rows of `order + 1`, row `i` holding `y_i^[0..=order]`)
-    /// with the normalized Taylor coefficients of the solution through `(t, y)`:
-    /// `y_i^[0] = y_i`, `y_i^[k+1] = f_i^[k] / (k + 1)`.
+    /// The normalized Taylor coefficients of the solution through `(t, y)` to `order`,
+    /// `y_i^[0] = y_i`, `y_i^[k+1] = f_i^[k] / (k + 1)`: `dim` rows of `order + 1`, row `i`
+    /// holding `y_i^[0..=order]`, borrowed from the field's own storage (valid until its next
+    /// expansion), so the stepper reads them where the recurrences wrote them.
     ///
     /// # Errors
     /// If the expansion is not defined at `(t, y)` (a division by a series with zero
-    /// constant term, a logarithm of zero ...), or `order` exceeds what the field was built
-    /// for.
+    /// constant term, a logarithm of zero ...), `y` is not of the field's dimension, or
+    /// `order` exceeds what the field was built for.
+    fn expansion(&mut self, t: f64, y: &[f64], order: usize) -> Result<&[f64]>;
+
+    /// [`expansion`](Self::expansion) copied into `coefficients` (`dim` rows of `order + 1`).
+    ///
+    /// # Errors
+    /// As [`expansion`](Self::expansion), and for `coefficients` of another length.
     fn coefficients(
         &mut self,
         t: f64,
         y: &[f64],
         order: usize,
         coefficients: &mut [f64],
-    ) -> Result<()>;
+    ) -> Result<()> {
+        let rows = self.expansion(t, y, order)?;
+        if rows.len() != coefficients.len() {
+            return Err(Error::invalid(
+                "coefficients",
+                coefficients.len() as f64,
+                format!("needs room for {} coefficients", rows.len()),
+            ));
+        }
+        coefficients.copy_from_slice(rows);
+        Ok(())
+    }
 }
 
 /// The tightest relative tolerance the method accepts: `2^-54`, half the unit roundoff. A
@@ -375,47 +393,158 @@ struct Scan {
     finite: bool,
 }
 
-/// The rows of `c` (`n1 >= 2` coefficients each) side by side in `blocks` (`n1` groups of
-/// `LANES` per `LANES` rows; the lanes past the last row are left as they are: zeros in the
+/// The `dim` rows of `c` (`n1 >= 2` coefficients each) side by side in `blocks` (`n1` groups
+/// of `LANES` per `LANES` rows; the lanes past the last row are left as they are: zeros in the
 /// stepper's buffers, which never write them), and the [`Scan`] of them, in one pass over the
 /// groups. The maxima are those of the rows in any order (`f64::max` of magnitudes ignores
-/// NaNs and is associative), so the step is the one the rows give. Not inlined: as a
-/// function of its own its slices are known not to overlap, which spares the vectorized
-/// transposition run-time overlap checks.
-#[inline(never)]
-fn to_blocks_scanned(c: &[f64], n1: usize, blocks: &mut [[f64; LANES]]) -> Scan {
-    for (block, rows) in blocks.chunks_exact_mut(n1).zip(c.chunks(n1 * LANES)) {
-        if rows.len() == n1 * LANES {
-            let (r0, rest) = rows.split_at(n1);
-            let (r1, rest) = rest.split_at(n1);
-            let (r2, r3) = rest.split_at(n1);
-            for ((((group, &a), &b), &c), &d) in block.iter_mut().zip(r0).zip(r1).zip(r2).zip(r3) {
-                *group = [a, b, c, d];
-            }
-            continue;
+/// NaNs and is associative), and a sum of zeros is a zero in any order, so the step is the one
+/// the rows give. In vector registers of four doubles where the CPU has AVX2 (a transposition,
+/// bit for bit the plain one's).
+fn to_blocks_scanned(c: &[f64], dim: usize, n1: usize, blocks: &mut [[f64; LANES]]) -> Scan {
+    #[cfg(target_arch = "x86_64")]
+    if std::arch::is_x86_feature_detected!("avx2") {
+        // SAFETY: the CPU has AVX2 (checked just above), the one feature the function
+        // enables.
+        #[allow(unsafe_code)]
+        return unsafe { to_blocks_scanned_avx2(c, dim, n1, blocks) };
+    }
+    to_blocks_scanned_plain(c, dim, n1, blocks)
+}
+
+/// [`blocks_scanned`] compiled for AVX2 (called only where the CPU has it), each whole block
+/// transposed four orders at a time by [`transpose_avx2`].
+#[cfg(target_arch = "x86_64")]
+#[target_feature(enable = "avx2")]
+fn to_blocks_scanned_avx2(c: &[f64], dim: usize, n1: usize, blocks: &mut [[f64; LANES]]) -> Scan {
+    blocks_scanned(c, dim, n1, blocks, |rows, block, zero| {
+        transpose_avx2(rows, block, zero);
+    })
+}
+
+/// The four rows of `rows` (`block.len()` coefficients each) into the groups of `block`,
+/// `zero` summing every coefficient's `x · 0` ([`blocks_scanned`]): four orders at a time as a
+/// 4×4 transposition in vector registers, the orders left over one group at a time.
+#[cfg(target_arch = "x86_64")]
+#[target_feature(enable = "avx2")]
+#[inline]
+fn transpose_avx2(rows: &[f64], block: &mut [[f64; LANES]], zero: &mut [f64; LANES]) {
+    use std::arch::x86_64::{
+        _mm256_add_pd, _mm256_loadu_pd, _mm256_mul_pd, _mm256_permute2f128_pd,
+        _mm256_setzero_pd, _mm256_storeu_pd, _mm256_unpackhi_pd, _mm256_unpacklo_pd,
+    };
+    let n1 = block.len();
+    let (r0, rest) = rows.split_at(n1);
+    let (r1, rest) = rest.split_at(n1);
+    let (r2, r3) = rest.split_at(n1);
+    let whole = n1 / 4 * 4;
+    // SAFETY: every load reads four doubles of a row at `k..k + 4` and every store writes
+    // the four groups `k..k + 4` of `block` (16 doubles, contiguous in `[[f64; 4]]`), with
+    // `k + 4 <= whole <= n1`, the length of each row and of `block`; unaligned loads and
+    // stores; the CPU has AVX2 (this function's feature).
+    #[allow(unsafe_code)]
+    unsafe {
+        let nought = _mm256_setzero_pd();
+        let mut z = _mm256_loadu_pd(zero.as_ptr());
+        for k in (0..whole).step_by(4) {
+            let a = _mm256_loadu_pd(r0.as_ptr().add(k));
+            let b = _mm256_loadu_pd(r1.as_ptr().add(k));
+            let c = _mm256_loadu_pd(r2.as_ptr().add(k));
+            let d = _mm256_loadu_pd(r3.as_ptr().add(k));
+            z = _mm256_add_pd(z, _mm256_mul_pd(a, nought));
+            z = _mm256_add_pd(z, _mm256_mul_pd(b, nought));
+            z = _mm256_add_pd(z, _mm256_mul_pd(c, nought));
+            z = _mm256_add_pd(z, _mm256_mul_pd(d, nought));
+            // (a0 b0 a2 b2), (a1 b1 a3 b3), (c0 d0 c2 d2), (c1 d1 c3 d3)
+            let ab_even = _mm256_unpacklo_pd(a, b);
+            let ab_odd = _mm256_unpackhi_pd(a, b);
+            let cd_even = _mm256_unpacklo_pd(c, d);
+            let cd_odd = _mm256_unpackhi_pd(c, d);
+            let out = block.as_mut_ptr().add(k).cast::<f64>();
+            _mm256_storeu_pd(out, _mm256_permute2f128_pd(ab_even, cd_even, 0x20));
+            _mm256_storeu_pd(out.add(4), _mm256_permute2f128_pd(ab_odd, cd_odd, 0x20));
+            _mm256_storeu_pd(out.add(8), _mm256_permute2f128_pd(ab_even, cd_even, 0x31));
+            _mm256_storeu_pd(out.add(12), _mm256_permute2f128_pd(ab_odd, cd_odd, 0x31));
         }
-        for (r, row) in rows.chunks_exact(n1).enumerate() {
-            for (group, &x) in block.iter_mut().zip(row) {
-                group[r] = x;
-            }
+        _mm256_storeu_pd(zero.as_mut_ptr(), z);
+    }
+    transpose_orders(r0, r1, r2, r3, &mut block[whole..], whole, zero);
+}
+
+/// [`blocks_scanned`] for any CPU, each whole block transposed group by group. Not inlined,
+/// as the AVX2 clone is not: as a function of its own its slices are known not to overlap.
+#[inline(never)]
+fn to_blocks_scanned_plain(c: &[f64], dim: usize, n1: usize, blocks: &mut [[f64; LANES]]) -> Scan {
+    blocks_scanned(c, dim, n1, blocks, |rows, block, zero| {
+        let n1 = block.len();
+        let (r0, rest) = rows.split_at(n1);
+        let (r1, rest) = rest.split_at(n1);
+        let (r2, r3) = rest.split_at(n1);
+        transpose_orders(r0, r1, r2, r3, block, 0, zero);
+    })
+}
+
+/// The orders `from..` of four rows into `groups` (the groups of those orders), one group at
+/// a time, `zero` summing each coefficient's `x · 0`.
+#[inline(always)]
+fn transpose_orders(
+    r0: &[f64],
+    r1: &[f64],
+    r2: &[f64],
+    r3: &[f64],
+    groups: &mut [[f64; LANES]],
+    from: usize,
+    zero: &mut [f64; LANES],
+) {
+    for (j, slot) in groups.iter_mut().enumerate() {
+        let k = from + j;
+        let group = [r0[k], r1[k], r2[k], r3[k]];
+        *slot = group;
+        for r in 0..LANES {
+            zero[r] += group[r] * 0.0;
         }
     }
+}
+
+/// [`to_blocks_scanned`]'s pass, block by block: a whole block's four rows transposed into
+/// its groups by `whole(rows, block, zero)`, which also sums each coefficient's `x · 0` into
+/// `zero`, or the rows of the last, partial block one by one; then the block's maxima from
+/// its groups 0, `p - 1` and `p`.
+#[inline(always)]
+fn blocks_scanned(
+    c: &[f64],
+    dim: usize,
+    n1: usize,
+    blocks: &mut [[f64; LANES]],
+    whole: impl Fn(&[f64], &mut [[f64; LANES]], &mut [f64; LANES]),
+) -> Scan {
     let p = n1 - 1;
     let (mut norm, mut second_last, mut last) =
         ([0.0_f64; LANES], [0.0_f64; LANES], [0.0_f64; LANES]);
     // `x · 0` is a zero for finite `x` and NaN otherwise: a lane's sum of them is a zero
     // exactly when all its coefficients are finite (no branch, in vector lanes).
     let mut zero = [0.0_f64; LANES];
-    for block in blocks.chunks_exact(n1) {
+    let full = dim / LANES;
+    for b in 0..dim.div_ceil(LANES) {
+        let block = &mut blocks[b * n1..(b + 1) * n1];
+        let rows = &c[b * LANES * n1..(b * LANES + LANES).min(dim) * n1];
+        if b < full {
+            whole(rows, block, &mut zero);
+        } else {
+            for (r, row) in rows.chunks_exact(n1).enumerate() {
+                for (group, &x) in block.iter_mut().zip(row) {
+                    group[r] = x;
+                }
+            }
+            for group in block.iter() {
+                for r in 0..LANES {
+                    zero[r] += group[r] * 0.0;
+                }
+            }
+        }
         for r in 0..LANES {
             norm[r] = norm[r].max(block[0][r].abs());
             second_last[r] = second_last[r].max(block[p - 1][r].abs());
             last[r] = last[r].max(block[p][r].abs());
-        }
-        for group in block {
-            for r in 0..LANES {
-                zero[r] += group[r] * 0.0;
-            }
         }
     }
     let max = |lanes: [f64; LANES]| lanes.into_iter().fold(0.0_f64, f64::max);
@@ -445,10 +574,8 @@ pub struct Taylor {
     dim: usize,
     order: usize,
     tolerances: Tolerances,
-    /// The current step's Taylor coefficients (`dim` rows of `order + 1`).
-    coefficients: Vec<f64>,
-    /// The current step's coefficients side by side in vector lanes, for the state update
-    /// and the outputs.
+    /// The current step's Taylor coefficients side by side in vector lanes, for the state
+    /// update and the outputs.
     blocks: Vec<[f64; LANES]>,
     /// The next step's, filled by its expansion and swapped in when it is taken.
     next_blocks: Vec<[f64; LANES]>,
@@ -502,7 +629,6 @@ impl Taylor {
             dim,
             order,
             tolerances,
-            coefficients: vec![0.0; dim * (order + 1)],
             blocks: vec![[0.0; LANES]; dim.div_ceil(LANES) * (order + 1)],
             next_blocks: vec![[0.0; LANES]; dim.div_ceil(LANES) * (order + 1)],
             start: (t0, 0.0),
@@ -550,7 +676,14 @@ impl Taylor {
                 ),
             ));
         }
-        field.coefficients(t, &self.y, p, &mut self.coefficients)?;
+        let rows = field.expansion(t, &self.y, p)?;
+        if rows.len() != self.dim * n1 {
+            return Err(Error::invalid(
+                "Taylor field",
+                rows.len() as f64,
+                format!("gave coefficients for other than {} rows of {n1}", self.dim),
+            ));
+        }
         // Into the spare blocks: the current ones hold the polynomial outputs read until the
         // step is taken.
         let Scan {
@@ -558,7 +691,7 @@ impl Taylor {
             second_last,
             last,
             finite,
-        } = to_blocks_scanned(&self.coefficients, n1, &mut self.next_blocks);
+        } = to_blocks_scanned(rows, self.dim, n1, &mut self.next_blocks);
         let rho = self.rule.radius([norm, second_last, last]);
         self.rule.step(rho, finite, t, self.offset(self.t_bound))
     }
@@ -700,7 +833,13 @@ impl Taylor {
     /// Never for `i < dim`; `i >= dim` is a caller's bug (an index into the state).
     pub fn eval_component(&self, i: usize, tau: f64) -> (f64, f64) {
         let n1 = self.order + 1;
-        let row = &self.coefficients[i * n1..(i + 1) * n1];
+        let mut coefficients = [0.0; MAX_ORDER + 1];
+        let row = &mut coefficients[..n1];
+        let block = &self.blocks[i / LANES * n1..][..n1];
+        for (c, group) in row.iter_mut().zip(block) {
+            *c = group[i % LANES];
+        }
+        let row = &*row;
         let mut d = 0.0;
         for (k, &c) in row.iter().enumerate().skip(1).rev() {
             d = d * tau + k as f64 * c;

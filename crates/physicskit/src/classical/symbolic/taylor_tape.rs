@@ -1451,21 +1451,14 @@ impl TaylorField for TaylorProgram {
         self.dim
     }
 
-    fn coefficients(
-        &mut self,
-        t: f64,
-        y: &[f64],
-        order: usize,
-        coefficients: &mut [f64],
-    ) -> Result<()> {
+    fn expansion(&mut self, t: f64, y: &[f64], order: usize) -> Result<&[f64]> {
         let stride = order + 1;
-        if order > MAX_ORDER || y.len() != self.dim || coefficients.len() != self.dim * stride {
+        if order > MAX_ORDER || y.len() != self.dim {
             return Err(Error::invalid(
                 "order",
                 order as f64,
                 format!(
-                    "a Taylor expansion takes an order <= {MAX_ORDER}, a state of {} and room \
-                     for its coefficients",
+                    "a Taylor expansion takes an order <= {MAX_ORDER} and a state of {}",
                     self.dim
                 ),
             ));
@@ -1490,8 +1483,7 @@ impl TaylorField for TaylorProgram {
             None => self.interpret(order, stride),
         }
         // The state's rows come first in the work array.
-        coefficients.copy_from_slice(&self.work[..dim * stride]);
-        Ok(())
+        Ok(&self.work[..dim * stride])
     }
 }
 

@@ -539,6 +539,10 @@ fn failures_are_errors() {
     let mut c = vec![0.0; 2 * 40];
     assert!(program.coefficients(0.0, &[0.0; 4], 39, &mut c).is_err());
     assert!(program.coefficients(0.0, &[0.0; 3], 4, &mut c).is_err());
+    // Room for other than the 4 rows of 5 coefficients that order 4 fills.
+    let state = kepler_state(0.0);
+    assert!(program.coefficients(0.0, &state, 4, &mut c).is_err());
+    assert!(program.coefficients(0.0, &state, 4, &mut c[..20]).is_ok());
     assert!(integrate_taylor(&mut program, &[1.0], (0.0, 1.0), 0.5, tol).is_err());
     assert!(TaylorProgram::new(&[f], 2, 0, &[]).is_err());
     // At the origin the Kepler field's series is not finite: an error naming the time.
@@ -557,6 +561,7 @@ fn failures_are_errors() {
 struct PoisonedDecay {
     calls: usize,
     poison: (usize, usize, f64),
+    rows: Vec<f64>,
 }
 
 impl TaylorField for PoisonedDecay {
@@ -564,15 +569,15 @@ impl TaylorField for PoisonedDecay {
         6
     }
 
-    fn coefficients(
+    fn expansion(
         &mut self,
         _t: f64,
         y: &[f64],
         order: usize,
-        coefficients: &mut [f64],
-    ) -> physicskit::classical::Result<()> {
+    ) -> physicskit::classical::Result<&[f64]> {
         let n1 = order + 1;
-        for (row, &yi) in coefficients.chunks_exact_mut(n1).zip(y) {
+        self.rows.resize(6 * n1, 0.0);
+        for (row, &yi) in self.rows.chunks_exact_mut(n1).zip(y) {
             let mut term = yi;
             for (k, c) in row.iter_mut().enumerate() {
                 *c = term;
@@ -582,9 +587,9 @@ impl TaylorField for PoisonedDecay {
         self.calls += 1;
         if self.calls == 2 {
             let (row, k, value) = self.poison;
-            coefficients[row * n1 + k] = value;
+            self.rows[row * n1 + k] = value;
         }
-        Ok(())
+        Ok(&self.rows)
     }
 }
 
@@ -603,12 +608,19 @@ fn a_non_finite_coefficient_anywhere_stops_the_step() {
                 let mut field = PoisonedDecay {
                     calls: 0,
                     poison: (row, k, value),
+                    rows: Vec::new(),
                 };
                 let mut stepper = Taylor::new(6, tol, 0.0, &y0, 10.0).unwrap();
                 assert!(stepper.step(&mut field).unwrap());
                 let half = stepper.step_length() / 2.0;
                 let mut before = [0.0; 6];
                 stepper.eval_state(half, &mut before);
+                let components = |stepper: &Taylor| -> Vec<u64> {
+                    (0..6)
+                        .map(|i| stepper.eval_component(i, half).0.to_bits())
+                        .collect()
+                };
+                let components_before = components(&stepper);
                 // The step's truncation error is about tol relative to the state (the
                 // step-size rule); 10x that.
                 for (v, y) in before.iter().zip(y0) {
@@ -623,6 +635,7 @@ fn a_non_finite_coefficient_anywhere_stops_the_step() {
                 let mut after = [0.0; 6];
                 stepper.eval_state(half, &mut after);
                 assert_eq!(before.map(f64::to_bits), after.map(f64::to_bits));
+                assert_eq!(components(&stepper), components_before);
             }
         }
     }
