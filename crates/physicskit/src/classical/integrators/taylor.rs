@@ -383,46 +383,34 @@ fn eval_blocks(
     horner_blocks::<false>(blocks, n1, x, lo, out, out_lo);
 }
 
-/// What one pass over a step's coefficients finds: the largest magnitudes over the rows of
-/// the orders 0, `p - 1` and `p` (for the step-size rule; `f64::max`, which passes over a
-/// NaN, from 0), and whether every coefficient is finite.
-struct Scan {
-    norm: f64,
-    second_last: f64,
-    last: f64,
-    finite: bool,
-}
-
-/// The `dim` rows of `c` (`n1 >= 2` coefficients each) side by side in `blocks` (`n1` groups
+/// The `dim` rows of `c` (`n1 >= 1` coefficients each) side by side in `blocks` (`n1` groups
 /// of `LANES` per `LANES` rows; the lanes past the last row are left as they are: zeros in the
-/// stepper's buffers, which never write them), and the [`Scan`] of them, in one pass over the
-/// groups. The maxima are those of the rows in any order (`f64::max` of magnitudes ignores
-/// NaNs and is associative), and a sum of zeros is a zero in any order, so the step is the one
-/// the rows give. In vector registers of four doubles where the CPU has AVX2 (a transposition,
-/// bit for bit the plain one's).
-fn to_blocks_scanned(c: &[f64], dim: usize, n1: usize, blocks: &mut [[f64; LANES]]) -> Scan {
+/// stepper's buffers, which never write them), and whether every coefficient is finite, in
+/// one pass over the groups. In vector registers of four doubles where the CPU has AVX2 (a
+/// transposition, bit for bit the plain one's).
+fn to_blocks_checked(c: &[f64], dim: usize, n1: usize, blocks: &mut [[f64; LANES]]) -> bool {
     #[cfg(target_arch = "x86_64")]
     if std::arch::is_x86_feature_detected!("avx2") {
         // SAFETY: the CPU has AVX2 (checked just above), the one feature the function
         // enables.
         #[allow(unsafe_code)]
-        return unsafe { to_blocks_scanned_avx2(c, dim, n1, blocks) };
+        return unsafe { to_blocks_checked_avx2(c, dim, n1, blocks) };
     }
-    to_blocks_scanned_plain(c, dim, n1, blocks)
+    to_blocks_checked_plain(c, dim, n1, blocks)
 }
 
-/// [`blocks_scanned`] compiled for AVX2 (called only where the CPU has it), each whole block
+/// [`blocks_checked`] compiled for AVX2 (called only where the CPU has it), each whole block
 /// transposed four orders at a time by [`transpose_avx2`].
 #[cfg(target_arch = "x86_64")]
 #[target_feature(enable = "avx2")]
-fn to_blocks_scanned_avx2(c: &[f64], dim: usize, n1: usize, blocks: &mut [[f64; LANES]]) -> Scan {
-    blocks_scanned(c, dim, n1, blocks, |rows, block, zero| {
+fn to_blocks_checked_avx2(c: &[f64], dim: usize, n1: usize, blocks: &mut [[f64; LANES]]) -> bool {
+    blocks_checked(c, dim, n1, blocks, |rows, block, zero| {
         transpose_avx2(rows, block, zero);
     })
 }
 
 /// The four rows of `rows` (`block.len()` coefficients each) into the groups of `block`,
-/// `zero` summing every coefficient's `x · 0` ([`blocks_scanned`]): four orders at a time as a
+/// `zero` summing every coefficient's `x · 0` ([`blocks_checked`]): four orders at a time as a
 /// 4×4 transposition in vector registers, the orders left over one group at a time.
 #[cfg(target_arch = "x86_64")]
 #[target_feature(enable = "avx2")]
@@ -470,11 +458,11 @@ fn transpose_avx2(rows: &[f64], block: &mut [[f64; LANES]], zero: &mut [f64; LAN
     transpose_orders(r0, r1, r2, r3, &mut block[whole..], whole, zero);
 }
 
-/// [`blocks_scanned`] for any CPU, each whole block transposed group by group. Not inlined,
+/// [`blocks_checked`] for any CPU, each whole block transposed group by group. Not inlined,
 /// as the AVX2 clone is not: as a function of its own its slices are known not to overlap.
 #[inline(never)]
-fn to_blocks_scanned_plain(c: &[f64], dim: usize, n1: usize, blocks: &mut [[f64; LANES]]) -> Scan {
-    blocks_scanned(c, dim, n1, blocks, |rows, block, zero| {
+fn to_blocks_checked_plain(c: &[f64], dim: usize, n1: usize, blocks: &mut [[f64; LANES]]) -> bool {
+    blocks_checked(c, dim, n1, blocks, |rows, block, zero| {
         let n1 = block.len();
         let (r0, rest) = rows.split_at(n1);
         let (r1, rest) = rest.split_at(n1);
@@ -505,23 +493,20 @@ fn transpose_orders(
     }
 }
 
-/// [`to_blocks_scanned`]'s pass, block by block: a whole block's four rows transposed into
+/// [`to_blocks_checked`]'s pass, block by block: a whole block's four rows transposed into
 /// its groups by `whole(rows, block, zero)`, which also sums each coefficient's `x · 0` into
-/// `zero`, or the rows of the last, partial block one by one; then the block's maxima from
-/// its groups 0, `p - 1` and `p`.
+/// `zero`, or the rows of the last, partial block one by one.
 #[inline(always)]
-fn blocks_scanned(
+fn blocks_checked(
     c: &[f64],
     dim: usize,
     n1: usize,
     blocks: &mut [[f64; LANES]],
     whole: impl Fn(&[f64], &mut [[f64; LANES]], &mut [f64; LANES]),
-) -> Scan {
-    let p = n1 - 1;
-    let (mut norm, mut second_last, mut last) =
-        ([0.0_f64; LANES], [0.0_f64; LANES], [0.0_f64; LANES]);
+) -> bool {
     // `x · 0` is a zero for finite `x` and NaN otherwise: a lane's sum of them is a zero
-    // exactly when all its coefficients are finite (no branch, in vector lanes).
+    // exactly when all its coefficients are finite, in any order (no branch, in vector
+    // lanes).
     let mut zero = [0.0_f64; LANES];
     let full = dim / LANES;
     for b in 0..dim.div_ceil(LANES) {
@@ -541,19 +526,8 @@ fn blocks_scanned(
                 }
             }
         }
-        for r in 0..LANES {
-            norm[r] = norm[r].max(block[0][r].abs());
-            second_last[r] = second_last[r].max(block[p - 1][r].abs());
-            last[r] = last[r].max(block[p][r].abs());
-        }
     }
-    let max = |lanes: [f64; LANES]| lanes.into_iter().fold(0.0_f64, f64::max);
-    Scan {
-        norm: max(norm),
-        second_last: max(second_last),
-        last: max(last),
-        finite: zero.iter().all(|&z| z == 0.0),
-    }
+    zero.iter().all(|&z| z == 0.0)
 }
 
 /// `Σ_k c_k x^k` by compensated Horner: as accurate as Horner in twice the working precision,
@@ -684,15 +658,19 @@ impl Taylor {
                 format!("gave coefficients for other than {} rows of {n1}", self.dim),
             ));
         }
+        // The step size first, from the rows as the recurrences wrote them (the largest
+        // magnitudes of orders 0, p - 1 and p: `f64::max`, which passes over a NaN, in any
+        // order gives the same), so that its chain of operations overlaps the transposition.
+        let mut norms = [0.0_f64; 3];
+        for row in rows.chunks_exact(n1) {
+            for (norm, k) in norms.iter_mut().zip([0, p - 1, p]) {
+                *norm = norm.max(row[k].abs());
+            }
+        }
+        let rho = self.rule.radius(norms);
         // Into the spare blocks: the current ones hold the polynomial outputs read until the
         // step is taken.
-        let Scan {
-            norm,
-            second_last,
-            last,
-            finite,
-        } = to_blocks_scanned(rows, self.dim, n1, &mut self.next_blocks);
-        let rho = self.rule.radius([norm, second_last, last]);
+        let finite = to_blocks_checked(rows, self.dim, n1, &mut self.next_blocks);
         self.rule.step(rho, finite, t, self.offset(self.t_bound))
     }
 
