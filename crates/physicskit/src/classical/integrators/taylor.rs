@@ -1088,3 +1088,55 @@ impl Report for TaylorStepper {
         }
     }
 }
+
+#[cfg(test)]
+mod tests {
+    use super::{to_blocks_checked, to_blocks_checked_plain, LANES, MAX_ORDER};
+
+    /// The transposition into blocks (the AVX2 clone where the CPU has it) puts coefficient
+    /// `k` of row `i` in group `k`, lane `i % 4`, of block `i / 4`, for every dimension (whole
+    /// blocks and a partial last one) and every order, and leaves the lanes past the last row
+    /// as they were; the plain clone gives the same bits; and both report the coefficients
+    /// finite unless one of them (first, middle or last) is an infinity or a NaN.
+    #[test]
+    fn the_transposition_places_every_coefficient_and_checks_finiteness() {
+        let mut state = 0x9e37_79b9_7f4a_7c15_u64;
+        let mut draw = move || {
+            state ^= state << 13;
+            state ^= state >> 7;
+            state ^= state << 17;
+            (state >> 11) as f64 / (1u64 << 53) as f64 - 0.5
+        };
+        // A value no row holds, in the lanes past the last row.
+        let untouched = 7.0_f64;
+        let bits = |blocks: &[[f64; LANES]]| -> Vec<u64> {
+            blocks.iter().flatten().map(|x| x.to_bits()).collect()
+        };
+        for dim in 1..=9 {
+            for n1 in 1..=MAX_ORDER + 1 {
+                let rows: Vec<f64> = (0..dim * n1).map(|_| draw()).collect();
+                let size = dim.div_ceil(LANES) * n1;
+                let mut fast = vec![[untouched; LANES]; size];
+                let mut plain = vec![[untouched; LANES]; size];
+                assert!(to_blocks_checked(&rows, dim, n1, &mut fast));
+                assert!(to_blocks_checked_plain(&rows, dim, n1, &mut plain));
+                for i in 0..dim.div_ceil(LANES) * LANES {
+                    for k in 0..n1 {
+                        let want = if i < dim { rows[i * n1 + k] } else { untouched };
+                        let got = fast[i / LANES * n1 + k][i % LANES];
+                        assert_eq!(got.to_bits(), want.to_bits(), "dim {dim}, n1 {n1}, {i}, {k}");
+                    }
+                }
+                assert_eq!(bits(&fast), bits(&plain), "dim {dim}, n1 {n1}");
+                for bad in [f64::INFINITY, f64::NEG_INFINITY, f64::NAN] {
+                    for at in [0, dim * n1 / 2, dim * n1 - 1] {
+                        let mut poisoned = rows.clone();
+                        poisoned[at] = bad;
+                        assert!(!to_blocks_checked(&poisoned, dim, n1, &mut fast));
+                        assert!(!to_blocks_checked_plain(&poisoned, dim, n1, &mut plain));
+                    }
+                }
+            }
+        }
+    }
+}
