@@ -409,26 +409,23 @@ fn to_blocks_checked_avx2(c: &[f64], dim: usize, n1: usize, blocks: &mut [[f64; 
     })
 }
 
-/// The four rows of `rows` (`block.len()` coefficients each) into the groups of `block`,
-/// `zero` summing every coefficient's `x · 0` ([`blocks_checked`]): four orders at a time as a
-/// 4×4 transposition in vector registers, the orders left over one group at a time.
+/// Four rows (`block.len()` coefficients each) into the groups of `block`, `zero` summing
+/// every coefficient's `x · 0` ([`blocks_checked`]): four orders at a time as a 4×4
+/// transposition in vector registers, the orders left over one group at a time.
 #[cfg(target_arch = "x86_64")]
 #[target_feature(enable = "avx2")]
 #[inline]
-fn transpose_avx2(rows: &[f64], block: &mut [[f64; LANES]], zero: &mut [f64; LANES]) {
+fn transpose_avx2(rows: [&[f64]; LANES], block: &mut [[f64; LANES]], zero: &mut [f64; LANES]) {
     use std::arch::x86_64::{
         _mm256_add_pd, _mm256_loadu_pd, _mm256_mul_pd, _mm256_permute2f128_pd,
         _mm256_setzero_pd, _mm256_storeu_pd, _mm256_unpackhi_pd, _mm256_unpacklo_pd,
     };
-    let n1 = block.len();
-    let (r0, rest) = rows.split_at(n1);
-    let (r1, rest) = rest.split_at(n1);
-    let (r2, r3) = rest.split_at(n1);
-    let whole = n1 / 4 * 4;
+    let [r0, r1, r2, r3] = rows;
+    let whole = block.len() / 4 * 4;
     // SAFETY: every load reads four doubles of a row at `k..k + 4` and every store writes
     // the four groups `k..k + 4` of `block` (16 doubles, contiguous in `[[f64; 4]]`), with
-    // `k + 4 <= whole <= n1`, the length of each row and of `block`; unaligned loads and
-    // stores; the CPU has AVX2 (this function's feature).
+    // `k + 4 <= whole <= block.len()`, the length of each row and of `block`; unaligned
+    // loads and stores; the CPU has AVX2 (this function's feature).
     #[allow(unsafe_code)]
     unsafe {
         let nought = _mm256_setzero_pd();
@@ -455,7 +452,7 @@ fn transpose_avx2(rows: &[f64], block: &mut [[f64; LANES]], zero: &mut [f64; LAN
         }
         _mm256_storeu_pd(zero.as_mut_ptr(), z);
     }
-    transpose_orders(r0, r1, r2, r3, &mut block[whole..], whole, zero);
+    transpose_orders(rows, &mut block[whole..], whole, zero);
 }
 
 /// [`blocks_checked`] for any CPU, each whole block transposed group by group. Not inlined,
@@ -463,11 +460,7 @@ fn transpose_avx2(rows: &[f64], block: &mut [[f64; LANES]], zero: &mut [f64; LAN
 #[inline(never)]
 fn to_blocks_checked_plain(c: &[f64], dim: usize, n1: usize, blocks: &mut [[f64; LANES]]) -> bool {
     blocks_checked(c, dim, n1, blocks, |rows, block, zero| {
-        let n1 = block.len();
-        let (r0, rest) = rows.split_at(n1);
-        let (r1, rest) = rest.split_at(n1);
-        let (r2, r3) = rest.split_at(n1);
-        transpose_orders(r0, r1, r2, r3, block, 0, zero);
+        transpose_orders(rows, block, 0, zero);
     })
 }
 
@@ -475,17 +468,14 @@ fn to_blocks_checked_plain(c: &[f64], dim: usize, n1: usize, blocks: &mut [[f64;
 /// a time, `zero` summing each coefficient's `x · 0`.
 #[inline(always)]
 fn transpose_orders(
-    r0: &[f64],
-    r1: &[f64],
-    r2: &[f64],
-    r3: &[f64],
+    rows: [&[f64]; LANES],
     groups: &mut [[f64; LANES]],
     from: usize,
     zero: &mut [f64; LANES],
 ) {
     for (j, slot) in groups.iter_mut().enumerate() {
         let k = from + j;
-        let group = [r0[k], r1[k], r2[k], r3[k]];
+        let group = rows.map(|row| row[k]);
         *slot = group;
         for r in 0..LANES {
             zero[r] += group[r] * 0.0;
@@ -502,7 +492,7 @@ fn blocks_checked(
     dim: usize,
     n1: usize,
     blocks: &mut [[f64; LANES]],
-    whole: impl Fn(&[f64], &mut [[f64; LANES]], &mut [f64; LANES]),
+    whole: impl Fn([&[f64]; LANES], &mut [[f64; LANES]], &mut [f64; LANES]),
 ) -> bool {
     // `x · 0` is a zero for finite `x` and NaN otherwise: a lane's sum of them is a zero
     // exactly when all its coefficients are finite, in any order (no branch, in vector
@@ -513,7 +503,8 @@ fn blocks_checked(
         let block = &mut blocks[b * n1..(b + 1) * n1];
         let rows = &c[b * LANES * n1..(b * LANES + LANES).min(dim) * n1];
         if b < full {
-            whole(rows, block, &mut zero);
+            let four = std::array::from_fn(|r| &rows[r * n1..(r + 1) * n1]);
+            whole(four, block, &mut zero);
         } else {
             for (r, row) in rows.chunks_exact(n1).enumerate() {
                 for (group, &x) in block.iter_mut().zip(row) {

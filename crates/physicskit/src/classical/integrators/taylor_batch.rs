@@ -230,20 +230,6 @@ fn finite<const L: usize>(c: &[[f64; L]]) -> [bool; L] {
     std::array::from_fn(|l| zero.iter().map(|z| z[l]).sum::<f64>() == 0.0)
 }
 
-/// [`Batch::update`] compiled for one instruction set (called only where the CPU has it).
-macro_rules! kernels {
-    ($name:ident, $features:literal, $fused:literal) => {
-        #[cfg(target_arch = "x86_64")]
-        #[target_feature(enable = $features)]
-        fn $name<const L: usize>(batch: &mut Batch<L>, c: &[[f64; L]], h: &[f64; L]) {
-            batch.update::<$fused>(c, h);
-        }
-    };
-}
-kernels!(update_avx512, "avx512f,fma", true);
-kernels!(update_avx2, "avx2,fma", true);
-kernels!(update_fma, "fma", true);
-
 /// Each lane's step from its radius `rho` and finiteness (zero where it takes none), and
 /// whether the rule refused a lane that steps: [`StepRule::try_step`] lane by lane.
 #[inline(always)]
@@ -266,12 +252,21 @@ fn steps<const L: usize>(
     (h, refused)
 }
 
-/// [`steps`] compiled for one instruction set (called only where the CPU has it).
-macro_rules! steps_kernel {
-    ($name:ident, $features:literal) => {
+/// The step's kernels compiled for one instruction set (called only where the CPU has its
+/// features): [`Batch::update`] (error-free products by FMA if `$fused`), [`steps`], and
+/// [`radii`] with [`finite`]. Rust contracts no multiplication and addition into an FMA, so
+/// each gives the plain build's bits.
+macro_rules! kernels {
+    ($update:ident, $steps:ident, $radii:ident, $features:literal, $fused:literal) => {
         #[cfg(target_arch = "x86_64")]
         #[target_feature(enable = $features)]
-        fn $name<const L: usize>(
+        fn $update<const L: usize>(batch: &mut Batch<L>, c: &[[f64; L]], h: &[f64; L]) {
+            batch.update::<$fused>(c, h);
+        }
+
+        #[cfg(target_arch = "x86_64")]
+        #[target_feature(enable = $features)]
+        fn $steps<const L: usize>(
             batch: &Batch<L>,
             rho: [f64; L],
             finite: [bool; L],
@@ -279,28 +274,27 @@ macro_rules! steps_kernel {
         ) -> ([f64; L], [bool; L]) {
             steps(batch, rho, finite, stepping)
         }
+
+        #[cfg(target_arch = "x86_64")]
+        #[target_feature(enable = $features)]
+        fn $radii<const L: usize>(
+            c: &[[f64; L]],
+            p: usize,
+            rule: &StepRule,
+        ) -> ([f64; L], [bool; L]) {
+            (radii(c, p, rule), finite(c))
+        }
     };
 }
-steps_kernel!(steps_avx512, "avx512f");
-steps_kernel!(steps_avx2, "avx2");
-
-/// [`radii`] and [`finite`] compiled with AVX-512 (called only where the CPU has it).
-#[cfg(target_arch = "x86_64")]
-#[target_feature(enable = "avx512f")]
-fn radii_avx512<const L: usize>(
-    c: &[[f64; L]],
-    p: usize,
-    rule: &StepRule,
-) -> ([f64; L], [bool; L]) {
-    (radii(c, p, rule), finite(c))
-}
-
-/// [`radii`] and [`finite`] compiled with AVX2 (called only where the CPU has it).
-#[cfg(target_arch = "x86_64")]
-#[target_feature(enable = "avx2")]
-fn radii_avx2<const L: usize>(c: &[[f64; L]], p: usize, rule: &StepRule) -> ([f64; L], [bool; L]) {
-    (radii(c, p, rule), finite(c))
-}
+kernels!(
+    update_avx512,
+    steps_avx512,
+    radii_avx512,
+    "avx512f,fma",
+    true
+);
+kernels!(update_avx2, steps_avx2, radii_avx2, "avx2,fma", true);
+kernels!(update_fma, steps_fma, radii_fma, "fma", true);
 
 impl Isa {
     /// The state update and the clocks ([`Batch::update`]) on this instruction set.
@@ -330,14 +324,16 @@ impl Isa {
         stepping: [bool; L],
     ) -> ([f64; L], [bool; L]) {
         // SAFETY (each arm): `detect` chose the variant because the CPU has the features
-        // the function enables (AVX-512F and AVX2 respectively).
+        // the function enables.
         #[allow(unsafe_code)]
         match self {
+            Self::Plain => steps(batch, rho, finite, stepping),
             #[cfg(target_arch = "x86_64")]
-            Self::Avx512 => unsafe { steps_avx512(batch, rho, finite, stepping) },
+            Self::Fma => unsafe { steps_fma(batch, rho, finite, stepping) },
             #[cfg(target_arch = "x86_64")]
             Self::Avx2 => unsafe { steps_avx2(batch, rho, finite, stepping) },
-            _ => steps(batch, rho, finite, stepping),
+            #[cfg(target_arch = "x86_64")]
+            Self::Avx512 => unsafe { steps_avx512(batch, rho, finite, stepping) },
         }
     }
 
@@ -350,14 +346,16 @@ impl Isa {
         rule: &StepRule,
     ) -> ([f64; L], [bool; L]) {
         // SAFETY (each arm): `detect` chose the variant because the CPU has the features
-        // the function enables (AVX-512F and AVX2 respectively).
+        // the function enables.
         #[allow(unsafe_code)]
         match self {
+            Self::Plain => (radii(c, p, rule), finite(c)),
             #[cfg(target_arch = "x86_64")]
-            Self::Avx512 => unsafe { radii_avx512(c, p, rule) },
+            Self::Fma => unsafe { radii_fma(c, p, rule) },
             #[cfg(target_arch = "x86_64")]
             Self::Avx2 => unsafe { radii_avx2(c, p, rule) },
-            _ => (radii(c, p, rule), finite(c)),
+            #[cfg(target_arch = "x86_64")]
+            Self::Avx512 => unsafe { radii_avx512(c, p, rule) },
         }
     }
 }

@@ -1453,15 +1453,19 @@ impl TaylorField for TaylorProgram {
 
     fn expansion(&mut self, t: f64, y: &[f64], order: usize) -> Result<&[f64]> {
         let stride = order + 1;
-        if order > MAX_ORDER || y.len() != self.dim {
+        if order > MAX_ORDER {
             return Err(Error::invalid(
                 "order",
                 order as f64,
-                format!(
-                    "a Taylor expansion takes an order <= {MAX_ORDER} and a state of {}",
-                    self.dim
-                ),
+                format!("a Taylor expansion takes an order <= {MAX_ORDER}"),
             ));
+        }
+        if y.len() != self.dim {
+            return Err(Error::DimensionMismatch {
+                name: "y".into(),
+                expected: self.dim,
+                found: y.len(),
+            });
         }
         let size = self.nodes.len() * stride;
         if self.work.len() != size {

@@ -537,8 +537,12 @@ fn failures_are_errors() {
         integrate_taylor(&mut program, &kepler_state(0.0), (0.0, 100.0), 1.0, budget).unwrap_err();
     assert!(matches!(err, Error::StepSizeTooSmall { .. }), "{err}");
     let mut c = vec![0.0; 2 * 40];
-    assert!(program.coefficients(0.0, &[0.0; 4], 39, &mut c).is_err());
-    assert!(program.coefficients(0.0, &[0.0; 3], 4, &mut c).is_err());
+    let err = program
+        .coefficients(0.0, &[0.0; 4], 39, &mut c)
+        .unwrap_err();
+    assert!(err.to_string().contains("order"), "{err}");
+    let err = program.coefficients(0.0, &[0.0; 3], 4, &mut c).unwrap_err();
+    assert!(matches!(err, Error::DimensionMismatch { .. }), "{err}");
     // Room for other than the 4 rows of 5 coefficients that order 4 fills.
     let state = kepler_state(0.0);
     assert!(program.coefficients(0.0, &state, 4, &mut c).is_err());
@@ -591,6 +595,41 @@ impl TaylorField for PoisonedDecay {
         }
         Ok(&self.rows)
     }
+}
+
+/// A field that gives one row of coefficients for its two components.
+struct OneRowShort(Vec<f64>);
+
+impl TaylorField for OneRowShort {
+    fn dim(&self) -> usize {
+        2
+    }
+
+    fn expansion(
+        &mut self,
+        _t: f64,
+        y: &[f64],
+        order: usize,
+    ) -> physicskit::classical::Result<&[f64]> {
+        self.0 = vec![y[0]; order + 1];
+        Ok(&self.0)
+    }
+}
+
+/// A field whose expansion has other than `dim` rows of `order + 1` (an implementation's
+/// bug) stops the run with an error naming it, before any step, never a panic.
+#[test]
+fn an_expansion_of_the_wrong_size_is_an_error() {
+    let tol = Tolerances::new(1e-10, 1e-10).unwrap();
+    let err = integrate_taylor(
+        &mut OneRowShort(Vec::new()),
+        &[1.0, 2.0],
+        (0.0, 1.0),
+        0.5,
+        tol,
+    )
+    .unwrap_err();
+    assert!(err.to_string().contains("Taylor field"), "{err}");
 }
 
 /// A non-finite coefficient anywhere in an expansion (every row, the partly filled block of
