@@ -18,7 +18,7 @@ const LANES: usize = 8;
 
 /// The eight partial sums added pairwise in a fixed tree.
 #[inline(always)]
-fn combine(acc: [f64; LANES]) -> f64 {
+fn combine<T: Copy + std::ops::Add<Output = T>>(acc: [T; LANES]) -> T {
     ((acc[0] + acc[4]) + (acc[2] + acc[6])) + ((acc[1] + acc[5]) + (acc[3] + acc[7]))
 }
 
@@ -106,6 +106,25 @@ pub fn short_lane_sum<T: Copy + std::ops::Add<Output = T>>(
     })
 }
 
+/// `t(0) + ... + t(n - 1)` in the order of [`lane_sum_map`] for any `n`, over any type with
+/// addition (members in SIMD lanes, whose lanes then hold the `f64` sums of
+/// [`lane_sum_map`]); `zero` must be `-0.0` (in every lane), the partial sums' start.
+#[inline(always)]
+pub fn lane_sum_of<T: Copy + std::ops::Add<Output = T>>(
+    n: usize,
+    zero: T,
+    t: impl Fn(usize) -> T,
+) -> T {
+    if let Some(sum) = short_lane_sum(n, zero, &t) {
+        return sum;
+    }
+    let mut acc = [zero; LANES];
+    for i in 0..n {
+        acc[i % LANES] = acc[i % LANES] + t(i);
+    }
+    combine(acc)
+}
+
 /// [`lane_sum_map2`] past four terms: out of line, so that the short sums stay small enough
 /// to inline into every caller (a 2-dof energy per sample).
 #[inline(never)]
@@ -152,6 +171,25 @@ mod tests {
             assert_eq!(
                 lane_sum_map2(x, &y, |a, b| a * b).to_bits(),
                 combine(acc).to_bits(),
+                "n = {n}"
+            );
+        }
+    }
+
+    /// The generic sum (members in lanes) gives `lane_sum`'s bits at every length, on terms
+    /// chosen so that a different order would round differently (mixed magnitudes, signed
+    /// zeros).
+    #[test]
+    fn the_generic_sum_has_the_order_of_lane_sum() {
+        let xs: Vec<f64> = (0..40)
+            .map(|i| (f64::from(i) * 0.7301).sin() * 10f64.powi(i % 7 - 3))
+            .chain([-0.0, 0.0, 1e16, -1e16])
+            .collect();
+        for n in 0..=xs.len() {
+            let x = &xs[..n];
+            assert_eq!(
+                lane_sum_of(n, -0.0, |i| x[i]).to_bits(),
+                lane_sum(x).to_bits(),
                 "n = {n}"
             );
         }

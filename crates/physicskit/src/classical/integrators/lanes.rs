@@ -37,7 +37,7 @@ use super::splitting::{check_system, step_array, Coefficients};
 use super::stepper::{AdaptiveStepper, Dispatch, FieldStepper};
 use super::{HamiltonianSystem, MassInv, Method};
 use crate::classical::core::result::EnergyError;
-use crate::classical::core::sum::short_lane_sum;
+use crate::classical::core::sum::{lane_sum_of, short_lane_sum};
 use crate::classical::core::{Error, Result, TimeGrid};
 
 /// A scalar the splitting step and a [`LanesForce`] are written over: `f64`, or [`Lanes`].
@@ -213,10 +213,9 @@ pub trait LanesForce: HamiltonianSystem {
 
     /// `V(q)`, where the system's energy is `T(p) + V(q)` with this `V` its
     /// `potential_energy` and `T` the [`quadratic_kinetic_energy`](super::quadratic_kinetic_energy)
-    /// of its masses, and the type fixes its degrees of freedom ([`NDOF`](Self::NDOF)): the
-    /// lanes then give each recorded state's energy, bit for bit that of the member's own
-    /// `energy` ([`Batch::energy`]). `None` (the default): the caller takes each member's
-    /// energy alone.
+    /// of its masses: the lanes then give each recorded state's energy, bit for bit that of
+    /// the member's own `energy` ([`Batch::energy`]). `None` (the default): the caller takes
+    /// each member's energy alone.
     fn potential_of<R: Real>(&self, _q: &[R]) -> Option<R> {
         None
     }
@@ -248,7 +247,7 @@ pub struct Batch<'a> {
     /// end, where its own run would.
     pub check_every: usize,
     /// Also give each recorded state's energy where the lanes can compute it (a system with a
-    /// [`potential_of`](LanesForce::potential_of), on fixed-length arrays).
+    /// [`potential_of`](LanesForce::potential_of)).
     pub energy: bool,
     /// `record(member, step, state, energy)` for each recorded step of each member that has
     /// not failed; `energy` is the state's energy where [`energy`](Self::energy) asked for it
@@ -258,9 +257,8 @@ pub struct Batch<'a> {
     /// (against its start's energy, from 0, as `max_relative_energy_error` folds a run's
     /// stored energies) where they compute energies, and give it once at the end for each
     /// member that has not failed: `largest_error(member, error)`, NaN where an energy was not
-    /// finite. Where they cannot (no [`potential_of`](LanesForce::potential_of), or the slice
-    /// path), every step is recorded instead, whatever [`every`](Self::every) says, for the
-    /// caller to fold.
+    /// finite. Where they cannot (no [`potential_of`](LanesForce::potential_of)), every step
+    /// is recorded instead, whatever [`every`](Self::every) says, for the caller to fold.
     pub largest_error: Option<&'a mut dyn FnMut(usize, f64)>,
     /// Polled at each check: stops the run with [`Error::Interrupted`].
     pub stop: &'a dyn Fn() -> bool,
@@ -462,7 +460,22 @@ fn run<const S: usize, const L: usize, T: LanesForce + ?Sized>(
                         |q, f| system.force_of(q, f),
                     );
                 },
-                |_, _| None,
+                // `hamiltonian_energy`'s `T(p) + V(q)`, `T` as `quadratic_kinetic_energy`
+                // sums it.
+                #[inline(always)]
+                |q, p| {
+                    let v = system.potential_of(q)?;
+                    let zero = Lanes([-0.0; L]);
+                    let t = match mass {
+                        MassInv::Uniform(m) => {
+                            Lanes::splat(0.5 * m) * lane_sum_of(n, zero, |k| p[k] * p[k])
+                        }
+                        MassInv::PerCoordinate(m) => {
+                            Lanes::splat(0.5) * lane_sum_of(n, zero, |k| p[k] * m[k] * p[k])
+                        }
+                    };
+                    Some(t + v)
+                },
             )
         }
     }

@@ -177,7 +177,7 @@ impl HamiltonianSystem for ProjectileMotion {
     }
     #[inline]
     fn potential_energy(&self, q: &[f64]) -> f64 {
-        self.m * self.g * q[1]
+        self.potential(q)
     }
     fn conservative(&self) -> bool {
         self.drag_coeff <= 0.0
@@ -213,6 +213,20 @@ impl LanesForce for ProjectileMotion {
     fn same_force(&self, other: &Self) -> bool {
         let bits = |s: &Self| [s.m, s.g, s.drag_coeff].map(f64::to_bits);
         bits(self) == bits(other)
+    }
+
+    #[inline(always)]
+    fn potential_of<R: Real>(&self, q: &[R]) -> Option<R> {
+        Some(self.potential(q))
+    }
+}
+
+impl ProjectileMotion {
+    /// `V = m g y`, written once over any [`Real`]: the scalar `potential_energy` and the
+    /// members' energies in lanes.
+    #[inline(always)]
+    fn potential<R: Real>(&self, q: &[R]) -> R {
+        R::splat(self.m * self.g) * q[1]
     }
 }
 

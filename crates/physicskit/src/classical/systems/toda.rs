@@ -166,6 +166,14 @@ impl TodaLattice {
         sum + wrap
     }
 
+    /// `V = (a/b) sum_i e^{-b r_i}` over the ring's bonds (no linear term: see the module
+    /// docs), written once over any [`Real`]: the scalar `potential_energy` and the members'
+    /// energies in lanes.
+    #[inline(always)]
+    fn potential<R: Real>(&self, q: &[R]) -> R {
+        R::splat(self.a_over_b) * self.sweep(q, |_, _, _| {})
+    }
+
     /// The Lax matrix `L` of `state = [q, p]` (the current state if `None`), row-major
     /// `n x n`: `L_ii = p_i`, `L_{i,i+1} = L_{i+1,i} = sqrt(a/b) exp(-b (q_{i+1} - q_i)/2)`
     /// with the corner `L_{1n} = L_{n1}` for the bond `q_1 - q_n`; for `n = 2` the two bonds
@@ -261,7 +269,7 @@ impl HamiltonianSystem for TodaLattice {
 
     #[inline]
     fn potential_energy(&self, q: &[f64]) -> f64 {
-        self.a_over_b * self.sweep(q, |_, _, _| {})
+        self.potential(q)
     }
 
     fn mass_inv(&self) -> MassInv<'_> {
@@ -319,6 +327,11 @@ impl LanesForce for TodaLattice {
     /// `exp` per spring.
     fn calls_per_lane(&self) -> bool {
         true
+    }
+
+    #[inline(always)]
+    fn potential_of<R: Real>(&self, q: &[R]) -> Option<R> {
+        Some(self.potential(q))
     }
 }
 

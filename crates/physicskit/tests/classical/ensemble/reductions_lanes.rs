@@ -4,8 +4,8 @@
 //! eccentricities: groups by equal forces and equal Taylor recurrences) and Hénon–Heiles
 //! (per-member states: the same system), by `yoshida4` and by `taylor`, for 1, 3, `L` and
 //! `2L + 1` members (`L` the lanes), on one thread and on two; also, by the splitting method,
-//! pendulums and oscillators of two masses (whose energies the lanes compute) and Toda rings
-//! (whose energies are taken member by member). A plan that mixes them with a
+//! pendulums, oscillators of two masses and Toda rings (whose energies the lanes compute, the
+//! rings' over slices). A plan that mixes them with a
 //! chaos reduction (run member by member on its own flow; `yoshida4`, as the chaos
 //! reductions need a fixed step) gives the same numbers, and a member whose energy stops
 //! being finite fails with its own run's error.
@@ -235,8 +235,7 @@ fn energy_errors_and_events_in_lanes_equal_each_members_own_run() {
 }
 
 /// The energy error alone: the splitting lanes fold it themselves and record only the last
-/// step (Toda's slice lanes, which do not compute energies, record every step instead), the
-/// `taylor` lanes report every output as before; the same numbers either way.
+/// step, the `taylor` lanes report every output as before; the same numbers either way.
 #[test]
 fn the_energy_error_alone_equals_each_members_own_run() {
     for method in [Method::Yoshida4, Method::Taylor] {

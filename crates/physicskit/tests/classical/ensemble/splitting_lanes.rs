@@ -292,10 +292,9 @@ fn first_force_batch(source: &FromCatalogue<'_>, l: usize) -> (Vec<usize>, Vec<f
 /// `run_lanes` of each system above, called directly on a batch of a lane width of members
 /// sharing the first member's force: accepted for every splitting method, no member fails,
 /// and every recorded row is the member's own strided trajectory's, bit for bit. Asked for
-/// energies, the lanes give them for the systems with a potential over lanes (Kepler,
-/// Hénon–Heiles, the pendulum, the oscillator), each bit for bit the member's own `energy` of
-/// the row, and `None` for the others (the projectile's energy is its own, the Toda lattice
-/// runs over slices).
+/// energies, the lanes give them for every one of these systems (each has a potential over
+/// lanes; the Toda lattice's runs over slices), each bit for bit the member's own `energy` of
+/// the row.
 #[test]
 fn run_lanes_accepts_every_lanes_system_and_reproduces_each_member() {
     let l = native_lanes();
@@ -309,10 +308,6 @@ fn run_lanes_accepts_every_lanes_system_and_reproduces_each_member() {
         }
         let first = source.build(0, 0.0).unwrap();
         let lanes = first.dynamical().splitting_lanes().unwrap();
-        let in_lanes = matches!(
-            name,
-            "kepler" | "henon-heiles" | "pendulum" | "harmonic-oscillator"
-        );
         let grid = TimeGrid::new((0.0, t1), dt).unwrap();
         for method in splitting_methods() {
             assert!(lanes.accepts(method), "{name}, {method:?}");
@@ -354,11 +349,8 @@ fn run_lanes_accepts_every_lanes_system_and_reproduces_each_member() {
                 let own_energy = |row: &Vec<f64>| member.dynamical().energy(row).to_bits();
                 let got: Vec<Option<u64>> =
                     energies[m].iter().map(|e| e.map(f64::to_bits)).collect();
-                let want: Vec<Option<u64>> = if in_lanes {
-                    rows[m].iter().map(|row| Some(own_energy(row))).collect()
-                } else {
-                    vec![None; rows[m].len()]
-                };
+                let want: Vec<Option<u64>> =
+                    rows[m].iter().map(|row| Some(own_energy(row))).collect();
                 assert_eq!(got, want, "{name}, {method:?}, member {i}: energies");
             }
         }
@@ -421,19 +413,16 @@ fn run_lanes_flags_only_the_escaping_members_of_a_batch() {
 }
 
 /// Asked for each member's largest energy error and no rows but the last, the lanes fold it
-/// themselves where they compute energies (Hénon–Heiles, the pendulum: one record per member,
-/// and the error, bit for bit that of the member's own run with every step stored), and
-/// record every step instead where they do not (the Toda lattice, run over slices: no error
-/// given, a row per step).
+/// themselves (Hénon–Heiles, the pendulum on fixed-length arrays, the Toda lattice over
+/// slices): one record per member, and the error, bit for bit that of the member's own run
+/// with every step stored.
 #[test]
 fn run_lanes_folds_the_largest_energy_error_where_it_computes_energies() {
     let l = native_lanes();
     for (name, members, t1, dt) in ensembles(l) {
-        let folds = match name {
-            "henon-heiles" | "pendulum" => true,
-            "toda" => false,
-            _ => continue,
-        };
+        if !matches!(name, "henon-heiles" | "pendulum" | "toda") {
+            continue;
+        }
         let entry = catalog::find(name).unwrap();
         let source = FromCatalogue::new(entry, &members).unwrap();
         let first = source.build(0, 0.0).unwrap();
@@ -461,10 +450,6 @@ fn run_lanes_folds_the_largest_energy_error_where_it_computes_energies() {
             .unwrap();
         assert_eq!(failed, vec![false; same.len()], "{name}");
         for (m, &i) in same.iter().enumerate() {
-            if !folds {
-                assert_eq!((records[m], errors[m]), (grid.n_steps(), None), "{name}");
-                continue;
-            }
             let own = source
                 .build(i, 0.0)
                 .unwrap()
