@@ -8,15 +8,17 @@
 //! its own run's error, named by index, beside members that do not, and a batch of lanes flags
 //! exactly its escaping members (Hénon–Heiles above the saddles' energy). The lanes runner itself is checked directly too (`run_lanes` accepts every
 //! such system and reproduces each member), so the equalities above cannot come from members
-//! that silently ran alone.
+//! that silently ran alone. A system written here, quartic wells with a mass per coordinate,
+//! takes the slice path's energies with and without a potential over lanes.
 
 use physicskit::classical::catalog;
 use physicskit::classical::ensemble::{self, FromCatalogue, MemberSource, Members, Plan, Sweep};
-use physicskit::classical::integrators::lanes::Batch;
+use physicskit::classical::integrators::lanes::{Batch, LanesForce, Real, SplittingLanes};
+use physicskit::classical::integrators::{HamiltonianSystem, MassInv};
 use physicskit::classical::model::Value;
 use physicskit::classical::symbolic::native_lanes;
 use physicskit::classical::{
-    Error, IntegrateOptions, Method, Sampling, SimulationResult, TimeGrid,
+    DynamicalSystem, Error, IntegrateOptions, Method, Phase, Sampling, SimulationResult, TimeGrid,
 };
 use std::f64::consts::TAU;
 
@@ -289,6 +291,72 @@ fn first_force_batch(source: &FromCatalogue<'_>, l: usize) -> (Vec<usize>, Vec<f
     (same, starts)
 }
 
+/// A lanes run's recorded rows and energies, per member of the batch.
+type Recorded = (Vec<Vec<Vec<f64>>>, Vec<Vec<Option<f64>>>);
+
+/// `run_lanes` of the `count` members in `starts` on `lanes`, every `STRIDE`-th step recorded
+/// with its energy where the lanes give it: which members failed, and each one's rows and
+/// energies.
+fn strided_rows(
+    lanes: &dyn SplittingLanes,
+    method: Method,
+    starts: &[f64],
+    grid: &TimeGrid,
+    count: usize,
+) -> physicskit::classical::Result<(Vec<bool>, Recorded)> {
+    let mut rows: Vec<Vec<Vec<f64>>> = vec![Vec::new(); count];
+    let mut energies: Vec<Vec<Option<f64>>> = vec![Vec::new(); count];
+    let failed = lanes.run_lanes(
+        native_lanes(),
+        method,
+        Batch {
+            starts,
+            grid,
+            every: Some(STRIDE),
+            check_every: 16,
+            energy: true,
+            record: &mut |m: usize, _: usize, y: &[f64], e: Option<f64>| {
+                rows[m].push(y.to_vec());
+                energies[m].push(e);
+            },
+            largest_error: None,
+            stop: &|| false,
+        },
+    )?;
+    Ok((failed, (rows, energies)))
+}
+
+/// `run_lanes` of the `count` members in `starts` on `lanes`, asked for each member's largest
+/// energy error and no rows but the last: whether any member failed, and per member the
+/// number of records and the error, where the lanes gave it.
+fn folded_errors(
+    lanes: &dyn SplittingLanes,
+    method: Method,
+    starts: &[f64],
+    grid: &TimeGrid,
+    count: usize,
+) -> (Vec<bool>, Vec<usize>, Vec<Option<f64>>) {
+    let mut records = vec![0_usize; count];
+    let mut errors = vec![None; count];
+    let failed = lanes
+        .run_lanes(
+            native_lanes(),
+            method,
+            Batch {
+                starts,
+                grid,
+                every: None,
+                check_every: 16,
+                energy: false,
+                record: &mut |m: usize, _: usize, _: &[f64], _: Option<f64>| records[m] += 1,
+                largest_error: Some(&mut |m: usize, e: f64| errors[m] = Some(e)),
+                stop: &|| false,
+            },
+        )
+        .unwrap();
+    (failed, records, errors)
+}
+
 /// `run_lanes` of each system above, called directly on a batch of a lane width of members
 /// sharing the first member's force: accepted for every splitting method, no member fails,
 /// and every recorded row is the member's own strided trajectory's, bit for bit. Asked for
@@ -311,27 +379,9 @@ fn run_lanes_accepts_every_lanes_system_and_reproduces_each_member() {
         let grid = TimeGrid::new((0.0, t1), dt).unwrap();
         for method in splitting_methods() {
             assert!(lanes.accepts(method), "{name}, {method:?}");
-            let mut rows: Vec<Vec<Vec<f64>>> = vec![Vec::new(); same.len()];
-            let mut energies: Vec<Vec<Option<f64>>> = vec![Vec::new(); same.len()];
-            let failed = lanes
-                .run_lanes(
-                    l,
-                    method,
-                    Batch {
-                        starts: &starts,
-                        grid: &grid,
-                        every: Some(STRIDE),
-                        check_every: 16,
-                        energy: true,
-                        record: &mut |m: usize, _: usize, y: &[f64], e: Option<f64>| {
-                            rows[m].push(y.to_vec());
-                            energies[m].push(e);
-                        },
-                        largest_error: None,
-                        stop: &|| false,
-                    },
-                )
-                .unwrap_or_else(|e| panic!("{name}, {method:?}: {e}"));
+            let (failed, (rows, energies)) =
+                strided_rows(lanes, method, &starts, &grid, same.len())
+                    .unwrap_or_else(|e| panic!("{name}, {method:?}: {e}"));
             assert_eq!(failed, vec![false; same.len()], "{name}, {method:?}");
             for (m, &i) in same.iter().enumerate() {
                 let alone = own_run(&source, i, (t1, dt), method).unwrap();
@@ -430,24 +480,7 @@ fn run_lanes_folds_the_largest_energy_error_where_it_computes_energies() {
         let (same, starts) = first_force_batch(&source, l);
         let grid = TimeGrid::new((0.0, t1), dt).unwrap();
         let method = Method::Yoshida4;
-        let mut records = vec![0_usize; same.len()];
-        let mut errors = vec![None; same.len()];
-        let failed = lanes
-            .run_lanes(
-                l,
-                method,
-                Batch {
-                    starts: &starts,
-                    grid: &grid,
-                    every: None,
-                    check_every: 16,
-                    energy: false,
-                    record: &mut |m: usize, _: usize, _: &[f64], _: Option<f64>| records[m] += 1,
-                    largest_error: Some(&mut |m: usize, e: f64| errors[m] = Some(e)),
-                    stop: &|| false,
-                },
-            )
-            .unwrap();
+        let (failed, records, errors) = folded_errors(lanes, method, &starts, &grid, same.len());
         assert_eq!(failed, vec![false; same.len()], "{name}");
         for (m, &i) in same.iter().enumerate() {
             let own = source
@@ -471,6 +504,154 @@ fn run_lanes_folds_the_largest_energy_error_where_it_computes_energies() {
                 Some(own.to_bits()),
                 "{name}, member {i}"
             );
+        }
+    }
+}
+
+/// Uncoupled quartic wells `H = Σ p_i² / (2 m_i) + (k/4) Σ q_i⁴`, one mass per coordinate:
+/// written here, not in the catalogue, to reach the lanes' slice path with per-coordinate
+/// masses, with its potential over lanes (`potential: true`) or without one.
+struct QuarticWells {
+    phase: Phase,
+    m_inv: Vec<f64>,
+    k: f64,
+    potential: bool,
+}
+
+impl QuarticWells {
+    fn new(state: Vec<f64>, potential: bool) -> Self {
+        let n = state.len() / 2;
+        Self {
+            phase: Phase::new(state, 0.0).unwrap(),
+            m_inv: (0..n).map(|i| 1.0 / (1.0 + 0.75 * i as f64)).collect(),
+            k: 1.3,
+            potential,
+        }
+    }
+
+    /// `(k/4) Σ q_i⁴`, over `f64` and over lanes.
+    fn v<R: Real>(&self, q: &[R]) -> R {
+        let mut sum = R::splat(0.0);
+        for &x in q {
+            sum += x * x * (x * x);
+        }
+        sum * (0.25 * self.k)
+    }
+}
+
+impl HamiltonianSystem for QuarticWells {
+    fn ndof(&self) -> usize {
+        self.m_inv.len()
+    }
+    fn potential_energy(&self, q: &[f64]) -> f64 {
+        self.v(q)
+    }
+    fn mass_inv(&self) -> MassInv<'_> {
+        MassInv::PerCoordinate(&self.m_inv)
+    }
+    fn force(&self, q: &[f64], _t: f64, out: &mut [f64]) -> physicskit::classical::Result<()> {
+        self.force_of(q, out);
+        Ok(())
+    }
+}
+
+impl LanesForce for QuarticWells {
+    fn force_of<R: Real>(&self, q: &[R], out: &mut [R]) {
+        for (f, &x) in out.iter_mut().zip(q) {
+            *f = x * x * x * -self.k;
+        }
+    }
+    fn same_force(&self, other: &Self) -> bool {
+        (self.k, &self.m_inv) == (other.k, &other.m_inv)
+    }
+    fn potential_of<R: Real>(&self, q: &[R]) -> Option<R> {
+        self.potential.then(|| self.v(q))
+    }
+}
+
+physicskit::impl_separable_dynamics!(QuarticWells, {
+    fn splitting_lanes(&self) -> Option<&dyn SplittingLanes> {
+        Some(self)
+    }
+});
+
+/// The slice path with a mass per coordinate (six wells, so the kinetic sum runs past the
+/// four written-out terms): with a potential over lanes, every recorded energy is the
+/// member's own `energy` of the row, bit for bit, and the largest energy error is folded in
+/// the lanes (one record per member, the member's own run's error); without one, the lanes
+/// give no energies and record every step for the caller to fold.
+#[test]
+fn slice_lanes_with_a_mass_per_coordinate_give_energies_exactly_where_they_can() {
+    let l = native_lanes();
+    let (dim, count) = (12, l.min(5));
+    let start = |m: usize| -> Vec<f64> {
+        (0..dim)
+            .map(|i| 0.3 + 0.1 * (m as f64) - 0.07 * (i as f64))
+            .collect()
+    };
+    let starts: Vec<f64> = (0..count).flat_map(start).collect();
+    let (t1, dt) = (5.0, 0.01);
+    let grid = TimeGrid::new((0.0, t1), dt).unwrap();
+    let method = Method::Yoshida4;
+    for potential in [true, false] {
+        let lead = QuarticWells::new(start(0), potential);
+        let (failed, (rows, energies)) =
+            strided_rows(&lead, method, &starts, &grid, count).unwrap();
+        assert_eq!(failed, vec![false; count]);
+        let (failed, records, errors) = folded_errors(&lead, method, &starts, &grid, count);
+        assert_eq!(failed, vec![false; count]);
+        for m in 0..count {
+            let run = |sampling: Sampling| {
+                QuarticWells::new(start(m), potential)
+                    .integrate_with(
+                        (0.0, t1),
+                        dt,
+                        method,
+                        IntegrateOptions {
+                            sampling,
+                            ..IntegrateOptions::default()
+                        },
+                    )
+                    .unwrap()
+            };
+            let alone = QuarticWells::new(start(m), potential);
+            // Row 0, the initial state, is not recorded by the lanes.
+            let stored: Vec<Vec<f64>> = run(Sampling::Stride(STRIDE))
+                .y
+                .rows()
+                .into_iter()
+                .skip(1)
+                .map(|r| r.to_vec())
+                .collect();
+            let bits = |rows: &[Vec<f64>]| -> Vec<u64> {
+                rows.iter().flatten().map(|v| v.to_bits()).collect()
+            };
+            assert_eq!(
+                bits(&rows[m]),
+                bits(&stored),
+                "potential {potential}, member {m}"
+            );
+            let got: Vec<Option<u64>> = energies[m].iter().map(|e| e.map(f64::to_bits)).collect();
+            let want: Vec<Option<u64>> = rows[m]
+                .iter()
+                .map(|row| potential.then(|| alone.energy(row).to_bits()))
+                .collect();
+            assert_eq!(got, want, "potential {potential}, member {m}: energies");
+            if potential {
+                let error = run(Sampling::All).max_relative_energy_error().unwrap();
+                assert_eq!(records[m], 1, "member {m}");
+                assert_eq!(
+                    errors[m].map(f64::to_bits),
+                    Some(error.to_bits()),
+                    "member {m}"
+                );
+            } else {
+                assert_eq!(
+                    (records[m], errors[m]),
+                    (grid.n_steps(), None),
+                    "member {m}"
+                );
+            }
         }
     }
 }
