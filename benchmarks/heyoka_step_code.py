@@ -65,7 +65,7 @@ def main():
     print("|---|---|---|---:|---:|---:|---:|---:|---:|---|")
     seen = set()
     for name, (sys_, y0, _) in systems().items():
-        if sys_ is not None and id(sys_) in seen:
+        if id(sys_) in seen:  # hh-energy: hh-state's equations, the same code
             continue
         seen.add(id(sys_))
         for tol in TOLERANCES:

@@ -650,11 +650,12 @@ impl Taylor {
             ));
         }
         // The step size first, from the rows as the recurrences wrote them (the largest
-        // magnitudes of orders 0, p - 1 and p: `f64::max`, which passes over a NaN, in any
-        // order gives the same), so that its chain of operations overlaps the transposition.
+        // magnitudes of the rule's orders: `f64::max`, which passes over a NaN, in any order
+        // gives the same), so that its chain of operations overlaps the transposition.
         let mut norms = [0.0_f64; 3];
+        let orders = self.rule.norm_orders();
         for row in rows.chunks_exact(n1) {
-            for (norm, k) in norms.iter_mut().zip([0, p - 1, p]) {
+            for (norm, k) in norms.iter_mut().zip(orders) {
                 *norm = norm.max(row[k].abs());
             }
         }

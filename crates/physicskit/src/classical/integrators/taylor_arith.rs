@@ -184,6 +184,8 @@ pub(crate) struct StepRule {
     inverse_orders: [f64; 2],
     /// `exp(-0.7/(p - 1)) / e²`: heyoka's safety factor over the rule's `e²`.
     factor: f64,
+    /// `[0, p - 1, p]`: the orders whose norms [`radius`](Self::radius) takes.
+    norm_orders: [usize; 3],
 }
 
 impl StepRule {
@@ -194,7 +196,15 @@ impl StepRule {
             atol: tolerances.atol,
             inverse_orders: [1.0 / (p - 1) as f64, 1.0 / p as f64],
             factor: (-2.0 - 0.7 / (p - 1) as f64).exp(),
+            norm_orders: [0, p - 1, p],
         }
+    }
+
+    /// The orders `[0, p - 1, p]` whose largest coefficient magnitudes, in this order, are
+    /// [`radius`](Self::radius)'s norms.
+    #[inline(always)]
+    pub(crate) fn norm_orders(&self) -> [usize; 3] {
+        self.norm_orders
     }
 
     /// The radius `ρ = min((s/‖x_{p-1}‖)^(1/(p-1)), (s/‖x_p‖)^(1/p))` from the expansion's

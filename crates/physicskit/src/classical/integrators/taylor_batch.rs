@@ -187,17 +187,18 @@ fn horner_rows<const L: usize, const R: usize, const FUSED: bool>(
     }
 }
 
-/// The step-size rule's radius of each lane from the largest `|c|` of orders 0, `p - 1` and
-/// `p` over the rows of `c` (`dim` rows of `p + 1`), lane by lane (in row order, by
-/// `f64::max`, as the scalar step takes them).
+/// The step-size rule's radius of each lane from the largest `|c|` of the rule's orders
+/// ([`StepRule::norm_orders`]) over the rows of `c` (`dim` rows of `p + 1`), lane by lane (in
+/// row order, by `f64::max`, as the scalar step takes them).
 #[inline(always)]
 fn radii<const L: usize>(c: &[[f64; L]], p: usize, rule: &StepRule) -> [f64; L] {
     let (mut norm, mut second_last, mut last) = ([0.0_f64; L], [0.0_f64; L], [0.0_f64; L]);
+    let [first, before_last, final_order] = rule.norm_orders();
     for row in c.chunks_exact(p + 1) {
         for l in 0..L {
-            norm[l] = norm[l].max(row[0][l].abs());
-            second_last[l] = second_last[l].max(row[p - 1][l].abs());
-            last[l] = last[l].max(row[p][l].abs());
+            norm[l] = norm[l].max(row[first][l].abs());
+            second_last[l] = second_last[l].max(row[before_last][l].abs());
+            last[l] = last[l].max(row[final_order][l].abs());
         }
     }
     let mut rho = [0.0; L];
