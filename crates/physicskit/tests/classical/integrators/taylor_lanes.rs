@@ -69,13 +69,18 @@ fn lanes_equal_the_interpreter<const L: usize>() {
 
 /// Orders 1 to 24, each compiled on its own (whatever the program's size), lanes at distinct
 /// pseudo-random states and times: the compiled lanes' coefficients are the lanes
-/// interpreter's, bit for bit (the state's coefficients, which every node's feed).
-fn compiled_lanes_equal_the_interpreted<const L: usize>() {
+/// interpreter's, bit for bit (the state's coefficients, which every node's feed). The
+/// default code (written for AVX where the host has it, else Cranelift's), or Cranelift's
+/// alone.
+fn compiled_lanes_equal_the_interpreted<const L: usize>(cranelift: bool) {
     for (name, program, y0, spread) in programs() {
         let dim = program.dim();
         let mut reference = program.lanes::<L>().interpreted_only();
         for order in 1..=24 {
             let mut compiled = program.lanes::<L>();
+            if cranelift {
+                compiled = compiled.cranelift_only();
+            }
             assert_eq!(
                 compiled.compile_native_any_size(order),
                 native(),
@@ -93,6 +98,10 @@ fn compiled_lanes_equal_the_interpreted<const L: usize>() {
             reference.expand(&t, &y, order).unwrap();
             compiled.expand(&t, &y, order).unwrap();
             assert_eq!(compiled.backend(order), native());
+            // The code written for AVX wherever the host has it and the program takes no
+            // `|x|` (left to Cranelift), unless Cranelift's is asked for.
+            let avx = !cranelift && avx_host::<L>() && !name.contains("abs");
+            assert_eq!(compiled.written_for_avx(order), avx, "{name}, {L} lanes");
             for (i, (g, w)) in compiled
                 .coefficients()
                 .iter()
@@ -113,19 +122,49 @@ fn compiled_lanes_equal_the_interpreted<const L: usize>() {
     }
 }
 
+/// Whether this host gets the lanes' code written for AVX (x86-64 with AVX, System V calls,
+/// the JIT built), for `L` lanes.
+fn avx_host<const L: usize>() -> bool {
+    #[cfg(all(target_arch = "x86_64", not(windows)))]
+    {
+        native() == physicskit::classical::symbolic::Backend::Native
+            && L.is_multiple_of(4)
+            && std::arch::is_x86_feature_detected!("avx")
+    }
+    #[cfg(not(all(target_arch = "x86_64", not(windows))))]
+    {
+        false
+    }
+}
+
 #[test]
 fn compiled_four_lanes_have_the_interpreters_bits() {
-    compiled_lanes_equal_the_interpreted::<4>();
+    compiled_lanes_equal_the_interpreted::<4>(false);
+}
+
+#[test]
+fn cranelifts_four_lanes_have_the_interpreters_bits() {
+    compiled_lanes_equal_the_interpreted::<4>(true);
 }
 
 #[test]
 fn compiled_eight_lanes_have_the_interpreters_bits() {
-    compiled_lanes_equal_the_interpreted::<8>();
+    compiled_lanes_equal_the_interpreted::<8>(false);
+}
+
+#[test]
+fn cranelifts_eight_lanes_have_the_interpreters_bits() {
+    compiled_lanes_equal_the_interpreted::<8>(true);
 }
 
 #[test]
 fn compiled_sixteen_lanes_have_the_interpreters_bits() {
-    compiled_lanes_equal_the_interpreted::<16>();
+    compiled_lanes_equal_the_interpreted::<16>(false);
+}
+
+#[test]
+fn cranelifts_sixteen_lanes_have_the_interpreters_bits() {
+    compiled_lanes_equal_the_interpreted::<16>(true);
 }
 
 #[test]

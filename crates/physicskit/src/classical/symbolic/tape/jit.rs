@@ -270,6 +270,27 @@ pub(in crate::classical::symbolic) fn compile_function(
     Some((code, OwnedModule::new(module)))
 }
 
+/// Machine code written elsewhere (`taylor_lanes_asm.rs`: position-independent, calling only
+/// absolute addresses) mapped executable by a [`JITModule`] for this host: its address, and the
+/// module that owns it; `None` where the host has no ISA Cranelift knows or mapping fails.
+pub(in crate::classical::symbolic) fn load_code(bytes: &[u8]) -> Option<(*const u8, OwnedModule)> {
+    let mut flags = flag_builder()?;
+    flags.set("opt_level", "none").ok()?;
+    let isa = cranelift_native::builder()
+        .ok()?
+        .finish(settings::Flags::new(flags))
+        .ok()?;
+    let mut module = JITModule::new(JITBuilder::with_isa(isa, default_libcall_names()));
+    let signature = module.make_signature();
+    let id = module
+        .declare_function("written", Linkage::Local, &signature)
+        .ok()?;
+    module.define_function_bytes(id, 64, bytes, &[]).ok()?;
+    module.finalize_definitions().ok()?;
+    let code = module.get_finalized_function(id);
+    Some((code, OwnedModule::new(module)))
+}
+
 /// Calls of `extern "C"` shims (plain Rust functions of `f64` and `i32` arguments returning an
 /// `f64`) from generated code, each signature imported once.
 pub(in crate::classical::symbolic) struct Shims {

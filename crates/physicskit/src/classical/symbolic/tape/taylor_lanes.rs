@@ -46,6 +46,10 @@ mod jit {
             Self(())
         }
 
+        pub(super) fn cranelift_only() -> Self {
+            Self(())
+        }
+
         pub(super) fn shared(_: &[Node], _: &[Val], _: usize) -> Self {
             Self(())
         }
@@ -64,6 +68,10 @@ mod jit {
             _: usize,
         ) -> Option<&Native> {
             None
+        }
+
+        pub(super) fn is_avx(&self, _: usize) -> bool {
+            false
         }
 
         pub(super) fn is_native(&self, _: usize) -> bool {
@@ -149,6 +157,26 @@ impl<const L: usize> TaylorLanes<L> {
         self.jit
             .compile(&self.nodes, &self.outputs, L, order, usize::MAX);
         self.backend(order)
+    }
+
+    /// Whether the native code of `order` is the code written for AVX
+    /// (`symbolic/tape/taylor_lanes_asm.rs`) rather than Cranelift's: what tests check to
+    /// know which code they compared.
+    #[doc(hidden)]
+    pub fn written_for_avx(&self, order: usize) -> bool {
+        self.jit.is_avx(order)
+    }
+
+    /// These lanes with their recurrences compiled by Cranelift alone, even on hosts where
+    /// they are otherwise written as AVX code (no code shared with the original): what tests
+    /// compare with the interpreter besides the default.
+    #[doc(hidden)]
+    #[must_use]
+    pub fn cranelift_only(&self) -> Self {
+        Self {
+            jit: jit::Jit::cranelift_only(),
+            ..self.clone()
+        }
     }
 
     /// These lanes with their recurrences interpreted for good (no code shared with the

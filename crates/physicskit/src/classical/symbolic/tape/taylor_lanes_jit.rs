@@ -37,6 +37,10 @@ use cranelift_codegen::ir::{types, ConstantData, InstBuilder, MemFlags, Value};
 use cranelift_codegen::settings::Configurable;
 use cranelift_frontend::FunctionBuilder;
 
+#[cfg(all(target_arch = "x86_64", not(windows)))]
+#[path = "taylor_lanes_asm.rs"]
+mod asm;
+
 use super::super::jit::{powf, unrolled_terms, Form, Recurrences};
 use super::super::{Node, Val};
 use crate::classical::integrators::taylor::MAX_ORDER;
@@ -92,6 +96,9 @@ pub(super) struct Jit(Arc<State>);
 struct State {
     /// Set for lanes that are never compiled.
     never: bool,
+    /// Set for lanes compiled by Cranelift even where [`asm`] could write their code: what
+    /// tests compare with the interpreter on hosts that have AVX.
+    cranelift_only: bool,
     code: [OnceLock<Option<Native>>; MAX_ORDER + 1],
     /// Orders found above [`MAX_TERMS`] sum terms (not compiled at expansions, but on demand
     /// at any size).
@@ -110,6 +117,14 @@ impl Jit {
     pub(super) fn never() -> Self {
         Self(Arc::new(State {
             never: true,
+            ..State::default()
+        }))
+    }
+
+    /// Lanes compiled by Cranelift alone, sharing no code with other lanes.
+    pub(super) fn cranelift_only() -> Self {
+        Self(Arc::new(State {
+            cranelift_only: true,
             ..State::default()
         }))
     }
@@ -179,8 +194,16 @@ impl Jit {
             too_large.store(true, Ordering::Relaxed);
             return None;
         }
-        slot.get_or_init(|| Native::compile(nodes, outputs, lanes, order))
+        slot.get_or_init(|| Native::compile(nodes, outputs, lanes, order, self.0.cranelift_only))
             .as_ref()
+    }
+
+    /// Whether the native code of `order` is the code written for AVX ([`asm`]).
+    pub(super) fn is_avx(&self, order: usize) -> bool {
+        matches!(
+            self.0.code.get(order).and_then(OnceLock::get),
+            Some(Some(Native { avx: true, .. }))
+        )
     }
 
     /// Whether native code runs the expansions to `order`.
@@ -198,6 +221,8 @@ pub(super) struct Native {
     /// Length of the work array the code reads and writes, in `[f64; lanes]`.
     len: usize,
     lanes: usize,
+    /// Whether the code is [`asm`]'s, written for AVX (else Cranelift's).
+    avx: bool,
     /// Owns the code `entry` points into.
     _module: OwnedModule,
 }
@@ -217,7 +242,27 @@ impl Native {
         }
     }
 
-    fn compile(nodes: &[Node], outputs: &[Val], lanes: usize, order: usize) -> Option<Native> {
+    /// The code written for AVX ([`asm`]) where the host and program allow it (unless
+    /// `cranelift_only`), else Cranelift's.
+    fn compile(
+        nodes: &[Node],
+        outputs: &[Val],
+        lanes: usize,
+        order: usize,
+        cranelift_only: bool,
+    ) -> Option<Native> {
+        #[cfg(all(target_arch = "x86_64", not(windows)))]
+        if !cranelift_only {
+            if let Some((code, module)) = asm::compile(nodes, outputs, lanes, order) {
+                let native = Native::new(code, nodes.len() * (order + 1), lanes, module);
+                return Some(Native {
+                    avx: true,
+                    ..native
+                });
+            }
+        }
+        #[cfg(not(all(target_arch = "x86_64", not(windows))))]
+        let _ = cranelift_only;
         if vectors(lanes) == 2 {
             Self::compile_with::<2>(nodes, outputs, lanes, order)
         } else {
@@ -270,15 +315,23 @@ impl Native {
                 b.seal_block(exit);
                 Vec::new()
             })?;
-        Some(Native {
-            // SAFETY: `code` is the finalized code of a function declared with `Entry`'s
-            // signature in the platform's default calling convention, `extern "C"`'s.
+        Some(Native::new(code, nodes.len() * (order + 1), lanes, module))
+    }
+
+    /// The function at `code`, owned by `module`, on a work array of `len` coefficients of
+    /// `lanes` lanes.
+    fn new(code: *const u8, len: usize, lanes: usize, module: OwnedModule) -> Native {
+        Native {
+            // SAFETY: `code` is the finalized code of a function of `Entry`'s signature in the
+            // platform's default calling convention, `extern "C"`'s: Cranelift's, declared so,
+            // or `asm`'s, written so.
             #[allow(unsafe_code)]
             entry: unsafe { std::mem::transmute::<*const u8, Entry>(code) },
-            len: nodes.len() * (order + 1),
+            len,
             lanes,
+            avx: false,
             _module: module,
-        })
+        }
     }
 }
 

@@ -1,0 +1,796 @@
+//! [`TaylorLanes`](super::TaylorLanes)' recurrences as x86-64 AVX machine code written
+//! directly (x86-64 hosts with AVX, System V calling convention): what
+//! `taylor_lanes_jit.rs` compiles first, before Cranelift, whose x86-64 backend has no
+//! vectors wider than 128 bits.
+//!
+//! The code is the same unrolled form (`taylor_jit.rs`'s [`Recurrences`], emitted by the same
+//! provided methods in the same order), on whole `ymm` (4 lanes) or `zmm` (8 lanes, AVX-512F)
+//! registers: one pass of it covers [`width`] lanes, and a loop runs it over the `L` lanes.
+//! It is made in three steps:
+//! 1. **record**: the [`Recurrences`] calls become a list of [`Op`]s on values numbered by
+//!    the op that made them (a coefficient of the order being computed used as the value
+//!    just computed, older ones loaded, as in the other emitters);
+//! 2. **allocate**: one walk over the list assigns registers from each value's last use and
+//!    writes the machine instructions ([`Inst`]). A load is not an instruction of its own
+//!    but an operand read from memory by the arithmetic that uses it (x86's folded loads),
+//!    and so is a constant (read from a pool after the code). When the registers run out, the
+//!    value used last is dropped from its register: for free if it is already in memory (a
+//!    stored coefficient, a load, a constant), else stored to a stack slot;
+//! 3. **encode**: [`iced_x86`]'s assembler turns the instructions into bytes, which
+//!    Cranelift's JIT module maps executable ([`load_code`]).
+//!
+//! Addition, subtraction, multiplication, division and square root are the IEEE operations
+//! lane by lane, negation flips the sign bit (as Cranelift's `fneg` does), nothing is fused
+//! into a multiply-add, and an addition or a multiplication may take its operands in either
+//! order (IEEE addition and multiplication commute exactly): each lane does the interpreter's
+//! operations in its order and gets its bits. Order 0 of the transcendental operations calls
+//! the scalar JIT's `extern "C"` shims lane by lane (every register saved first: the calling
+//! convention keeps none of them). A program with an `|x|` is left to Cranelift
+//! ([`compile`] returns `None`). `tests/classical/integrators/taylor_lanes.rs` checks this
+//! code and Cranelift's against the interpreter on every recurrence at orders 1–24.
+
+use iced_x86::code_asm::{
+    ptr, r12, rax, rbx, rdi, registers, rsp, AsmMemoryOperand, AsmRegisterYmm, AsmRegisterZmm,
+    CodeAssembler, CodeLabel, IcedError,
+};
+
+use super::super::jit::{powf, Recurrences};
+use super::super::{Node, Val};
+use crate::classical::symbolic::tape::jit::{load_code, OwnedModule};
+
+/// Lanes per vector register for `lanes` lanes on this host: 8 (`zmm`) with AVX-512F where
+/// `lanes` is a multiple of 8, 4 (`ymm`) with AVX where it is a multiple of 4; `None` where
+/// the host has neither (this code is then not made).
+pub(super) fn width(lanes: usize) -> Option<usize> {
+    if lanes.is_multiple_of(8) && std::arch::is_x86_feature_detected!("avx512f") {
+        Some(8)
+    } else if lanes.is_multiple_of(4) && std::arch::is_x86_feature_detected!("avx") {
+        Some(4)
+    } else {
+        None
+    }
+}
+
+/// The recurrences of `order` for `lanes` lanes as machine code, its entry point
+/// (`extern "C" fn(*mut f64)` on the lanes' work array) and the module owning it; `None`
+/// where the host lacks AVX, the program takes an `|x|`, or its offsets do not fit the
+/// encoding.
+pub(super) fn compile(
+    nodes: &[Node],
+    outputs: &[Val],
+    lanes: usize,
+    order: usize,
+) -> Option<(*const u8, OwnedModule)> {
+    compile_on(nodes, outputs, lanes, order, None)
+}
+
+/// [`compile`] on at most `registers` vector registers (all of them if `None`): tests take
+/// few to make the allocator spill.
+fn compile_on(
+    nodes: &[Node],
+    outputs: &[Val],
+    lanes: usize,
+    order: usize,
+    registers: Option<usize>,
+) -> Option<(*const u8, OwnedModule)> {
+    let width = width(lanes)?;
+    let mut recorder = Recorder {
+        ops: Vec::new(),
+        pool: Vec::new(),
+        stride: order + 1,
+        k: 0,
+        fresh: vec![None; nodes.len() * (order + 1)],
+        has_abs: false,
+    };
+    recorder.recurrences(nodes, outputs, order);
+    if recorder.has_abs {
+        return None;
+    }
+    let sign = recorder.constant(-0.0);
+    let all = if width == 8 { 32 } else { 16 };
+    let registers = registers.map_or(all, |r| r.clamp(1, all));
+    let (code, slots) = allocate(&recorder.ops, registers, sign);
+    let frame = Frame {
+        lanes,
+        width,
+        slots,
+    };
+    let bytes = frame.encode(&code, &recorder.pool).ok()?;
+    load_code(&bytes)
+}
+
+/// An operation of the recorded recurrences; its value (if any) is numbered by its place in
+/// the list.
+#[derive(Clone, Copy)]
+enum Op {
+    /// Coefficient `i` of the work array (`node × (order + 1) + j`).
+    Load(usize),
+    /// Constant `i` of the pool.
+    Constant(usize),
+    Arith(Arith, usize, usize),
+    Neg(usize),
+    Sqrt(usize),
+    /// The shim at `address` lane by lane on value `x`, with the pool's constant `alpha` as
+    /// second argument if given.
+    Call {
+        address: usize,
+        x: usize,
+        alpha: Option<usize>,
+    },
+    /// Value `x` stored to coefficient `i`.
+    Store(usize, usize),
+}
+
+#[derive(Clone, Copy, PartialEq)]
+enum Arith {
+    Add,
+    Sub,
+    Mul,
+    Div,
+}
+
+/// Records the [`Recurrences`] calls as [`Op`]s.
+struct Recorder {
+    ops: Vec<Op>,
+    pool: Vec<f64>,
+    stride: usize,
+    /// The order being recorded.
+    k: usize,
+    /// The value of each coefficient stored, used instead of a load while its order is at
+    /// least the one being recorded.
+    fresh: Vec<Option<usize>>,
+    has_abs: bool,
+}
+
+impl Recorder {
+    fn push(&mut self, op: Op) -> usize {
+        self.ops.push(op);
+        self.ops.len() - 1
+    }
+
+    /// The pool's index of `c` (bit for bit), added if new.
+    fn constant(&mut self, c: f64) -> usize {
+        let bits = c.to_bits();
+        if let Some(i) = self.pool.iter().position(|p| p.to_bits() == bits) {
+            return i;
+        }
+        self.pool.push(c);
+        self.pool.len() - 1
+    }
+}
+
+impl Recurrences for Recorder {
+    type X = usize;
+
+    fn set_k(&mut self, k: usize) {
+        self.k = k;
+    }
+
+    fn ld(&mut self, n: usize, j: usize) -> usize {
+        let i = n * self.stride + j;
+        match self.fresh[i] {
+            Some(v) if j >= self.k => v,
+            _ => self.push(Op::Load(i)),
+        }
+    }
+
+    fn st(&mut self, n: usize, j: usize, x: usize) {
+        let i = n * self.stride + j;
+        self.fresh[i] = Some(x);
+        self.push(Op::Store(i, x));
+    }
+
+    fn c(&mut self, c: f64) -> usize {
+        let i = self.constant(c);
+        self.push(Op::Constant(i))
+    }
+
+    fn add(&mut self, x: usize, y: usize) -> usize {
+        self.push(Op::Arith(Arith::Add, x, y))
+    }
+
+    fn sub(&mut self, x: usize, y: usize) -> usize {
+        self.push(Op::Arith(Arith::Sub, x, y))
+    }
+
+    fn mul(&mut self, x: usize, y: usize) -> usize {
+        self.push(Op::Arith(Arith::Mul, x, y))
+    }
+
+    fn div(&mut self, x: usize, y: usize) -> usize {
+        self.push(Op::Arith(Arith::Div, x, y))
+    }
+
+    fn neg(&mut self, x: usize) -> usize {
+        self.push(Op::Neg(x))
+    }
+
+    fn sqrt(&mut self, x: usize) -> usize {
+        self.push(Op::Sqrt(x))
+    }
+
+    /// Not written here: the program is left to Cranelift.
+    fn abs(&mut self, _: usize, x: usize) -> usize {
+        self.has_abs = true;
+        x
+    }
+
+    fn call(&mut self, address: usize, x: usize) -> usize {
+        self.push(Op::Call {
+            address,
+            x,
+            alpha: None,
+        })
+    }
+
+    fn powf(&mut self, x: usize, alpha: f64) -> usize {
+        let alpha = Some(self.constant(alpha));
+        self.push(Op::Call {
+            address: powf as *const () as usize,
+            x,
+            alpha,
+        })
+    }
+}
+
+/// Where a value is: a vector register, or memory an instruction can read it from.
+#[derive(Clone, Copy, PartialEq)]
+enum Loc {
+    Reg(u8),
+    /// Coefficient `i` of the work array, at this pass's lanes.
+    Work(usize),
+    /// Stack slot `i`.
+    Slot(usize),
+    /// Constant `i` of the pool (the same in every lane).
+    Pool(usize),
+}
+
+/// A machine instruction on whole vectors.
+enum Inst {
+    Load {
+        dst: u8,
+        src: Loc,
+    },
+    Store {
+        dst: Loc,
+        src: u8,
+    },
+    Arith {
+        op: Arith,
+        dst: u8,
+        a: u8,
+        b: Loc,
+    },
+    Sqrt {
+        dst: u8,
+        x: Loc,
+    },
+    /// `a` with the sign bits of the pool's constant `mask` flipped.
+    Xor {
+        dst: u8,
+        a: u8,
+        mask: usize,
+    },
+    /// The shim at `address` lane by lane on `x` (in memory), results to stack slot `out`.
+    Call {
+        address: usize,
+        x: Loc,
+        alpha: Option<usize>,
+        out: usize,
+    },
+}
+
+/// The register allocator's state: every value's place, every register's value.
+struct Allocator {
+    code: Vec<Inst>,
+    loc: Vec<Loc>,
+    /// A copy of the value in memory, once it has one (its load, constant, store or slot).
+    home: Vec<Option<Loc>>,
+    /// The last op reading each value (`None` if none does).
+    last: Vec<Option<usize>>,
+    /// Each register's value (`usize::MAX` for a scratch use), `None` if free.
+    owner: Vec<Option<usize>>,
+    slots: usize,
+}
+
+/// The instructions of `ops` on `registers` vector registers, and the stack slots they use;
+/// `sign` is the pool's `-0.0`, whose bits negate.
+fn allocate(ops: &[Op], registers: usize, sign: usize) -> (Vec<Inst>, usize) {
+    let mut last = vec![None; ops.len()];
+    for (i, op) in ops.iter().enumerate() {
+        let mut read = |v: usize| last[v] = Some(i);
+        match *op {
+            Op::Arith(_, x, y) => {
+                read(x);
+                read(y);
+            }
+            Op::Neg(x) | Op::Sqrt(x) | Op::Call { x, .. } | Op::Store(_, x) => read(x),
+            Op::Load(_) | Op::Constant(_) => {}
+        }
+    }
+    let mut a = Allocator {
+        code: Vec::new(),
+        loc: vec![Loc::Pool(0); ops.len()],
+        home: vec![None; ops.len()],
+        last,
+        owner: vec![None; registers],
+        slots: 0,
+    };
+    for (i, op) in ops.iter().enumerate() {
+        match *op {
+            Op::Load(c) => a.place_in_memory(i, Loc::Work(c)),
+            Op::Constant(p) => a.place_in_memory(i, Loc::Pool(p)),
+            Op::Arith(op, x, y) => {
+                let in_reg = |v: usize| matches!(a.loc[v], Loc::Reg(_));
+                let commutes = matches!(op, Arith::Add | Arith::Mul);
+                let (x, y) = if commutes && !in_reg(x) && in_reg(y) {
+                    (y, x)
+                } else {
+                    (x, y)
+                };
+                let xr = a.in_register(x);
+                let yl = a.loc[y];
+                a.release(x, i);
+                a.release(y, i);
+                let dst = a.take(i);
+                a.code.push(Inst::Arith {
+                    op,
+                    dst,
+                    a: xr,
+                    b: yl,
+                });
+            }
+            Op::Neg(x) => {
+                let xr = a.in_register(x);
+                a.release(x, i);
+                let dst = a.take(i);
+                a.code.push(Inst::Xor {
+                    dst,
+                    a: xr,
+                    mask: sign,
+                });
+            }
+            Op::Sqrt(x) => {
+                let xl = a.loc[x];
+                a.release(x, i);
+                let dst = a.take(i);
+                a.code.push(Inst::Sqrt { dst, x: xl });
+            }
+            Op::Store(c, x) => {
+                let src = match a.loc[x] {
+                    Loc::Reg(r) => r,
+                    src => {
+                        let r = a.take(usize::MAX);
+                        a.code.push(Inst::Load { dst: r, src });
+                        a.owner[usize::from(r)] = None;
+                        r
+                    }
+                };
+                a.code.push(Inst::Store {
+                    dst: Loc::Work(c),
+                    src,
+                });
+                if a.home[x].is_none() {
+                    a.home[x] = Some(Loc::Work(c));
+                }
+                a.release(x, i);
+            }
+            Op::Call { address, x, alpha } => {
+                for r in 0..a.owner.len() {
+                    a.spill(r);
+                }
+                let out = a.slots;
+                a.slots += 1;
+                a.code.push(Inst::Call {
+                    address,
+                    x: a.loc[x],
+                    alpha,
+                    out,
+                });
+                a.release(x, i);
+                a.place_in_memory(i, Loc::Slot(out));
+            }
+        }
+        // A value nobody reads frees its register at once.
+        if a.last[i].is_none() {
+            a.release(i, i);
+        }
+    }
+    (a.code, a.slots)
+}
+
+impl Allocator {
+    fn place_in_memory(&mut self, v: usize, at: Loc) {
+        self.loc[v] = at;
+        self.home[v] = Some(at);
+    }
+
+    /// Frees `v`'s register if op `i` is its last reader.
+    fn release(&mut self, v: usize, i: usize) {
+        if let Loc::Reg(r) = self.loc[v] {
+            if self.last[v].is_none_or(|last| last <= i) && self.owner[usize::from(r)] == Some(v) {
+                self.owner[usize::from(r)] = None;
+            }
+        }
+    }
+
+    /// A register for value `v` (`usize::MAX`: a scratch use, freed by the caller): a free
+    /// one, else the one whose value is read last, that value moved to memory.
+    fn take(&mut self, v: usize) -> u8 {
+        let r = if let Some(r) = self.owner.iter().position(Option::is_none) {
+            r
+        } else {
+            let later = |r: &usize| match self.owner[*r] {
+                Some(w) if w != usize::MAX => self.last[w].unwrap_or(0),
+                _ => 0,
+            };
+            let r = (0..self.owner.len()).max_by_key(later).unwrap_or(0);
+            self.spill(r);
+            r
+        };
+        self.owner[r] = Some(v);
+        let r = r as u8;
+        if v != usize::MAX {
+            self.loc[v] = Loc::Reg(r);
+        }
+        r
+    }
+
+    /// Value `v` in a register, loaded into one if it is in memory.
+    fn in_register(&mut self, v: usize) -> u8 {
+        if let Loc::Reg(r) = self.loc[v] {
+            return r;
+        }
+        let src = self.loc[v];
+        let r = self.take(v);
+        self.code.push(Inst::Load { dst: r, src });
+        r
+    }
+
+    /// Frees register `r`, its value moved to memory: its copy there if it has one, else a
+    /// new stack slot.
+    fn spill(&mut self, r: usize) {
+        let Some(v) = self.owner[r].take() else {
+            return;
+        };
+        if v == usize::MAX {
+            return;
+        }
+        let at = match self.home[v] {
+            Some(at) => at,
+            None => {
+                let at = Loc::Slot(self.slots);
+                self.slots += 1;
+                self.code.push(Inst::Store {
+                    dst: at,
+                    src: r as u8,
+                });
+                at
+            }
+        };
+        self.place_in_memory(v, at);
+    }
+}
+
+/// Code that cannot be written: an offset or frame beyond 32 bits, or an error of the
+/// assembler's.
+struct Unencodable;
+
+impl From<IcedError> for Unencodable {
+    fn from(_: IcedError) -> Self {
+        Unencodable
+    }
+}
+
+/// The function's layout: lanes in all, per register, and stack slots.
+struct Frame {
+    lanes: usize,
+    width: usize,
+    slots: usize,
+}
+
+/// A vector register of either width.
+#[derive(Clone, Copy)]
+enum Vector {
+    Y(AsmRegisterYmm),
+    Z(AsmRegisterZmm),
+}
+
+const YMM: [AsmRegisterYmm; 16] = [
+    registers::ymm0,
+    registers::ymm1,
+    registers::ymm2,
+    registers::ymm3,
+    registers::ymm4,
+    registers::ymm5,
+    registers::ymm6,
+    registers::ymm7,
+    registers::ymm8,
+    registers::ymm9,
+    registers::ymm10,
+    registers::ymm11,
+    registers::ymm12,
+    registers::ymm13,
+    registers::ymm14,
+    registers::ymm15,
+];
+
+const ZMM: [AsmRegisterZmm; 32] = [
+    registers::zmm0,
+    registers::zmm1,
+    registers::zmm2,
+    registers::zmm3,
+    registers::zmm4,
+    registers::zmm5,
+    registers::zmm6,
+    registers::zmm7,
+    registers::zmm8,
+    registers::zmm9,
+    registers::zmm10,
+    registers::zmm11,
+    registers::zmm12,
+    registers::zmm13,
+    registers::zmm14,
+    registers::zmm15,
+    registers::zmm16,
+    registers::zmm17,
+    registers::zmm18,
+    registers::zmm19,
+    registers::zmm20,
+    registers::zmm21,
+    registers::zmm22,
+    registers::zmm23,
+    registers::zmm24,
+    registers::zmm25,
+    registers::zmm26,
+    registers::zmm27,
+    registers::zmm28,
+    registers::zmm29,
+    registers::zmm30,
+    registers::zmm31,
+];
+
+/// Either width's form of a vector instruction, register or memory as its last operand.
+macro_rules! vector_op {
+    ($asm:expr, $frame:expr, $name:ident, $dst:expr, $a:expr, $b:expr) => {{
+        let (dst, a) = ($frame.vector($dst), $frame.vector($a));
+        match ($b, dst, a) {
+            (Operand::Reg(b), Vector::Y(d), Vector::Y(a)) => $asm.$name(d, a, YMM[usize::from(b)]),
+            (Operand::Reg(b), Vector::Z(d), Vector::Z(a)) => $asm.$name(d, a, ZMM[usize::from(b)]),
+            (Operand::Mem(m), Vector::Y(d), Vector::Y(a)) => $asm.$name(d, a, m),
+            (Operand::Mem(m), Vector::Z(d), Vector::Z(a)) => $asm.$name(d, a, m),
+            _ => unreachable!("one frame has one width"),
+        }
+    }};
+}
+
+/// A register or a memory operand.
+enum Operand {
+    Reg(u8),
+    Mem(AsmMemoryOperand),
+}
+
+impl Frame {
+    fn vector(&self, r: u8) -> Vector {
+        if self.width == 8 {
+            Vector::Z(ZMM[usize::from(r)])
+        } else {
+            Vector::Y(YMM[usize::from(r)])
+        }
+    }
+
+    /// Bytes of one vector.
+    fn bytes(&self) -> usize {
+        8 * self.width
+    }
+
+    /// The address of `at` (in memory), plus `lane` doubles.
+    fn address(
+        &self,
+        at: Loc,
+        lane: usize,
+        pool: &[CodeLabel],
+    ) -> Result<AsmMemoryOperand, Unencodable> {
+        let offset = |bytes: usize| i32::try_from(bytes + 8 * lane).map_err(|_| Unencodable);
+        Ok(match at {
+            Loc::Work(i) => ptr(rbx + offset(8 * self.lanes * i)?),
+            Loc::Slot(s) => ptr(rsp + offset(self.bytes() * s)?),
+            Loc::Pool(p) => ptr(pool[p]) + offset(0)?,
+            Loc::Reg(_) => return Err(Unencodable),
+        })
+    }
+
+    fn operand(&self, at: Loc, pool: &[CodeLabel]) -> Result<Operand, Unencodable> {
+        Ok(match at {
+            Loc::Reg(r) => Operand::Reg(r),
+            at => Operand::Mem(self.address(at, 0, pool)?),
+        })
+    }
+
+    /// The function: save the two registers the loop keeps, reserve the slots, run the
+    /// instructions once per `width` lanes, return; then the constant pool.
+    fn encode(&self, code: &[Inst], constants: &[f64]) -> Result<Vec<u8>, Unencodable> {
+        let mut asm = CodeAssembler::new(64)?;
+        let pool: Vec<CodeLabel> = constants.iter().map(|_| asm.create_label()).collect();
+        // Entered with `rsp` 8 bytes past a multiple of 16: two pushes and a frame of 8 more
+        // than a multiple of 16 align it for the shims' calls.
+        let frame = self.bytes() * self.slots + 8;
+        let frame = frame + (16 - frame % 16) % 16 + 8;
+        let frame = i32::try_from(frame).map_err(|_| Unencodable)?;
+        asm.push(rbx)?;
+        asm.push(r12)?;
+        asm.sub(rsp, frame)?;
+        asm.mov(rbx, rdi)?;
+        let end = i32::try_from(8 * self.lanes).map_err(|_| Unencodable)?;
+        asm.lea(r12, ptr(rdi + end))?;
+        let mut pass = asm.create_label();
+        asm.set_label(&mut pass)?;
+        for inst in code {
+            self.instruction(&mut asm, inst, &pool)?;
+        }
+        asm.add(rbx, i32::try_from(self.bytes()).unwrap_or(64))?;
+        asm.cmp(rbx, r12)?;
+        asm.jb(pass)?;
+        asm.add(rsp, frame)?;
+        asm.pop(r12)?;
+        asm.pop(rbx)?;
+        asm.vzeroupper()?;
+        asm.ret()?;
+        for (label, &c) in pool.iter().zip(constants) {
+            let mut label = *label;
+            asm.set_label(&mut label)?;
+            let bytes: Vec<u8> = std::iter::repeat_n(c.to_le_bytes(), self.width)
+                .flatten()
+                .collect();
+            asm.db(&bytes)?;
+        }
+        Ok(asm.assemble(0)?)
+    }
+
+    fn instruction(
+        &self,
+        asm: &mut CodeAssembler,
+        inst: &Inst,
+        pool: &[CodeLabel],
+    ) -> Result<(), Unencodable> {
+        let written: Result<(), IcedError> = match *inst {
+            Inst::Load { dst, src } => {
+                let m = self.address(src, 0, pool)?;
+                match self.vector(dst) {
+                    Vector::Y(d) => asm.vmovupd(d, m),
+                    Vector::Z(d) => asm.vmovupd(d, m),
+                }
+            }
+            Inst::Store { dst, src } => {
+                let m = self.address(dst, 0, pool)?;
+                match self.vector(src) {
+                    Vector::Y(s) => asm.vmovupd(m, s),
+                    Vector::Z(s) => asm.vmovupd(m, s),
+                }
+            }
+            Inst::Arith { op, dst, a, b } => {
+                let b = self.operand(b, pool)?;
+                match op {
+                    Arith::Add => vector_op!(asm, self, vaddpd, dst, a, b),
+                    Arith::Sub => vector_op!(asm, self, vsubpd, dst, a, b),
+                    Arith::Mul => vector_op!(asm, self, vmulpd, dst, a, b),
+                    Arith::Div => vector_op!(asm, self, vdivpd, dst, a, b),
+                }
+            }
+            Inst::Sqrt { dst, x } => match (self.operand(x, pool)?, self.vector(dst)) {
+                (Operand::Reg(x), Vector::Y(d)) => asm.vsqrtpd(d, YMM[usize::from(x)]),
+                (Operand::Reg(x), Vector::Z(d)) => asm.vsqrtpd(d, ZMM[usize::from(x)]),
+                (Operand::Mem(m), Vector::Y(d)) => asm.vsqrtpd(d, m),
+                (Operand::Mem(m), Vector::Z(d)) => asm.vsqrtpd(d, m),
+            },
+            Inst::Xor { dst, a, mask } => {
+                let m = self.address(Loc::Pool(mask), 0, pool)?;
+                // `vxorpd` on `zmm` needs AVX-512DQ; `vpxorq`, the same bits, AVX-512F.
+                match (self.vector(dst), self.vector(a)) {
+                    (Vector::Y(d), Vector::Y(a)) => asm.vxorpd(d, a, m),
+                    (Vector::Z(d), Vector::Z(a)) => asm.vpxorq(d, a, m),
+                    _ => unreachable!("one frame has one width"),
+                }
+            }
+            Inst::Call {
+                address,
+                x,
+                alpha,
+                out,
+            } => {
+                // The shims are SSE code: clear the upper halves first (every vector
+                // register was saved to memory before this instruction).
+                asm.vzeroupper()?;
+                for lane in 0..self.width {
+                    asm.vmovsd(registers::xmm0, self.address(x, lane, pool)?)?;
+                    if let Some(alpha) = alpha {
+                        asm.vmovsd(registers::xmm1, self.address(Loc::Pool(alpha), 0, pool)?)?;
+                    }
+                    asm.mov(rax, address as u64)?;
+                    asm.call(rax)?;
+                    asm.vmovsd(self.address(Loc::Slot(out), lane, pool)?, registers::xmm0)?;
+                }
+                Ok(())
+            }
+        };
+        Ok(written?)
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::compile_on;
+    use crate::classical::symbolic::{Expr, ExprOde, TaylorProgram};
+
+    /// A program with sums, products, quotients, square roots and negations (Kepler's field
+    /// with a `sin` and a general power): every operation this code writes, and the calls.
+    fn program() -> TaylorProgram {
+        let f = [
+            "q2",
+            "q3",
+            "(neg (* q0 (^ (+ (* q0 q0) (* q1 q1)) -1.5)))",
+            "(- (/ (sin q1) (sqrt (+ 2 (* q0 q0)))) (* q1 (^ (+ 1 (* q0 q0)) 0.3)))",
+        ];
+        let f: Vec<Expr> = f.iter().map(|f| Expr::parse(f).unwrap()).collect();
+        let y0 = [0.8, 0.2, 0.1, 1.1];
+        TaylorProgram::ode(&ExprOde::new(f, vec![], &y0, None).unwrap()).unwrap()
+    }
+
+    /// On 1, 2 and 5 registers (so that values are moved to the stack and back, and read
+    /// from where they were stored) and on all of them, the code's coefficients are the
+    /// interpreter's bit for bit, in 4 and 8 lanes at distinct states.
+    #[test]
+    fn spilled_code_has_the_interpreters_bits() {
+        fn check<const L: usize>(program: &TaylorProgram) {
+            let order = 9;
+            let t: [f64; L] = std::array::from_fn(|l| 0.1 * l as f64);
+            let y: Vec<[f64; L]> = (0..4)
+                .map(|i| std::array::from_fn(|l| 0.5 + 0.1 * i as f64 + 0.03 * l as f64))
+                .collect();
+            let mut reference = program.lanes::<L>().interpreted_only();
+            crate::classical::integrators::taylor_batch::LanesField::<L>::expand(
+                &mut reference,
+                &t,
+                &y,
+                order,
+            )
+            .unwrap();
+            for registers in [Some(1), Some(2), Some(5), None] {
+                let Some((code, _module)) =
+                    compile_on(&program.nodes, &program.outputs, L, order, registers)
+                else {
+                    assert!(super::width(L).is_none(), "AVX host, no code");
+                    return;
+                };
+                // The inputs as the lanes' `expand` sets them: the state's and the time's
+                // orders 0, the time's order 1; everything else is the code's to write.
+                let stride = order + 1;
+                let mut w = vec![[0.0; L]; reference.work.len()];
+                for (i, yi) in y.iter().enumerate() {
+                    w[i * stride] = *yi;
+                }
+                w[4 * stride] = t;
+                w[4 * stride + 1] = [1.0; L];
+                // SAFETY: the code reads and writes the work array of these recurrences at
+                // this order and lane count, which `w` is.
+                #[allow(unsafe_code)]
+                unsafe {
+                    let f: unsafe extern "C" fn(*mut f64) = std::mem::transmute(code);
+                    f(w.as_mut_ptr().cast());
+                }
+                for (i, (g, r)) in w.iter().zip(&reference.work).enumerate() {
+                    for l in 0..L {
+                        assert_eq!(
+                            g[l].to_bits(),
+                            r[l].to_bits(),
+                            "{registers:?} registers, {L} lanes, coefficient {i}, lane {l}"
+                        );
+                    }
+                }
+            }
+        }
+        let program = program();
+        check::<4>(&program);
+        check::<8>(&program);
+    }
+}
