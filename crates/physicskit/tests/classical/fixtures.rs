@@ -313,6 +313,23 @@ impl physicskit::classical::integrators::Ensemble for PendulumBank {
     }
 }
 
+/// Whether this build and host get the Taylor recurrences written as AVX code
+/// (`symbolic/tape/taylor_asm.rs`: x86-64 with AVX, System V calls, the JIT built) for
+/// `lanes` lanes (1: one state, the scalar program).
+pub fn avx_code(lanes: usize) -> bool {
+    #[cfg(all(target_arch = "x86_64", not(windows)))]
+    {
+        native() == Backend::Native
+            && (lanes == 1 || lanes.is_multiple_of(4))
+            && std::arch::is_x86_feature_detected!("avx")
+    }
+    #[cfg(not(all(target_arch = "x86_64", not(windows))))]
+    {
+        let _ = lanes;
+        false
+    }
+}
+
 /// The backend `compile_native` gives in this build: machine code with the feature `jit`,
 /// the interpreter without it (the JIT tests then check that every tape stays interpreted).
 pub fn native() -> Backend {

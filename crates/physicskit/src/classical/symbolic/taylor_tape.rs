@@ -1186,6 +1186,14 @@ impl TaylorProgram {
         self.backend(order)
     }
 
+    /// Whether the native code of `order` is the code written for AVX
+    /// (`symbolic/tape/taylor_asm.rs`) rather than Cranelift's: what tests check to know
+    /// which code they compared.
+    #[doc(hidden)]
+    pub fn written_for_avx(&self, order: usize) -> bool {
+        self.jit.is_avx(order)
+    }
+
     /// [`compile_native`](Self::compile_native) in the compact form (the orders and the sums
     /// as loops, the form large programs are compiled in) whatever the program's size: what
     /// tests compare with the unrolled form and the interpreter.

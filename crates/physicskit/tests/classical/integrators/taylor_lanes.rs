@@ -12,7 +12,7 @@ use physicskit::classical::symbolic::{Expr, ExprOde, TaylorProgram};
 use physicskit::classical::{Error, Tolerances};
 
 use super::taylor::henon_heiles_expr;
-use crate::fixtures::{native, pseudo_random, same};
+use crate::fixtures::{avx_code, native, pseudo_random, same};
 
 /// The programs the compiled recurrences are tested on (every recurrence, and the
 /// mechanical expression forms), and one in the time.
@@ -100,7 +100,7 @@ fn compiled_lanes_equal_the_interpreted<const L: usize>(cranelift: bool) {
             assert_eq!(compiled.backend(order), native());
             // The code written for AVX wherever the host has it and the program takes no
             // `|x|` (left to Cranelift), unless Cranelift's is asked for.
-            let avx = !cranelift && avx_host::<L>() && !name.contains("abs");
+            let avx = !cranelift && avx_code(L) && !name.contains("abs");
             assert_eq!(compiled.written_for_avx(order), avx, "{name}, {L} lanes");
             for (i, (g, w)) in compiled
                 .coefficients()
@@ -119,21 +119,6 @@ fn compiled_lanes_equal_the_interpreted<const L: usize>(cranelift: bool) {
                 }
             }
         }
-    }
-}
-
-/// Whether this host gets the lanes' code written for AVX (x86-64 with AVX, System V calls,
-/// the JIT built), for `L` lanes.
-fn avx_host<const L: usize>() -> bool {
-    #[cfg(all(target_arch = "x86_64", not(windows)))]
-    {
-        native() == physicskit::classical::symbolic::Backend::Native
-            && L.is_multiple_of(4)
-            && std::arch::is_x86_feature_detected!("avx")
-    }
-    #[cfg(not(all(target_arch = "x86_64", not(windows))))]
-    {
-        false
     }
 }
 

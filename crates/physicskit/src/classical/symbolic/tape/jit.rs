@@ -270,7 +270,7 @@ pub(in crate::classical::symbolic) fn compile_function(
     Some((code, OwnedModule::new(module)))
 }
 
-/// Machine code written elsewhere (`taylor_lanes_asm.rs`: position-independent, calling only
+/// Machine code written elsewhere (`taylor_asm.rs`: position-independent, calling only
 /// absolute addresses) mapped executable by a [`JITModule`] for this host: its address, and the
 /// module that owns it; `None` where the host has no ISA Cranelift knows or mapping fails.
 pub(in crate::classical::symbolic) fn load_code(bytes: &[u8]) -> Option<(*const u8, OwnedModule)> {

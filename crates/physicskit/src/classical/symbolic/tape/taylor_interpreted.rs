@@ -32,6 +32,10 @@ impl Jit {
         None
     }
 
+    pub(super) fn is_avx(&self, _: usize) -> bool {
+        false
+    }
+
     pub(super) fn is_native(&self, _: usize) -> bool {
         false
     }

@@ -160,7 +160,7 @@ impl<const L: usize> TaylorLanes<L> {
     }
 
     /// Whether the native code of `order` is the code written for AVX
-    /// (`symbolic/tape/taylor_lanes_asm.rs`) rather than Cranelift's: what tests check to
+    /// (`symbolic/tape/taylor_asm.rs`) rather than Cranelift's: what tests check to
     /// know which code they compared.
     #[doc(hidden)]
     pub fn written_for_avx(&self, order: usize) -> bool {

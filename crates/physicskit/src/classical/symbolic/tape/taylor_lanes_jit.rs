@@ -38,9 +38,7 @@ use cranelift_codegen::settings::Configurable;
 use cranelift_frontend::FunctionBuilder;
 
 #[cfg(all(target_arch = "x86_64", not(windows)))]
-#[path = "taylor_lanes_asm.rs"]
-mod asm;
-
+use super::super::jit::asm;
 use super::super::jit::{powf, unrolled_terms, Form, Recurrences};
 use super::super::{Node, Val};
 use crate::classical::integrators::taylor::MAX_ORDER;

@@ -1,11 +1,14 @@
-//! [`TaylorLanes`](super::TaylorLanes)' recurrences as x86-64 AVX machine code written
-//! directly (x86-64 hosts with AVX, System V calling convention): what
-//! `taylor_lanes_jit.rs` compiles first, before Cranelift, whose x86-64 backend has no
-//! vectors wider than 128 bits.
+//! A [`TaylorProgram`](super::super::TaylorProgram)'s recurrences, for one state or for
+//! [`TaylorLanes`](super::super::TaylorLanes), as x86-64 AVX machine code written directly
+//! (x86-64 hosts with AVX, System V calling convention): what `taylor_jit.rs` (its unrolled
+//! form, [`Form::Avx`](super::Form::Avx)) and `taylor_lanes_jit.rs` make first, before
+//! Cranelift, whose x86-64 backend has no vectors wider than 128 bits, folds few loads into
+//! the arithmetic, and takes ten times as long to compile this code.
 //!
-//! The code is the same unrolled form (`taylor_jit.rs`'s [`Recurrences`], emitted by the same
-//! provided methods in the same order), on whole `ymm` (4 lanes) or `zmm` (8 lanes, AVX-512F)
-//! registers: one pass of it covers [`width`] lanes, and a loop runs it over the `L` lanes.
+//! The code is the unrolled form (`taylor_jit.rs`'s [`Recurrences`], emitted by the same
+//! provided methods in the same order) on the scalar instructions of an `xmm` (one state) or
+//! on whole `ymm` (4 lanes) or `zmm` (8 lanes, AVX-512F) registers: one pass of it covers
+//! [`width`] lanes, and a loop runs it over the `L` lanes.
 //! It is made in three steps:
 //! 1. **record**: the [`Recurrences`] calls become a list of [`Op`]s on values numbered by
 //!    the op that made them (a coefficient of the order being computed used as the value
@@ -30,19 +33,21 @@
 //! code and Cranelift's against the interpreter on every recurrence at orders 1–24.
 
 use iced_x86::code_asm::{
-    ptr, r12, rax, rbx, rdi, registers, rsp, AsmMemoryOperand, AsmRegisterYmm, AsmRegisterZmm,
-    CodeAssembler, CodeLabel, IcedError,
+    ptr, r12, rax, rbx, rdi, registers, rsp, AsmMemoryOperand, AsmRegisterXmm, AsmRegisterYmm,
+    AsmRegisterZmm, CodeAssembler, CodeLabel, IcedError,
 };
 
-use super::super::jit::{powf, Recurrences};
 use super::super::{Node, Val};
+use super::{powf, Recurrences};
 use crate::classical::symbolic::tape::jit::{load_code, OwnedModule};
 
-/// Lanes per vector register for `lanes` lanes on this host: 8 (`zmm`) with AVX-512F where
-/// `lanes` is a multiple of 8, 4 (`ymm`) with AVX where it is a multiple of 4; `None` where
-/// the host has neither (this code is then not made).
-pub(super) fn width(lanes: usize) -> Option<usize> {
-    if lanes.is_multiple_of(8) && std::arch::is_x86_feature_detected!("avx512f") {
+/// Lanes per register for `lanes` lanes on this host: 1 (an `xmm`'s low double) for one
+/// state with AVX, 8 (`zmm`) with AVX-512F where `lanes` is a multiple of 8, 4 (`ymm`) with
+/// AVX where it is a multiple of 4; `None` otherwise (this code is then not made).
+pub(in crate::classical::symbolic) fn width(lanes: usize) -> Option<usize> {
+    if lanes == 1 && std::arch::is_x86_feature_detected!("avx") {
+        Some(1)
+    } else if lanes.is_multiple_of(8) && std::arch::is_x86_feature_detected!("avx512f") {
         Some(8)
     } else if lanes.is_multiple_of(4) && std::arch::is_x86_feature_detected!("avx") {
         Some(4)
@@ -55,7 +60,7 @@ pub(super) fn width(lanes: usize) -> Option<usize> {
 /// (`extern "C" fn(*mut f64)` on the lanes' work array) and the module owning it; `None`
 /// where the host lacks AVX, the program takes an `|x|`, or its offsets do not fit the
 /// encoding.
-pub(super) fn compile(
+pub(in crate::classical::symbolic) fn compile(
     nodes: &[Node],
     outputs: &[Val],
     lanes: usize,
@@ -492,9 +497,30 @@ struct Frame {
 /// A vector register of either width.
 #[derive(Clone, Copy)]
 enum Vector {
+    /// One lane: the scalar instructions on an `xmm`'s low double.
+    X(AsmRegisterXmm),
     Y(AsmRegisterYmm),
     Z(AsmRegisterZmm),
 }
+
+const XMM: [AsmRegisterXmm; 16] = [
+    registers::xmm0,
+    registers::xmm1,
+    registers::xmm2,
+    registers::xmm3,
+    registers::xmm4,
+    registers::xmm5,
+    registers::xmm6,
+    registers::xmm7,
+    registers::xmm8,
+    registers::xmm9,
+    registers::xmm10,
+    registers::xmm11,
+    registers::xmm12,
+    registers::xmm13,
+    registers::xmm14,
+    registers::xmm15,
+];
 
 const YMM: [AsmRegisterYmm; 16] = [
     registers::ymm0,
@@ -552,9 +578,13 @@ const ZMM: [AsmRegisterZmm; 32] = [
 
 /// Either width's form of a vector instruction, register or memory as its last operand.
 macro_rules! vector_op {
-    ($asm:expr, $frame:expr, $name:ident, $dst:expr, $a:expr, $b:expr) => {{
+    ($asm:expr, $frame:expr, $name:ident, $scalar:ident, $dst:expr, $a:expr, $b:expr) => {{
         let (dst, a) = ($frame.vector($dst), $frame.vector($a));
         match ($b, dst, a) {
+            (Operand::Reg(b), Vector::X(d), Vector::X(a)) => {
+                $asm.$scalar(d, a, XMM[usize::from(b)])
+            }
+            (Operand::Mem(m), Vector::X(d), Vector::X(a)) => $asm.$scalar(d, a, m),
             (Operand::Reg(b), Vector::Y(d), Vector::Y(a)) => $asm.$name(d, a, YMM[usize::from(b)]),
             (Operand::Reg(b), Vector::Z(d), Vector::Z(a)) => $asm.$name(d, a, ZMM[usize::from(b)]),
             (Operand::Mem(m), Vector::Y(d), Vector::Y(a)) => $asm.$name(d, a, m),
@@ -574,6 +604,8 @@ impl Frame {
     fn vector(&self, r: u8) -> Vector {
         if self.width == 8 {
             Vector::Z(ZMM[usize::from(r)])
+        } else if self.width == 1 {
+            Vector::X(XMM[usize::from(r)])
         } else {
             Vector::Y(YMM[usize::from(r)])
         }
@@ -639,7 +671,8 @@ impl Frame {
         for (label, &c) in pool.iter().zip(constants) {
             let mut label = *label;
             asm.set_label(&mut label)?;
-            let bytes: Vec<u8> = std::iter::repeat_n(c.to_le_bytes(), self.width)
+            // Two doubles at least: one lane's `vxorpd` reads an `xmm`'s 16 bytes.
+            let bytes: Vec<u8> = std::iter::repeat_n(c.to_le_bytes(), self.width.max(2))
                 .flatten()
                 .collect();
             asm.db(&bytes)?;
@@ -657,6 +690,7 @@ impl Frame {
             Inst::Load { dst, src } => {
                 let m = self.address(src, 0, pool)?;
                 match self.vector(dst) {
+                    Vector::X(d) => asm.vmovsd(d, m),
                     Vector::Y(d) => asm.vmovupd(d, m),
                     Vector::Z(d) => asm.vmovupd(d, m),
                 }
@@ -664,6 +698,7 @@ impl Frame {
             Inst::Store { dst, src } => {
                 let m = self.address(dst, 0, pool)?;
                 match self.vector(src) {
+                    Vector::X(s) => asm.vmovsd(m, s),
                     Vector::Y(s) => asm.vmovupd(m, s),
                     Vector::Z(s) => asm.vmovupd(m, s),
                 }
@@ -671,13 +706,17 @@ impl Frame {
             Inst::Arith { op, dst, a, b } => {
                 let b = self.operand(b, pool)?;
                 match op {
-                    Arith::Add => vector_op!(asm, self, vaddpd, dst, a, b),
-                    Arith::Sub => vector_op!(asm, self, vsubpd, dst, a, b),
-                    Arith::Mul => vector_op!(asm, self, vmulpd, dst, a, b),
-                    Arith::Div => vector_op!(asm, self, vdivpd, dst, a, b),
+                    Arith::Add => vector_op!(asm, self, vaddpd, vaddsd, dst, a, b),
+                    Arith::Sub => vector_op!(asm, self, vsubpd, vsubsd, dst, a, b),
+                    Arith::Mul => vector_op!(asm, self, vmulpd, vmulsd, dst, a, b),
+                    Arith::Div => vector_op!(asm, self, vdivpd, vdivsd, dst, a, b),
                 }
             }
             Inst::Sqrt { dst, x } => match (self.operand(x, pool)?, self.vector(dst)) {
+                (Operand::Reg(x), Vector::X(d)) => {
+                    asm.vsqrtsd(d, XMM[usize::from(x)], XMM[usize::from(x)])
+                }
+                (Operand::Mem(m), Vector::X(d)) => asm.vsqrtsd(d, d, m),
                 (Operand::Reg(x), Vector::Y(d)) => asm.vsqrtpd(d, YMM[usize::from(x)]),
                 (Operand::Reg(x), Vector::Z(d)) => asm.vsqrtpd(d, ZMM[usize::from(x)]),
                 (Operand::Mem(m), Vector::Y(d)) => asm.vsqrtpd(d, m),
@@ -687,6 +726,7 @@ impl Frame {
                 let m = self.address(Loc::Pool(mask), 0, pool)?;
                 // `vxorpd` on `zmm` needs AVX-512DQ; `vpxorq`, the same bits, AVX-512F.
                 match (self.vector(dst), self.vector(a)) {
+                    (Vector::X(d), Vector::X(a)) => asm.vxorpd(d, a, m),
                     (Vector::Y(d), Vector::Y(a)) => asm.vxorpd(d, a, m),
                     (Vector::Z(d), Vector::Z(a)) => asm.vpxorq(d, a, m),
                     _ => unreachable!("one frame has one width"),
@@ -720,6 +760,7 @@ impl Frame {
 #[cfg(test)]
 mod tests {
     use super::compile_on;
+    use crate::classical::integrators::taylor::TaylorField;
     use crate::classical::symbolic::{Expr, ExprOde, TaylorProgram};
 
     /// A program with sums, products, quotients, square roots and negations (Kepler's field
@@ -737,24 +778,30 @@ mod tests {
     }
 
     /// On 1, 2 and 5 registers (so that values are moved to the stack and back, and read
-    /// from where they were stored) and on all of them, the code's coefficients are the
-    /// interpreter's bit for bit, in 4 and 8 lanes at distinct states.
+    /// from where they were stored) and on all of them, the code's coefficients of every node
+    /// are the interpreter's bit for bit, for one state and in 4 and 8 lanes at distinct
+    /// states.
     #[test]
     fn spilled_code_has_the_interpreters_bits() {
         fn check<const L: usize>(program: &TaylorProgram) {
             let order = 9;
+            let stride = order + 1;
             let t: [f64; L] = std::array::from_fn(|l| 0.1 * l as f64);
             let y: Vec<[f64; L]> = (0..4)
                 .map(|i| std::array::from_fn(|l| 0.5 + 0.1 * i as f64 + 0.03 * l as f64))
                 .collect();
-            let mut reference = program.lanes::<L>().interpreted_only();
-            crate::classical::integrators::taylor_batch::LanesField::<L>::expand(
-                &mut reference,
-                &t,
-                &y,
-                order,
-            )
-            .unwrap();
+            // Each lane's every node, by the interpreter on that lane's state alone.
+            let mut reference = program.interpreted_only();
+            let want: Vec<Vec<f64>> = (0..L)
+                .map(|l| {
+                    let state: Vec<f64> = y.iter().map(|yi| yi[l]).collect();
+                    let mut out = vec![0.0; 4 * stride];
+                    reference
+                        .coefficients(t[l], &state, order, &mut out)
+                        .unwrap();
+                    reference.work.clone()
+                })
+                .collect();
             for registers in [Some(1), Some(2), Some(5), None] {
                 let Some((code, _module)) =
                     compile_on(&program.nodes, &program.outputs, L, order, registers)
@@ -762,10 +809,9 @@ mod tests {
                     assert!(super::width(L).is_none(), "AVX host, no code");
                     return;
                 };
-                // The inputs as the lanes' `expand` sets them: the state's and the time's
-                // orders 0, the time's order 1; everything else is the code's to write.
-                let stride = order + 1;
-                let mut w = vec![[0.0; L]; reference.work.len()];
+                // The inputs as `expand` sets them: the state's and the time's orders 0, the
+                // time's order 1; everything else is the code's to write.
+                let mut w = vec![[0.0; L]; program.nodes.len() * stride];
                 for (i, yi) in y.iter().enumerate() {
                     w[i * stride] = *yi;
                 }
@@ -778,11 +824,11 @@ mod tests {
                     let f: unsafe extern "C" fn(*mut f64) = std::mem::transmute(code);
                     f(w.as_mut_ptr().cast());
                 }
-                for (i, (g, r)) in w.iter().zip(&reference.work).enumerate() {
-                    for l in 0..L {
+                for (i, g) in w.iter().enumerate() {
+                    for (l, want) in want.iter().enumerate() {
                         assert_eq!(
                             g[l].to_bits(),
-                            r[l].to_bits(),
+                            want[i].to_bits(),
                             "{registers:?} registers, {L} lanes, coefficient {i}, lane {l}"
                         );
                     }
@@ -790,6 +836,7 @@ mod tests {
             }
         }
         let program = program();
+        check::<1>(&program);
         check::<4>(&program);
         check::<8>(&program);
     }
