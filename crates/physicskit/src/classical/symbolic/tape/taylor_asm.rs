@@ -29,12 +29,14 @@
 //! operations in its order and gets its bits. Order 0 of the transcendental operations calls
 //! the scalar JIT's `extern "C"` shims lane by lane (every register saved first: the calling
 //! convention keeps none of them). A program with an `|x|` is left to Cranelift
-//! ([`compile`] returns `None`). `tests/classical/integrators/taylor_lanes.rs` checks this
-//! code and Cranelift's against the interpreter on every recurrence at orders 1–24.
+//! ([`compile`] returns `None`). `tests/classical/integrators/taylor_jit.rs` and
+//! `taylor_lanes.rs` check this code and Cranelift's against the interpreter on every
+//! recurrence at orders 1–24 (one state; 4, 8 and 16 lanes), and the unit test below with
+//! one to five registers, so that the allocator spills.
 
 use iced_x86::code_asm::{
-    ptr, r12, rax, rbx, rdi, registers, rsp, AsmMemoryOperand, AsmRegisterXmm, AsmRegisterYmm,
-    AsmRegisterZmm, CodeAssembler, CodeLabel, IcedError,
+    ptr, qword_ptr, r12, rax, rbx, rdi, registers, rsp, AsmMemoryOperand, AsmRegisterXmm,
+    AsmRegisterYmm, AsmRegisterZmm, CodeAssembler, CodeLabel, IcedError,
 };
 
 use super::super::{Node, Val};
@@ -79,18 +81,7 @@ fn compile_on(
     registers: Option<usize>,
 ) -> Option<(*const u8, OwnedModule)> {
     let width = width(lanes)?;
-    let mut recorder = Recorder {
-        ops: Vec::new(),
-        pool: Vec::new(),
-        stride: order + 1,
-        k: 0,
-        fresh: vec![None; nodes.len() * (order + 1)],
-        has_abs: false,
-    };
-    recorder.recurrences(nodes, outputs, order);
-    if recorder.has_abs {
-        return None;
-    }
+    let mut recorder = Recorder::of(nodes, outputs, order)?;
     let sign = recorder.constant(-0.0);
     let all = if width == 8 { 32 } else { 16 };
     let registers = registers.map_or(all, |r| r.clamp(1, all));
@@ -148,6 +139,20 @@ struct Recorder {
 }
 
 impl Recorder {
+    /// The recurrences of `order` recorded; `None` for a program with an `|x|`.
+    fn of(nodes: &[Node], outputs: &[Val], order: usize) -> Option<Self> {
+        let mut recorder = Recorder {
+            ops: Vec::new(),
+            pool: Vec::new(),
+            stride: order + 1,
+            k: 0,
+            fresh: vec![None; nodes.len() * (order + 1)],
+            has_abs: false,
+        };
+        recorder.recurrences(nodes, outputs, order);
+        (!recorder.has_abs).then_some(recorder)
+    }
+
     fn push(&mut self, op: Op) -> usize {
         self.ops.push(op);
         self.ops.len() - 1
@@ -295,7 +300,13 @@ struct Allocator {
     last: Vec<Option<usize>>,
     /// Each register's value (`usize::MAX` for a scratch use), `None` if free.
     owner: Vec<Option<usize>>,
+    /// Stack slots in all.
     slots: usize,
+    /// Slots whose value has been read for the last time, free for later values.
+    free_slots: Vec<usize>,
+    /// Slots whose value the op being allocated reads for the last time: free once its
+    /// instruction is written (a spill before it must not overwrite them).
+    freed: Vec<usize>,
 }
 
 /// The instructions of `ops` on `registers` vector registers, and the stack slots they use;
@@ -320,6 +331,8 @@ fn allocate(ops: &[Op], registers: usize, sign: usize) -> (Vec<Inst>, usize) {
         last,
         owner: vec![None; registers],
         slots: 0,
+        free_slots: Vec::new(),
+        freed: Vec::new(),
     };
     for (i, op) in ops.iter().enumerate() {
         match *op {
@@ -384,8 +397,7 @@ fn allocate(ops: &[Op], registers: usize, sign: usize) -> (Vec<Inst>, usize) {
                 for r in 0..a.owner.len() {
                     a.spill(r);
                 }
-                let out = a.slots;
-                a.slots += 1;
+                let out = a.slot();
                 a.code.push(Inst::Call {
                     address,
                     x: a.loc[x],
@@ -396,10 +408,12 @@ fn allocate(ops: &[Op], registers: usize, sign: usize) -> (Vec<Inst>, usize) {
                 a.place_in_memory(i, Loc::Slot(out));
             }
         }
-        // A value nobody reads frees its register at once.
+        // A value nobody reads frees its register (or slot) at once.
         if a.last[i].is_none() {
             a.release(i, i);
         }
+        let freed = std::mem::take(&mut a.freed);
+        a.free_slots.extend(freed);
     }
     (a.code, a.slots)
 }
@@ -410,8 +424,24 @@ impl Allocator {
         self.home[v] = Some(at);
     }
 
-    /// Frees `v`'s register if op `i` is its last reader.
+    /// A stack slot: a free one, else a new one.
+    fn slot(&mut self) -> usize {
+        self.free_slots.pop().unwrap_or_else(|| {
+            self.slots += 1;
+            self.slots - 1
+        })
+    }
+
+    /// Frees `v`'s register, and its slot once the op is written, if op `i` is its last
+    /// reader.
     fn release(&mut self, v: usize, i: usize) {
+        if self.last[v].is_some_and(|last| last > i) {
+            return;
+        }
+        if let Some(Loc::Slot(s)) = self.home[v] {
+            self.home[v] = None;
+            self.freed.push(s);
+        }
         if let Loc::Reg(r) = self.loc[v] {
             if self.last[v].is_none_or(|last| last <= i) && self.owner[usize::from(r)] == Some(v) {
                 self.owner[usize::from(r)] = None;
@@ -464,8 +494,7 @@ impl Allocator {
         let at = match self.home[v] {
             Some(at) => at,
             None => {
-                let at = Loc::Slot(self.slots);
-                self.slots += 1;
+                let at = Loc::Slot(self.slot());
                 self.code.push(Inst::Store {
                     dst: at,
                     src: r as u8,
@@ -486,6 +515,11 @@ impl From<IcedError> for Unencodable {
         Unencodable
     }
 }
+
+/// The largest stack frame written: 256 KiB, an eighth of a Rust thread's default stack
+/// (calls and spills take one slot each, a few per program; larger frames are left to
+/// Cranelift).
+const MAX_FRAME: usize = 1 << 18;
 
 /// The function's layout: lanes in all, per register, and stack slots.
 struct Frame {
@@ -648,10 +682,19 @@ impl Frame {
         // than a multiple of 16 align it for the shims' calls.
         let frame = self.bytes() * self.slots + 8;
         let frame = frame + (16 - frame % 16) % 16 + 8;
+        if frame > MAX_FRAME {
+            return Err(Unencodable);
+        }
         let frame = i32::try_from(frame).map_err(|_| Unencodable)?;
         asm.push(rbx)?;
         asm.push(r12)?;
         asm.sub(rsp, frame)?;
+        // A frame of more than a page is touched a page at a time from the top (a stack
+        // probe, as compilers write for large frames), so that a guard page below the stack
+        // is met rather than stepped over.
+        for page in 1..=(frame - 8) / 4096 {
+            asm.or(qword_ptr(rsp + (frame - 8 - 4096 * page)), 0)?;
+        }
         asm.mov(rbx, rdi)?;
         let end = i32::try_from(8 * self.lanes).map_err(|_| Unencodable)?;
         asm.lea(r12, ptr(rdi + end))?;
@@ -777,10 +820,21 @@ mod tests {
         TaylorProgram::ode(&ExprOde::new(f, vec![], &y0, None).unwrap()).unwrap()
     }
 
+    /// A sum of 100 sines (each with its cosine: 200 calls at order 0, each result in a stack
+    /// slot until read): a frame of more than a page in `zmm` code, so that the stack is
+    /// probed.
+    fn many_calls() -> TaylorProgram {
+        let sines: String = (1..=100).map(|i| format!(" (sin (* {i} q1))")).collect();
+        let f = ["q2", "q3", "(neg q0)", &format!("(+{sines})")];
+        let f: Vec<Expr> = f.iter().map(|f| Expr::parse(f).unwrap()).collect();
+        let y0 = [0.8, 0.2, 0.1, 1.1];
+        TaylorProgram::ode(&ExprOde::new(f, vec![], &y0, None).unwrap()).unwrap()
+    }
+
     /// On 1, 2 and 5 registers (so that values are moved to the stack and back, and read
     /// from where they were stored) and on all of them, the code's coefficients of every node
     /// are the interpreter's bit for bit, for one state and in 4 and 8 lanes at distinct
-    /// states.
+    /// states; with frames of a few slots and of several pages.
     #[test]
     fn spilled_code_has_the_interpreters_bits() {
         fn check<const L: usize>(program: &TaylorProgram) {
@@ -835,9 +889,15 @@ mod tests {
                 }
             }
         }
-        let program = program();
-        check::<1>(&program);
-        check::<4>(&program);
-        check::<8>(&program);
+        let calls = many_calls();
+        let mut recorder = super::Recorder::of(&calls.nodes, &calls.outputs, 9).unwrap();
+        let sign = recorder.constant(-0.0);
+        let (_, slots) = super::allocate(&recorder.ops, 32, sign);
+        assert!(64 * slots > 4096, "{slots} slots of a zmm");
+        for program in [program(), calls] {
+            check::<1>(&program);
+            check::<4>(&program);
+            check::<8>(&program);
+        }
     }
 }
