@@ -1203,8 +1203,9 @@ impl TaylorProgram {
         self.backend(order)
     }
 
-    /// [`compile_native`](Self::compile_native) in the unrolled form (every order and term
-    /// written out, the form small programs are compiled in) whatever the program's size.
+    /// [`compile_native`](Self::compile_native) in Cranelift's unrolled form (every order and
+    /// term written out, the form small programs are compiled in where the recurrences are not
+    /// written as AVX code) whatever the program's size.
     #[doc(hidden)]
     pub fn compile_native_unrolled(&self, order: usize) -> Backend {
         self.jit.compile_unrolled(&self.nodes, &self.outputs, order);

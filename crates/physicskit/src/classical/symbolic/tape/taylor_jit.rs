@@ -243,8 +243,8 @@ impl Native {
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub(super) enum Form {
     /// Every order and every term of every sum written out, each coefficient at an offset known
-    /// when compiling: the fastest code, of a size growing with the nodes times the order
-    /// squared.
+    /// when compiling, by Cranelift: the fastest code Cranelift makes, of a size growing with
+    /// the nodes times the order squared.
     Unrolled,
     /// Order 0 written out, the orders from 1 on as a loop over `k` whose body is every node's
     /// order `k`, each sum a loop over its terms: code of a size growing with the nodes alone,
