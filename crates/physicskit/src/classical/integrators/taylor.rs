@@ -39,7 +39,10 @@
 //! (the split overflows) or the product's error underflows: far from any state and step of an
 //! integration. The rows of the state are evaluated four at a time, in the four lanes of one
 //! vector where the CPU has AVX2 (independent chains the CPU overlaps elsewhere), each with
-//! the operations of one row alone.
+//! the operations of one row alone: from blocks of four rows, each order's four coefficients
+//! side by side, which the recurrences' code written for AVX stores as it computes them
+//! ([`TaylorField::expansion_in_blocks`]) and which the stepper otherwise transposes the
+//! rows into.
 //!
 //! **Step size without `powf`**: the two roots of the step-size rule are `2^(log2(·)/k)`,
 //! with `log2` and `2^y` written in plain arithmetic (`taylor_arith.rs`: a series of
@@ -116,6 +119,10 @@ fn system_name<S: ?Sized>() -> String {
 /// precision can deliver gain nothing from more terms.
 pub const MAX_ORDER: usize = 24;
 
+/// An expansion's rows, and the same coefficients in the stepper's blocks if the field wrote
+/// them so ([`TaylorField::expansion_in_blocks`]).
+pub type InBlocks<'a> = (&'a [f64], Option<&'a [[f64; LANES]]>);
+
 /// A vector field that can expand the solution through a point as a Taylor series (`Any`: an
 /// ensemble recognizes the program behind a system's Taylor form, to share it).
 pub trait TaylorField: std::any::Any {
@@ -154,6 +161,23 @@ pub trait TaylorField: std::any::Any {
         }
         coefficients.copy_from_slice(rows);
         Ok(())
+    }
+
+    /// [`expansion`](Self::expansion), and the same coefficients side by side in blocks of
+    /// [`LANES`] rows where the field writes them so as well (the layout the stepper
+    /// evaluates, which it otherwise transposes the rows into): `dim.div_ceil(LANES)` blocks
+    /// of `order + 1` groups, group `k` of a block holding coefficient `k` of its rows, the
+    /// lanes past the last row zeros. The default writes no blocks (`None`).
+    ///
+    /// # Errors
+    /// As [`expansion`](Self::expansion).
+    fn expansion_in_blocks(
+        &mut self,
+        t: f64,
+        y: &[f64],
+        order: usize,
+    ) -> Result<InBlocks<'_>> {
+        Ok((self.expansion(t, y, order)?, None))
     }
 }
 
@@ -209,8 +233,10 @@ pub fn order_for(tolerances: &Tolerances) -> usize {
     }
 }
 
-/// Rows evaluated side by side by [`horner_rows`]: independent chains the CPU overlaps.
-const LANES: usize = 4;
+/// Rows evaluated side by side (by the compensated Horner, and as the stepper's blocks of
+/// coefficients: [`TaylorField::expansion_in_blocks`]): independent chains the CPU overlaps,
+/// the four lanes of a vector of doubles.
+pub const LANES: usize = 4;
 
 /// Compensated Horner of each row of `c` (rows of `n1` coefficients) at `x` into `out`, `LANES`
 /// rows at a time (each row's operations are those of [`compensated_horner`], in its order);
@@ -307,6 +333,21 @@ fn horner_blocks<const FUSED: bool>(
                 s[r] = sum;
                 err[r] = err[r] * x + (pi + sigma);
             }
+        }
+        let rows = b * LANES..b * LANES + out.len();
+        if let (Ok(out), Some(lo)) = (
+            <&mut [f64; LANES]>::try_from(&mut *out),
+            lo.get(rows.clone()).and_then(|lo| <&[f64; LANES]>::try_from(lo).ok()),
+        ) {
+            // A whole block: its rows' sums as vector operations.
+            let mut low = [0.0; LANES];
+            for r in 0..LANES {
+                (out[r], low[r]) = two_sum(s[r], err[r] + lo[r]);
+            }
+            if let Some(out_lo) = out_lo.as_deref_mut() {
+                out_lo[rows].copy_from_slice(&low);
+            }
+            continue;
         }
         for (r, o) in out.iter_mut().enumerate() {
             let row = b * LANES + r;
@@ -521,6 +562,40 @@ fn blocks_checked(
     zero.iter().all(|&z| z == 0.0)
 }
 
+/// `from` copied into `to` (of the same length), and whether every coefficient is finite: the
+/// same sum of `x · 0` as [`blocks_checked`] (in any order: a zero exactly when all are
+/// finite), in vector registers of four doubles where the CPU has AVX2.
+fn copy_checked(from: &[[f64; LANES]], to: &mut [[f64; LANES]]) -> bool {
+    #[cfg(target_arch = "x86_64")]
+    if std::arch::is_x86_feature_detected!("avx2") {
+        // SAFETY: the CPU has AVX2 (checked just above), the one feature the function
+        // enables.
+        #[allow(unsafe_code)]
+        return unsafe { copy_checked_avx2(from, to) };
+    }
+    copy_checked_plain(from, to)
+}
+
+/// [`copy_checked`] compiled for AVX2 (called only where the CPU has it).
+#[cfg(target_arch = "x86_64")]
+#[target_feature(enable = "avx2")]
+fn copy_checked_avx2(from: &[[f64; LANES]], to: &mut [[f64; LANES]]) -> bool {
+    copy_checked_plain(from, to)
+}
+
+/// [`copy_checked`] for any CPU.
+#[inline(always)]
+fn copy_checked_plain(from: &[[f64; LANES]], to: &mut [[f64; LANES]]) -> bool {
+    let mut zero = [0.0_f64; LANES];
+    for (to, from) in to.iter_mut().zip(from) {
+        *to = *from;
+        for r in 0..LANES {
+            zero[r] += from[r] * 0.0;
+        }
+    }
+    zero.iter().all(|&z| z == 0.0)
+}
+
 /// `Σ_k c_k x^k` by compensated Horner: as accurate as Horner in twice the working precision,
 /// then rounded once.
 #[inline]
@@ -641,7 +716,7 @@ impl Taylor {
                 ),
             ));
         }
-        let rows = field.expansion(t, &self.y, p)?;
+        let (rows, blocks) = field.expansion_in_blocks(t, &self.y, p)?;
         if rows.len() != self.dim * n1 {
             return Err(Error::invalid(
                 "Taylor field",
@@ -650,19 +725,30 @@ impl Taylor {
             ));
         }
         // The step size first, from the rows as the recurrences wrote them (the largest
-        // magnitudes of the rule's orders: `f64::max`, which passes over a NaN, in any order
-        // gives the same), so that its chain of operations overlaps the transposition.
+        // magnitudes of the rule's orders: `f64::max`'s values, which pass over a NaN, in any
+        // order give the same), so that its chain of operations overlaps the blocks' copy.
+        // `x > norm` is false for a NaN, so the select is `f64::max` with a norm that is never
+        // NaN, and one `maxsd`; the rows by index, as their length was checked just above.
         let mut norms = [0.0_f64; 3];
         let orders = self.rule.norm_orders();
-        for row in rows.chunks_exact(n1) {
+        for i in 0..self.dim {
+            let row = &rows[i * n1..(i + 1) * n1];
             for (norm, k) in norms.iter_mut().zip(orders) {
-                *norm = norm.max(row[k].abs());
+                let x = row[k].abs();
+                if x > *norm {
+                    *norm = x;
+                }
             }
         }
         let rho = self.rule.radius(norms);
         // Into the spare blocks: the current ones hold the polynomial outputs read until the
-        // step is taken.
-        let finite = to_blocks_checked(rows, self.dim, n1, &mut self.next_blocks);
+        // step is taken. Copied where the field wrote the blocks itself, else transposed.
+        let finite = match blocks {
+            Some(blocks) if blocks.len() == self.next_blocks.len() => {
+                copy_checked(blocks, &mut self.next_blocks)
+            }
+            _ => to_blocks_checked(rows, self.dim, n1, &mut self.next_blocks),
+        };
         self.rule.step(rho, finite, t, self.offset(self.t_bound))
     }
 
@@ -1083,13 +1169,17 @@ impl Report for TaylorStepper {
 
 #[cfg(test)]
 mod tests {
-    use super::{to_blocks_checked, to_blocks_checked_plain, LANES, MAX_ORDER};
+    use super::{
+        copy_checked, copy_checked_plain, to_blocks_checked, to_blocks_checked_plain, LANES,
+        MAX_ORDER,
+    };
 
     /// The transposition into blocks (the AVX2 clone where the CPU has it) puts coefficient
     /// `k` of row `i` in group `k`, lane `i % 4`, of block `i / 4`, for every dimension (whole
     /// blocks and a partial last one) and every order, and leaves the lanes past the last row
     /// as they were; the plain clone gives the same bits; and both report the coefficients
-    /// finite unless one of them (first, middle or last) is an infinity or a NaN.
+    /// finite unless one of them (first, middle or last) is an infinity or a NaN. Blocks that
+    /// a field wrote itself are copied bit for bit, checked the same way.
     #[test]
     fn the_transposition_places_every_coefficient_and_checks_finiteness() {
         let mut state = 0x9e37_79b9_7f4a_7c15_u64;
@@ -1120,12 +1210,18 @@ mod tests {
                     }
                 }
                 assert_eq!(bits(&fast), bits(&plain), "dim {dim}, n1 {n1}");
+                // Blocks a field wrote itself are copied whole, lanes past the last row too.
+                let mut copied = vec![[untouched; LANES]; size];
+                assert!(copy_checked(&fast, &mut copied));
+                assert_eq!(bits(&copied), bits(&fast), "dim {dim}, n1 {n1}");
                 for bad in [f64::INFINITY, f64::NEG_INFINITY, f64::NAN] {
                     for at in [0, dim * n1 / 2, dim * n1 - 1] {
                         let mut poisoned = rows.clone();
                         poisoned[at] = bad;
                         assert!(!to_blocks_checked(&poisoned, dim, n1, &mut fast));
                         assert!(!to_blocks_checked_plain(&poisoned, dim, n1, &mut plain));
+                        assert!(!copy_checked(&fast, &mut copied));
+                        assert!(!copy_checked_plain(&fast, &mut copied));
                     }
                 }
             }

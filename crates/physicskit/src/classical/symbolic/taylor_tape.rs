@@ -50,7 +50,7 @@ use super::expr_hamiltonian::ExprHamiltonian;
 use super::expr_ode::ExprOde;
 use super::hash_cons::{HashCons, Keyed};
 use crate::classical::core::{Error, Result};
-use crate::classical::integrators::taylor::{TaylorField, MAX_ORDER};
+use crate::classical::integrators::taylor::{InBlocks, TaylorField, LANES, MAX_ORDER};
 use crate::classical::integrators::HamiltonianSystem;
 use crate::classical::lagrangian::Lagrangian;
 use std::collections::HashMap;
@@ -171,14 +171,51 @@ impl Node {
     }
 }
 
+/// The work array of the recurrences at one order: every node's coefficients, `order + 1`
+/// per node (the state's rows first, then the time's), then the state's coefficients again,
+/// side by side in the stepper's blocks of [`LANES`] rows
+/// ([`TaylorField::expansion_in_blocks`]), which only the code written for AVX fills (each
+/// coefficient stored twice, so that the stepper need not transpose the rows).
+#[derive(Debug, Clone, Copy)]
+pub(super) struct WorkLayout {
+    nodes: usize,
+    dim: usize,
+    stride: usize,
+}
+
+impl WorkLayout {
+    pub(super) fn new(nodes: usize, dim: usize, order: usize) -> Self {
+        Self {
+            nodes,
+            dim,
+            stride: order + 1,
+        }
+    }
+
+    /// Where the blocks start: after every node's coefficients.
+    pub(super) fn blocks_start(self) -> usize {
+        self.nodes * self.stride
+    }
+
+    pub(super) fn len(self) -> usize {
+        self.blocks_start() + self.dim.div_ceil(LANES) * self.stride * LANES
+    }
+
+    /// The index of coefficient `j` of the state's row `i` in the blocks.
+    pub(super) fn in_blocks(self, i: usize, j: usize) -> usize {
+        self.blocks_start() + ((i / LANES) * self.stride + j) * LANES + i % LANES
+    }
+}
+
 /// An expression field compiled into Taylor recurrences (see the module documentation).
 #[derive(Debug, Clone)]
 pub struct TaylorProgram {
     dim: usize,
     nodes: Vec<Node>,
     outputs: Vec<Val>,
-    /// Coefficients of every node, `stride` per node; sized at the first expansion of an
-    /// order and reused (no allocation per step).
+    /// Coefficients of every node, `stride` per node, then the state's in blocks
+    /// ([`WorkLayout`]); sized at the first expansion of an order and reused (no allocation
+    /// per step).
     work: Vec<f64>,
     /// Native code of the recurrences per order, once compiled; shared by clones.
     jit: jit::Jit,
@@ -1461,6 +1498,10 @@ impl TaylorField for TaylorProgram {
     }
 
     fn expansion(&mut self, t: f64, y: &[f64], order: usize) -> Result<&[f64]> {
+        Ok(self.expansion_in_blocks(t, y, order)?.0)
+    }
+
+    fn expansion_in_blocks(&mut self, t: f64, y: &[f64], order: usize) -> Result<InBlocks<'_>> {
         let stride = order + 1;
         if order > MAX_ORDER {
             return Err(Error::invalid(
@@ -1476,11 +1517,12 @@ impl TaylorField for TaylorProgram {
                 found: y.len(),
             });
         }
-        let size = self.nodes.len() * stride;
-        if self.work.len() != size {
-            self.work = vec![0.0; size];
-        }
         let dim = self.dim;
+        let layout = WorkLayout::new(self.nodes.len(), dim, order);
+        if self.work.len() != layout.len() {
+            // The blocks' lanes past the last row stay the zeros of the allocation.
+            self.work = vec![0.0; layout.len()];
+        }
         for (i, &yi) in y.iter().enumerate() {
             self.work[i * stride] = yi;
         }
@@ -1491,12 +1533,20 @@ impl TaylorField for TaylorProgram {
         if order >= 1 {
             self.work[time + 1] = 1.0;
         }
-        match self.jit.code(&self.nodes, &self.outputs, order) {
-            Some(code) => code.call(&mut self.work),
-            None => self.interpret(order, stride),
-        }
-        // The state's rows come first in the work array.
-        Ok(&self.work[..dim * stride])
+        let blocks = match self.jit.code(&self.nodes, &self.outputs, order) {
+            Some(code) => {
+                code.call(&mut self.work);
+                code.writes_blocks()
+            }
+            None => {
+                self.interpret(order, stride);
+                false
+            }
+        };
+        // The state's rows come first in the work array, its blocks last.
+        let (rows, rest) = self.work.split_at(layout.blocks_start());
+        let blocks = blocks.then_some(rest.as_chunks::<LANES>().0);
+        Ok((&rows[..dim * stride], blocks))
     }
 }
 

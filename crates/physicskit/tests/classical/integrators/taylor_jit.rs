@@ -4,7 +4,7 @@
 //! lazy compilation. Without the feature the recurrences are always interpreted, which the
 //! tests then check instead (`fixtures::native`).
 
-use physicskit::classical::integrators::taylor::{integrate_taylor, order_for, TaylorField};
+use physicskit::classical::integrators::taylor::{integrate_taylor, order_for, TaylorField, LANES};
 use physicskit::classical::symbolic::{Backend, Expr, ExprOde, TaylorProgram};
 use physicskit::classical::systems::DoublePendulumParams;
 use physicskit::classical::Tolerances;
@@ -99,6 +99,25 @@ fn compiled_coefficients_have_the_interpreters_bits() {
                         "{name}, order {order}, y = {y:?}, coefficient {i}: {g:e} vs {w:e}"
                     );
                 }
+                // The code written for AVX also writes the stepper's blocks: coefficient `k`
+                // of row `i` in group `k`, lane `i % 4`, of block `i / 4`, zeros past the last
+                // row; the interpreter leaves them to the stepper.
+                let n1 = order + 1;
+                let avx = compiled.written_for_avx(order);
+                let (_, blocks) = compiled.expansion_in_blocks(t, &y, order).unwrap();
+                assert_eq!(blocks.is_some(), avx, "{name}");
+                if let Some(blocks) = blocks {
+                    assert_eq!(blocks.len(), dim.div_ceil(LANES) * n1, "{name}");
+                    for i in 0..dim.div_ceil(LANES) * LANES {
+                        for k in 0..n1 {
+                            let w = if i < dim { want[i * n1 + k] } else { 0.0 };
+                            let g = blocks[i / LANES * n1 + k][i % LANES];
+                            assert!(same(g, w), "{name}, order {order}, row {i}, order {k}");
+                        }
+                    }
+                }
+                let (_, none) = reference.expansion_in_blocks(t, &y, order).unwrap();
+                assert!(none.is_none(), "{name}");
             }
         }
     }
@@ -147,7 +166,9 @@ fn compact_and_unrolled_forms_have_the_interpreters_bits() {
 
 /// Whole runs (Kepler over 10 orbits, Hénon–Heiles over t = 100, the double pendulum over
 /// t = 10, at tolerances 1e-8 and 1e-15): every sample of the compiled run is the interpreted
-/// run's, bit for bit.
+/// run's, bit for bit. Where the compiled code writes the stepper's blocks of coefficients,
+/// a series that is not finite stops its run as it stops the interpreted one (Kepler's at
+/// the origin, `y' = y²`'s from `y = 1e200`).
 #[test]
 fn compiled_runs_have_the_interpreters_bits() {
     let params = DoublePendulumParams::default();
@@ -173,7 +194,13 @@ fn compiled_runs_have_the_interpreters_bits() {
             let tolerances = Tolerances::new(tol, tol).unwrap();
             let mut interpreted = program.interpreted_only();
             let mut compiled = program.clone();
-            assert_eq!(compiled.compile_native(order_for(&tolerances)), native());
+            let order = order_for(&tolerances);
+            assert_eq!(compiled.compile_native(order), native());
+            // Kepler and Hénon–Heiles by the code written for AVX, which writes the
+            // stepper's blocks itself (the interpreted run's are transposed by the stepper).
+            if avx_code(1) && k < 2 {
+                assert!(compiled.written_for_avx(order), "run {k}");
+            }
             let a =
                 integrate_taylor(&mut interpreted, &y0, (0.0, t1), t1 / 50.0, tolerances).unwrap();
             let b = integrate_taylor(&mut compiled, &y0, (0.0, t1), t1 / 50.0, tolerances).unwrap();
@@ -182,6 +209,29 @@ fn compiled_runs_have_the_interpreters_bits() {
                 assert!(same(*x, *y), "run {k}, tol {tol:e}: {x:e} vs {y:e}");
             }
         }
+    }
+    let tolerances = Tolerances::new(1e-12, 1e-12).unwrap();
+    let order = order_for(&tolerances);
+    let blow_up = ExprOde::new(vec![Expr::parse("(^ q0 2)").unwrap()], vec![], &[1.0], None);
+    let failing = [
+        (
+            TaylorProgram::hamiltonian(&kepler_expr()).unwrap(),
+            vec![0.0, 0.0, 1.0, 0.0],
+        ),
+        // `y^[1] = y²` overflows.
+        (TaylorProgram::ode(&blow_up.unwrap()).unwrap(), vec![1e200]),
+    ];
+    for (program, y0) in failing {
+        let mut interpreted = program.interpreted_only();
+        let mut compiled = program;
+        assert_eq!(compiled.compile_native(order), native());
+        if avx_code(1) {
+            assert!(compiled.written_for_avx(order));
+        }
+        let a = integrate_taylor(&mut interpreted, &y0, (0.0, 2.0), 0.5, tolerances).unwrap_err();
+        let b = integrate_taylor(&mut compiled, &y0, (0.0, 2.0), 0.5, tolerances).unwrap_err();
+        assert_eq!(a.to_string(), b.to_string());
+        assert!(b.to_string().contains("not finite"), "{b}");
     }
 }
 

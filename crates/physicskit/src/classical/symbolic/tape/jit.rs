@@ -274,11 +274,9 @@ pub(in crate::classical::symbolic) fn compile_function(
 /// absolute addresses) mapped executable by a [`JITModule`] for this host: its address, and the
 /// module that owns it; `None` where the host has no ISA Cranelift knows or mapping fails.
 pub(in crate::classical::symbolic) fn load_code(bytes: &[u8]) -> Option<(*const u8, OwnedModule)> {
-    let mut flags = flag_builder()?;
-    flags.set("opt_level", "none").ok()?;
     let isa = cranelift_native::builder()
         .ok()?
-        .finish(settings::Flags::new(flags))
+        .finish(settings::Flags::new(flag_builder()?))
         .ok()?;
     let mut module = JITModule::new(JITBuilder::with_isa(isa, default_libcall_names()));
     let signature = module.make_signature();

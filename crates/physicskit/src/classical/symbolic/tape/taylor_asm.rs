@@ -39,8 +39,8 @@ use iced_x86::code_asm::{
     AsmRegisterYmm, AsmRegisterZmm, CodeAssembler, CodeLabel, IcedError,
 };
 
-use super::super::{Node, Val};
-use super::{powf, Recurrences};
+use super::super::{Node, Val, WorkLayout};
+use super::{powf, Fresh, Recurrences};
 use crate::classical::symbolic::tape::jit::{load_code, OwnedModule};
 
 /// Lanes per register for `lanes` lanes on this host: 1 (an `xmm`'s low double) for one
@@ -68,20 +68,34 @@ pub(in crate::classical::symbolic) fn compile(
     lanes: usize,
     order: usize,
 ) -> Option<(*const u8, OwnedModule)> {
-    compile_on(nodes, outputs, lanes, order, None)
+    compile_on(nodes, outputs, lanes, None, order, None)
 }
 
-/// [`compile`] on at most `registers` vector registers (all of them if `None`): tests take
-/// few to make the allocator spill.
+/// [`compile`] for one state on the work array of `layout`, each of the state's coefficients
+/// also stored into its blocks.
+pub(in crate::classical::symbolic) fn compile_scalar(
+    nodes: &[Node],
+    outputs: &[Val],
+    layout: WorkLayout,
+    order: usize,
+) -> Option<(*const u8, OwnedModule)> {
+    compile_on(nodes, outputs, 1, Some(layout), order, None)
+}
+
+/// [`compile`] (with the blocks of `layout` written, if given, for one lane) on at most
+/// `registers` vector registers (all of them if `None`): tests take few to make the allocator
+/// spill.
 fn compile_on(
     nodes: &[Node],
     outputs: &[Val],
     lanes: usize,
+    layout: Option<WorkLayout>,
     order: usize,
     registers: Option<usize>,
 ) -> Option<(*const u8, OwnedModule)> {
     let width = width(lanes)?;
-    let mut recorder = Recorder::of(nodes, outputs, order)?;
+    let layout = layout.filter(|_| lanes == 1);
+    let mut recorder = Recorder::of(nodes, outputs, order, layout)?;
     let sign = recorder.constant(-0.0);
     let all = if width == 8 { 32 } else { 16 };
     let registers = registers.map_or(all, |r| r.clamp(1, all));
@@ -129,26 +143,34 @@ enum Arith {
 struct Recorder {
     ops: Vec<Op>,
     pool: Vec<f64>,
-    stride: usize,
-    /// The order being recorded.
-    k: usize,
-    /// The value of each coefficient stored, used instead of a load while its order is at
-    /// least the one being recorded.
-    fresh: Vec<Option<usize>>,
+    fresh: Fresh<usize>,
+    /// Where the state's coefficients are stored a second time, if they are.
+    blocks: Option<WorkLayout>,
     has_abs: bool,
 }
 
 impl Recorder {
-    /// The recurrences of `order` recorded; `None` for a program with an `|x|`.
-    fn of(nodes: &[Node], outputs: &[Val], order: usize) -> Option<Self> {
+    /// The recurrences of `order` recorded (each of the state's coefficients stored into the
+    /// blocks of `blocks` too, if given); `None` for a program with an `|x|`.
+    fn of(
+        nodes: &[Node],
+        outputs: &[Val],
+        order: usize,
+        blocks: Option<WorkLayout>,
+    ) -> Option<Self> {
         let mut recorder = Recorder {
             ops: Vec::new(),
             pool: Vec::new(),
-            stride: order + 1,
-            k: 0,
-            fresh: vec![None; nodes.len() * (order + 1)],
+            fresh: Fresh::new(nodes.len(), order),
+            blocks,
             has_abs: false,
         };
+        if let Some(blocks) = blocks {
+            for i in 0..blocks.dim {
+                let y = recorder.ld(i, 0);
+                recorder.push(Op::Store(blocks.in_blocks(i, 0), y));
+            }
+        }
         recorder.recurrences(nodes, outputs, order);
         (!recorder.has_abs).then_some(recorder)
     }
@@ -173,21 +195,24 @@ impl Recurrences for Recorder {
     type X = usize;
 
     fn set_k(&mut self, k: usize) {
-        self.k = k;
+        self.fresh.set_k(k);
     }
 
     fn ld(&mut self, n: usize, j: usize) -> usize {
-        let i = n * self.stride + j;
-        match self.fresh[i] {
-            Some(v) if j >= self.k => v,
-            _ => self.push(Op::Load(i)),
+        match self.fresh.get(n, j) {
+            Some(v) => v,
+            None => self.push(Op::Load(self.fresh.index(n, j))),
         }
     }
 
     fn st(&mut self, n: usize, j: usize, x: usize) {
-        let i = n * self.stride + j;
-        self.fresh[i] = Some(x);
-        self.push(Op::Store(i, x));
+        self.fresh.set(n, j, x);
+        self.push(Op::Store(self.fresh.index(n, j), x));
+        // Only the state's coefficients are stored from the outputs (`st(i, k + 1, ...)`),
+        // the state's rows being the first nodes.
+        if let Some(blocks) = self.blocks.filter(|b| n < b.dim) {
+            self.push(Op::Store(blocks.in_blocks(n, j), x));
+        }
     }
 
     fn c(&mut self, c: f64) -> usize {
@@ -443,7 +468,7 @@ impl Allocator {
             self.freed.push(s);
         }
         if let Loc::Reg(r) = self.loc[v] {
-            if self.last[v].is_none_or(|last| last <= i) && self.owner[usize::from(r)] == Some(v) {
+            if self.owner[usize::from(r)] == Some(v) {
                 self.owner[usize::from(r)] = None;
             }
         }
@@ -703,7 +728,7 @@ impl Frame {
         for inst in code {
             self.instruction(&mut asm, inst, &pool)?;
         }
-        asm.add(rbx, i32::try_from(self.bytes()).unwrap_or(64))?;
+        asm.add(rbx, i32::try_from(self.bytes()).map_err(|_| Unencodable)?)?;
         asm.cmp(rbx, r12)?;
         asm.jb(pass)?;
         asm.add(rsp, frame)?;
@@ -804,6 +829,7 @@ impl Frame {
 mod tests {
     use super::compile_on;
     use crate::classical::integrators::taylor::TaylorField;
+    use crate::classical::symbolic::taylor_tape::WorkLayout;
     use crate::classical::symbolic::{Expr, ExprOde, TaylorProgram};
 
     /// A program with sums, products, quotients, square roots and negations (Kepler's field
@@ -834,7 +860,9 @@ mod tests {
     /// On 1, 2 and 5 registers (so that values are moved to the stack and back, and read
     /// from where they were stored) and on all of them, the code's coefficients of every node
     /// are the interpreter's bit for bit, for one state and in 4 and 8 lanes at distinct
-    /// states; with frames of a few slots and of several pages.
+    /// states; with frames of a few slots and of several pages. One state's code also writes
+    /// the state's coefficients into the work array's blocks, each where the stepper's
+    /// transposition puts it; the lanes' code leaves the blocks alone.
     #[test]
     fn spilled_code_has_the_interpreters_bits() {
         fn check<const L: usize>(program: &TaylorProgram) {
@@ -856,16 +884,22 @@ mod tests {
                     reference.work.clone()
                 })
                 .collect();
+            let layout = WorkLayout::new(program.nodes.len(), 4, order);
             for registers in [Some(1), Some(2), Some(5), None] {
-                let Some((code, _module)) =
-                    compile_on(&program.nodes, &program.outputs, L, order, registers)
-                else {
+                let Some((code, _module)) = compile_on(
+                    &program.nodes,
+                    &program.outputs,
+                    L,
+                    Some(layout),
+                    order,
+                    registers,
+                ) else {
                     assert!(super::width(L).is_none(), "AVX host, no code");
                     return;
                 };
                 // The inputs as `expand` sets them: the state's and the time's orders 0, the
                 // time's order 1; everything else is the code's to write.
-                let mut w = vec![[0.0; L]; program.nodes.len() * stride];
+                let mut w = vec![[0.0; L]; layout.len()];
                 for (i, yi) in y.iter().enumerate() {
                     w[i * stride] = *yi;
                 }
@@ -878,7 +912,8 @@ mod tests {
                     let f: unsafe extern "C" fn(*mut f64) = std::mem::transmute(code);
                     f(w.as_mut_ptr().cast());
                 }
-                for (i, g) in w.iter().enumerate() {
+                let (nodes, blocks) = w.split_at(layout.blocks_start());
+                for (i, g) in nodes.iter().enumerate() {
                     for (l, want) in want.iter().enumerate() {
                         assert_eq!(
                             g[l].to_bits(),
@@ -887,10 +922,30 @@ mod tests {
                         );
                     }
                 }
+                // The blocks as the stepper's transposition fills them (one state), or
+                // untouched (lanes).
+                let mut expected = vec![[0.0; L]; blocks.len()];
+                for i in 0..4 {
+                    for j in 0..stride {
+                        if L == 1 {
+                            expected[layout.in_blocks(i, j) - layout.blocks_start()] =
+                                std::array::from_fn(|l| want[l][i * stride + j]);
+                        }
+                    }
+                }
+                for (b, (g, e)) in blocks.iter().zip(&expected).enumerate() {
+                    for l in 0..L {
+                        assert_eq!(
+                            g[l].to_bits(),
+                            e[l].to_bits(),
+                            "{registers:?} registers, {L} lanes, block entry {b}, lane {l}"
+                        );
+                    }
+                }
             }
         }
         let calls = many_calls();
-        let mut recorder = super::Recorder::of(&calls.nodes, &calls.outputs, 9).unwrap();
+        let mut recorder = super::Recorder::of(&calls.nodes, &calls.outputs, 9, None).unwrap();
         let sign = recorder.constant(-0.0);
         let (_, slots) = super::allocate(&recorder.ops, 32, sign);
         assert!(64 * slots > 4096, "{slots} slots of a zmm");

@@ -45,4 +45,8 @@ impl Native {
     pub(super) fn call(&self, _: &mut [f64]) {
         match *self {}
     }
+
+    pub(super) fn writes_blocks(&self) -> bool {
+        match *self {}
+    }
 }

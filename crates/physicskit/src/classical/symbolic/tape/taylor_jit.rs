@@ -46,7 +46,7 @@ use cranelift_frontend::FunctionBuilder;
 
 #[cfg(doc)]
 use super::power0;
-use super::{func_value, powf_weight, Node, Power, TaylorProgram, Val};
+use super::{func_value, powf_weight, Node, Power, TaylorProgram, Val, WorkLayout};
 use crate::classical::integrators::taylor::MAX_ORDER;
 use crate::classical::symbolic::tape::jit::{
     compile_function, flag_builder, OwnedModule, Param, Shims,
@@ -169,9 +169,10 @@ impl Jit {
 /// Compiled recurrences: the entry point and the module that owns the code.
 pub(super) struct Native {
     entry: Entry,
-    /// Length of the work array the code reads and writes.
+    /// Length of the work array ([`WorkLayout`]) the code reads and writes.
     len: usize,
-    /// Whether the code is [`asm`]'s, written for AVX (else Cranelift's).
+    /// Whether the code is [`asm`]'s, written for AVX (else Cranelift's), which also writes
+    /// the state's coefficients into the work array's blocks.
     avx: bool,
     /// Owns the code `entry` points into.
     _module: OwnedModule,
@@ -179,7 +180,7 @@ pub(super) struct Native {
 
 impl Native {
     /// Runs the recurrences on the work array `w` (left untouched if its length is not the
-    /// program's nodes times `order + 1`: callers size it first).
+    /// program's [`WorkLayout`]'s at this order: callers size it first).
     #[inline]
     // SAFETY: the code reads and writes `w[..len]` only, which the check makes in bounds, and
     // calls only the shims below, which are plain functions of their arguments.
@@ -190,13 +191,20 @@ impl Native {
         }
     }
 
+    /// Whether the code writes the state's coefficients into the work array's blocks too
+    /// ([`WorkLayout`]).
+    pub(super) fn writes_blocks(&self) -> bool {
+        self.avx
+    }
+
     fn compile(nodes: &[Node], outputs: &[Val], order: usize, form: Form) -> Option<Native> {
+        let layout = WorkLayout::new(nodes.len(), outputs.len(), order);
         #[cfg(all(target_arch = "x86_64", not(windows)))]
         if form == Form::Avx {
-            if let Some((code, module)) = asm::compile(nodes, outputs, 1, order) {
+            if let Some((code, module)) = asm::compile_scalar(nodes, outputs, layout, order) {
                 return Some(Native {
                     entry: entry_point(code),
-                    len: nodes.len() * (order + 1),
+                    len: layout.len(),
                     avx: true,
                     _module: module,
                 });
@@ -219,9 +227,7 @@ impl Native {
                     b,
                     shims,
                     w: params[0],
-                    stride: order + 1,
-                    k: 0,
-                    fresh: vec![None; nodes.len() * (order + 1)],
+                    fresh: Fresh::new(nodes.len(), order),
                 };
                 match form {
                     Form::Unrolled | Form::Avx => emit.recurrences(nodes, outputs, order),
@@ -231,7 +237,7 @@ impl Native {
             })?;
         Some(Native {
             entry: entry_point(code),
-            len: nodes.len() * (order + 1),
+            len: layout.len(),
             avx: false,
             _module: module,
         })
@@ -345,28 +351,21 @@ struct Emitter<'a, 'b> {
     shims: &'a mut Shims,
     /// The work array.
     w: Value,
-    stride: usize,
-    /// The order being emitted.
-    k: usize,
-    /// The value of each coefficient stored by this function, used instead of a load while
-    /// its order is at least the one being emitted.
-    fresh: Vec<Option<Value>>,
+    fresh: Fresh<Value>,
 }
 
 impl Recurrences for Emitter<'_, '_> {
     type X = Value;
 
     fn set_k(&mut self, k: usize) {
-        self.k = k;
+        self.fresh.set_k(k);
     }
 
     fn ld(&mut self, n: usize, j: usize) -> Value {
-        if j >= self.k {
-            if let Some(v) = self.fresh[n * self.stride + j] {
-                return v;
-            }
+        if let Some(v) = self.fresh.get(n, j) {
+            return v;
         }
-        let offset = (8 * (n * self.stride + j)) as i32;
+        let offset = (8 * self.fresh.index(n, j)) as i32;
         // In bounds and aligned: `Native::call` checks the work array's length.
         self.b
             .ins()
@@ -374,8 +373,8 @@ impl Recurrences for Emitter<'_, '_> {
     }
 
     fn st(&mut self, n: usize, j: usize, v: Value) {
-        self.fresh[n * self.stride + j] = Some(v);
-        let offset = (8 * (n * self.stride + j)) as i32;
+        self.fresh.set(n, j, v);
+        let offset = (8 * self.fresh.index(n, j)) as i32;
         self.b.ins().store(MemFlags::trusted(), v, self.w, offset);
     }
 
@@ -432,6 +431,52 @@ impl Recurrences for Emitter<'_, '_> {
 /// The operations the recurrences are emitted from, on values of one `f64` (this file's
 /// [`Emitter`]) or of several lanes (`taylor_lanes_jit.rs`): the provided methods emit the
 /// interpreter's operations in its order from them, once for both.
+/// The coefficients an emitter of [`Recurrences`] has stored, kept as its values: coefficient
+/// `j` of a node stored while emitting order `k <= j` was computed by this order's code, and is
+/// reused as that value rather than loaded back; older coefficients are loaded.
+pub(super) struct Fresh<X> {
+    stride: usize,
+    /// The order being emitted.
+    k: usize,
+    values: Vec<Option<X>>,
+}
+
+impl<X: Copy> Fresh<X> {
+    /// None stored yet, for `nodes` nodes of coefficients `0..=order`.
+    pub(super) fn new(nodes: usize, order: usize) -> Self {
+        Fresh {
+            stride: order + 1,
+            k: 0,
+            values: vec![None; nodes * (order + 1)],
+        }
+    }
+
+    /// Sets the order being emitted.
+    pub(super) fn set_k(&mut self, k: usize) {
+        self.k = k;
+    }
+
+    /// The work array's index of coefficient `j` of node `n`.
+    pub(super) fn index(&self, n: usize, j: usize) -> usize {
+        n * self.stride + j
+    }
+
+    /// The value stored as coefficient `j` of node `n`, if it is to be used instead of a load.
+    pub(super) fn get(&self, n: usize, j: usize) -> Option<X> {
+        if j >= self.k {
+            self.values[self.index(n, j)]
+        } else {
+            None
+        }
+    }
+
+    /// Records `x` as stored for coefficient `j` of node `n`.
+    pub(super) fn set(&mut self, n: usize, j: usize, x: X) {
+        let i = self.index(n, j);
+        self.values[i] = Some(x);
+    }
+}
+
 pub(super) trait Recurrences {
     /// A value: one `f64`, or lanes of them.
     type X: Copy;
@@ -776,7 +821,7 @@ impl<'a, 'b> Emitter<'a, 'b> {
     /// Byte offset of coefficient `j` of node `n` from the work array (`j` may be negative:
     /// added to a run-time address).
     fn offset(&self, n: usize, j: isize) -> i32 {
-        (8 * (n as isize * self.stride as isize + j)) as i32
+        (8 * (self.fresh.index(n, 0) as isize + j)) as i32
     }
 
     /// The `f64` at `address + offset`.
@@ -875,7 +920,7 @@ impl<'a, 'b> Emitter<'a, 'b> {
     /// then one loop over `k = 1..=order` whose body sets the state's order `k` from the field's
     /// order `k - 1` and then every node's order `k` (the interpreter's sequence of operations).
     fn compact(&mut self, nodes: &[Node], outputs: &[Val], order: usize) {
-        self.k = 0;
+        self.fresh.set_k(0);
         for (i, &node) in nodes.iter().enumerate() {
             self.node(i, node, 0);
         }
@@ -883,7 +928,7 @@ impl<'a, 'b> Emitter<'a, 'b> {
             return;
         }
         // Only order 0's values stored above are reused as values; nothing from the loop.
-        self.k = 1;
+        self.fresh.set_k(1);
         let body = self.b.create_block();
         let k = self.b.append_block_param(body, types::I64);
         let exit = self.b.create_block();

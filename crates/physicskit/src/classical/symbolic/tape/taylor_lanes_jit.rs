@@ -44,7 +44,7 @@ use cranelift_frontend::FunctionBuilder;
 
 #[cfg(all(target_arch = "x86_64", not(windows)))]
 use super::super::jit::asm;
-use super::super::jit::{powf, unrolled_terms, Form, Recurrences};
+use super::super::jit::{powf, unrolled_terms, Form, Fresh, Recurrences};
 use super::super::{Node, Val};
 use crate::classical::integrators::taylor::MAX_ORDER;
 use crate::classical::symbolic::tape::jit::{
@@ -304,9 +304,7 @@ impl Native {
                     shims,
                     base,
                     lanes,
-                    stride: order + 1,
-                    k: 0,
-                    fresh: vec![None; nodes.len() * (order + 1)],
+                    fresh: Fresh::new(nodes.len(), order),
                 }
                 .recurrences(nodes, outputs, order);
                 let next = b.ins().iadd_imm(base, pass);
@@ -355,18 +353,13 @@ struct Emitter<'a, 'b, const N: usize> {
     /// Address of this pass's first lane of the work array's first coefficient.
     base: Value,
     lanes: usize,
-    stride: usize,
-    /// The order being emitted.
-    k: usize,
-    /// The value of each coefficient stored by this function, used instead of a load while
-    /// its order is at least the one being emitted.
-    fresh: Vec<Option<Lanes<N>>>,
+    fresh: Fresh<Lanes<N>>,
 }
 
 impl<const N: usize> Emitter<'_, '_, N> {
     /// Byte offset of vector `v` of coefficient `j` of node `n` from `base`.
     fn offset(&self, n: usize, j: usize, v: usize) -> i32 {
-        (8 * self.lanes * (n * self.stride + j) + 16 * v) as i32
+        (8 * self.lanes * self.fresh.index(n, j) + 16 * v) as i32
     }
 
     /// `op` vector by vector.
@@ -406,14 +399,12 @@ impl<const N: usize> Recurrences for Emitter<'_, '_, N> {
     type X = Lanes<N>;
 
     fn set_k(&mut self, k: usize) {
-        self.k = k;
+        self.fresh.set_k(k);
     }
 
     fn ld(&mut self, n: usize, j: usize) -> Lanes<N> {
-        if j >= self.k {
-            if let Some(v) = self.fresh[n * self.stride + j] {
-                return v;
-            }
+        if let Some(v) = self.fresh.get(n, j) {
+            return v;
         }
         std::array::from_fn(|v| {
             let offset = self.offset(n, j, v);
@@ -422,7 +413,7 @@ impl<const N: usize> Recurrences for Emitter<'_, '_, N> {
     }
 
     fn st(&mut self, n: usize, j: usize, x: Lanes<N>) {
-        self.fresh[n * self.stride + j] = Some(x);
+        self.fresh.set(n, j, x);
         for (v, &x) in x.iter().enumerate() {
             let offset = self.offset(n, j, v);
             self.b.ins().store(flags(), x, self.base, offset);
