@@ -8,7 +8,10 @@
 //! The code is the unrolled form (`taylor_jit.rs`'s [`Recurrences`], emitted by the same
 //! provided methods in the same order) on the scalar instructions of an `xmm` (one state) or
 //! on whole `ymm` (4 lanes) or `zmm` (8 lanes, AVX-512F) registers: one pass of it covers
-//! [`width`] lanes, and a loop runs it over the `L` lanes.
+//! [`width`] lanes, and a loop runs it over the `L` lanes. One state's code also stores each
+//! of the state's coefficients into the stepper's blocks at the end of the work array
+//! (`taylor_tape.rs`'s `WorkLayout`), so that the stepper copies them rather than transposing
+//! the rows.
 //! It is made in three steps:
 //! 1. **record**: the [`Recurrences`] calls become a list of [`Op`]s on values numbered by
 //!    the op that made them (a coefficient of the order being computed used as the value
