@@ -201,7 +201,9 @@ impl WorkLayout {
         self.blocks_start() + self.dim.div_ceil(LANES) * self.stride * LANES
     }
 
-    /// The index of coefficient `j` of the state's row `i` in the blocks.
+    /// The index of coefficient `j` of the state's row `i` in the blocks (for the code written
+    /// for AVX, the one writer of the blocks).
+    #[cfg(all(feature = "jit", target_arch = "x86_64", not(windows)))]
     pub(super) fn in_blocks(self, i: usize, j: usize) -> usize {
         self.blocks_start() + ((i / LANES) * self.stride + j) * LANES + i % LANES
     }
