@@ -428,9 +428,6 @@ impl Recurrences for Emitter<'_, '_> {
     }
 }
 
-/// The operations the recurrences are emitted from, on values of one `f64` (this file's
-/// [`Emitter`]) or of several lanes (`taylor_lanes_jit.rs`): the provided methods emit the
-/// interpreter's operations in its order from them, once for both.
 /// The coefficients an emitter of [`Recurrences`] has stored, kept as its values: coefficient
 /// `j` of a node stored while emitting order `k <= j` was computed by this order's code, and is
 /// reused as that value rather than loaded back; older coefficients are loaded.
@@ -477,6 +474,9 @@ impl<X: Copy> Fresh<X> {
     }
 }
 
+/// The operations the recurrences are emitted from, on values of one `f64` (this file's
+/// [`Emitter`]) or of several lanes (`taylor_lanes_jit.rs`): the provided methods emit the
+/// interpreter's operations in its order from them, once for both.
 pub(super) trait Recurrences {
     /// A value: one `f64`, or lanes of them.
     type X: Copy;
