@@ -813,15 +813,99 @@ impl Builder<'_> {
 }
 
 /// `Σ_j a_j b_{n-1-j}` for slices of length `n`: the Cauchy product's term of order `n - 1`,
-/// summed from `j = 0` up, starting with the first product (zero for empty slices). The
-/// compiled recurrences sum in the same order.
+/// in [`ordered_sum`]'s order (zero for empty slices).
 #[inline(always)]
 fn cauchy(a: &[f64], b: &[f64]) -> f64 {
-    let mut terms = a.iter().zip(b.iter().rev()).map(|(x, y)| x * y);
-    match terms.next() {
-        Some(first) => terms.fold(first, |s, t| s + t),
-        None => 0.0,
+    let n = a.len().min(b.len());
+    ordered_sum(&mut (), n, |(), j| a[j] * b[n - 1 - j], |(), s, t| s + t).unwrap_or(0.0)
+}
+
+/// The terms at each end of a sum that [`ordered_sum`] leaves out of its groups of four.
+const LEAD: usize = 2;
+
+/// The fewest terms [`ordered_sum`] splits: one group and the terms at both ends.
+const SPLIT_TERMS: usize = 2 * LEAD + 4;
+
+/// The sum of the terms `term(j)`, `j < n`, of a Cauchy product or of the power
+/// recurrence, in the order every form of the recurrences sums it (`None` for `n = 0`):
+/// - fewer than [`SPLIT_TERMS`] terms: from `j = 0` up;
+/// - else the `4 G` terms from `j = LEAD` (`G = ⌊(n − 2 LEAD)/4⌋` groups of four) into four
+///   partial sums `p_l = t_{LEAD+l} + t_{LEAD+4+l} + …`, then
+///   `(p_0 + p_2) + (p_1 + p_3)`, plus the terms below `LEAD` from `j = 0` up, plus the
+///   terms after the groups from the lowest up.
+///
+/// So the four partial sums are the lanes of one AVX vector, and one state's AVX code
+/// (`taylor_asm.rs`) sums a group by one vector multiplication and addition instead of
+/// four of each. The groups leave out the [`LEAD`] terms at each end, which read the
+/// newest coefficients (orders `k` and `k − 1` of one factor at the start, of the other at
+/// the end): those were stored just before the sum, and a vector load spanning a pending
+/// scalar store waits for it (failed store forwarding). With one term left out at each end
+/// the vector sums were slower than the scalar ones on Hénon–Heiles; with three, slower than
+/// with two everywhere (`benchmarks/README.md`).
+///
+/// Every form calls `term` and `add` in the order the sum is taken, so a recorder of the
+/// calls (`s`) records them in that order.
+#[inline(always)]
+fn ordered_sum<S: ?Sized, T: Copy>(
+    s: &mut S,
+    n: usize,
+    term: impl FnMut(&mut S, usize) -> T,
+    add: impl FnMut(&mut S, T, T) -> T,
+) -> Option<T> {
+    ordered_sum_with(s, n, term, add, |_, _| None)
+}
+
+/// [`ordered_sum`], the groups' `(p_0 + p_2) + (p_1 + p_3)` taken by `groups_sum(s, G)` where
+/// it gives one (the vector code's sum of the groups, on the same bits).
+#[inline(always)]
+fn ordered_sum_with<S: ?Sized, T: Copy>(
+    s: &mut S,
+    n: usize,
+    mut term: impl FnMut(&mut S, usize) -> T,
+    mut add: impl FnMut(&mut S, T, T) -> T,
+    groups_sum: impl FnOnce(&mut S, usize) -> Option<T>,
+) -> Option<T> {
+    if n < SPLIT_TERMS {
+        let mut acc = None;
+        for j in 0..n {
+            let t = term(s, j);
+            acc = Some(match acc {
+                Some(a) => add(s, a, t),
+                None => t,
+            });
+        }
+        return acc;
     }
+    let groups = (n - 2 * LEAD) / 4;
+    let mut acc = match groups_sum(s, groups) {
+        Some(sum) => sum,
+        None => {
+            let mut p = [
+                term(s, LEAD),
+                term(s, LEAD + 1),
+                term(s, LEAD + 2),
+                term(s, LEAD + 3),
+            ];
+            for g in 1..groups {
+                for (l, p) in p.iter_mut().enumerate() {
+                    let t = term(s, LEAD + 4 * g + l);
+                    *p = add(s, *p, t);
+                }
+            }
+            let even = add(s, p[0], p[2]);
+            let odd = add(s, p[1], p[3]);
+            add(s, even, odd)
+        }
+    };
+    for j in 0..LEAD {
+        let first = term(s, j);
+        acc = add(s, acc, first);
+    }
+    for j in LEAD + 4 * groups..n {
+        let t = term(s, j);
+        acc = add(s, acc, t);
+    }
+    Some(acc)
 }
 
 /// The factors of a product or quotient (nested products, quotients and negations
@@ -1372,12 +1456,11 @@ impl TaylorProgram {
                     if k == 0 {
                         power0(w[a], alpha)
                     } else {
-                        let term = |j: usize| powf_weight(alpha, k, j) * w[a + k - j] * w[me + j];
-                        let mut s = term(0);
-                        for j in 1..k {
-                            s += term(j);
-                        }
-                        s / (kf * w[a])
+                        let term = |(): &mut (), j: usize| {
+                            powf_weight(alpha, k, j) * w[a + k - j] * w[me + j]
+                        };
+                        let s = ordered_sum(&mut (), k, term, |(), s, t| s + t);
+                        s.unwrap_or(0.0) / (kf * w[a])
                     }
                 }
                 Node::Exp(a) => {
@@ -1554,7 +1637,60 @@ impl TaylorField for TaylorProgram {
 
 #[cfg(test)]
 mod tests {
-    use super::{power0, Power};
+    use super::{ordered_sum, power0, Power};
+
+    /// Every term enters a sum once, in the order `ordered_sum`'s documentation gives: terms
+    /// as the bits of a mask, each addition recorded as its two operands.
+    #[test]
+    fn ordered_sums_take_every_term_once_in_the_documented_order() {
+        let sum = |n: usize| {
+            let mut adds: Vec<(u128, u128)> = Vec::new();
+            let total = ordered_sum(
+                &mut adds,
+                n,
+                |_, j| 1u128 << j,
+                |adds, a, b| {
+                    assert_eq!(a & b, 0, "a term added twice, n = {n}");
+                    adds.push((a, b));
+                    a | b
+                },
+            );
+            (total, adds)
+        };
+        for n in 0..=127 {
+            let (total, adds) = sum(n);
+            let want = (n > 0).then(|| (1u128 << n) - 1);
+            assert_eq!(total, want, "n = {n}");
+            assert_eq!(adds.len(), n.saturating_sub(1), "n = {n}");
+        }
+        let t = |j: u32| 1u128 << j;
+        // Seven terms: one by one from the first.
+        let (_, adds) = sum(7);
+        let plain: Vec<(u128, u128)> = (1..7).map(|j| (t(j) - 1, t(j))).collect();
+        assert_eq!(adds, plain);
+        // Thirteen terms: groups `2..=5` and `6..=9` in four partial sums, then the terms 0
+        // and 1, then 10, 11 and 12.
+        let (_, adds) = sum(13);
+        let p = [t(2) | t(6), t(3) | t(7), t(4) | t(8), t(5) | t(9)];
+        let groups = p[0] | p[1] | p[2] | p[3];
+        let mut want = vec![
+            (t(2), t(6)),
+            (t(3), t(7)),
+            (t(4), t(8)),
+            (t(5), t(9)),
+            (p[0], p[2]),
+            (p[1], p[3]),
+            (p[0] | p[2], p[1] | p[3]),
+            (groups, t(0)),
+            (groups | t(0), t(1)),
+        ];
+        let mut acc = groups | t(0) | t(1);
+        for j in 10..13 {
+            want.push((acc, t(j)));
+            acc |= t(j);
+        }
+        assert_eq!(adds, want);
+    }
 
     /// The half-integer powers are within 2.5 ε (relative) of libm's `pow` over 24 binades
     /// around 1: their at most four roundings of half an ulp (2 ε), plus `pow`'s own error,

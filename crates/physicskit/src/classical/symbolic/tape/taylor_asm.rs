@@ -31,7 +31,11 @@
 //! order (IEEE addition and multiplication commute exactly): each lane does the interpreter's
 //! operations in its order and gets its bits. Order 0 of the transcendental operations calls
 //! the scalar JIT's `extern "C"` shims lane by lane (every register saved first: the calling
-//! convention keeps none of them). A program with an `|x|` is left to Cranelift
+//! convention keeps none of them). One state's code on an AVX2 host sums the groups of four
+//! terms of a long Cauchy or power sum (`taylor_tape.rs`'s `ordered_sum`) as whole `ymm`
+//! vectors: each group's four terms in the lanes, the reversed factor read by `vpermpd`, then
+//! the lanes added in the order the partial sums are ([`Groups`]).
+//! A program with an `|x|` is left to Cranelift
 //! ([`compile`] returns `None`). `tests/classical/integrators/taylor_jit.rs` and
 //! `taylor_lanes.rs` check this code and Cranelift's against the interpreter on every
 //! recurrence at orders 1–24 (one state; 4, 8 and 16 lanes), and the unit test below with
@@ -42,7 +46,7 @@ use iced_x86::code_asm::{
     AsmRegisterYmm, AsmRegisterZmm, CodeAssembler, CodeLabel, IcedError,
 };
 
-use super::super::{Node, Val, WorkLayout};
+use super::super::{powf_weight, Node, Val, WorkLayout, LEAD};
 use super::{powf, Fresh, Recurrences};
 use crate::classical::symbolic::tape::jit::{load_code, OwnedModule};
 
@@ -98,17 +102,21 @@ fn compile_on(
 ) -> Option<(*const u8, OwnedModule)> {
     let width = width(lanes)?;
     let layout = layout.filter(|_| lanes == 1);
-    let mut recorder = Recorder::of(nodes, outputs, order, layout)?;
-    let sign = recorder.constant(-0.0);
     let all = if width == 8 { 32 } else { 16 };
     let registers = registers.map_or(all, |r| r.clamp(1, all));
+    // A group's sum takes two registers of its own.
+    let groups = width == 1 && registers >= 2 && std::arch::is_x86_feature_detected!("avx2");
+    let mut recorder = Recorder::of(nodes, outputs, order, layout, groups)?;
+    let sign = recorder.constant(-0.0);
     let (code, slots) = allocate(&recorder.ops, registers, sign);
     let frame = Frame {
         lanes,
         width,
         slots,
     };
-    let bytes = frame.encode(&code, &recorder.pool).ok()?;
+    let bytes = frame
+        .encode(&code, &recorder.pool, &recorder.weights)
+        .ok()?;
     load_code(&bytes)
 }
 
@@ -132,6 +140,22 @@ enum Op {
     },
     /// Value `x` stored to coefficient `i`.
     Store(usize, usize),
+    /// The groups of a Cauchy or power sum.
+    Groups(Groups),
+}
+
+/// The groups of a Cauchy or power sum (one state; `taylor_tape.rs`'s `ordered_sum`):
+/// `(p_0 + p_2) + (p_1 + p_3)` of the four lanes' sums `p_l = Σ_g t_{4g+l}`, `g` below
+/// `groups`, of the terms `t_i = (w_i · rev_i) · fwd_i` (`i` counted from the first grouped
+/// term; no `w_i` without weights): `fwd_i` is coefficient `fwd + i` of the work array,
+/// `rev_i` coefficient `rev - i`, and `w_i` lane `i mod 4` of entry `weights + i / 4` of
+/// [`Recorder::weights`].
+#[derive(Clone, Copy)]
+struct Groups {
+    fwd: usize,
+    rev: usize,
+    groups: usize,
+    weights: Option<usize>,
 }
 
 #[derive(Clone, Copy, PartialEq)]
@@ -150,16 +174,22 @@ struct Recorder {
     /// Where the state's coefficients are stored a second time, if they are.
     blocks: Option<WorkLayout>,
     has_abs: bool,
+    /// Whether the sums' groups are summed as [`Groups`] (one state, AVX2: `vpermpd`).
+    groups: bool,
+    /// The weights of the [`Groups`], four to an entry.
+    weights: Vec<[f64; 4]>,
 }
 
 impl Recorder {
     /// The recurrences of `order` recorded (each of the state's coefficients stored into the
-    /// blocks of `blocks` too, if given); `None` for a program with an `|x|`.
+    /// blocks of `blocks` too, if given; the sums' groups as vectors if `groups`); `None` for
+    /// a program with an `|x|`.
     fn of(
         nodes: &[Node],
         outputs: &[Val],
         order: usize,
         blocks: Option<WorkLayout>,
+        groups: bool,
     ) -> Option<Self> {
         let mut recorder = Recorder {
             ops: Vec::new(),
@@ -167,6 +197,8 @@ impl Recorder {
             fresh: Fresh::new(nodes.len(), order),
             blocks,
             has_abs: false,
+            groups,
+            weights: Vec::new(),
         };
         if let Some(blocks) = blocks {
             for i in 0..blocks.dim {
@@ -261,6 +293,46 @@ impl Recurrences for Recorder {
         })
     }
 
+    fn cauchy_groups(
+        &mut self,
+        (a, a1): (usize, usize),
+        (b, b1): (usize, usize),
+        groups: usize,
+    ) -> Option<usize> {
+        self.groups.then(|| {
+            self.push(Op::Groups(Groups {
+                fwd: self.fresh.index(a, a1),
+                rev: self.fresh.index(b, b1),
+                groups,
+                weights: None,
+            }))
+        })
+    }
+
+    fn power_groups(
+        &mut self,
+        a: usize,
+        me: usize,
+        k: usize,
+        alpha: f64,
+        groups: usize,
+    ) -> Option<usize> {
+        if !self.groups {
+            return None;
+        }
+        let first = self.weights.len();
+        for g in 0..groups {
+            let w = std::array::from_fn(|l| powf_weight(alpha, k, LEAD + 4 * g + l));
+            self.weights.push(w);
+        }
+        Some(self.push(Op::Groups(Groups {
+            fwd: self.fresh.index(me, LEAD),
+            rev: self.fresh.index(a, k - LEAD),
+            groups,
+            weights: Some(first),
+        })))
+    }
+
     fn powf(&mut self, x: usize, alpha: f64) -> usize {
         let alpha = Some(self.constant(alpha));
         self.push(Op::Call {
@@ -309,6 +381,13 @@ enum Inst {
         a: u8,
         mask: usize,
     },
+    /// [`Groups`] summed into `dst`, through `acc` and `tmp` (`ymm`; `dst` may be either).
+    Groups {
+        dst: u8,
+        acc: u8,
+        tmp: u8,
+        sum: Groups,
+    },
     /// The shim at `address` lane by lane on `x` (in memory), results to stack slot `out`.
     Call {
         address: usize,
@@ -349,7 +428,7 @@ fn allocate(ops: &[Op], registers: usize, sign: usize) -> (Vec<Inst>, usize) {
                 read(y);
             }
             Op::Neg(x) | Op::Sqrt(x) | Op::Call { x, .. } | Op::Store(_, x) => read(x),
-            Op::Load(_) | Op::Constant(_) => {}
+            Op::Load(_) | Op::Constant(_) | Op::Groups(_) => {}
         }
     }
     let mut a = Allocator {
@@ -420,6 +499,15 @@ fn allocate(ops: &[Op], registers: usize, sign: usize) -> (Vec<Inst>, usize) {
                     a.home[x] = Some(Loc::Work(c));
                 }
                 a.release(x, i);
+            }
+            Op::Groups(sum) => {
+                // Two scratch registers, free again for the sum itself.
+                let acc = a.take(usize::MAX);
+                let tmp = a.take(usize::MAX);
+                a.owner[usize::from(acc)] = None;
+                a.owner[usize::from(tmp)] = None;
+                let dst = a.take(i);
+                a.code.push(Inst::Groups { dst, acc, tmp, sum });
             }
             Op::Call { address, x, alpha } => {
                 for r in 0..a.owner.len() {
@@ -703,9 +791,15 @@ impl Frame {
 
     /// The function: save the two registers the loop keeps, reserve the slots, run the
     /// instructions once per `width` lanes, return; then the constant pool.
-    fn encode(&self, code: &[Inst], constants: &[f64]) -> Result<Vec<u8>, Unencodable> {
+    fn encode(
+        &self,
+        code: &[Inst],
+        constants: &[f64],
+        weights: &[[f64; 4]],
+    ) -> Result<Vec<u8>, Unencodable> {
         let mut asm = CodeAssembler::new(64)?;
         let pool: Vec<CodeLabel> = constants.iter().map(|_| asm.create_label()).collect();
+        let vectors: Vec<CodeLabel> = weights.iter().map(|_| asm.create_label()).collect();
         // Entered with `rsp` 8 bytes past a multiple of 16: two pushes and a frame of 8 more
         // than a multiple of 16 align it for the shims' calls.
         let frame = self.bytes() * self.slots + 8;
@@ -729,7 +823,7 @@ impl Frame {
         let mut pass = asm.create_label();
         asm.set_label(&mut pass)?;
         for inst in code {
-            self.instruction(&mut asm, inst, &pool)?;
+            self.instruction(&mut asm, inst, &pool, &vectors)?;
         }
         asm.add(rbx, i32::try_from(self.bytes()).map_err(|_| Unencodable)?)?;
         asm.cmp(rbx, r12)?;
@@ -748,6 +842,12 @@ impl Frame {
                 .collect();
             asm.db(&bytes)?;
         }
+        for (label, w) in vectors.iter().zip(weights) {
+            let mut label = *label;
+            asm.set_label(&mut label)?;
+            let bytes: Vec<u8> = w.iter().flat_map(|w| w.to_le_bytes()).collect();
+            asm.db(&bytes)?;
+        }
         Ok(asm.assemble(0)?)
     }
 
@@ -756,6 +856,7 @@ impl Frame {
         asm: &mut CodeAssembler,
         inst: &Inst,
         pool: &[CodeLabel],
+        vectors: &[CodeLabel],
     ) -> Result<(), Unencodable> {
         let written: Result<(), IcedError> = match *inst {
             Inst::Load { dst, src } => {
@@ -802,6 +903,42 @@ impl Frame {
                     (Vector::Z(d), Vector::Z(a)) => asm.vpxorq(d, a, m),
                     _ => unreachable!("one frame has one width"),
                 }
+            }
+            Inst::Groups {
+                dst,
+                acc,
+                tmp,
+                sum:
+                    Groups {
+                        fwd,
+                        rev,
+                        groups,
+                        weights,
+                    },
+            } => {
+                let (y, x) = (|r: u8| YMM[usize::from(r)], |r: u8| XMM[usize::from(r)]);
+                let work = |i: Option<usize>| {
+                    i.ok_or(Unencodable)
+                        .and_then(|i| self.address(Loc::Work(i), 0, pool))
+                };
+                for g in 0..groups {
+                    let t = if g == 0 { acc } else { tmp };
+                    // `rev_j … rev_{j+3}` read upwards from `rev_{j+3}`, then reversed.
+                    let low = work((rev + 1).checked_sub(4 * (g + 1)))?;
+                    asm.vpermpd(y(t), low, 0x1B)?;
+                    if let Some(w) = weights {
+                        asm.vmulpd(y(t), y(t), ptr(vectors[w + g]))?;
+                    }
+                    asm.vmulpd(y(t), y(t), work(Some(fwd + 4 * g))?)?;
+                    if g > 0 {
+                        asm.vaddpd(y(acc), y(acc), y(tmp))?;
+                    }
+                }
+                // (p_0 + p_2, p_1 + p_3), then their sum.
+                asm.vextractf128(x(tmp), y(acc), 1)?;
+                asm.vaddpd(x(acc), x(acc), x(tmp))?;
+                asm.vpermilpd(x(tmp), x(acc), 1)?;
+                asm.vaddsd(x(dst), x(acc), x(tmp))
             }
             Inst::Call {
                 address,
@@ -948,7 +1085,8 @@ mod tests {
             }
         }
         let calls = many_calls();
-        let mut recorder = super::Recorder::of(&calls.nodes, &calls.outputs, 9, None).unwrap();
+        let mut recorder =
+            super::Recorder::of(&calls.nodes, &calls.outputs, 9, None, false).unwrap();
         let sign = recorder.constant(-0.0);
         let (_, slots) = super::allocate(&recorder.ops, 32, sign);
         assert!(64 * slots > 4096, "{slots} slots of a zmm");

@@ -46,7 +46,10 @@ use cranelift_frontend::FunctionBuilder;
 
 #[cfg(doc)]
 use super::power0;
-use super::{func_value, powf_weight, Node, Power, TaylorProgram, Val, WorkLayout};
+use super::{
+    func_value, ordered_sum_with, powf_weight, Node, Power, TaylorProgram, Val, WorkLayout, LEAD,
+    SPLIT_TERMS,
+};
 use crate::classical::integrators::taylor::MAX_ORDER;
 use crate::classical::symbolic::tape::jit::{
     compile_function, flag_builder, OwnedModule, Param, Shims,
@@ -541,24 +544,59 @@ pub(super) trait Recurrences {
         self.mul(x, c)
     }
 
-    /// `Σ_{j < n} a_j b_{n-1-j}` from `j = 0` (the interpreter's `cauchy` of the slices
-    /// starting at coefficient `a0` of node `a` and `b0` of node `b`); `None` for `n = 0`.
+    /// `Σ_{j < n} a_j b_{n-1-j}` in [`ordered_sum`](super::ordered_sum)'s order (the interpreter's `cauchy` of
+    /// the slices starting at coefficient `a0` of node `a` and `b0` of node `b`); `None` for
+    /// `n = 0`.
     fn cauchy(
         &mut self,
         (a, a0): (usize, usize),
         (b, b0): (usize, usize),
         n: usize,
     ) -> Option<Self::X> {
-        let mut s = None;
-        for j in 0..n {
-            let (x, y) = (self.ld(a, a0 + j), self.ld(b, b0 + n - 1 - j));
-            let t = self.mul(x, y);
-            s = Some(match s {
-                Some(s) => self.add(s, t),
-                None => t,
-            });
-        }
-        s
+        let groups = |r: &mut Self, g| r.cauchy_groups((a, a0 + LEAD), (b, b0 + n - 1 - LEAD), g);
+        let term = |r: &mut Self, j: usize| {
+            let (x, y) = (r.ld(a, a0 + j), r.ld(b, b0 + n - 1 - j));
+            r.mul(x, y)
+        };
+        ordered_sum_with(self, n, term, |r, s, t| r.add(s, t), groups)
+    }
+
+    /// The sum of a [`cauchy`](Self::cauchy)'s `groups` groups of four terms,
+    /// `Σ a_{a1 + j} b_{b1 - j}`, as [`ordered_sum`](super::ordered_sum) takes it, if this form sums them at once
+    /// (`None`: term by term).
+    fn cauchy_groups(
+        &mut self,
+        _a1: (usize, usize),
+        _b1: (usize, usize),
+        _groups: usize,
+    ) -> Option<Self::X> {
+        None
+    }
+
+    /// The sum of a [`power_sum`](Self::power_sum)'s groups, `Σ (w_j a_{k-j}) me_j` over
+    /// `j = 1 … 4 groups`, as [`ordered_sum`](super::ordered_sum) takes it, if this form sums them at once.
+    fn power_groups(
+        &mut self,
+        _a: usize,
+        _me: usize,
+        _k: usize,
+        _alpha: f64,
+        _groups: usize,
+    ) -> Option<Self::X> {
+        None
+    }
+
+    /// The sum of order `k >= 1` of `a^α` (node `me`): `Σ_{j < k} (w_j a_{k-j}) me_j` in
+    /// [`ordered_sum`](super::ordered_sum)'s order, `w_j` the constant [`powf_weight`].
+    fn power_sum(&mut self, a: usize, me: usize, k: usize, alpha: f64) -> Option<Self::X> {
+        let term = |r: &mut Self, j: usize| {
+            let x = r.ld(a, k - j);
+            let wx = r.cmul(powf_weight(alpha, k, j), x);
+            let y = r.ld(me, j);
+            r.mul(wx, y)
+        };
+        let groups = |r: &mut Self, g| r.power_groups(a, me, k, alpha, g);
+        ordered_sum_with(self, k, term, |r, s, t| r.add(s, t), groups)
     }
 
     /// Orders `0..=order` of every node and of the state, as `TaylorProgram::interpret`.
@@ -692,17 +730,7 @@ pub(super) trait Recurrences {
                 if k == 0 {
                     self.power(a0, alpha)
                 } else {
-                    let mut s = None;
-                    for j in 0..k {
-                        let x = self.ld(u(a), k - j);
-                        let wx = self.cmul(powf_weight(alpha, k, j), x);
-                        let y = self.ld(me, j);
-                        let t = self.mul(wx, y);
-                        s = Some(match s {
-                            Some(s) => self.add(s, t),
-                            None => t,
-                        });
-                    }
+                    let s = self.power_sum(u(a), me, k, alpha);
                     let d = self.cmul(kf, a0);
                     let s = s.unwrap_or(d);
                     self.div(s, d)
@@ -859,13 +887,25 @@ impl<'a, 'b> Emitter<'a, 'b> {
         subtract: bool,
         term: Term<'_, 'a, 'b>,
     ) -> Value {
+        let lo = self.b.ins().iconst(types::I64, lo);
+        self.sum_loop_at(o, s, (lo, hi), subtract, term)
+    }
+
+    /// [`sum_loop`](Self::sum_loop) from a run-time `lo`.
+    fn sum_loop_at(
+        &mut self,
+        o: Order,
+        s: Value,
+        (lo, hi): (Value, Value),
+        subtract: bool,
+        term: Term<'_, 'a, 'b>,
+    ) -> Value {
         let header = self.b.create_block();
         let j = self.b.append_block_param(header, types::I64);
         let acc = self.b.append_block_param(header, types::F64);
         let body = self.b.create_block();
         let exit = self.b.create_block();
         let done = self.b.append_block_param(exit, types::F64);
-        let lo = self.b.ins().iconst(types::I64, lo);
         self.b.ins().jump(header, &[lo.into(), s.into()]);
 
         self.b.switch_to_block(header);
@@ -896,8 +936,96 @@ impl<'a, 'b> Emitter<'a, 'b> {
         done
     }
 
+    /// `Σ_{j < n} term(j)` for a run-time `n` (at least 1) in [`ordered_sum`](super::ordered_sum)'s order: below
+    /// [`SPLIT_TERMS`] terms the first term and a loop over the others; else the four
+    /// partial sums over the groups (a loop), the first term, and a loop over the terms after
+    /// the groups.
+    fn ordered_loop(&mut self, o: Order, n: Value, term: Term<'_, 'a, 'b>) -> Value {
+        use cranelift_codegen::ir::condcodes::IntCC;
+        // Term `j` at a run-time `j`.
+        let at = |e: &mut Self, j: Value| {
+            let j8 = e.b.ins().ishl_imm(j, 3);
+            let wj = e.b.ins().iadd(e.w, j8);
+            let wkj = e.b.ins().isub(o.wk, j8);
+            term(e, j, wj, wkj)
+        };
+        let plain = self.b.create_block();
+        let split = self.b.create_block();
+        let exit = self.b.create_block();
+        let done = self.b.append_block_param(exit, types::F64);
+        let few = self
+            .b
+            .ins()
+            .icmp_imm(IntCC::SignedLessThan, n, SPLIT_TERMS as i64);
+        self.b.ins().brif(few, plain, &[], split, &[]);
+
+        self.b.switch_to_block(plain);
+        self.b.seal_block(plain);
+        let zero = self.b.ins().iconst(types::I64, 0);
+        let first = at(self, zero);
+        let one = self.b.ins().iconst(types::I64, 1);
+        let s = self.sum_loop_at(o, first, (one, n), false, term);
+        self.b.ins().jump(exit, &[s.into()]);
+
+        self.b.switch_to_block(split);
+        self.b.seal_block(split);
+        let p: [Value; 4] = std::array::from_fn(|l| {
+            let j = self.b.ins().iconst(types::I64, (LEAD + l) as i64);
+            at(self, j)
+        });
+        let groups = self.b.ins().iadd_imm(n, -2 * LEAD as i64);
+        let groups = self.b.ins().ushr_imm(groups, 2);
+        let header = self.b.create_block();
+        let g = self.b.append_block_param(header, types::I64);
+        let acc = [(); 4].map(|()| self.b.append_block_param(header, types::F64));
+        let body = self.b.create_block();
+        let after = self.b.create_block();
+        let sums = [(); 4].map(|()| self.b.append_block_param(after, types::F64));
+        let one = self.b.ins().iconst(types::I64, 1);
+        let args = |g: Value, p: [Value; 4]| {
+            [g.into(), p[0].into(), p[1].into(), p[2].into(), p[3].into()]
+        };
+        self.b.ins().jump(header, &args(one, p));
+
+        self.b.switch_to_block(header);
+        let more = self.b.ins().icmp(IntCC::SignedLessThan, g, groups);
+        let acc_args = acc.map(Into::into);
+        self.b.ins().brif(more, body, &[], after, &acc_args);
+
+        self.b.switch_to_block(body);
+        self.b.seal_block(body);
+        let base = self.b.ins().ishl_imm(g, 2);
+        let next: [Value; 4] = std::array::from_fn(|l| {
+            let j = self.b.ins().iadd_imm(base, (LEAD + l) as i64);
+            let t = at(self, j);
+            self.add(acc[l], t)
+        });
+        let g1 = self.b.ins().iadd_imm(g, 1);
+        self.b.ins().jump(header, &args(g1, next));
+        self.b.seal_block(header);
+
+        self.b.switch_to_block(after);
+        self.b.seal_block(after);
+        let even = self.add(sums[0], sums[2]);
+        let odd = self.add(sums[1], sums[3]);
+        let mut s = self.add(even, odd);
+        for j in 0..LEAD {
+            let j = self.b.ins().iconst(types::I64, j as i64);
+            let t = at(self, j);
+            s = self.add(s, t);
+        }
+        let lo = self.b.ins().ishl_imm(groups, 2);
+        let lo = self.b.ins().iadd_imm(lo, LEAD as i64);
+        let s = self.sum_loop_at(o, s, (lo, n), false, term);
+        self.b.ins().jump(exit, &[s.into()]);
+
+        self.b.switch_to_block(exit);
+        self.b.seal_block(exit);
+        done
+    }
+
     /// `Σ_j a_{a0 + j} b_{k - b0 - j}` for `j` from 0 below `n` (at least 1), as
-    /// [`cauchy`](Self::cauchy) sums it: the first term, then a loop over the others.
+    /// [`cauchy`](Self::cauchy) sums it ([`ordered_loop`](Self::ordered_loop)).
     fn cauchy_loop(
         &mut self,
         o: Order,
@@ -905,11 +1033,8 @@ impl<'a, 'b> Emitter<'a, 'b> {
         (b, b0): (usize, usize),
         n: Value,
     ) -> Value {
-        let x = self.ld(a, a0);
-        let y = self.ldk(o, b, b0);
-        let first = self.mul(x, y);
         let (oa, ob) = (self.offset(a, a0 as isize), self.offset(b, -(b0 as isize)));
-        self.sum_loop(o, first, (1, n), false, &move |e, _, wj, wkj| {
+        self.ordered_loop(o, n, &move |e, _, wj, wkj| {
             let x = e.ld_at(wj, oa);
             let y = e.ld_at(wkj, ob);
             e.mul(x, y)
@@ -1060,9 +1185,7 @@ impl<'a, 'b> Emitter<'a, 'b> {
                     let y = e.ld_at(wj, om);
                     e.mul(wx, y)
                 };
-                let (zero, w) = (self.b.ins().iconst(types::I64, 0), self.w);
-                let first = term(self, zero, w, o.wk);
-                let s = self.sum_loop(o, first, (1, o.k), false, &term);
+                let s = self.ordered_loop(o, o.k, &term);
                 let d = self.mul(o.kf, a0);
                 self.div(s, d)
             }

@@ -18,7 +18,7 @@
 //! 15 (26 nodes) an expansion costs about the same per member at 16 and 32 lanes, and about
 //! 1.8x as much at 8 (`benchmarks/README.md`).
 
-use super::{func_value, power0, powf_weight, Keyed, Node, TaylorProgram, Val};
+use super::{func_value, ordered_sum, power0, powf_weight, Keyed, Node, TaylorProgram, Val};
 use crate::classical::core::{Error, Result};
 use crate::classical::integrators::taylor::{TaylorField, MAX_ORDER};
 use crate::classical::integrators::taylor_batch::LanesField;
@@ -242,20 +242,13 @@ fn zip<const L: usize>(a: [f64; L], b: [f64; L], f: impl Fn(f64, f64) -> f64) ->
     out
 }
 
-/// [`cauchy`] lane by lane: `Σ_j a_j b_{n-1-j}` from `j = 0` up, starting with the first
-/// product (zeros for empty slices).
+/// [`cauchy`] lane by lane: `Σ_j a_j b_{n-1-j}` in [`ordered_sum`]'s order (zeros for
+/// empty slices).
 #[inline(always)]
 fn cauchy_lanes<const L: usize>(a: &[[f64; L]], b: &[[f64; L]]) -> [f64; L] {
     let n = a.len().min(b.len());
-    if n == 0 {
-        return [0.0; L];
-    }
-    let mut s = zip(a[0], b[n - 1], |x, y| x * y);
-    for j in 1..n {
-        let t = zip(a[j], b[n - 1 - j], |x, y| x * y);
-        s = zip(s, t, |x, y| x + y);
-    }
-    s
+    let term = |(): &mut (), j: usize| zip(a[j], b[n - 1 - j], |x, y| x * y);
+    ordered_sum(&mut (), n, term, |(), s, t| zip(s, t, |x, y| x + y)).unwrap_or([0.0; L])
 }
 
 /// Orders `0..=order` of every node for `L` states (the state's and time's order 0 set):
@@ -376,15 +369,12 @@ fn order_k<const L: usize>(nodes: &[Node], w: &mut [[f64; L]], k: usize, stride:
                 if k == 0 {
                     map(w[a], |x| power0(x, alpha))
                 } else {
-                    let term = |j: usize| {
+                    let term = |(): &mut (), j: usize| {
                         let weight = powf_weight(alpha, k, j);
                         zip(w[a + k - j], w[me + j], |x, y| weight * x * y)
                     };
-                    let mut s = term(0);
-                    for j in 1..k {
-                        s = zip(s, term(j), |x, y| x + y);
-                    }
-                    zip(s, w[a], |x, y| x / (kf * y))
+                    let s = ordered_sum(&mut (), k, term, |(), s, t| zip(s, t, |x, y| x + y));
+                    zip(s.unwrap_or([0.0; L]), w[a], |x, y| x / (kf * y))
                 }
             }
             Node::Exp(a) => {
