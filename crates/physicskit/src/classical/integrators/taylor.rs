@@ -518,10 +518,24 @@ fn transpose_orders(
         let k = from + j;
         let group = rows.map(|row| row[k]);
         *slot = group;
-        for r in 0..LANES {
-            zero[r] += group[r] * 0.0;
-        }
+        add_zeros(zero, &group);
     }
+}
+
+/// `zero += group · 0`, lane by lane: each lane's sum of `x · 0` is a zero for finite `x` and
+/// NaN otherwise, so a lane's sum is a zero exactly when all its coefficients are finite, in
+/// any order (no branch, in vector lanes). [`all_zeros`] reads the verdict.
+#[inline(always)]
+fn add_zeros(zero: &mut [f64; LANES], group: &[f64; LANES]) {
+    for r in 0..LANES {
+        zero[r] += group[r] * 0.0;
+    }
+}
+
+/// Whether every lane's sum of [`add_zeros`] is a zero: every coefficient finite.
+#[inline(always)]
+fn all_zeros(zero: &[f64; LANES]) -> bool {
+    zero.iter().all(|&z| z == 0.0)
 }
 
 /// [`to_blocks_checked`]'s pass, block by block: a whole block's four rows transposed into
@@ -535,9 +549,6 @@ fn blocks_checked(
     blocks: &mut [[f64; LANES]],
     whole: impl Fn([&[f64]; LANES], &mut [[f64; LANES]], &mut [f64; LANES]),
 ) -> bool {
-    // `x · 0` is a zero for finite `x` and NaN otherwise: a lane's sum of them is a zero
-    // exactly when all its coefficients are finite, in any order (no branch, in vector
-    // lanes).
     let mut zero = [0.0_f64; LANES];
     let full = dim / LANES;
     for b in 0..dim.div_ceil(LANES) {
@@ -553,13 +564,25 @@ fn blocks_checked(
                 }
             }
             for group in block.iter() {
-                for r in 0..LANES {
-                    zero[r] += group[r] * 0.0;
-                }
+                add_zeros(&mut zero, group);
             }
         }
     }
-    zero.iter().all(|&z| z == 0.0)
+    all_zeros(&zero)
+}
+
+/// Whether `blocks` hold `rows` (`dim` rows of `n1`) as [`to_blocks_checked`] places them, bit
+/// for bit, with zeros in the lanes past the last row: what a field's
+/// [`TaylorField::expansion_in_blocks`] promises (checked in debug builds).
+fn blocks_hold_rows(blocks: &[[f64; LANES]], rows: &[f64], dim: usize, n1: usize) -> bool {
+    blocks.iter().enumerate().all(|(at, group)| {
+        let (b, j) = (at / n1, at % n1);
+        (0..LANES).all(|r| {
+            let row = b * LANES + r;
+            let want = if row < dim { rows[row * n1 + j] } else { 0.0 };
+            group[r].to_bits() == want.to_bits()
+        })
+    })
 }
 
 /// `from` copied into `to` (of the same length), and whether every coefficient is finite: the
@@ -589,11 +612,9 @@ fn copy_checked_plain(from: &[[f64; LANES]], to: &mut [[f64; LANES]]) -> bool {
     let mut zero = [0.0_f64; LANES];
     for (to, from) in to.iter_mut().zip(from) {
         *to = *from;
-        for r in 0..LANES {
-            zero[r] += from[r] * 0.0;
-        }
+        add_zeros(&mut zero, from);
     }
-    zero.iter().all(|&z| z == 0.0)
+    all_zeros(&zero)
 }
 
 /// `Σ_k c_k x^k` by compensated Horner: as accurate as Horner in twice the working precision,
@@ -745,6 +766,10 @@ impl Taylor {
         // step is taken. Copied where the field wrote the blocks itself, else transposed.
         let finite = match blocks {
             Some(blocks) if blocks.len() == self.next_blocks.len() => {
+                debug_assert!(
+                    blocks_hold_rows(blocks, rows, self.dim, n1),
+                    "a Taylor field's blocks disagree with its rows"
+                );
                 copy_checked(blocks, &mut self.next_blocks)
             }
             _ => to_blocks_checked(rows, self.dim, n1, &mut self.next_blocks),

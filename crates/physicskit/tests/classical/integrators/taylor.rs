@@ -12,7 +12,8 @@ use physicskit::classical::analysis::section::{
     poincare_section, taylor_section, SurfaceOfSection,
 };
 use physicskit::classical::integrators::taylor::{
-    compensated_horner, integrate_taylor, order_for, Taylor, TaylorField, MAX_ORDER, MIN_RTOL,
+    compensated_horner, integrate_taylor, order_for, InBlocks, Taylor, TaylorField, LANES,
+    MAX_ORDER, MIN_RTOL,
 };
 use physicskit::classical::lagrangian::LagrangianModel;
 use physicskit::classical::model::erased::{DynSystem, Hamiltonian};
@@ -568,6 +569,17 @@ struct PoisonedDecay {
     rows: Vec<f64>,
 }
 
+impl PoisonedDecay {
+    /// The field never poisoned (its poison's row past the six).
+    fn clean() -> Self {
+        PoisonedDecay {
+            calls: 0,
+            poison: (usize::MAX, 0, 0.0),
+            rows: Vec::new(),
+        }
+    }
+}
+
 impl TaylorField for PoisonedDecay {
     fn dim(&self) -> usize {
         6
@@ -589,11 +601,97 @@ impl TaylorField for PoisonedDecay {
             }
         }
         self.calls += 1;
-        if self.calls == 2 {
-            let (row, k, value) = self.poison;
+        let (row, k, value) = self.poison;
+        if self.calls == 2 && row < 6 {
             self.rows[row * n1 + k] = value;
         }
         Ok(&self.rows)
+    }
+}
+
+/// `y' = -y` in six components (as [`PoisonedDecay`], never poisoned), its rows also given as
+/// the stepper's blocks; with `off` = (block, order, lane), that block entry one ulp off its
+/// row's coefficient: a field breaking `expansion_in_blocks`'s promise.
+struct DecayInBlocks {
+    decay: PoisonedDecay,
+    blocks: Vec<[f64; LANES]>,
+    off: Option<(usize, usize, usize)>,
+}
+
+impl DecayInBlocks {
+    fn new(off: Option<(usize, usize, usize)>) -> Self {
+        DecayInBlocks {
+            decay: PoisonedDecay::clean(),
+            blocks: Vec::new(),
+            off,
+        }
+    }
+}
+
+impl TaylorField for DecayInBlocks {
+    fn dim(&self) -> usize {
+        6
+    }
+
+    fn expansion(
+        &mut self,
+        t: f64,
+        y: &[f64],
+        order: usize,
+    ) -> physicskit::classical::Result<&[f64]> {
+        self.decay.expansion(t, y, order)
+    }
+
+    fn expansion_in_blocks(
+        &mut self,
+        t: f64,
+        y: &[f64],
+        order: usize,
+    ) -> physicskit::classical::Result<InBlocks<'_>> {
+        let n1 = order + 1;
+        let rows = self.decay.expansion(t, y, order)?;
+        self.blocks = vec![[0.0; LANES]; 2 * n1];
+        for (i, row) in rows.chunks_exact(n1).enumerate() {
+            for (j, &c) in row.iter().enumerate() {
+                self.blocks[(i / LANES) * n1 + j][i % LANES] = c;
+            }
+        }
+        if let Some((b, j, lane)) = self.off {
+            let entry = &mut self.blocks[b * n1 + j][lane];
+            *entry = f64::from_bits(entry.to_bits() + 1);
+        }
+        Ok((rows, Some(&self.blocks)))
+    }
+}
+
+/// Blocks that hold the rows (the lanes past the sixth row zero) run as the rows alone do,
+/// bit for bit; blocks that disagree with them (a field's bug: the step would advance on
+/// other coefficients than its step size was chosen from) stop a debug build at the first
+/// step.
+#[test]
+fn blocks_must_hold_the_rows() {
+    let tol = Tolerances::new(1e-10, 1e-10).unwrap();
+    let y0 = [1.0, 2.0, 3.0, 4.0, 5.0, 6.0];
+    let rows = integrate_taylor(&mut PoisonedDecay::clean(), &y0, (0.0, 3.0), 0.5, tol).unwrap();
+    let blocks = integrate_taylor(&mut DecayInBlocks::new(None), &y0, (0.0, 3.0), 0.5, tol);
+    let blocks = blocks.unwrap();
+    assert_eq!(rows.t, blocks.t);
+    assert_eq!(rows.y.map(|v| v.to_bits()), blocks.y.map(|v| v.to_bits()));
+    if cfg!(debug_assertions) {
+        let run = std::panic::catch_unwind(|| {
+            let mut field = DecayInBlocks::new(Some((1, 3, 1)));
+            integrate_taylor(&mut field, &y0, (0.0, 3.0), 0.5, tol)
+        });
+        let message = run.expect_err("the disagreement was not caught");
+        let message = message
+            .downcast_ref::<String>()
+            .cloned()
+            .or_else(|| message.downcast_ref::<&str>().map(|m| (*m).to_owned()))
+            .unwrap_or_default();
+        assert!(
+            message.contains("blocks disagree with its rows"),
+            "{message}"
+        );
     }
 }
 
