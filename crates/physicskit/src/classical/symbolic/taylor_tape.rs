@@ -839,9 +839,8 @@ const SPLIT_TERMS: usize = 2 * LEAD + 4;
 /// four of each. The groups leave out the [`LEAD`] terms at each end, which read the
 /// newest coefficients (orders `k` and `k − 1` of one factor at the start, of the other at
 /// the end): those were stored just before the sum, and a vector load spanning a pending
-/// scalar store waits for it (failed store forwarding). With one term left out at each end
-/// the vector sums were slower than the scalar ones on Hénon–Heiles; with three, slower than
-/// with two everywhere (`benchmarks/README.md`).
+/// scalar store waits for it (failed store forwarding). Two is the number that measured
+/// fastest on every workload (`benchmarks/README.md`).
 ///
 /// Every form calls `term` and `add` in the order the sum is taken, so a recorder of the
 /// calls (`s`) records them in that order.

@@ -544,9 +544,9 @@ pub(super) trait Recurrences {
         self.mul(x, c)
     }
 
-    /// `Σ_{j < n} a_j b_{n-1-j}` in [`ordered_sum`](super::ordered_sum)'s order (the interpreter's `cauchy` of
-    /// the slices starting at coefficient `a0` of node `a` and `b0` of node `b`); `None` for
-    /// `n = 0`.
+    /// `Σ_{j < n} a_j b_{n-1-j}` in [`ordered_sum`](super::ordered_sum)'s order (the
+    /// interpreter's `cauchy` of the slices starting at coefficient `a0` of node `a` and `b0`
+    /// of node `b`); `None` for `n = 0`.
     fn cauchy(
         &mut self,
         (a, a0): (usize, usize),
@@ -562,8 +562,8 @@ pub(super) trait Recurrences {
     }
 
     /// The sum of a [`cauchy`](Self::cauchy)'s `groups` groups of four terms,
-    /// `Σ a_{a1 + j} b_{b1 - j}`, as [`ordered_sum`](super::ordered_sum) takes it, if this form sums them at once
-    /// (`None`: term by term).
+    /// `Σ_{i < 4 groups} a_{a1 + i} b_{b1 - i}`, as [`ordered_sum`](super::ordered_sum) takes
+    /// it, if this form sums them at once (`None`: term by term).
     fn cauchy_groups(
         &mut self,
         _a1: (usize, usize),
@@ -574,7 +574,8 @@ pub(super) trait Recurrences {
     }
 
     /// The sum of a [`power_sum`](Self::power_sum)'s groups, `Σ (w_j a_{k-j}) me_j` over
-    /// `j = 1 … 4 groups`, as [`ordered_sum`](super::ordered_sum) takes it, if this form sums them at once.
+    /// `LEAD ≤ j < LEAD + 4 groups`, as [`ordered_sum`](super::ordered_sum) takes it, if this
+    /// form sums them at once (`None`: term by term).
     fn power_groups(
         &mut self,
         _a: usize,
@@ -936,10 +937,10 @@ impl<'a, 'b> Emitter<'a, 'b> {
         done
     }
 
-    /// `Σ_{j < n} term(j)` for a run-time `n` (at least 1) in [`ordered_sum`](super::ordered_sum)'s order: below
-    /// [`SPLIT_TERMS`] terms the first term and a loop over the others; else the four
-    /// partial sums over the groups (a loop), the first term, and a loop over the terms after
-    /// the groups.
+    /// `Σ_{j < n} term(j)` for a run-time `n` (at least 1) in
+    /// [`ordered_sum`](super::ordered_sum)'s order: below [`SPLIT_TERMS`] terms the first term
+    /// and a loop over the others; else the four partial sums over the groups (a loop), the
+    /// [`LEAD`] terms before them, and a loop over the terms after them.
     fn ordered_loop(&mut self, o: Order, n: Value, term: Term<'_, 'a, 'b>) -> Value {
         use cranelift_codegen::ir::condcodes::IntCC;
         // Term `j` at a run-time `j`.
