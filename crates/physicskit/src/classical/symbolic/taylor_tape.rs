@@ -192,9 +192,16 @@ impl WorkLayout {
         }
     }
 
+    /// The index of coefficient `j` of node `n`: every node's coefficients side by side,
+    /// node by node (the state's rows are nodes `0..dim`, the time node `dim`).
+    #[inline(always)]
+    pub(super) fn at(self, n: usize, j: usize) -> usize {
+        n * self.stride + j
+    }
+
     /// Where the blocks start: after every node's coefficients.
     pub(super) fn blocks_start(self) -> usize {
-        self.nodes * self.stride
+        self.at(self.nodes, 0)
     }
 
     pub(super) fn len(self) -> usize {
@@ -205,7 +212,7 @@ impl WorkLayout {
     /// for AVX, the one writer of the blocks).
     #[cfg(all(feature = "jit", target_arch = "x86_64", not(windows)))]
     pub(super) fn in_blocks(self, i: usize, j: usize) -> usize {
-        self.blocks_start() + ((i / LANES) * self.stride + j) * LANES + i % LANES
+        self.blocks_start() + self.at(i / LANES, j) * LANES + i % LANES
     }
 }
 
@@ -1348,18 +1355,18 @@ impl TaylorProgram {
     /// Orders `0..=order` of every node, by the recurrences interpreted (the state's and
     /// time's order 0 already set): each order of the operations, then the state's next order
     /// from the field's, `y^[k+1] = f^[k] · (1/(k + 1))`.
-    fn interpret(&mut self, order: usize, stride: usize) {
+    fn interpret(&mut self, order: usize, layout: WorkLayout) {
         for k in 0..=order {
-            self.order_k(k, stride);
+            self.order_k(k, layout);
             if k < order {
                 let next = 1.0 / (k + 1) as f64;
                 for (i, out) in self.outputs.iter().enumerate() {
                     let fk = match *out {
-                        Val::Node(n) => self.work[n as usize * stride + k],
+                        Val::Node(n) => self.work[layout.at(n as usize, k)],
                         Val::Const(c) if k == 0 => c,
                         Val::Const(_) => 0.0,
                     };
-                    self.work[i * stride + k + 1] = fk * next;
+                    self.work[layout.at(i, k + 1)] = fk * next;
                 }
             }
         }
@@ -1370,12 +1377,12 @@ impl TaylorProgram {
     /// its first term; the compiled recurrences (`tape/taylor_jit.rs`) do the same operations
     /// in the same order, so both give the same bits.
     #[allow(clippy::too_many_lines)]
-    fn order_k(&mut self, k: usize, stride: usize) {
+    fn order_k(&mut self, k: usize, layout: WorkLayout) {
         let w = &mut self.work[..];
-        let at = |n: u32, j: usize| n as usize * stride + j;
+        let at = |n: u32, j: usize| layout.at(n as usize, j);
         let kf = k as f64;
         for (i, &node) in self.nodes.iter().enumerate() {
-            let me = i * stride;
+            let me = layout.at(i, 0);
             let value = match node {
                 Node::State | Node::Time | Node::Partner => continue,
                 Node::Add(a, b) => w[at(a, k)] + w[at(b, k)],
@@ -1404,12 +1411,12 @@ impl TaylorProgram {
                     }
                 }
                 Node::Mul(a, b) => {
-                    let (a, b) = (a as usize * stride, b as usize * stride);
+                    let (a, b) = (at(a, 0), at(b, 0));
                     cauchy(&w[a..=a + k], &w[b..=b + k])
                 }
                 Node::Square(a) => {
                     // 2 Σ_{j < ⌈k/2⌉} a_j a_{k-j}, plus a_{k/2}² for even k.
-                    let a = a as usize * stride;
+                    let a = at(a, 0);
                     let half = k.div_ceil(2);
                     let twice = cauchy(&w[a..a + half], &w[a + k + 1 - half..=a + k]) * 2.0;
                     if k.is_multiple_of(2) {
@@ -1424,7 +1431,7 @@ impl TaylorProgram {
                     }
                 }
                 Node::Div(a, b) => {
-                    let b = b as usize * stride;
+                    let b = at(b, 0);
                     if k == 0 {
                         w[at(a, 0)] / w[b]
                     } else {
@@ -1432,7 +1439,7 @@ impl TaylorProgram {
                     }
                 }
                 Node::CDiv(c, a) => {
-                    let a = a as usize * stride;
+                    let a = at(a, 0);
                     if k == 0 {
                         c / w[a]
                     } else {
@@ -1451,7 +1458,7 @@ impl TaylorProgram {
                     }
                 }
                 Node::Powf(a, alpha) => {
-                    let a = a as usize * stride;
+                    let a = at(a, 0);
                     if k == 0 {
                         power0(w[a], alpha)
                     } else {
@@ -1463,7 +1470,7 @@ impl TaylorProgram {
                     }
                 }
                 Node::Exp(a) => {
-                    let a = a as usize * stride;
+                    let a = at(a, 0);
                     if k == 0 {
                         w[a].exp()
                     } else {
@@ -1476,7 +1483,7 @@ impl TaylorProgram {
                     }
                 }
                 Node::Integral { a, d, sign, func } => {
-                    let (a, d) = (a as usize * stride, d as usize * stride);
+                    let (a, d) = (at(a, 0), at(d, 0));
                     if k == 0 {
                         func_value(func, w[a])
                     } else {
@@ -1488,8 +1495,8 @@ impl TaylorProgram {
                     }
                 }
                 Node::SinCos(a, hyperbolic) => {
-                    let a = a as usize * stride;
-                    let partner = me + stride;
+                    let a = at(a, 0);
+                    let partner = layout.at(i + 1, 0);
                     if k == 0 {
                         let x = w[a];
                         let (s, c) = if hyperbolic {
@@ -1586,7 +1593,6 @@ impl TaylorField for TaylorProgram {
     }
 
     fn expansion_in_blocks(&mut self, t: f64, y: &[f64], order: usize) -> Result<InBlocks<'_>> {
-        let stride = order + 1;
         if order > MAX_ORDER {
             return Err(Error::invalid(
                 "order",
@@ -1608,9 +1614,9 @@ impl TaylorField for TaylorProgram {
             self.work = vec![0.0; layout.len()];
         }
         for (i, &yi) in y.iter().enumerate() {
-            self.work[i * stride] = yi;
+            self.work[layout.at(i, 0)] = yi;
         }
-        let time = dim * stride;
+        let time = layout.at(dim, 0);
         // The time's series is `t + τ`: its orders from 2 on are the zeros of the allocation,
         // which no recurrence writes.
         self.work[time] = t;
@@ -1623,14 +1629,14 @@ impl TaylorField for TaylorProgram {
                 code.writes_blocks()
             }
             None => {
-                self.interpret(order, stride);
+                self.interpret(order, layout);
                 false
             }
         };
         // The state's rows come first in the work array, its blocks last.
         let (rows, rest) = self.work.split_at(layout.blocks_start());
         let blocks = blocks.then_some(rest.as_chunks::<LANES>().0);
-        Ok((&rows[..dim * stride], blocks))
+        Ok((&rows[..time], blocks))
     }
 }
 

@@ -194,7 +194,7 @@ impl Recorder {
         let mut recorder = Recorder {
             ops: Vec::new(),
             pool: Vec::new(),
-            fresh: Fresh::new(nodes.len(), order),
+            fresh: Fresh::new(WorkLayout::new(nodes.len(), outputs.len(), order)),
             blocks,
             has_abs: false,
             groups,

@@ -230,7 +230,7 @@ impl Native {
                     b,
                     shims,
                     w: params[0],
-                    fresh: Fresh::new(nodes.len(), order),
+                    fresh: Fresh::new(layout),
                 };
                 match form {
                     Form::Unrolled | Form::Avx => emit.recurrences(nodes, outputs, order),
@@ -435,19 +435,19 @@ impl Recurrences for Emitter<'_, '_> {
 /// `j` of a node stored while emitting order `k <= j` was computed by this order's code, and is
 /// reused as that value rather than loaded back; older coefficients are loaded.
 pub(super) struct Fresh<X> {
-    stride: usize,
+    layout: WorkLayout,
     /// The order being emitted.
     k: usize,
     values: Vec<Option<X>>,
 }
 
 impl<X: Copy> Fresh<X> {
-    /// None stored yet, for `nodes` nodes of coefficients `0..=order`.
-    pub(super) fn new(nodes: usize, order: usize) -> Self {
+    /// None stored yet, for the nodes of `layout`.
+    pub(super) fn new(layout: WorkLayout) -> Self {
         Fresh {
-            stride: order + 1,
+            layout,
             k: 0,
-            values: vec![None; nodes * (order + 1)],
+            values: vec![None; layout.blocks_start()],
         }
     }
 
@@ -458,7 +458,7 @@ impl<X: Copy> Fresh<X> {
 
     /// The work array's index of coefficient `j` of node `n`.
     pub(super) fn index(&self, n: usize, j: usize) -> usize {
-        n * self.stride + j
+        self.layout.at(n, j)
     }
 
     /// The value stored as coefficient `j` of node `n`, if it is to be used instead of a load.

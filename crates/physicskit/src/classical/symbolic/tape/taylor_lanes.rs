@@ -18,7 +18,9 @@
 //! 15 (26 nodes) an expansion costs about the same per member at 16 and 32 lanes, and about
 //! 1.8x as much at 8 (`benchmarks/README.md`).
 
-use super::{func_value, ordered_sum, power0, powf_weight, Keyed, Node, TaylorProgram, Val};
+use super::{
+    func_value, ordered_sum, power0, powf_weight, Keyed, Node, TaylorProgram, Val, WorkLayout,
+};
 use crate::classical::core::{Error, Result};
 use crate::classical::integrators::taylor::{TaylorField, MAX_ORDER};
 use crate::classical::integrators::taylor_batch::LanesField;
@@ -92,10 +94,11 @@ pub struct TaylorLanes<const L: usize> {
     dim: usize,
     nodes: Vec<Node>,
     outputs: Vec<Val>,
-    /// Coefficients of every node, `stride` per node, each an `[f64; L]`; sized at the first
-    /// expansion of an order and reused.
+    /// Coefficients of every node (the nodes of a `WorkLayout`, without its blocks), each an
+    /// `[f64; L]`; sized at the first expansion of an order and reused.
     work: Vec<[f64; L]>,
-    stride: usize,
+    /// How many of them are the state's rows (none before the first expansion).
+    rows: usize,
     /// Machine code compiled from the recurrences (feature `jit`), per order.
     jit: jit::Jit,
 }
@@ -122,7 +125,7 @@ impl TaylorProgram {
             nodes: self.nodes.clone(),
             outputs: self.outputs.clone(),
             work: Vec::new(),
-            stride: 0,
+            rows: 0,
             jit: jit::Jit::shared(&self.nodes, &self.outputs, L),
         }
     }
@@ -259,19 +262,19 @@ fn interpret<const L: usize>(
     outputs: &[Val],
     w: &mut [[f64; L]],
     order: usize,
-    stride: usize,
+    layout: WorkLayout,
 ) {
     for k in 0..=order {
-        order_k(nodes, w, k, stride);
+        order_k(nodes, w, k, layout);
         if k < order {
             let next = 1.0 / (k + 1) as f64;
             for (i, out) in outputs.iter().enumerate() {
                 let fk = match *out {
-                    Val::Node(n) => w[n as usize * stride + k],
+                    Val::Node(n) => w[layout.at(n as usize, k)],
                     Val::Const(c) if k == 0 => [c; L],
                     Val::Const(_) => [0.0; L],
                 };
-                w[i * stride + k + 1] = map(fk, |x| x * next);
+                w[layout.at(i, k + 1)] = map(fk, |x| x * next);
             }
         }
     }
@@ -281,11 +284,11 @@ fn interpret<const L: usize>(
 /// value an `[f64; L]`, each lane's operations those of the scalar code in its order.
 #[inline(always)]
 #[allow(clippy::too_many_lines)]
-fn order_k<const L: usize>(nodes: &[Node], w: &mut [[f64; L]], k: usize, stride: usize) {
-    let at = |n: u32, j: usize| n as usize * stride + j;
+fn order_k<const L: usize>(nodes: &[Node], w: &mut [[f64; L]], k: usize, layout: WorkLayout) {
+    let at = |n: u32, j: usize| layout.at(n as usize, j);
     let kf = k as f64;
     for (i, &node) in nodes.iter().enumerate() {
-        let me = i * stride;
+        let me = layout.at(i, 0);
         let value = match node {
             Node::State | Node::Time | Node::Partner => continue,
             Node::Add(a, b) => zip(w[at(a, k)], w[at(b, k)], |x, y| x + y),
@@ -312,11 +315,11 @@ fn order_k<const L: usize>(nodes: &[Node], w: &mut [[f64; L]], k: usize, stride:
                 |v, x| if v < 0.0 { -x } else { x },
             ),
             Node::Mul(a, b) => {
-                let (a, b) = (a as usize * stride, b as usize * stride);
+                let (a, b) = (at(a, 0), at(b, 0));
                 cauchy_lanes(&w[a..=a + k], &w[b..=b + k])
             }
             Node::Square(a) => {
-                let a = a as usize * stride;
+                let a = at(a, 0);
                 let half = k.div_ceil(2);
                 let twice = map(
                     cauchy_lanes(&w[a..a + half], &w[a + k + 1 - half..=a + k]),
@@ -334,7 +337,7 @@ fn order_k<const L: usize>(nodes: &[Node], w: &mut [[f64; L]], k: usize, stride:
                 }
             }
             Node::Div(a, b) => {
-                let b = b as usize * stride;
+                let b = at(b, 0);
                 if k == 0 {
                     zip(w[at(a, 0)], w[b], |x, y| x / y)
                 } else {
@@ -344,7 +347,7 @@ fn order_k<const L: usize>(nodes: &[Node], w: &mut [[f64; L]], k: usize, stride:
                 }
             }
             Node::CDiv(c, a) => {
-                let a = a as usize * stride;
+                let a = at(a, 0);
                 if k == 0 {
                     map(w[a], |x| c / x)
                 } else {
@@ -365,7 +368,7 @@ fn order_k<const L: usize>(nodes: &[Node], w: &mut [[f64; L]], k: usize, stride:
                 }
             }
             Node::Powf(a, alpha) => {
-                let a = a as usize * stride;
+                let a = at(a, 0);
                 if k == 0 {
                     map(w[a], |x| power0(x, alpha))
                 } else {
@@ -378,7 +381,7 @@ fn order_k<const L: usize>(nodes: &[Node], w: &mut [[f64; L]], k: usize, stride:
                 }
             }
             Node::Exp(a) => {
-                let a = a as usize * stride;
+                let a = at(a, 0);
                 if k == 0 {
                     map(w[a], f64::exp)
                 } else {
@@ -395,7 +398,7 @@ fn order_k<const L: usize>(nodes: &[Node], w: &mut [[f64; L]], k: usize, stride:
                 }
             }
             Node::Integral { a, d, sign, func } => {
-                let (a, d) = (a as usize * stride, d as usize * stride);
+                let (a, d) = (at(a, 0), at(d, 0));
                 if k == 0 {
                     map(w[a], |x| func_value(func, x))
                 } else {
@@ -409,8 +412,8 @@ fn order_k<const L: usize>(nodes: &[Node], w: &mut [[f64; L]], k: usize, stride:
                 }
             }
             Node::SinCos(a, hyperbolic) => {
-                let a = a as usize * stride;
-                let partner = me + stride;
+                let a = at(a, 0);
+                let partner = layout.at(i + 1, 0);
                 if k == 0 {
                     let x = w[a];
                     let (s, c) = if hyperbolic {
@@ -452,9 +455,9 @@ fn interpret_avx512<const L: usize>(
     outputs: &[Val],
     w: &mut [[f64; L]],
     order: usize,
-    stride: usize,
+    layout: WorkLayout,
 ) {
-    interpret(nodes, outputs, w, order, stride);
+    interpret(nodes, outputs, w, order, layout);
 }
 
 /// [`interpret`] compiled with AVX2 (called only where the CPU has it).
@@ -465,9 +468,9 @@ fn interpret_avx2<const L: usize>(
     outputs: &[Val],
     w: &mut [[f64; L]],
     order: usize,
-    stride: usize,
+    layout: WorkLayout,
 ) {
-    interpret(nodes, outputs, w, order, stride);
+    interpret(nodes, outputs, w, order, layout);
 }
 
 /// The lanes an ensemble runs on this CPU: two vector registers' worth (see the module
@@ -491,7 +494,6 @@ impl<const L: usize> LanesField<L> for TaylorLanes<L> {
     }
 
     fn expand(&mut self, t: &[f64; L], y: &[[f64; L]], order: usize) -> Result<()> {
-        let stride = order + 1;
         if order > MAX_ORDER || y.len() != self.dim {
             return Err(Error::invalid(
                 "order",
@@ -502,16 +504,17 @@ impl<const L: usize> LanesField<L> for TaylorLanes<L> {
                 ),
             ));
         }
-        let size = self.nodes.len() * stride;
+        let layout = WorkLayout::new(self.nodes.len(), self.dim, order);
+        let size = layout.blocks_start();
         if self.work.len() != size {
             self.work = vec![[0.0; L]; size];
         }
-        self.stride = stride;
         for (i, yi) in y.iter().enumerate() {
-            self.work[i * stride] = *yi;
+            self.work[layout.at(i, 0)] = *yi;
         }
         // The time's series is `t + τ`; its orders from 2 on are the allocation's zeros.
-        let time = self.dim * stride;
+        let time = layout.at(self.dim, 0);
+        self.rows = time;
         self.work[time] = *t;
         if order >= 1 {
             self.work[time + 1] = [1.0; L];
@@ -528,7 +531,7 @@ impl<const L: usize> LanesField<L> for TaylorLanes<L> {
                 // function enables.
                 #[allow(unsafe_code)]
                 unsafe {
-                    interpret_avx512(nodes, outputs, w, order, stride);
+                    interpret_avx512(nodes, outputs, w, order, layout);
                 }
                 return Ok(());
             }
@@ -537,18 +540,18 @@ impl<const L: usize> LanesField<L> for TaylorLanes<L> {
                 // enables.
                 #[allow(unsafe_code)]
                 unsafe {
-                    interpret_avx2(nodes, outputs, w, order, stride);
+                    interpret_avx2(nodes, outputs, w, order, layout);
                 }
                 return Ok(());
             }
         }
-        interpret(nodes, outputs, w, order, stride);
+        interpret(nodes, outputs, w, order, layout);
         Ok(())
     }
 
     /// The state's rows, which come first in the work array (empty before the first
     /// expansion).
     fn coefficients(&self) -> &[[f64; L]] {
-        &self.work[..self.dim * self.stride]
+        &self.work[..self.rows]
     }
 }

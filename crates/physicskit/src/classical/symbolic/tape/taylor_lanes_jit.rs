@@ -45,7 +45,7 @@ use cranelift_frontend::FunctionBuilder;
 #[cfg(all(target_arch = "x86_64", not(windows)))]
 use super::super::jit::asm;
 use super::super::jit::{powf, unrolled_terms, Form, Fresh, Recurrences};
-use super::super::{Node, Val};
+use super::super::{Node, Val, WorkLayout};
 use crate::classical::integrators::taylor::MAX_ORDER;
 use crate::classical::symbolic::tape::jit::{
     compile_function, flag_builder, OwnedModule, Param, Shims,
@@ -304,7 +304,7 @@ impl Native {
                     shims,
                     base,
                     lanes,
-                    fresh: Fresh::new(nodes.len(), order),
+                    fresh: Fresh::new(WorkLayout::new(nodes.len(), outputs.len(), order)),
                 }
                 .recurrences(nodes, outputs, order);
                 let next = b.ins().iadd_imm(base, pass);
