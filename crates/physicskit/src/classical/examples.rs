@@ -208,7 +208,7 @@ const PENDULUM_PHYSICS: &str =
          ∝ dt^p): 2 for verlet and implicit_midpoint, 4 for yoshida4 and rk4.";
 
 /// The catalogue entry of [`Pendulum`].
-pub static PENDULUM_ENTRY: SystemEntry = SystemEntry {
+pub const PENDULUM_ENTRY: SystemEntry = SystemEntry {
     name: "pendulum",
     python: None,
     summary: "simple pendulum H = p^2/2 - (g/l) cos q (examples::Pendulum)",
@@ -266,7 +266,7 @@ pub static PENDULUM_ENTRY: SystemEntry = SystemEntry {
 };
 
 /// The catalogue entry of [`HarmonicOscillator`].
-pub static HARMONIC_OSCILLATOR_ENTRY: SystemEntry = SystemEntry {
+pub const HARMONIC_OSCILLATOR_ENTRY: SystemEntry = SystemEntry {
     name: "harmonic-oscillator",
     python: None,
     summary: "harmonic oscillator H = p^2/(2m) + k q^2/2 (examples::HarmonicOscillator)",

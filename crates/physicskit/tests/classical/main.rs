@@ -6,6 +6,7 @@ mod checks;
 mod fixtures;
 
 mod analysis;
+mod catalog;
 mod core;
 mod digests;
 mod ensemble;

@@ -755,11 +755,24 @@ impl Values {
             })
     }
 
-    /// Replaces the value at `index`, bypassing the checks (for tests that feed constructors
-    /// values the catalogue refuses).
-    #[cfg(test)]
-    pub(crate) fn set_unchecked(&mut self, index: usize, value: Option<Value>) {
-        self.entries[index].1 = value;
+    /// Replaces the value at `index`, bypassing the checks: for the catalogue's tests, which
+    /// feed the constructors values the catalogue refuses to show that the constructors refuse
+    /// them too. Not API: a front end sets values through [`SystemEntry::values`].
+    ///
+    /// # Errors
+    /// [`Error::InvalidArgument`] if the entry has no parameter at `index`.
+    #[doc(hidden)]
+    pub fn set_unchecked(&mut self, index: usize, value: Option<Value>) -> Result<()> {
+        let len = self.entries.len();
+        let entry = self
+            .entries
+            .get_mut(index)
+            .ok_or_else(|| Error::InvalidArgument {
+                name: "index".into(),
+                reason: format!("{index} is past the entry's {len} parameters"),
+            })?;
+        entry.1 = value;
+        Ok(())
     }
 
     fn wrong(name: &str, what: &str) -> Error {

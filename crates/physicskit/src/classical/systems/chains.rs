@@ -826,7 +826,7 @@ pub(super) const CHAINS_PHYSICS: &str =
          frequency, cos(ω₁t) + cos(ω₂t) = 2 cos(Δω t/2) cos(ω̄ t): beats are interference.";
 
 /// The catalogue entry of [`HarmonicChain`].
-pub static HARMONIC_CHAIN_ENTRY: SystemEntry = SystemEntry {
+pub const HARMONIC_CHAIN_ENTRY: SystemEntry = SystemEntry {
     name: "harmonic-chain",
     python: Some("HarmonicChain"),
     summary: "masses and linear springs between fixed walls (HarmonicChain)",
@@ -880,7 +880,7 @@ pub static HARMONIC_CHAIN_ENTRY: SystemEntry = SystemEntry {
 };
 
 /// The catalogue entry of [`FPUTChain`].
-pub static FPUT_ENTRY: SystemEntry = SystemEntry {
+pub const FPUT_ENTRY: SystemEntry = SystemEntry {
     name: "fput",
     python: Some("FPUTChain"),
     summary: "Fermi-Pasta-Ulam-Tsingou beta chain started in one normal mode (FPUTChain)",
@@ -969,7 +969,7 @@ const SINE_GORDON_PRESENTATION: Presentation = Presentation {
 };
 
 /// The catalogue entry of [`SineGordonChain::new`].
-pub static SINE_GORDON_STATE_ENTRY: SystemEntry = SystemEntry {
+pub const SINE_GORDON_STATE_ENTRY: SystemEntry = SystemEntry {
     name: "sine-gordon-state",
     python: Some("SineGordonChain"),
     summary: "discrete sine-Gordon chain from explicit displacements (SineGordonChain::new)",
@@ -1017,7 +1017,7 @@ pub static SINE_GORDON_STATE_ENTRY: SystemEntry = SystemEntry {
 
 /// The catalogue entry of the sine-Gordon kink demonstrations: a chain built from
 /// [`SineGordonChain::boosted_kink`] or [`SineGordonChain::kink_antikink`] initial data.
-pub static SINE_GORDON_KINK_ENTRY: SystemEntry = SystemEntry {
+pub const SINE_GORDON_KINK_ENTRY: SystemEntry = SystemEntry {
     name: "sine-gordon",
     python: None,
     summary: "discrete sine-Gordon chain with kink initial data \

@@ -215,7 +215,7 @@ crate::impl_lagrangian_dynamics!(CoupledOscillators);
 impl Capabilities for CoupledOscillators {}
 
 /// The catalogue entry of [`CoupledOscillators`].
-pub static COUPLED_OSCILLATORS_ENTRY: SystemEntry = SystemEntry {
+pub const COUPLED_OSCILLATORS_ENTRY: SystemEntry = SystemEntry {
     name: "coupled-oscillators",
     python: Some("CoupledOscillators"),
     summary: "n masses and springs between fixed walls, Lagrangian form (CoupledOscillators)",

@@ -408,7 +408,7 @@ const DOUBLE_PENDULUM_PHYSICS: &str =
          error stays bounded, while rk4's drifts.";
 
 /// The catalogue entry of [`DoublePendulum`].
-pub static DOUBLE_PENDULUM_ENTRY: SystemEntry = SystemEntry {
+pub const DOUBLE_PENDULUM_ENTRY: SystemEntry = SystemEntry {
     name: "double-pendulum",
     python: Some("DoublePendulum"),
     summary: "planar double pendulum, angles from the downward vertical (DoublePendulum)",

@@ -456,7 +456,7 @@ const ELASTIC_PENDULUM_PHYSICS: &str =
          r_eq)²/2] + [m r² θ̇²/2 + m g r (1 − cos θ)].";
 
 /// The catalogue entry of [`ElasticPendulum`].
-pub static ELASTIC_PENDULUM_ENTRY: SystemEntry = SystemEntry {
+pub const ELASTIC_PENDULUM_ENTRY: SystemEntry = SystemEntry {
     name: "elastic-pendulum",
     python: Some("ElasticPendulum"),
     summary: "spring pendulum, q = (s, theta): s the spring's stretch beyond L0, theta from \

@@ -175,7 +175,7 @@ const EULERS_DISK_PHYSICS: &str =
     no energy.";
 
 /// The catalogue entry of [`EulersDisk`].
-pub static EULERS_DISK_ENTRY: SystemEntry = SystemEntry {
+pub const EULERS_DISK_ENTRY: SystemEntry = SystemEntry {
     name: "eulers-disk",
     python: Some("EulersDisk"),
     summary: "reduced Euler's disk: inclination collapsing in finite time, precession \

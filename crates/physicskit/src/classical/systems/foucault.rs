@@ -278,7 +278,7 @@ const FOUCAULT_PHYSICS: &str =
     equations exactly.";
 
 /// The catalogue entry of [`FoucaultPendulum`].
-pub static FOUCAULT_ENTRY: SystemEntry = SystemEntry {
+pub const FOUCAULT_ENTRY: SystemEntry = SystemEntry {
     name: "foucault-pendulum",
     python: Some("FoucaultPendulum"),
     summary: "small swings seen from the rotating Earth: the swing plane turns at \

@@ -129,7 +129,7 @@ const HENON_HEILES_PHYSICS: &str =
          1/6, the energy of the saddle points of the potential, almost all tori are gone.";
 
 /// The catalogue entry of [`HenonHeilesSystem`].
-pub static HENON_HEILES_ENTRY: SystemEntry = SystemEntry {
+pub const HENON_HEILES_ENTRY: SystemEntry = SystemEntry {
     name: "henon-heiles",
     python: Some("HenonHeilesSystem"),
     summary: "Henon-Heiles H = |p|^2/2 + (x^2 + y^2)/2 + x^2 y - y^3/3 (HenonHeilesSystem)",

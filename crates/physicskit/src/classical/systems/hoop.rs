@@ -366,7 +366,7 @@ const HOOP_PHYSICS: &str =
          phase space the single centre turns into a saddle between two centres.";
 
 /// The catalogue entry of [`BeadOnRotatingHoop`].
-pub static HOOP_ENTRY: SystemEntry = SystemEntry {
+pub const HOOP_ENTRY: SystemEntry = SystemEntry {
     name: "hoop",
     python: Some("BeadOnRotatingHoop"),
     summary: "bead on a hoop rotating about its vertical diameter (BeadOnRotatingHoop)",

@@ -461,7 +461,7 @@ const KEPLER_PRESENTATION: Presentation = Presentation {
 };
 
 /// The catalogue entry of [`KeplerSystem::new`].
-pub static KEPLER_STATE_ENTRY: SystemEntry = SystemEntry {
+pub const KEPLER_STATE_ENTRY: SystemEntry = SystemEntry {
     name: "kepler-state",
     python: Some("KeplerSystem"),
     summary: "planar Kepler problem from a position and momentum (KeplerSystem::new)",
@@ -511,7 +511,7 @@ pub static KEPLER_STATE_ENTRY: SystemEntry = SystemEntry {
 };
 
 /// The catalogue entry of [`KeplerSystem::from_orbital_elements`].
-pub static KEPLER_ENTRY: SystemEntry = SystemEntry {
+pub const KEPLER_ENTRY: SystemEntry = SystemEntry {
     name: "kepler",
     python: Some("KeplerSystem.from_orbital_elements"),
     summary: "planar Kepler orbit from its elements, starting at perihelion \

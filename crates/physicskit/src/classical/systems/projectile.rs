@@ -337,7 +337,7 @@ const PROJECTILE_PRESENTATION: Presentation = Presentation {
 };
 
 /// The catalogue entry of [`ProjectileMotion::new`].
-pub static PROJECTILE_STATE_ENTRY: SystemEntry = SystemEntry {
+pub const PROJECTILE_STATE_ENTRY: SystemEntry = SystemEntry {
     name: "projectile-state",
     python: Some("ProjectileMotion"),
     summary: "projectile from a position and momentum (ProjectileMotion::new)",
@@ -384,7 +384,7 @@ pub static PROJECTILE_STATE_ENTRY: SystemEntry = SystemEntry {
 };
 
 /// The catalogue entry of [`ProjectileMotion::from_launch`].
-pub static PROJECTILE_ENTRY: SystemEntry = SystemEntry {
+pub const PROJECTILE_ENTRY: SystemEntry = SystemEntry {
     name: "projectile",
     python: Some("ProjectileMotion.from_launch"),
     summary: "projectile launched from (0, height), optional quadratic drag \

@@ -181,7 +181,7 @@ const RATTLEBACK_PHYSICS: &str =
     axes, which RollingRattleback simulates.";
 
 /// The catalogue entry of [`Rattleback`].
-pub static RATTLEBACK_ENTRY: SystemEntry = SystemEntry {
+pub const RATTLEBACK_ENTRY: SystemEntry = SystemEntry {
     name: "rattleback",
     python: Some("Rattleback"),
     summary: "reduced rattleback: the spin rocks, stops and reverses (Rattleback)",

@@ -311,7 +311,7 @@ const EULER_TOP_PHYSICS: &str =
          close.";
 
 /// The catalogue entry of [`EulerTop`].
-pub static EULER_TOP_ENTRY: SystemEntry = SystemEntry {
+pub const EULER_TOP_ENTRY: SystemEntry = SystemEntry {
     name: "euler-top",
     python: Some("EulerTop"),
     summary: "torque-free rigid body: Euler's equations and the orientation quaternion \

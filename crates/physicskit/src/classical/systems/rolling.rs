@@ -897,7 +897,7 @@ const ROLLING_DISK_PHYSICS: &str =
     ever-faster spin-down of Euler's disk needs dissipation, which this model leaves out.";
 
 /// The catalogue entry of [`RollingRattleback`].
-pub static ROLLING_RATTLEBACK_ENTRY: SystemEntry = SystemEntry {
+pub const ROLLING_RATTLEBACK_ENTRY: SystemEntry = SystemEntry {
     name: "rolling-rattleback",
     python: Some("RollingRattleback"),
     summary: "rattleback rolling without slipping: the nonholonomic rigid-body equations of an \
@@ -1067,7 +1067,7 @@ const DISK_PRESENTATION: Presentation = Presentation {
 };
 
 /// The catalogue entry of [`RollingDisk`].
-pub static ROLLING_DISK_ENTRY: SystemEntry = SystemEntry {
+pub const ROLLING_DISK_ENTRY: SystemEntry = SystemEntry {
     name: "rolling-disk",
     python: Some("RollingDisk"),
     summary: "thin uniform disk rolling without slipping on its rim (Euler's disk without \
@@ -1110,7 +1110,7 @@ pub static ROLLING_DISK_ENTRY: SystemEntry = SystemEntry {
 };
 
 /// The catalogue entry of [`RollingDisk::steady`].
-pub static ROLLING_DISK_STEADY_ENTRY: SystemEntry = SystemEntry {
+pub const ROLLING_DISK_STEADY_ENTRY: SystemEntry = SystemEntry {
     name: "rolling-disk-steady",
     python: Some("RollingDisk.steady"),
     summary: "thin disk started on a steady rolling circle (tilt and precession rate; the spin \

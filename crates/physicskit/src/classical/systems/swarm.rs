@@ -368,7 +368,7 @@ const SWARM_PRESENTATION: Presentation = Presentation {
 };
 
 /// The catalogue entry of [`PendulumSwarm::new`].
-pub static SWARM_STATE_ENTRY: SystemEntry = SystemEntry {
+pub const SWARM_STATE_ENTRY: SystemEntry = SystemEntry {
     name: "pendulum-swarm-state",
     python: Some("PendulumSwarm"),
     summary: "independent pendulums from explicit angles and momenta (PendulumSwarm::new)",
@@ -411,7 +411,7 @@ pub static SWARM_STATE_ENTRY: SystemEntry = SystemEntry {
 };
 
 /// The catalogue entry of [`PendulumSwarm::from_box`].
-pub static SWARM_ENTRY: SystemEntry = SystemEntry {
+pub const SWARM_ENTRY: SystemEntry = SystemEntry {
     name: "pendulum-swarm",
     python: Some("PendulumSwarm.from_box"),
     summary: "n independent pendulums filling a box in phase space (PendulumSwarm::from_box)",

@@ -373,7 +373,7 @@ const HEAVY_TOP_PHYSICS: &str =
          in φ, cusps on the unit sphere.";
 
 /// The catalogue entry of [`HeavySymmetricTop`].
-pub static HEAVY_TOP_ENTRY: SystemEntry = SystemEntry {
+pub const HEAVY_TOP_ENTRY: SystemEntry = SystemEntry {
     name: "heavy-top",
     python: Some("HeavySymmetricTop"),
     summary: "heavy symmetric top on a fixed point, Euler angles (phi, theta, psi) \

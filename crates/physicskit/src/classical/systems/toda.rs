@@ -365,7 +365,7 @@ const TODA_PHYSICS: &str =
          why its energy nearly, but not exactly, returns.";
 
 /// The catalogue entry of [`TodaLattice`].
-pub static TODA_ENTRY: SystemEntry = SystemEntry {
+pub const TODA_ENTRY: SystemEntry = SystemEntry {
     name: "toda",
     python: Some("TodaLattice"),
     summary: "periodic Toda lattice H = sum p^2/2 + (a/b) sum exp(-b (q_{i+1} - q_i)), \

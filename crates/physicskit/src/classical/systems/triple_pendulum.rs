@@ -224,7 +224,7 @@ const TRIPLE_PENDULUM_PHYSICS: &str =
      implicit methods (implicit midpoint, Gauss–Legendre) keep the energy error bounded.";
 
 /// The catalogue entry of [`TriplePendulum`].
-pub static TRIPLE_PENDULUM_ENTRY: SystemEntry = SystemEntry {
+pub const TRIPLE_PENDULUM_ENTRY: SystemEntry = SystemEntry {
     name: "triple-pendulum",
     python: Some("TriplePendulum"),
     summary: "planar triple pendulum, angles from the downward vertical (TriplePendulum)",
