@@ -7,6 +7,7 @@ use crate::classical::core::error::{check_finite_scalar, check_positive};
 use crate::classical::core::{Phase, Result};
 use crate::classical::integrators::lanes::{LanesForce, Real, SplittingLanes};
 use crate::classical::integrators::{HamiltonianSystem, MassInv, Method};
+use crate::classical::model::entry::catalogue_static;
 use crate::classical::model::entry::{Default as D, Family, ParamSpec as P, Range, SystemEntry};
 use crate::classical::model::entry::{Drawing, Ends, Pace, Presentation};
 use crate::classical::model::erased::{fill, Capabilities, Hamiltonian};
@@ -207,117 +208,121 @@ const PENDULUM_PHYSICS: &str =
          method shows in the slope of its error at a fixed time against the step size (error \
          ∝ dt^p): 2 for verlet and implicit_midpoint, 4 for yoshida4 and rk4.";
 
-/// The catalogue entry of [`Pendulum`].
-pub const PENDULUM_ENTRY: SystemEntry = SystemEntry {
-    name: "pendulum",
-    python: None,
-    summary: "simple pendulum H = p^2/2 - (g/l) cos q (examples::Pendulum)",
-    family: Family::Hamiltonian,
-    params: &[
-        P::scalar(
-            "q0",
-            D::demo_scalar(1.0),
-            "rad",
-            Range::ANY,
-            "initial angle",
-        )
-        .initial_state(),
-        P::scalar(
-            "p0",
-            D::demo_scalar(0.0),
-            "rad/s",
-            Range::ANY,
-            "initial momentum (unit m l^2)",
-        )
-        .initial_state(),
-        P::scalar(
-            "g_over_l",
-            D::scalar(1.0),
-            "1/s^2",
-            Range::POSITIVE,
-            "g / l",
-        ),
-    ],
-    separable: true,
-    taylor_form: false,
-    default_method: Method::Yoshida4,
-    note: None,
-    physics: Some(PENDULUM_PHYSICS),
-    presentation: Presentation {
-        title: "Simple pendulum",
-        symbols: &["\\theta"],
-        time_unit: "s",
-        state_units: None,
-        drawing: Drawing::Bobs {
-            springs: false,
-            scale: Some("l"),
+catalogue_static! {
+    /// The catalogue entry of [`Pendulum`].
+    pub static PENDULUM_ENTRY: SystemEntry = SystemEntry {
+        name: "pendulum",
+        python: None,
+        summary: "simple pendulum H = p^2/2 - (g/l) cos q (examples::Pendulum)",
+        family: Family::Hamiltonian,
+        params: &[
+            P::scalar(
+                "q0",
+                D::demo_scalar(1.0),
+                "rad",
+                Range::ANY,
+                "initial angle",
+            )
+            .initial_state(),
+            P::scalar(
+                "p0",
+                D::demo_scalar(0.0),
+                "rad/s",
+                Range::ANY,
+                "initial momentum (unit m l^2)",
+            )
+            .initial_state(),
+            P::scalar(
+                "g_over_l",
+                D::scalar(1.0),
+                "1/s^2",
+                Range::POSITIVE,
+                "g / l",
+            ),
+        ],
+        separable: true,
+        taylor_form: false,
+        default_method: Method::Yoshida4,
+        note: None,
+        physics: Some(PENDULUM_PHYSICS),
+        presentation: Presentation {
+            title: "Simple pendulum",
+            symbols: &["\\theta"],
+            time_unit: "s",
+            state_units: None,
+            drawing: Drawing::Bobs {
+                springs: false,
+                scale: Some("l"),
+            },
+            pace: Pace::Own,
+            section_first: false,
+            energy_conserved: true,
         },
-        pace: Pace::Own,
-        section_first: false,
-        energy_conserved: true,
-    },
-    build: |v| {
-        Ok(Box::new(Hamiltonian(Pendulum::new(
-            v.scalar("q0")?,
-            v.scalar("p0")?,
-            v.scalar("g_over_l")?,
-        )?)))
-    },
-};
+        build: |v| {
+            Ok(Box::new(Hamiltonian(Pendulum::new(
+                v.scalar("q0")?,
+                v.scalar("p0")?,
+                v.scalar("g_over_l")?,
+            )?)))
+        },
+    };
+}
 
-/// The catalogue entry of [`HarmonicOscillator`].
-pub const HARMONIC_OSCILLATOR_ENTRY: SystemEntry = SystemEntry {
-    name: "harmonic-oscillator",
-    python: None,
-    summary: "harmonic oscillator H = p^2/(2m) + k q^2/2 (examples::HarmonicOscillator)",
-    family: Family::Hamiltonian,
-    params: &[
-        P::scalar(
-            "q0",
-            D::demo_scalar(1.0),
-            "m",
-            Range::ANY,
-            "initial position",
-        )
-        .initial_state(),
-        P::scalar(
-            "p0",
-            D::demo_scalar(0.0),
-            "kg m/s",
-            Range::ANY,
-            "initial momentum",
-        )
-        .initial_state(),
-        P::scalar("m", D::scalar(1.0), "kg", Range::POSITIVE, "mass"),
-        P::scalar(
-            "k",
-            D::scalar(1.0),
-            "N/m",
-            Range::POSITIVE,
-            "spring constant",
-        ),
-    ],
-    separable: true,
-    taylor_form: false,
-    default_method: Method::Yoshida4,
-    note: None,
-    physics: None,
-    presentation: Presentation {
-        title: "Harmonic oscillator",
-        symbols: &["x"],
-        time_unit: "s",
-        state_units: None,
-        drawing: Drawing::Chain { ends: Ends::Fixed },
-        pace: Pace::Own,
-        section_first: false,
-        energy_conserved: true,
-    },
-    build: |v| {
-        Ok(Box::new(Hamiltonian(HarmonicOscillator::new(
-            v.scalar("q0")?,
-            v.scalar("p0")?,
-            v.scalar("m")?,
-            v.scalar("k")?,
-        )?)))
-    },
-};
+catalogue_static! {
+    /// The catalogue entry of [`HarmonicOscillator`].
+    pub static HARMONIC_OSCILLATOR_ENTRY: SystemEntry = SystemEntry {
+        name: "harmonic-oscillator",
+        python: None,
+        summary: "harmonic oscillator H = p^2/(2m) + k q^2/2 (examples::HarmonicOscillator)",
+        family: Family::Hamiltonian,
+        params: &[
+            P::scalar(
+                "q0",
+                D::demo_scalar(1.0),
+                "m",
+                Range::ANY,
+                "initial position",
+            )
+            .initial_state(),
+            P::scalar(
+                "p0",
+                D::demo_scalar(0.0),
+                "kg m/s",
+                Range::ANY,
+                "initial momentum",
+            )
+            .initial_state(),
+            P::scalar("m", D::scalar(1.0), "kg", Range::POSITIVE, "mass"),
+            P::scalar(
+                "k",
+                D::scalar(1.0),
+                "N/m",
+                Range::POSITIVE,
+                "spring constant",
+            ),
+        ],
+        separable: true,
+        taylor_form: false,
+        default_method: Method::Yoshida4,
+        note: None,
+        physics: None,
+        presentation: Presentation {
+            title: "Harmonic oscillator",
+            symbols: &["x"],
+            time_unit: "s",
+            state_units: None,
+            drawing: Drawing::Chain { ends: Ends::Fixed },
+            pace: Pace::Own,
+            section_first: false,
+            energy_conserved: true,
+        },
+        build: |v| {
+            Ok(Box::new(Hamiltonian(HarmonicOscillator::new(
+                v.scalar("q0")?,
+                v.scalar("p0")?,
+                v.scalar("m")?,
+                v.scalar("k")?,
+            )?)))
+        },
+    };
+}

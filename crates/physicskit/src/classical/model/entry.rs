@@ -866,6 +866,24 @@ impl Values {
 /// Builds a system from checked values.
 pub type Builder = fn(&Values) -> Result<Box<dyn super::erased::DynSystem>>;
 
+/// Declares a catalogue entry, or the catalogue's list: a `static` in the library, so that it
+/// has one address and its builder is compiled once, here; a `const` in the library's
+/// unit-test harness. There a static would be compiled whether or not a test reads it (rustc
+/// compiles every static of a crate), and through its builder it would bring in every system
+/// with every method: a 12-minute compile of the harness against 40 s (`benchmarks/README.md`,
+/// "CI build time"). The library's own builds are unchanged.
+macro_rules! catalogue_static {
+    ($(#[$attr:meta])* $vis:vis static $name:ident: $ty:ty = $value:expr;) => {
+        $(#[$attr])*
+        #[cfg(not(test))]
+        $vis static $name: $ty = $value;
+        $(#[$attr])*
+        #[cfg(test)]
+        $vis const $name: $ty = $value;
+    };
+}
+pub(crate) use catalogue_static;
+
 /// One built-in system (or one of its constructors) in the catalogue.
 #[derive(Clone, Copy)]
 pub struct SystemEntry {

@@ -38,6 +38,7 @@ use crate::classical::core::sum::lane_sum_map2;
 use crate::classical::core::trig::{sin_into, sin_into_sum_cos, sum_cos};
 use crate::classical::core::{check_items_fit, Error, Phase, Result};
 use crate::classical::integrators::{HamiltonianSystem, MassInv, Method};
+use crate::classical::model::entry::catalogue_static;
 use crate::classical::model::entry::{
     Default as D, Family, Length, Literal, ParamSpec as P, Range, SystemEntry,
 };
@@ -825,117 +826,121 @@ pub(super) const CHAINS_PHYSICS: &str =
          keeps its own energy, yet a single mass swells and falls silent at the difference \
          frequency, cos(ω₁t) + cos(ω₂t) = 2 cos(Δω t/2) cos(ω̄ t): beats are interference.";
 
-/// The catalogue entry of [`HarmonicChain`].
-pub const HARMONIC_CHAIN_ENTRY: SystemEntry = SystemEntry {
-    name: "harmonic-chain",
-    python: Some("HarmonicChain"),
-    summary: "masses and linear springs between fixed walls (HarmonicChain)",
-    family: Family::Hamiltonian,
-    params: &[
-        P::vector(
-            "q0",
-            Length::Any,
-            D::demo_vector(&[0.1, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0]),
-            "length",
-            "initial displacements; the chain has one mass per entry",
-        )
-        .initial_state(),
-        P::vector(
-            "p0",
-            Length::SameAs("q0"),
-            D::DemoAbsent,
-            "mass length/time",
-            "initial momenta, one per mass (left out: zeros)",
-        )
-        .initial_state(),
-        MASS,
-        SPRING,
-    ],
-    separable: true,
-    taylor_form: false,
-    default_method: Method::Yoshida4,
-    note: None,
-    physics: Some(CHAINS_PHYSICS),
-    presentation: Presentation {
-        title: "Harmonic chain",
-        symbols: &["q"],
-        time_unit: "time",
-        state_units: None,
-        drawing: Drawing::Chain { ends: Ends::Fixed },
-        pace: Pace::Own,
-        section_first: false,
-        energy_conserved: true,
-    },
-    build: |v| {
-        let q0 = v.vector("q0")?;
-        let zeros = vec![0.0; q0.len()];
-        let p0 = v.opt_vector("p0")?.unwrap_or(&zeros);
-        Ok(Box::new(Hamiltonian(HarmonicChain::new(
-            q0,
-            p0,
-            v.scalar("m")?,
-            v.scalar("k")?,
-        )?)))
-    },
-};
+catalogue_static! {
+    /// The catalogue entry of [`HarmonicChain`].
+    pub static HARMONIC_CHAIN_ENTRY: SystemEntry = SystemEntry {
+        name: "harmonic-chain",
+        python: Some("HarmonicChain"),
+        summary: "masses and linear springs between fixed walls (HarmonicChain)",
+        family: Family::Hamiltonian,
+        params: &[
+            P::vector(
+                "q0",
+                Length::Any,
+                D::demo_vector(&[0.1, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0]),
+                "length",
+                "initial displacements; the chain has one mass per entry",
+            )
+            .initial_state(),
+            P::vector(
+                "p0",
+                Length::SameAs("q0"),
+                D::DemoAbsent,
+                "mass length/time",
+                "initial momenta, one per mass (left out: zeros)",
+            )
+            .initial_state(),
+            MASS,
+            SPRING,
+        ],
+        separable: true,
+        taylor_form: false,
+        default_method: Method::Yoshida4,
+        note: None,
+        physics: Some(CHAINS_PHYSICS),
+        presentation: Presentation {
+            title: "Harmonic chain",
+            symbols: &["q"],
+            time_unit: "time",
+            state_units: None,
+            drawing: Drawing::Chain { ends: Ends::Fixed },
+            pace: Pace::Own,
+            section_first: false,
+            energy_conserved: true,
+        },
+        build: |v| {
+            let q0 = v.vector("q0")?;
+            let zeros = vec![0.0; q0.len()];
+            let p0 = v.opt_vector("p0")?.unwrap_or(&zeros);
+            Ok(Box::new(Hamiltonian(HarmonicChain::new(
+                q0,
+                p0,
+                v.scalar("m")?,
+                v.scalar("k")?,
+            )?)))
+        },
+    };
+}
 
-/// The catalogue entry of [`FPUTChain`].
-pub const FPUT_ENTRY: SystemEntry = SystemEntry {
-    name: "fput",
-    python: Some("FPUTChain"),
-    summary: "Fermi-Pasta-Ulam-Tsingou beta chain started in one normal mode (FPUTChain)",
-    family: Family::Hamiltonian,
-    params: &[
-        P::integer("n", D::integer(32), SITES, "number of masses"),
-        MASS,
-        SPRING,
-        P::scalar(
-            "beta",
-            D::scalar(0.0),
-            "force/length^3",
-            Range::ANY,
-            "quartic coupling, V(r) = k r^2/2 + beta r^4/4",
-        ),
-        P::integer(
-            "mode",
-            D::integer(1),
-            Range::at_least(1.0),
-            "initially excited mode, 1..n",
-        ),
-        P::scalar(
-            "amplitude",
-            D::scalar(1.0),
-            "length",
-            Range::ANY,
-            "amplitude of the initial mode shape",
-        ),
-    ],
-    separable: true,
-    taylor_form: false,
-    default_method: Method::Yoshida4,
-    note: Some("the recurrence shows with e.g. --beta 0.7 --amplitude 0.5"),
-    physics: Some(FPUT_PHYSICS),
-    presentation: Presentation {
-        title: "Fermi–Pasta–Ulam–Tsingou chain",
-        symbols: &["q"],
-        time_unit: "time",
-        state_units: Some(("length", "mass length/time")),
-        drawing: Drawing::Chain { ends: Ends::Fixed },
-        pace: Pace::Own,
-        section_first: false,
-        energy_conserved: true,
-    },
-    build: |v| {
-        Ok(Box::new(Hamiltonian(FPUTChain::new(
-            v.count("n")?,
-            v.scalar("m")?,
-            v.scalar("k")?,
-            v.scalar("beta")?,
-            v.count("mode")?,
-            v.scalar("amplitude")?,
-        )?)))
-    },
-};
+catalogue_static! {
+    /// The catalogue entry of [`FPUTChain`].
+    pub static FPUT_ENTRY: SystemEntry = SystemEntry {
+        name: "fput",
+        python: Some("FPUTChain"),
+        summary: "Fermi-Pasta-Ulam-Tsingou beta chain started in one normal mode (FPUTChain)",
+        family: Family::Hamiltonian,
+        params: &[
+            P::integer("n", D::integer(32), SITES, "number of masses"),
+            MASS,
+            SPRING,
+            P::scalar(
+                "beta",
+                D::scalar(0.0),
+                "force/length^3",
+                Range::ANY,
+                "quartic coupling, V(r) = k r^2/2 + beta r^4/4",
+            ),
+            P::integer(
+                "mode",
+                D::integer(1),
+                Range::at_least(1.0),
+                "initially excited mode, 1..n",
+            ),
+            P::scalar(
+                "amplitude",
+                D::scalar(1.0),
+                "length",
+                Range::ANY,
+                "amplitude of the initial mode shape",
+            ),
+        ],
+        separable: true,
+        taylor_form: false,
+        default_method: Method::Yoshida4,
+        note: Some("the recurrence shows with e.g. --beta 0.7 --amplitude 0.5"),
+        physics: Some(FPUT_PHYSICS),
+        presentation: Presentation {
+            title: "Fermi–Pasta–Ulam–Tsingou chain",
+            symbols: &["q"],
+            time_unit: "time",
+            state_units: Some(("length", "mass length/time")),
+            drawing: Drawing::Chain { ends: Ends::Fixed },
+            pace: Pace::Own,
+            section_first: false,
+            energy_conserved: true,
+        },
+        build: |v| {
+            Ok(Box::new(Hamiltonian(FPUTChain::new(
+                v.count("n")?,
+                v.scalar("m")?,
+                v.scalar("k")?,
+                v.scalar("beta")?,
+                v.count("mode")?,
+                v.scalar("amplitude")?,
+            )?)))
+        },
+    };
+}
 
 const SINE_GORDON_SITES: P = P::integer("n", D::integer(200), SITES, "number of sites");
 const SINE_GORDON_MASS: P = P::scalar(
@@ -968,143 +973,147 @@ const SINE_GORDON_PRESENTATION: Presentation = Presentation {
     energy_conserved: true,
 };
 
-/// The catalogue entry of [`SineGordonChain::new`].
-pub const SINE_GORDON_STATE_ENTRY: SystemEntry = SystemEntry {
-    name: "sine-gordon-state",
-    python: Some("SineGordonChain"),
-    summary: "discrete sine-Gordon chain from explicit displacements (SineGordonChain::new)",
-    family: Family::Hamiltonian,
-    params: &[
-        SINE_GORDON_SITES,
-        SINE_GORDON_MASS,
-        SINE_GORDON_COUPLING,
-        P::vector(
-            "q0",
-            Length::Count("n"),
-            D::Absent,
-            "rad",
-            "initial displacements, length n (left out: zeros)",
-        )
-        .initial_state(),
-        P::vector(
-            "p0",
-            Length::Count("n"),
-            D::Absent,
-            "mass rad/time",
-            "initial momenta, length n (left out: zeros)",
-        )
-        .initial_state(),
-    ],
-    separable: true,
-    taylor_form: false,
-    default_method: Method::Yoshida4,
-    note: None,
-    physics: Some(SINE_GORDON_PHYSICS),
-    presentation: Presentation {
-        title: "Sine–Gordon chain (from a state)",
-        ..SINE_GORDON_PRESENTATION
-    },
-    build: |v| {
-        Ok(Box::new(Hamiltonian(SineGordonChain::new(
-            v.count("n")?,
-            v.scalar("m")?,
-            v.scalar("k")?,
-            v.opt_vector("q0")?,
-            v.opt_vector("p0")?,
-        )?)))
-    },
-};
+catalogue_static! {
+    /// The catalogue entry of [`SineGordonChain::new`].
+    pub static SINE_GORDON_STATE_ENTRY: SystemEntry = SystemEntry {
+        name: "sine-gordon-state",
+        python: Some("SineGordonChain"),
+        summary: "discrete sine-Gordon chain from explicit displacements (SineGordonChain::new)",
+        family: Family::Hamiltonian,
+        params: &[
+            SINE_GORDON_SITES,
+            SINE_GORDON_MASS,
+            SINE_GORDON_COUPLING,
+            P::vector(
+                "q0",
+                Length::Count("n"),
+                D::Absent,
+                "rad",
+                "initial displacements, length n (left out: zeros)",
+            )
+            .initial_state(),
+            P::vector(
+                "p0",
+                Length::Count("n"),
+                D::Absent,
+                "mass rad/time",
+                "initial momenta, length n (left out: zeros)",
+            )
+            .initial_state(),
+        ],
+        separable: true,
+        taylor_form: false,
+        default_method: Method::Yoshida4,
+        note: None,
+        physics: Some(SINE_GORDON_PHYSICS),
+        presentation: Presentation {
+            title: "Sine–Gordon chain (from a state)",
+            ..SINE_GORDON_PRESENTATION
+        },
+        build: |v| {
+            Ok(Box::new(Hamiltonian(SineGordonChain::new(
+                v.count("n")?,
+                v.scalar("m")?,
+                v.scalar("k")?,
+                v.opt_vector("q0")?,
+                v.opt_vector("p0")?,
+            )?)))
+        },
+    };
+}
 
-/// The catalogue entry of the sine-Gordon kink demonstrations: a chain built from
-/// [`SineGordonChain::boosted_kink`] or [`SineGordonChain::kink_antikink`] initial data.
-pub const SINE_GORDON_KINK_ENTRY: SystemEntry = SystemEntry {
-    name: "sine-gordon",
-    python: None,
-    summary: "discrete sine-Gordon chain with kink initial data \
-              (SineGordonChain::kink, free ends)",
-    family: Family::Hamiltonian,
-    params: &[
-        SINE_GORDON_SITES,
-        SINE_GORDON_MASS,
-        SINE_GORDON_COUPLING,
-        P::choice(
-            "initial",
-            &["kink-antikink", "kink", "antikink", "rest"],
-            D::Demo(Literal::Choice("kink-antikink")),
-            "initial data: a colliding kink-antikink pair, one (anti)kink, or rest",
-        ),
-        P::scalar(
-            "center",
-            D::DemoAbsent,
-            "sites",
-            Range::ANY,
-            "centre site (left out: the middle, (n-1)/2)",
-        ),
-        P::scalar(
-            "separation",
-            D::demo_scalar(60.0),
-            "sites",
-            Range::ANY,
-            "kink-antikink distance",
-        ),
-        P::scalar(
-            "width",
-            D::demo_scalar(1.0),
-            "sites",
-            Range::POSITIVE,
-            "kink width; sqrt(k) for a true soliton",
-        ),
-        P::scalar(
-            "velocity",
-            D::demo_scalar(0.2),
-            "sites/time",
-            Range::ANY,
-            "kink speed, |v| < sqrt(k/m) (the pair approaches)",
-        ),
-    ],
-    separable: true,
-    taylor_form: false,
-    default_method: Method::Yoshida4,
-    note: None,
-    physics: Some(SINE_GORDON_PHYSICS),
-    // Started from kink data, not from a state: the state's units said here.
-    presentation: Presentation {
-        state_units: Some(("rad", "mass rad/time")),
-        ..SINE_GORDON_PRESENTATION
-    },
-    build: |v| {
-        let n = v.count("n")?;
-        let (m, k) = (v.scalar("m")?, v.scalar("k")?);
-        let (width, velocity) = (v.scalar("width")?, v.scalar("velocity")?);
-        let center = v.opt_scalar("center")?.unwrap_or((n as f64 - 1.0) / 2.0);
-        let half = v.scalar("separation")? / 2.0;
-        // `velocity` is in sites per unit time, below the wave speed sqrt(k/m); the library
-        // returns canonical momenta (m dq/dt).
-        let (q0, p0) = match v.choice("initial")? {
-            "kink" => SineGordonChain::boosted_kink(n, m, k, center, width, velocity, 1)?,
-            "antikink" => SineGordonChain::boosted_kink(n, m, k, center, width, velocity, -1)?,
-            "kink-antikink" => SineGordonChain::kink_antikink(
+catalogue_static! {
+    /// The catalogue entry of the sine-Gordon kink demonstrations: a chain built from
+    /// [`SineGordonChain::boosted_kink`] or [`SineGordonChain::kink_antikink`] initial data.
+    pub static SINE_GORDON_KINK_ENTRY: SystemEntry = SystemEntry {
+        name: "sine-gordon",
+        python: None,
+        summary: "discrete sine-Gordon chain with kink initial data \
+                  (SineGordonChain::kink, free ends)",
+        family: Family::Hamiltonian,
+        params: &[
+            SINE_GORDON_SITES,
+            SINE_GORDON_MASS,
+            SINE_GORDON_COUPLING,
+            P::choice(
+                "initial",
+                &["kink-antikink", "kink", "antikink", "rest"],
+                D::Demo(Literal::Choice("kink-antikink")),
+                "initial data: a colliding kink-antikink pair, one (anti)kink, or rest",
+            ),
+            P::scalar(
+                "center",
+                D::DemoAbsent,
+                "sites",
+                Range::ANY,
+                "centre site (left out: the middle, (n-1)/2)",
+            ),
+            P::scalar(
+                "separation",
+                D::demo_scalar(60.0),
+                "sites",
+                Range::ANY,
+                "kink-antikink distance",
+            ),
+            P::scalar(
+                "width",
+                D::demo_scalar(1.0),
+                "sites",
+                Range::POSITIVE,
+                "kink width; sqrt(k) for a true soliton",
+            ),
+            P::scalar(
+                "velocity",
+                D::demo_scalar(0.2),
+                "sites/time",
+                Range::ANY,
+                "kink speed, |v| < sqrt(k/m) (the pair approaches)",
+            ),
+        ],
+        separable: true,
+        taylor_form: false,
+        default_method: Method::Yoshida4,
+        note: None,
+        physics: Some(SINE_GORDON_PHYSICS),
+        // Started from kink data, not from a state: the state's units said here.
+        presentation: Presentation {
+            state_units: Some(("rad", "mass rad/time")),
+            ..SINE_GORDON_PRESENTATION
+        },
+        build: |v| {
+            let n = v.count("n")?;
+            let (m, k) = (v.scalar("m")?, v.scalar("k")?);
+            let (width, velocity) = (v.scalar("width")?, v.scalar("velocity")?);
+            let center = v.opt_scalar("center")?.unwrap_or((n as f64 - 1.0) / 2.0);
+            let half = v.scalar("separation")? / 2.0;
+            // `velocity` is in sites per unit time, below the wave speed sqrt(k/m); the library
+            // returns canonical momenta (m dq/dt).
+            let (q0, p0) = match v.choice("initial")? {
+                "kink" => SineGordonChain::boosted_kink(n, m, k, center, width, velocity, 1)?,
+                "antikink" => SineGordonChain::boosted_kink(n, m, k, center, width, velocity, -1)?,
+                "kink-antikink" => SineGordonChain::kink_antikink(
+                    n,
+                    m,
+                    k,
+                    center - half,
+                    center + half,
+                    width,
+                    velocity,
+                )?,
+                // At rest: the constructor's zeros, allocated after its size check.
+                _ => {
+                    return Ok(Box::new(Hamiltonian(SineGordonChain::new(
+                        n, m, k, None, None,
+                    )?)))
+                }
+            };
+            Ok(Box::new(Hamiltonian(SineGordonChain::new(
                 n,
                 m,
                 k,
-                center - half,
-                center + half,
-                width,
-                velocity,
-            )?,
-            // At rest: the constructor's zeros, allocated after its size check.
-            _ => {
-                return Ok(Box::new(Hamiltonian(SineGordonChain::new(
-                    n, m, k, None, None,
-                )?)))
-            }
-        };
-        Ok(Box::new(Hamiltonian(SineGordonChain::new(
-            n,
-            m,
-            k,
-            Some(&q0),
-            Some(&p0),
-        )?)))
-    },
-};
+                Some(&q0),
+                Some(&p0),
+            )?)))
+        },
+    };
+}

@@ -34,6 +34,7 @@ use crate::classical::core::sum::lane_sum_map;
 use crate::classical::core::{check_items_fit, Error, Phase, Result};
 use crate::classical::integrators::Method;
 use crate::classical::lagrangian::{singular_mass_matrix, Lagrangian, LagrangianEngine, Scalar};
+use crate::classical::model::entry::catalogue_static;
 use crate::classical::model::entry::Values;
 use crate::classical::model::entry::{
     Default as D, Family, Length, ParamSpec as P, Range, SystemEntry,
@@ -214,67 +215,69 @@ crate::impl_lagrangian_dynamics!(CoupledOscillators);
 
 impl Capabilities for CoupledOscillators {}
 
-/// The catalogue entry of [`CoupledOscillators`].
-pub const COUPLED_OSCILLATORS_ENTRY: SystemEntry = SystemEntry {
-    name: "coupled-oscillators",
-    python: Some("CoupledOscillators"),
-    summary: "n masses and springs between fixed walls, Lagrangian form (CoupledOscillators)",
-    family: Family::Lagrangian,
-    params: &[
-        P::vector(
-            "q0",
-            Length::Count("n"),
-            D::demo_vector(&[0.1, -0.2, 0.15]),
-            "m",
-            "initial displacements, length n",
-        )
-        .initial_state(),
-        P::vector(
-            "qdot0",
-            Length::Count("n"),
-            D::DemoAbsent,
-            "m/s",
-            "initial velocities, length n (left out: zeros)",
-        )
-        .initial_state(),
-        P::integer("n", D::integer(3), Range::at_least(1.0), "number of masses"),
-        P::scalar(
-            "m",
-            D::scalar(1.0),
-            "kg",
-            Range::POSITIVE,
-            "mass of each particle",
-        ),
-        P::scalar(
-            "k",
-            D::scalar(1.0),
-            "N/m",
-            Range::POSITIVE,
-            "spring constant",
-        ),
-    ],
-    separable: false,
-    taylor_form: true,
-    default_method: Method::ImplicitMidpoint,
-    note: Some("p holds qdot, as in the spec"),
-    physics: Some(super::chains::CHAINS_PHYSICS),
-    presentation: Presentation {
-        title: "Coupled oscillators",
-        symbols: &["x"],
-        time_unit: "s",
-        state_units: None,
-        drawing: Drawing::Chain { ends: Ends::Fixed },
-        pace: Pace::Own,
-        section_first: false,
-        energy_conserved: true,
-    },
-    build: |v| {
-        let q0 = v.vector("q0")?;
-        let zeros = vec![0.0; q0.len()];
-        let qdot0 = v.opt_vector("qdot0")?.unwrap_or(&zeros);
-        let params = CoupledOscillatorsParams::from_values(v)?;
-        Ok(Box::new(Erased(CoupledOscillators::new(
-            q0, qdot0, params,
-        )?)))
-    },
-};
+catalogue_static! {
+    /// The catalogue entry of [`CoupledOscillators`].
+    pub static COUPLED_OSCILLATORS_ENTRY: SystemEntry = SystemEntry {
+        name: "coupled-oscillators",
+        python: Some("CoupledOscillators"),
+        summary: "n masses and springs between fixed walls, Lagrangian form (CoupledOscillators)",
+        family: Family::Lagrangian,
+        params: &[
+            P::vector(
+                "q0",
+                Length::Count("n"),
+                D::demo_vector(&[0.1, -0.2, 0.15]),
+                "m",
+                "initial displacements, length n",
+            )
+            .initial_state(),
+            P::vector(
+                "qdot0",
+                Length::Count("n"),
+                D::DemoAbsent,
+                "m/s",
+                "initial velocities, length n (left out: zeros)",
+            )
+            .initial_state(),
+            P::integer("n", D::integer(3), Range::at_least(1.0), "number of masses"),
+            P::scalar(
+                "m",
+                D::scalar(1.0),
+                "kg",
+                Range::POSITIVE,
+                "mass of each particle",
+            ),
+            P::scalar(
+                "k",
+                D::scalar(1.0),
+                "N/m",
+                Range::POSITIVE,
+                "spring constant",
+            ),
+        ],
+        separable: false,
+        taylor_form: true,
+        default_method: Method::ImplicitMidpoint,
+        note: Some("p holds qdot, as in the spec"),
+        physics: Some(super::chains::CHAINS_PHYSICS),
+        presentation: Presentation {
+            title: "Coupled oscillators",
+            symbols: &["x"],
+            time_unit: "s",
+            state_units: None,
+            drawing: Drawing::Chain { ends: Ends::Fixed },
+            pace: Pace::Own,
+            section_first: false,
+            energy_conserved: true,
+        },
+        build: |v| {
+            let q0 = v.vector("q0")?;
+            let zeros = vec![0.0; q0.len()];
+            let qdot0 = v.opt_vector("qdot0")?.unwrap_or(&zeros);
+            let params = CoupledOscillatorsParams::from_values(v)?;
+            Ok(Box::new(Erased(CoupledOscillators::new(
+                q0, qdot0, params,
+            )?)))
+        },
+    };
+}

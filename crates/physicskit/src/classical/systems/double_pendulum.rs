@@ -79,6 +79,7 @@ use crate::classical::integrators::Method;
 use crate::classical::lagrangian::{
     singular_mass_matrix, FieldScalar, Lagrangian, LagrangianEngine, Scalar,
 };
+use crate::classical::model::entry::catalogue_static;
 use crate::classical::model::entry::Values;
 use crate::classical::model::entry::{
     Default as D, Family, Length, ParamSpec as P, Range, SystemEntry,
@@ -407,77 +408,79 @@ const DOUBLE_PENDULUM_PHYSICS: &str =
          choices are the implicit methods (implicit midpoint, Gauss–Legendre): their energy \
          error stays bounded, while rk4's drifts.";
 
-/// The catalogue entry of [`DoublePendulum`].
-pub const DOUBLE_PENDULUM_ENTRY: SystemEntry = SystemEntry {
-    name: "double-pendulum",
-    python: Some("DoublePendulum"),
-    summary: "planar double pendulum, angles from the downward vertical (DoublePendulum)",
-    family: Family::Lagrangian,
-    params: &[
-        P::vector(
-            "theta0",
-            Length::Fixed(2),
-            D::demo_vector(&[2.0, 1.0]),
-            "rad",
-            "initial angles",
-        )
-        .initial_state(),
-        P::vector(
-            "thetadot0",
-            Length::Fixed(2),
-            D::demo_vector(&[0.5, -0.3]),
-            "rad/s",
-            "initial angular velocities",
-        )
-        .initial_state(),
-        P::scalar("m1", D::scalar(1.0), "kg", Range::POSITIVE, "upper mass"),
-        P::scalar("m2", D::scalar(1.0), "kg", Range::POSITIVE, "lower mass"),
-        P::scalar(
-            "l1",
-            D::scalar(1.0),
-            "m",
-            Range::POSITIVE,
-            "upper rod length",
-        ),
-        P::scalar(
-            "l2",
-            D::scalar(1.0),
-            "m",
-            Range::POSITIVE,
-            "lower rod length",
-        ),
-        P::scalar(
-            "g",
-            D::scalar(9.81),
-            "m/s^2",
-            Range::ANY,
-            "gravitational acceleration",
-        ),
-    ],
-    separable: false,
-    taylor_form: true,
-    default_method: Method::ImplicitMidpoint,
-    note: Some("p holds thetadot, as in the spec"),
-    physics: Some(DOUBLE_PENDULUM_PHYSICS),
-    presentation: Presentation {
-        title: "Double pendulum",
-        symbols: &["\\theta_1", "\\theta_2"],
-        time_unit: "s",
-        state_units: None,
-        drawing: Drawing::Bobs {
-            springs: false,
-            scale: None,
+catalogue_static! {
+    /// The catalogue entry of [`DoublePendulum`].
+    pub static DOUBLE_PENDULUM_ENTRY: SystemEntry = SystemEntry {
+        name: "double-pendulum",
+        python: Some("DoublePendulum"),
+        summary: "planar double pendulum, angles from the downward vertical (DoublePendulum)",
+        family: Family::Lagrangian,
+        params: &[
+            P::vector(
+                "theta0",
+                Length::Fixed(2),
+                D::demo_vector(&[2.0, 1.0]),
+                "rad",
+                "initial angles",
+            )
+            .initial_state(),
+            P::vector(
+                "thetadot0",
+                Length::Fixed(2),
+                D::demo_vector(&[0.5, -0.3]),
+                "rad/s",
+                "initial angular velocities",
+            )
+            .initial_state(),
+            P::scalar("m1", D::scalar(1.0), "kg", Range::POSITIVE, "upper mass"),
+            P::scalar("m2", D::scalar(1.0), "kg", Range::POSITIVE, "lower mass"),
+            P::scalar(
+                "l1",
+                D::scalar(1.0),
+                "m",
+                Range::POSITIVE,
+                "upper rod length",
+            ),
+            P::scalar(
+                "l2",
+                D::scalar(1.0),
+                "m",
+                Range::POSITIVE,
+                "lower rod length",
+            ),
+            P::scalar(
+                "g",
+                D::scalar(9.81),
+                "m/s^2",
+                Range::ANY,
+                "gravitational acceleration",
+            ),
+        ],
+        separable: false,
+        taylor_form: true,
+        default_method: Method::ImplicitMidpoint,
+        note: Some("p holds thetadot, as in the spec"),
+        physics: Some(DOUBLE_PENDULUM_PHYSICS),
+        presentation: Presentation {
+            title: "Double pendulum",
+            symbols: &["\\theta_1", "\\theta_2"],
+            time_unit: "s",
+            state_units: None,
+            drawing: Drawing::Bobs {
+                springs: false,
+                scale: None,
+            },
+            pace: Pace::Own,
+            section_first: false,
+            energy_conserved: true,
         },
-        pace: Pace::Own,
-        section_first: false,
-        energy_conserved: true,
-    },
-    build: |v| {
-        let params = DoublePendulumParams::from_values(v)?;
-        Ok(Box::new(Erased(DoublePendulum::new(
-            v.vector("theta0")?,
-            v.vector("thetadot0")?,
-            params,
-        )?)))
-    },
-};
+        build: |v| {
+            let params = DoublePendulumParams::from_values(v)?;
+            Ok(Box::new(Erased(DoublePendulum::new(
+                v.vector("theta0")?,
+                v.vector("thetadot0")?,
+                params,
+            )?)))
+        },
+    };
+}

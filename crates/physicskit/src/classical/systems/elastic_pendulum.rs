@@ -85,6 +85,7 @@ use crate::classical::core::trig::sin_cos;
 use crate::classical::core::{Error, Phase, Result};
 use crate::classical::integrators::Method;
 use crate::classical::lagrangian::{FieldScalar, Lagrangian, LagrangianEngine, Scalar};
+use crate::classical::model::entry::catalogue_static;
 use crate::classical::model::entry::Values;
 use crate::classical::model::entry::{
     Default as D, Family, Length, ParamSpec as P, Range, SystemEntry,
@@ -455,79 +456,81 @@ const ELASTIC_PENDULUM_PHYSICS: &str =
          4g/r_eq gives k = 3mg/L0. The energies are split exactly: E − E_eq = [m ṡ²/2 + k(r − \
          r_eq)²/2] + [m r² θ̇²/2 + m g r (1 − cos θ)].";
 
-/// The catalogue entry of [`ElasticPendulum`].
-pub const ELASTIC_PENDULUM_ENTRY: SystemEntry = SystemEntry {
-    name: "elastic-pendulum",
-    python: Some("ElasticPendulum"),
-    summary: "spring pendulum, q = (s, theta): s the spring's stretch beyond L0, theta from \
-              the downward vertical (ElasticPendulum)",
-    family: Family::Lagrangian,
-    params: &[
-        P::vector(
-            "q0",
-            Length::Fixed(2),
-            D::demo_vector(&[0.3, 0.3]),
-            "m, rad",
-            "initial (s, theta): stretch beyond L0 (> -L0), angle",
-        )
-        .initial_state(),
-        P::vector(
-            "qdot0",
-            Length::Fixed(2),
-            D::demo_vector(&[0.0, 0.0]),
-            "m/s, rad/s",
-            "initial (sdot, thetadot)",
-        )
-        .initial_state(),
-        P::scalar("m", D::scalar(1.0), "kg", Range::POSITIVE, "bob mass"),
-        P::scalar(
-            "k",
-            D::scalar(39.24),
-            "N/m",
-            Range::POSITIVE,
-            "spring constant (default 4 m g / L0)",
+catalogue_static! {
+    /// The catalogue entry of [`ElasticPendulum`].
+    pub static ELASTIC_PENDULUM_ENTRY: SystemEntry = SystemEntry {
+        name: "elastic-pendulum",
+        python: Some("ElasticPendulum"),
+        summary: "spring pendulum, q = (s, theta): s the spring's stretch beyond L0, theta from \
+                  the downward vertical (ElasticPendulum)",
+        family: Family::Lagrangian,
+        params: &[
+            P::vector(
+                "q0",
+                Length::Fixed(2),
+                D::demo_vector(&[0.3, 0.3]),
+                "m, rad",
+                "initial (s, theta): stretch beyond L0 (> -L0), angle",
+            )
+            .initial_state(),
+            P::vector(
+                "qdot0",
+                Length::Fixed(2),
+                D::demo_vector(&[0.0, 0.0]),
+                "m/s, rad/s",
+                "initial (sdot, thetadot)",
+            )
+            .initial_state(),
+            P::scalar("m", D::scalar(1.0), "kg", Range::POSITIVE, "bob mass"),
+            P::scalar(
+                "k",
+                D::scalar(39.24),
+                "N/m",
+                Range::POSITIVE,
+                "spring constant (default 4 m g / L0)",
+            ),
+            P::scalar(
+                "L0",
+                D::scalar(1.0),
+                "m",
+                Range::NON_NEGATIVE,
+                "rest length of the spring",
+            ),
+            P::scalar(
+                "g",
+                D::scalar(9.81),
+                "m/s^2",
+                Range::ANY,
+                "gravitational acceleration",
+            ),
+        ],
+        separable: false,
+        taylor_form: true,
+        default_method: Method::ImplicitMidpoint,
+        note: Some(
+            "exact 2:1 resonance (bounce twice the swing frequency) at k = 3 m g / L0; p holds qdot",
         ),
-        P::scalar(
-            "L0",
-            D::scalar(1.0),
-            "m",
-            Range::NON_NEGATIVE,
-            "rest length of the spring",
-        ),
-        P::scalar(
-            "g",
-            D::scalar(9.81),
-            "m/s^2",
-            Range::ANY,
-            "gravitational acceleration",
-        ),
-    ],
-    separable: false,
-    taylor_form: true,
-    default_method: Method::ImplicitMidpoint,
-    note: Some(
-        "exact 2:1 resonance (bounce twice the swing frequency) at k = 3 m g / L0; p holds qdot",
-    ),
-    physics: Some(ELASTIC_PENDULUM_PHYSICS),
-    presentation: Presentation {
-        title: "Elastic pendulum",
-        symbols: &["s", "\\theta"],
-        time_unit: "s",
-        state_units: None,
-        drawing: Drawing::Bobs {
-            springs: true,
-            scale: None,
+        physics: Some(ELASTIC_PENDULUM_PHYSICS),
+        presentation: Presentation {
+            title: "Elastic pendulum",
+            symbols: &["s", "\\theta"],
+            time_unit: "s",
+            state_units: None,
+            drawing: Drawing::Bobs {
+                springs: true,
+                scale: None,
+            },
+            pace: Pace::Own,
+            section_first: false,
+            energy_conserved: true,
         },
-        pace: Pace::Own,
-        section_first: false,
-        energy_conserved: true,
-    },
-    build: |v| {
-        let params = ElasticPendulumParams::from_values(v)?;
-        Ok(Box::new(Erased(ElasticPendulum::new(
-            v.vector("q0")?,
-            v.vector("qdot0")?,
-            params,
-        )?)))
-    },
-};
+        build: |v| {
+            let params = ElasticPendulumParams::from_values(v)?;
+            Ok(Box::new(Erased(ElasticPendulum::new(
+                v.vector("q0")?,
+                v.vector("qdot0")?,
+                params,
+            )?)))
+        },
+    };
+}

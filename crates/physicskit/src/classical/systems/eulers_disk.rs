@@ -27,6 +27,7 @@
 use crate::classical::core::error::{check_finite_scalar, check_non_negative, check_positive};
 use crate::classical::core::{Phase, Result};
 use crate::classical::integrators::Method;
+use crate::classical::model::entry::catalogue_static;
 use crate::classical::model::entry::Values;
 use crate::classical::model::entry::{Default as D, Family, ParamSpec as P, Range, SystemEntry};
 use crate::classical::model::entry::{Drawing, Pace, Presentation};
@@ -174,76 +175,78 @@ const EULERS_DISK_PHYSICS: &str =
     which the floor θ_min stops. Its energy() returns θ, as the peer's does: the model has \
     no energy.";
 
-/// The catalogue entry of [`EulersDisk`].
-pub const EULERS_DISK_ENTRY: SystemEntry = SystemEntry {
-    name: "eulers-disk",
-    python: Some("EulersDisk"),
-    summary: "reduced Euler's disk: inclination collapsing in finite time, precession \
-              speeding up (EulersDisk)",
-    family: Family::Ode,
-    params: &[
-        P::scalar(
-            "theta0",
-            D::demo_scalar(0.5),
-            "rad",
-            Range::ANY,
-            "initial inclination of the disk to the table",
-        )
-        .initial_state(),
-        P::scalar(
-            "phi0",
-            D::scalar(0.0),
-            "rad",
-            Range::ANY,
-            "initial azimuth of the contact point",
-        )
-        .initial_state(),
-        P::scalar(
-            "decay_rate",
-            D::scalar(0.05),
-            "rad^2/s",
-            Range::NON_NEGATIVE,
-            "collapse rate: theta' = -decay_rate / theta",
+catalogue_static! {
+    /// The catalogue entry of [`EulersDisk`].
+    pub static EULERS_DISK_ENTRY: SystemEntry = SystemEntry {
+        name: "eulers-disk",
+        python: Some("EulersDisk"),
+        summary: "reduced Euler's disk: inclination collapsing in finite time, precession \
+                  speeding up (EulersDisk)",
+        family: Family::Ode,
+        params: &[
+            P::scalar(
+                "theta0",
+                D::demo_scalar(0.5),
+                "rad",
+                Range::ANY,
+                "initial inclination of the disk to the table",
+            )
+            .initial_state(),
+            P::scalar(
+                "phi0",
+                D::scalar(0.0),
+                "rad",
+                Range::ANY,
+                "initial azimuth of the contact point",
+            )
+            .initial_state(),
+            P::scalar(
+                "decay_rate",
+                D::scalar(0.05),
+                "rad^2/s",
+                Range::NON_NEGATIVE,
+                "collapse rate: theta' = -decay_rate / theta",
+            ),
+            P::scalar(
+                "precession_const",
+                D::scalar(1.0),
+                "rad^2/s",
+                Range::ANY,
+                "precession: phi' = precession_const / theta",
+            ),
+            P::scalar(
+                "theta_floor",
+                D::scalar(1e-3),
+                "rad",
+                Range::POSITIVE,
+                "smallest theta the rates divide by",
+            ),
+        ],
+        separable: false,
+        taylor_form: false,
+        default_method: Method::ImplicitMidpoint,
+        note: Some(
+            "y columns: theta, phi; a phenomenological reduced model, not rolling mechanics; the \
+             energy column is theta; collapse at theta0^2 / (2 decay_rate)",
         ),
-        P::scalar(
-            "precession_const",
-            D::scalar(1.0),
-            "rad^2/s",
-            Range::ANY,
-            "precession: phi' = precession_const / theta",
-        ),
-        P::scalar(
-            "theta_floor",
-            D::scalar(1e-3),
-            "rad",
-            Range::POSITIVE,
-            "smallest theta the rates divide by",
-        ),
-    ],
-    separable: false,
-    taylor_form: false,
-    default_method: Method::ImplicitMidpoint,
-    note: Some(
-        "y columns: theta, phi; a phenomenological reduced model, not rolling mechanics; the \
-         energy column is theta; collapse at theta0^2 / (2 decay_rate)",
-    ),
-    physics: Some(EULERS_DISK_PHYSICS),
-    presentation: Presentation {
-        title: "Euler's disk (reduced model)",
-        symbols: &["\\theta", "\\phi"],
-        time_unit: "s",
-        state_units: None,
-        drawing: Drawing::ContactSpiral,
-        pace: Pace::Own,
-        section_first: false,
-        energy_conserved: false,
-    },
-    build: |v| {
-        let params = EulersDiskParams::from_values(v)?;
-        Ok(Box::new(Ode(EulersDisk::new(
-            v.scalar("theta0")?,
-            v.scalar("phi0")?,
-            params,
-        )?)))
-    },
-};
+        physics: Some(EULERS_DISK_PHYSICS),
+        presentation: Presentation {
+            title: "Euler's disk (reduced model)",
+            symbols: &["\\theta", "\\phi"],
+            time_unit: "s",
+            state_units: None,
+            drawing: Drawing::ContactSpiral,
+            pace: Pace::Own,
+            section_first: false,
+            energy_conserved: false,
+        },
+        build: |v| {
+            let params = EulersDiskParams::from_values(v)?;
+            Ok(Box::new(Ode(EulersDisk::new(
+                v.scalar("theta0")?,
+                v.scalar("phi0")?,
+                params,
+            )?)))
+        },
+    };
+}

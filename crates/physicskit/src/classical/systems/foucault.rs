@@ -36,6 +36,7 @@
 use crate::classical::core::error::{check_finite_scalar, check_positive, check_vector};
 use crate::classical::core::{Error, Phase, Result};
 use crate::classical::integrators::Method;
+use crate::classical::model::entry::catalogue_static;
 use crate::classical::model::entry::Values;
 use crate::classical::model::entry::{
     Default as D, Family, Length, ParamSpec as P, Range, SystemEntry,
@@ -277,86 +278,88 @@ const FOUCAULT_PHYSICS: &str =
     does no work. The closed form, a plain swing in a frame turning at −Ω_z, solves these \
     equations exactly.";
 
-/// The catalogue entry of [`FoucaultPendulum`].
-pub const FOUCAULT_ENTRY: SystemEntry = SystemEntry {
-    name: "foucault-pendulum",
-    python: Some("FoucaultPendulum"),
-    summary: "small swings seen from the rotating Earth: the swing plane turns at \
-              omega_earth sin(latitude) (FoucaultPendulum)",
-    family: Family::Ode,
-    params: &[
-        P::vector(
-            "q0",
-            Length::Fixed(2),
-            D::demo_vector(&[1.0, 0.0]),
-            "m",
-            "initial horizontal displacement (x east, y north)",
-        )
-        .initial_state(),
-        P::vector(
-            "v0",
-            Length::Fixed(2),
-            D::demo_vector(&[0.0, 0.0]),
-            "m/s",
-            "initial horizontal velocity",
-        )
-        .initial_state(),
-        P::scalar(
-            "length",
-            D::scalar(67.0),
-            "m",
-            Range::POSITIVE,
-            "pendulum length",
+catalogue_static! {
+    /// The catalogue entry of [`FoucaultPendulum`].
+    pub static FOUCAULT_ENTRY: SystemEntry = SystemEntry {
+        name: "foucault-pendulum",
+        python: Some("FoucaultPendulum"),
+        summary: "small swings seen from the rotating Earth: the swing plane turns at \
+                  omega_earth sin(latitude) (FoucaultPendulum)",
+        family: Family::Ode,
+        params: &[
+            P::vector(
+                "q0",
+                Length::Fixed(2),
+                D::demo_vector(&[1.0, 0.0]),
+                "m",
+                "initial horizontal displacement (x east, y north)",
+            )
+            .initial_state(),
+            P::vector(
+                "v0",
+                Length::Fixed(2),
+                D::demo_vector(&[0.0, 0.0]),
+                "m/s",
+                "initial horizontal velocity",
+            )
+            .initial_state(),
+            P::scalar(
+                "length",
+                D::scalar(67.0),
+                "m",
+                Range::POSITIVE,
+                "pendulum length",
+            ),
+            P::scalar(
+                "g",
+                D::scalar(9.81),
+                "m/s^2",
+                Range::POSITIVE,
+                "gravitational acceleration",
+            ),
+            P::scalar(
+                "latitude_deg",
+                D::scalar(48.85),
+                "deg",
+                Range::closed(-90.0, 90.0),
+                "geographic latitude (south negative)",
+            ),
+            P::scalar(
+                "omega_earth",
+                D::scalar(OMEGA_EARTH),
+                "rad/s",
+                Range::ANY,
+                "Earth's rotation rate (sidereal)",
+            ),
+        ],
+        separable: false,
+        taylor_form: false,
+        default_method: Method::ImplicitMidpoint,
+        note: Some(
+            "y columns: x, y, vx, vy; the swing plane turns once in 2 pi / (omega_earth \
+             sin(latitude)); energy is per unit mass",
         ),
-        P::scalar(
-            "g",
-            D::scalar(9.81),
-            "m/s^2",
-            Range::POSITIVE,
-            "gravitational acceleration",
-        ),
-        P::scalar(
-            "latitude_deg",
-            D::scalar(48.85),
-            "deg",
-            Range::closed(-90.0, 90.0),
-            "geographic latitude (south negative)",
-        ),
-        P::scalar(
-            "omega_earth",
-            D::scalar(OMEGA_EARTH),
-            "rad/s",
-            Range::ANY,
-            "Earth's rotation rate (sidereal)",
-        ),
-    ],
-    separable: false,
-    taylor_form: false,
-    default_method: Method::ImplicitMidpoint,
-    note: Some(
-        "y columns: x, y, vx, vy; the swing plane turns once in 2 pi / (omega_earth \
-         sin(latitude)); energy is per unit mass",
-    ),
-    physics: Some(FOUCAULT_PHYSICS),
-    presentation: Presentation {
-        title: "Foucault pendulum",
-        symbols: &["x", "y"],
-        time_unit: "s",
-        state_units: None,
-        drawing: Drawing::Swing,
-        pace: Pace::TimeLapse {
-            dt: 0.02,
-            steps_per_frame: 400,
+        physics: Some(FOUCAULT_PHYSICS),
+        presentation: Presentation {
+            title: "Foucault pendulum",
+            symbols: &["x", "y"],
+            time_unit: "s",
+            state_units: None,
+            drawing: Drawing::Swing,
+            pace: Pace::TimeLapse {
+                dt: 0.02,
+                steps_per_frame: 400,
+            },
+            section_first: false,
+            energy_conserved: true,
         },
-        section_first: false,
-        energy_conserved: true,
-    },
-    build: |v| {
-        let params = FoucaultParams::from_values(v)?;
-        Ok(Box::new(Ode(FoucaultPendulum::new(
-            v.vector("q0")?,
-            v.vector("v0")?,
-            params,
-        )?)))
-    },
-};
+        build: |v| {
+            let params = FoucaultParams::from_values(v)?;
+            Ok(Box::new(Ode(FoucaultPendulum::new(
+                v.vector("q0")?,
+                v.vector("v0")?,
+                params,
+            )?)))
+        },
+    };
+}

@@ -13,6 +13,7 @@ use crate::classical::core::error::{check_len, check_vector};
 use crate::classical::core::{Phase, Result};
 use crate::classical::integrators::lanes::{LanesForce, Real, SplittingLanes};
 use crate::classical::integrators::{HamiltonianSystem, Method};
+use crate::classical::model::entry::catalogue_static;
 use crate::classical::model::entry::{Default as D, Family, Length, ParamSpec as P, SystemEntry};
 use crate::classical::model::entry::{Drawing, Pace, Presentation};
 use crate::classical::model::erased::{fill, Capabilities, Hamiltonian};
@@ -128,52 +129,54 @@ const HENON_HEILES_PHYSICS: &str =
          tori between the islands dissolve into a chaotic sea of scattered dots, and at E = \
          1/6, the energy of the saddle points of the potential, almost all tori are gone.";
 
-/// The catalogue entry of [`HenonHeilesSystem`].
-pub const HENON_HEILES_ENTRY: SystemEntry = SystemEntry {
-    name: "henon-heiles",
-    python: Some("HenonHeilesSystem"),
-    summary: "Henon-Heiles H = |p|^2/2 + (x^2 + y^2)/2 + x^2 y - y^3/3 (HenonHeilesSystem)",
-    family: Family::Hamiltonian,
-    params: &[
-        P::vector(
-            "q0",
-            Length::Fixed(2),
-            D::demo_vector(&[0.0, 0.3]),
-            "",
-            "initial position (x, y)",
-        )
-        .initial_state(),
-        P::vector(
-            "p0",
-            Length::Fixed(2),
-            D::demo_vector(&[0.3, 0.0]),
-            "",
-            "initial momentum (p_x, p_y)",
-        )
-        .initial_state(),
-    ],
-    separable: true,
-    taylor_form: true,
-    default_method: Method::Yoshida4,
-    note: Some("orbits are bounded for E < 1/6"),
-    physics: Some(HENON_HEILES_PHYSICS),
-    presentation: Presentation {
-        title: "Hénon–Heiles",
-        symbols: &["x", "y"],
-        time_unit: "",
-        state_units: None,
-        drawing: Drawing::Orbit {
-            central_body: false,
-            ground: false,
+catalogue_static! {
+    /// The catalogue entry of [`HenonHeilesSystem`].
+    pub static HENON_HEILES_ENTRY: SystemEntry = SystemEntry {
+        name: "henon-heiles",
+        python: Some("HenonHeilesSystem"),
+        summary: "Henon-Heiles H = |p|^2/2 + (x^2 + y^2)/2 + x^2 y - y^3/3 (HenonHeilesSystem)",
+        family: Family::Hamiltonian,
+        params: &[
+            P::vector(
+                "q0",
+                Length::Fixed(2),
+                D::demo_vector(&[0.0, 0.3]),
+                "",
+                "initial position (x, y)",
+            )
+            .initial_state(),
+            P::vector(
+                "p0",
+                Length::Fixed(2),
+                D::demo_vector(&[0.3, 0.0]),
+                "",
+                "initial momentum (p_x, p_y)",
+            )
+            .initial_state(),
+        ],
+        separable: true,
+        taylor_form: true,
+        default_method: Method::Yoshida4,
+        note: Some("orbits are bounded for E < 1/6"),
+        physics: Some(HENON_HEILES_PHYSICS),
+        presentation: Presentation {
+            title: "Hénon–Heiles",
+            symbols: &["x", "y"],
+            time_unit: "",
+            state_units: None,
+            drawing: Drawing::Orbit {
+                central_body: false,
+                ground: false,
+            },
+            pace: Pace::Own,
+            section_first: true,
+            energy_conserved: true,
         },
-        pace: Pace::Own,
-        section_first: true,
-        energy_conserved: true,
-    },
-    build: |v| {
-        Ok(Box::new(Hamiltonian(HenonHeilesSystem::new(
-            v.vector("q0")?,
-            v.vector("p0")?,
-        )?)))
-    },
-};
+        build: |v| {
+            Ok(Box::new(Hamiltonian(HenonHeilesSystem::new(
+                v.vector("q0")?,
+                v.vector("p0")?,
+            )?)))
+        },
+    };
+}

@@ -41,6 +41,7 @@ use crate::classical::integrators::Method;
 use crate::classical::lagrangian::{
     singular_mass_matrix, FieldScalar, Lagrangian, LagrangianEngine, Scalar,
 };
+use crate::classical::model::entry::catalogue_static;
 use crate::classical::model::entry::Values;
 use crate::classical::model::entry::{Default as D, Family, ParamSpec as P, Range, SystemEntry};
 use crate::classical::model::entry::{Drawing, Pace, Presentation};
@@ -365,66 +366,68 @@ const HOOP_PHYSICS: &str =
          pitchfork bifurcation, the textbook example of spontaneous symmetry breaking. In \
          phase space the single centre turns into a saddle between two centres.";
 
-/// The catalogue entry of [`BeadOnRotatingHoop`].
-pub const HOOP_ENTRY: SystemEntry = SystemEntry {
-    name: "hoop",
-    python: Some("BeadOnRotatingHoop"),
-    summary: "bead on a hoop rotating about its vertical diameter (BeadOnRotatingHoop)",
-    family: Family::Lagrangian,
-    params: &[
-        P::scalar(
-            "theta0",
-            D::demo_scalar(0.3),
-            "rad",
-            Range::ANY,
-            "initial polar angle on the hoop",
-        )
-        .initial_state(),
-        P::scalar(
-            "thetadot0",
-            D::demo_scalar(0.0),
-            "rad/s",
-            Range::ANY,
-            "initial angular velocity",
-        )
-        .initial_state(),
-        P::scalar("R", D::scalar(1.0), "m", Range::POSITIVE, "hoop radius"),
-        P::scalar(
-            "omega",
-            D::scalar(2.0),
-            "rad/s",
-            Range::ANY,
-            "rotation rate",
-        ),
-        P::scalar(
-            "g",
-            D::scalar(9.81),
-            "m/s^2",
-            Range::ANY,
-            "gravitational acceleration",
-        ),
-    ],
-    separable: false,
-    taylor_form: true,
-    default_method: Method::ImplicitMidpoint,
-    note: Some("critical speed omega_c = sqrt(g/R); p holds thetadot"),
-    physics: Some(HOOP_PHYSICS),
-    presentation: Presentation {
-        title: "Bead on a rotating hoop",
-        symbols: &["\\theta"],
-        time_unit: "s",
-        state_units: None,
-        drawing: Drawing::Hoop,
-        pace: Pace::Own,
-        section_first: false,
-        energy_conserved: true,
-    },
-    build: |v| {
-        let params = HoopParams::from_values(v)?;
-        Ok(Box::new(Erased(BeadOnRotatingHoop::new(
-            v.scalar("theta0")?,
-            v.scalar("thetadot0")?,
-            params,
-        )?)))
-    },
-};
+catalogue_static! {
+    /// The catalogue entry of [`BeadOnRotatingHoop`].
+    pub static HOOP_ENTRY: SystemEntry = SystemEntry {
+        name: "hoop",
+        python: Some("BeadOnRotatingHoop"),
+        summary: "bead on a hoop rotating about its vertical diameter (BeadOnRotatingHoop)",
+        family: Family::Lagrangian,
+        params: &[
+            P::scalar(
+                "theta0",
+                D::demo_scalar(0.3),
+                "rad",
+                Range::ANY,
+                "initial polar angle on the hoop",
+            )
+            .initial_state(),
+            P::scalar(
+                "thetadot0",
+                D::demo_scalar(0.0),
+                "rad/s",
+                Range::ANY,
+                "initial angular velocity",
+            )
+            .initial_state(),
+            P::scalar("R", D::scalar(1.0), "m", Range::POSITIVE, "hoop radius"),
+            P::scalar(
+                "omega",
+                D::scalar(2.0),
+                "rad/s",
+                Range::ANY,
+                "rotation rate",
+            ),
+            P::scalar(
+                "g",
+                D::scalar(9.81),
+                "m/s^2",
+                Range::ANY,
+                "gravitational acceleration",
+            ),
+        ],
+        separable: false,
+        taylor_form: true,
+        default_method: Method::ImplicitMidpoint,
+        note: Some("critical speed omega_c = sqrt(g/R); p holds thetadot"),
+        physics: Some(HOOP_PHYSICS),
+        presentation: Presentation {
+            title: "Bead on a rotating hoop",
+            symbols: &["\\theta"],
+            time_unit: "s",
+            state_units: None,
+            drawing: Drawing::Hoop,
+            pace: Pace::Own,
+            section_first: false,
+            energy_conserved: true,
+        },
+        build: |v| {
+            let params = HoopParams::from_values(v)?;
+            Ok(Box::new(Erased(BeadOnRotatingHoop::new(
+                v.scalar("theta0")?,
+                v.scalar("thetadot0")?,
+                params,
+            )?)))
+        },
+    };
+}

@@ -24,6 +24,7 @@ use crate::classical::core::error::{check_finite_scalar, check_non_negative, che
 use crate::classical::core::{Error, Phase, Result};
 use crate::classical::integrators::lanes::{LanesForce, Real, SplittingLanes};
 use crate::classical::integrators::{HamiltonianSystem, MassInv, Method};
+use crate::classical::model::entry::catalogue_static;
 use crate::classical::model::entry::{
     Default as D, Family, Length, ParamSpec as P, Range, SystemEntry, Values,
 };
@@ -460,103 +461,107 @@ const KEPLER_PRESENTATION: Presentation = Presentation {
     energy_conserved: true,
 };
 
-/// The catalogue entry of [`KeplerSystem::new`].
-pub const KEPLER_STATE_ENTRY: SystemEntry = SystemEntry {
-    name: "kepler-state",
-    python: Some("KeplerSystem"),
-    summary: "planar Kepler problem from a position and momentum (KeplerSystem::new)",
-    family: Family::Hamiltonian,
-    params: &[
-        P::vector(
-            "q0",
-            Length::Fixed(2),
-            D::demo_vector(&[1.0, 0.0]),
-            "length",
-            "initial relative position (x, y)",
-        )
-        .initial_state(),
-        P::vector(
-            "p0",
-            Length::Fixed(2),
-            D::demo_vector(&[0.0, 1.0]),
-            "mass length/time",
-            "initial momentum (p_x, p_y)",
-        )
-        .initial_state(),
-        COUPLING,
-        REDUCED_MASS,
-        PERTURBATION_PARAMS[0],
-        PERTURBATION_PARAMS[1],
-        PERTURBATION_PARAMS[2],
-        PERTURBATION_PARAMS[3],
-    ],
-    separable: true,
-    taylor_form: true,
-    default_method: Method::Yoshida4,
-    note: None,
-    physics: Some(KEPLER_PHYSICS),
-    presentation: Presentation {
-        title: "Kepler problem (from a state)",
-        ..KEPLER_PRESENTATION
-    },
-    build: |v| {
-        Ok(Box::new(Hamiltonian(KeplerSystem::new(
-            v.vector("q0")?,
-            v.vector("p0")?,
-            v.scalar("k")?,
-            v.scalar("mu")?,
-            perturbations(v)?,
-        )?)))
-    },
-};
+catalogue_static! {
+    /// The catalogue entry of [`KeplerSystem::new`].
+    pub static KEPLER_STATE_ENTRY: SystemEntry = SystemEntry {
+        name: "kepler-state",
+        python: Some("KeplerSystem"),
+        summary: "planar Kepler problem from a position and momentum (KeplerSystem::new)",
+        family: Family::Hamiltonian,
+        params: &[
+            P::vector(
+                "q0",
+                Length::Fixed(2),
+                D::demo_vector(&[1.0, 0.0]),
+                "length",
+                "initial relative position (x, y)",
+            )
+            .initial_state(),
+            P::vector(
+                "p0",
+                Length::Fixed(2),
+                D::demo_vector(&[0.0, 1.0]),
+                "mass length/time",
+                "initial momentum (p_x, p_y)",
+            )
+            .initial_state(),
+            COUPLING,
+            REDUCED_MASS,
+            PERTURBATION_PARAMS[0],
+            PERTURBATION_PARAMS[1],
+            PERTURBATION_PARAMS[2],
+            PERTURBATION_PARAMS[3],
+        ],
+        separable: true,
+        taylor_form: true,
+        default_method: Method::Yoshida4,
+        note: None,
+        physics: Some(KEPLER_PHYSICS),
+        presentation: Presentation {
+            title: "Kepler problem (from a state)",
+            ..KEPLER_PRESENTATION
+        },
+        build: |v| {
+            Ok(Box::new(Hamiltonian(KeplerSystem::new(
+                v.vector("q0")?,
+                v.vector("p0")?,
+                v.scalar("k")?,
+                v.scalar("mu")?,
+                perturbations(v)?,
+            )?)))
+        },
+    };
+}
 
-/// The catalogue entry of [`KeplerSystem::from_orbital_elements`].
-pub const KEPLER_ENTRY: SystemEntry = SystemEntry {
-    name: "kepler",
-    python: Some("KeplerSystem.from_orbital_elements"),
-    summary: "planar Kepler orbit from its elements, starting at perihelion \
-              (KeplerSystem::from_orbital_elements)",
-    family: Family::Hamiltonian,
-    params: &[
-        P::scalar(
-            "a",
-            D::demo_scalar(1.0),
-            "length",
-            Range::POSITIVE,
-            "semi-major axis",
-        ),
-        P::scalar(
-            "e",
-            D::demo_scalar(0.5),
-            "",
-            Range::half_open(0.0, 1.0),
-            "eccentricity (bound orbits)",
-        ),
-        COUPLING,
-        REDUCED_MASS,
-        PERTURBATION_PARAMS[0],
-        PERTURBATION_PARAMS[1],
-        PERTURBATION_PARAMS[2],
-        PERTURBATION_PARAMS[3],
-    ],
-    separable: true,
-    taylor_form: true,
-    default_method: Method::Yoshida4,
-    note: Some("period 2 pi sqrt(mu a^3 / k); c_pn != 0 makes the orbit precess"),
-    physics: Some(KEPLER_PHYSICS),
-    // Started from orbital elements, not from a state: the state's units said here, as the
-    // entry started from a state has them.
-    presentation: Presentation {
-        state_units: Some(("length", "mass length/time")),
-        ..KEPLER_PRESENTATION
-    },
-    build: |v| {
-        Ok(Box::new(Hamiltonian(KeplerSystem::from_orbital_elements(
-            v.scalar("a")?,
-            v.scalar("e")?,
-            v.scalar("k")?,
-            v.scalar("mu")?,
-            perturbations(v)?,
-        )?)))
-    },
-};
+catalogue_static! {
+    /// The catalogue entry of [`KeplerSystem::from_orbital_elements`].
+    pub static KEPLER_ENTRY: SystemEntry = SystemEntry {
+        name: "kepler",
+        python: Some("KeplerSystem.from_orbital_elements"),
+        summary: "planar Kepler orbit from its elements, starting at perihelion \
+                  (KeplerSystem::from_orbital_elements)",
+        family: Family::Hamiltonian,
+        params: &[
+            P::scalar(
+                "a",
+                D::demo_scalar(1.0),
+                "length",
+                Range::POSITIVE,
+                "semi-major axis",
+            ),
+            P::scalar(
+                "e",
+                D::demo_scalar(0.5),
+                "",
+                Range::half_open(0.0, 1.0),
+                "eccentricity (bound orbits)",
+            ),
+            COUPLING,
+            REDUCED_MASS,
+            PERTURBATION_PARAMS[0],
+            PERTURBATION_PARAMS[1],
+            PERTURBATION_PARAMS[2],
+            PERTURBATION_PARAMS[3],
+        ],
+        separable: true,
+        taylor_form: true,
+        default_method: Method::Yoshida4,
+        note: Some("period 2 pi sqrt(mu a^3 / k); c_pn != 0 makes the orbit precess"),
+        physics: Some(KEPLER_PHYSICS),
+        // Started from orbital elements, not from a state: the state's units said here, as the
+        // entry started from a state has them.
+        presentation: Presentation {
+            state_units: Some(("length", "mass length/time")),
+            ..KEPLER_PRESENTATION
+        },
+        build: |v| {
+            Ok(Box::new(Hamiltonian(KeplerSystem::from_orbital_elements(
+                v.scalar("a")?,
+                v.scalar("e")?,
+                v.scalar("k")?,
+                v.scalar("mu")?,
+                perturbations(v)?,
+            )?)))
+        },
+    };
+}

@@ -4,6 +4,7 @@
 //! `toda` lattice. Lagrangian and rigid bodies: `double_pendulum`, `triple_pendulum`, `hoop`,
 //! `coupled_oscillators`, `symmetric_top`, `rigid_body`, `elastic_pendulum`.
 
+use crate::classical::model::entry::catalogue_static;
 use crate::classical::model::SystemEntry;
 
 /// Implements [`DynamicalSystem`](crate::classical::DynamicalSystem) and
@@ -119,40 +120,39 @@ pub use rattleback::*;
 mod rolling;
 pub use rolling::*;
 
-/// Every built-in system of the catalogue, in the order listings show them: one line per
-/// entry, each written next to its system.
-///
-/// The list and its entries are `const`s, not `static`s: rustc compiles a static in every
-/// build of the crate's source whether or not anything reads it, and through the entries'
-/// builders a static catalogue reaches every system with every method. So the library's
-/// unit-test harness, which never reads the catalogue, compiles in about 40 s instead of 12
-/// minutes (`benchmarks/README.md`, "CI build time").
-pub const SYSTEMS: &[&SystemEntry] = &[
-    &crate::classical::examples::PENDULUM_ENTRY,
-    &crate::classical::examples::HARMONIC_OSCILLATOR_ENTRY,
-    &KEPLER_ENTRY,
-    &KEPLER_STATE_ENTRY,
-    &HENON_HEILES_ENTRY,
-    &SWARM_ENTRY,
-    &SWARM_STATE_ENTRY,
-    &PROJECTILE_ENTRY,
-    &PROJECTILE_STATE_ENTRY,
-    &HARMONIC_CHAIN_ENTRY,
-    &FPUT_ENTRY,
-    &SINE_GORDON_KINK_ENTRY,
-    &SINE_GORDON_STATE_ENTRY,
-    &DOUBLE_PENDULUM_ENTRY,
-    &TRIPLE_PENDULUM_ENTRY,
-    &HOOP_ENTRY,
-    &COUPLED_OSCILLATORS_ENTRY,
-    &HEAVY_TOP_ENTRY,
-    &EULER_TOP_ENTRY,
-    &TODA_ENTRY,
-    &ELASTIC_PENDULUM_ENTRY,
-    &ROLLING_RATTLEBACK_ENTRY,
-    &ROLLING_DISK_ENTRY,
-    &ROLLING_DISK_STEADY_ENTRY,
-    &FOUCAULT_ENTRY,
-    &EULERS_DISK_ENTRY,
-    &RATTLEBACK_ENTRY,
-];
+catalogue_static! {
+    /// Every built-in system of the catalogue, in the order listings show them: one line per
+    /// entry, each written next to its system.
+    ///
+    /// Like every entry, a `const` in the library's unit-test harness (`catalogue_static!` in
+    /// `model/entry.rs`).
+    pub static SYSTEMS: &[&SystemEntry] = &[
+        &crate::classical::examples::PENDULUM_ENTRY,
+        &crate::classical::examples::HARMONIC_OSCILLATOR_ENTRY,
+        &KEPLER_ENTRY,
+        &KEPLER_STATE_ENTRY,
+        &HENON_HEILES_ENTRY,
+        &SWARM_ENTRY,
+        &SWARM_STATE_ENTRY,
+        &PROJECTILE_ENTRY,
+        &PROJECTILE_STATE_ENTRY,
+        &HARMONIC_CHAIN_ENTRY,
+        &FPUT_ENTRY,
+        &SINE_GORDON_KINK_ENTRY,
+        &SINE_GORDON_STATE_ENTRY,
+        &DOUBLE_PENDULUM_ENTRY,
+        &TRIPLE_PENDULUM_ENTRY,
+        &HOOP_ENTRY,
+        &COUPLED_OSCILLATORS_ENTRY,
+        &HEAVY_TOP_ENTRY,
+        &EULER_TOP_ENTRY,
+        &TODA_ENTRY,
+        &ELASTIC_PENDULUM_ENTRY,
+        &ROLLING_RATTLEBACK_ENTRY,
+        &ROLLING_DISK_ENTRY,
+        &ROLLING_DISK_STEADY_ENTRY,
+        &FOUCAULT_ENTRY,
+        &EULERS_DISK_ENTRY,
+        &RATTLEBACK_ENTRY,
+    ];
+}

@@ -21,6 +21,7 @@ use crate::classical::integrators::lanes::{LanesForce, Real, SplittingLanes};
 use crate::classical::integrators::{
     hamiltonian_energy, DynamicalSystem, HamiltonianSystem, MassInv, Method,
 };
+use crate::classical::model::entry::catalogue_static;
 use crate::classical::model::entry::{
     Default as D, Family, Length, ParamSpec as P, Range, SystemEntry,
 };
@@ -336,98 +337,102 @@ const PROJECTILE_PRESENTATION: Presentation = Presentation {
     energy_conserved: true,
 };
 
-/// The catalogue entry of [`ProjectileMotion::new`].
-pub const PROJECTILE_STATE_ENTRY: SystemEntry = SystemEntry {
-    name: "projectile-state",
-    python: Some("ProjectileMotion"),
-    summary: "projectile from a position and momentum (ProjectileMotion::new)",
-    family: Family::Hamiltonian,
-    params: &[
-        P::vector(
-            "q0",
-            Length::Fixed(2),
-            D::demo_vector(&[0.0, 0.0]),
-            "m",
-            "initial position (x, y)",
-        )
-        .initial_state(),
-        P::vector(
-            "p0",
-            Length::Fixed(2),
-            D::demo_vector(&[10.0, 10.0]),
-            "kg m/s",
-            "initial momentum m v",
-        )
-        .initial_state(),
-        PROJECTILE_PARAMS[0],
-        PROJECTILE_PARAMS[1],
-        PROJECTILE_PARAMS[2],
-    ],
-    separable: true,
-    taylor_form: false,
-    default_method: Method::Yoshida4,
-    note: Some(DRAG_NOTE),
-    physics: Some(PROJECTILE_PHYSICS),
-    presentation: Presentation {
-        title: "Projectile (from a state)",
-        ..PROJECTILE_PRESENTATION
-    },
-    build: |v| {
-        Ok(Box::new(Hamiltonian(ProjectileMotion::new(
-            v.vector("q0")?,
-            v.vector("p0")?,
-            v.scalar("m")?,
-            v.scalar("g")?,
-            v.scalar("drag_coeff")?,
-        )?)))
-    },
-};
+catalogue_static! {
+    /// The catalogue entry of [`ProjectileMotion::new`].
+    pub static PROJECTILE_STATE_ENTRY: SystemEntry = SystemEntry {
+        name: "projectile-state",
+        python: Some("ProjectileMotion"),
+        summary: "projectile from a position and momentum (ProjectileMotion::new)",
+        family: Family::Hamiltonian,
+        params: &[
+            P::vector(
+                "q0",
+                Length::Fixed(2),
+                D::demo_vector(&[0.0, 0.0]),
+                "m",
+                "initial position (x, y)",
+            )
+            .initial_state(),
+            P::vector(
+                "p0",
+                Length::Fixed(2),
+                D::demo_vector(&[10.0, 10.0]),
+                "kg m/s",
+                "initial momentum m v",
+            )
+            .initial_state(),
+            PROJECTILE_PARAMS[0],
+            PROJECTILE_PARAMS[1],
+            PROJECTILE_PARAMS[2],
+        ],
+        separable: true,
+        taylor_form: false,
+        default_method: Method::Yoshida4,
+        note: Some(DRAG_NOTE),
+        physics: Some(PROJECTILE_PHYSICS),
+        presentation: Presentation {
+            title: "Projectile (from a state)",
+            ..PROJECTILE_PRESENTATION
+        },
+        build: |v| {
+            Ok(Box::new(Hamiltonian(ProjectileMotion::new(
+                v.vector("q0")?,
+                v.vector("p0")?,
+                v.scalar("m")?,
+                v.scalar("g")?,
+                v.scalar("drag_coeff")?,
+            )?)))
+        },
+    };
+}
 
-/// The catalogue entry of [`ProjectileMotion::from_launch`].
-pub const PROJECTILE_ENTRY: SystemEntry = SystemEntry {
-    name: "projectile",
-    python: Some("ProjectileMotion.from_launch"),
-    summary: "projectile launched from (0, height), optional quadratic drag \
-              (ProjectileMotion::from_launch)",
-    family: Family::Hamiltonian,
-    params: &[
-        P::scalar(
-            "speed",
-            D::demo_scalar(20.0),
-            "m/s",
-            Range::NON_NEGATIVE,
-            "launch speed",
-        ),
-        P::scalar(
-            "angle_deg",
-            D::demo_scalar(45.0),
-            "deg",
-            Range::ANY,
-            "launch angle above the horizontal",
-        ),
-        PROJECTILE_PARAMS[0],
-        PROJECTILE_PARAMS[1],
-        PROJECTILE_PARAMS[2],
-        P::scalar("height", D::scalar(0.0), "m", Range::ANY, "launch height"),
-    ],
-    separable: true,
-    taylor_form: false,
-    default_method: Method::Yoshida4,
-    note: Some(DRAG_NOTE),
-    physics: Some(PROJECTILE_PHYSICS),
-    // Started from a speed and an angle, not from a state: the state's units said here.
-    presentation: Presentation {
-        state_units: Some(("m", "kg m/s")),
-        ..PROJECTILE_PRESENTATION
-    },
-    build: |v| {
-        Ok(Box::new(Hamiltonian(ProjectileMotion::from_launch(
-            v.scalar("speed")?,
-            v.scalar("angle_deg")?,
-            v.scalar("m")?,
-            v.scalar("g")?,
-            v.scalar("drag_coeff")?,
-            v.scalar("height")?,
-        )?)))
-    },
-};
+catalogue_static! {
+    /// The catalogue entry of [`ProjectileMotion::from_launch`].
+    pub static PROJECTILE_ENTRY: SystemEntry = SystemEntry {
+        name: "projectile",
+        python: Some("ProjectileMotion.from_launch"),
+        summary: "projectile launched from (0, height), optional quadratic drag \
+                  (ProjectileMotion::from_launch)",
+        family: Family::Hamiltonian,
+        params: &[
+            P::scalar(
+                "speed",
+                D::demo_scalar(20.0),
+                "m/s",
+                Range::NON_NEGATIVE,
+                "launch speed",
+            ),
+            P::scalar(
+                "angle_deg",
+                D::demo_scalar(45.0),
+                "deg",
+                Range::ANY,
+                "launch angle above the horizontal",
+            ),
+            PROJECTILE_PARAMS[0],
+            PROJECTILE_PARAMS[1],
+            PROJECTILE_PARAMS[2],
+            P::scalar("height", D::scalar(0.0), "m", Range::ANY, "launch height"),
+        ],
+        separable: true,
+        taylor_form: false,
+        default_method: Method::Yoshida4,
+        note: Some(DRAG_NOTE),
+        physics: Some(PROJECTILE_PHYSICS),
+        // Started from a speed and an angle, not from a state: the state's units said here.
+        presentation: Presentation {
+            state_units: Some(("m", "kg m/s")),
+            ..PROJECTILE_PRESENTATION
+        },
+        build: |v| {
+            Ok(Box::new(Hamiltonian(ProjectileMotion::from_launch(
+                v.scalar("speed")?,
+                v.scalar("angle_deg")?,
+                v.scalar("m")?,
+                v.scalar("g")?,
+                v.scalar("drag_coeff")?,
+                v.scalar("height")?,
+            )?)))
+        },
+    };
+}

@@ -32,6 +32,7 @@ use crate::classical::core::error::{
 };
 use crate::classical::core::{Phase, Result};
 use crate::classical::integrators::Method;
+use crate::classical::model::entry::catalogue_static;
 use crate::classical::model::entry::Values;
 use crate::classical::model::entry::{
     Default as D, Family, Length, ParamSpec as P, Range, SystemEntry,
@@ -180,72 +181,74 @@ const RATTLEBACK_PHYSICS: &str =
     rattleback comes from its rolling contact with inertia axes turned from its geometric \
     axes, which RollingRattleback simulates.";
 
-/// The catalogue entry of [`Rattleback`].
-pub const RATTLEBACK_ENTRY: SystemEntry = SystemEntry {
-    name: "rattleback",
-    python: Some("Rattleback"),
-    summary: "reduced rattleback: the spin rocks, stops and reverses (Rattleback)",
-    family: Family::Ode,
-    params: &[
-        P::vector(
-            "n0",
-            Length::Fixed(3),
-            D::demo_vector(&[0.01, 0.01, 3.0]),
-            "rad/s",
-            "initial rates (rocking n1, rocking n2, spin n3)",
-        )
-        .initial_state(),
-        P::scalar("I1", D::scalar(1.0), "kg m^2", Range::POSITIVE, "moment 1"),
-        P::scalar("I2", D::scalar(1.5), "kg m^2", Range::POSITIVE, "moment 2"),
-        P::scalar(
-            "I3",
-            D::scalar(2.0),
-            "kg m^2",
-            Range::POSITIVE,
-            "moment 3 (spin axis)",
+catalogue_static! {
+    /// The catalogue entry of [`Rattleback`].
+    pub static RATTLEBACK_ENTRY: SystemEntry = SystemEntry {
+        name: "rattleback",
+        python: Some("Rattleback"),
+        summary: "reduced rattleback: the spin rocks, stops and reverses (Rattleback)",
+        family: Family::Ode,
+        params: &[
+            P::vector(
+                "n0",
+                Length::Fixed(3),
+                D::demo_vector(&[0.01, 0.01, 3.0]),
+                "rad/s",
+                "initial rates (rocking n1, rocking n2, spin n3)",
+            )
+            .initial_state(),
+            P::scalar("I1", D::scalar(1.0), "kg m^2", Range::POSITIVE, "moment 1"),
+            P::scalar("I2", D::scalar(1.5), "kg m^2", Range::POSITIVE, "moment 2"),
+            P::scalar(
+                "I3",
+                D::scalar(2.0),
+                "kg m^2",
+                Range::POSITIVE,
+                "moment 3 (spin axis)",
+            ),
+            P::scalar(
+                "gamma",
+                D::scalar(1.0),
+                "1/rad",
+                Range::ANY,
+                "coupling of the spin into rocking mode 1",
+            ),
+            P::scalar(
+                "mu",
+                D::scalar(0.01),
+                "1/s",
+                Range::NON_NEGATIVE,
+                "linear damping",
+            ),
+            P::scalar(
+                "eta",
+                D::scalar(0.01),
+                "s/rad^2",
+                Range::NON_NEGATIVE,
+                "cubic saturation of the rocking",
+            ),
+        ],
+        separable: false,
+        taylor_form: false,
+        default_method: Method::ImplicitMidpoint,
+        note: Some(
+            "y columns: n1, n2, n3; a phenomenological reduced model, not rolling mechanics; it \
+             is symmetric under (n1, n2, n3) -> (n1, -n2, -n3), so it reverses either sense of spin",
         ),
-        P::scalar(
-            "gamma",
-            D::scalar(1.0),
-            "1/rad",
-            Range::ANY,
-            "coupling of the spin into rocking mode 1",
-        ),
-        P::scalar(
-            "mu",
-            D::scalar(0.01),
-            "1/s",
-            Range::NON_NEGATIVE,
-            "linear damping",
-        ),
-        P::scalar(
-            "eta",
-            D::scalar(0.01),
-            "s/rad^2",
-            Range::NON_NEGATIVE,
-            "cubic saturation of the rocking",
-        ),
-    ],
-    separable: false,
-    taylor_form: false,
-    default_method: Method::ImplicitMidpoint,
-    note: Some(
-        "y columns: n1, n2, n3; a phenomenological reduced model, not rolling mechanics; it \
-         is symmetric under (n1, n2, n3) -> (n1, -n2, -n3), so it reverses either sense of spin",
-    ),
-    physics: Some(RATTLEBACK_PHYSICS),
-    presentation: Presentation {
-        title: "Rattleback (reduced model)",
-        symbols: &[],
-        time_unit: "s",
-        state_units: None,
-        drawing: Drawing::Spin,
-        pace: Pace::Own,
-        section_first: false,
-        energy_conserved: false,
-    },
-    build: |v| {
-        let params = RattlebackParams::from_values(v)?;
-        Ok(Box::new(Ode(Rattleback::new(v.vector("n0")?, params)?)))
-    },
-};
+        physics: Some(RATTLEBACK_PHYSICS),
+        presentation: Presentation {
+            title: "Rattleback (reduced model)",
+            symbols: &[],
+            time_unit: "s",
+            state_units: None,
+            drawing: Drawing::Spin,
+            pace: Pace::Own,
+            section_first: false,
+            energy_conserved: false,
+        },
+        build: |v| {
+            let params = RattlebackParams::from_values(v)?;
+            Ok(Box::new(Ode(Rattleback::new(v.vector("n0")?, params)?)))
+        },
+    };
+}

@@ -19,6 +19,7 @@
 use crate::classical::core::error::{check_len, check_positive, check_vector};
 use crate::classical::core::{Error, Phase, Result};
 use crate::classical::integrators::Method;
+use crate::classical::model::entry::catalogue_static;
 use crate::classical::model::entry::Values;
 use crate::classical::model::entry::{
     Default as D, Family, Length, ParamSpec as P, Range, SystemEntry,
@@ -310,73 +311,75 @@ const EULER_TOP_PHYSICS: &str =
          The implicit midpoint rule keeps energy and |L| exactly, so the computed curves \
          close.";
 
-/// The catalogue entry of [`EulerTop`].
-pub const EULER_TOP_ENTRY: SystemEntry = SystemEntry {
-    name: "euler-top",
-    python: Some("EulerTop"),
-    summary: "torque-free rigid body: Euler's equations and the orientation quaternion \
-              (EulerTop)",
-    family: Family::Ode,
-    params: &[
-        P::vector(
-            "omega0",
-            Length::Fixed(3),
-            D::demo_vector(&[0.01, 1.0, 0.01]),
-            "rad/s",
-            "initial body angular velocity",
-        )
-        .initial_state(),
-        P::scalar(
-            "I1",
-            D::scalar(1.0),
-            "kg m^2",
-            Range::POSITIVE,
-            "principal moment 1",
-        ),
-        P::scalar(
-            "I2",
-            D::scalar(2.0),
-            "kg m^2",
-            Range::POSITIVE,
-            "principal moment 2",
-        ),
-        P::scalar(
-            "I3",
-            D::scalar(3.0),
-            "kg m^2",
-            Range::POSITIVE,
-            "principal moment 3",
-        ),
-        P::vector(
-            "quat0",
-            Length::Fixed(4),
-            D::Absent,
-            "",
-            "initial orientation (w, x, y, z) (left out: identity)",
-        )
-        .initial_state(),
-    ],
-    separable: false,
-    taylor_form: false,
-    default_method: Method::ImplicitMidpoint,
-    note: Some("y columns: w1, w2, w3, qw, qx, qy, qz; spin near axis 2 to see the flips"),
-    physics: Some(EULER_TOP_PHYSICS),
-    presentation: Presentation {
-        title: "Euler top",
-        symbols: &[],
-        time_unit: "s",
-        state_units: None,
-        drawing: Drawing::InertiaBox,
-        pace: Pace::Own,
-        section_first: false,
-        energy_conserved: true,
-    },
-    build: |v| {
-        let params = EulerTopParams::from_values(v)?;
-        Ok(Box::new(Ode(EulerTop::new(
-            v.vector("omega0")?,
-            params,
-            v.opt_vector("quat0")?,
-        )?)))
-    },
-};
+catalogue_static! {
+    /// The catalogue entry of [`EulerTop`].
+    pub static EULER_TOP_ENTRY: SystemEntry = SystemEntry {
+        name: "euler-top",
+        python: Some("EulerTop"),
+        summary: "torque-free rigid body: Euler's equations and the orientation quaternion \
+                  (EulerTop)",
+        family: Family::Ode,
+        params: &[
+            P::vector(
+                "omega0",
+                Length::Fixed(3),
+                D::demo_vector(&[0.01, 1.0, 0.01]),
+                "rad/s",
+                "initial body angular velocity",
+            )
+            .initial_state(),
+            P::scalar(
+                "I1",
+                D::scalar(1.0),
+                "kg m^2",
+                Range::POSITIVE,
+                "principal moment 1",
+            ),
+            P::scalar(
+                "I2",
+                D::scalar(2.0),
+                "kg m^2",
+                Range::POSITIVE,
+                "principal moment 2",
+            ),
+            P::scalar(
+                "I3",
+                D::scalar(3.0),
+                "kg m^2",
+                Range::POSITIVE,
+                "principal moment 3",
+            ),
+            P::vector(
+                "quat0",
+                Length::Fixed(4),
+                D::Absent,
+                "",
+                "initial orientation (w, x, y, z) (left out: identity)",
+            )
+            .initial_state(),
+        ],
+        separable: false,
+        taylor_form: false,
+        default_method: Method::ImplicitMidpoint,
+        note: Some("y columns: w1, w2, w3, qw, qx, qy, qz; spin near axis 2 to see the flips"),
+        physics: Some(EULER_TOP_PHYSICS),
+        presentation: Presentation {
+            title: "Euler top",
+            symbols: &[],
+            time_unit: "s",
+            state_units: None,
+            drawing: Drawing::InertiaBox,
+            pace: Pace::Own,
+            section_first: false,
+            energy_conserved: true,
+        },
+        build: |v| {
+            let params = EulerTopParams::from_values(v)?;
+            Ok(Box::new(Ode(EulerTop::new(
+                v.vector("omega0")?,
+                params,
+                v.opt_vector("quat0")?,
+            )?)))
+        },
+    };
+}

@@ -75,6 +75,7 @@ use crate::classical::core::trig::sin_cos;
 use crate::classical::core::{Error, Phase, Result};
 use crate::classical::integrators::Method;
 use crate::classical::lagrangian::{forward_jacobian, Scalar};
+use crate::classical::model::entry::catalogue_static;
 use crate::classical::model::entry::Values;
 use crate::classical::model::entry::{
     Bound, Default as D, Family, Length, ParamSpec as P, Range, SystemEntry,
@@ -896,129 +897,131 @@ const ROLLING_DISK_PHYSICS: &str =
     rate Ω² = 4g/(a sin θ), its centre stays still (Moffatt's spinning coin). The \
     ever-faster spin-down of Euler's disk needs dissipation, which this model leaves out.";
 
-/// The catalogue entry of [`RollingRattleback`].
-pub const ROLLING_RATTLEBACK_ENTRY: SystemEntry = SystemEntry {
-    name: "rolling-rattleback",
-    python: Some("RollingRattleback"),
-    summary: "rattleback rolling without slipping: the nonholonomic rigid-body equations of an \
-              ellipsoid whose inertia axes are turned from its geometric axes",
-    family: Family::Ode,
-    params: &[
-        P::vector(
-            "omega0",
-            Length::Fixed(3),
-            D::demo_vector(&[0.0, 0.0, -3.0]),
-            "rad/s",
-            "initial angular velocity, body frame (z: the spin about the body's vertical)",
-        )
-        .initial_state(),
-        P::scalar(
-            "a",
-            D::scalar(0.2),
-            "m",
-            Range::POSITIVE,
-            "semi-axis along the body's long axis x",
+catalogue_static! {
+    /// The catalogue entry of [`RollingRattleback`].
+    pub static ROLLING_RATTLEBACK_ENTRY: SystemEntry = SystemEntry {
+        name: "rolling-rattleback",
+        python: Some("RollingRattleback"),
+        summary: "rattleback rolling without slipping: the nonholonomic rigid-body equations of an \
+                  ellipsoid whose inertia axes are turned from its geometric axes",
+        family: Family::Ode,
+        params: &[
+            P::vector(
+                "omega0",
+                Length::Fixed(3),
+                D::demo_vector(&[0.0, 0.0, -3.0]),
+                "rad/s",
+                "initial angular velocity, body frame (z: the spin about the body's vertical)",
+            )
+            .initial_state(),
+            P::scalar(
+                "a",
+                D::scalar(0.2),
+                "m",
+                Range::POSITIVE,
+                "semi-axis along the body's long axis x",
+            ),
+            P::scalar(
+                "b",
+                D::scalar(0.03),
+                "m",
+                Range::POSITIVE,
+                "semi-axis along y",
+            ),
+            P::scalar(
+                "c",
+                D::scalar(0.02),
+                "m",
+                Range::POSITIVE,
+                "semi-axis along the vertical z",
+            ),
+            P::scalar(
+                "h",
+                D::scalar(0.01),
+                "m",
+                Range::ANY,
+                "height of the ellipsoid's centre above the centre of mass (between -c and c)",
+            ),
+            P::scalar("m", D::scalar(1.0), "kg", Range::POSITIVE, "mass"),
+            P::scalar(
+                "I1",
+                D::scalar(KL_I1),
+                "kg m^2",
+                Range::POSITIVE,
+                "principal moment about the axis turned by delta from x",
+            ),
+            P::scalar(
+                "I2",
+                D::scalar(KL_I2),
+                "kg m^2",
+                Range::POSITIVE,
+                "principal moment about the axis turned by delta from y",
+            ),
+            P::scalar(
+                "I3",
+                D::scalar(1.7e-3),
+                "kg m^2",
+                Range::POSITIVE,
+                "principal moment about z",
+            ),
+            P::scalar(
+                "delta",
+                D::scalar(KL_DELTA),
+                "rad",
+                Range::ANY,
+                "angle about z from the geometric axes to the principal inertia axes",
+            ),
+            P::scalar(
+                "g",
+                D::scalar(9.81),
+                "m/s^2",
+                Range::NON_NEGATIVE,
+                "gravitational acceleration",
+            ),
+            P::vector(
+                "quat0",
+                Length::Fixed(4),
+                D::Absent,
+                "",
+                "initial orientation (w, x, y, z) (left out: tilted 0.5 degrees in roll and pitch)",
+            )
+            .initial_state(),
+        ],
+        separable: false,
+        taylor_form: false,
+        default_method: Method::Dop853,
+        note: Some(
+            "y columns: w1, w2, w3 (body), qw, qx, qy, qz, contact x, y; defaults: Kane & \
+             Levinson's body; spin -3 reverses, +3 does not",
         ),
-        P::scalar(
-            "b",
-            D::scalar(0.03),
-            "m",
-            Range::POSITIVE,
-            "semi-axis along y",
-        ),
-        P::scalar(
-            "c",
-            D::scalar(0.02),
-            "m",
-            Range::POSITIVE,
-            "semi-axis along the vertical z",
-        ),
-        P::scalar(
-            "h",
-            D::scalar(0.01),
-            "m",
-            Range::ANY,
-            "height of the ellipsoid's centre above the centre of mass (between -c and c)",
-        ),
-        P::scalar("m", D::scalar(1.0), "kg", Range::POSITIVE, "mass"),
-        P::scalar(
-            "I1",
-            D::scalar(KL_I1),
-            "kg m^2",
-            Range::POSITIVE,
-            "principal moment about the axis turned by delta from x",
-        ),
-        P::scalar(
-            "I2",
-            D::scalar(KL_I2),
-            "kg m^2",
-            Range::POSITIVE,
-            "principal moment about the axis turned by delta from y",
-        ),
-        P::scalar(
-            "I3",
-            D::scalar(1.7e-3),
-            "kg m^2",
-            Range::POSITIVE,
-            "principal moment about z",
-        ),
-        P::scalar(
-            "delta",
-            D::scalar(KL_DELTA),
-            "rad",
-            Range::ANY,
-            "angle about z from the geometric axes to the principal inertia axes",
-        ),
-        P::scalar(
-            "g",
-            D::scalar(9.81),
-            "m/s^2",
-            Range::NON_NEGATIVE,
-            "gravitational acceleration",
-        ),
-        P::vector(
-            "quat0",
-            Length::Fixed(4),
-            D::Absent,
-            "",
-            "initial orientation (w, x, y, z) (left out: tilted 0.5 degrees in roll and pitch)",
-        )
-        .initial_state(),
-    ],
-    separable: false,
-    taylor_form: false,
-    default_method: Method::Dop853,
-    note: Some(
-        "y columns: w1, w2, w3 (body), qw, qx, qy, qz, contact x, y; defaults: Kane & \
-         Levinson's body; spin -3 reverses, +3 does not",
-    ),
-    physics: Some(ROLLING_RATTLEBACK_PHYSICS),
-    presentation: Presentation {
-        title: "Rolling rattleback",
-        symbols: &[],
-        time_unit: "s",
-        state_units: None,
-        drawing: Drawing::Rolling {
-            shape: Shape::Ellipsoid,
+        physics: Some(ROLLING_RATTLEBACK_PHYSICS),
+        presentation: Presentation {
+            title: "Rolling rattleback",
+            symbols: &[],
+            time_unit: "s",
+            state_units: None,
+            drawing: Drawing::Rolling {
+                shape: Shape::Ellipsoid,
+            },
+            pace: Pace::Fixed {
+                method: Method::Rk4,
+                dt: 1e-4,
+                steps_per_frame: 167,
+                energy_error: 1e-8,
+            },
+            section_first: false,
+            energy_conserved: true,
         },
-        pace: Pace::Fixed {
-            method: Method::Rk4,
-            dt: 1e-4,
-            steps_per_frame: 167,
-            energy_error: 1e-8,
+        build: |v| {
+            let params = RollingRattlebackParams::from_values(v)?;
+            Ok(Box::new(Ode(RollingRattleback::new(
+                v.vector("omega0")?,
+                params,
+                v.opt_vector("quat0")?,
+            )?)))
         },
-        section_first: false,
-        energy_conserved: true,
-    },
-    build: |v| {
-        let params = RollingRattlebackParams::from_values(v)?;
-        Ok(Box::new(Ode(RollingRattleback::new(
-            v.vector("omega0")?,
-            params,
-            v.opt_vector("quat0")?,
-        )?)))
-    },
-};
+    };
+}
 
 const DISK_PARAMS: [P; 3] = [
     P::scalar("a", D::scalar(0.05), "m", Range::POSITIVE, "radius"),
@@ -1066,89 +1069,93 @@ const DISK_PRESENTATION: Presentation = Presentation {
     energy_conserved: true,
 };
 
-/// The catalogue entry of [`RollingDisk`].
-pub const ROLLING_DISK_ENTRY: SystemEntry = SystemEntry {
-    name: "rolling-disk",
-    python: Some("RollingDisk"),
-    summary: "thin uniform disk rolling without slipping on its rim (Euler's disk without \
-              dissipation)",
-    family: Family::Ode,
-    params: &[
-        P::vector(
-            "omega0",
-            Length::Fixed(3),
-            D::demo_vector(&[-4.0, 0.0, -15.0]),
-            "rad/s",
-            "initial angular velocity, body frame (z: about the disk's normal)",
-        )
-        .initial_state(),
-        DISK_PARAMS[0],
-        DISK_PARAMS[1],
-        DISK_PARAMS[2],
-        P::vector(
-            "quat0",
-            Length::Fixed(4),
-            D::Absent,
-            "",
-            "initial orientation (w, x, y, z) (left out: the disk 1 rad from the table)",
-        )
-        .initial_state(),
-    ],
-    separable: false,
-    taylor_form: false,
-    default_method: Method::Dop853,
-    note: Some("y columns: w1, w2, w3 (body), qw, qx, qy, qz, contact x, y"),
-    physics: Some(ROLLING_DISK_PHYSICS),
-    presentation: DISK_PRESENTATION,
-    build: |v| {
-        Ok(Box::new(Ode(RollingDisk::new(
-            v.vector("omega0")?,
-            disk_params(v)?,
-            v.opt_vector("quat0")?,
-        )?)))
-    },
-};
+catalogue_static! {
+    /// The catalogue entry of [`RollingDisk`].
+    pub static ROLLING_DISK_ENTRY: SystemEntry = SystemEntry {
+        name: "rolling-disk",
+        python: Some("RollingDisk"),
+        summary: "thin uniform disk rolling without slipping on its rim (Euler's disk without \
+                  dissipation)",
+        family: Family::Ode,
+        params: &[
+            P::vector(
+                "omega0",
+                Length::Fixed(3),
+                D::demo_vector(&[-4.0, 0.0, -15.0]),
+                "rad/s",
+                "initial angular velocity, body frame (z: about the disk's normal)",
+            )
+            .initial_state(),
+            DISK_PARAMS[0],
+            DISK_PARAMS[1],
+            DISK_PARAMS[2],
+            P::vector(
+                "quat0",
+                Length::Fixed(4),
+                D::Absent,
+                "",
+                "initial orientation (w, x, y, z) (left out: the disk 1 rad from the table)",
+            )
+            .initial_state(),
+        ],
+        separable: false,
+        taylor_form: false,
+        default_method: Method::Dop853,
+        note: Some("y columns: w1, w2, w3 (body), qw, qx, qy, qz, contact x, y"),
+        physics: Some(ROLLING_DISK_PHYSICS),
+        presentation: DISK_PRESENTATION,
+        build: |v| {
+            Ok(Box::new(Ode(RollingDisk::new(
+                v.vector("omega0")?,
+                disk_params(v)?,
+                v.opt_vector("quat0")?,
+            )?)))
+        },
+    };
+}
 
-/// The catalogue entry of [`RollingDisk::steady`].
-pub const ROLLING_DISK_STEADY_ENTRY: SystemEntry = SystemEntry {
-    name: "rolling-disk-steady",
-    python: Some("RollingDisk.steady"),
-    summary: "thin disk started on a steady rolling circle (tilt and precession rate; the spin \
-              from the closed form)",
-    family: Family::Ode,
-    params: &[
-        P::scalar(
-            "theta",
-            D::demo_scalar(1.0),
-            "rad",
-            TILT_RANGE,
-            "angle between the disk and the table (pi/2: upright)",
-        ),
-        P::scalar(
-            "precession",
-            D::demo_scalar(5.0),
-            "rad/s",
-            Range::ANY,
-            "rate at which the disk's normal turns about the vertical (non-zero)",
-        ),
-        DISK_PARAMS[0],
-        DISK_PARAMS[1],
-        DISK_PARAMS[2],
-    ],
-    separable: false,
-    taylor_form: false,
-    default_method: Method::Dop853,
-    note: Some("y columns: w1, w2, w3 (body), qw, qx, qy, qz, contact x, y"),
-    physics: Some(ROLLING_DISK_PHYSICS),
-    presentation: Presentation {
-        title: "Rolling disk (steady circle)",
-        ..DISK_PRESENTATION
-    },
-    build: |v| {
-        Ok(Box::new(Ode(RollingDisk::steady(
-            disk_params(v)?,
-            v.scalar("theta")?,
-            v.scalar("precession")?,
-        )?)))
-    },
-};
+catalogue_static! {
+    /// The catalogue entry of [`RollingDisk::steady`].
+    pub static ROLLING_DISK_STEADY_ENTRY: SystemEntry = SystemEntry {
+        name: "rolling-disk-steady",
+        python: Some("RollingDisk.steady"),
+        summary: "thin disk started on a steady rolling circle (tilt and precession rate; the spin \
+                  from the closed form)",
+        family: Family::Ode,
+        params: &[
+            P::scalar(
+                "theta",
+                D::demo_scalar(1.0),
+                "rad",
+                TILT_RANGE,
+                "angle between the disk and the table (pi/2: upright)",
+            ),
+            P::scalar(
+                "precession",
+                D::demo_scalar(5.0),
+                "rad/s",
+                Range::ANY,
+                "rate at which the disk's normal turns about the vertical (non-zero)",
+            ),
+            DISK_PARAMS[0],
+            DISK_PARAMS[1],
+            DISK_PARAMS[2],
+        ],
+        separable: false,
+        taylor_form: false,
+        default_method: Method::Dop853,
+        note: Some("y columns: w1, w2, w3 (body), qw, qx, qy, qz, contact x, y"),
+        physics: Some(ROLLING_DISK_PHYSICS),
+        presentation: Presentation {
+            title: "Rolling disk (steady circle)",
+            ..DISK_PRESENTATION
+        },
+        build: |v| {
+            Ok(Box::new(Ode(RollingDisk::steady(
+                disk_params(v)?,
+                v.scalar("theta")?,
+                v.scalar("precession")?,
+            )?)))
+        },
+    };
+}

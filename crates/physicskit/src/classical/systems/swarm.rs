@@ -17,6 +17,7 @@ use crate::classical::core::trig::{sin_into_scaled, sin_into_sum_cos, sum_cos};
 use crate::classical::core::{check_items_fit, Error, Phase, Result, SimulationResult};
 use crate::classical::integrators::Ensemble;
 use crate::classical::integrators::{HamiltonianSystem, IntegrateOptions, Method};
+use crate::classical::model::entry::catalogue_static;
 use crate::classical::model::entry::{
     Default as D, Family, Length, ParamSpec as P, Range, SystemEntry,
 };
@@ -367,120 +368,124 @@ const SWARM_PRESENTATION: Presentation = Presentation {
     energy_conserved: true,
 };
 
-/// The catalogue entry of [`PendulumSwarm::new`].
-pub const SWARM_STATE_ENTRY: SystemEntry = SystemEntry {
-    name: "pendulum-swarm-state",
-    python: Some("PendulumSwarm"),
-    summary: "independent pendulums from explicit angles and momenta (PendulumSwarm::new)",
-    family: Family::Hamiltonian,
-    params: &[
-        P::vector(
-            "q0",
-            Length::Any,
-            D::demo_vector(&[1.0, 1.05, 1.0, 1.05]),
-            "rad",
-            "initial angles",
-        )
-        .initial_state(),
-        P::vector(
-            "p0",
-            Length::SameAs("q0"),
-            D::demo_vector(&[0.0, 0.0, 0.05, 0.05]),
-            "rad/s",
-            "initial momenta, one per angle",
-        )
-        .initial_state(),
-        G_OVER_L,
-    ],
-    separable: true,
-    taylor_form: false,
-    default_method: Method::Yoshida4,
-    note: None,
-    physics: Some(SWARM_PHYSICS),
-    presentation: Presentation {
-        title: "Pendulum swarm (from a state)",
-        ..SWARM_PRESENTATION
-    },
-    build: |v| {
-        Ok(Box::new(Hamiltonian(PendulumSwarm::new(
-            v.vector("q0")?,
-            v.vector("p0")?,
-            v.scalar("g_over_l")?,
-        )?)))
-    },
-};
+catalogue_static! {
+    /// The catalogue entry of [`PendulumSwarm::new`].
+    pub static SWARM_STATE_ENTRY: SystemEntry = SystemEntry {
+        name: "pendulum-swarm-state",
+        python: Some("PendulumSwarm"),
+        summary: "independent pendulums from explicit angles and momenta (PendulumSwarm::new)",
+        family: Family::Hamiltonian,
+        params: &[
+            P::vector(
+                "q0",
+                Length::Any,
+                D::demo_vector(&[1.0, 1.05, 1.0, 1.05]),
+                "rad",
+                "initial angles",
+            )
+            .initial_state(),
+            P::vector(
+                "p0",
+                Length::SameAs("q0"),
+                D::demo_vector(&[0.0, 0.0, 0.05, 0.05]),
+                "rad/s",
+                "initial momenta, one per angle",
+            )
+            .initial_state(),
+            G_OVER_L,
+        ],
+        separable: true,
+        taylor_form: false,
+        default_method: Method::Yoshida4,
+        note: None,
+        physics: Some(SWARM_PHYSICS),
+        presentation: Presentation {
+            title: "Pendulum swarm (from a state)",
+            ..SWARM_PRESENTATION
+        },
+        build: |v| {
+            Ok(Box::new(Hamiltonian(PendulumSwarm::new(
+                v.vector("q0")?,
+                v.vector("p0")?,
+                v.scalar("g_over_l")?,
+            )?)))
+        },
+    };
+}
 
-/// The catalogue entry of [`PendulumSwarm::from_box`].
-pub const SWARM_ENTRY: SystemEntry = SystemEntry {
-    name: "pendulum-swarm",
-    python: Some("PendulumSwarm.from_box"),
-    summary: "n independent pendulums filling a box in phase space (PendulumSwarm::from_box)",
-    family: Family::Hamiltonian,
-    params: &[
-        P::scalar(
-            "q_center",
-            D::demo_scalar(1.0),
-            "rad",
-            Range::ANY,
-            "centre angle of the box",
-        ),
-        P::scalar(
-            "p_center",
-            D::demo_scalar(0.0),
-            "rad/s",
-            Range::ANY,
-            "centre momentum of the box",
-        ),
-        P::scalar(
-            "dq",
-            D::demo_scalar(0.05),
-            "rad",
-            Range::NON_NEGATIVE,
-            "box width in q",
-        ),
-        P::scalar(
-            "dp",
-            D::demo_scalar(0.05),
-            "rad/s",
-            Range::NON_NEGATIVE,
-            "box height in p",
-        ),
-        P::integer(
-            "n",
-            D::integer(1000),
-            Range::at_least(1.0),
-            "number of pendulums",
-        ),
-        G_OVER_L,
-        P::integer(
-            "seed",
-            D::integer(0),
-            Range::NON_NEGATIVE,
-            "seed of the reproducible uniform fill",
-        ),
-    ],
-    separable: true,
-    taylor_form: false,
-    default_method: Method::Yoshida4,
-    note: Some("q and p have one column per pendulum; use --stride for long runs"),
-    physics: Some(SWARM_PHYSICS),
-    // Filled from a box, not from a state: the state's units said here.
-    presentation: Presentation {
-        state_units: Some(("rad", "rad/s")),
-        ..SWARM_PRESENTATION
-    },
-    build: |v| {
-        Ok(Box::new(Hamiltonian(PendulumSwarm::from_box(
-            v.scalar("q_center")?,
-            v.scalar("p_center")?,
-            v.scalar("dq")?,
-            v.scalar("dp")?,
-            v.count("n")?,
-            v.scalar("g_over_l")?,
-            v.count("seed")? as u64,
-        )?)))
-    },
-};
+catalogue_static! {
+    /// The catalogue entry of [`PendulumSwarm::from_box`].
+    pub static SWARM_ENTRY: SystemEntry = SystemEntry {
+        name: "pendulum-swarm",
+        python: Some("PendulumSwarm.from_box"),
+        summary: "n independent pendulums filling a box in phase space (PendulumSwarm::from_box)",
+        family: Family::Hamiltonian,
+        params: &[
+            P::scalar(
+                "q_center",
+                D::demo_scalar(1.0),
+                "rad",
+                Range::ANY,
+                "centre angle of the box",
+            ),
+            P::scalar(
+                "p_center",
+                D::demo_scalar(0.0),
+                "rad/s",
+                Range::ANY,
+                "centre momentum of the box",
+            ),
+            P::scalar(
+                "dq",
+                D::demo_scalar(0.05),
+                "rad",
+                Range::NON_NEGATIVE,
+                "box width in q",
+            ),
+            P::scalar(
+                "dp",
+                D::demo_scalar(0.05),
+                "rad/s",
+                Range::NON_NEGATIVE,
+                "box height in p",
+            ),
+            P::integer(
+                "n",
+                D::integer(1000),
+                Range::at_least(1.0),
+                "number of pendulums",
+            ),
+            G_OVER_L,
+            P::integer(
+                "seed",
+                D::integer(0),
+                Range::NON_NEGATIVE,
+                "seed of the reproducible uniform fill",
+            ),
+        ],
+        separable: true,
+        taylor_form: false,
+        default_method: Method::Yoshida4,
+        note: Some("q and p have one column per pendulum; use --stride for long runs"),
+        physics: Some(SWARM_PHYSICS),
+        // Filled from a box, not from a state: the state's units said here.
+        presentation: Presentation {
+            state_units: Some(("rad", "rad/s")),
+            ..SWARM_PRESENTATION
+        },
+        build: |v| {
+            Ok(Box::new(Hamiltonian(PendulumSwarm::from_box(
+                v.scalar("q_center")?,
+                v.scalar("p_center")?,
+                v.scalar("dq")?,
+                v.scalar("dp")?,
+                v.count("n")?,
+                v.scalar("g_over_l")?,
+                v.count("seed")? as u64,
+            )?)))
+        },
+    };
+}
 
 #[cfg(test)]
 mod polygon_tests {

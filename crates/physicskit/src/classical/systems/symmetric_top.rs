@@ -52,6 +52,7 @@ use crate::classical::integrators::Method;
 use crate::classical::lagrangian::{
     singular_mass_matrix, FieldScalar, Lagrangian, LagrangianEngine, Scalar,
 };
+use crate::classical::model::entry::catalogue_static;
 use crate::classical::model::entry::Values;
 use crate::classical::model::entry::{
     Default as D, Family, Length, ParamSpec as P, Range, SystemEntry,
@@ -372,81 +373,83 @@ const HEAVY_TOP_PHYSICS: &str =
          Depending on the start, the tip of the axis draws waves, loops or, started from rest \
          in φ, cusps on the unit sphere.";
 
-/// The catalogue entry of [`HeavySymmetricTop`].
-pub const HEAVY_TOP_ENTRY: SystemEntry = SystemEntry {
-    name: "heavy-top",
-    python: Some("HeavySymmetricTop"),
-    summary: "heavy symmetric top on a fixed point, Euler angles (phi, theta, psi) \
-              (HeavySymmetricTop)",
-    family: Family::Lagrangian,
-    params: &[
-        P::vector(
-            "angles0",
-            Length::Fixed(3),
-            D::demo_vector(&[0.0, 0.5, 0.0]),
-            "rad",
-            "initial (phi, theta, psi)",
-        )
-        .initial_state(),
-        P::vector(
-            "angledots0",
-            Length::Fixed(3),
-            D::demo_vector(&[0.0, 0.0, 20.0]),
-            "rad/s",
-            "initial rates (phidot, thetadot, psidot)",
-        )
-        .initial_state(),
-        P::scalar(
-            "I1",
-            D::scalar(1.0),
-            "kg m^2",
-            Range::POSITIVE,
-            "transverse moment of inertia about the pivot",
-        ),
-        P::scalar(
-            "I3",
-            D::scalar(0.5),
-            "kg m^2",
-            Range::POSITIVE,
-            "axial moment of inertia",
-        ),
-        P::scalar("M", D::scalar(1.0), "kg", Range::POSITIVE, "mass"),
-        P::scalar(
-            "l",
-            D::scalar(1.0),
-            "m",
-            Range::ANY,
-            "pivot to centre of mass",
-        ),
-        P::scalar(
-            "g",
-            D::scalar(9.81),
-            "m/s^2",
-            Range::ANY,
-            "gravitational acceleration",
-        ),
-    ],
-    separable: false,
-    taylor_form: true,
-    default_method: Method::ImplicitMidpoint,
-    note: Some("p holds the angle rates, as in the spec"),
-    physics: Some(HEAVY_TOP_PHYSICS),
-    presentation: Presentation {
-        title: "Heavy symmetric top",
-        symbols: &["\\phi", "\\theta", "\\psi"],
-        time_unit: "s",
-        state_units: None,
-        drawing: Drawing::TopAxis,
-        pace: Pace::Own,
-        section_first: false,
-        energy_conserved: true,
-    },
-    build: |v| {
-        let params = SymmetricTopParams::from_values(v)?;
-        Ok(Box::new(Erased(HeavySymmetricTop::new(
-            v.vector("angles0")?,
-            v.vector("angledots0")?,
-            params,
-        )?)))
-    },
-};
+catalogue_static! {
+    /// The catalogue entry of [`HeavySymmetricTop`].
+    pub static HEAVY_TOP_ENTRY: SystemEntry = SystemEntry {
+        name: "heavy-top",
+        python: Some("HeavySymmetricTop"),
+        summary: "heavy symmetric top on a fixed point, Euler angles (phi, theta, psi) \
+                  (HeavySymmetricTop)",
+        family: Family::Lagrangian,
+        params: &[
+            P::vector(
+                "angles0",
+                Length::Fixed(3),
+                D::demo_vector(&[0.0, 0.5, 0.0]),
+                "rad",
+                "initial (phi, theta, psi)",
+            )
+            .initial_state(),
+            P::vector(
+                "angledots0",
+                Length::Fixed(3),
+                D::demo_vector(&[0.0, 0.0, 20.0]),
+                "rad/s",
+                "initial rates (phidot, thetadot, psidot)",
+            )
+            .initial_state(),
+            P::scalar(
+                "I1",
+                D::scalar(1.0),
+                "kg m^2",
+                Range::POSITIVE,
+                "transverse moment of inertia about the pivot",
+            ),
+            P::scalar(
+                "I3",
+                D::scalar(0.5),
+                "kg m^2",
+                Range::POSITIVE,
+                "axial moment of inertia",
+            ),
+            P::scalar("M", D::scalar(1.0), "kg", Range::POSITIVE, "mass"),
+            P::scalar(
+                "l",
+                D::scalar(1.0),
+                "m",
+                Range::ANY,
+                "pivot to centre of mass",
+            ),
+            P::scalar(
+                "g",
+                D::scalar(9.81),
+                "m/s^2",
+                Range::ANY,
+                "gravitational acceleration",
+            ),
+        ],
+        separable: false,
+        taylor_form: true,
+        default_method: Method::ImplicitMidpoint,
+        note: Some("p holds the angle rates, as in the spec"),
+        physics: Some(HEAVY_TOP_PHYSICS),
+        presentation: Presentation {
+            title: "Heavy symmetric top",
+            symbols: &["\\phi", "\\theta", "\\psi"],
+            time_unit: "s",
+            state_units: None,
+            drawing: Drawing::TopAxis,
+            pace: Pace::Own,
+            section_first: false,
+            energy_conserved: true,
+        },
+        build: |v| {
+            let params = SymmetricTopParams::from_values(v)?;
+            Ok(Box::new(Erased(HeavySymmetricTop::new(
+                v.vector("angles0")?,
+                v.vector("angledots0")?,
+                params,
+            )?)))
+        },
+    };
+}

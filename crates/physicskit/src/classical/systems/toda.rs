@@ -57,6 +57,7 @@ use crate::classical::core::error::{check_positive, check_vector};
 use crate::classical::core::{Error, Phase, Result};
 use crate::classical::integrators::lanes::{LanesForce, Real, SplittingLanes};
 use crate::classical::integrators::{HamiltonianSystem, MassInv, Method};
+use crate::classical::model::entry::catalogue_static;
 use crate::classical::model::entry::{
     Default as D, Family, Length, ParamSpec as P, Range, SystemEntry,
 };
@@ -364,68 +365,70 @@ const TODA_PHYSICS: &str =
          kind of lattice with a polynomial spring: it is only close to integrable, which is \
          why its energy nearly, but not exactly, returns.";
 
-/// The catalogue entry of [`TodaLattice`].
-pub const TODA_ENTRY: SystemEntry = SystemEntry {
-    name: "toda",
-    python: Some("TodaLattice"),
-    summary: "periodic Toda lattice H = sum p^2/2 + (a/b) sum exp(-b (q_{i+1} - q_i)), \
-              completely integrable (TodaLattice)",
-    family: Family::Hamiltonian,
-    params: &[
-        P::vector(
-            "q0",
-            Length::Any,
-            D::demo_vector(&[0.0; 8]),
-            "length",
-            "initial positions; the ring has one particle per entry (>= 2)",
-        )
-        .initial_state(),
-        P::vector(
-            "p0",
-            Length::SameAs("q0"),
-            D::demo_vector(&[1.5, 0.0, 0.0, 0.0, -0.5, 0.0, 0.0, -1.0]),
-            "momentum",
-            "initial momenta, one per particle",
-        )
-        .initial_state(),
-        P::scalar(
-            "a",
-            D::scalar(1.0),
-            "force",
-            Range::POSITIVE,
-            "bond strength: stiffness a b",
-        ),
-        P::scalar(
-            "b",
-            D::scalar(1.0),
-            "1/length",
-            Range::POSITIVE,
-            "bond anharmonicity",
-        ),
-    ],
-    separable: true,
-    taylor_form: false,
-    default_method: Method::Yoshida4,
-    note: Some("conserved_quantities: the n eigenvalues of Flaschka's Lax matrix"),
-    physics: Some(TODA_PHYSICS),
-    presentation: Presentation {
-        title: "Toda lattice",
-        symbols: &["q"],
-        time_unit: "time",
-        state_units: None,
-        drawing: Drawing::Chain {
-            ends: Ends::Periodic,
+catalogue_static! {
+    /// The catalogue entry of [`TodaLattice`].
+    pub static TODA_ENTRY: SystemEntry = SystemEntry {
+        name: "toda",
+        python: Some("TodaLattice"),
+        summary: "periodic Toda lattice H = sum p^2/2 + (a/b) sum exp(-b (q_{i+1} - q_i)), \
+                  completely integrable (TodaLattice)",
+        family: Family::Hamiltonian,
+        params: &[
+            P::vector(
+                "q0",
+                Length::Any,
+                D::demo_vector(&[0.0; 8]),
+                "length",
+                "initial positions; the ring has one particle per entry (>= 2)",
+            )
+            .initial_state(),
+            P::vector(
+                "p0",
+                Length::SameAs("q0"),
+                D::demo_vector(&[1.5, 0.0, 0.0, 0.0, -0.5, 0.0, 0.0, -1.0]),
+                "momentum",
+                "initial momenta, one per particle",
+            )
+            .initial_state(),
+            P::scalar(
+                "a",
+                D::scalar(1.0),
+                "force",
+                Range::POSITIVE,
+                "bond strength: stiffness a b",
+            ),
+            P::scalar(
+                "b",
+                D::scalar(1.0),
+                "1/length",
+                Range::POSITIVE,
+                "bond anharmonicity",
+            ),
+        ],
+        separable: true,
+        taylor_form: false,
+        default_method: Method::Yoshida4,
+        note: Some("conserved_quantities: the n eigenvalues of Flaschka's Lax matrix"),
+        physics: Some(TODA_PHYSICS),
+        presentation: Presentation {
+            title: "Toda lattice",
+            symbols: &["q"],
+            time_unit: "time",
+            state_units: None,
+            drawing: Drawing::Chain {
+                ends: Ends::Periodic,
+            },
+            pace: Pace::Own,
+            section_first: false,
+            energy_conserved: true,
         },
-        pace: Pace::Own,
-        section_first: false,
-        energy_conserved: true,
-    },
-    build: |v| {
-        Ok(Box::new(Hamiltonian(TodaLattice::new(
-            v.vector("q0")?,
-            v.vector("p0")?,
-            v.scalar("a")?,
-            v.scalar("b")?,
-        )?)))
-    },
-};
+        build: |v| {
+            Ok(Box::new(Hamiltonian(TodaLattice::new(
+                v.vector("q0")?,
+                v.vector("p0")?,
+                v.scalar("a")?,
+                v.scalar("b")?,
+            )?)))
+        },
+    };
+}

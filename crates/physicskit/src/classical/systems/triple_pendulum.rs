@@ -40,6 +40,7 @@ use crate::classical::core::error::{check_finite_scalar, check_positive};
 use crate::classical::core::{Error, Phase, Result};
 use crate::classical::integrators::Method;
 use crate::classical::lagrangian::{Lagrangian, LagrangianEngine, Scalar};
+use crate::classical::model::entry::catalogue_static;
 use crate::classical::model::entry::Values;
 use crate::classical::model::entry::{
     Default as D, Family, Length, ParamSpec as P, Range, SystemEntry,
@@ -223,85 +224,87 @@ const TRIPLE_PENDULUM_PHYSICS: &str =
      depends on the differences of the angles, so the Hamiltonian is not separable: the \
      implicit methods (implicit midpoint, Gauss–Legendre) keep the energy error bounded.";
 
-/// The catalogue entry of [`TriplePendulum`].
-pub const TRIPLE_PENDULUM_ENTRY: SystemEntry = SystemEntry {
-    name: "triple-pendulum",
-    python: Some("TriplePendulum"),
-    summary: "planar triple pendulum, angles from the downward vertical (TriplePendulum)",
-    family: Family::Lagrangian,
-    params: &[
-        P::vector(
-            "theta0",
-            Length::Fixed(3),
-            D::demo_vector(&[1.6, 1.8, 2.0]),
-            "rad",
-            "initial angles",
-        )
-        .initial_state(),
-        P::vector(
-            "thetadot0",
-            Length::Fixed(3),
-            D::demo_vector(&[0.0, 0.0, 0.0]),
-            "rad/s",
-            "initial angular velocities",
-        )
-        .initial_state(),
-        P::scalar("m1", D::scalar(1.0), "kg", Range::POSITIVE, "upper mass"),
-        P::scalar("m2", D::scalar(1.0), "kg", Range::POSITIVE, "middle mass"),
-        P::scalar("m3", D::scalar(1.0), "kg", Range::POSITIVE, "lower mass"),
-        P::scalar(
-            "l1",
-            D::scalar(1.0),
-            "m",
-            Range::POSITIVE,
-            "upper rod length",
-        ),
-        P::scalar(
-            "l2",
-            D::scalar(1.0),
-            "m",
-            Range::POSITIVE,
-            "middle rod length",
-        ),
-        P::scalar(
-            "l3",
-            D::scalar(1.0),
-            "m",
-            Range::POSITIVE,
-            "lower rod length",
-        ),
-        P::scalar(
-            "g",
-            D::scalar(9.81),
-            "m/s^2",
-            Range::ANY,
-            "gravitational acceleration",
-        ),
-    ],
-    separable: false,
-    taylor_form: true,
-    default_method: Method::ImplicitMidpoint,
-    note: Some("p holds thetadot, as in the double pendulum"),
-    physics: Some(TRIPLE_PENDULUM_PHYSICS),
-    presentation: Presentation {
-        title: "Triple pendulum",
-        symbols: &["\\theta_1", "\\theta_2", "\\theta_3"],
-        time_unit: "s",
-        state_units: None,
-        drawing: Drawing::Bobs {
-            springs: false,
-            scale: None,
+catalogue_static! {
+    /// The catalogue entry of [`TriplePendulum`].
+    pub static TRIPLE_PENDULUM_ENTRY: SystemEntry = SystemEntry {
+        name: "triple-pendulum",
+        python: Some("TriplePendulum"),
+        summary: "planar triple pendulum, angles from the downward vertical (TriplePendulum)",
+        family: Family::Lagrangian,
+        params: &[
+            P::vector(
+                "theta0",
+                Length::Fixed(3),
+                D::demo_vector(&[1.6, 1.8, 2.0]),
+                "rad",
+                "initial angles",
+            )
+            .initial_state(),
+            P::vector(
+                "thetadot0",
+                Length::Fixed(3),
+                D::demo_vector(&[0.0, 0.0, 0.0]),
+                "rad/s",
+                "initial angular velocities",
+            )
+            .initial_state(),
+            P::scalar("m1", D::scalar(1.0), "kg", Range::POSITIVE, "upper mass"),
+            P::scalar("m2", D::scalar(1.0), "kg", Range::POSITIVE, "middle mass"),
+            P::scalar("m3", D::scalar(1.0), "kg", Range::POSITIVE, "lower mass"),
+            P::scalar(
+                "l1",
+                D::scalar(1.0),
+                "m",
+                Range::POSITIVE,
+                "upper rod length",
+            ),
+            P::scalar(
+                "l2",
+                D::scalar(1.0),
+                "m",
+                Range::POSITIVE,
+                "middle rod length",
+            ),
+            P::scalar(
+                "l3",
+                D::scalar(1.0),
+                "m",
+                Range::POSITIVE,
+                "lower rod length",
+            ),
+            P::scalar(
+                "g",
+                D::scalar(9.81),
+                "m/s^2",
+                Range::ANY,
+                "gravitational acceleration",
+            ),
+        ],
+        separable: false,
+        taylor_form: true,
+        default_method: Method::ImplicitMidpoint,
+        note: Some("p holds thetadot, as in the double pendulum"),
+        physics: Some(TRIPLE_PENDULUM_PHYSICS),
+        presentation: Presentation {
+            title: "Triple pendulum",
+            symbols: &["\\theta_1", "\\theta_2", "\\theta_3"],
+            time_unit: "s",
+            state_units: None,
+            drawing: Drawing::Bobs {
+                springs: false,
+                scale: None,
+            },
+            pace: Pace::Own,
+            section_first: false,
+            energy_conserved: true,
         },
-        pace: Pace::Own,
-        section_first: false,
-        energy_conserved: true,
-    },
-    build: |v| {
-        let params = TriplePendulumParams::from_values(v)?;
-        Ok(Box::new(Erased(TriplePendulum::new(
-            v.vector("theta0")?,
-            v.vector("thetadot0")?,
-            params,
-        )?)))
-    },
-};
+        build: |v| {
+            let params = TriplePendulumParams::from_values(v)?;
+            Ok(Box::new(Erased(TriplePendulum::new(
+                v.vector("theta0")?,
+                v.vector("thetadot0")?,
+                params,
+            )?)))
+        },
+    };
+}
