@@ -66,6 +66,13 @@ fn entries_build_and_agree_with_their_systems() {
 fn ranges_agree_with_the_constructors() {
     for entry in SYSTEMS {
         let defaults = entry.values([]).unwrap();
+        // The way past the checks refuses an index past the entry's parameters.
+        let past = defaults.clone().set_unchecked(entry.params.len(), None);
+        assert!(
+            matches!(past, Err(Error::InvalidArgument { .. })),
+            "{}",
+            entry.name
+        );
         for (index, spec) in entry.params.iter().enumerate() {
             // A count that fixes another parameter's length (coupled oscillators' `n`)
             // cannot move alone: the default vectors would no longer fit it.

@@ -870,8 +870,8 @@ pub type Builder = fn(&Values) -> Result<Box<dyn super::erased::DynSystem>>;
 /// has one address and its builder is compiled once, here; a `const` in the library's
 /// unit-test harness. There a static would be compiled whether or not a test reads it (rustc
 /// compiles every static of a crate), and through its builder it would bring in every system
-/// with every method: a 12-minute compile of the harness against 40 s (`benchmarks/README.md`,
-/// "CI build time"). The library's own builds are unchanged.
+/// with every method, so the harness would compile as much as the library
+/// (`benchmarks/README.md`, "Where the build time goes").
 macro_rules! catalogue_static {
     ($(#[$attr:meta])* $vis:vis static $name:ident: $ty:ty = $value:expr;) => {
         $(#[$attr])*
