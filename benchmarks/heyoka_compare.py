@@ -1,18 +1,18 @@
 """Time to accuracy: our adaptive Taylor method against heyoka, on the same workloads, in one run.
 
-Run by ``benchmarks/heyoka_compare.sh`` (it makes heyoka's venv under /tmp and builds our
-side, the ``heyoka_taylor`` binary, in release). For each workload heyoka runs at the
-tolerances 1e-6, 1e-8, ... 1e-16 (its single ``tol``) and ours at every half decade from 1e-6
-to 1e-16 (rtol = atol = tol), each the best wall time of five after one untimed run (ours with its recurrences compiled by the
-JIT, and interpreted for comparison; the compile times of both sides are printed); errors are measured against a reference in
-extended precision: heyoka in real128 where its build has it, else in x87 long double (64-bit
-mantissa) at tolerance 1e-19, and the closed form for Kepler. The table then gives, for each of
-heyoka's runs, our cheapest run with an error at most heyoka's, and the ratio of the times
-(heyoka's over ours: above 1 we are faster); and the ratio to our run at heyoka's tolerance,
-whatever its error. Both sides take the same steps at the same tolerance (the same order and
-step-size rule), so their errors there differ in the roundings only; where ours comes out a
-hair above heyoka's, the finer grid finds our cheapest run below it instead of charging the
-next whole decade.
+Run by ``benchmarks/heyoka_compare.sh`` (it makes heyoka's venv under /tmp and builds our side,
+the ``heyoka_taylor`` binary, in release). For each workload heyoka runs at the tolerances 1e-6,
+1e-8, ... 1e-16 (its single ``tol``) and ours at every half decade from 1e-6 to 1e-16 (rtol =
+atol = tol), each the best wall time of five after one untimed run (ours with its recurrences
+compiled by the JIT, and interpreted for comparison; the compile times of both sides are
+printed); errors are measured against a reference in extended precision: heyoka in real128 where
+its build has it, else in x87 long double (64-bit mantissa) at tolerance 1e-19, and the closed
+form for Kepler. The table then gives, for each of heyoka's runs, our cheapest run with an error
+at most heyoka's, and the ratio of the times (heyoka's over ours: above 1 we are faster); and
+the ratio to our run at heyoka's tolerance, whatever its error. Both sides take the same steps
+at the same tolerance (the same order and step-size rule), so their errors there differ in the
+roundings only; where ours comes out a hair above heyoka's, the finer grid finds our cheapest
+run below it instead of charging the next whole decade.
 
 Workloads (the same starts as ``benchmarks/src/bin/heyoka_taylor.rs``):
   kepler     e = 0.5, a = 1 from perihelion, 100 orbits: final-state error (closed form)
@@ -20,22 +20,32 @@ Workloads (the same starts as ``benchmarks/src/bin/heyoka_taylor.rs``):
   hh-energy  the same start, t = 1000: largest energy error on a grid of unit spacing
   pendulum   double pendulum from rest at (2, 1.5) rad, t = 10, state (q, p): final error
 
-Batch workload (``batch``, with the ``heyoka_batch`` binary): 1000 Hénon–Heiles orbits at
-E = 1/6 launched on the surface x = 0 (a lattice of 50 heights y by 20 momenta p_x, none zero,
-p_y > 0; the binary prints the starts and heyoka starts from the same bits), t = 100, final
-states, at tolerances 1e-6, 1e-10, 1e-14. heyoka: ``taylor_adaptive_batch`` (batch size
+Batch workload (``batch``, with the ``heyoka_batch`` binary): 1000 Hénon–Heiles orbits at E =
+1/6 launched on the surface x = 0 (a lattice of 50 heights y by 20 momenta p_x, none zero, p_y >
+0; the binary prints the starts and heyoka starts from the same bits), t = 100, final states, at
+tolerances 1e-6, 1e-10, 1e-14. heyoka: ``taylor_adaptive_batch`` (batch size
 ``recommended_simd_size()``) over the orbits on one thread; on two threads,
 ``ensemble_propagate_until_batch`` (its own ensemble API, ``max_workers=2``: a copy of the
 integrator per batch) and two Python threads each stepping its own integrator over half the
 batches (heyoka releases the GIL while it propagates). Ours: the ensemble API
-(``ensemble::run``, method ``taylor``, at its default tolerances, the only ones its plan
-takes) and the compiled recurrences over the members with rayon, on one and two threads (see
-the binary), ours at every half decade from 1e-6 to 1e-14. Errors: the largest component error over every 20th orbit (50 orbits) against
-heyoka in real128 at tolerance 1e-32. The orbits are chaotic: over t = 100 the error of the
-most unstable of them grows from the tolerance by several orders of magnitude, alike for both.
+(``ensemble::run``, method ``taylor``, at its default tolerances, the only ones its plan takes)
+and the compiled recurrences over the members with rayon, on one and two threads (see the
+binary), ours at every half decade from 1e-6 to 1e-14. Errors: the largest component error over
+every 20th orbit (50 orbits) against heyoka in real128 at tolerance 1e-32. The orbits are
+chaotic: over t = 100 the error of the most unstable of them grows from the tolerance by several
+orders of magnitude, alike for both.
 
-Usage: heyoka_compare.py PATH_TO_heyoka_taylor [PATH_TO_heyoka_batch]
-       heyoka_compare.py --batch-only PATH_TO_heyoka_batch
+Rounds: this machine's speed comes in two modes, for both sides alike, and a run of a few
+milliseconds lands in one of them: the same binary, pinned to one core with address
+randomisation off, runs a quarter slower in some processes than in others (benchmarks/README.md,
+"Two speeds of the machine"), so one best-of-five can differ from the next for reasons that are
+not the code's. The whole measurement is therefore repeated in ``--rounds`` rounds (five by
+default), ours then heyoka's in each, and every time is the least over the rounds. Every round
+must give the same states and errors bit for bit (both sides are deterministic); a difference
+stops the script.
+
+Usage: heyoka_compare.py [--rounds N] PATH_TO_heyoka_taylor [PATH_TO_heyoka_batch]
+       heyoka_compare.py [--rounds N] --batch-only PATH_TO_heyoka_batch
 """
 
 import json
@@ -50,6 +60,8 @@ import numpy as np
 
 TOLERANCES = [1e-6, 1e-8, 1e-10, 1e-12, 1e-14, 1e-16]
 REPEATS = 5
+#: Rounds of the whole measurement (the module's docstring says why); ``--rounds`` sets it.
+ROUNDS = 5
 BATCH_TOLERANCES = [1e-6, 1e-10, 1e-14]
 BATCH_T_END = 100.0
 #: Every this many orbits of the batch gets a real128 reference (50 of the 1000): real128 runs
@@ -145,6 +157,46 @@ def best_time(f):
         f()
         best = min(best, time.perf_counter() - start)
     return best
+
+
+def run_binary(path):
+    """One run of one of our binaries: its JSON records."""
+    return [json.loads(line) for line in subprocess.run(
+        [path], check=True, capture_output=True, text=True).stdout.splitlines()]
+
+
+def same(a, b):
+    """Whether two results of different rounds are equal, bit for bit (NaN equal to NaN)."""
+    a, b = np.asarray(a), np.asarray(b)
+    if a.dtype.kind != "f" or b.dtype.kind != "f":
+        return a.shape == b.shape and bool(np.all(a == b))
+    return np.array_equal(a, b, equal_nan=True)
+
+
+def merge_rounds(rounds, key, timed):
+    """One record per ``key(record)`` from several rounds of a binary's records: each field in
+    ``timed`` the least over the rounds, every other field the first round's, which every
+    round must repeat."""
+    merged = {}
+    for records in rounds:
+        for o in records:
+            m = merged.setdefault(key(o), dict(o))
+            for field, value in o.items():
+                if field in timed:
+                    m[field] = min(m[field], value)
+                elif not same(m[field], value):
+                    raise SystemExit(f"our {key(o)}: {field} differs between rounds")
+    return list(merged.values())
+
+
+def least_of_rounds(label, runs):
+    """(least seconds, first round's compile seconds, first round's results) of heyoka's
+    rounds of one run; every round must give the first one's results."""
+    for seconds, _, out in runs[1:]:
+        for k, v in out.items():
+            if not same(v, runs[0][2][k]):
+                raise SystemExit(f"heyoka {label}: {k} differs between rounds")
+    return min(r[0] for r in runs), runs[0][1], runs[0][2]
 
 
 def run_heyoka(name, sys_, y0, t1, tol):
@@ -270,10 +322,22 @@ def run_heyoka_batch(hh, starts, tol):
 
 def batch(batch_bin):
     """The batch workload: heyoka's batch mode against our ensembles; prints a table."""
-    lines = [json.loads(line) for line in subprocess.run(
-        [batch_bin], check=True, capture_output=True, text=True).stdout.splitlines()]
-    starts = np.array(next(o for o in lines if o["kind"] == "starts")["states"]).reshape(-1, 4)
+    heyoka_rounds = {tol: [] for tol in BATCH_TOLERANCES}
+    our_rounds = []
     hh = systems()["hh-state"][0]
+    starts = None
+    for _ in range(ROUNDS):
+        our_rounds.append(run_binary(batch_bin))
+        if starts is None:
+            starts = np.array(next(o for o in our_rounds[0] if o["kind"] == "starts")["states"])
+            starts = starts.reshape(-1, 4)
+        for tol in BATCH_TOLERANCES:
+            heyoka_rounds[tol].append(run_heyoka_batch(hh, starts, tol))
+    lines = merge_rounds(
+        our_rounds,
+        lambda o: (o["kind"], o.get("tol", o.get("rtol")), o.get("threads")),
+        {"seconds", "build_seconds", "compile_seconds"},
+    )
     start = time.perf_counter()
     ref = batch_reference(hh, starts)
     print(f"\nbatch: {len(starts)} Hénon–Heiles orbits, t = {BATCH_T_END:g} (reference: heyoka "
@@ -300,8 +364,12 @@ def batch(batch_bin):
                   f"{one['error']:.1e} in {o['seconds'] * 1e3:.2f} ms{bits}")
     rows = []
     for tol in BATCH_TOLERANCES:
-        runs = run_heyoka_batch(hh, starts, tol)
-        for label, (seconds, finals, compile_seconds, size) in runs.items():
+        for label in heyoka_rounds[tol][0]:
+            runs = [r[label] for r in heyoka_rounds[tol]]
+            seconds, compile_seconds, out = least_of_rounds(
+                f"batch tol {tol:.0e}, {label}",
+                [(sec, compile, {"final": finals}) for sec, finals, compile, _ in runs])
+            finals, size = out["final"], runs[0][3]
             err = batch_error(finals, ref)
             print(f"  heyoka tol {tol:.0e}, {label}, batch {size}: {err:.1e} in "
                   f"{seconds * 1e3:.2f} ms (compile {compile_seconds * 1e3:.1f} ms)")
@@ -328,16 +396,31 @@ def batch(batch_bin):
 
 
 def main():
-    if sys.argv[1] == "--batch-only":
-        print(f"heyoka {hy.__version__}, numpy {np.__version__}")
-        batch(sys.argv[2])
+    global ROUNDS
+    args = sys.argv[1:]
+    if args[:1] == ["--rounds"]:
+        ROUNDS = int(args[1])
+        if ROUNDS < 1:
+            raise SystemExit("--rounds takes a positive number")
+        args = args[2:]
+    if args[0] == "--batch-only":
+        print(f"heyoka {hy.__version__}, numpy {np.__version__}, {ROUNDS} rounds")
+        batch(args[1])
         return
-    ours_bin = sys.argv[1]
-    ours = [json.loads(line) for line in subprocess.run(
-        [ours_bin], check=True, capture_output=True, text=True).stdout.splitlines()]
+    ours_bin = args[0]
+    workloads = systems()
+    our_rounds, heyoka_rounds = [], {}
+    for _ in range(ROUNDS):
+        our_rounds.append(run_binary(ours_bin))
+        for name, (sys_, y0, t1) in workloads.items():
+            for tol in TOLERANCES:
+                heyoka_rounds.setdefault((name, tol), []).append(
+                    run_heyoka(name, sys_, y0, t1, tol))
+    ours = merge_rounds(our_rounds, lambda o: (o["workload"], o["tol"]),
+                        {"seconds", "interpreted_seconds", "build_seconds", "compile_seconds"})
     rows = []
-    print(f"heyoka {hy.__version__}, numpy {np.__version__}")
-    for name, (sys_, y0, t1) in systems().items():
+    print(f"heyoka {hy.__version__}, numpy {np.__version__}, {ROUNDS} rounds")
+    for name, (sys_, y0, t1) in workloads.items():
         ref, label = reference(name, sys_, y0, t1)
         print(f"\n{name} (reference: {label})")
         mine = [o for o in ours if o["workload"] == name]
@@ -347,7 +430,8 @@ def main():
             else:
                 o["error"] = error_of(name, o["final"], ref, y0)
         for tol in TOLERANCES:
-            seconds, compile_seconds, out = run_heyoka(name, sys_, y0, t1, tol)
+            seconds, compile_seconds, out = least_of_rounds(
+                f"{name} tol {tol:.0e}", heyoka_rounds[(name, tol)])
             if name == "hh-energy":
                 err = error_of(name, out["grid"], None, y0)
             else:
@@ -377,8 +461,8 @@ def main():
     for name, tol, err, seconds, ours_txt, ratio, same_txt in rows:
         print(f"| {name} | {tol:.0e} | {err:.1e}, {seconds * 1e3:.3f} ms | {ours_txt} | {ratio} "
               f"| {same_txt} |")
-    if len(sys.argv) > 2:
-        batch(sys.argv[2])
+    if len(args) > 1:
+        batch(args[1])
 
 
 if __name__ == "__main__":

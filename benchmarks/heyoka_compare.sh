@@ -2,7 +2,8 @@
 # Time to accuracy against heyoka (benchmarks/heyoka_compare.py): makes heyoka's venv under
 # /tmp from PyPI (once), builds our side (the heyoka_taylor binary, and heyoka_batch for the
 # batch workload: 1000 Hénon–Heiles orbits against heyoka's batch mode) in release and runs
-# both. Time it on an idle machine: both sides are timed as the best of five.
+# both. Time it on an idle machine: both sides are timed as the best of five in each of five
+# rounds, and the least over the rounds counts (HEYOKA_ROUNDS=N sets the rounds).
 #   bash benchmarks/heyoka_compare.sh           every workload, then the batch
 #   bash benchmarks/heyoka_compare.sh --batch   the batch workload alone
 set -euo pipefail
@@ -12,11 +13,16 @@ if [ ! -x "$venv/bin/python" ] || ! "$venv/bin/python" -c 'import heyoka' 2>/dev
     python3 -m venv "$venv"
     "$venv/bin/pip" install -q heyoka numpy
 fi
+rounds=()
+if [ -n "${HEYOKA_ROUNDS:-}" ]; then
+    rounds=(--rounds "$HEYOKA_ROUNDS")
+fi
 if [ "${1:-}" = "--batch" ]; then
     cargo build --release -p physicskit-benchmarks --bin heyoka_batch
-    "$venv/bin/python" benchmarks/heyoka_compare.py --batch-only target/release/heyoka_batch
+    "$venv/bin/python" benchmarks/heyoka_compare.py "${rounds[@]}" --batch-only \
+        target/release/heyoka_batch
 else
     cargo build --release -p physicskit-benchmarks --bin heyoka_taylor --bin heyoka_batch
-    "$venv/bin/python" benchmarks/heyoka_compare.py target/release/heyoka_taylor \
+    "$venv/bin/python" benchmarks/heyoka_compare.py "${rounds[@]}" target/release/heyoka_taylor \
         target/release/heyoka_batch
 fi
