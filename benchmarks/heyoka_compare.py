@@ -258,7 +258,8 @@ def heyoka_batches(starts, size):
 
 def run_heyoka_batch(hh, starts, tol):
     """heyoka's batch mode on one thread, on two threads of its ensemble API and on two Python
-    threads: (seconds, final states, compile seconds, batch size) for each, keyed by label."""
+    threads: the batch size, and (seconds, compile seconds, {"final": final states}) for each,
+    keyed by label, as ``run_heyoka`` gives them."""
     size = hy.recommended_simd_size()
     batches = heyoka_batches(starts, size)
     n = len(starts)
@@ -317,7 +318,7 @@ def run_heyoka_batch(hh, starts, tol):
     times = {"1 thread": best_time(one_thread),
              "2 threads, ensemble API": best_time(ensemble_api),
              "2 threads, own integrators": best_time(two_threads)}
-    return {k: (times[k], out[k], compile_seconds, size) for k in times}
+    return size, {k: (times[k], compile_seconds, {"final": out[k]}) for k in times}
 
 
 def batch(batch_bin):
@@ -364,12 +365,11 @@ def batch(batch_bin):
                   f"{one['error']:.1e} in {o['seconds'] * 1e3:.2f} ms{bits}")
     rows = []
     for tol in BATCH_TOLERANCES:
-        for label in heyoka_rounds[tol][0]:
-            runs = [r[label] for r in heyoka_rounds[tol]]
+        size = heyoka_rounds[tol][0][0]
+        for label in heyoka_rounds[tol][0][1]:
             seconds, compile_seconds, out = least_of_rounds(
-                f"batch tol {tol:.0e}, {label}",
-                [(sec, compile, {"final": finals}) for sec, finals, compile, _ in runs])
-            finals, size = out["final"], runs[0][3]
+                f"batch tol {tol:.0e}, {label}", [r[1][label] for r in heyoka_rounds[tol]])
+            finals = out["final"]
             err = batch_error(finals, ref)
             print(f"  heyoka tol {tol:.0e}, {label}, batch {size}: {err:.1e} in "
                   f"{seconds * 1e3:.2f} ms (compile {compile_seconds * 1e3:.1f} ms)")
@@ -397,12 +397,15 @@ def batch(batch_bin):
 
 def main():
     global ROUNDS
+    usage = __doc__[__doc__.index("Usage:"):].strip()
     args = sys.argv[1:]
     if args[:1] == ["--rounds"]:
+        if len(args) < 2 or not args[1].isdigit() or int(args[1]) < 1:
+            raise SystemExit(f"--rounds takes a positive whole number\n{usage}")
         ROUNDS = int(args[1])
-        if ROUNDS < 1:
-            raise SystemExit("--rounds takes a positive number")
         args = args[2:]
+    if not args or args[:1] == ["--batch-only"] and len(args) < 2:
+        raise SystemExit(usage)
     if args[0] == "--batch-only":
         print(f"heyoka {hy.__version__}, numpy {np.__version__}, {ROUNDS} rounds")
         batch(args[1])

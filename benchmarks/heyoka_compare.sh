@@ -2,8 +2,8 @@
 # Time to accuracy against heyoka (benchmarks/heyoka_compare.py): makes heyoka's venv under
 # /tmp from PyPI (once), builds our side (the heyoka_taylor binary, and heyoka_batch for the
 # batch workload: 1000 Hénon–Heiles orbits against heyoka's batch mode) in release and runs
-# both. Time it on an idle machine: both sides are timed as the best of five in each of five
-# rounds, and the least over the rounds counts (HEYOKA_ROUNDS=N sets the rounds).
+# both. Time it on an idle machine: both sides are timed in rounds, the least over the rounds
+# counting (heyoka_compare.py says how many and why; HEYOKA_ROUNDS=N sets them).
 #   bash benchmarks/heyoka_compare.sh           every workload, then the batch
 #   bash benchmarks/heyoka_compare.sh --batch   the batch workload alone
 set -euo pipefail
