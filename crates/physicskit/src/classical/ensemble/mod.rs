@@ -80,7 +80,7 @@ mod taylor;
 
 use std::ops::ControlFlow;
 use std::sync::atomic::{AtomicBool, AtomicUsize, Ordering};
-use std::sync::Mutex;
+use std::sync::{Arc, Mutex};
 
 use ndarray::{Array1, Array2, Array3};
 use rayon::prelude::*;
@@ -323,25 +323,49 @@ fn build<S: MemberSource + ?Sized>(
     source.build(index, t0).map_err(|e| in_member(index, e))
 }
 
-/// The thread pool `plan.threads` asks for (`None`: rayon's global pool).
-fn pool(plan: &Plan) -> Result<Option<rayon::ThreadPool>> {
-    Ok(match plan.threads {
-        None => None,
+/// Thread pools kept for later runs, at most this many (the thread counts asked for last).
+const KEPT_POOLS: usize = 4;
+
+/// The pools of the last [`KEPT_POOLS`] thread counts asked for, the latest last. A pool built
+/// for each run would cost each run the start of its threads, and its threads after the first
+/// would join the work late (`benchmarks/README.md` has the figures). The split of the members
+/// does not depend on the pool, so neither do the results.
+static POOLS: Mutex<Vec<(usize, Arc<rayon::ThreadPool>)>> = Mutex::new(Vec::new());
+
+/// The thread pool `plan.threads` asks for (`None`: rayon's global pool): one kept from an
+/// earlier run of that many threads, else a new one, then kept.
+fn pool(plan: &Plan) -> Result<Option<Arc<rayon::ThreadPool>>> {
+    let k = match plan.threads {
+        None => return Ok(None),
         Some(0) => return Err(Error::invalid("threads", 0.0, "must be >= 1")),
-        Some(k) => Some(
-            rayon::ThreadPoolBuilder::new()
-                .num_threads(k)
-                .build()
-                .map_err(|e| Error::Unsupported {
-                    operation: "ensemble thread pool".into(),
-                    reason: e.to_string(),
-                })?,
-        ),
-    })
+        Some(k) => k,
+    };
+    let mut pools = POOLS
+        .lock()
+        .unwrap_or_else(std::sync::PoisonError::into_inner);
+    if let Some(i) = pools.iter().position(|(threads, _)| *threads == k) {
+        let kept = pools.remove(i);
+        let pool = Arc::clone(&kept.1);
+        pools.push(kept);
+        return Ok(Some(pool));
+    }
+    let pool = rayon::ThreadPoolBuilder::new()
+        .num_threads(k)
+        .build()
+        .map_err(|e| Error::Unsupported {
+            operation: "ensemble thread pool".into(),
+            reason: e.to_string(),
+        })?;
+    let pool = Arc::new(pool);
+    if pools.len() == KEPT_POOLS {
+        pools.remove(0);
+    }
+    pools.push((k, Arc::clone(&pool)));
+    Ok(Some(pool))
 }
 
 /// Runs `f` in `pool`, or in rayon's global pool.
-fn in_pool<R: Send>(pool: &Option<rayon::ThreadPool>, f: impl FnOnce() -> R + Send) -> R {
+fn in_pool<R: Send>(pool: &Option<Arc<rayon::ThreadPool>>, f: impl FnOnce() -> R + Send) -> R {
     match pool {
         Some(pool) => pool.install(f),
         None => f(),
@@ -479,7 +503,7 @@ fn run_prepared<S: MemberSource + ?Sized>(
     prepared: Prepared<'_, S>,
     plan: &Plan,
     observer: Option<&mut dyn Observer>,
-    pool: &Option<rayon::ThreadPool>,
+    pool: &Option<Arc<rayon::ThreadPool>>,
 ) -> Result<EnsembleResult> {
     let n = prepared.source.count();
     let dim = prepared.dim;
@@ -730,5 +754,56 @@ impl Observer for StopFlag<'_> {
         } else {
             ControlFlow::Continue(())
         }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::{pool, Plan, KEPT_POOLS, POOLS};
+    use std::sync::Arc;
+
+    fn plan(threads: Option<usize>) -> Plan {
+        Plan {
+            t_span: (0.0, 1.0),
+            dt: 0.1,
+            method: None,
+            stride: None,
+            reductions: vec![],
+            final_state: true,
+            threads,
+            tolerances: None,
+        }
+    }
+
+    /// A run on `k` threads takes the pool an earlier run of `k` threads left, of `k` threads;
+    /// the oldest of more than `KEPT_POOLS` counts is dropped; no count gives no pool of ours.
+    #[test]
+    fn pools_are_kept_per_thread_count_and_the_oldest_dropped() {
+        // Thread counts no other test asks for, so tests running alongside do not evict them
+        // between two calls here.
+        let counts: Vec<usize> = (0..=KEPT_POOLS).map(|i| 61 + i).collect();
+        let first = pool(&plan(Some(counts[0]))).unwrap().unwrap();
+        assert_eq!(first.current_num_threads(), counts[0]);
+        let again = pool(&plan(Some(counts[0]))).unwrap().unwrap();
+        assert!(
+            Arc::ptr_eq(&first, &again),
+            "a second pool of the same size was built"
+        );
+        for &k in &counts[1..] {
+            assert_eq!(
+                pool(&plan(Some(k))).unwrap().unwrap().current_num_threads(),
+                k
+            );
+        }
+        let kept: Vec<usize> = POOLS.lock().unwrap().iter().map(|(k, _)| *k).collect();
+        assert!(kept.len() <= KEPT_POOLS, "kept {kept:?}");
+        assert!(
+            !kept.contains(&counts[0]),
+            "the oldest count is still kept: {kept:?}"
+        );
+        let rebuilt = pool(&plan(Some(counts[0]))).unwrap().unwrap();
+        assert!(!Arc::ptr_eq(&first, &rebuilt), "the dropped pool came back");
+        assert!(pool(&plan(Some(0))).is_err());
+        assert!(pool(&plan(None)).unwrap().is_none());
     }
 }

@@ -208,45 +208,39 @@ fn radii<const L: usize>(c: &[[f64; L]], p: usize, rule: &StepRule) -> [f64; L] 
     rho
 }
 
-/// Whether every coefficient of each lane is finite: `x · 0` is a zero for finite `x` and
-/// NaN otherwise, so a lane's sum of them is a zero exactly when all its coefficients are
-/// finite, in whatever order they are summed. Four sums side by side, each along the lanes
-/// (so the vector registers hold lanes, and four chains of additions overlap).
+/// Whether each lane of `rows` is finite in every row: `x · 0` is a zero for finite `x` and NaN
+/// otherwise, so a lane's sum of them is a zero exactly when all its values are finite (lane
+/// by lane, so in vector registers).
 #[inline(always)]
-fn finite<const L: usize>(c: &[[f64; L]]) -> [bool; L] {
-    let mut zero = [[0.0_f64; L]; 4];
-    let mut quads = c.chunks_exact(4);
-    for quad in &mut quads {
-        for (zero, v) in zero.iter_mut().zip(quad) {
-            for l in 0..L {
-                zero[l] += v[l] * 0.0;
-            }
-        }
-    }
-    for (zero, v) in zero.iter_mut().zip(quads.remainder()) {
+fn finite_lanes<const L: usize>(rows: &[[f64; L]]) -> [bool; L] {
+    let mut zero = [0.0_f64; L];
+    for v in rows {
         for l in 0..L {
             zero[l] += v[l] * 0.0;
         }
     }
-    std::array::from_fn(|l| zero.iter().map(|z| z[l]).sum::<f64>() == 0.0)
+    zero.map(|z| z == 0.0)
 }
 
-/// Each lane's step from its radius `rho` and finiteness (zero where it takes none), and
-/// whether the rule refused a lane that steps: [`StepRule::try_step`] lane by lane.
+/// Whether every coefficient of lane `lane` in `c` is finite.
+fn lane_finite<const L: usize>(c: &[[f64; L]], lane: usize) -> bool {
+    c.iter().all(|v| v[lane].is_finite())
+}
+
+/// Each lane's step from its radius `rho` (zero where it takes none), and whether the rule
+/// refused a lane that steps: [`StepRule::try_step`] lane by lane, its coefficients taken as
+/// finite (`integrate_batch` finds those that are not after the update).
 #[inline(always)]
 fn steps<const L: usize>(
     batch: &Batch<L>,
     rho: [f64; L],
-    finite: [bool; L],
     stepping: [bool; L],
 ) -> ([f64; L], [bool; L]) {
     let mut h = [0.0; L];
     let mut refused = [false; L];
     for l in 0..L {
         let remaining = (batch.t_bound - batch.t[l]) - batch.t_lo[l];
-        let (step, ok) = batch
-            .rule
-            .try_step(rho[l], finite[l], batch.t[l], remaining);
+        let (step, ok) = batch.rule.try_step(rho[l], true, batch.t[l], remaining);
         h[l] = if stepping[l] && ok { step } else { 0.0 };
         refused[l] = stepping[l] && !ok;
     }
@@ -254,15 +248,19 @@ fn steps<const L: usize>(
 }
 
 /// The step's kernels compiled for one instruction set (called only where the CPU has its
-/// features): [`Batch::update`] (error-free products by FMA if `$fused`), [`steps`], and
-/// [`radii`] with [`finite`]. Rust contracts no multiplication and addition into an FMA, so
+/// features): [`Batch::update`] (error-free products by FMA if `$fused`), [`steps`] and
+/// [`radii`]. Rust contracts no multiplication and addition into an FMA, so
 /// each gives the plain build's bits.
 macro_rules! kernels {
     ($update:ident, $steps:ident, $radii:ident, $features:literal, $fused:literal) => {
         #[cfg(target_arch = "x86_64")]
         #[target_feature(enable = $features)]
-        fn $update<const L: usize>(batch: &mut Batch<L>, c: &[[f64; L]], h: &[f64; L]) {
-            batch.update::<$fused>(c, h);
+        fn $update<const L: usize>(
+            batch: &mut Batch<L>,
+            c: &[[f64; L]],
+            h: &[f64; L],
+        ) -> [bool; L] {
+            batch.update::<$fused>(c, h)
         }
 
         #[cfg(target_arch = "x86_64")]
@@ -270,20 +268,15 @@ macro_rules! kernels {
         fn $steps<const L: usize>(
             batch: &Batch<L>,
             rho: [f64; L],
-            finite: [bool; L],
             stepping: [bool; L],
         ) -> ([f64; L], [bool; L]) {
-            steps(batch, rho, finite, stepping)
+            steps(batch, rho, stepping)
         }
 
         #[cfg(target_arch = "x86_64")]
         #[target_feature(enable = $features)]
-        fn $radii<const L: usize>(
-            c: &[[f64; L]],
-            p: usize,
-            rule: &StepRule,
-        ) -> ([f64; L], [bool; L]) {
-            (radii(c, p, rule), finite(c))
+        fn $radii<const L: usize>(c: &[[f64; L]], p: usize, rule: &StepRule) -> [f64; L] {
+            radii(c, p, rule)
         }
     };
 }
@@ -300,7 +293,12 @@ kernels!(update_fma, steps_fma, radii_fma, "fma", true);
 impl Isa {
     /// The state update and the clocks ([`Batch::update`]) on this instruction set.
     #[inline]
-    fn update<const L: usize>(self, batch: &mut Batch<L>, c: &[[f64; L]], h: &[f64; L]) {
+    fn update<const L: usize>(
+        self,
+        batch: &mut Batch<L>,
+        c: &[[f64; L]],
+        h: &[f64; L],
+    ) -> [bool; L] {
         // SAFETY (each arm): `detect` chose the variant because the CPU has the features
         // the function enables.
         #[allow(unsafe_code)]
@@ -321,36 +319,30 @@ impl Isa {
         self,
         batch: &Batch<L>,
         rho: [f64; L],
-        finite: [bool; L],
         stepping: [bool; L],
     ) -> ([f64; L], [bool; L]) {
         // SAFETY (each arm): `detect` chose the variant because the CPU has the features
         // the function enables.
         #[allow(unsafe_code)]
         match self {
-            Self::Plain => steps(batch, rho, finite, stepping),
+            Self::Plain => steps(batch, rho, stepping),
             #[cfg(target_arch = "x86_64")]
-            Self::Fma => unsafe { steps_fma(batch, rho, finite, stepping) },
+            Self::Fma => unsafe { steps_fma(batch, rho, stepping) },
             #[cfg(target_arch = "x86_64")]
-            Self::Avx2 => unsafe { steps_avx2(batch, rho, finite, stepping) },
+            Self::Avx2 => unsafe { steps_avx2(batch, rho, stepping) },
             #[cfg(target_arch = "x86_64")]
-            Self::Avx512 => unsafe { steps_avx512(batch, rho, finite, stepping) },
+            Self::Avx512 => unsafe { steps_avx512(batch, rho, stepping) },
         }
     }
 
-    /// [`radii`] and [`finite`] on this instruction set.
+    /// [`radii`] on this instruction set.
     #[inline]
-    fn radii<const L: usize>(
-        self,
-        c: &[[f64; L]],
-        p: usize,
-        rule: &StepRule,
-    ) -> ([f64; L], [bool; L]) {
+    fn radii<const L: usize>(self, c: &[[f64; L]], p: usize, rule: &StepRule) -> [f64; L] {
         // SAFETY (each arm): `detect` chose the variant because the CPU has the features
         // the function enables.
         #[allow(unsafe_code)]
         match self {
-            Self::Plain => (radii(c, p, rule), finite(c)),
+            Self::Plain => radii(c, p, rule),
             #[cfg(target_arch = "x86_64")]
             Self::Fma => unsafe { radii_fma(c, p, rule) },
             #[cfg(target_arch = "x86_64")]
@@ -639,29 +631,26 @@ impl<const L: usize> Batch<L> {
         Serve::Free
     }
 
-    /// The step size of lane `l` toward the end on an expansion of radius `rho`
-    /// (`Taylor::expand`'s rule), or its error.
-    fn step_size(&self, l: usize, rho: f64, finite: bool) -> Result<f64> {
-        self.rule.step(
-            rho,
-            finite,
-            self.t[l],
-            (self.t_bound - self.t[l]) - self.t_lo[l],
-        )
+    /// The step size of lane `l` from the clock `(t, t_lo)` toward the end on an expansion of
+    /// radius `rho` whose coefficients are finite or not (`Taylor::expand`'s rule), or its
+    /// error.
+    fn step_size(&self, rho: f64, finite: bool, (t, t_lo): (f64, f64)) -> Result<f64> {
+        self.rule.step(rho, finite, t, (self.t_bound - t) - t_lo)
     }
 
     /// Takes the step of length `h[l]` in every lane on the coefficients `c`: the state
-    /// update and the clock (`Taylor::take`).
-    fn take(&mut self, c: &[[f64; L]], h: &[f64; L]) {
+    /// update and the clock (`Taylor::take`); returns whether each lane's new state is finite.
+    fn take(&mut self, c: &[[f64; L]], h: &[f64; L]) -> [bool; L] {
         std::mem::swap(&mut self.lo, &mut self.start_lo);
-        self.isa.update(self, c, h);
+        self.isa.update(self, c, h)
     }
 
     /// [`take`](Self::take)'s work after the swap of the low words: the state by
-    /// [`horner_lanes`] from the step's start, then [`clocks`](Self::clocks). Error-free
-    /// products by FMA if `FUSED`.
+    /// [`horner_lanes`] from the step's start, then [`clocks`](Self::clocks); returns whether
+    /// each lane's new state is finite ([`finite_lanes`]). Error-free products by FMA if
+    /// `FUSED`.
     #[inline(always)]
-    fn update<const FUSED: bool>(&mut self, c: &[[f64; L]], h: &[f64; L]) {
+    fn update<const FUSED: bool>(&mut self, c: &[[f64; L]], h: &[f64; L]) -> [bool; L] {
         horner_lanes::<L, FUSED>(
             c,
             self.order + 1,
@@ -671,6 +660,7 @@ impl<const L: usize> Batch<L> {
             &mut self.lo,
         );
         self.clocks(h);
+        finite_lanes(&self.y)
     }
 
     /// Each lane's clock moved on by its step `h` (to the end exactly where the step is what
@@ -767,15 +757,36 @@ pub fn integrate_batch<const L: usize, F: LanesField<L>>(
         }
         field.expand(&t, &batch.y, order)?;
         let c = field.coefficients();
-        let (rho, finite) = batch.isa.radii(c, order, &batch.rule);
-        let (h, refused) = batch.isa.steps(&batch, rho, finite, stepping);
+        // The step rule as if every coefficient were finite; the lanes whose coefficients are
+        // not are found after the update (below), which reads every coefficient.
+        let rho = batch.isa.radii(c, order, &batch.rule);
+        let (h, refused) = batch.isa.steps(&batch, rho, stepping);
         for l in 0..L {
             if refused[l] {
-                if let Err(e) = batch.step_size(l, rho[l], finite[l]) {
+                let clock = (batch.t[l], batch.t_lo[l]);
+                if let Err(e) = batch.step_size(rho[l], lane_finite(c, l), clock) {
                     batch.fail(l, e, &mut failed);
                 }
             }
         }
-        batch.take(c, &h);
+        let finite = batch.take(c, &h);
+        // A coefficient that is not finite leaves its lane's new state not finite: Horner's
+        // products and sums keep an infinity or a NaN (an infinity times the step, zero or
+        // not, is one or the other), and so do the error-free transformations of its
+        // compensated orders. So only the lanes whose state is not finite are checked, and
+        // those whose coefficients are not all finite fail with the scalar step's error: its
+        // rule refuses such an expansion before the update, whatever the radius, at the clock
+        // the step started from.
+        if finite.iter().all(|&f| f) {
+            continue;
+        }
+        for l in 0..L {
+            if stepping[l] && batch.member[l].is_some() && !finite[l] && !lane_finite(c, l) {
+                let clock = (batch.start[l], batch.start_t_lo[l]);
+                if let Err(e) = batch.step_size(rho[l], false, clock) {
+                    batch.fail(l, e, &mut failed);
+                }
+            }
+        }
     }
 }

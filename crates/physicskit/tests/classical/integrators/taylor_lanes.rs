@@ -167,6 +167,74 @@ fn sixteen_lanes_have_the_interpreters_bits() {
     lanes_equal_the_interpreter::<16>();
 }
 
+/// Member outputs (`[member][step]`, empty where none was given) and failures (in the order
+/// reported).
+type BatchRun = (Vec<Vec<Vec<f64>>>, Vec<(usize, Error)>);
+
+/// The members whose initial states are the rows of `starts` in a batch of `L` lanes on `grid`
+/// at `tolerances`.
+fn batch_run<const L: usize>(
+    program: &TaylorProgram,
+    starts: &[f64],
+    grid: &TimeGrid,
+    tolerances: Tolerances,
+) -> BatchRun {
+    let n = starts.len() / program.dim();
+    let mut outputs = vec![vec![Vec::new(); grid.n_steps() + 1]; n];
+    let mut failures = Vec::new();
+    integrate_batch(
+        &mut program.lanes::<L>(),
+        starts,
+        grid,
+        tolerances,
+        |m, step, y| outputs[m][step] = y.to_vec(),
+        |m, e| failures.push((m, e)),
+        || false,
+    )
+    .unwrap();
+    (outputs, failures)
+}
+
+/// Each member of `run` against the registry's stepper alone from its row of `starts`, from
+/// output to output as `integrate` drives it: every output the same bits; member `failing`
+/// fails where its run alone fails, with its error (which `check` inspects), and gives no
+/// output after; no other member fails.
+fn batch_equals_runs_alone(
+    program: &TaylorProgram,
+    starts: &[f64],
+    grid: &TimeGrid,
+    tolerances: Tolerances,
+    (outputs, failures): &BatchRun,
+    failing: usize,
+    check: impl Fn(&Error),
+) {
+    let (n, dim) = (outputs.len(), program.dim());
+    assert_eq!(failures.len(), 1, "{n} members: {failures:?}");
+    assert_eq!(failures[0].0, failing, "{n} members");
+    for (m, outputs) in outputs.iter().enumerate() {
+        let mut alone = TaylorStepper::on(Box::new(program.clone()), tolerances, grid.t_end());
+        let mut y = starts[dim * m..dim * (m + 1)].to_vec();
+        let mut failed = false;
+        for (step, got) in outputs.iter().enumerate().skip(1) {
+            match alone.advance(grid.time(step - 1), &mut y, grid.dt()) {
+                Err(want) if m == failing => {
+                    check(&want);
+                    assert_eq!(failures[0].1.to_string(), want.to_string(), "{n} members");
+                    assert!(got.is_empty(), "an output after the failure");
+                    failed = true;
+                    break;
+                }
+                run => run.unwrap(),
+            }
+            assert!(
+                got.iter().zip(&y).all(|(g, w)| same(*g, *w)),
+                "{n} members, member {m}, step {step}: {got:?} vs {y:?}"
+            );
+        }
+        assert_eq!(failed, m == failing, "{n} members, member {m}");
+    }
+}
+
 /// Hénon–Heiles members in a batch over t = 50 with outputs every 0.5, in `L` lanes at `tol`:
 /// every output of every member is the registry's stepper's alone, bit for bit, for member
 /// counts below, at and above a multiple of the lanes (members take different numbers of
@@ -189,44 +257,10 @@ fn batch_members_equal_their_runs_alone<const L: usize>(tol: f64) {
             })
             .collect();
         starts[4..8].copy_from_slice(&escaping);
-        let mut outputs = vec![vec![Vec::new(); grid.n_steps() + 1]; n];
-        let mut failures = Vec::new();
-        integrate_batch(
-            &mut program.lanes::<L>(),
-            &starts,
-            &grid,
-            tolerances,
-            |m, step, y| outputs[m][step] = y.to_vec(),
-            |m, e| failures.push((m, e)),
-            || false,
-        )
-        .unwrap();
-        assert_eq!(failures.len(), 1, "{n} members");
-        for m in 0..n {
-            // The registry's stepper from output to output, as `integrate` drives it.
-            let mut alone = TaylorStepper::on(Box::new(program.clone()), tolerances, grid.t_end());
-            let mut y = starts[4 * m..4 * m + 4].to_vec();
-            for (step, got) in outputs[m].iter().enumerate().skip(1) {
-                let run = alone.advance(grid.time(step - 1), &mut y, grid.dt());
-                if m == 1 {
-                    if let Err(want) = run {
-                        assert!(matches!(want, Error::StepSizeTooSmall { .. }), "{want}");
-                        assert_eq!(failures[0].0, 1);
-                        assert_eq!(failures[0].1.to_string(), want.to_string());
-                        assert!(got.is_empty(), "an output after the failure");
-                        break;
-                    }
-                    assert!(step < grid.n_steps(), "the escaping member did not fail");
-                    continue;
-                }
-                run.unwrap();
-                assert!(
-                    got.iter().zip(&y).all(|(g, w)| same(*g, *w)),
-                    "{L} lanes, tol {tol:e}, {n} members, member {m}, step {step}: {got:?} vs \
-                     {y:?}"
-                );
-            }
-        }
+        let run = batch_run::<L>(&program, &starts, &grid, tolerances);
+        batch_equals_runs_alone(&program, &starts, &grid, tolerances, &run, 1, |e| {
+            assert!(matches!(e, Error::StepSizeTooSmall { .. }), "{e}");
+        });
     }
 }
 
@@ -287,4 +321,36 @@ fn batch_members_of_odd_dimension_equal_their_runs_alone() {
             );
         }
     }
+}
+
+/// `q0' = ln q1`, `q1' = -1` over t = 1 from `q1 = 2 + …` (the logarithm's argument stays
+/// above 1), and member 3 from `q1 = -1`: its coefficients of `q0` above order 0 are NaN,
+/// while the step rule's norms (NaN-free maxima) give an infinite radius, so only the check
+/// for coefficients that are not finite stops it. In `L` lanes it fails with its own run's
+/// error, at the clock its step started from, and the others give their runs' outputs.
+fn a_member_with_coefficients_not_finite_fails_as_alone<const L: usize>() {
+    let f = vec![Expr::parse("(ln q1)").unwrap(), Expr::constant(-1.0)];
+    let ode = ExprOde::new(f, vec![], &[0.0, 2.0], None).unwrap();
+    let program = TaylorProgram::ode(&ode).unwrap();
+    let tolerances = Tolerances::new(1e-12, 1e-12).unwrap();
+    let grid = TimeGrid::new((0.0, 1.0), 0.25).unwrap();
+    let starts: Vec<f64> = (0..2 * L + 1)
+        .flat_map(|m| {
+            [
+                0.1 * m as f64,
+                if m == 3 { -1.0 } else { 2.0 + 0.1 * m as f64 },
+            ]
+        })
+        .collect();
+    let run = batch_run::<L>(&program, &starts, &grid, tolerances);
+    batch_equals_runs_alone(&program, &starts, &grid, tolerances, &run, 3, |e| {
+        assert!(e.to_string().contains("not finite"), "{e}");
+        assert_eq!(*e, run.1[0].1, "{L} lanes");
+    });
+}
+
+#[test]
+fn a_member_with_coefficients_not_finite_fails_as_alone_in_four_and_sixteen_lanes() {
+    a_member_with_coefficients_not_finite_fails_as_alone::<4>();
+    a_member_with_coefficients_not_finite_fails_as_alone::<16>();
 }
