@@ -2,6 +2,8 @@
 counts, bad members refused by index before any work, Python subclasses refused; the same for
 the SymPy engines' systems."""
 
+import multiprocessing
+
 import numpy as np
 import pytest
 
@@ -46,6 +48,21 @@ def test_one_two_and_three_threads_give_the_same_bits():
         for name in ("final_state", "trajectory", "energy_error"):
             assert getattr(runs[0], name).tobytes() == getattr(other, name).tobytes()
         assert runs[0].events["flip"].tobytes() == other.events["flip"].tobytes()
+
+
+def _final_state_bytes():
+    return _flips(threads=2).final_state.tobytes()
+
+
+def test_a_process_forked_after_a_run_builds_its_own_threads():
+    # Ensembles keep their thread pools between calls. A child forked after a run (the default
+    # of `multiprocessing` on Linux) inherits the kept pools but none of their threads: it
+    # must start its own, not wait forever on its parent's. A minute is ample for a run of a
+    # few milliseconds; a hang ends the test there instead of blocking the suite.
+    parent = _flips(threads=2)
+    with multiprocessing.get_context("fork").Pool(1) as child:
+        got = child.apply_async(_final_state_bytes).get(timeout=60)
+    assert got == parent.final_state.tobytes()
 
 
 def test_nan_in_member_731_of_1000_is_refused_by_index_before_any_integration():

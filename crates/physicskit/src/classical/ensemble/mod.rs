@@ -326,28 +326,65 @@ fn build<S: MemberSource + ?Sized>(
 /// Thread pools kept for later runs, at most this many (the thread counts asked for last).
 const KEPT_POOLS: usize = 4;
 
-/// The pools of the last [`KEPT_POOLS`] thread counts asked for, the latest last. A pool built
-/// for each run would cost each run the start of its threads, and its threads after the first
-/// would join the work late (`benchmarks/README.md` has the figures). The split of the members
-/// does not depend on the pool, so neither do the results.
-static POOLS: Mutex<Vec<(usize, Arc<rayon::ThreadPool>)>> = Mutex::new(Vec::new());
+/// Pools of more threads than this are built for each run and not kept: their idle threads
+/// would hold their stacks for the life of the process.
+const KEPT_POOL_THREADS: usize = 64;
+
+/// The pools of the last [`KEPT_POOLS`] thread counts asked for, the latest last, and the
+/// process that started their threads. A pool built for each run would cost each run the start
+/// of its threads, and its threads after the first would join the work late
+/// (`benchmarks/README.md` has the figures). The split of the members does not depend on the
+/// pool, so neither do the results.
+static POOLS: Mutex<KeptPools> = Mutex::new(KeptPools {
+    process: 0,
+    pools: Vec::new(),
+});
+
+/// See [`POOLS`].
+struct KeptPools {
+    process: u32,
+    pools: Vec<(usize, Arc<rayon::ThreadPool>)>,
+}
+
+impl KeptPools {
+    /// The kept pools, forgotten first if this process is not the one that built them: a
+    /// process forked from it (Python's `multiprocessing` on Linux) has none of their threads,
+    /// and a run on them would wait forever. Forgotten, not dropped: dropping one wakes its
+    /// threads, which this process does not have.
+    fn of_this_process(&mut self) -> &mut Vec<(usize, Arc<rayon::ThreadPool>)> {
+        let process = std::process::id();
+        if self.process != process {
+            std::mem::forget(std::mem::take(&mut self.pools));
+            self.process = process;
+        }
+        &mut self.pools
+    }
+}
 
 /// The thread pool `plan.threads` asks for (`None`: rayon's global pool): one kept from an
-/// earlier run of that many threads, else a new one, then kept.
+/// earlier run of that many threads, else a new one, then kept (up to [`KEPT_POOL_THREADS`]
+/// threads). The lock on the kept pools is not held while a pool starts its threads, so a
+/// process forked meanwhile does not find it locked.
 fn pool(plan: &Plan) -> Result<Option<Arc<rayon::ThreadPool>>> {
     let k = match plan.threads {
         None => return Ok(None),
         Some(0) => return Err(Error::invalid("threads", 0.0, "must be >= 1")),
         Some(k) => k,
     };
-    let mut pools = POOLS
-        .lock()
-        .unwrap_or_else(std::sync::PoisonError::into_inner);
-    if let Some(i) = pools.iter().position(|(threads, _)| *threads == k) {
-        let kept = pools.remove(i);
-        let pool = Arc::clone(&kept.1);
-        pools.push(kept);
-        return Ok(Some(pool));
+    let lock = || {
+        POOLS
+            .lock()
+            .unwrap_or_else(std::sync::PoisonError::into_inner)
+    };
+    {
+        let mut kept = lock();
+        let pools = kept.of_this_process();
+        if let Some(i) = pools.iter().position(|(threads, _)| *threads == k) {
+            let found = pools.remove(i);
+            let pool = Arc::clone(&found.1);
+            pools.push(found);
+            return Ok(Some(pool));
+        }
     }
     let pool = rayon::ThreadPoolBuilder::new()
         .num_threads(k)
@@ -357,10 +394,16 @@ fn pool(plan: &Plan) -> Result<Option<Arc<rayon::ThreadPool>>> {
             reason: e.to_string(),
         })?;
     let pool = Arc::new(pool);
-    if pools.len() == KEPT_POOLS {
-        pools.remove(0);
+    if k <= KEPT_POOL_THREADS {
+        let mut kept = lock();
+        let pools = kept.of_this_process();
+        // Another run may have kept a pool of `k` threads meanwhile: this one replaces it.
+        pools.retain(|(threads, _)| *threads != k);
+        if pools.len() == KEPT_POOLS {
+            pools.remove(0);
+        }
+        pools.push((k, Arc::clone(&pool)));
     }
-    pools.push((k, Arc::clone(&pool)));
     Ok(Some(pool))
 }
 
@@ -759,7 +802,7 @@ impl Observer for StopFlag<'_> {
 
 #[cfg(test)]
 mod tests {
-    use super::{pool, Plan, KEPT_POOLS, POOLS};
+    use super::{pool, Plan, KEPT_POOLS, KEPT_POOL_THREADS, POOLS};
     use std::sync::Arc;
 
     fn plan(threads: Option<usize>) -> Plan {
@@ -776,12 +819,14 @@ mod tests {
     }
 
     /// A run on `k` threads takes the pool an earlier run of `k` threads left, of `k` threads;
-    /// the oldest of more than `KEPT_POOLS` counts is dropped; no count gives no pool of ours.
+    /// the oldest of more than `KEPT_POOLS` counts is dropped; a pool of more than
+    /// `KEPT_POOL_THREADS` threads is not kept; pools kept by another process are not used; no
+    /// count gives no pool of ours.
     #[test]
     fn pools_are_kept_per_thread_count_and_the_oldest_dropped() {
         // Thread counts no other test asks for, so tests running alongside do not evict them
         // between two calls here.
-        let counts: Vec<usize> = (0..=KEPT_POOLS).map(|i| 61 + i).collect();
+        let counts: Vec<usize> = (0..=KEPT_POOLS).map(|i| 11 + i).collect();
         let first = pool(&plan(Some(counts[0]))).unwrap().unwrap();
         assert_eq!(first.current_num_threads(), counts[0]);
         let again = pool(&plan(Some(counts[0]))).unwrap().unwrap();
@@ -795,7 +840,13 @@ mod tests {
                 k
             );
         }
-        let kept: Vec<usize> = POOLS.lock().unwrap().iter().map(|(k, _)| *k).collect();
+        let kept: Vec<usize> = POOLS
+            .lock()
+            .unwrap()
+            .pools
+            .iter()
+            .map(|(k, _)| *k)
+            .collect();
         assert!(kept.len() <= KEPT_POOLS, "kept {kept:?}");
         assert!(
             !kept.contains(&counts[0]),
@@ -803,6 +854,22 @@ mod tests {
         );
         let rebuilt = pool(&plan(Some(counts[0]))).unwrap().unwrap();
         assert!(!Arc::ptr_eq(&first, &rebuilt), "the dropped pool came back");
+        let large = KEPT_POOL_THREADS + 1;
+        let once = pool(&plan(Some(large))).unwrap().unwrap();
+        assert_eq!(once.current_num_threads(), large);
+        let twice = pool(&plan(Some(large))).unwrap().unwrap();
+        assert!(
+            !Arc::ptr_eq(&once, &twice),
+            "a pool of {large} threads was kept"
+        );
+        // Pools another process kept (as a child forked from it finds them) are not used.
+        let mine = pool(&plan(Some(counts[1]))).unwrap().unwrap();
+        POOLS.lock().unwrap().process ^= 1;
+        let own = pool(&plan(Some(counts[1]))).unwrap().unwrap();
+        assert!(
+            !Arc::ptr_eq(&mine, &own),
+            "a pool of another process was used"
+        );
         assert!(pool(&plan(Some(0))).is_err());
         assert!(pool(&plan(None)).unwrap().is_none());
     }
