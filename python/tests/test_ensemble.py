@@ -3,6 +3,7 @@ counts, bad members refused by index before any work, Python subclasses refused;
 the SymPy engines' systems."""
 
 import multiprocessing
+import os
 
 import numpy as np
 import pytest
@@ -54,6 +55,9 @@ def _final_state_bytes():
     return _flips(threads=2).final_state.tobytes()
 
 
+# Python 3.12+ warns on every fork of a process with threads; forking one is this test's point.
+@pytest.mark.skipif(not hasattr(os, "fork"), reason="needs fork")
+@pytest.mark.filterwarnings("ignore:.*fork.*:DeprecationWarning")
 def test_a_process_forked_after_a_run_builds_its_own_threads():
     # Ensembles keep their thread pools between calls. A child forked after a run (the default
     # of `multiprocessing` on Linux) inherits the kept pools but none of their threads: it
