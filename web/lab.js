@@ -414,11 +414,16 @@ function describeMethod() {
   const ev = m.evaluations_per_step === 1 ? what.replace(/s(?= of |$)/, "") : what;
   // An adaptive method's steps are its own (to the tolerance); dt spaces its outputs.
   const how = m.adaptive ? ` · adaptive: its own steps to the tolerance, an output every dt = ${$("dt").value}${timeUnit() ? ` ${timeUnit()}` : ""}` : "";
-  // The order the method steps at: Taylor's follows the tolerance (the core's rule, asked of
-  // the module), up to the catalogue's maximum.
-  const order = app.core.methodOrder(m.name, tolerance());
+  // The order the method steps at: Taylor's follows the tolerance and the system's equations
+  // (the core's rule, asked of the module), up to the catalogue's maximum. Parameters the
+  // system refuses leave it unknown (the run says why).
+  let order = null;
+  try {
+    order = app.core.methodOrder(app.entry.name, app.params, m.name, tolerance());
+  } catch { order = null; }
   const atTol = order === m.order ? "" : ` at this tolerance (at most ${m.order})`;
-  $("method-info").textContent = `order ${order}${atTol} · ${m.symplectic ? "symplectic" : "not symplectic"}${how} · ` +
+  const orderText = order === null ? `order up to ${m.order}` : `order ${order}${atTol}`;
+  $("method-info").textContent = `${orderText} · ${m.symplectic ? "symplectic" : "not symplectic"}${how} · ` +
     `${m.evaluations_per_step} ${ev} ${per}`;
   $("method-ref").textContent = m.reference;
 }

@@ -41,14 +41,25 @@ class Core {
     const len = this.x.pk_catalogue();
     return JSON.parse(this.text(this.x.pk_text_ptr(), len));
   }
+  /** The input buffer holding `system`, `params` (as JSON) and `method`; their lengths. */
+  putSetup(system, params, method) {
+    const name = utf8.encode(system);
+    const json = utf8.encode(JSON.stringify(params));
+    const how = utf8.encode(method ?? "");
+    const all = new Uint8Array(name.length + json.length + how.length);
+    all.set(name);
+    all.set(json, name.length);
+    all.set(how, name.length + json.length);
+    this.putBytes(all);
+    return [name.length, json.length, how.length];
+  }
   /**
-   * The order the method `name` steps at with the tolerance `tol` (rtol = atol): Taylor's
-   * order is chosen by its tolerance, every other method's is its catalogue order.
+   * The order the method `name` steps at on `system` with `params` (an object; missing names
+   * take the defaults) and the tolerance `tol` (rtol = atol): Taylor's order is chosen by its
+   * tolerance and the system's equations, every other method's is its catalogue order.
    */
-  methodOrder(name, tol) {
-    const bytes = utf8.encode(name);
-    this.putBytes(bytes);
-    const order = this.x.pk_method_order(bytes.length, tol);
+  methodOrder(system, params, name, tol) {
+    const order = this.x.pk_method_order(...this.putSetup(system, params, name), tol);
     if (order === 0) throw new Error(this.error());
     return order;
   }
@@ -58,17 +69,8 @@ class Core {
    * (rtol = atol; null: the lab's default).
    */
   build(system, params = {}, method = null, tol = null) {
-    const name = utf8.encode(system);
-    const json = utf8.encode(JSON.stringify(params));
-    const how = utf8.encode(method ?? "");
-    const all = new Uint8Array(name.length + json.length + how.length);
-    all.set(name);
-    all.set(json, name.length);
-    all.set(how, name.length + json.length);
-    this.putBytes(all);
-    const h = tol === null
-      ? this.x.pk_build(name.length, json.length, how.length)
-      : this.x.pk_build_tol(name.length, json.length, how.length, tol);
+    const lengths = this.putSetup(system, params, method);
+    const h = tol === null ? this.x.pk_build(...lengths) : this.x.pk_build_tol(...lengths, tol);
     if (h === 0) throw new Error(this.error());
     return new Lab(this, h);
   }

@@ -51,6 +51,8 @@ CHAOS_THRESHOLD: float
 DEFAULT_RENORMALIZE_EVERY: int
 """Steps between renormalizations when none is named (the core's
 `analysis::lyapunov::DEFAULT_RENORMALIZE_EVERY`)."""
+MAX_THREADS: int
+"""The most worker threads an ensemble may ask for (the core's `ensemble::MAX_THREADS`)."""
 
 _ResultTuple = tuple[_ArrayF64, _ArrayF64, int | None, _ArrayF64 | None, str, dict[str, Any]]
 _ParamValue = float | int | _ArrayF64 | str | None

@@ -283,10 +283,12 @@ fn execute<S: MemberSource + ?Sized>(
     }
 }
 
-/// Adds `ensemble` to the module.
+/// Adds `ensemble` and `MAX_THREADS` (the core's limit, so that Python refuses what the core
+/// would, before building anything) to the module.
 ///
 /// # Errors
 /// Python errors while registering.
 pub fn register(m: &Bound<'_, PyModule>) -> PyResult<()> {
+    m.add("MAX_THREADS", core_ensemble::MAX_THREADS)?;
     m.add_function(wrap_pyfunction!(ensemble, m)?)
 }

@@ -9,6 +9,7 @@ import numpy as np
 import pytest
 
 import physicskit.classical as pc
+from physicskit import _core
 
 THETA = np.linspace(-3.0, 3.0, 5)
 
@@ -135,6 +136,14 @@ def test_bad_arguments_are_refused():
         pc.crossing(0, 0.0, "sideways")
     with pytest.raises(ValueError, match="unknown system"):
         pc.ensemble("nope", (0, 1), 0.1, grid={"q0": [1.0]})
+    # Thread counts beyond the core's limit (which a Python int can exceed by any amount) are
+    # refused before any thread starts, naming the limit the core refuses beyond.
+    limit = _core.MAX_THREADS
+    assert limit >= 64
+    for bad in (0, limit + 1, 2**64, 10**30):
+        match = "threads must be >= 1" if bad == 0 else f"threads must be <= {limit}"
+        with pytest.raises(ValueError, match=match):
+            pc.ensemble("harmonic-oscillator", (0, 1), 0.1, grid={"q0": [1.0]}, threads=bad)
 
 
 def _henon_heiles_section(hh, energy, ys, pys):

@@ -58,7 +58,10 @@ def test_kepler_from_a_hamiltonian_engine_follows_the_closed_form(method):
     # tens of tol per orbit (the Rust tests measure it), so 1e-11 bounds it with room; an
     # expansion wrong in any order misses by far more.
     assert error < 1e-11, error
-    assert r.extra["order"] == 18  # ceil(-ln(1e-14)/2 + 1)
+    # The order weighs the recurrences' work against the step's length (the Rust tests check
+    # the choice): at least Jorba and Zou's ceil(-ln(1e-14)/2 + 1) = 18, the best order of a
+    # step made of products only, and at most the cap, 24.
+    assert 18 <= r.extra["order"] <= 24
 
 
 @pytest.mark.parametrize("method", TAYLOR)

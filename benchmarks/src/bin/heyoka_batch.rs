@@ -28,7 +28,7 @@ use physicskit_benchmarks::half_decades;
 
 use physicskit::classical::catalog;
 use physicskit::classical::ensemble::{self, Members, Plan};
-use physicskit::classical::integrators::taylor::{integrate_taylor, order_for};
+use physicskit::classical::integrators::taylor::{integrate_taylor, order_for, TaylorField};
 use physicskit::classical::symbolic::{native_lanes, trace_hamiltonian, Backend, TaylorProgram};
 use physicskit::classical::systems::HenonHeilesSystem;
 use physicskit::classical::{Error, Method, Result, Tolerances};
@@ -176,7 +176,7 @@ fn main() -> Result<()> {
     for &tol in &tolerances {
         lanes_compiles.push(lanes_compile(
             &traced,
-            order_for(&Tolerances::new(tol, tol)?),
+            order_for(&Tolerances::new(tol, tol)?, &traced.step_cost()),
         ));
     }
 
@@ -218,7 +218,7 @@ fn main() -> Result<()> {
 
     // At the ensemble's tolerances: the same bits as the ensemble (checked, not timed).
     let defaults = Tolerances::default();
-    program.compile_native(order_for(&defaults));
+    program.compile_native(order_for(&defaults, &program.step_cost()));
     let (finals, _) = compiled_run(&program, &starts, defaults, &pools[0])?;
     println!(
         "{{\"kind\": \"check\", \"compiled_equals_ensemble\": {}}}",
@@ -229,7 +229,7 @@ fn main() -> Result<()> {
     for &tol in &tolerances {
         let tolerances = Tolerances::new(tol, tol)?;
         let start = Instant::now();
-        let backend = program.compile_native(order_for(&tolerances));
+        let backend = program.compile_native(order_for(&tolerances, &program.step_cost()));
         let compile = start.elapsed().as_secs_f64();
         if backend != Backend::Native {
             eprintln!("tol {tol:e}: the recurrences were not compiled");

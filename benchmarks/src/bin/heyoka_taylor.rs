@@ -28,7 +28,7 @@ use std::time::Instant;
 
 use physicskit_benchmarks::half_decades;
 
-use physicskit::classical::integrators::taylor::{integrate_taylor, order_for};
+use physicskit::classical::integrators::taylor::{integrate_taylor, order_for, TaylorField};
 use physicskit::classical::symbolic::{trace_lagrangian, Expr, ExprHamiltonian};
 use physicskit::classical::symbolic::{Backend, TaylorProgram};
 use physicskit::classical::systems::DoublePendulumParams;
@@ -157,7 +157,7 @@ fn main() -> Result<()> {
             };
             let build = start.elapsed().as_secs_f64();
             let start = Instant::now();
-            let order = order_for(&tol_pair);
+            let order = order_for(&tol_pair, &program.step_cost());
             let backend = match options.form.as_deref() {
                 Some("compact") => program.compile_native_compact(order),
                 Some("unrolled") => program.compile_native_unrolled(order),

@@ -12,6 +12,7 @@ use clap::{Arg, ArgAction, ArgMatches, Args, Command, FromArgMatches, Parser, Su
 use physicskit::classical::analysis::lyapunov::DEFAULT_RENORMALIZE_EVERY;
 use physicskit::classical::analysis::sali::CHAOS_THRESHOLD;
 use physicskit::classical::catalog::{self, SYSTEMS};
+use physicskit::classical::ensemble::MAX_THREADS;
 use physicskit::classical::model::SystemEntry;
 use physicskit::classical::{Method, Tolerances};
 
@@ -174,8 +175,12 @@ pub struct EnsembleArgs {
         Tolerances::default().max_steps
     ))]
     pub max_steps: Option<String>,
-    /// Worker threads (default: one per core); the results do not depend on it.
-    #[arg(long, value_name = "N")]
+    /// Worker threads, 1 to [`MAX_THREADS`] (default: one per core); the results do
+    /// not depend on it.
+    #[arg(long, value_name = "N", help = format!(
+        "Worker threads, 1 to {MAX_THREADS} [default: one per core]; the results do not \
+         depend on it"
+    ))]
     pub threads: Option<usize>,
     /// Output file (.npz).
     #[arg(long, value_name = "FILE")]

@@ -108,19 +108,36 @@ pub extern "C" fn pk_catalogue() -> usize {
     })
 }
 
-/// The order the method named by the input's first `len` bytes steps at with the tolerance
-/// `tol` (`rtol = atol`; see [`method_order`]), or 0 on failure (the error says why).
+/// The order the method steps at on a system with the tolerance `tol` (`rtol = atol`; see
+/// [`method_order`]): the input bytes hold the system's name (`name_len` bytes), its
+/// parameters as a JSON object (`params_len` bytes) and the method's name (`method_len`
+/// bytes), one after another, as for [`pk_build`]. Returns 0 on failure (the error says why).
 #[no_mangle]
-pub extern "C" fn pk_method_order(len: usize, tol: f64) -> u32 {
-    with(
-        |r| match input_text(r, 0, len).and_then(|name| method_order(&name, tol)) {
+pub extern "C" fn pk_method_order(
+    name_len: usize,
+    params_len: usize,
+    method_len: usize,
+    tol: f64,
+) -> u32 {
+    with(|r| {
+        let order = input_text(r, 0, name_len).and_then(|system| {
+            let params = input_text(r, name_len, params_len)?;
+            let method = input_text(r, name_len + params_len, method_len)?;
+            method_order(
+                &system,
+                if params.is_empty() { "{}" } else { &params },
+                &method,
+                tol,
+            )
+        });
+        match order {
             Ok(order) => order,
             Err(message) => {
                 r.error = message;
                 0
             }
-        },
-    )
+        }
+    })
 }
 
 /// Address of the text buffer.

@@ -57,22 +57,35 @@ fn tolerances_for(method: Method, tol: f64) -> Result<Option<Tolerances>, String
     Ok(method.is_adaptive().then_some(tolerances))
 }
 
-/// The order the method `name` steps at with the lab's tolerance `tol` (`rtol = atol`): the
-/// Taylor method's order is chosen by its tolerances (`taylor::order_for`, the rule its
-/// stepper follows), every other method's is the one its catalogue row gives. The page's
-/// facts line shows it, so it asks here rather than repeat the rule.
+/// The order the method `name` steps at on the catalogue system `system`, built from its
+/// defaults overridden by the JSON object `params`, with the lab's tolerance `tol`
+/// (`rtol = atol`): the Taylor method's order is chosen by its tolerances and the work of its
+/// recurrences on that system (`taylor::order_for`, the rule its stepper follows), every other
+/// method's is the one its catalogue row gives. The page's facts line shows it, so it asks
+/// here rather than repeat the rule.
 ///
 /// # Errors
 /// An unknown method name, a `tol` that is not finite and positive, or one the Taylor method
-/// refuses (as its stepper does: `taylor::check_tolerances`).
-pub fn method_order(name: &str, tol: f64) -> Result<u32, String> {
+/// refuses (as its stepper does: `taylor::check_tolerances`); for `taylor`, an unknown system,
+/// refused parameters, or a system without a Taylor form, with the catalogue's message.
+pub fn method_order(system: &str, params: &str, name: &str, tol: f64) -> Result<u32, String> {
     let method = name
         .parse::<Method>()
         .map_err(|_| format!("no method is called `{name}`"))?;
     Ok(match tolerances_for(method, tol)? {
         Some(tolerances) if method == Method::Taylor => {
             taylor::check_tolerances(&tolerances).map_err(|e| e.to_string())?;
-            u32::try_from(taylor::order_for(&tolerances)).unwrap_or(u32::MAX)
+            let entry = catalog::find(system).map_err(|e| e.to_string())?;
+            let built = entry
+                .build_from(values_from_json(entry, params)?)
+                .map_err(|e| e.to_string())?;
+            let field = built
+                .dynamical()
+                .taylor_field()
+                .ok_or_else(|| format!("{} has no Taylor form", entry.name))?
+                .map_err(|e| e.to_string())?;
+            let order = taylor::order_for(&tolerances, &field.step_cost());
+            u32::try_from(order).unwrap_or(u32::MAX)
         }
         _ => method.order(),
     })

@@ -306,16 +306,19 @@ fn a_hostile_tolerance_is_refused_and_the_run_goes_on() {
     assert_eq!(lab.tolerance().to_bits(), 1e-7_f64.to_bits());
 }
 
-/// The facts line's order comes from untrusted input (a share link's method and tolerance):
-/// an unknown name, a tolerance that is not finite and positive, and one the Taylor stepper
-/// refuses (relative tolerance below 2^-54 or at least 1) are refused with a message naming
-/// them; every tolerance Taylor accepts gives an order within its range, and a fixed-step
-/// method has its catalogue order whatever the tolerance.
+/// The facts line's order comes from untrusted input (a share link's system, parameters,
+/// method and tolerance): an unknown name, a tolerance that is not finite and positive, one
+/// the Taylor stepper refuses (relative tolerance below 2^-54 or at least 1), an unknown
+/// system and refused parameters are refused with a message naming them; every tolerance
+/// Taylor accepts gives an order within its range, the order a run of that system at that
+/// tolerance reports; a fixed-step method has its catalogue order whatever the tolerance.
 #[test]
 fn method_order_refuses_hostile_input_by_name() {
-    use physicskit::classical::Method;
+    use physicskit::classical::catalog;
+    use physicskit::classical::integrators::IntegrateOptions;
+    use physicskit::classical::{Method, Tolerances};
     use physicskit_wasm::method_order;
-    let unknown = method_order("<script>", 1e-10).unwrap_err();
+    let unknown = method_order("kepler", "{}", "<script>", 1e-10).unwrap_err();
     assert!(unknown.contains("<script>"), "{unknown}");
     for tol in [
         f64::NAN,
@@ -327,16 +330,41 @@ fn method_order_refuses_hostile_input_by_name() {
         1.0,
         1e300,
     ] {
-        let refused = method_order("taylor", tol).unwrap_err();
+        let refused = method_order("kepler", "{}", "taylor", tol).unwrap_err();
         assert!(refused.contains("rtol"), "{tol}: {refused}");
     }
+    let system = method_order("<img>", "{}", "taylor", 1e-10).unwrap_err();
+    assert!(system.contains("<img>"), "{system}");
+    let params = method_order("kepler", r#"{"nope": 1}"#, "taylor", 1e-10).unwrap_err();
+    assert!(params.contains("nope"), "{params}");
     let max = Method::Taylor.order();
-    for tol in [1e-16, 1e-10, 1e-6, 0.5] {
-        let order = method_order("taylor", tol).unwrap();
-        assert!((2..=max).contains(&order), "{tol}: order {order}");
+    for name in ["kepler", "double-pendulum", "henon-heiles"] {
+        let entry = catalog::find(name).unwrap();
+        for tol in [1e-16, 1e-10, 1e-6, 0.5] {
+            let order = method_order(name, "{}", "taylor", tol).unwrap();
+            assert!((2..=max).contains(&order), "{name} at {tol}: order {order}");
+            let run = entry
+                .build_from(vec![])
+                .unwrap()
+                .integrate(
+                    (0.0, 0.01),
+                    0.01,
+                    Method::Taylor,
+                    IntegrateOptions {
+                        tolerances: Some(Tolerances::new(tol, tol).unwrap()),
+                        ..IntegrateOptions::default()
+                    },
+                )
+                .unwrap();
+            assert_eq!(
+                run.extra_scalar("order"),
+                Some(f64::from(order)),
+                "{name} at {tol}"
+            );
+        }
     }
     assert_eq!(
-        method_order("verlet", 1e300).unwrap(),
+        method_order("kepler", "{}", "verlet", 1e300).unwrap(),
         Method::Verlet.order()
     );
 }

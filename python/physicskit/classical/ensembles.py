@@ -347,7 +347,7 @@ def ensemble(
             "energy_error=True, events, max_lyapunov=True or sali=True, or keep final_state"
         )
     if threads is not None:
-        threads = as_int("threads", threads, minimum=1, maximum=4096)
+        threads = as_int("threads", threads, minimum=1, maximum=_core.MAX_THREADS)
     if chunk_size is not None:
         chunk_size = as_int("chunk_size", chunk_size, minimum=1)
     if not (isinstance(progress, (bool, np.bool_)) or callable(progress)):

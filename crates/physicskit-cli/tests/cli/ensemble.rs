@@ -102,12 +102,19 @@ fn the_npz_is_the_library_ensemble_shaped_by_the_grid() {
     );
 }
 
-/// Runs the oscillator's ensemble over `grid` for 1 s, which must fail with status 2 and
-/// leave no file; returns stderr.
+/// [`oscillator_fails_with`] over `grid`.
 fn oscillator_fails(grid: &str) -> String {
+    oscillator_fails_with(&["--grid", grid])
+}
+
+/// Runs the oscillator's ensemble with `args` for 1 s, which must fail with status 2 and leave
+/// no file; returns stderr.
+fn oscillator_fails_with(args: &[&str]) -> String {
     let dir = scratch();
-    let out = oscillator(dir.path(), &["--grid", grid, "--t1", "1"]);
-    assert_eq!(out.status.code(), Some(2));
+    let mut all = args.to_vec();
+    all.extend_from_slice(&["--t1", "1"]);
+    let out = oscillator(dir.path(), &all);
+    assert_eq!(out.status.code(), Some(2), "{}", stderr(&out));
     assert!(entries(dir.path()).is_empty());
     stderr(&out)
 }
@@ -254,6 +261,22 @@ fn bad_chaos_options_name_their_flag() {
         err.contains("yoshida4") && err.contains("double-pendulum"),
         "{err}"
     );
+}
+
+/// `--threads` outside 1 to the library's `MAX_THREADS` is refused with the flag's name and
+/// its limit, before any thread starts and with no file left; the help states the limit.
+#[test]
+fn thread_counts_beyond_the_library_limit_are_refused() {
+    let limit = ensemble::MAX_THREADS;
+    for bad in [0, limit + 1, usize::MAX] {
+        let message = oscillator_fails_with(&["--grid", "q0=0:1:3", "--threads", &bad.to_string()]);
+        assert!(message.contains("threads"), "{bad}: {message}");
+        if bad > 0 {
+            assert!(message.contains(&limit.to_string()), "{bad}: {message}");
+        }
+    }
+    let help = crate::common::help(&["ensemble"]);
+    assert!(help.contains(&format!("1 to {limit}")), "{help}");
 }
 
 /// The help gives the default interval and the SALI threshold of the library's constants.

@@ -366,7 +366,7 @@ pub fn taylor_section<S: DynSystem + ?Sized>(
     let mut field = dynamical
         .taylor_field()
         .ok_or_else(|| no_taylor_form("this system"))??;
-    let mut taylor = Taylor::new(dim, tolerances, t_span.0, &state0, t_span.1)?;
+    let mut taylor = Taylor::new(&*field, tolerances, t_span.0, &state0, t_span.1)?;
     let mut out = PoincareSection {
         dim,
         ..PoincareSection::default()

@@ -121,7 +121,7 @@ pub struct Plan {
     /// Keep each member's final state (`false`: [`EnsembleResult::final_state`] has no
     /// columns, and a plan of events only stops each member at its last event).
     pub final_state: bool,
-    /// Worker threads (`None`: rayon's global pool, one per core).
+    /// Worker threads, at most [`MAX_THREADS`] (`None`: rayon's global pool, one per core).
     pub threads: Option<usize>,
     /// Tolerances of an adaptive method, for every member's run (`None`:
     /// [`Tolerances::default`]); refused with a fixed-step method, as by `integrate`
@@ -323,6 +323,11 @@ fn build<S: MemberSource + ?Sized>(
     source.build(index, t0).map_err(|e| in_member(index, e))
 }
 
+/// The most worker threads a run may ask for. Each thread holds a stack of its own (2 MiB by
+/// default), and far more threads than cores only add switching, so a larger count is refused
+/// rather than started (rayon would start up to 65 535). Python and the CLI read this value.
+pub const MAX_THREADS: usize = 4096;
+
 /// Thread pools kept for later runs, at most this many (the thread counts asked for last).
 const KEPT_POOLS: usize = 4;
 
@@ -369,6 +374,13 @@ fn pool(plan: &Plan) -> Result<Option<Arc<rayon::ThreadPool>>> {
     let k = match plan.threads {
         None => return Ok(None),
         Some(0) => return Err(Error::invalid("threads", 0.0, "must be >= 1")),
+        Some(k) if k > MAX_THREADS => {
+            return Err(Error::invalid(
+                "threads",
+                k as f64,
+                format!("must be <= {MAX_THREADS}"),
+            ))
+        }
         Some(k) => k,
     };
     let lock = || {
@@ -802,7 +814,7 @@ impl Observer for StopFlag<'_> {
 
 #[cfg(test)]
 mod tests {
-    use super::{pool, Plan, KEPT_POOLS, KEPT_POOL_THREADS, POOLS};
+    use super::{pool, Plan, KEPT_POOLS, KEPT_POOL_THREADS, MAX_THREADS, POOLS};
     use std::sync::Arc;
 
     fn plan(threads: Option<usize>) -> Plan {
@@ -872,5 +884,18 @@ mod tests {
         );
         assert!(pool(&plan(Some(0))).is_err());
         assert!(pool(&plan(None)).unwrap().is_none());
+    }
+
+    /// More than `MAX_THREADS` threads are refused with the name and the limit, however many
+    /// (rayon would otherwise start up to 65 535 of them, and clamp anything beyond).
+    #[test]
+    fn more_threads_than_the_limit_are_refused() {
+        for k in [MAX_THREADS + 1, 65_536, usize::MAX] {
+            let message = pool(&plan(Some(k))).unwrap_err().to_string();
+            assert!(
+                message.contains("threads") && message.contains(&MAX_THREADS.to_string()),
+                "{k} threads: {message}"
+            );
+        }
     }
 }

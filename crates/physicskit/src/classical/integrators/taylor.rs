@@ -7,12 +7,21 @@
 //! (`taylor_tape.rs` in `lagrangian/` generates them from expression trees).
 //!
 //! **Order and step** (Jorba & Zou, *Exp. Math.* 14 (2005) 99, with the safety factor of
-//! heyoka, Biscani & Izzo, *MNRAS* 504 (2021) 2614): the order is fixed for a run from the
-//! tighter tolerance `ε = min(rtol, atol)`, `p = ⌈-ln(ε)/2 + 1⌉`; each step takes
-//! `h = ρ/e² · exp(-0.7/(p - 1))` with `ρ = min((s/‖y^[p-1]‖∞)^(1/(p-1)), (s/‖y^[p]‖∞)^(1/p))`,
-//! where `s = 1` while `rtol ‖y‖∞ ≤ atol` (absolute control) and `s = ‖y‖∞` otherwise
-//! (relative control). The truncation error of such a step is about `s e^{-2p} ≤ s ε`: no
-//! step is rejected, and the step follows the radius of convergence of the series.
+//! heyoka, Biscani & Izzo, *MNRAS* 504 (2021) 2614): each step takes
+//! `h = ρ (ε e^-0.7)^(1/(p - 1))` with `ρ = min((s/‖y^[p-1]‖∞)^(1/(p-1)), (s/‖y^[p]‖∞)^(1/p))`,
+//! the series' radius of convergence as its last two orders estimate it, `ε = min(rtol, atol)`
+//! the tighter tolerance, and `s = 1` while `rtol ‖y‖∞ ≤ atol` (absolute control), `s = ‖y‖∞`
+//! otherwise (relative control). The coefficients fall like `s/ρ^k`, so the first term left
+//! out, about `s (h/ρ)^(p+1)`, is below `s ε e^-0.7`: no step is rejected, and the step follows the
+//! radius of convergence of the series. The order is fixed for a run: the one that covers a
+//! unit of time with the least work, by a count of the field's operations
+//! ([`TaylorField::step_cost`], [`order_for`]). A higher order takes longer steps
+//! (`h/ρ = (ε e^-0.7)^(1/(p - 1))` nears 1) for more work per step; Jorba and Zou's
+//! `p = ⌈-ln(ε)/2 + 1⌉`, steps of `ρ/e²`, is the best where the work is all in the
+//! recurrences' products (quadratic in the order), and the work that grows less with the
+//! order (sums, the update, the radius) moves the best order up, to steps of
+//! `ρ e^-1.2` to `ρ e^-1.7` for the forces of the benchmarks (`benchmarks/README.md` has the
+//! times).
 //!
 //! **Dense output**: a step's polynomial is the solution over the whole step, so outputs on
 //! the grid (`dt` is the output spacing, as for `dop853`) are the polynomial evaluated at the
@@ -61,19 +70,21 @@ use crate::classical::integrators::field::VectorField;
 use crate::classical::integrators::stepper::{AdaptiveStepper, FieldStepper, Report};
 use crate::classical::integrators::system::DynamicalSystem;
 use crate::classical::integrators::taylor_arith::{
-    two_product, two_product_fused, two_sum, StepRule, COMPENSATED_ORDERS,
+    log_target, two_product, two_product_fused, two_sum, StepRule, COMPENSATED_ORDERS,
 };
 use crate::classical::integrators::Tolerances;
 
 /// The method's facts: the [`Taylor`](Scheme::Taylor) kind, so it runs only on systems with a
 /// Taylor form ([`DynamicalSystem::taylor_field`]). Its order is chosen per run from the
-/// tolerances ([`order_for`], from 2 up to [`MAX_ORDER`]); `order` declares the highest.
+/// tolerances and the field's work ([`order_for`], from 2 up to [`MAX_ORDER`]); `order`
+/// declares the highest.
 pub const INFO: MethodInfo = MethodInfo {
     name: "taylor",
     label: "Taylor",
     summary: "adaptive Taylor series method on systems defined by expressions: order 2 to 24 \
-              from the tolerance (15 at the default rtol 1e-10, atol 1e-12), step from the \
-              last two Taylor coefficients (Jorba-Zou), dense output from the step polynomial",
+              from the tolerance and the work of the system's recurrences (the least work per \
+              unit of time), step from the last two Taylor coefficients (Jorba-Zou), dense \
+              output from the step polynomial",
     order: MAX_ORDER as u32,
     symplectic: false,
     separable_only: false,
@@ -128,6 +139,12 @@ pub type InBlocks<'a> = (&'a [f64], Option<&'a [[f64; LANES]]>);
 pub trait TaylorField: std::any::Any {
     /// Dimension of the state.
     fn dim(&self) -> usize;
+
+    /// The work of a step on this field, by which [`order_for`] chooses the order. The
+    /// default takes the recurrences as one product per row ([`StepCost::generic`]).
+    fn step_cost(&self) -> StepCost {
+        StepCost::generic(self.dim())
+    }
 
     /// The normalized Taylor coefficients of the solution through `(t, y)` to `order`,
     /// `y_i^[0] = y_i`, `y_i^[k+1] = f_i^[k] / (k + 1)`: `dim` rows of `order + 1`, row `i`
@@ -220,17 +237,75 @@ pub fn check_tolerances(tolerances: &Tolerances) -> Result<()> {
     Ok(())
 }
 
-/// The order the method uses for tolerances `rtol`, `atol`: `⌈-ln(min(rtol, atol))/2 + 1⌉`,
-/// at least 2, at most [`MAX_ORDER`].
-pub fn order_for(tolerances: &Tolerances) -> usize {
-    let eps = tolerances.rtol.min(tolerances.atol);
-    let p = (-eps.ln() / 2.0 + 1.0).ceil();
-    // A non-finite order (never for validated tolerances) falls to the cap.
-    if p.is_finite() {
-        (p as usize).clamp(2, MAX_ORDER)
-    } else {
-        MAX_ORDER
+/// The work of one step of the method at order `p`, in multiply-adds, as a field's
+/// recurrences and the stepper's update need it: the convolutions (a product's or a
+/// function's order `k` sums `k + 1` terms), the work at each order that does not grow with
+/// it (sums, scalings, the update's Horner step of each row) and the work once per step (the
+/// update's compensated low orders, the norms and the radius):
+/// `convolution · p(p + 1)/2 + per_order · (p + 1) + per_step`. [`order_for`] weighs it
+/// against the step's length to choose the order.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct StepCost {
+    /// Multiply-adds per term of the convolutions at each order.
+    pub convolution: f64,
+    /// Multiply-adds at each order besides the convolutions.
+    pub per_order: f64,
+    /// Multiply-adds once per step.
+    pub per_step: f64,
+}
+
+impl StepCost {
+    /// The stepper's own work for `dim` rows, beside the field's recurrences: at each order
+    /// the scaling of each row's new coefficient and its Horner step in the update; once per
+    /// step the update's compensated orders (an error-free product and sum, about eight
+    /// operations, for each of [`COMPENSATED_ORDERS`]` + 1` orders of each row), the three
+    /// norms and the radius's two logarithms and power (about 30 operations each).
+    pub fn stepper(dim: usize) -> Self {
+        let dim = dim as f64;
+        Self {
+            convolution: 0.0,
+            per_order: 2.0 * dim,
+            per_step: (8.0 * (COMPENSATED_ORDERS as f64 + 1.0) + 3.0) * dim + 90.0,
+        }
     }
+
+    /// A field of `dim` rows that reports nothing of its recurrences, taken as one product
+    /// per row, and the stepper's work ([`stepper`](Self::stepper)).
+    pub fn generic(dim: usize) -> Self {
+        Self {
+            convolution: dim as f64,
+            ..Self::stepper(dim)
+        }
+    }
+
+    /// The multiply-adds of one step at order `p`.
+    pub fn work(&self, p: usize) -> f64 {
+        let p = p as f64;
+        self.convolution * p * (p + 1.0) / 2.0 + self.per_order * (p + 1.0) + self.per_step
+    }
+}
+
+/// The order the method uses for tolerances `rtol`, `atol` on a field whose steps cost
+/// `cost`: the order `p` from 2 to [`MAX_ORDER`] with the least work per unit of time,
+/// `cost.work(p) / h(p)`. With the tightest tolerance `ε = min(rtol, atol)` (at least about
+/// `1e-20`), the step `h(p) = ρ (ε e^-0.7)^(1/(p - 1))` (ρ the series' radius of
+/// convergence, the same for every order) keeps the truncation error at `ε` (the module
+/// documentation). Jorba and Zou's `p = -ln(ε)/2 + 1` is the least work of a step made only
+/// of convolutions; the work that grows more slowly with the order (sums, the stepper's
+/// update, the radius) favours higher orders and longer steps. Ties go to the lower order.
+pub fn order_for(tolerances: &Tolerances, cost: &StepCost) -> usize {
+    let target = log_target(tolerances);
+    // The logarithm of the work per unit of time (ρ left out).
+    let per_time = |p: usize| cost.work(p).ln() - target / (p - 1) as f64;
+    let mut best = (2, per_time(2));
+    for p in 3..=MAX_ORDER {
+        let work = per_time(p);
+        // A NaN (no cost or tolerance that validates gives one) keeps the lower order.
+        if work < best.1 {
+            best = (p, work);
+        }
+    }
+    best.0
 }
 
 /// Rows evaluated side by side (by the compensated Horner, and as the stepper's blocks of
@@ -662,19 +737,21 @@ pub struct Taylor {
 }
 
 impl Taylor {
-    /// A stepper for `dim` components at `(t0, y0)` towards `t_bound`.
+    /// A stepper for `field` at `(t0, y0)` towards `t_bound`, at the order [`order_for`]
+    /// chooses for the tolerances and the field's [`step_cost`](TaylorField::step_cost).
     ///
     /// # Errors
     /// [`Error::InvalidParameter`] for a state of the wrong length or not finite, or
     /// tolerances that [`check_tolerances`] refuses.
-    pub fn new(
-        dim: usize,
+    pub fn new<F: TaylorField + ?Sized>(
+        field: &F,
         tolerances: Tolerances,
         t0: f64,
         y0: &[f64],
         t_bound: f64,
     ) -> Result<Self> {
         check_tolerances(&tolerances)?;
+        let dim = field.dim();
         if y0.len() != dim {
             return Err(Error::invalid(
                 "y0",
@@ -685,7 +762,7 @@ impl Taylor {
         if let Some(bad) = y0.iter().find(|v| !v.is_finite()) {
             return Err(Error::invalid("y0", *bad, "must be finite"));
         }
-        let order = order_for(&tolerances);
+        let order = order_for(&tolerances, &field.step_cost());
         Ok(Self {
             dim,
             order,
@@ -987,7 +1064,7 @@ pub fn integrate_taylor<F: TaylorField + ?Sized>(
 ) -> Result<SimulationResult> {
     let grid = TimeGrid::new(t_span, dt)?;
     let dim = field.dim();
-    let mut stepper = Taylor::new(dim, tolerances, grid.t0(), y0, grid.t_end())?;
+    let mut stepper = Taylor::new(field, tolerances, grid.t0(), y0, grid.t_end())?;
     let n = grid.n_steps() + 1;
     crate::classical::core::memory_check(n, 1 + dim)?;
     let mut y = Array2::<f64>::zeros((n, dim));
@@ -1098,7 +1175,7 @@ impl TaylorStepper {
                 .all(|(a, b)| a.to_bits() == b.to_bits());
         if !continuing {
             self.stepper = Some(Taylor::new(
-                field.dim(),
+                &*field,
                 self.tolerances,
                 t,
                 y,

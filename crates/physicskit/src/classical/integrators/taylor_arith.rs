@@ -11,13 +11,16 @@ use crate::classical::integrators::Tolerances;
 /// The orders of a step's polynomial summed by compensated Horner in the state update and
 /// the dense output; the orders from this one up are summed first by plain Horner (`s x + c`,
 /// two roundings an order, no error kept), their sum then entering the compensated part as
-/// its highest coefficient. The step is about `e^-2` of the radius of convergence that the
-/// last two orders estimate, measured against the scale `s = max(‖x‖, atol/rtol)` of the
-/// step rule; for coefficients falling like that radius's powers the terms `|c_k| h^k` fall
-/// like `s e^{-2k}`, so the plain part sums terms below `e^{-8} ≈ 3.4e-4` of `s`, and its
-/// rounding errors, about an ulp of that sum per order, stay below a hundredth of an ulp of
-/// `s`: far under the truncation the tolerance allows (`tol · s`, at least `1e-16 s`) and
-/// under the one rounding the compensated sum ends with. (A polynomial or nearly polynomial
+/// its highest coefficient. The step is `e^-u` of the radius of convergence that the last
+/// two orders estimate, measured against the scale `s = max(‖x‖, atol/rtol)` of the step
+/// rule, with `u = -ln(ε e^-0.7)/(p - 1)`: at least 1.6 at the tightest tolerances
+/// (`ε ≤ 1e-16` at the highest order, 24), about 1.2 to 2 at `ε = 1e-10`. For coefficients
+/// falling like that radius's powers the terms `|c_k| h^k` fall like `s e^{-uk}`, so the
+/// plain part sums terms below `e^{-4u}` of `s` (`1.7e-3` at `u = 1.6`), and its rounding
+/// errors, about an ulp of each partial sum, `e^{-4u}/(1 - e^{-u})` ulps of `s` in all, stay
+/// near a thousandth of an ulp of `s` at the tightest tolerances and a hundredth at 1e-10:
+/// far under the truncation the tolerance allows (`tol · s`, at least `1e-16 s`) and under
+/// the one rounding the compensated sum ends with. (A polynomial or nearly polynomial
 /// solution, whose last two orders vanish or nearly, takes a step longer than its lower
 /// orders' radius, which this bound does not cover: its orders from four up are summed
 /// plain.) The compensated step costs about five times the plain one's operations, and the
@@ -173,6 +176,16 @@ pub(crate) fn exp2_portable(y: f64) -> f64 {
     p * power(n1) * power(n2)
 }
 
+/// `ln(ε e^-0.7)`: the truncation error a step aims at, `ε = min(rtol, atol)`, with heyoka's
+/// safety factor. An `ε` below `e^(-2 (MAX_ORDER - 1))` (about `1e-20`: only an `atol` can be,
+/// `rtol` is at least [`MIN_RTOL`](super::taylor::MIN_RTOL)) is taken as that: Jorba and
+/// Zou's rule at the highest order, where a far smaller `atol` beside a usable `rtol` would
+/// otherwise shrink every step for a precision no double holds.
+pub(crate) fn log_target(tolerances: &Tolerances) -> f64 {
+    let floor = -2.0 * (crate::classical::integrators::taylor::MAX_ORDER - 1) as f64;
+    tolerances.rtol.min(tolerances.atol).ln().max(floor) - 0.7
+}
+
 /// The Taylor step-size rule (Jorba and Zou, with heyoka's safety factor; the module
 /// documentation of [`taylor`](super::taylor) derives it) at order `p`, for the scalar stepper
 /// and each lane of the batch stepper alike.
@@ -182,7 +195,8 @@ pub(crate) struct StepRule {
     atol: f64,
     /// `1/(p - 1)` and `1/p`: the roots' exponents.
     inverse_orders: [f64; 2],
-    /// `exp(-0.7/(p - 1)) / e²`: heyoka's safety factor over the rule's `e²`.
+    /// `(ε e^-0.7)^(1/(p - 1))`, `ε = min(rtol, atol)`: the step over the radius that keeps
+    /// the truncation error at `ε`, with heyoka's safety factor `e^-0.7/(p - 1)`.
     factor: f64,
     /// `[0, p - 1, p]`: the orders whose norms [`radius`](Self::radius) takes.
     norm_orders: [usize; 3],
@@ -195,7 +209,7 @@ impl StepRule {
             rtol: tolerances.rtol,
             atol: tolerances.atol,
             inverse_orders: [1.0 / (p - 1) as f64, 1.0 / p as f64],
-            factor: (-2.0 - 0.7 / (p - 1) as f64).exp(),
+            factor: (log_target(tolerances) / (p - 1) as f64).exp(),
             norm_orders: [0, p - 1, p],
         }
     }

@@ -31,7 +31,7 @@
 //! a time.
 
 use crate::classical::core::{Error, Result, TimeGrid};
-use crate::classical::integrators::taylor::{check_tolerances, order_for, same_time};
+use crate::classical::integrators::taylor::{check_tolerances, order_for, same_time, StepCost};
 use crate::classical::integrators::taylor_arith::{
     two_product, two_product_fused, two_sum, StepRule, COMPENSATED_ORDERS,
 };
@@ -41,6 +41,15 @@ use crate::classical::integrators::Tolerances;
 pub trait LanesField<const L: usize> {
     /// Dimension of the state.
     fn dim(&self) -> usize;
+
+    /// The work of a step, by which the order is chosen: the same as the
+    /// [`TaylorField::step_cost`] of the field these lanes run (the default: the same default),
+    /// so that each member steps at the order it would alone.
+    ///
+    /// [`TaylorField::step_cost`]: super::taylor::TaylorField::step_cost
+    fn step_cost(&self) -> StepCost {
+        StepCost::generic(self.dim())
+    }
 
     /// Expands the solution through `(t[l], y[.][l])` for every lane `l` (`y` holds `dim`
     /// components, each an `[f64; L]`) to `order`; the coefficients stay in the field until
@@ -435,8 +444,8 @@ enum Serve {
 }
 
 impl<const L: usize> Batch<L> {
-    fn new(dim: usize, tolerances: Tolerances, t_bound: f64) -> Self {
-        let order = order_for(&tolerances);
+    fn new(dim: usize, cost: &StepCost, tolerances: Tolerances, t_bound: f64) -> Self {
+        let order = order_for(&tolerances, cost);
         Self {
             dim,
             order,
@@ -710,7 +719,7 @@ pub fn integrate_batch<const L: usize, F: LanesField<L>>(
             found: starts.len(),
         });
     }
-    let mut batch = Batch::<L>::new(dim, tolerances, grid.t_end());
+    let mut batch = Batch::<L>::new(dim, &field.step_cost(), tolerances, grid.t_end());
     let order = batch.order;
     let mut members = starts.chunks_exact(dim).enumerate();
     let mut t = [0.0; L];

@@ -50,7 +50,7 @@ use super::expr_hamiltonian::ExprHamiltonian;
 use super::expr_ode::ExprOde;
 use super::hash_cons::{HashCons, Keyed};
 use crate::classical::core::{Error, Result};
-use crate::classical::integrators::taylor::{InBlocks, TaylorField, LANES, MAX_ORDER};
+use crate::classical::integrators::taylor::{InBlocks, StepCost, TaylorField, LANES, MAX_ORDER};
 use crate::classical::integrators::HamiltonianSystem;
 use crate::classical::lagrangian::Lagrangian;
 use std::collections::HashMap;
@@ -1583,9 +1583,44 @@ fn powf_weight(alpha: f64, k: usize, j: usize) -> f64 {
     alpha * (k - j) as f64 - j as f64
 }
 
+/// The work of a step on the recurrences `nodes` of a field of `dim` rows, with the stepper's
+/// own ([`StepCost::stepper`]), in multiply-adds: a product's order `k` is `k + 1` of them, a
+/// square's half that; a power's, an exponential's and an integral's terms each take a weight
+/// and two products, a sine's and cosine's pair three; a division (of a quotient, a power, a
+/// square root, an integral) counts as four; a sum, a scaling or a sign as one.
+fn step_cost(dim: usize, nodes: &[Node]) -> StepCost {
+    let mut cost = StepCost::stepper(dim);
+    for node in nodes {
+        let (convolution, per_order) = match node {
+            Node::State | Node::Time | Node::Partner => (0.0, 0.0),
+            Node::Add(..)
+            | Node::Sub(..)
+            | Node::AddC(..)
+            | Node::CSub(..)
+            | Node::MulC(..)
+            | Node::Neg(_)
+            | Node::Abs(_) => (0.0, 1.0),
+            Node::Mul(..) => (1.0, 0.0),
+            Node::Square(_) => (0.5, 1.0),
+            Node::Div(..) | Node::CDiv(..) => (1.0, 4.0),
+            Node::Sqrt(_) => (0.5, 4.0),
+            Node::Powf(..) | Node::Integral { .. } => (2.0, 4.0),
+            Node::Exp(_) => (2.0, 1.0),
+            Node::SinCos(..) => (3.0, 2.0),
+        };
+        cost.convolution += convolution;
+        cost.per_order += per_order;
+    }
+    cost
+}
+
 impl TaylorField for TaylorProgram {
     fn dim(&self) -> usize {
         self.dim
+    }
+
+    fn step_cost(&self) -> StepCost {
+        step_cost(self.dim, &self.nodes)
     }
 
     fn expansion(&mut self, t: f64, y: &[f64], order: usize) -> Result<&[f64]> {

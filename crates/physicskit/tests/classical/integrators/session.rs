@@ -241,6 +241,8 @@ fn adaptive_sessions_have_the_bits_of_integrate_before_its_last_step() {
 
 #[test]
 fn adaptive_set_dt_changes_only_the_output_spacing_and_restart_starts_afresh() {
+    let mut told_apart = std::collections::HashSet::new();
+    let mut adaptive = std::collections::HashSet::new();
     for entry in SYSTEMS {
         for method in entry.methods().filter(|m| m.is_adaptive()) {
             let start = || {
@@ -249,6 +251,7 @@ fn adaptive_set_dt_changes_only_the_output_spacing_and_restart_starts_afresh() {
                     .unwrap()
             };
             let what = format!("{} {method}", entry.name);
+            adaptive.insert(method);
             // 16 samples, then 8 at twice the spacing: the internal steps are those of 32
             // samples at the first spacing, and the output time (exact) is the same.
             let mut switched = start();
@@ -274,12 +277,15 @@ fn adaptive_set_dt_changes_only_the_output_spacing_and_restart_starts_afresh() {
             fresh.advance(10).unwrap();
             assert_eq!(bits(straight.state()), bits(fresh.state()), "{what}");
             // ... which is not what the run continued would give (else the check above
-            // could not tell): the continued run stepped from its internal steps. A state at
-            // rest (the sine-Gordon chain's zero state) stays put either way.
+            // could not tell): the continued run stepped from its internal steps. Both can
+            // agree to the last bit where the steps are exact to rounding (a state at rest, as
+            // the sine-Gordon chain's zero state; Kepler's circular orbit, whose coordinates
+            // are entire functions of time, at a high Taylor order), so the difference is
+            // required of some system for each method, not of every one.
             let mut continued = start();
             continued.advance(42).unwrap();
-            if bits(continued.state()) != bits(&state) {
-                assert_ne!(bits(continued.state()), bits(fresh.state()), "{what}");
+            if bits(continued.state()) != bits(fresh.state()) {
+                told_apart.insert(method);
             }
 
             // Back to the initial state at 0: the first run's bits again.
@@ -289,6 +295,10 @@ fn adaptive_set_dt_changes_only_the_output_spacing_and_restart_starts_afresh() {
             assert_eq!(bits(switched.state()), bits(straight.state()), "{what}");
         }
     }
+    assert_eq!(
+        told_apart, adaptive,
+        "methods whose restart no system told apart"
+    );
 }
 
 #[test]

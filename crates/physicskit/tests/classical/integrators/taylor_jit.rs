@@ -194,7 +194,7 @@ fn compiled_runs_have_the_interpreters_bits() {
             let tolerances = Tolerances::new(tol, tol).unwrap();
             let mut interpreted = program.interpreted_only();
             let mut compiled = program.clone();
-            let order = order_for(&tolerances);
+            let order = order_for(&tolerances, &program.step_cost());
             assert_eq!(compiled.compile_native(order), native());
             // Kepler and Hénon–Heiles by the code written for AVX, which writes the
             // stepper's blocks itself (the interpreted run's are transposed by the stepper).
@@ -211,7 +211,6 @@ fn compiled_runs_have_the_interpreters_bits() {
         }
     }
     let tolerances = Tolerances::new(1e-12, 1e-12).unwrap();
-    let order = order_for(&tolerances);
     let blow_up = ExprOde::new(vec![Expr::parse("(^ q0 2)").unwrap()], vec![], &[1.0], None);
     let failing = [
         (
@@ -222,6 +221,7 @@ fn compiled_runs_have_the_interpreters_bits() {
         (TaylorProgram::ode(&blow_up.unwrap()).unwrap(), vec![1e200]),
     ];
     for (program, y0) in failing {
+        let order = order_for(&tolerances, &program.step_cost());
         let mut interpreted = program.interpreted_only();
         let mut compiled = program;
         assert_eq!(compiled.compile_native(order), native());

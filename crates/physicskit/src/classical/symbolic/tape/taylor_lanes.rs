@@ -22,7 +22,7 @@ use super::{
     func_value, ordered_sum, power0, powf_weight, Keyed, Node, TaylorProgram, Val, WorkLayout,
 };
 use crate::classical::core::{Error, Result};
-use crate::classical::integrators::taylor::{TaylorField, MAX_ORDER};
+use crate::classical::integrators::taylor::{StepCost, TaylorField, MAX_ORDER};
 use crate::classical::integrators::taylor_batch::LanesField;
 use crate::classical::symbolic::Backend;
 
@@ -491,6 +491,10 @@ pub fn native_lanes() -> usize {
 impl<const L: usize> LanesField<L> for TaylorLanes<L> {
     fn dim(&self) -> usize {
         self.dim
+    }
+
+    fn step_cost(&self) -> StepCost {
+        super::step_cost(self.dim, &self.nodes)
     }
 
     fn expand(&mut self, t: &[f64; L], y: &[[f64; L]], order: usize) -> Result<()> {
