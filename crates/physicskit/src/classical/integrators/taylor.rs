@@ -257,9 +257,10 @@ pub struct StepCost {
 impl StepCost {
     /// The stepper's own work for `dim` rows, beside the field's recurrences: at each order
     /// the scaling of each row's new coefficient and its Horner step in the update; once per
-    /// step the update's compensated orders (an error-free product and sum, about eight
-    /// operations, for each of [`COMPENSATED_ORDERS`]` + 1` orders of each row), the three
-    /// norms and the radius's two logarithms and power (about 30 operations each).
+    /// step the update's compensated part (an error-free product and sum, about eight
+    /// operations, for each of its five coefficients of each row: the compensated orders and
+    /// the plain sum of the others), the three norms and the radius's two logarithms and power
+    /// (about 30 operations each).
     pub fn stepper(dim: usize) -> Self {
         let dim = dim as f64;
         Self {
