@@ -10,6 +10,7 @@ import numpy.typing as npt
 __all__ = [
     "CHAOS_THRESHOLD",
     "DEFAULT_RENORMALIZE_EVERY",
+    "MAX_THREADS",
     "ConvergenceError",
     "NativeSystem",
     "build",
