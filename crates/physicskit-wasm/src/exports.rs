@@ -78,6 +78,26 @@ fn input_text(r: &Registry, start: usize, len: usize) -> Result<String, String> 
     String::from_utf8(bytes.to_vec()).map_err(|_| "text is not UTF-8".into())
 }
 
+/// A setup from the input bytes: the system's name (`name_len` bytes), its parameters as a
+/// JSON object (`params_len` bytes; none: `{}`) and a method's name (`method_len` bytes),
+/// one after another.
+fn setup(
+    r: &Registry,
+    name_len: usize,
+    params_len: usize,
+    method_len: usize,
+) -> Result<(String, String, String), String> {
+    let name = input_text(r, 0, name_len)?;
+    let params = input_text(r, name_len, params_len)?;
+    let method = input_text(r, name_len.saturating_add(params_len), method_len)?;
+    let params = if params.is_empty() {
+        "{}".into()
+    } else {
+        params
+    };
+    Ok((name, params, method))
+}
+
 /// Makes the byte input buffer `len` long; returns its address.
 #[no_mangle]
 pub extern "C" fn pk_input_bytes(len: usize) -> usize {
@@ -120,16 +140,8 @@ pub extern "C" fn pk_method_order(
     tol: f64,
 ) -> u32 {
     with(|r| {
-        let order = input_text(r, 0, name_len).and_then(|system| {
-            let params = input_text(r, name_len, params_len)?;
-            let method = input_text(r, name_len + params_len, method_len)?;
-            method_order(
-                &system,
-                if params.is_empty() { "{}" } else { &params },
-                &method,
-                tol,
-            )
-        });
+        let order = setup(r, name_len, params_len, method_len)
+            .and_then(|(system, params, method)| method_order(&system, &params, &method, tol));
         match order {
             Ok(order) => order,
             Err(message) => {
@@ -174,16 +186,15 @@ pub extern "C" fn pk_build(name_len: usize, params_len: usize, method_len: usize
 /// [`pk_build`] at the tolerance `tol`.
 fn build(name_len: usize, params_len: usize, method_len: usize, tol: f64) -> u32 {
     with(|r| {
-        let built = input_text(r, 0, name_len).and_then(|name| {
-            let params = input_text(r, name_len, params_len)?;
-            let method = input_text(r, name_len + params_len, method_len)?;
-            Lab::with_tolerance(
-                &name,
-                if params.is_empty() { "{}" } else { &params },
-                (!method.is_empty()).then_some(method.as_str()),
-                tol,
-            )
-        });
+        let built =
+            setup(r, name_len, params_len, method_len).and_then(|(name, params, method)| {
+                Lab::with_tolerance(
+                    &name,
+                    &params,
+                    (!method.is_empty()).then_some(method.as_str()),
+                    tol,
+                )
+            });
         match built {
             Ok(lab) => {
                 let free = r.labs.iter().position(Option::is_none);

@@ -142,6 +142,45 @@ impl Keyed for Node {
 }
 
 impl Node {
+    /// The terms of this node's sum at order `k`, one for a node without a sum (a sum, a
+    /// scaling, a sign), none for the state, the time and a sine's partner (computed with it):
+    /// what the recurrences' work ([`step_cost`]) and their unrolled code's size grow with.
+    pub(super) fn sum_terms(self, k: usize) -> usize {
+        match self {
+            Node::State | Node::Time | Node::Partner => 0,
+            Node::Mul(..) => k + 1,
+            Node::Square(_) => k / 2 + 1,
+            Node::Div(..)
+            | Node::CDiv(..)
+            | Node::Sqrt(_)
+            | Node::Powf(..)
+            | Node::Exp(_)
+            | Node::Integral { .. } => k.max(1),
+            Node::SinCos(..) => 2 * k.max(1),
+            Node::Add(..)
+            | Node::Sub(..)
+            | Node::AddC(..)
+            | Node::CSub(..)
+            | Node::MulC(..)
+            | Node::Neg(_)
+            | Node::Abs(_) => 1,
+        }
+    }
+
+    /// Multiply-adds per term of [`sum_terms`](Self::sum_terms), and besides the sum at each
+    /// order: a power's, an exponential's and an integral's terms take a weight and two
+    /// products, a sine's and cosine's pair of terms three; a division (of a quotient, a
+    /// power, a square root, an integral) counts as four.
+    fn work_per_term(self) -> (f64, f64) {
+        match self {
+            Node::Powf(..) | Node::Integral { .. } => (2.0, 4.0),
+            Node::Div(..) | Node::CDiv(..) | Node::Sqrt(_) => (1.0, 4.0),
+            Node::Exp(_) => (2.0, 1.0),
+            Node::SinCos(..) => (1.5, 0.0),
+            _ => (1.0, 0.0),
+        }
+    }
+
     /// The node with each operand `a` replaced by `f(a)` (called on every operand).
     fn map_operands(self, mut f: impl FnMut(u32) -> u32) -> Node {
         match self {
@@ -1584,32 +1623,17 @@ fn powf_weight(alpha: f64, k: usize, j: usize) -> f64 {
 }
 
 /// The work of a step on the recurrences `nodes` of a field of `dim` rows, with the stepper's
-/// own ([`StepCost::stepper`]), in multiply-adds: a product's order `k` is `k + 1` of them, a
-/// square's half that; a power's, an exponential's and an integral's terms each take a weight
-/// and two products, a sine's and cosine's pair three; a division (of a quotient, a power, a
-/// square root, an integral) counts as four; a sum, a scaling or a sign as one.
+/// own ([`StepCost::stepper`]), in multiply-adds: each node's [`sum_terms`](Node::sum_terms)
+/// at order `k`, as a first term and a slope in `k` (over the orders up to [`MAX_ORDER`]),
+/// times its [`work_per_term`](Node::work_per_term), and the work besides its sum.
 fn step_cost(dim: usize, nodes: &[Node]) -> StepCost {
     let mut cost = StepCost::stepper(dim);
-    for node in nodes {
-        let (convolution, per_order) = match node {
-            Node::State | Node::Time | Node::Partner => (0.0, 0.0),
-            Node::Add(..)
-            | Node::Sub(..)
-            | Node::AddC(..)
-            | Node::CSub(..)
-            | Node::MulC(..)
-            | Node::Neg(_)
-            | Node::Abs(_) => (0.0, 1.0),
-            Node::Mul(..) => (1.0, 0.0),
-            Node::Square(_) => (0.5, 1.0),
-            Node::Div(..) | Node::CDiv(..) => (1.0, 4.0),
-            Node::Sqrt(_) => (0.5, 4.0),
-            Node::Powf(..) | Node::Integral { .. } => (2.0, 4.0),
-            Node::Exp(_) => (2.0, 1.0),
-            Node::SinCos(..) => (3.0, 2.0),
-        };
-        cost.convolution += convolution;
-        cost.per_order += per_order;
+    for &node in nodes {
+        let (per_term, besides) = node.work_per_term();
+        let first = node.sum_terms(0) as f64;
+        let slope = (node.sum_terms(MAX_ORDER) as f64 - first) / MAX_ORDER as f64;
+        cost.convolution += slope * per_term;
+        cost.per_order += first * per_term + besides;
     }
     cost
 }

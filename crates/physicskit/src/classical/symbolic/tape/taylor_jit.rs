@@ -286,28 +286,11 @@ impl Form {
     }
 }
 
-/// The number of terms of every sum of the recurrences to `order`, one for a node without a
-/// sum: what the unrolled code's size grows with.
+/// The number of terms of every sum of the recurrences to `order` ([`Node::sum_terms`]):
+/// what the unrolled code's size grows with.
 pub(super) fn unrolled_terms(nodes: &[Node], order: usize) -> usize {
     (0..=order)
-        .map(|k| {
-            nodes
-                .iter()
-                .map(|node| match node {
-                    Node::State | Node::Time | Node::Partner => 0,
-                    Node::Mul(..) => k + 1,
-                    Node::Square(_) => k / 2 + 1,
-                    Node::Div(..)
-                    | Node::CDiv(..)
-                    | Node::Sqrt(_)
-                    | Node::Powf(..)
-                    | Node::Exp(_)
-                    | Node::Integral { .. } => k.max(1),
-                    Node::SinCos(..) => 2 * k.max(1),
-                    _ => 1,
-                })
-                .sum::<usize>()
-        })
+        .map(|k| nodes.iter().map(|node| node.sum_terms(k)).sum::<usize>())
         .sum()
 }
 
