@@ -1,10 +1,10 @@
 //! Our side of `benchmarks/heyoka_compare.py`: the adaptive Taylor method
 //! ([`integrate_taylor`] on a [`TaylorProgram`]) on the comparison's workloads at every half
 //! decade of tolerance from 1e-6 to 1e-16 ([`half_decades`]), one JSON object per line:
-//! workload, tolerance, the best wall time of five runs after one untimed
-//! run with the recurrences compiled by the JIT (built and compiled once, outside the timing,
-//! as heyoka's integrator is), the same with the recurrences interpreted, the time to build
-//! them and to compile them, the steps and the final state (or, for `hh-energy`, the largest
+//! workload, tolerance, the best wall time of five runs after one untimed run with the
+//! recurrences compiled by the JIT (built and compiled once, outside the timing, as heyoka's
+//! integrator is), the same with the recurrences interpreted, the time to build them and to
+//! compile them, the steps, the order and the final state (or, for `hh-energy`, the largest
 //! energy error on a grid of unit spacing). The script measures the errors against its
 //! extended-precision reference.
 //!
@@ -22,13 +22,18 @@
 //! `--form compact` or `--form unrolled` compiles the recurrences in that form whatever the
 //! program's size (by default the library picks it by size), `--pendulum-from-h` builds the
 //! pendulum's program from its `H` (the inverse mass matrix written out, differentiated)
-//! instead of from its `L` (`TaylorProgram::lagrangian_canonical`).
+//! instead of from its `L` (`TaylorProgram::lagrangian_canonical`), `--convolution-scale F`
+//! weighs the convolutions of the program's [`StepCost`] by `F` (below 1 a higher order and
+//! longer steps, above 1 a lower order: how the time to an error depends on the order the
+//! cost picks).
 
 use std::time::Instant;
 
 use physicskit_benchmarks::half_decades;
 
-use physicskit::classical::integrators::taylor::{integrate_taylor, order_for, TaylorField};
+use physicskit::classical::integrators::taylor::{
+    integrate_taylor, order_for, InBlocks, StepCost, TaylorField,
+};
 use physicskit::classical::symbolic::{trace_lagrangian, Expr, ExprHamiltonian};
 use physicskit::classical::symbolic::{Backend, TaylorProgram};
 use physicskit::classical::systems::DoublePendulumParams;
@@ -82,6 +87,38 @@ fn workload(name: &str) -> Result<(ExprHamiltonian, Vec<f64>, f64)> {
     })
 }
 
+/// `cost` with its convolutions weighed by `scale`.
+fn scaled(cost: StepCost, scale: f64) -> StepCost {
+    StepCost {
+        convolution: cost.convolution * scale,
+        ..cost
+    }
+}
+
+/// A program whose step cost weighs its convolutions by `scale` (`--convolution-scale`).
+struct Reweighted {
+    program: TaylorProgram,
+    scale: f64,
+}
+
+impl TaylorField for Reweighted {
+    fn dim(&self) -> usize {
+        self.program.dim()
+    }
+
+    fn step_cost(&self) -> StepCost {
+        scaled(self.program.step_cost(), self.scale)
+    }
+
+    fn expansion(&mut self, t: f64, y: &[f64], order: usize) -> Result<&[f64]> {
+        self.program.expansion(t, y, order)
+    }
+
+    fn expansion_in_blocks(&mut self, t: f64, y: &[f64], order: usize) -> Result<InBlocks<'_>> {
+        self.program.expansion_in_blocks(t, y, order)
+    }
+}
+
 /// The command line's choices.
 struct Options {
     only: Option<String>,
@@ -90,6 +127,7 @@ struct Options {
     repeats: usize,
     form: Option<String>,
     pendulum_from_h: bool,
+    convolution_scale: f64,
 }
 
 fn options() -> Options {
@@ -100,6 +138,7 @@ fn options() -> Options {
         repeats: 5,
         form: None,
         pendulum_from_h: false,
+        convolution_scale: 1.0,
     };
     let mut args = std::env::args().skip(1);
     while let Some(arg) = args.next() {
@@ -109,11 +148,19 @@ fn options() -> Options {
             "--no-interpreted" => o.interpreted = false,
             "--form" => o.form = args.next(),
             "--pendulum-from-h" => o.pendulum_from_h = true,
+            "--convolution-scale" => match args.next().and_then(|f| f.parse::<f64>().ok()) {
+                Some(f) if f.is_finite() && f > 0.0 => o.convolution_scale = f,
+                _ => {
+                    eprintln!("--convolution-scale takes a positive number");
+                    std::process::exit(2);
+                }
+            },
             "--repeats" => o.repeats = args.next().and_then(|n| n.parse().ok()).unwrap_or(5),
             _ => {
                 eprintln!(
                     "usage: heyoka_taylor [--only WORKLOAD] [--tol TOL] [--no-interpreted] \
-                     [--repeats N] [--form compact|unrolled] [--pendulum-from-h]"
+                     [--repeats N] [--form compact|unrolled] [--pendulum-from-h] \
+                     [--convolution-scale F]"
                 );
                 std::process::exit(2);
             }
@@ -157,7 +204,8 @@ fn main() -> Result<()> {
             };
             let build = start.elapsed().as_secs_f64();
             let start = Instant::now();
-            let order = order_for(&tol_pair, &program.step_cost());
+            let scale = options.convolution_scale;
+            let order = order_for(&tol_pair, &scaled(program.step_cost(), scale));
             let backend = match options.form.as_deref() {
                 Some("compact") => program.compile_native_compact(order),
                 Some("unrolled") => program.compile_native_unrolled(order),
@@ -168,7 +216,8 @@ fn main() -> Result<()> {
                 eprintln!("{name} at {tol:e}: the recurrences were not compiled");
             }
             let dt = if name == "hh-energy" { 1.0 } else { t1 };
-            let timed = |mut program: TaylorProgram| -> Result<_> {
+            let timed = |program: TaylorProgram| -> Result<_> {
+                let mut program = Reweighted { program, scale };
                 let mut best = f64::INFINITY;
                 let mut last = integrate_taylor(&mut program, &y0, (0.0, t1), dt, tol_pair)?;
                 for _ in 0..options.repeats {
@@ -185,6 +234,7 @@ fn main() -> Result<()> {
             };
             let (best, r) = timed(program)?;
             let steps = r.extra_scalar("steps").unwrap_or(f64::NAN);
+            let order = r.extra_scalar("order").unwrap_or(f64::NAN);
             let result = if name == "hh-energy" {
                 let energy = |y: &[f64]| {
                     0.5 * (y[2] * y[2] + y[3] * y[3] + y[0] * y[0] + y[1] * y[1])
@@ -209,7 +259,7 @@ fn main() -> Result<()> {
             println!(
                 "{{\"workload\": \"{name}\", \"tol\": {tol:e}, \"seconds\": {best:e}, \
                  \"interpreted_seconds\": {interpreted:e}, \"build_seconds\": {build:e}, \
-                 \"compile_seconds\": {compile:e}, \"steps\": {steps}, {result}}}"
+                 \"compile_seconds\": {compile:e}, \"steps\": {steps}, \"order\": {order}, {result}}}"
             );
         }
     }
