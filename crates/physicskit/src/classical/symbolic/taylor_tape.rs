@@ -150,9 +150,9 @@ impl Node {
             Node::State | Node::Time | Node::Partner => 0,
             Node::Mul(..) => k + 1,
             Node::Square(_) => k / 2 + 1,
+            Node::Sqrt(_) => (k / 2).max(1),
             Node::Div(..)
             | Node::CDiv(..)
-            | Node::Sqrt(_)
             | Node::Powf(..)
             | Node::Exp(_)
             | Node::Integral { .. } => k.max(1),
@@ -866,14 +866,36 @@ fn cauchy(a: &[f64], b: &[f64]) -> f64 {
     ordered_sum(&mut (), n, |(), j| a[j] * b[n - 1 - j], |(), s, t| s + t).unwrap_or(0.0)
 }
 
+/// `Σ_{lo ≤ j ≤ k - lo} x_j x_{k-j}` of the series at offset `x` of the work array `w`, each
+/// term with its mirror: `2 Σ x_j x_{k-j}` over `lo ≤ j < k/2` (a [`cauchy`] sum), plus
+/// `x_{k/2}²` for even `k`. A square's sum (`lo = 0`), a square root's (`lo = 1`, `k >= 1`).
+#[inline(always)]
+fn mirrored(w: &[f64], x: usize, lo: usize, k: usize) -> f64 {
+    let n = k.div_ceil(2) - lo;
+    let twice = cauchy(
+        &w[x + lo..x + lo + n],
+        &w[x + k + 1 - lo - n..x + k + 1 - lo],
+    ) * 2.0;
+    if k.is_multiple_of(2) {
+        let m = w[x + k / 2] * w[x + k / 2];
+        if n == 0 {
+            m
+        } else {
+            twice + m
+        }
+    } else {
+        twice
+    }
+}
+
 /// The terms at each end of a sum that [`ordered_sum`] leaves out of its groups of four.
 const LEAD: usize = 2;
 
 /// The fewest terms [`ordered_sum`] splits: one group and the terms at both ends.
 const SPLIT_TERMS: usize = 2 * LEAD + 4;
 
-/// The sum of the terms `term(j)`, `j < n`, of a Cauchy product or of the power
-/// recurrence, in the order every form of the recurrences sums it (`None` for `n = 0`):
+/// The sum of the terms `term(j)`, `j < n`, of a Cauchy product or a weighted sum
+/// ([`Weight`]), in the order every form of the recurrences sums it (`None` for `n = 0`):
 /// - fewer than [`SPLIT_TERMS`] terms: from `j = 0` up;
 /// - else the `4 G` terms from `j = LEAD` (`G = ⌊(n − 2 LEAD)/4⌋` groups of four) into four
 ///   partial sums `p_l = t_{LEAD+l} + t_{LEAD+4+l} + …`, then
@@ -1453,22 +1475,7 @@ impl TaylorProgram {
                     let (a, b) = (at(a, 0), at(b, 0));
                     cauchy(&w[a..=a + k], &w[b..=b + k])
                 }
-                Node::Square(a) => {
-                    // 2 Σ_{j < ⌈k/2⌉} a_j a_{k-j}, plus a_{k/2}² for even k.
-                    let a = at(a, 0);
-                    let half = k.div_ceil(2);
-                    let twice = cauchy(&w[a..a + half], &w[a + k + 1 - half..=a + k]) * 2.0;
-                    if k.is_multiple_of(2) {
-                        let m = w[a + k / 2] * w[a + k / 2];
-                        if half == 0 {
-                            m
-                        } else {
-                            twice + m
-                        }
-                    } else {
-                        twice
-                    }
-                }
+                Node::Square(a) => mirrored(w, at(a, 0), 0, k),
                 Node::Div(a, b) => {
                     let b = at(b, 0);
                     if k == 0 {
@@ -1489,11 +1496,7 @@ impl TaylorProgram {
                     if k == 0 {
                         w[at(a, 0)].sqrt()
                     } else {
-                        let mut s = w[at(a, k)];
-                        for j in 1..k {
-                            s -= w[me + j] * w[me + k - j];
-                        }
-                        s / (2.0 * w[me])
+                        (w[at(a, k)] - mirrored(w, me, 1, k)) / (2.0 * w[me])
                     }
                 }
                 Node::Powf(a, alpha) => {
@@ -1501,10 +1504,7 @@ impl TaylorProgram {
                     if k == 0 {
                         power0(w[a], alpha)
                     } else {
-                        let term = |(): &mut (), j: usize| {
-                            powf_weight(alpha, k, j) * w[a + k - j] * w[me + j]
-                        };
-                        let s = ordered_sum(&mut (), k, term, |(), s, t| s + t);
+                        let s = weighted_sum(w, Weight::Power(alpha), a, me, k);
                         s.unwrap_or(0.0) / (kf * w[a])
                     }
                 }
@@ -1513,11 +1513,7 @@ impl TaylorProgram {
                     if k == 0 {
                         w[a].exp()
                     } else {
-                        let term = |j: usize| j as f64 * w[a + j] * w[me + k - j];
-                        let mut s = term(1);
-                        for j in 2..=k {
-                            s += term(j);
-                        }
+                        let s = weighted_sum(w, Weight::Falling, a, me, k).unwrap_or(0.0);
                         s * (1.0 / kf)
                     }
                 }
@@ -1546,13 +1542,8 @@ impl TaylorProgram {
                         w[partner] = c;
                         s
                     } else {
-                        let ja = w[a + 1];
-                        let (mut s, mut c) = (ja * w[partner + k - 1], ja * w[me + k - 1]);
-                        for j in 2..=k {
-                            let ja = j as f64 * w[a + j];
-                            s += ja * w[partner + k - j];
-                            c += ja * w[me + k - j];
-                        }
+                        let s = weighted_sum(w, Weight::Falling, a, partner, k).unwrap_or(0.0);
+                        let c = weighted_sum(w, Weight::Falling, a, me, k).unwrap_or(0.0);
                         let rk = 1.0 / kf;
                         w[partner + k] = if hyperbolic { c * rk } else { -c * rk };
                         s * rk
@@ -1620,6 +1611,38 @@ pub(super) fn power0(x: f64, alpha: f64) -> f64 {
 #[inline(always)]
 fn powf_weight(alpha: f64, k: usize, j: usize) -> f64 {
     alpha * (k - j) as f64 - j as f64
+}
+
+/// The constant weights `w_j` of a weighted sum of order `k`, `Σ_{j < k} (w_j a_{k-j}) b_j`,
+/// taken in [`ordered_sum`]'s order by every form, with its groups as vectors in one state's
+/// AVX code.
+#[derive(Clone, Copy, Debug)]
+enum Weight {
+    /// `a^α`'s recurrence, `b` the power itself: [`powf_weight`].
+    Power(f64),
+    /// A sine–cosine pair's (`b` the sine or the cosine) or an exponential's (`b` the
+    /// exponential itself): `k - j`, so that the sum is `Σ_{1 ≤ i ≤ k} i a_i b_{k-i}`. The
+    /// weights are whole numbers, exact in any form.
+    Falling,
+}
+
+impl Weight {
+    /// The weight of term `j` of order `k`.
+    #[inline(always)]
+    fn at(self, k: usize, j: usize) -> f64 {
+        match self {
+            Weight::Power(alpha) => powf_weight(alpha, k, j),
+            Weight::Falling => (k - j) as f64,
+        }
+    }
+}
+
+/// `Σ_{j < k} (w_j a_{k-j}) b_j` in [`ordered_sum`]'s order, on the work array `w` with `a`
+/// and `b` the offsets of coefficient 0 of the two series; `None` for `k = 0`.
+#[inline(always)]
+fn weighted_sum(w: &[f64], weight: Weight, a: usize, b: usize, k: usize) -> Option<f64> {
+    let term = |(): &mut (), j: usize| weight.at(k, j) * w[a + k - j] * w[b + j];
+    ordered_sum(&mut (), k, term, |(), s, t| s + t)
 }
 
 /// The work of a step on the recurrences `nodes` of a field of `dim` rows, with the stepper's

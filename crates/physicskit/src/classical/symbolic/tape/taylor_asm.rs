@@ -32,7 +32,7 @@
 //! operations in its order and gets its bits. Order 0 of the transcendental operations calls
 //! the scalar JIT's `extern "C"` shims lane by lane (every register saved first: the calling
 //! convention keeps none of them). One state's code on an AVX2 host sums the groups of four
-//! terms of a long Cauchy or power sum (`taylor_tape.rs`'s `ordered_sum`) as whole `ymm`
+//! terms of a long Cauchy or weighted sum (`taylor_tape.rs`'s `ordered_sum`) as whole `ymm`
 //! vectors: each group's four terms in the lanes, the reversed factor read by `vpermpd`, then
 //! the lanes added in the order the partial sums are ([`Groups`]).
 //! A program with an `|x|` is left to Cranelift
@@ -46,7 +46,7 @@ use iced_x86::code_asm::{
     AsmRegisterYmm, AsmRegisterZmm, CodeAssembler, CodeLabel, IcedError,
 };
 
-use super::super::{powf_weight, Node, Val, WorkLayout, LEAD};
+use super::super::{Node, Val, Weight, WorkLayout, LEAD};
 use super::{powf, Fresh, Recurrences};
 use crate::classical::symbolic::tape::jit::{load_code, OwnedModule};
 
@@ -140,16 +140,16 @@ enum Op {
     },
     /// Value `x` stored to coefficient `i`.
     Store(usize, usize),
-    /// The groups of a Cauchy or power sum.
+    /// The groups of a Cauchy or weighted sum.
     Groups(Groups),
 }
 
-/// The groups of a Cauchy or power sum (one state; `taylor_tape.rs`'s `ordered_sum`):
-/// `(p_0 + p_2) + (p_1 + p_3)` of the four lanes' sums `p_l = Σ_g t_{4g+l}`, `g` below
-/// `groups`, of the terms `t_i = (w_i · rev_i) · fwd_i` (`i` counted from the first grouped
-/// term; no `w_i` without weights): `fwd_i` is coefficient `fwd + i` of the work array,
-/// `rev_i` coefficient `rev - i`, and `w_i` lane `i mod 4` of entry `weights + i / 4` of
-/// [`Recorder::weights`].
+/// The groups of a Cauchy or weighted sum (a power's, an exponential's or a sine–cosine
+/// pair's; one state; `taylor_tape.rs`'s `ordered_sum`): `(p_0 + p_2) + (p_1 + p_3)` of the
+/// four lanes' sums `p_l = Σ_g t_{4g+l}`, `g` below `groups`, of the terms
+/// `t_i = (w_i · rev_i) · fwd_i` (`i` counted from the first grouped term; no `w_i` without
+/// weights): `fwd_i` is coefficient `fwd + i` of the work array, `rev_i` coefficient `rev - i`,
+/// and `w_i` lane `i mod 4` of entry `weights + i / 4` of [`Recorder::weights`].
 #[derive(Clone, Copy)]
 struct Groups {
     fwd: usize,
@@ -309,12 +309,12 @@ impl Recurrences for Recorder {
         })
     }
 
-    fn power_groups(
+    fn weighted_groups(
         &mut self,
         a: usize,
-        me: usize,
+        b: usize,
         k: usize,
-        alpha: f64,
+        weight: Weight,
         groups: usize,
     ) -> Option<usize> {
         if !self.groups {
@@ -322,11 +322,11 @@ impl Recurrences for Recorder {
         }
         let first = self.weights.len();
         for g in 0..groups {
-            let w = std::array::from_fn(|l| powf_weight(alpha, k, LEAD + 4 * g + l));
+            let w = std::array::from_fn(|l| weight.at(k, LEAD + 4 * g + l));
             self.weights.push(w);
         }
         Some(self.push(Op::Groups(Groups {
-            fwd: self.fresh.index(me, LEAD),
+            fwd: self.fresh.index(b, LEAD),
             rev: self.fresh.index(a, k - LEAD),
             groups,
             weights: Some(first),

@@ -47,7 +47,7 @@ use cranelift_frontend::FunctionBuilder;
 #[cfg(doc)]
 use super::power0;
 use super::{
-    func_value, ordered_sum_with, powf_weight, Node, Power, TaylorProgram, Val, WorkLayout, LEAD,
+    func_value, ordered_sum_with, Node, Power, TaylorProgram, Val, Weight, WorkLayout, LEAD,
     SPLIT_TERMS,
 };
 use crate::classical::integrators::taylor::MAX_ORDER;
@@ -556,30 +556,53 @@ pub(super) trait Recurrences {
         None
     }
 
-    /// The sum of a [`power_sum`](Self::power_sum)'s groups, `Σ (w_j a_{k-j}) me_j` over
+    /// `Σ_{lo ≤ j ≤ k - lo} x_j x_{k-j}` of node `x` at order `k` as
+    /// [`mirrored`](super::mirrored) sums it: each term with its mirror, `2 Σ x_j x_{k-j}` over
+    /// `lo ≤ j < k/2` (a Cauchy sum), plus `x_{k/2}²` for even `k` (a square's sum for `lo = 0`,
+    /// a square root's for `lo = 1`).
+    fn mirrored(&mut self, x: usize, lo: usize, k: usize) -> Self::X {
+        let n = k.div_ceil(2) - lo;
+        let twice = self.cauchy((x, lo), (x, k + 1 - lo - n), n).map(|s| {
+            let two = self.c(2.0);
+            self.mul(s, two)
+        });
+        if k.is_multiple_of(2) {
+            let m = self.ld(x, k / 2);
+            let m = self.mul(m, m);
+            match twice {
+                Some(t) => self.add(t, m),
+                None => m,
+            }
+        } else {
+            twice.unwrap_or_else(|| self.c(0.0))
+        }
+    }
+
+    /// The sum of a [`weighted_sum`](Self::weighted_sum)'s groups, `Σ (w_j a_{k-j}) b_j` over
     /// `LEAD ≤ j < LEAD + 4 groups`, as [`ordered_sum`](super::ordered_sum) takes it, if this
     /// form sums them at once (`None`: term by term).
-    fn power_groups(
+    fn weighted_groups(
         &mut self,
         _a: usize,
-        _me: usize,
+        _b: usize,
         _k: usize,
-        _alpha: f64,
+        _weight: Weight,
         _groups: usize,
     ) -> Option<Self::X> {
         None
     }
 
-    /// The sum of order `k >= 1` of `a^α` (node `me`): `Σ_{j < k} (w_j a_{k-j}) me_j` in
-    /// [`ordered_sum`](super::ordered_sum)'s order, `w_j` the constant [`powf_weight`].
-    fn power_sum(&mut self, a: usize, me: usize, k: usize, alpha: f64) -> Option<Self::X> {
+    /// `Σ_{j < k} (w_j a_{k-j}) b_j` of nodes `a` and `b` at order `k >= 1` in
+    /// [`ordered_sum`](super::ordered_sum)'s order, `w_j` the constant [`Weight`] (the sum of
+    /// a power's recurrence, an exponential's or a sine–cosine pair's).
+    fn weighted_sum(&mut self, a: usize, b: usize, k: usize, weight: Weight) -> Option<Self::X> {
         let term = |r: &mut Self, j: usize| {
             let x = r.ld(a, k - j);
-            let wx = r.cmul(powf_weight(alpha, k, j), x);
-            let y = r.ld(me, j);
+            let wx = r.cmul(weight.at(k, j), x);
+            let y = r.ld(b, j);
             r.mul(wx, y)
         };
-        let groups = |r: &mut Self, g| r.power_groups(a, me, k, alpha, g);
+        let groups = |r: &mut Self, g| r.weighted_groups(a, b, k, weight, g);
         ordered_sum_with(self, k, term, |r, s, t| r.add(s, t), groups)
     }
 
@@ -653,23 +676,7 @@ pub(super) trait Recurrences {
             Node::Mul(a, b) => self
                 .cauchy((u(a), 0), (u(b), 0), k + 1)
                 .unwrap_or_else(|| self.c(0.0)),
-            Node::Square(a) => {
-                let half = k.div_ceil(2);
-                let twice = self.cauchy((u(a), 0), (u(a), k + 1 - half), half).map(|s| {
-                    let two = self.c(2.0);
-                    self.mul(s, two)
-                });
-                if k.is_multiple_of(2) {
-                    let m = self.ld(u(a), k / 2);
-                    let m = self.mul(m, m);
-                    match twice {
-                        Some(t) => self.add(t, m),
-                        None => m,
-                    }
-                } else {
-                    twice.unwrap_or_else(|| self.c(0.0))
-                }
-            }
+            Node::Square(a) => self.mirrored(u(a), 0, k),
             Node::Div(a, b) => {
                 let (x, b0) = (self.ld(u(a), k), self.ld(u(b), 0));
                 match self.cauchy((u(b), 1), (me, 0), k) {
@@ -698,12 +705,9 @@ pub(super) trait Recurrences {
                     let x = self.ld(u(a), 0);
                     self.sqrt(x)
                 } else {
-                    let mut s = self.ld(u(a), k);
-                    for j in 1..k {
-                        let (x, y) = (self.ld(me, j), self.ld(me, k - j));
-                        let t = self.mul(x, y);
-                        s = self.sub(s, t);
-                    }
+                    let inner = self.mirrored(me, 1, k);
+                    let x = self.ld(u(a), k);
+                    let s = self.sub(x, inner);
                     let me0 = self.ld(me, 0);
                     let d = self.cmul(2.0, me0);
                     self.div(s, d)
@@ -714,7 +718,7 @@ pub(super) trait Recurrences {
                 if k == 0 {
                     self.power(a0, alpha)
                 } else {
-                    let s = self.power_sum(u(a), me, k, alpha);
+                    let s = self.weighted_sum(u(a), me, k, Weight::Power(alpha));
                     let d = self.cmul(kf, a0);
                     let s = s.unwrap_or(d);
                     self.div(s, d)
@@ -725,17 +729,7 @@ pub(super) trait Recurrences {
                     let x = self.ld(u(a), 0);
                     self.call(exp as *const () as usize, x)
                 } else {
-                    let mut s = None;
-                    for j in 1..=k {
-                        let x = self.ld(u(a), j);
-                        let jx = self.cmul(j as f64, x);
-                        let y = self.ld(me, k - j);
-                        let t = self.mul(jx, y);
-                        s = Some(match s {
-                            Some(s) => self.add(s, t),
-                            None => t,
-                        });
-                    }
+                    let s = self.weighted_sum(u(a), me, k, Weight::Falling);
                     let rk = self.c(1.0 / kf);
                     let s = s.unwrap_or(rk);
                     self.mul(s, rk)
@@ -771,19 +765,12 @@ pub(super) trait Recurrences {
                     self.st(partner, 0, c);
                     s
                 } else {
-                    let ja = self.ld(u(a), 1);
-                    let (p, m) = (self.ld(partner, k - 1), self.ld(me, k - 1));
-                    let mut s = self.mul(ja, p);
-                    let mut c = self.mul(ja, m);
-                    for j in 2..=k {
-                        let x = self.ld(u(a), j);
-                        let ja = self.cmul(j as f64, x);
-                        let (p, m) = (self.ld(partner, k - j), self.ld(me, k - j));
-                        let ts = self.mul(ja, p);
-                        s = self.add(s, ts);
-                        let tc = self.mul(ja, m);
-                        c = self.add(c, tc);
-                    }
+                    // Both sums have a term for k >= 1.
+                    let zero = |r: &mut Self| r.c(0.0);
+                    let s = self.weighted_sum(u(a), partner, k, Weight::Falling);
+                    let s = s.unwrap_or_else(|| zero(self));
+                    let c = self.weighted_sum(u(a), me, k, Weight::Falling);
+                    let c = c.unwrap_or_else(|| zero(self));
                     let rk = self.c(1.0 / kf);
                     let c = if hyperbolic { c } else { self.neg(c) };
                     let pc = self.mul(c, rk);
@@ -1025,6 +1012,36 @@ impl<'a, 'b> Emitter<'a, 'b> {
         })
     }
 
+    /// [`Recurrences::mirrored`] for the run-time `k >= 1` of `o`: `n = ⌈k/2⌉ - lo` pairs,
+    /// none where `lo = 1` and `k ≤ 2`, whose loop (at least one term, read in bounds) is then
+    /// discarded for the interpreter's zero.
+    fn mirrored_loop(&mut self, o: Order, x: usize, lo: usize) -> Value {
+        use cranelift_codegen::ir::condcodes::IntCC;
+        let k1 = self.b.ins().iadd_imm(o.k, 1);
+        let half = self.b.ins().sshr_imm(k1, 1);
+        let n = self.b.ins().iadd_imm(half, -(lo as i64));
+        let s = self.cauchy_loop(o, (x, lo), (x, lo), n);
+        let two = self.c(2.0);
+        let twice = self.mul(s, two);
+        let mid = self.b.ins().sshr_imm(o.k, 1);
+        let mid8 = self.b.ins().ishl_imm(mid, 3);
+        let at = self.b.ins().iadd(self.w, mid8);
+        let offset = self.offset(x, 0);
+        let m = self.ld_at(at, offset);
+        let m = self.mul(m, m);
+        let plus_m = self.add(twice, m);
+        let (twice, with_m) = if lo == 0 {
+            (twice, plus_m)
+        } else {
+            let none = self.b.ins().icmp_imm(IntCC::Equal, n, 0);
+            let zero = self.c(0.0);
+            let twice = self.b.ins().select(none, zero, twice);
+            (twice, self.b.ins().select(none, m, plus_m))
+        };
+        let odd = self.b.ins().band_imm(o.k, 1);
+        self.b.ins().select(odd, twice, with_m)
+    }
+
     /// The recurrences to `order` in [`Form::Compact`]: order 0 as the unrolled code has it,
     /// then one loop over `k = 1..=order` whose body sets the state's order `k` from the field's
     /// order `k - 1` and then every node's order `k` (the interpreter's sequence of operations).
@@ -1081,6 +1098,21 @@ impl<'a, 'b> Emitter<'a, 'b> {
         self.b.seal_block(exit);
     }
 
+    /// The weighted sum `Σ_{j < k} ((k - j) a_{k-j}) b_j` of nodes `a` and `b` for the run-time
+    /// `k` of `o` (`Weight::Falling`, in `ordered_sum`'s order): a sine–cosine pair's or an
+    /// exponential's.
+    fn falling_loop(&mut self, o: Order, a: usize, b: usize) -> Value {
+        let (oa, ob) = (self.offset(a, 0), self.offset(b, 0));
+        self.ordered_loop(o, o.k, &move |e, j, wj, wkj| {
+            let kj = e.b.ins().isub(o.k, j);
+            let wt = e.float(kj);
+            let x = e.ld_at(wkj, oa);
+            let wx = e.mul(wt, x);
+            let y = e.ld_at(wj, ob);
+            e.mul(wx, y)
+        })
+    }
+
     /// Order `k >= 1` of node `me` for the run-time `k` of `o`, as `TaylorProgram::order_k`.
     #[allow(clippy::too_many_lines)]
     fn node_k(&mut self, o: Order, me: usize, node: Node) {
@@ -1112,23 +1144,7 @@ impl<'a, 'b> Emitter<'a, 'b> {
                 let n = self.b.ins().iadd_imm(o.k, 1);
                 self.cauchy_loop(o, (u(a), 0), (u(b), 0), n)
             }
-            Node::Square(a) => {
-                // 2 Σ_{j < ⌈k/2⌉} a_j a_{k-j}, plus a_{k/2}² for even k.
-                let k1 = self.b.ins().iadd_imm(o.k, 1);
-                let half = self.b.ins().sshr_imm(k1, 1);
-                let s = self.cauchy_loop(o, (u(a), 0), (u(a), 0), half);
-                let two = self.c(2.0);
-                let twice = self.mul(s, two);
-                let mid = self.b.ins().sshr_imm(o.k, 1);
-                let mid8 = self.b.ins().ishl_imm(mid, 3);
-                let at = self.b.ins().iadd(self.w, mid8);
-                let offset = self.offset(u(a), 0);
-                let m = self.ld_at(at, offset);
-                let m = self.mul(m, m);
-                let with_m = self.add(twice, m);
-                let odd = self.b.ins().band_imm(o.k, 1);
-                self.b.ins().select(odd, twice, with_m)
-            }
+            Node::Square(a) => self.mirrored_loop(o, u(a), 0),
             Node::Div(a, b) => {
                 let (x, b0) = (self.ldk(o, u(a), 0), self.ld(u(b), 0));
                 let s = self.cauchy_loop(o, (u(b), 1), (me, 1), o.k);
@@ -1142,13 +1158,9 @@ impl<'a, 'b> Emitter<'a, 'b> {
                 self.div(minus, a0)
             }
             Node::Sqrt(a) => {
+                let inner = self.mirrored_loop(o, me, 1);
                 let x = self.ldk(o, u(a), 0);
-                let om = self.offset(me, 0);
-                let s = self.sum_loop(o, x, (1, o.k), true, &move |e, _, wj, wkj| {
-                    let x = e.ld_at(wj, om);
-                    let y = e.ld_at(wkj, om);
-                    e.mul(x, y)
-                });
+                let s = self.sub(x, inner);
                 let me0 = self.ld(me, 0);
                 let d = self.cmul(2.0, me0);
                 self.div(s, d)
@@ -1174,22 +1186,7 @@ impl<'a, 'b> Emitter<'a, 'b> {
                 self.div(s, d)
             }
             Node::Exp(a) => {
-                let (oa, om) = (self.offset(u(a), 0), self.offset(me, 0));
-                let term = move |e: &mut Self, j: Value, wj: Value, wkj: Value| {
-                    let jf = e.float(j);
-                    let x = e.ld_at(wj, oa);
-                    let jx = e.mul(jf, x);
-                    let y = e.ld_at(wkj, om);
-                    e.mul(jx, y)
-                };
-                let one = self.b.ins().iconst(types::I64, 1);
-                let (w1, wk1) = (
-                    self.b.ins().iadd_imm(self.w, 8),
-                    self.b.ins().iadd_imm(o.wk, -8),
-                );
-                let first = term(self, one, w1, wk1);
-                let k1 = self.b.ins().iadd_imm(o.k, 1);
-                let s = self.sum_loop(o, first, (2, k1), false, &term);
+                let s = self.falling_loop(o, u(a), me);
                 self.mul(s, o.rk)
             }
             Node::Integral {
@@ -1216,26 +1213,9 @@ impl<'a, 'b> Emitter<'a, 'b> {
             }
             Node::SinCos(a, hyperbolic) => {
                 let partner = me + 1;
-                let ja = self.ld(u(a), 1);
-                let (p, m) = (self.ldk(o, partner, 1), self.ldk(o, me, 1));
-                let s = self.mul(ja, p);
-                let c = self.mul(ja, m);
-                let k1 = self.b.ins().iadd_imm(o.k, 1);
-                // The sine's and the cosine's sums are independent: one loop each gives
-                // each the operations of the interpreter's joint loop.
-                let oa = self.offset(u(a), 0);
-                let sum = |e: &mut Self, s: Value, of: usize| {
-                    let of = e.offset(of, 0);
-                    e.sum_loop(o, s, (2, k1), false, &move |e, j, wj, wkj| {
-                        let jf = e.float(j);
-                        let x = e.ld_at(wj, oa);
-                        let ja = e.mul(jf, x);
-                        let y = e.ld_at(wkj, of);
-                        e.mul(ja, y)
-                    })
-                };
-                let s = sum(self, s, partner);
-                let c = sum(self, c, me);
+                // The sine's sum runs over the cosine, the cosine's over the sine.
+                let s = self.falling_loop(o, u(a), partner);
+                let c = self.falling_loop(o, u(a), me);
                 let c = if hyperbolic { c } else { self.b.ins().fneg(c) };
                 let pc = self.mul(c, o.rk);
                 self.stk(o, partner, pc);

@@ -18,9 +18,7 @@
 //! 15 (26 nodes) an expansion costs about the same per member at 16 and 32 lanes, and about
 //! 1.8x as much at 8 (`benchmarks/README.md`).
 
-use super::{
-    func_value, ordered_sum, power0, powf_weight, Keyed, Node, TaylorProgram, Val, WorkLayout,
-};
+use super::{func_value, ordered_sum, power0, Keyed, Node, TaylorProgram, Val, Weight, WorkLayout};
 use crate::classical::core::{Error, Result};
 use crate::classical::integrators::taylor::{StepCost, TaylorField, MAX_ORDER};
 use crate::classical::integrators::taylor_batch::LanesField;
@@ -245,6 +243,24 @@ fn zip<const L: usize>(a: [f64; L], b: [f64; L], f: impl Fn(f64, f64) -> f64) ->
     out
 }
 
+/// The scalar weighted sum (`taylor_tape.rs`'s `weighted_sum`) lane by lane:
+/// `Σ_{j < k} (w_j a_{k-j}) b_j` in [`ordered_sum`]'s order, `a` and `b` the indices of
+/// coefficient 0 of the two series; `None` for `k = 0`.
+#[inline(always)]
+fn weighted_sum<const L: usize>(
+    w: &[[f64; L]],
+    weight: Weight,
+    a: usize,
+    b: usize,
+    k: usize,
+) -> Option<[f64; L]> {
+    let term = |(): &mut (), j: usize| {
+        let wj = weight.at(k, j);
+        zip(w[a + k - j], w[b + j], |x, y| wj * x * y)
+    };
+    ordered_sum(&mut (), k, term, |(), s, t| zip(s, t, |x, y| x + y))
+}
+
 /// [`cauchy`] lane by lane: `Σ_j a_j b_{n-1-j}` in [`ordered_sum`]'s order (zeros for
 /// empty slices).
 #[inline(always)]
@@ -252,6 +268,30 @@ fn cauchy_lanes<const L: usize>(a: &[[f64; L]], b: &[[f64; L]]) -> [f64; L] {
     let n = a.len().min(b.len());
     let term = |(): &mut (), j: usize| zip(a[j], b[n - 1 - j], |x, y| x * y);
     ordered_sum(&mut (), n, term, |(), s, t| zip(s, t, |x, y| x + y)).unwrap_or([0.0; L])
+}
+
+/// The scalar `mirrored` (`taylor_tape.rs`) lane by lane: `Σ_{lo ≤ j ≤ k - lo} x_j x_{k-j}`,
+/// each term with its mirror.
+#[inline(always)]
+fn mirrored<const L: usize>(w: &[[f64; L]], x: usize, lo: usize, k: usize) -> [f64; L] {
+    let n = k.div_ceil(2) - lo;
+    let twice = map(
+        cauchy_lanes(
+            &w[x + lo..x + lo + n],
+            &w[x + k + 1 - lo - n..x + k + 1 - lo],
+        ),
+        |v| v * 2.0,
+    );
+    if k.is_multiple_of(2) {
+        let m = map(w[x + k / 2], |v| v * v);
+        if n == 0 {
+            m
+        } else {
+            zip(twice, m, |a, b| a + b)
+        }
+    } else {
+        twice
+    }
 }
 
 /// Orders `0..=order` of every node for `L` states (the state's and time's order 0 set):
@@ -318,24 +358,7 @@ fn order_k<const L: usize>(nodes: &[Node], w: &mut [[f64; L]], k: usize, layout:
                 let (a, b) = (at(a, 0), at(b, 0));
                 cauchy_lanes(&w[a..=a + k], &w[b..=b + k])
             }
-            Node::Square(a) => {
-                let a = at(a, 0);
-                let half = k.div_ceil(2);
-                let twice = map(
-                    cauchy_lanes(&w[a..a + half], &w[a + k + 1 - half..=a + k]),
-                    |x| x * 2.0,
-                );
-                if k.is_multiple_of(2) {
-                    let m = map(w[a + k / 2], |x| x * x);
-                    if half == 0 {
-                        m
-                    } else {
-                        zip(twice, m, |x, y| x + y)
-                    }
-                } else {
-                    twice
-                }
-            }
+            Node::Square(a) => mirrored(w, at(a, 0), 0, k),
             Node::Div(a, b) => {
                 let b = at(b, 0);
                 if k == 0 {
@@ -359,11 +382,7 @@ fn order_k<const L: usize>(nodes: &[Node], w: &mut [[f64; L]], k: usize, layout:
                 if k == 0 {
                     map(w[at(a, 0)], f64::sqrt)
                 } else {
-                    let mut s = w[at(a, k)];
-                    for j in 1..k {
-                        let t = zip(w[me + j], w[me + k - j], |x, y| x * y);
-                        s = zip(s, t, |x, y| x - y);
-                    }
+                    let s = zip(w[at(a, k)], mirrored(w, me, 1, k), |x, y| x - y);
                     zip(s, w[me], |x, y| x / (2.0 * y))
                 }
             }
@@ -372,11 +391,7 @@ fn order_k<const L: usize>(nodes: &[Node], w: &mut [[f64; L]], k: usize, layout:
                 if k == 0 {
                     map(w[a], |x| power0(x, alpha))
                 } else {
-                    let term = |(): &mut (), j: usize| {
-                        let weight = powf_weight(alpha, k, j);
-                        zip(w[a + k - j], w[me + j], |x, y| weight * x * y)
-                    };
-                    let s = ordered_sum(&mut (), k, term, |(), s, t| zip(s, t, |x, y| x + y));
+                    let s = weighted_sum(w, Weight::Power(alpha), a, me, k);
                     zip(s.unwrap_or([0.0; L]), w[a], |x, y| x / (kf * y))
                 }
             }
@@ -385,14 +400,7 @@ fn order_k<const L: usize>(nodes: &[Node], w: &mut [[f64; L]], k: usize, layout:
                 if k == 0 {
                     map(w[a], f64::exp)
                 } else {
-                    let term = |j: usize| {
-                        let jf = j as f64;
-                        zip(w[a + j], w[me + k - j], |x, y| jf * x * y)
-                    };
-                    let mut s = term(1);
-                    for j in 2..=k {
-                        s = zip(s, term(j), |x, y| x + y);
-                    }
+                    let s = weighted_sum(w, Weight::Falling, a, me, k).unwrap_or([0.0; L]);
                     let rk = 1.0 / kf;
                     map(s, |x| x * rk)
                 }
@@ -424,15 +432,8 @@ fn order_k<const L: usize>(nodes: &[Node], w: &mut [[f64; L]], k: usize, layout:
                     w[partner] = c;
                     s
                 } else {
-                    let ja = w[a + 1];
-                    let mut s = zip(ja, w[partner + k - 1], |x, y| x * y);
-                    let mut c = zip(ja, w[me + k - 1], |x, y| x * y);
-                    for j in 2..=k {
-                        let jf = j as f64;
-                        let ja = map(w[a + j], |x| jf * x);
-                        s = zip(s, zip(ja, w[partner + k - j], |x, y| x * y), |x, y| x + y);
-                        c = zip(c, zip(ja, w[me + k - j], |x, y| x * y), |x, y| x + y);
-                    }
+                    let s = weighted_sum(w, Weight::Falling, a, partner, k).unwrap_or([0.0; L]);
+                    let c = weighted_sum(w, Weight::Falling, a, me, k).unwrap_or([0.0; L]);
                     let rk = 1.0 / kf;
                     w[partner + k] = if hyperbolic {
                         map(c, |x| x * rk)
