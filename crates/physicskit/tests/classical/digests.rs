@@ -213,7 +213,7 @@ const DIGESTS: &[(&str, &str)] = &[
     ("hoop/kahan_li8/all", "refused"),
     ("hoop/rk4/all", "4eb18340384223ef"),
     ("hoop/sofroniou_spaletta10/all", "refused"),
-    ("hoop/taylor/all", "c482ee3a4e4d7198"),
+    ("hoop/taylor/all", "e5e4f48a8f58ae6c"),
     ("hoop/verlet/all", "refused"),
     ("hoop/yoshida4/all", "refused"),
     ("hoop/yoshida6/all", "refused"),

@@ -168,15 +168,15 @@ impl Node {
     }
 
     /// Multiply-adds per term of [`sum_terms`](Self::sum_terms), and besides the sum at each
-    /// order: a power's, an exponential's and an integral's terms take a weight and two
-    /// products, a sine's and cosine's pair of terms three; a division (of a quotient, a
-    /// power, a square root, an integral) counts as four.
+    /// order: a power's, an exponential's, an integral's and a sine–cosine pair's terms take a
+    /// weight and two products; a division (of a quotient, a power, a square root, an
+    /// integral) counts as four.
     fn work_per_term(self) -> (f64, f64) {
         match self {
             Node::Powf(..) | Node::Integral { .. } => (2.0, 4.0),
             Node::Div(..) | Node::CDiv(..) | Node::Sqrt(_) => (1.0, 4.0),
             Node::Exp(_) => (2.0, 1.0),
-            Node::SinCos(..) => (1.5, 0.0),
+            Node::SinCos(..) => (2.0, 0.0),
             _ => (1.0, 0.0),
         }
     }

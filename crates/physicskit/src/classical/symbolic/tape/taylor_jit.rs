@@ -730,8 +730,8 @@ pub(super) trait Recurrences {
                     self.call(exp as *const () as usize, x)
                 } else {
                     let s = self.weighted_sum(u(a), me, k, Weight::Falling);
+                    let s = s.unwrap_or_else(|| self.c(0.0));
                     let rk = self.c(1.0 / kf);
-                    let s = s.unwrap_or(rk);
                     self.mul(s, rk)
                 }
             }
@@ -765,12 +765,10 @@ pub(super) trait Recurrences {
                     self.st(partner, 0, c);
                     s
                 } else {
-                    // Both sums have a term for k >= 1.
-                    let zero = |r: &mut Self| r.c(0.0);
                     let s = self.weighted_sum(u(a), partner, k, Weight::Falling);
-                    let s = s.unwrap_or_else(|| zero(self));
+                    let s = s.unwrap_or_else(|| self.c(0.0));
                     let c = self.weighted_sum(u(a), me, k, Weight::Falling);
-                    let c = c.unwrap_or_else(|| zero(self));
+                    let c = c.unwrap_or_else(|| self.c(0.0));
                     let rk = self.c(1.0 / kf);
                     let c = if hyperbolic { c } else { self.neg(c) };
                     let pc = self.mul(c, rk);
