@@ -81,9 +81,9 @@ fn compiled_coefficients_have_the_interpreters_bits() {
                 "{name}, order {order}"
             );
             assert_eq!(interpreted.backend(order), Backend::Interpreter);
-            // The code written for AVX on such hosts, but for an `|x|` (left to Cranelift)
-            // and the pendulums, whose larger orders take the compact form.
-            if avx_code(1) && !name.contains("abs") && !name.starts_with("double pendulum") {
+            // The code written for AVX on such hosts, but for the pendulums, whose larger
+            // orders take the compact form.
+            if avx_code(1) && !name.starts_with("double pendulum") {
                 assert!(compiled.written_for_avx(order), "{name}, order {order}");
             }
             for s in 0..10 {

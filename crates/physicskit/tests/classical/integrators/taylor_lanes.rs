@@ -98,9 +98,9 @@ fn compiled_lanes_equal_the_interpreted<const L: usize>(cranelift: bool) {
             reference.expand(&t, &y, order).unwrap();
             compiled.expand(&t, &y, order).unwrap();
             assert_eq!(compiled.backend(order), native());
-            // The code written for AVX wherever the host has it and the program takes no
-            // `|x|` (left to Cranelift), unless Cranelift's is asked for.
-            let avx = !cranelift && avx_code(L) && !name.contains("abs");
+            // The code written for AVX wherever the host has it, unless Cranelift's is asked
+            // for.
+            let avx = !cranelift && avx_code(L);
             assert_eq!(compiled.written_for_avx(order), avx, "{name}, {L} lanes");
             for (i, (g, w)) in compiled
                 .coefficients()

@@ -34,9 +34,11 @@
 //! convention keeps none of them). One state's code on an AVX2 host sums the groups of four
 //! terms of a long Cauchy or weighted sum (`taylor_tape.rs`'s `ordered_sum`) as whole `ymm`
 //! vectors: each group's four terms in the lanes, the reversed factor read by `vpermpd`, then
-//! the lanes added in the order the partial sums are ([`Groups`]).
-//! A program with an `|x|` is left to Cranelift
-//! ([`compile`] returns `None`). `tests/classical/integrators/taylor_jit.rs` and
+//! the lanes added in the order the partial sums are ([`Groups`]). Order `k` of `|a|`, `-a_k`
+//! where `a_0 < 0` and else `a_k`, is `a_k` with its sign bit flipped by the sign bit of
+//! `min(a_0, +0)`: x86's minimum gives its second operand, `+0`, for a NaN and for `-0`, so
+//! only an `a_0` below zero sets it (no branch, in every lane).
+//! `tests/classical/integrators/taylor_jit.rs` and
 //! `taylor_lanes.rs` check this code and Cranelift's against the interpreter on every
 //! recurrence at orders 1–24 (one state; 4, 8 and 16 lanes), and the unit test below with
 //! one to five registers, so that the allocator spills.
@@ -67,8 +69,7 @@ pub(in crate::classical::symbolic) fn width(lanes: usize) -> Option<usize> {
 
 /// The recurrences of `order` for `lanes` lanes as machine code, its entry point
 /// (`extern "C" fn(*mut f64)` on the lanes' work array) and the module owning it; `None`
-/// where the host lacks AVX, the program takes an `|x|`, or its offsets do not fit the
-/// encoding.
+/// where the host lacks AVX or the program's offsets do not fit the encoding.
 pub(in crate::classical::symbolic) fn compile(
     nodes: &[Node],
     outputs: &[Val],
@@ -106,7 +107,7 @@ fn compile_on(
     let registers = registers.map_or(all, |r| r.clamp(1, all));
     // A group's sum takes two registers of its own.
     let groups = width == 1 && registers >= 2 && std::arch::is_x86_feature_detected!("avx2");
-    let mut recorder = Recorder::of(nodes, outputs, order, layout, groups)?;
+    let mut recorder = Recorder::of(nodes, outputs, order, layout, groups);
     let sign = recorder.constant(-0.0);
     let (code, slots) = allocate(&recorder.ops, registers, sign);
     let frame = Frame {
@@ -164,6 +165,13 @@ enum Arith {
     Sub,
     Mul,
     Div,
+    /// x86's minimum: the first operand where it is below the second, else the second (for
+    /// equal zeros and for a NaN in either).
+    Min,
+    /// Bitwise and, on the doubles' bits.
+    And,
+    /// Bitwise exclusive or, on the doubles' bits.
+    Xor,
 }
 
 /// Records the [`Recurrences`] calls as [`Op`]s.
@@ -173,7 +181,6 @@ struct Recorder {
     fresh: Fresh<usize>,
     /// Where the state's coefficients are stored a second time, if they are.
     blocks: Option<WorkLayout>,
-    has_abs: bool,
     /// Whether the sums' groups are summed as [`Groups`] (one state, AVX2: `vpermpd`).
     groups: bool,
     /// The weights of the [`Groups`], four to an entry.
@@ -182,21 +189,19 @@ struct Recorder {
 
 impl Recorder {
     /// The recurrences of `order` recorded (each of the state's coefficients stored into the
-    /// blocks of `blocks` too, if given; the sums' groups as vectors if `groups`); `None` for
-    /// a program with an `|x|`.
+    /// blocks of `blocks` too, if given; the sums' groups as vectors if `groups`).
     fn of(
         nodes: &[Node],
         outputs: &[Val],
         order: usize,
         blocks: Option<WorkLayout>,
         groups: bool,
-    ) -> Option<Self> {
+    ) -> Self {
         let mut recorder = Recorder {
             ops: Vec::new(),
             pool: Vec::new(),
             fresh: Fresh::new(WorkLayout::new(nodes.len(), outputs.len(), order)),
             blocks,
-            has_abs: false,
             groups,
             weights: Vec::new(),
         };
@@ -207,7 +212,7 @@ impl Recorder {
             }
         }
         recorder.recurrences(nodes, outputs, order);
-        (!recorder.has_abs).then_some(recorder)
+        recorder
     }
 
     fn push(&mut self, op: Op) -> usize {
@@ -279,10 +284,13 @@ impl Recurrences for Recorder {
         self.push(Op::Sqrt(x))
     }
 
-    /// Not written here: the program is left to Cranelift.
-    fn abs(&mut self, _: usize, x: usize) -> usize {
-        self.has_abs = true;
-        x
+    /// `x` with its sign bit flipped by `min(x0, +0)`'s (see the module documentation).
+    fn abs(&mut self, x0: usize, x: usize) -> usize {
+        let zero = self.c(0.0);
+        let below = self.push(Op::Arith(Arith::Min, x0, zero));
+        let sign = self.c(-0.0);
+        let flip = self.push(Op::Arith(Arith::And, below, sign));
+        self.push(Op::Arith(Arith::Xor, flip, x))
     }
 
     fn call(&mut self, address: usize, x: usize) -> usize {
@@ -447,7 +455,8 @@ fn allocate(ops: &[Op], registers: usize, sign: usize) -> (Vec<Inst>, usize) {
             Op::Constant(p) => a.place_in_memory(i, Loc::Pool(p)),
             Op::Arith(op, x, y) => {
                 let in_reg = |v: usize| matches!(a.loc[v], Loc::Reg(_));
-                let commutes = matches!(op, Arith::Add | Arith::Mul);
+                // x86's minimum does not commute (for zeros and NaNs).
+                let commutes = matches!(op, Arith::Add | Arith::Mul | Arith::And | Arith::Xor);
                 let (x, y) = if commutes && !in_reg(x) && in_reg(y) {
                     (y, x)
                 } else {
@@ -726,9 +735,13 @@ const ZMM: [AsmRegisterZmm; 32] = [
     registers::zmm31,
 ];
 
-/// Either width's form of a vector instruction, register or memory as its last operand.
+/// Either width's form of a vector instruction, register or memory as its last operand
+/// (`$scalar` on one lane's `xmm`, `$name` on `ymm`, `$wide` on `zmm`, `$name` by default).
 macro_rules! vector_op {
-    ($asm:expr, $frame:expr, $name:ident, $scalar:ident, $dst:expr, $a:expr, $b:expr) => {{
+    ($asm:expr, $frame:expr, $name:ident, $scalar:ident, $dst:expr, $a:expr, $b:expr) => {
+        vector_op!($asm, $frame, $name, $name, $scalar, $dst, $a, $b)
+    };
+    ($asm:expr, $frame:expr, $name:ident, $wide:ident, $scalar:ident, $dst:expr, $a:expr, $b:expr) => {{
         let (dst, a) = ($frame.vector($dst), $frame.vector($a));
         match ($b, dst, a) {
             (Operand::Reg(b), Vector::X(d), Vector::X(a)) => {
@@ -736,9 +749,9 @@ macro_rules! vector_op {
             }
             (Operand::Mem(m), Vector::X(d), Vector::X(a)) => $asm.$scalar(d, a, m),
             (Operand::Reg(b), Vector::Y(d), Vector::Y(a)) => $asm.$name(d, a, YMM[usize::from(b)]),
-            (Operand::Reg(b), Vector::Z(d), Vector::Z(a)) => $asm.$name(d, a, ZMM[usize::from(b)]),
+            (Operand::Reg(b), Vector::Z(d), Vector::Z(a)) => $asm.$wide(d, a, ZMM[usize::from(b)]),
             (Operand::Mem(m), Vector::Y(d), Vector::Y(a)) => $asm.$name(d, a, m),
-            (Operand::Mem(m), Vector::Z(d), Vector::Z(a)) => $asm.$name(d, a, m),
+            (Operand::Mem(m), Vector::Z(d), Vector::Z(a)) => $asm.$wide(d, a, m),
             _ => unreachable!("one frame has one width"),
         }
     }};
@@ -882,6 +895,15 @@ impl Frame {
                     Arith::Sub => vector_op!(asm, self, vsubpd, vsubsd, dst, a, b),
                     Arith::Mul => vector_op!(asm, self, vmulpd, vmulsd, dst, a, b),
                     Arith::Div => vector_op!(asm, self, vdivpd, vdivsd, dst, a, b),
+                    Arith::Min => vector_op!(asm, self, vminpd, vminsd, dst, a, b),
+                    // On one lane the bitwise operations read an `xmm`'s 16 bytes from memory:
+                    // a pool entry holds two doubles; a coefficient of `|a|`'s operand has
+                    // the `|a|`'s own coefficients after it in the work array, and a stack
+                    // slot the next slot or the frame's eight spare bytes. The `zmm` forms
+                    // are AVX-512F's integer ones (`vandpd` on `zmm` needs AVX-512DQ), on
+                    // the same bits.
+                    Arith::And => vector_op!(asm, self, vandpd, vpandq, vandpd, dst, a, b),
+                    Arith::Xor => vector_op!(asm, self, vxorpd, vpxorq, vxorpd, dst, a, b),
                 }
             }
             Inst::Sqrt { dst, x } => match (self.operand(x, pool)?, self.vector(dst)) {
@@ -997,103 +1019,156 @@ mod tests {
         TaylorProgram::ode(&ExprOde::new(f, vec![], &y0, None).unwrap()).unwrap()
     }
 
+    /// Products, `|q0|` and `|q0 q1|`: order `k` of `|a|` is `-a_k` where `a_0 < 0`, else `a_k`
+    /// (a NaN and both zeros are not below zero).
+    fn absolute_values() -> TaylorProgram {
+        let f = ["q2", "q3", "(* q1 (abs q0))", "(abs (* q0 q1))"];
+        let f: Vec<Expr> = f.iter().map(|f| Expr::parse(f).unwrap()).collect();
+        let y0 = [0.8, 0.2, 0.1, 1.1];
+        TaylorProgram::ode(&ExprOde::new(f, vec![], &y0, None).unwrap()).unwrap()
+    }
+
+    /// The same bits, or both NaNs: which operand's NaN an x86 operation passes on depends
+    /// on the operands' order, which the code may swap where the operation commutes.
+    fn same(a: f64, b: f64) -> bool {
+        a.to_bits() == b.to_bits() || (a.is_nan() && b.is_nan())
+    }
+
+    /// Lane `l` of the four rows of a distinct state: `0.5 + 0.1 i + 0.03 l`.
+    fn states<const L: usize>() -> Vec<[f64; L]> {
+        (0..4)
+            .map(|i| std::array::from_fn(|l| 0.5 + 0.1 * i as f64 + 0.03 * l as f64))
+            .collect()
+    }
+
     /// On 1, 2 and 5 registers (so that values are moved to the stack and back, and read
     /// from where they were stored) and on all of them, the code's coefficients of every node
-    /// are the interpreter's bit for bit, for one state and in 4 and 8 lanes at distinct
-    /// states; with frames of a few slots and of several pages. One state's code also writes
+    /// at the states `y` are the interpreter's bit for bit. One state's code also writes
     /// the state's coefficients into the work array's blocks, each where the stepper's
     /// transposition puts it; the lanes' code leaves the blocks alone.
-    #[test]
-    fn spilled_code_has_the_interpreters_bits() {
-        fn check<const L: usize>(program: &TaylorProgram) {
-            let order = 9;
-            let stride = order + 1;
-            let t: [f64; L] = std::array::from_fn(|l| 0.1 * l as f64);
-            let y: Vec<[f64; L]> = (0..4)
-                .map(|i| std::array::from_fn(|l| 0.5 + 0.1 * i as f64 + 0.03 * l as f64))
-                .collect();
-            // Each lane's every node, by the interpreter on that lane's state alone.
-            let mut reference = program.interpreted_only();
-            let want: Vec<Vec<f64>> = (0..L)
-                .map(|l| {
-                    let state: Vec<f64> = y.iter().map(|yi| yi[l]).collect();
-                    let mut out = vec![0.0; 4 * stride];
-                    reference
-                        .coefficients(t[l], &state, order, &mut out)
-                        .unwrap();
-                    reference.work.clone()
-                })
-                .collect();
-            let layout = WorkLayout::new(program.nodes.len(), 4, order);
-            for registers in [Some(1), Some(2), Some(5), None] {
-                let Some((code, _module)) = compile_on(
-                    &program.nodes,
-                    &program.outputs,
-                    L,
-                    Some(layout),
-                    order,
-                    registers,
-                ) else {
-                    assert!(super::width(L).is_none(), "AVX host, no code");
-                    return;
-                };
-                // The inputs as `expand` sets them: the state's and the time's orders 0, the
-                // time's order 1; everything else is the code's to write.
-                let mut w = vec![[0.0; L]; layout.len()];
-                for (i, yi) in y.iter().enumerate() {
-                    w[i * stride] = *yi;
+    fn check<const L: usize>(program: &TaylorProgram, y: &[[f64; L]]) {
+        let order = 9;
+        let stride = order + 1;
+        let t: [f64; L] = std::array::from_fn(|l| 0.1 * l as f64);
+        // Each lane's every node, by the interpreter on that lane's state alone.
+        let mut reference = program.interpreted_only();
+        let want: Vec<Vec<f64>> = (0..L)
+            .map(|l| {
+                let state: Vec<f64> = y.iter().map(|yi| yi[l]).collect();
+                let mut out = vec![0.0; 4 * stride];
+                reference
+                    .coefficients(t[l], &state, order, &mut out)
+                    .unwrap();
+                reference.work.clone()
+            })
+            .collect();
+        let layout = WorkLayout::new(program.nodes.len(), 4, order);
+        for registers in [Some(1), Some(2), Some(5), None] {
+            let Some((code, _module)) = compile_on(
+                &program.nodes,
+                &program.outputs,
+                L,
+                Some(layout),
+                order,
+                registers,
+            ) else {
+                assert!(super::width(L).is_none(), "AVX host, no code");
+                return;
+            };
+            // The inputs as `expand` sets them: the state's and the time's orders 0, the
+            // time's order 1; everything else is the code's to write.
+            let mut w = vec![[0.0; L]; layout.len()];
+            for (i, yi) in y.iter().enumerate() {
+                w[i * stride] = *yi;
+            }
+            w[4 * stride] = t;
+            w[4 * stride + 1] = [1.0; L];
+            // SAFETY: the code reads and writes the work array of these recurrences at
+            // this order and lane count, which `w` is.
+            #[allow(unsafe_code)]
+            unsafe {
+                let f: unsafe extern "C" fn(*mut f64) = std::mem::transmute(code);
+                f(w.as_mut_ptr().cast());
+            }
+            let (nodes, blocks) = w.split_at(layout.blocks_start());
+            for (i, g) in nodes.iter().enumerate() {
+                for (l, want) in want.iter().enumerate() {
+                    assert!(
+                        same(g[l], want[i]),
+                        "{registers:?} registers, {L} lanes, coefficient {i}, lane {l}"
+                    );
                 }
-                w[4 * stride] = t;
-                w[4 * stride + 1] = [1.0; L];
-                // SAFETY: the code reads and writes the work array of these recurrences at
-                // this order and lane count, which `w` is.
-                #[allow(unsafe_code)]
-                unsafe {
-                    let f: unsafe extern "C" fn(*mut f64) = std::mem::transmute(code);
-                    f(w.as_mut_ptr().cast());
-                }
-                let (nodes, blocks) = w.split_at(layout.blocks_start());
-                for (i, g) in nodes.iter().enumerate() {
-                    for (l, want) in want.iter().enumerate() {
-                        assert_eq!(
-                            g[l].to_bits(),
-                            want[i].to_bits(),
-                            "{registers:?} registers, {L} lanes, coefficient {i}, lane {l}"
-                        );
-                    }
-                }
-                // The blocks as the stepper's transposition fills them (one state), or
-                // untouched (lanes).
-                let mut expected = vec![[0.0; L]; blocks.len()];
-                for i in 0..4 {
-                    for j in 0..stride {
-                        if L == 1 {
-                            expected[layout.in_blocks(i, j) - layout.blocks_start()] =
-                                std::array::from_fn(|l| want[l][i * stride + j]);
-                        }
-                    }
-                }
-                for (b, (g, e)) in blocks.iter().zip(&expected).enumerate() {
-                    for l in 0..L {
-                        assert_eq!(
-                            g[l].to_bits(),
-                            e[l].to_bits(),
-                            "{registers:?} registers, {L} lanes, block entry {b}, lane {l}"
-                        );
+            }
+            // The blocks as the stepper's transposition fills them (one state), or
+            // untouched (lanes).
+            let mut expected = vec![[0.0; L]; blocks.len()];
+            for i in 0..4 {
+                for j in 0..stride {
+                    if L == 1 {
+                        expected[layout.in_blocks(i, j) - layout.blocks_start()] =
+                            std::array::from_fn(|l| want[l][i * stride + j]);
                     }
                 }
             }
+            for (b, (g, e)) in blocks.iter().zip(&expected).enumerate() {
+                for l in 0..L {
+                    assert!(
+                        same(g[l], e[l]),
+                        "{registers:?} registers, {L} lanes, block entry {b}, lane {l}"
+                    );
+                }
+            }
         }
+    }
+
+    /// [`check`] on programs of every operation this code writes, for one state and in 4 and 8
+    /// lanes at distinct states, with frames of a few slots and of several pages.
+    #[test]
+    fn spilled_code_has_the_interpreters_bits() {
         let calls = many_calls();
-        let mut recorder =
-            super::Recorder::of(&calls.nodes, &calls.outputs, 9, None, false).unwrap();
+        let mut recorder = super::Recorder::of(&calls.nodes, &calls.outputs, 9, None, false);
         let sign = recorder.constant(-0.0);
         let (_, slots) = super::allocate(&recorder.ops, 32, sign);
         assert!(64 * slots > 4096, "{slots} slots of a zmm");
-        for program in [program(), calls] {
-            check::<1>(&program);
-            check::<4>(&program);
-            check::<8>(&program);
+        for program in [program(), calls, absolute_values()] {
+            check::<1>(&program, &states());
+            check::<4>(&program, &states());
+            check::<8>(&program, &states());
         }
+    }
+
+    /// `|a|` where `a_0` is below zero, above it, either zero, a NaN or infinite (the
+    /// interpreter's coefficients then NaNs or infinities, bit for bit too): on one state
+    /// each, and the eight of them in the lanes of 4 and 8.
+    #[test]
+    fn absolute_values_follow_the_sign_of_order_zero() {
+        let q0 = [
+            -0.7,
+            0.7,
+            -0.0,
+            0.0,
+            f64::NAN,
+            -f64::NAN,
+            f64::NEG_INFINITY,
+            -1e-300,
+        ];
+        let lanes = |from: usize| -> [[f64; 4]; 4] {
+            [
+                std::array::from_fn(|l| q0[from + l]),
+                [0.3; 4],
+                [-0.2; 4],
+                [0.9; 4],
+            ]
+        };
+        let program = absolute_values();
+        for &x in &q0 {
+            check::<1>(&program, &[[x], [0.3], [-0.2], [0.9]]);
+        }
+        check::<4>(&program, &lanes(0));
+        check::<4>(&program, &lanes(4));
+        let eight: Vec<[f64; 8]> = (0..4)
+            .map(|i| std::array::from_fn(|l| lanes(4 * (l / 4))[i][l % 4]))
+            .collect();
+        check::<8>(&program, &eight);
     }
 }

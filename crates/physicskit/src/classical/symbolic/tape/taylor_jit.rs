@@ -27,8 +27,8 @@
 //!
 //! On x86-64 hosts with AVX the unrolled form is first written as AVX code by `taylor_asm.rs`
 //! ([`Form::Avx`]: the same operations in the same order, loads folded into the arithmetic,
-//! compiled in a tenth of Cranelift's time); Cranelift's is the fallback (an `|x|`, other
-//! hosts) and what tests force to keep it checked.
+//! compiled in a tenth of Cranelift's time); Cranelift's is the fallback (hosts without AVX,
+//! offsets beyond the encoding) and what tests force to keep it checked.
 //!
 //! The code of an order is compiled once, by the expansion that comes after
 //! [`TaylorProgram::COMPILE_AFTER`] interpreted ones (or by
@@ -259,8 +259,8 @@ pub(super) enum Form {
     /// order `k`, each sum a loop over its terms: code of a size growing with the nodes alone,
     /// compiled in a fraction of the time, run more slowly.
     Compact,
-    /// The unrolled form written as AVX code ([`asm`]: x86-64 hosts with AVX, programs without
-    /// an `|x|`), Cranelift's [`Form::Unrolled`] where it cannot be.
+    /// The unrolled form written as AVX code ([`asm`]: x86-64 hosts with AVX), Cranelift's
+    /// [`Form::Unrolled`] where it cannot be.
     Avx,
 }
 

@@ -14,8 +14,8 @@
 //!
 //! On x86-64 hosts with AVX the same recurrences are first written as `ymm` or `zmm` code by
 //! `taylor_asm.rs` (4 or 8 lanes a register, loads folded, compiled in a twentieth of
-//! Cranelift's time); Cranelift's code is the fallback (an `|x|`, other hosts), and what
-//! [`Jit::cranelift_only`] asks for in tests.
+//! Cranelift's time); Cranelift's code is the fallback (hosts without AVX, offsets beyond
+//! the encoding), and what [`Jit::cranelift_only`] asks for in tests.
 //!
 //! `f64x2` addition, subtraction, multiplication, division, negation and square root are the
 //! IEEE operations lane by lane, and Cranelift does not contract a multiplication and an
