@@ -1522,10 +1522,12 @@ impl TaylorProgram {
                     if k == 0 {
                         func_value(func, w[a])
                     } else {
-                        let mut s = sign * kf * w[a + k];
-                        for j in 1..k {
-                            s -= j as f64 * w[me + j] * w[d + k - j];
-                        }
+                        // `Σ_{1 ≤ j < k} j c_j d_{k-j}` as a weighted sum of `k - 1` terms.
+                        let s = sign * kf * w[a + k];
+                        let s = match weighted_sum(w, Weight::Falling, me, d + 1, k - 1) {
+                            Some(t) => s - t,
+                            None => s,
+                        };
                         s / (kf * w[d])
                     }
                 }
@@ -1621,8 +1623,9 @@ enum Weight {
     /// `a^α`'s recurrence, `b` the power itself: [`powf_weight`].
     Power(f64),
     /// A sine–cosine pair's (`b` the sine or the cosine) or an exponential's (`b` the
-    /// exponential itself): `k - j`, so that the sum is `Σ_{1 ≤ i ≤ k} i a_i b_{k-i}`. The
-    /// weights are whole numbers, exact in any form.
+    /// exponential itself): `k - j`, so that the sum is `Σ_{1 ≤ i ≤ k} i a_i b_{k-i}`; the
+    /// same over `k - 1` terms from `b`'s order 1 for an [`Node::Integral`] (`a` the integral
+    /// itself, `b` its `d`). The weights are whole numbers, exact in any form.
     Falling,
 }
 

@@ -320,7 +320,7 @@ impl Recurrences for Recorder {
     fn weighted_groups(
         &mut self,
         a: usize,
-        b: usize,
+        (b, b0): (usize, usize),
         k: usize,
         weight: Weight,
         groups: usize,
@@ -334,7 +334,7 @@ impl Recurrences for Recorder {
             self.weights.push(w);
         }
         Some(self.push(Op::Groups(Groups {
-            fwd: self.fresh.index(b, LEAD),
+            fwd: self.fresh.index(b, b0 + LEAD),
             rev: self.fresh.index(a, k - LEAD),
             groups,
             weights: Some(first),

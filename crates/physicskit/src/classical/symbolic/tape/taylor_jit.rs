@@ -578,13 +578,13 @@ pub(super) trait Recurrences {
         }
     }
 
-    /// The sum of a [`weighted_sum`](Self::weighted_sum)'s groups, `Σ (w_j a_{k-j}) b_j` over
-    /// `LEAD ≤ j < LEAD + 4 groups`, as [`ordered_sum`](super::ordered_sum) takes it, if this
-    /// form sums them at once (`None`: term by term).
+    /// The sum of a [`weighted_sum`](Self::weighted_sum)'s groups, `Σ (w_j a_{k-j}) b_{b0+j}`
+    /// over `LEAD ≤ j < LEAD + 4 groups`, as [`ordered_sum`](super::ordered_sum) takes it, if
+    /// this form sums them at once (`None`: term by term).
     fn weighted_groups(
         &mut self,
         _a: usize,
-        _b: usize,
+        _b: (usize, usize),
         _k: usize,
         _weight: Weight,
         _groups: usize,
@@ -592,17 +592,24 @@ pub(super) trait Recurrences {
         None
     }
 
-    /// `Σ_{j < k} (w_j a_{k-j}) b_j` of nodes `a` and `b` at order `k >= 1` in
-    /// [`ordered_sum`](super::ordered_sum)'s order, `w_j` the constant [`Weight`] (the sum of
-    /// a power's recurrence, an exponential's or a sine–cosine pair's).
-    fn weighted_sum(&mut self, a: usize, b: usize, k: usize, weight: Weight) -> Option<Self::X> {
+    /// `Σ_{j < k} (w_j a_{k-j}) b_{b0+j}` of nodes `a` and `b` in
+    /// [`ordered_sum`](super::ordered_sum)'s order (`None` for `k = 0`), `w_j` the constant
+    /// [`Weight`] (the sum of a power's recurrence, an exponential's, a sine–cosine pair's
+    /// or an integral's).
+    fn weighted_sum(
+        &mut self,
+        a: usize,
+        (b, b0): (usize, usize),
+        k: usize,
+        weight: Weight,
+    ) -> Option<Self::X> {
         let term = |r: &mut Self, j: usize| {
             let x = r.ld(a, k - j);
             let wx = r.cmul(weight.at(k, j), x);
-            let y = r.ld(b, j);
+            let y = r.ld(b, b0 + j);
             r.mul(wx, y)
         };
-        let groups = |r: &mut Self, g| r.weighted_groups(a, b, k, weight, g);
+        let groups = |r: &mut Self, g| r.weighted_groups(a, (b, b0), k, weight, g);
         ordered_sum_with(self, k, term, |r, s, t| r.add(s, t), groups)
     }
 
@@ -718,7 +725,7 @@ pub(super) trait Recurrences {
                 if k == 0 {
                     self.power(a0, alpha)
                 } else {
-                    let s = self.weighted_sum(u(a), me, k, Weight::Power(alpha));
+                    let s = self.weighted_sum(u(a), (me, 0), k, Weight::Power(alpha));
                     let d = self.cmul(kf, a0);
                     let s = s.unwrap_or(d);
                     self.div(s, d)
@@ -729,7 +736,7 @@ pub(super) trait Recurrences {
                     let x = self.ld(u(a), 0);
                     self.call(exp as *const () as usize, x)
                 } else {
-                    let s = self.weighted_sum(u(a), me, k, Weight::Falling);
+                    let s = self.weighted_sum(u(a), (me, 0), k, Weight::Falling);
                     let s = s.unwrap_or_else(|| self.c(0.0));
                     let rk = self.c(1.0 / kf);
                     self.mul(s, rk)
@@ -741,14 +748,11 @@ pub(super) trait Recurrences {
                     self.call(INTEGRALS[func as usize] as usize, x)
                 } else {
                     let x = self.ld(u(a), k);
-                    let mut s = self.cmul(sign * kf, x);
-                    for j in 1..k {
-                        let m = self.ld(me, j);
-                        let jm = self.cmul(j as f64, m);
-                        let y = self.ld(u(d), k - j);
-                        let t = self.mul(jm, y);
-                        s = self.sub(s, t);
-                    }
+                    let s = self.cmul(sign * kf, x);
+                    let s = match self.weighted_sum(me, (u(d), 1), k - 1, Weight::Falling) {
+                        Some(t) => self.sub(s, t),
+                        None => s,
+                    };
                     let d0 = self.ld(u(d), 0);
                     let den = self.cmul(kf, d0);
                     self.div(s, den)
@@ -765,9 +769,9 @@ pub(super) trait Recurrences {
                     self.st(partner, 0, c);
                     s
                 } else {
-                    let s = self.weighted_sum(u(a), partner, k, Weight::Falling);
+                    let s = self.weighted_sum(u(a), (partner, 0), k, Weight::Falling);
                     let s = s.unwrap_or_else(|| self.c(0.0));
-                    let c = self.weighted_sum(u(a), me, k, Weight::Falling);
+                    let c = self.weighted_sum(u(a), (me, 0), k, Weight::Falling);
                     let c = c.unwrap_or_else(|| self.c(0.0));
                     let rk = self.c(1.0 / kf);
                     let c = if hyperbolic { c } else { self.neg(c) };
@@ -846,27 +850,12 @@ impl<'a, 'b> Emitter<'a, 'b> {
         self.b.ins().fcvt_from_sint(types::F64, i)
     }
 
-    /// `s + Σ_{j = lo}^{hi - 1} term(j)` (or `s - ...`) summed in order of `j` as a loop,
-    /// none if `hi <= lo`.
+    /// `s + Σ_{j = lo}^{hi - 1} term(j)` summed in order of `j` as a loop, none if `hi <= lo`.
     fn sum_loop(
         &mut self,
         o: Order,
         s: Value,
-        (lo, hi): (i64, Value),
-        subtract: bool,
-        term: Term<'_, 'a, 'b>,
-    ) -> Value {
-        let lo = self.b.ins().iconst(types::I64, lo);
-        self.sum_loop_at(o, s, (lo, hi), subtract, term)
-    }
-
-    /// [`sum_loop`](Self::sum_loop) from a run-time `lo`.
-    fn sum_loop_at(
-        &mut self,
-        o: Order,
-        s: Value,
         (lo, hi): (Value, Value),
-        subtract: bool,
         term: Term<'_, 'a, 'b>,
     ) -> Value {
         let header = self.b.create_block();
@@ -891,11 +880,7 @@ impl<'a, 'b> Emitter<'a, 'b> {
         let wj = self.b.ins().iadd(self.w, j8);
         let wkj = self.b.ins().isub(o.wk, j8);
         let t = term(self, j, wj, wkj);
-        let next = if subtract {
-            self.sub(acc, t)
-        } else {
-            self.add(acc, t)
-        };
+        let next = self.add(acc, t);
         let j1 = self.b.ins().iadd_imm(j, 1);
         self.b.ins().jump(header, &[j1.into(), next.into()]);
         self.b.seal_block(header);
@@ -933,7 +918,7 @@ impl<'a, 'b> Emitter<'a, 'b> {
         let zero = self.b.ins().iconst(types::I64, 0);
         let first = at(self, zero);
         let one = self.b.ins().iconst(types::I64, 1);
-        let s = self.sum_loop_at(o, first, (one, n), false, term);
+        let s = self.sum_loop(o, first, (one, n), term);
         self.b.ins().jump(exit, &[s.into()]);
 
         self.b.switch_to_block(split);
@@ -985,7 +970,7 @@ impl<'a, 'b> Emitter<'a, 'b> {
         }
         let lo = self.b.ins().ishl_imm(groups, 2);
         let lo = self.b.ins().iadd_imm(lo, LEAD as i64);
-        let s = self.sum_loop_at(o, s, (lo, n), false, term);
+        let s = self.sum_loop(o, s, (lo, n), term);
         self.b.ins().jump(exit, &[s.into()]);
 
         self.b.switch_to_block(exit);
@@ -1096,14 +1081,17 @@ impl<'a, 'b> Emitter<'a, 'b> {
         self.b.seal_block(exit);
     }
 
-    /// The weighted sum `Σ_{j < k} ((k - j) a_{k-j}) b_j` of nodes `a` and `b` for the run-time
-    /// `k` of `o` (`Weight::Falling`, in `ordered_sum`'s order): a sine–cosine pair's or an
-    /// exponential's.
-    fn falling_loop(&mut self, o: Order, a: usize, b: usize) -> Value {
-        let (oa, ob) = (self.offset(a, 0), self.offset(b, 0));
-        self.ordered_loop(o, o.k, &move |e, j, wj, wkj| {
-            let kj = e.b.ins().isub(o.k, j);
-            let wt = e.float(kj);
+    /// The weighted sum `Σ_{j < n} ((n - j) a_{n-j}) b_{b0+j}`, `n = k - b0`, of nodes `a` and
+    /// `b` for the run-time `k` of `o` (`Weight::Falling`, in `ordered_sum`'s order): a
+    /// sine–cosine pair's or an exponential's (`b0 = 0`), an integral's (`b0 = 1`). Its loop
+    /// takes one term at least (read in bounds); `n = 0` (`k = 1`, `b0 = 1`) is for the
+    /// caller to discard.
+    fn falling_loop(&mut self, o: Order, a: usize, (b, b0): (usize, usize)) -> Value {
+        let (oa, ob) = (self.offset(a, -(b0 as isize)), self.offset(b, b0 as isize));
+        let n = self.b.ins().iadd_imm(o.k, -(b0 as i64));
+        self.ordered_loop(o, n, &move |e, j, wj, wkj| {
+            let nj = e.b.ins().isub(n, j);
+            let wt = e.float(nj);
             let x = e.ld_at(wkj, oa);
             let wx = e.mul(wt, x);
             let y = e.ld_at(wj, ob);
@@ -1184,7 +1172,7 @@ impl<'a, 'b> Emitter<'a, 'b> {
                 self.div(s, d)
             }
             Node::Exp(a) => {
-                let s = self.falling_loop(o, u(a), me);
+                let s = self.falling_loop(o, u(a), (me, 0));
                 self.mul(s, o.rk)
             }
             Node::Integral {
@@ -1197,14 +1185,14 @@ impl<'a, 'b> Emitter<'a, 'b> {
                 let sign = self.c(sign);
                 let sk = self.mul(sign, o.kf);
                 let s = self.mul(sk, x);
-                let (om, od) = (self.offset(me, 0), self.offset(u(d), 0));
-                let s = self.sum_loop(o, s, (1, o.k), true, &move |e, j, wj, wkj| {
-                    let jf = e.float(j);
-                    let m = e.ld_at(wj, om);
-                    let jm = e.mul(jf, m);
-                    let y = e.ld_at(wkj, od);
-                    e.mul(jm, y)
-                });
+                // No terms at `k = 1`: the interpreter's `s` then, not `s - 0`.
+                let t = self.falling_loop(o, me, (u(d), 1));
+                let minus_t = self.sub(s, t);
+                let none =
+                    self.b
+                        .ins()
+                        .icmp_imm(cranelift_codegen::ir::condcodes::IntCC::Equal, o.k, 1);
+                let s = self.b.ins().select(none, s, minus_t);
                 let d0 = self.ld(u(d), 0);
                 let den = self.mul(o.kf, d0);
                 self.div(s, den)
@@ -1212,8 +1200,8 @@ impl<'a, 'b> Emitter<'a, 'b> {
             Node::SinCos(a, hyperbolic) => {
                 let partner = me + 1;
                 // The sine's sum runs over the cosine, the cosine's over the sine.
-                let s = self.falling_loop(o, u(a), partner);
-                let c = self.falling_loop(o, u(a), me);
+                let s = self.falling_loop(o, u(a), (partner, 0));
+                let c = self.falling_loop(o, u(a), (me, 0));
                 let c = if hyperbolic { c } else { self.b.ins().fneg(c) };
                 let pc = self.mul(c, o.rk);
                 self.stk(o, partner, pc);

@@ -410,12 +410,11 @@ fn order_k<const L: usize>(nodes: &[Node], w: &mut [[f64; L]], k: usize, layout:
                 if k == 0 {
                     map(w[a], |x| func_value(func, x))
                 } else {
-                    let mut s = map(w[a + k], |x| sign * kf * x);
-                    for j in 1..k {
-                        let jf = j as f64;
-                        let t = zip(w[me + j], w[d + k - j], |x, y| jf * x * y);
-                        s = zip(s, t, |x, y| x - y);
-                    }
+                    let s = map(w[a + k], |x| sign * kf * x);
+                    let s = match weighted_sum(w, Weight::Falling, me, d + 1, k - 1) {
+                        Some(t) => zip(s, t, |x, y| x - y),
+                        None => s,
+                    };
                     zip(s, w[d], |x, y| x / (kf * y))
                 }
             }
