@@ -95,7 +95,13 @@ enum Node {
     Square(u32),
     Sqrt(u32),
     Powf(u32, f64),
+    /// `exp a` of a [`Node::Derivative`] `a`.
     Exp(u32),
+    /// `a_0`, then `k a_k` at order `k`: the series `a_0 + τ a'(τ)`, whose orders from 1 on are
+    /// the factors the sums of `exp a`, `sin a` and `cos a` take from `a` (`Σ i a_i b_{k-i}`),
+    /// each rounded once and shared by every function of `a`; its order 0 is their value's
+    /// argument.
+    Derivative(u32),
     /// `c` with `d c' = sign a'`: `ln` (`d = a`), `atan` (`1 + a²`), `asin`, `acos`
     /// (`√(1 - a²)`, `acos` with sign −1); `Func` gives the value.
     Integral {
@@ -104,7 +110,8 @@ enum Node {
         sign: f64,
         func: Func,
     },
-    /// `sin a` here, `cos a` in the next node (or `sinh`/`cosh` when `hyperbolic`).
+    /// `sin a` here, `cos a` in the next node (or `sinh`/`cosh` when `hyperbolic`), of a
+    /// [`Node::Derivative`] `a`.
     SinCos(u32, bool),
     /// The second of a [`Node::SinCos`] pair: computed with it.
     Partner,
@@ -137,6 +144,7 @@ impl Keyed for Node {
             Node::Integral { a, d, sign, func } => (14 + func as u8, a, d, sign.to_bits()),
             Node::SinCos(a, hyperbolic) => (40, a, u32::from(hyperbolic), 0),
             Node::Abs(a) => (41, a, 0, 0),
+            Node::Derivative(a) => (42, a, 0, 0),
         }
     }
 }
@@ -163,19 +171,21 @@ impl Node {
             | Node::CSub(..)
             | Node::MulC(..)
             | Node::Neg(_)
-            | Node::Abs(_) => 1,
+            | Node::Abs(_)
+            | Node::Derivative(_) => 1,
         }
     }
 
     /// Multiply-adds per term of [`sum_terms`](Self::sum_terms), and besides the sum at each
-    /// order: a power's, an exponential's, an integral's and a sine–cosine pair's terms take a
-    /// weight and two products; a division (of a quotient, a power, a square root, an
+    /// order: a power's and an integral's terms take a weight and two products, an
+    /// exponential's and a sine–cosine pair's (two sums) one product each (their weights are
+    /// a [`Node::Derivative`]'s); a division (of a quotient, a power, a square root, an
     /// integral) counts as four.
     fn work_per_term(self) -> (f64, f64) {
         match self {
             Node::Powf(..) | Node::Integral { .. } => (2.0, 4.0),
             Node::Div(..) | Node::CDiv(..) | Node::Sqrt(_) => (1.0, 4.0),
-            Node::Exp(_) => (2.0, 1.0),
+            Node::Exp(_) => (1.0, 1.0),
             Node::SinCos(..) => (2.0, 0.0),
             _ => (1.0, 0.0),
         }
@@ -206,6 +216,7 @@ impl Node {
             },
             Node::SinCos(a, hyperbolic) => Node::SinCos(f(a), hyperbolic),
             Node::Abs(a) => Node::Abs(f(a)),
+            Node::Derivative(a) => Node::Derivative(f(a)),
         }
     }
 }
@@ -507,7 +518,13 @@ impl Builder<'_> {
     }
 
     fn exp(&mut self, a: Scaled) -> Scaled {
-        self.unary(a, f64::exp, Node::Exp)
+        match self.val(a) {
+            Val::Const(x) => Scaled::Const(x.exp()),
+            Val::Node(a) => {
+                let d = self.node(Node::Derivative(a));
+                self.node(Node::Exp(d)).into()
+            }
+        }
     }
 
     fn integral(&mut self, a: Scaled, d: Scaled, sign: f64, func: Func) -> Scaled {
@@ -524,7 +541,8 @@ impl Builder<'_> {
             Val::Const(x) if hyperbolic => (Scaled::Const(x.sinh()), Scaled::Const(x.cosh())),
             Val::Const(x) => (Scaled::Const(x.sin()), Scaled::Const(x.cos())),
             Val::Node(a) => {
-                let s = self.node(Node::SinCos(a, hyperbolic));
+                let d = self.node(Node::Derivative(a));
+                let s = self.node(Node::SinCos(d, hyperbolic));
                 (s.into(), (s + 1).into())
             }
         }
@@ -1508,13 +1526,19 @@ impl TaylorProgram {
                         s.unwrap_or(0.0) / (kf * w[a])
                     }
                 }
-                Node::Exp(a) => {
-                    let a = at(a, 0);
+                Node::Derivative(a) => {
                     if k == 0 {
-                        w[a].exp()
+                        w[at(a, 0)]
                     } else {
-                        let s = weighted_sum(w, Weight::Falling, a, me, k).unwrap_or(0.0);
-                        s * (1.0 / kf)
+                        kf * w[at(a, k)]
+                    }
+                }
+                Node::Exp(d) => {
+                    let d = at(d, 0);
+                    if k == 0 {
+                        w[d].exp()
+                    } else {
+                        cauchy(&w[me..me + k], &w[d + 1..=d + k]) * (1.0 / kf)
                     }
                 }
                 Node::Integral { a, d, sign, func } => {
@@ -1531,11 +1555,11 @@ impl TaylorProgram {
                         s / (kf * w[d])
                     }
                 }
-                Node::SinCos(a, hyperbolic) => {
-                    let a = at(a, 0);
+                Node::SinCos(d, hyperbolic) => {
+                    let d = at(d, 0);
                     let partner = layout.at(i + 1, 0);
                     if k == 0 {
-                        let x = w[a];
+                        let x = w[d];
                         let (s, c) = if hyperbolic {
                             (x.sinh(), x.cosh())
                         } else {
@@ -1544,8 +1568,9 @@ impl TaylorProgram {
                         w[partner] = c;
                         s
                     } else {
-                        let s = weighted_sum(w, Weight::Falling, a, partner, k).unwrap_or(0.0);
-                        let c = weighted_sum(w, Weight::Falling, a, me, k).unwrap_or(0.0);
+                        let slopes = &w[d + 1..=d + k];
+                        let s = cauchy(&w[partner..partner + k], slopes);
+                        let c = cauchy(&w[me..me + k], slopes);
                         let rk = 1.0 / kf;
                         w[partner + k] = if hyperbolic { c * rk } else { -c * rk };
                         s * rk
@@ -1622,10 +1647,9 @@ fn powf_weight(alpha: f64, k: usize, j: usize) -> f64 {
 enum Weight {
     /// `a^α`'s recurrence, `b` the power itself: [`powf_weight`].
     Power(f64),
-    /// A sine–cosine pair's (`b` the sine or the cosine) or an exponential's (`b` the
-    /// exponential itself): `k - j`, so that the sum is `Σ_{1 ≤ i ≤ k} i a_i b_{k-i}`; the
-    /// same over `k - 1` terms from `b`'s order 1 for an [`Node::Integral`] (`a` the integral
-    /// itself, `b` its `d`). The weights are whole numbers, exact in any form.
+    /// An [`Node::Integral`]'s (`a` the integral itself, `b` its `d` from order 1, `k - 1`
+    /// terms): `k - j`, so that the sum is `Σ_{1 ≤ i < k} i a_i b_{k-i}`. The weights are
+    /// whole numbers, exact in any form.
     Falling,
 }
 

@@ -731,12 +731,20 @@ pub(super) trait Recurrences {
                     self.div(s, d)
                 }
             }
-            Node::Exp(a) => {
+            Node::Derivative(a) => {
+                let x = self.ld(u(a), k);
                 if k == 0 {
-                    let x = self.ld(u(a), 0);
+                    x
+                } else {
+                    self.cmul(kf, x)
+                }
+            }
+            Node::Exp(d) => {
+                if k == 0 {
+                    let x = self.ld(u(d), 0);
                     self.call(exp as *const () as usize, x)
                 } else {
-                    let s = self.weighted_sum(u(a), (me, 0), k, Weight::Falling);
+                    let s = self.cauchy((me, 0), (u(d), 1), k);
                     let s = s.unwrap_or_else(|| self.c(0.0));
                     let rk = self.c(1.0 / kf);
                     self.mul(s, rk)
@@ -758,10 +766,10 @@ pub(super) trait Recurrences {
                     self.div(s, den)
                 }
             }
-            Node::SinCos(a, hyperbolic) => {
+            Node::SinCos(d, hyperbolic) => {
                 let partner = me + 1;
                 if k == 0 {
-                    let x = self.ld(u(a), 0);
+                    let x = self.ld(u(d), 0);
                     let (fs, fc): (extern "C" fn(f64) -> f64, extern "C" fn(f64) -> f64) =
                         if hyperbolic { (sinh, cosh) } else { (sin, cos) };
                     let s = self.call(fs as usize, x);
@@ -769,9 +777,9 @@ pub(super) trait Recurrences {
                     self.st(partner, 0, c);
                     s
                 } else {
-                    let s = self.weighted_sum(u(a), (partner, 0), k, Weight::Falling);
+                    let s = self.cauchy((partner, 0), (u(d), 1), k);
                     let s = s.unwrap_or_else(|| self.c(0.0));
-                    let c = self.weighted_sum(u(a), (me, 0), k, Weight::Falling);
+                    let c = self.cauchy((me, 0), (u(d), 1), k);
                     let c = c.unwrap_or_else(|| self.c(0.0));
                     let rk = self.c(1.0 / kf);
                     let c = if hyperbolic { c } else { self.neg(c) };
@@ -1171,8 +1179,12 @@ impl<'a, 'b> Emitter<'a, 'b> {
                 let d = self.mul(o.kf, a0);
                 self.div(s, d)
             }
-            Node::Exp(a) => {
-                let s = self.falling_loop(o, u(a), (me, 0));
+            Node::Derivative(a) => {
+                let x = self.ldk(o, u(a), 0);
+                self.mul(o.kf, x)
+            }
+            Node::Exp(d) => {
+                let s = self.cauchy_loop(o, (me, 0), (u(d), 0), o.k);
                 self.mul(s, o.rk)
             }
             Node::Integral {
@@ -1197,11 +1209,11 @@ impl<'a, 'b> Emitter<'a, 'b> {
                 let den = self.mul(o.kf, d0);
                 self.div(s, den)
             }
-            Node::SinCos(a, hyperbolic) => {
+            Node::SinCos(d, hyperbolic) => {
                 let partner = me + 1;
                 // The sine's sum runs over the cosine, the cosine's over the sine.
-                let s = self.falling_loop(o, u(a), (partner, 0));
-                let c = self.falling_loop(o, u(a), (me, 0));
+                let s = self.cauchy_loop(o, (partner, 0), (u(d), 0), o.k);
+                let c = self.cauchy_loop(o, (me, 0), (u(d), 0), o.k);
                 let c = if hyperbolic { c } else { self.b.ins().fneg(c) };
                 let pc = self.mul(c, o.rk);
                 self.stk(o, partner, pc);

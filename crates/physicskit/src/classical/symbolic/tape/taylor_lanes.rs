@@ -395,12 +395,19 @@ fn order_k<const L: usize>(nodes: &[Node], w: &mut [[f64; L]], k: usize, layout:
                     zip(s.unwrap_or([0.0; L]), w[a], |x, y| x / (kf * y))
                 }
             }
-            Node::Exp(a) => {
-                let a = at(a, 0);
+            Node::Derivative(a) => {
                 if k == 0 {
-                    map(w[a], f64::exp)
+                    w[at(a, 0)]
                 } else {
-                    let s = weighted_sum(w, Weight::Falling, a, me, k).unwrap_or([0.0; L]);
+                    map(w[at(a, k)], |x| kf * x)
+                }
+            }
+            Node::Exp(d) => {
+                let d = at(d, 0);
+                if k == 0 {
+                    map(w[d], f64::exp)
+                } else {
+                    let s = cauchy_lanes(&w[me..me + k], &w[d + 1..=d + k]);
                     let rk = 1.0 / kf;
                     map(s, |x| x * rk)
                 }
@@ -418,11 +425,11 @@ fn order_k<const L: usize>(nodes: &[Node], w: &mut [[f64; L]], k: usize, layout:
                     zip(s, w[d], |x, y| x / (kf * y))
                 }
             }
-            Node::SinCos(a, hyperbolic) => {
-                let a = at(a, 0);
+            Node::SinCos(d, hyperbolic) => {
+                let d = at(d, 0);
                 let partner = layout.at(i + 1, 0);
                 if k == 0 {
-                    let x = w[a];
+                    let x = w[d];
                     let (s, c) = if hyperbolic {
                         (map(x, f64::sinh), map(x, f64::cosh))
                     } else {
@@ -431,8 +438,9 @@ fn order_k<const L: usize>(nodes: &[Node], w: &mut [[f64; L]], k: usize, layout:
                     w[partner] = c;
                     s
                 } else {
-                    let s = weighted_sum(w, Weight::Falling, a, partner, k).unwrap_or([0.0; L]);
-                    let c = weighted_sum(w, Weight::Falling, a, me, k).unwrap_or([0.0; L]);
+                    let slopes = &w[d + 1..=d + k];
+                    let s = cauchy_lanes(&w[partner..partner + k], slopes);
+                    let c = cauchy_lanes(&w[me..me + k], slopes);
                     let rk = 1.0 / kf;
                     w[partner + k] = if hyperbolic {
                         map(c, |x| x * rk)
