@@ -594,8 +594,8 @@ pub(super) trait Recurrences {
 
     /// `Σ_{j < k} (w_j a_{k-j}) b_{b0+j}` of nodes `a` and `b` in
     /// [`ordered_sum`](super::ordered_sum)'s order (`None` for `k = 0`), `w_j` the constant
-    /// [`Weight`] (the sum of a power's recurrence, an exponential's, a sine–cosine pair's
-    /// or an integral's).
+    /// [`Weight`] (the sum of a power's recurrence or an integral's; an exponential's and a
+    /// sine–cosine pair's are Cauchy sums over a `Node::Derivative`).
     fn weighted_sum(
         &mut self,
         a: usize,
@@ -1089,14 +1089,13 @@ impl<'a, 'b> Emitter<'a, 'b> {
         self.b.seal_block(exit);
     }
 
-    /// The weighted sum `Σ_{j < n} ((n - j) a_{n-j}) b_{b0+j}`, `n = k - b0`, of nodes `a` and
-    /// `b` for the run-time `k` of `o` (`Weight::Falling`, in `ordered_sum`'s order): a
-    /// sine–cosine pair's or an exponential's (`b0 = 0`), an integral's (`b0 = 1`). Its loop
-    /// takes one term at least (read in bounds); `n = 0` (`k = 1`, `b0 = 1`) is for the
-    /// caller to discard.
-    fn falling_loop(&mut self, o: Order, a: usize, (b, b0): (usize, usize)) -> Value {
-        let (oa, ob) = (self.offset(a, -(b0 as isize)), self.offset(b, b0 as isize));
-        let n = self.b.ins().iadd_imm(o.k, -(b0 as i64));
+    /// An integral `c`'s sum `Σ_{j < n} ((n - j) c_{n-j}) d_{1+j}`, `n = k - 1`, for the
+    /// run-time `k` of `o` (`Weight::Falling` from `d`'s order 1, in `ordered_sum`'s order).
+    /// Its loop takes one term at least (read in bounds); `n = 0` (`k = 1`) is for the caller
+    /// to discard.
+    fn integral_loop(&mut self, o: Order, c: usize, d: usize) -> Value {
+        let (oa, ob) = (self.offset(c, -1), self.offset(d, 1));
+        let n = self.b.ins().iadd_imm(o.k, -1);
         self.ordered_loop(o, n, &move |e, j, wj, wkj| {
             let nj = e.b.ins().isub(n, j);
             let wt = e.float(nj);
@@ -1198,7 +1197,7 @@ impl<'a, 'b> Emitter<'a, 'b> {
                 let sk = self.mul(sign, o.kf);
                 let s = self.mul(sk, x);
                 // No terms at `k = 1`: the interpreter's `s` then, not `s - 0`.
-                let t = self.falling_loop(o, me, (u(d), 1));
+                let t = self.integral_loop(o, me, u(d));
                 let minus_t = self.sub(s, t);
                 let none =
                     self.b
