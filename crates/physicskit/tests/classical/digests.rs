@@ -98,7 +98,7 @@ const DIGESTS: &[(&str, &str)] = &[
     ("double_pendulum/kahan_li8/all", "refused"),
     ("double_pendulum/rk4/all", "4094566ec6235c65"),
     ("double_pendulum/sofroniou_spaletta10/all", "refused"),
-    ("double_pendulum/taylor/all", "f82d67fd5608d3d5"),
+    ("double_pendulum/taylor/all", "4c2dc638e8cb346f"),
     ("double_pendulum/verlet/all", "refused"),
     ("double_pendulum/yoshida4/all", "refused"),
     ("double_pendulum/yoshida6/all", "refused"),

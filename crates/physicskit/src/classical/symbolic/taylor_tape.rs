@@ -877,20 +877,28 @@ impl Builder<'_> {
 }
 
 /// `Σ_j a_j b_{n-1-j}` for slices of length `n`: the Cauchy product's term of order `n - 1`,
-/// in [`ordered_sum`]'s order (zero for empty slices).
+/// in [`ordered_sum`]'s order with `lead` terms at each end (zero for empty slices).
 #[inline(always)]
-fn cauchy(a: &[f64], b: &[f64]) -> f64 {
+fn cauchy(lead: usize, a: &[f64], b: &[f64]) -> f64 {
     let n = a.len().min(b.len());
-    ordered_sum(&mut (), n, |(), j| a[j] * b[n - 1 - j], |(), s, t| s + t).unwrap_or(0.0)
+    ordered_sum(
+        &mut (),
+        lead,
+        n,
+        |(), j| a[j] * b[n - 1 - j],
+        |(), s, t| s + t,
+    )
+    .unwrap_or(0.0)
 }
 
 /// `Σ_{lo ≤ j ≤ k - lo} x_j x_{k-j}` of the series at offset `x` of the work array `w`, each
 /// term with its mirror: `2 Σ x_j x_{k-j}` over `lo ≤ j < k/2` (a [`cauchy`] sum), plus
 /// `x_{k/2}²` for even `k`. A square's sum (`lo = 0`), a square root's (`lo = 1`, `k >= 1`).
 #[inline(always)]
-fn mirrored(w: &[f64], x: usize, lo: usize, k: usize) -> f64 {
+fn mirrored(lead: usize, w: &[f64], x: usize, lo: usize, k: usize) -> f64 {
     let n = k.div_ceil(2) - lo;
     let twice = cauchy(
+        lead,
         &w[x + lo..x + lo + n],
         &w[x + k + 1 - lo - n..x + k + 1 - lo],
     ) * 2.0;
@@ -906,38 +914,57 @@ fn mirrored(w: &[f64], x: usize, lo: usize, k: usize) -> f64 {
     }
 }
 
-/// The terms at each end of a sum that [`ordered_sum`] leaves out of its groups of four.
-const LEAD: usize = 2;
+/// Programs of this many nodes or more leave one term at each end of a sum out of its groups,
+/// shorter ones two ([`WorkLayout::lead`]).
+const LONG_PROGRAM: usize = 24;
 
-/// The fewest terms [`ordered_sum`] splits: one group and the terms at both ends.
-const SPLIT_TERMS: usize = 2 * LEAD + 4;
+impl WorkLayout {
+    /// The terms at each end of a sum that [`ordered_sum`] leaves out of its groups of four, in
+    /// this program: the groups are read by vector loads, and a vector load spanning a scalar
+    /// store still pending waits for it (failed store forwarding). The end terms read a
+    /// factor's newest coefficients: order `k`, stored just before the sum, always stays out;
+    /// order `k − 1` was stored an order's worth of nodes before, which in a program of
+    /// [`LONG_PROGRAM`] nodes or more (the double pendulum's 33) is long enough for the store
+    /// to be done, so it joins the groups (lead 1), and in a shorter one (Kepler's and
+    /// Hénon–Heiles' 13) is not (lead 2). `benchmarks/README.md` has the measurements.
+    pub(super) fn lead(self) -> usize {
+        if self.nodes >= LONG_PROGRAM {
+            1
+        } else {
+            2
+        }
+    }
+}
+
+/// The fewest terms [`ordered_sum`] splits with `lead` terms at each end: one group and the
+/// terms at both ends.
+pub(super) const fn split_terms(lead: usize) -> usize {
+    2 * lead + 4
+}
 
 /// The sum of the terms `term(j)`, `j < n`, of a Cauchy product or a weighted sum
-/// ([`Weight`]), in the order every form of the recurrences sums it (`None` for `n = 0`):
-/// - fewer than [`SPLIT_TERMS`] terms: from `j = 0` up;
-/// - else the `4 G` terms from `j = LEAD` (`G = ⌊(n − 2 LEAD)/4⌋` groups of four) into four
-///   partial sums `p_l = t_{LEAD+l} + t_{LEAD+4+l} + …`, then
-///   `(p_0 + p_2) + (p_1 + p_3)`, plus the terms below `LEAD` from `j = 0` up, plus the
-///   terms after the groups from the lowest up.
+/// ([`Weight`]), in the order every form of the recurrences sums it (`None` for `n = 0`), with
+/// `L = lead` terms at each end ([`WorkLayout::lead`]):
+/// - fewer than [`split_terms`]`(L)` terms: from `j = 0` up;
+/// - else the `4 G` terms from `j = L` (`G = ⌊(n − 2 L)/4⌋` groups of four) into four partial
+///   sums `p_l = t_{L+l} + t_{L+4+l} + …`, then `(p_0 + p_2) + (p_1 + p_3)`, plus the terms
+///   below `L` from `j = 0` up, plus the terms after the groups from the lowest up.
 ///
 /// So the four partial sums are the lanes of one AVX vector, and one state's AVX code
 /// (`taylor_asm.rs`) sums a group by one vector multiplication and addition instead of
-/// four of each. The groups leave out the [`LEAD`] terms at each end, which read the
-/// newest coefficients (orders `k` and `k − 1` of one factor at the start, of the other at
-/// the end): those were stored just before the sum, and a vector load spanning a pending
-/// scalar store waits for it (failed store forwarding). Two is the number that measured
-/// fastest on every workload (`benchmarks/README.md`).
+/// four of each; the end terms are the ones its vector loads must not read.
 ///
 /// Every form calls `term` and `add` in the order the sum is taken, so a recorder of the
 /// calls (`s`) records them in that order.
 #[inline(always)]
 fn ordered_sum<S: ?Sized, T: Copy>(
     s: &mut S,
+    lead: usize,
     n: usize,
     term: impl FnMut(&mut S, usize) -> T,
     add: impl FnMut(&mut S, T, T) -> T,
 ) -> Option<T> {
-    ordered_sum_with(s, n, term, add, |_, _| None)
+    ordered_sum_with(s, lead, n, term, add, |_, _| None)
 }
 
 /// [`ordered_sum`], the groups' `(p_0 + p_2) + (p_1 + p_3)` taken by `groups_sum(s, G)` where
@@ -945,12 +972,13 @@ fn ordered_sum<S: ?Sized, T: Copy>(
 #[inline(always)]
 fn ordered_sum_with<S: ?Sized, T: Copy>(
     s: &mut S,
+    lead: usize,
     n: usize,
     mut term: impl FnMut(&mut S, usize) -> T,
     mut add: impl FnMut(&mut S, T, T) -> T,
     groups_sum: impl FnOnce(&mut S, usize) -> Option<T>,
 ) -> Option<T> {
-    if n < SPLIT_TERMS {
+    if n < split_terms(lead) {
         let mut acc = None;
         for j in 0..n {
             let t = term(s, j);
@@ -961,19 +989,19 @@ fn ordered_sum_with<S: ?Sized, T: Copy>(
         }
         return acc;
     }
-    let groups = (n - 2 * LEAD) / 4;
+    let groups = (n - 2 * lead) / 4;
     let mut acc = match groups_sum(s, groups) {
         Some(sum) => sum,
         None => {
             let mut p = [
-                term(s, LEAD),
-                term(s, LEAD + 1),
-                term(s, LEAD + 2),
-                term(s, LEAD + 3),
+                term(s, lead),
+                term(s, lead + 1),
+                term(s, lead + 2),
+                term(s, lead + 3),
             ];
             for g in 1..groups {
                 for (l, p) in p.iter_mut().enumerate() {
-                    let t = term(s, LEAD + 4 * g + l);
+                    let t = term(s, lead + 4 * g + l);
                     *p = add(s, *p, t);
                 }
             }
@@ -982,11 +1010,11 @@ fn ordered_sum_with<S: ?Sized, T: Copy>(
             add(s, even, odd)
         }
     };
-    for j in 0..LEAD {
+    for j in 0..lead {
         let first = term(s, j);
         acc = add(s, acc, first);
     }
-    for j in LEAD + 4 * groups..n {
+    for j in lead + 4 * groups..n {
         let t = term(s, j);
         acc = add(s, acc, t);
     }
@@ -1459,6 +1487,7 @@ impl TaylorProgram {
     fn order_k(&mut self, k: usize, layout: WorkLayout) {
         let w = &mut self.work[..];
         let at = |n: u32, j: usize| layout.at(n as usize, j);
+        let lead = layout.lead();
         let kf = k as f64;
         for (i, &node) in self.nodes.iter().enumerate() {
             let me = layout.at(i, 0);
@@ -1491,15 +1520,15 @@ impl TaylorProgram {
                 }
                 Node::Mul(a, b) => {
                     let (a, b) = (at(a, 0), at(b, 0));
-                    cauchy(&w[a..=a + k], &w[b..=b + k])
+                    cauchy(lead, &w[a..=a + k], &w[b..=b + k])
                 }
-                Node::Square(a) => mirrored(w, at(a, 0), 0, k),
+                Node::Square(a) => mirrored(lead, w, at(a, 0), 0, k),
                 Node::Div(a, b) => {
                     let b = at(b, 0);
                     if k == 0 {
                         w[at(a, 0)] / w[b]
                     } else {
-                        (w[at(a, k)] - cauchy(&w[b + 1..=b + k], &w[me..me + k])) / w[b]
+                        (w[at(a, k)] - cauchy(lead, &w[b + 1..=b + k], &w[me..me + k])) / w[b]
                     }
                 }
                 Node::CDiv(c, a) => {
@@ -1507,14 +1536,14 @@ impl TaylorProgram {
                     if k == 0 {
                         c / w[a]
                     } else {
-                        -cauchy(&w[a + 1..=a + k], &w[me..me + k]) / w[a]
+                        -cauchy(lead, &w[a + 1..=a + k], &w[me..me + k]) / w[a]
                     }
                 }
                 Node::Sqrt(a) => {
                     if k == 0 {
                         w[at(a, 0)].sqrt()
                     } else {
-                        (w[at(a, k)] - mirrored(w, me, 1, k)) / (2.0 * w[me])
+                        (w[at(a, k)] - mirrored(lead, w, me, 1, k)) / (2.0 * w[me])
                     }
                 }
                 Node::Powf(a, alpha) => {
@@ -1522,7 +1551,7 @@ impl TaylorProgram {
                     if k == 0 {
                         power0(w[a], alpha)
                     } else {
-                        let s = weighted_sum(w, Weight::Power(alpha), a, me, k);
+                        let s = weighted_sum(lead, w, Weight::Power(alpha), a, me, k);
                         s.unwrap_or(0.0) / (kf * w[a])
                     }
                 }
@@ -1538,7 +1567,7 @@ impl TaylorProgram {
                     if k == 0 {
                         w[d].exp()
                     } else {
-                        cauchy(&w[me..me + k], &w[d + 1..=d + k]) * (1.0 / kf)
+                        cauchy(lead, &w[me..me + k], &w[d + 1..=d + k]) * (1.0 / kf)
                     }
                 }
                 Node::Integral { a, d, sign, func } => {
@@ -1548,7 +1577,7 @@ impl TaylorProgram {
                     } else {
                         // `Σ_{1 ≤ j < k} j c_j d_{k-j}` as a weighted sum of `k - 1` terms.
                         let s = sign * kf * w[a + k];
-                        let s = match weighted_sum(w, Weight::Falling, me, d + 1, k - 1) {
+                        let s = match weighted_sum(lead, w, Weight::Falling, me, d + 1, k - 1) {
                             Some(t) => s - t,
                             None => s,
                         };
@@ -1569,8 +1598,8 @@ impl TaylorProgram {
                         s
                     } else {
                         let slopes = &w[d + 1..=d + k];
-                        let s = cauchy(&w[partner..partner + k], slopes);
-                        let c = cauchy(&w[me..me + k], slopes);
+                        let s = cauchy(lead, &w[partner..partner + k], slopes);
+                        let c = cauchy(lead, &w[me..me + k], slopes);
                         let rk = 1.0 / kf;
                         w[partner + k] = if hyperbolic { c * rk } else { -c * rk };
                         s * rk
@@ -1664,12 +1693,20 @@ impl Weight {
     }
 }
 
-/// `Σ_{j < k} (w_j a_{k-j}) b_j` in [`ordered_sum`]'s order, on the work array `w` with `a`
-/// and `b` the offsets of coefficient 0 of the two series; `None` for `k = 0`.
+/// `Σ_{j < k} (w_j a_{k-j}) b_j` in [`ordered_sum`]'s order with `lead` terms at each end, on
+/// the work array `w` with `a` and `b` the offsets of coefficient 0 of the two series; `None`
+/// for `k = 0`.
 #[inline(always)]
-fn weighted_sum(w: &[f64], weight: Weight, a: usize, b: usize, k: usize) -> Option<f64> {
+fn weighted_sum(
+    lead: usize,
+    w: &[f64],
+    weight: Weight,
+    a: usize,
+    b: usize,
+    k: usize,
+) -> Option<f64> {
     let term = |(): &mut (), j: usize| weight.at(k, j) * w[a + k - j] * w[b + j];
-    ordered_sum(&mut (), k, term, |(), s, t| s + t)
+    ordered_sum(&mut (), lead, k, term, |(), s, t| s + t)
 }
 
 /// The work of a step on the recurrences `nodes` of a field of `dim` rows, with the stepper's
@@ -1753,57 +1790,70 @@ impl TaylorField for TaylorProgram {
 mod tests {
     use super::{ordered_sum, power0, Power};
 
-    /// Every term enters a sum once, in the order `ordered_sum`'s documentation gives: terms
-    /// as the bits of a mask, each addition recorded as its two operands.
+    /// Every term enters a sum once, in the order `ordered_sum`'s documentation gives, with
+    /// one and with two end terms: terms as the bits of a mask, each addition recorded as its
+    /// two operands.
     #[test]
     fn ordered_sums_take_every_term_once_in_the_documented_order() {
-        let sum = |n: usize| {
+        let sum = |lead: usize, n: usize| {
             let mut adds: Vec<(u128, u128)> = Vec::new();
             let total = ordered_sum(
                 &mut adds,
+                lead,
                 n,
                 |_, j| 1u128 << j,
                 |adds, a, b| {
-                    assert_eq!(a & b, 0, "a term added twice, n = {n}");
+                    assert_eq!(a & b, 0, "a term added twice, n = {n}, lead {lead}");
                     adds.push((a, b));
                     a | b
                 },
             );
             (total, adds)
         };
-        for n in 0..=127 {
-            let (total, adds) = sum(n);
-            let want = (n > 0).then(|| (1u128 << n) - 1);
-            assert_eq!(total, want, "n = {n}");
-            assert_eq!(adds.len(), n.saturating_sub(1), "n = {n}");
+        for lead in [1, 2] {
+            for n in 0..=127 {
+                let (total, adds) = sum(lead, n);
+                let want = (n > 0).then(|| (1u128 << n) - 1);
+                assert_eq!(total, want, "n = {n}, lead {lead}");
+                assert_eq!(adds.len(), n.saturating_sub(1), "n = {n}, lead {lead}");
+            }
         }
         let t = |j: u32| 1u128 << j;
-        // Seven terms: one by one from the first.
-        let (_, adds) = sum(7);
-        let plain: Vec<(u128, u128)> = (1..7).map(|j| (t(j) - 1, t(j))).collect();
-        assert_eq!(adds, plain);
-        // Thirteen terms: groups `2..=5` and `6..=9` in four partial sums, then the terms 0
-        // and 1, then 10, 11 and 12.
-        let (_, adds) = sum(13);
-        let p = [t(2) | t(6), t(3) | t(7), t(4) | t(8), t(5) | t(9)];
-        let groups = p[0] | p[1] | p[2] | p[3];
-        let mut want = vec![
-            (t(2), t(6)),
-            (t(3), t(7)),
-            (t(4), t(8)),
-            (t(5), t(9)),
-            (p[0], p[2]),
-            (p[1], p[3]),
-            (p[0] | p[2], p[1] | p[3]),
-            (groups, t(0)),
-            (groups | t(0), t(1)),
-        ];
-        let mut acc = groups | t(0) | t(1);
-        for j in 10..13 {
-            want.push((acc, t(j)));
-            acc |= t(j);
+        // One by one from the first: below eight terms with two end terms, below six with one.
+        for (lead, n) in [(2, 7), (1, 5)] {
+            let (_, adds) = sum(lead, n);
+            let plain: Vec<(u128, u128)> = (1..n as u32).map(|j| (t(j) - 1, t(j))).collect();
+            assert_eq!(adds, plain, "lead {lead}");
         }
-        assert_eq!(adds, want);
+        // Thirteen terms with two end terms: groups `2..=5` and `6..=9` in four partial sums,
+        // then the terms 0 and 1, then 10, 11 and 12. With one: groups `1..=4` and `5..=8`,
+        // then the term 0, then 9 to 12.
+        for (lead, first, last) in [(2u32, 2u32, 9u32), (1, 1, 8)] {
+            let (_, adds) = sum(lead as usize, 13);
+            let f = first;
+            let p = [
+                t(f) | t(f + 4),
+                t(f + 1) | t(f + 5),
+                t(f + 2) | t(f + 6),
+                t(f + 3) | t(f + 7),
+            ];
+            let groups = p[0] | p[1] | p[2] | p[3];
+            let mut want = vec![
+                (t(f), t(f + 4)),
+                (t(f + 1), t(f + 5)),
+                (t(f + 2), t(f + 6)),
+                (t(f + 3), t(f + 7)),
+                (p[0], p[2]),
+                (p[1], p[3]),
+                (p[0] | p[2], p[1] | p[3]),
+            ];
+            let mut acc = groups;
+            for j in (0..lead).chain(last + 1..13) {
+                want.push((acc, t(j)));
+                acc |= t(j);
+            }
+            assert_eq!(adds, want, "lead {lead}");
+        }
     }
 
     /// The half-integer powers are within 2.5 ε (relative) of libm's `pow` over 24 binades

@@ -48,7 +48,7 @@ use iced_x86::code_asm::{
     AsmRegisterYmm, AsmRegisterZmm, CodeAssembler, CodeLabel, IcedError,
 };
 
-use super::super::{Node, Val, Weight, WorkLayout, LEAD};
+use super::super::{Node, Val, Weight, WorkLayout};
 use super::{powf, Fresh, Recurrences};
 use crate::classical::symbolic::tape::jit::{load_code, OwnedModule};
 
@@ -238,6 +238,10 @@ impl Recurrences for Recorder {
         self.fresh.set_k(k);
     }
 
+    fn lead(&self) -> usize {
+        self.fresh.lead()
+    }
+
     fn ld(&mut self, n: usize, j: usize) -> usize {
         match self.fresh.get(n, j) {
             Some(v) => v,
@@ -329,13 +333,14 @@ impl Recurrences for Recorder {
             return None;
         }
         let first = self.weights.len();
+        let lead = self.lead();
         for g in 0..groups {
-            let w = std::array::from_fn(|l| weight.at(k, LEAD + 4 * g + l));
+            let w = std::array::from_fn(|l| weight.at(k, lead + 4 * g + l));
             self.weights.push(w);
         }
         Some(self.push(Op::Groups(Groups {
-            fwd: self.fresh.index(b, b0 + LEAD),
-            rev: self.fresh.index(a, k - LEAD),
+            fwd: self.fresh.index(b, b0 + lead),
+            rev: self.fresh.index(a, k - lead),
             groups,
             weights: Some(first),
         })))

@@ -47,8 +47,7 @@ use cranelift_frontend::FunctionBuilder;
 #[cfg(doc)]
 use super::power0;
 use super::{
-    func_value, ordered_sum_with, Node, Power, TaylorProgram, Val, Weight, WorkLayout, LEAD,
-    SPLIT_TERMS,
+    func_value, ordered_sum_with, split_terms, Node, Power, TaylorProgram, Val, Weight, WorkLayout,
 };
 use crate::classical::integrators::taylor::MAX_ORDER;
 use crate::classical::symbolic::tape::jit::{
@@ -347,6 +346,10 @@ impl Recurrences for Emitter<'_, '_> {
         self.fresh.set_k(k);
     }
 
+    fn lead(&self) -> usize {
+        self.fresh.lead()
+    }
+
     fn ld(&mut self, n: usize, j: usize) -> Value {
         if let Some(v) = self.fresh.get(n, j) {
             return v;
@@ -435,6 +438,11 @@ impl<X: Copy> Fresh<X> {
     }
 
     /// Sets the order being emitted.
+    /// The program's end terms of a sum ([`WorkLayout::lead`]).
+    pub(super) fn lead(&self) -> usize {
+        self.layout.lead()
+    }
+
     pub(super) fn set_k(&mut self, k: usize) {
         self.k = k;
     }
@@ -469,6 +477,10 @@ pub(super) trait Recurrences {
 
     /// Sets the order being emitted.
     fn set_k(&mut self, k: usize);
+
+    /// The terms at each end of a sum outside its groups of four, in this program
+    /// ([`WorkLayout::lead`]).
+    fn lead(&self) -> usize;
 
     /// Coefficient `j` of node `n`.
     fn ld(&mut self, n: usize, j: usize) -> Self::X;
@@ -536,12 +548,13 @@ pub(super) trait Recurrences {
         (b, b0): (usize, usize),
         n: usize,
     ) -> Option<Self::X> {
-        let groups = |r: &mut Self, g| r.cauchy_groups((a, a0 + LEAD), (b, b0 + n - 1 - LEAD), g);
+        let lead = self.lead();
+        let groups = |r: &mut Self, g| r.cauchy_groups((a, a0 + lead), (b, b0 + n - 1 - lead), g);
         let term = |r: &mut Self, j: usize| {
             let (x, y) = (r.ld(a, a0 + j), r.ld(b, b0 + n - 1 - j));
             r.mul(x, y)
         };
-        ordered_sum_with(self, n, term, |r, s, t| r.add(s, t), groups)
+        ordered_sum_with(self, lead, n, term, |r, s, t| r.add(s, t), groups)
     }
 
     /// The sum of a [`cauchy`](Self::cauchy)'s `groups` groups of four terms,
@@ -579,8 +592,9 @@ pub(super) trait Recurrences {
     }
 
     /// The sum of a [`weighted_sum`](Self::weighted_sum)'s groups, `Σ (w_j a_{k-j}) b_{b0+j}`
-    /// over `LEAD ≤ j < LEAD + 4 groups`, as [`ordered_sum`](super::ordered_sum) takes it, if
-    /// this form sums them at once (`None`: term by term).
+    /// over `L ≤ j < L + 4 groups` (`L` the [`lead`](Self::lead)), as
+    /// [`ordered_sum`](super::ordered_sum) takes it, if this form sums them at once (`None`:
+    /// term by term).
     fn weighted_groups(
         &mut self,
         _a: usize,
@@ -610,7 +624,7 @@ pub(super) trait Recurrences {
             r.mul(wx, y)
         };
         let groups = |r: &mut Self, g| r.weighted_groups(a, (b, b0), k, weight, g);
-        ordered_sum_with(self, k, term, |r, s, t| r.add(s, t), groups)
+        ordered_sum_with(self, self.lead(), k, term, |r, s, t| r.add(s, t), groups)
     }
 
     /// Orders `0..=order` of every node and of the state, as `TaylorProgram::interpret`.
@@ -899,11 +913,13 @@ impl<'a, 'b> Emitter<'a, 'b> {
     }
 
     /// `Σ_{j < n} term(j)` for a run-time `n` (at least 1) in
-    /// [`ordered_sum`](super::ordered_sum)'s order: below [`SPLIT_TERMS`] terms the first term
-    /// and a loop over the others; else the four partial sums over the groups (a loop), the
-    /// [`LEAD`] terms before them, and a loop over the terms after them.
+    /// [`ordered_sum`](super::ordered_sum)'s order with the program's end terms
+    /// ([`WorkLayout::lead`]): below [`split_terms`] terms the first term and a loop over the
+    /// others; else the four partial sums over the groups (a loop), the end terms before them,
+    /// and a loop over the terms after them.
     fn ordered_loop(&mut self, o: Order, n: Value, term: Term<'_, 'a, 'b>) -> Value {
         use cranelift_codegen::ir::condcodes::IntCC;
+        let lead = self.fresh.lead();
         // Term `j` at a run-time `j`.
         let at = |e: &mut Self, j: Value| {
             let j8 = e.b.ins().ishl_imm(j, 3);
@@ -918,7 +934,7 @@ impl<'a, 'b> Emitter<'a, 'b> {
         let few = self
             .b
             .ins()
-            .icmp_imm(IntCC::SignedLessThan, n, SPLIT_TERMS as i64);
+            .icmp_imm(IntCC::SignedLessThan, n, split_terms(lead) as i64);
         self.b.ins().brif(few, plain, &[], split, &[]);
 
         self.b.switch_to_block(plain);
@@ -932,10 +948,10 @@ impl<'a, 'b> Emitter<'a, 'b> {
         self.b.switch_to_block(split);
         self.b.seal_block(split);
         let p: [Value; 4] = std::array::from_fn(|l| {
-            let j = self.b.ins().iconst(types::I64, (LEAD + l) as i64);
+            let j = self.b.ins().iconst(types::I64, (lead + l) as i64);
             at(self, j)
         });
-        let groups = self.b.ins().iadd_imm(n, -2 * LEAD as i64);
+        let groups = self.b.ins().iadd_imm(n, -2 * lead as i64);
         let groups = self.b.ins().ushr_imm(groups, 2);
         let header = self.b.create_block();
         let g = self.b.append_block_param(header, types::I64);
@@ -958,7 +974,7 @@ impl<'a, 'b> Emitter<'a, 'b> {
         self.b.seal_block(body);
         let base = self.b.ins().ishl_imm(g, 2);
         let next: [Value; 4] = std::array::from_fn(|l| {
-            let j = self.b.ins().iadd_imm(base, (LEAD + l) as i64);
+            let j = self.b.ins().iadd_imm(base, (lead + l) as i64);
             let t = at(self, j);
             self.add(acc[l], t)
         });
@@ -971,13 +987,13 @@ impl<'a, 'b> Emitter<'a, 'b> {
         let even = self.add(sums[0], sums[2]);
         let odd = self.add(sums[1], sums[3]);
         let mut s = self.add(even, odd);
-        for j in 0..LEAD {
+        for j in 0..lead {
             let j = self.b.ins().iconst(types::I64, j as i64);
             let t = at(self, j);
             s = self.add(s, t);
         }
         let lo = self.b.ins().ishl_imm(groups, 2);
-        let lo = self.b.ins().iadd_imm(lo, LEAD as i64);
+        let lo = self.b.ins().iadd_imm(lo, lead as i64);
         let s = self.sum_loop(o, s, (lo, n), term);
         self.b.ins().jump(exit, &[s.into()]);
 

@@ -245,9 +245,10 @@ fn zip<const L: usize>(a: [f64; L], b: [f64; L], f: impl Fn(f64, f64) -> f64) ->
 
 /// The scalar weighted sum (`taylor_tape.rs`'s `weighted_sum`) lane by lane:
 /// `Σ_{j < k} (w_j a_{k-j}) b_j` in [`ordered_sum`]'s order, `a` and `b` the indices of
-/// coefficient 0 of the two series; `None` for `k = 0`.
+/// coefficient 0 of the two series, `lead` terms at each end; `None` for `k = 0`.
 #[inline(always)]
 fn weighted_sum<const L: usize>(
+    lead: usize,
     w: &[[f64; L]],
     weight: Weight,
     a: usize,
@@ -258,25 +259,32 @@ fn weighted_sum<const L: usize>(
         let wj = weight.at(k, j);
         zip(w[a + k - j], w[b + j], |x, y| wj * x * y)
     };
-    ordered_sum(&mut (), k, term, |(), s, t| zip(s, t, |x, y| x + y))
+    ordered_sum(&mut (), lead, k, term, |(), s, t| zip(s, t, |x, y| x + y))
 }
 
-/// [`cauchy`] lane by lane: `Σ_j a_j b_{n-1-j}` in [`ordered_sum`]'s order (zeros for
-/// empty slices).
+/// [`cauchy`] lane by lane: `Σ_j a_j b_{n-1-j}` in [`ordered_sum`]'s order with `lead` terms
+/// at each end (zeros for empty slices).
 #[inline(always)]
-fn cauchy_lanes<const L: usize>(a: &[[f64; L]], b: &[[f64; L]]) -> [f64; L] {
+fn cauchy_lanes<const L: usize>(lead: usize, a: &[[f64; L]], b: &[[f64; L]]) -> [f64; L] {
     let n = a.len().min(b.len());
     let term = |(): &mut (), j: usize| zip(a[j], b[n - 1 - j], |x, y| x * y);
-    ordered_sum(&mut (), n, term, |(), s, t| zip(s, t, |x, y| x + y)).unwrap_or([0.0; L])
+    ordered_sum(&mut (), lead, n, term, |(), s, t| zip(s, t, |x, y| x + y)).unwrap_or([0.0; L])
 }
 
 /// The scalar `mirrored` (`taylor_tape.rs`) lane by lane: `Σ_{lo ≤ j ≤ k - lo} x_j x_{k-j}`,
 /// each term with its mirror.
 #[inline(always)]
-fn mirrored<const L: usize>(w: &[[f64; L]], x: usize, lo: usize, k: usize) -> [f64; L] {
+fn mirrored<const L: usize>(
+    lead: usize,
+    w: &[[f64; L]],
+    x: usize,
+    lo: usize,
+    k: usize,
+) -> [f64; L] {
     let n = k.div_ceil(2) - lo;
     let twice = map(
         cauchy_lanes(
+            lead,
             &w[x + lo..x + lo + n],
             &w[x + k + 1 - lo - n..x + k + 1 - lo],
         ),
@@ -326,6 +334,7 @@ fn interpret<const L: usize>(
 #[allow(clippy::too_many_lines)]
 fn order_k<const L: usize>(nodes: &[Node], w: &mut [[f64; L]], k: usize, layout: WorkLayout) {
     let at = |n: u32, j: usize| layout.at(n as usize, j);
+    let lead = layout.lead();
     let kf = k as f64;
     for (i, &node) in nodes.iter().enumerate() {
         let me = layout.at(i, 0);
@@ -356,15 +365,15 @@ fn order_k<const L: usize>(nodes: &[Node], w: &mut [[f64; L]], k: usize, layout:
             ),
             Node::Mul(a, b) => {
                 let (a, b) = (at(a, 0), at(b, 0));
-                cauchy_lanes(&w[a..=a + k], &w[b..=b + k])
+                cauchy_lanes(lead, &w[a..=a + k], &w[b..=b + k])
             }
-            Node::Square(a) => mirrored(w, at(a, 0), 0, k),
+            Node::Square(a) => mirrored(lead, w, at(a, 0), 0, k),
             Node::Div(a, b) => {
                 let b = at(b, 0);
                 if k == 0 {
                     zip(w[at(a, 0)], w[b], |x, y| x / y)
                 } else {
-                    let s = cauchy_lanes(&w[b + 1..=b + k], &w[me..me + k]);
+                    let s = cauchy_lanes(lead, &w[b + 1..=b + k], &w[me..me + k]);
                     let d = zip(w[at(a, k)], s, |x, y| x - y);
                     zip(d, w[b], |x, y| x / y)
                 }
@@ -374,7 +383,7 @@ fn order_k<const L: usize>(nodes: &[Node], w: &mut [[f64; L]], k: usize, layout:
                 if k == 0 {
                     map(w[a], |x| c / x)
                 } else {
-                    let s = cauchy_lanes(&w[a + 1..=a + k], &w[me..me + k]);
+                    let s = cauchy_lanes(lead, &w[a + 1..=a + k], &w[me..me + k]);
                     zip(s, w[a], |x, y| -x / y)
                 }
             }
@@ -382,7 +391,7 @@ fn order_k<const L: usize>(nodes: &[Node], w: &mut [[f64; L]], k: usize, layout:
                 if k == 0 {
                     map(w[at(a, 0)], f64::sqrt)
                 } else {
-                    let s = zip(w[at(a, k)], mirrored(w, me, 1, k), |x, y| x - y);
+                    let s = zip(w[at(a, k)], mirrored(lead, w, me, 1, k), |x, y| x - y);
                     zip(s, w[me], |x, y| x / (2.0 * y))
                 }
             }
@@ -391,7 +400,7 @@ fn order_k<const L: usize>(nodes: &[Node], w: &mut [[f64; L]], k: usize, layout:
                 if k == 0 {
                     map(w[a], |x| power0(x, alpha))
                 } else {
-                    let s = weighted_sum(w, Weight::Power(alpha), a, me, k);
+                    let s = weighted_sum(lead, w, Weight::Power(alpha), a, me, k);
                     zip(s.unwrap_or([0.0; L]), w[a], |x, y| x / (kf * y))
                 }
             }
@@ -407,7 +416,7 @@ fn order_k<const L: usize>(nodes: &[Node], w: &mut [[f64; L]], k: usize, layout:
                 if k == 0 {
                     map(w[d], f64::exp)
                 } else {
-                    let s = cauchy_lanes(&w[me..me + k], &w[d + 1..=d + k]);
+                    let s = cauchy_lanes(lead, &w[me..me + k], &w[d + 1..=d + k]);
                     let rk = 1.0 / kf;
                     map(s, |x| x * rk)
                 }
@@ -418,7 +427,7 @@ fn order_k<const L: usize>(nodes: &[Node], w: &mut [[f64; L]], k: usize, layout:
                     map(w[a], |x| func_value(func, x))
                 } else {
                     let s = map(w[a + k], |x| sign * kf * x);
-                    let s = match weighted_sum(w, Weight::Falling, me, d + 1, k - 1) {
+                    let s = match weighted_sum(lead, w, Weight::Falling, me, d + 1, k - 1) {
                         Some(t) => zip(s, t, |x, y| x - y),
                         None => s,
                     };
@@ -439,8 +448,8 @@ fn order_k<const L: usize>(nodes: &[Node], w: &mut [[f64; L]], k: usize, layout:
                     s
                 } else {
                     let slopes = &w[d + 1..=d + k];
-                    let s = cauchy_lanes(&w[partner..partner + k], slopes);
-                    let c = cauchy_lanes(&w[me..me + k], slopes);
+                    let s = cauchy_lanes(lead, &w[partner..partner + k], slopes);
+                    let c = cauchy_lanes(lead, &w[me..me + k], slopes);
                     let rk = 1.0 / kf;
                     w[partner + k] = if hyperbolic {
                         map(c, |x| x * rk)

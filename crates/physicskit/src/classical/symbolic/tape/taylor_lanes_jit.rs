@@ -402,6 +402,10 @@ impl<const N: usize> Recurrences for Emitter<'_, '_, N> {
         self.fresh.set_k(k);
     }
 
+    fn lead(&self) -> usize {
+        self.fresh.lead()
+    }
+
     fn ld(&mut self, n: usize, j: usize) -> Lanes<N> {
         if let Some(v) = self.fresh.get(n, j) {
             return v;
