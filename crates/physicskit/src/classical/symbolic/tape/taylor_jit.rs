@@ -437,12 +437,12 @@ impl<X: Copy> Fresh<X> {
         }
     }
 
-    /// Sets the order being emitted.
     /// The program's end terms of a sum ([`WorkLayout::lead`]).
     pub(super) fn lead(&self) -> usize {
         self.layout.lead()
     }
 
+    /// Sets the order being emitted.
     pub(super) fn set_k(&mut self, k: usize) {
         self.k = k;
     }
