@@ -920,13 +920,15 @@ const LONG_PROGRAM: usize = 24;
 
 impl WorkLayout {
     /// The terms at each end of a sum that [`ordered_sum`] leaves out of its groups of four, in
-    /// this program: the groups are read by vector loads, and a vector load spanning a scalar
-    /// store still pending waits for it (failed store forwarding). The end terms read a
-    /// factor's newest coefficients: order `k`, stored just before the sum, always stays out;
-    /// order `k − 1` was stored an order's worth of nodes before, which in a program of
-    /// [`LONG_PROGRAM`] nodes or more (the double pendulum's 33) is long enough for the store
-    /// to be done, so it joins the groups (lead 1), and in a shorter one (Kepler's and
-    /// Hénon–Heiles' 13) is not (lead 2). `benchmarks/README.md` has the measurements.
+    /// this program. The AVX code (`taylor_asm.rs`) reads the groups by vector loads, and a
+    /// vector load spanning a scalar store still pending waits for it (failed store
+    /// forwarding). The end terms read a factor's newest coefficients: order `k`, stored just
+    /// before the sum, always stays out; order `k − 1` was stored an order's worth of nodes
+    /// before, which in a program of [`LONG_PROGRAM`] nodes or more (the double pendulum's
+    /// 33–34) is long enough for the store to be done, so it joins the groups (lead 1), and in
+    /// a shorter one (Kepler's and Hénon–Heiles' 13) is not (lead 2). The other forms take the
+    /// same order for the same bits; it makes no clear difference to their speed.
+    /// `benchmarks/README.md` has the measurements.
     pub(super) fn lead(self) -> usize {
         if self.nodes >= LONG_PROGRAM {
             1
