@@ -231,14 +231,22 @@ pub(super) struct WorkLayout {
     nodes: usize,
     dim: usize,
     stride: usize,
+    /// The terms at each end of a sum outside its groups ([`WorkLayout::lead`]).
+    lead: usize,
 }
 
 impl WorkLayout {
-    pub(super) fn new(nodes: usize, dim: usize, order: usize) -> Self {
+    /// The layout of the recurrences of `nodes` (the state's `dim` rows first) to `order`.
+    fn new(nodes: &[Node], dim: usize, order: usize) -> Self {
         Self {
-            nodes,
+            nodes: nodes.len(),
             dim,
             stride: order + 1,
+            lead: if pass_work(nodes, order) >= LONG_PASS {
+                1
+            } else {
+                2
+            },
         }
     }
 
@@ -914,27 +922,39 @@ fn mirrored(lead: usize, w: &[f64], x: usize, lo: usize, k: usize) -> f64 {
     }
 }
 
-/// Programs of this many nodes or more leave one term at each end of a sum out of its groups,
-/// shorter ones two ([`WorkLayout::lead`]).
-const LONG_PROGRAM: usize = 24;
+/// The work of one order's pass ([`pass_work`], in multiply-adds) at or above which a
+/// program leaves one term at each end of a sum out of its groups, below which two
+/// ([`WorkLayout::lead`]).
+const LONG_PASS: f64 = 72.0;
+
+/// The multiply-adds of the pass over `nodes` at order `k`: each node's sum's terms by the
+/// work of a term, plus its work besides the sum ([`Node::work_per_term`]).
+fn pass_work(nodes: &[Node], k: usize) -> f64 {
+    nodes
+        .iter()
+        .map(|node| {
+            let (per_term, besides) = node.work_per_term();
+            node.sum_terms(k) as f64 * per_term + besides
+        })
+        .sum()
+}
 
 impl WorkLayout {
     /// The terms at each end of a sum that [`ordered_sum`] leaves out of its groups of four, in
-    /// this program. The AVX code (`taylor_asm.rs`) reads the groups by vector loads, and a
-    /// vector load spanning a scalar store still pending waits for it (failed store
-    /// forwarding). The end terms read a factor's newest coefficients: order `k`, stored just
-    /// before the sum, always stays out; order `k − 1` was stored an order's worth of nodes
-    /// before, which in a program of [`LONG_PROGRAM`] nodes or more (the double pendulum's
-    /// 33–34) is long enough for the store to be done, so it joins the groups (lead 1), and in
-    /// a shorter one (Kepler's and Hénon–Heiles' 13) is not (lead 2). The other forms take the
-    /// same order for the same bits; it makes no clear difference to their speed.
-    /// `benchmarks/README.md` has the measurements.
+    /// this program at this order. The AVX code (`taylor_asm.rs`) reads the groups by vector
+    /// loads, and a vector load spanning a scalar store still pending waits for it (failed
+    /// store forwarding). The end terms read a factor's newest coefficients: order `k`, stored
+    /// just before the sum, always stays out; order `k − 1` was stored about one order's pass
+    /// earlier. Where the pass at the program's order does at least [`LONG_PASS`]
+    /// multiply-adds ([`pass_work`]: the double pendulum's Hamiltonian from order 2 up,
+    /// Kepler's from order 13 up), that store is done by then and order `k − 1` joins the
+    /// groups (lead 1); after a shorter pass (Hénon–Heiles' at every order: 56 at order 24)
+    /// it is not (lead 2). The pass's work tells the two apart better than its count of
+    /// nodes, whose cost ranges from one addition to a sum of `k + 1` products. The other
+    /// forms take the same order for the same bits; it makes no clear difference to their
+    /// speed. `benchmarks/README.md` has the measurements.
     pub(super) fn lead(self) -> usize {
-        if self.nodes >= LONG_PROGRAM {
-            1
-        } else {
-            2
-        }
+        self.lead
     }
 }
 
@@ -1756,7 +1776,7 @@ impl TaylorField for TaylorProgram {
             });
         }
         let dim = self.dim;
-        let layout = WorkLayout::new(self.nodes.len(), dim, order);
+        let layout = WorkLayout::new(&self.nodes, dim, order);
         if self.work.len() != layout.len() {
             // The blocks' lanes past the last row stay the zeros of the allocation.
             self.work = vec![0.0; layout.len()];
@@ -1790,7 +1810,58 @@ impl TaylorField for TaylorProgram {
 
 #[cfg(test)]
 mod tests {
-    use super::{ordered_sum, power0, Power};
+    use super::{ordered_sum, pass_work, power0, Power, TaylorProgram, WorkLayout, MAX_ORDER};
+    use crate::classical::symbolic::{Expr, ExprHamiltonian};
+
+    /// The program of Hamilton's equations of `h` (two degrees of freedom, parameters
+    /// `params`).
+    fn hamiltonian(h: &str, params: Vec<f64>) -> TaylorProgram {
+        let h = Expr::parse(h).expect("parses");
+        let system = ExprHamiltonian::new(h, 2, params, &[0.5, 0.1], &[0.2, 0.3]).expect("valid");
+        TaylorProgram::hamiltonian(&system).expect("has a Taylor form")
+    }
+
+    /// The sums' end terms follow the work of a pass as `WorkLayout::lead` documents it for
+    /// the programs it names (the heyoka comparison's, where it was measured): Hénon–Heiles
+    /// keeps two at every order (its pass at order 24: 56 multiply-adds), Kepler takes one
+    /// from order 13 up (75), the double pendulum's Hamiltonian from order 2 up (94); and a
+    /// pass grows with the order.
+    #[test]
+    fn the_end_terms_follow_the_work_of_a_pass() {
+        let kepler = hamiltonian(
+            "(- (* 0.5 (+ (^ p0 2) (^ p1 2))) (^ (+ (^ q0 2) (^ q1 2)) -0.5))",
+            vec![],
+        );
+        let henon_heiles = hamiltonian(
+            "(+ (* 0.5 (+ (^ p0 2) (^ p1 2) (^ q0 2) (^ q1 2))) (* (^ q0 2) q1) \
+             (* (/ -1 3) (^ q1 3)))",
+            vec![],
+        );
+        let pendulum = hamiltonian(
+            "(- (- (/ (+ (* param2 (^ p0 2)) (* param0 (^ p1 2)) \
+             (* -2 param1 (cos (- q0 q1)) p0 p1)) \
+             (* 2 (- (* param0 param2) (^ (* param1 (cos (- q0 q1))) 2)))) \
+             (* param3 (cos q0))) (* param4 (cos q1)))",
+            vec![2.0, 1.0, 1.0, 19.62, 9.81],
+        );
+        let lead = |p: &TaylorProgram, order| WorkLayout::new(&p.nodes, 4, order).lead();
+        for order in 1..=MAX_ORDER {
+            for p in [&kepler, &henon_heiles, &pendulum] {
+                assert!(pass_work(&p.nodes, order) > pass_work(&p.nodes, order - 1));
+            }
+            assert_eq!(lead(&henon_heiles, order), 2, "order {order}");
+            assert_eq!(
+                lead(&kepler, order),
+                if order >= 13 { 1 } else { 2 },
+                "order {order}"
+            );
+            assert_eq!(
+                lead(&pendulum, order),
+                if order >= 2 { 1 } else { 2 },
+                "order {order}"
+            );
+        }
+    }
 
     /// Every term enters a sum once, in the order `ordered_sum`'s documentation gives, with
     /// one and with two end terms: terms as the bits of a mask, each addition recorded as its

@@ -200,7 +200,7 @@ impl Recorder {
         let mut recorder = Recorder {
             ops: Vec::new(),
             pool: Vec::new(),
-            fresh: Fresh::new(WorkLayout::new(nodes.len(), outputs.len(), order)),
+            fresh: Fresh::new(WorkLayout::new(nodes, outputs.len(), order)),
             blocks,
             groups,
             weights: Vec::new(),
@@ -1067,7 +1067,7 @@ mod tests {
                 reference.work.clone()
             })
             .collect();
-        let layout = WorkLayout::new(program.nodes.len(), 4, order);
+        let layout = WorkLayout::new(&program.nodes, 4, order);
         for registers in [Some(1), Some(2), Some(5), None] {
             let Some((code, _module)) = compile_on(
                 &program.nodes,

@@ -200,7 +200,7 @@ impl Native {
     }
 
     fn compile(nodes: &[Node], outputs: &[Val], order: usize, form: Form) -> Option<Native> {
-        let layout = WorkLayout::new(nodes.len(), outputs.len(), order);
+        let layout = WorkLayout::new(nodes, outputs.len(), order);
         #[cfg(all(target_arch = "x86_64", not(windows)))]
         if form == Form::Avx {
             if let Some((code, module)) = asm::compile_scalar(nodes, outputs, layout, order) {

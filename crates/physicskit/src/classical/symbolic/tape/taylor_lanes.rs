@@ -525,7 +525,7 @@ impl<const L: usize> LanesField<L> for TaylorLanes<L> {
                 ),
             ));
         }
-        let layout = WorkLayout::new(self.nodes.len(), self.dim, order);
+        let layout = WorkLayout::new(&self.nodes, self.dim, order);
         let size = layout.blocks_start();
         if self.work.len() != size {
             self.work = vec![[0.0; L]; size];

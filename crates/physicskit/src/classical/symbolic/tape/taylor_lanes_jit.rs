@@ -304,7 +304,7 @@ impl Native {
                     shims,
                     base,
                     lanes,
-                    fresh: Fresh::new(WorkLayout::new(nodes.len(), outputs.len(), order)),
+                    fresh: Fresh::new(WorkLayout::new(nodes, outputs.len(), order)),
                 }
                 .recurrences(nodes, outputs, order);
                 let next = b.ins().iadd_imm(base, pass);
