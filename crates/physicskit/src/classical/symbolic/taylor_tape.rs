@@ -250,6 +250,16 @@ impl WorkLayout {
         }
     }
 
+    /// The layout of `order` kept in `last` (the layout of the last expansion), made and kept
+    /// there if it is of another order or none: what an expansion takes, so that a run's
+    /// steps, all of one order, read the nodes for the lead once.
+    fn of_order(last: &mut Option<Self>, nodes: &[Node], dim: usize, order: usize) -> Self {
+        match *last {
+            Some(layout) if layout.stride == order + 1 => layout,
+            _ => *last.insert(Self::new(nodes, dim, order)),
+        }
+    }
+
     /// The index of coefficient `j` of node `n`: every node's coefficients side by side,
     /// node by node (the state's rows are nodes `0..dim`, the time node `dim`).
     #[inline(always)]
@@ -284,6 +294,9 @@ pub struct TaylorProgram {
     /// ([`WorkLayout`]); sized at the first expansion of an order and reused (no allocation
     /// per step).
     work: Vec<f64>,
+    /// The layout of the last expansion's order, kept for the next expansion of that order
+    /// (its lead reads every node: [`pass_work`]).
+    layout: Option<WorkLayout>,
     /// Native code of the recurrences per order, once compiled; shared by clones.
     jit: jit::Jit,
 }
@@ -1214,6 +1227,7 @@ impl TaylorProgram {
             nodes: kept,
             outputs,
             work: Vec::new(),
+            layout: None,
             jit: jit::Jit::default(),
         }
     }
@@ -1776,7 +1790,7 @@ impl TaylorField for TaylorProgram {
             });
         }
         let dim = self.dim;
-        let layout = WorkLayout::new(&self.nodes, dim, order);
+        let layout = WorkLayout::of_order(&mut self.layout, &self.nodes, dim, order);
         if self.work.len() != layout.len() {
             // The blocks' lanes past the last row stay the zeros of the allocation.
             self.work = vec![0.0; layout.len()];

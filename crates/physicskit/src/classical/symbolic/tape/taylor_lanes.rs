@@ -97,6 +97,8 @@ pub struct TaylorLanes<const L: usize> {
     work: Vec<[f64; L]>,
     /// How many of them are the state's rows (none before the first expansion).
     rows: usize,
+    /// The layout of the last expansion's order, kept for the next expansion of that order.
+    layout: Option<WorkLayout>,
     /// Machine code compiled from the recurrences (feature `jit`), per order.
     jit: jit::Jit,
 }
@@ -124,6 +126,7 @@ impl TaylorProgram {
             outputs: self.outputs.clone(),
             work: Vec::new(),
             rows: 0,
+            layout: None,
             jit: jit::Jit::shared(&self.nodes, &self.outputs, L),
         }
     }
@@ -525,7 +528,7 @@ impl<const L: usize> LanesField<L> for TaylorLanes<L> {
                 ),
             ));
         }
-        let layout = WorkLayout::new(&self.nodes, self.dim, order);
+        let layout = WorkLayout::of_order(&mut self.layout, &self.nodes, self.dim, order);
         let size = layout.blocks_start();
         if self.work.len() != size {
             self.work = vec![[0.0; L]; size];
