@@ -1748,17 +1748,16 @@ fn weighted_sum(
 /// The work of a step on the recurrences `nodes` of a field of `dim` rows, with the stepper's
 /// own ([`StepCost::stepper`]), in multiply-adds: each node's [`sum_terms`](Node::sum_terms)
 /// at order `k`, as a first term and a slope in `k` (over the orders up to [`MAX_ORDER`]),
-/// times its [`work_per_term`](Node::work_per_term), and the work besides its sum.
+/// times its [`work_per_term`](Node::work_per_term), and the work besides its sum: the
+/// [`pass_work`] at order 0 and its mean growth an order.
 fn step_cost(dim: usize, nodes: &[Node]) -> StepCost {
-    let mut cost = StepCost::stepper(dim);
-    for &node in nodes {
-        let (per_term, besides) = node.work_per_term();
-        let first = node.sum_terms(0) as f64;
-        let slope = (node.sum_terms(MAX_ORDER) as f64 - first) / MAX_ORDER as f64;
-        cost.convolution += slope * per_term;
-        cost.per_order += first * per_term + besides;
+    let first = pass_work(nodes, 0);
+    let stepper = StepCost::stepper(dim);
+    StepCost {
+        convolution: stepper.convolution + (pass_work(nodes, MAX_ORDER) - first) / MAX_ORDER as f64,
+        per_order: stepper.per_order + first,
+        ..stepper
     }
-    cost
 }
 
 impl TaylorField for TaylorProgram {
